@@ -1,0 +1,67 @@
+//! Errors found when a model is built. Evaluation never fails: everything is checked here, once.
+
+use core::fmt;
+
+/// What was wrong with a parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Problem {
+    /// NaN or infinite.
+    NonFinite,
+    /// Must be strictly positive.
+    NonPositive,
+    /// Must be zero or positive.
+    Negative,
+    /// Must be a unit vector (within [`AXIS_TOLERANCE`](crate::AXIS_TOLERANCE)).
+    NotUnit,
+    /// Must be perpendicular to another direction (within [`AXIS_TOLERANCE`](crate::AXIS_TOLERANCE)).
+    NotPerpendicular,
+    /// A lower bound exceeds the matching upper bound.
+    OutOfOrder,
+}
+
+/// A non-physical or malformed model parameter, found at construction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ModelError {
+    /// The parameter, e.g. `"segment.length"` or `"water.density"`.
+    pub field: &'static str,
+    /// The joint (fields `joint.*`) or link (all other fields) it belongs to, 0-based, if any.
+    pub index: Option<usize>,
+    /// What was wrong with it.
+    pub problem: Problem,
+}
+
+impl ModelError {
+    pub(crate) const fn new(field: &'static str, index: Option<usize>, problem: Problem) -> Self {
+        Self {
+            field,
+            index,
+            problem,
+        }
+    }
+}
+
+impl fmt::Display for ModelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(i) = self.index {
+            let owner = if self.field.starts_with("joint") {
+                "joint"
+            } else {
+                "link"
+            };
+            write!(f, "{owner} {i}: ")?;
+        }
+        let allowed = match self.problem {
+            Problem::NonFinite => "must be finite (not NaN or infinite)",
+            Problem::NonPositive => "must be positive",
+            Problem::Negative => "must be zero or positive",
+            Problem::NotUnit => "must be a unit vector (norm 1 within 1e-6)",
+            Problem::NotPerpendicular => {
+                "must be perpendicular (|cos| <= 1e-6) to the segment axis and to the other normal"
+            }
+            Problem::OutOfOrder => "must not exceed its upper counterpart",
+        };
+        write!(f, "{} {allowed}", self.field)
+    }
+}
+
+impl core::error::Error for ModelError {}

@@ -1,0 +1,411 @@
+//! The immutable, validated description of a serial chain, the water and the coefficients.
+//!
+//! Frames follow URDF without fixed rotations: every link frame is parallel to the world frame
+//! when all joint angles are zero. Joint `i` sits at `origin` in the frame of link `i - 1` (the
+//! world frame for the first joint) and turns link `i` about `axis` by `q[i]`. Link `i`'s
+//! geometry is given in its own frame, whose origin is joint `i`. World z points up.
+
+use nalgebra::{RealField, Vector3};
+
+use crate::error::{ModelError, Problem};
+
+/// Tolerance on unit length and on orthogonality of axes and normals at construction.
+pub const AXIS_TOLERANCE: f64 = 1e-6;
+
+/// A revolute joint: origin and unit axis in the parent link's frame at `q = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Joint<T: RealField + Copy> {
+    /// Position of the joint in the parent frame [m].
+    pub origin: Vector3<T>,
+    /// Unit rotation axis in the parent frame.
+    pub axis: Vector3<T>,
+}
+
+/// The hydrodynamic geometry of a straight link (strip theory), in the link's frame.
+///
+/// A slice at arc length `s ∈ [0, length]` lies at `start + s·axis`. `normals[k]` are the two
+/// principal cross-flow directions (orthonormal, perpendicular to `axis`); `widths[k]` is the
+/// frontal width seen by flow along `normals[k]`; `area` is the section area for added mass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment<T: RealField + Copy> {
+    /// Start point of the segment [m].
+    pub start: Vector3<T>,
+    /// Unit direction of the segment.
+    pub axis: Vector3<T>,
+    /// Length [m], positive.
+    pub length: T,
+    /// The two principal normal directions.
+    pub normals: [Vector3<T>; 2],
+    /// Frontal width for flow along each normal [m], positive.
+    pub widths: [T; 2],
+    /// Cross-section area for added mass [m²], positive.
+    pub area: T,
+}
+
+/// A rigid link: mass and centre of mass, displaced volume and centre of buoyancy, and
+/// optionally a straight segment that meets the water.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Link<T: RealField + Copy> {
+    /// Mass [kg], zero or positive.
+    pub mass: T,
+    /// Centre of mass in the link frame [m].
+    pub com: Vector3<T>,
+    /// Displaced volume [m³], zero or positive.
+    pub volume: T,
+    /// Centre of buoyancy in the link frame [m].
+    pub cob: Vector3<T>,
+    /// Hydrodynamic geometry; `None` for a link without drag or added mass.
+    pub segment: Option<Segment<T>>,
+}
+
+/// A validated serial chain of `N` revolute joints, link `i` moved by joint `i`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Chain<T: RealField + Copy, const N: usize> {
+    joints: [Joint<T>; N],
+    links: [Link<T>; N],
+}
+
+/// The fluid the chain moves in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Water<T: RealField + Copy> {
+    density: T,
+    gravity: T,
+}
+
+/// Drag and added-mass coefficients per link and per normal direction (`[link][k]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coefficients<T: RealField + Copy, const N: usize> {
+    cd: [[T; 2]; N],
+    cm: [[T; 2]; N],
+}
+
+pub(crate) fn constant<T: RealField + Copy>(x: f64) -> T {
+    nalgebra::convert(x)
+}
+
+fn check_finite<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    if x.is_finite() {
+        Ok(x)
+    } else {
+        Err(ModelError::new(field, index, Problem::NonFinite))
+    }
+}
+
+fn check_positive<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    let x = check_finite(x, field, index)?;
+    if x > T::zero() {
+        Ok(x)
+    } else {
+        Err(ModelError::new(field, index, Problem::NonPositive))
+    }
+}
+
+fn check_non_negative<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    let x = check_finite(x, field, index)?;
+    if x >= T::zero() {
+        Ok(x)
+    } else {
+        Err(ModelError::new(field, index, Problem::Negative))
+    }
+}
+
+fn check_vector<T: RealField + Copy>(
+    v: Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(v)
+    } else {
+        Err(ModelError::new(field, index, Problem::NonFinite))
+    }
+}
+
+/// Checks that `v` is a unit vector within [`AXIS_TOLERANCE`] and returns it normalized exactly.
+fn check_unit<T: RealField + Copy>(
+    v: Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    let v = check_vector(v, field, index)?;
+    let norm = v.norm();
+    if (norm - T::one()).abs() <= constant(AXIS_TOLERANCE) {
+        Ok(v / norm)
+    } else {
+        Err(ModelError::new(field, index, Problem::NotUnit))
+    }
+}
+
+fn check_perpendicular<T: RealField + Copy>(
+    a: &Vector3<T>,
+    b: &Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<(), ModelError> {
+    if a.dot(b).abs() <= constant(AXIS_TOLERANCE) {
+        Ok(())
+    } else {
+        Err(ModelError::new(field, index, Problem::NotPerpendicular))
+    }
+}
+
+impl<T: RealField + Copy> Joint<T> {
+    fn validated(self, index: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        Ok(Self {
+            origin: check_vector(self.origin, "joint.origin", i)?,
+            axis: check_unit(self.axis, "joint.axis", i)?,
+        })
+    }
+}
+
+impl<T: RealField + Copy> Segment<T> {
+    fn validated(self, index: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        let axis = check_unit(self.axis, "segment.axis", i)?;
+        let [n1, n2] = self.normals;
+        let n1 = check_unit(n1, "segment.normals[0]", i)?;
+        let n2 = check_unit(n2, "segment.normals[1]", i)?;
+        check_perpendicular(&n1, &axis, "segment.normals[0]", i)?;
+        check_perpendicular(&n2, &axis, "segment.normals[1]", i)?;
+        check_perpendicular(&n1, &n2, "segment.normals[1]", i)?;
+        let [w1, w2] = self.widths;
+        Ok(Self {
+            start: check_vector(self.start, "segment.start", i)?,
+            axis,
+            length: check_positive(self.length, "segment.length", i)?,
+            normals: [n1, n2],
+            widths: [
+                check_positive(w1, "segment.widths[0]", i)?,
+                check_positive(w2, "segment.widths[1]", i)?,
+            ],
+            area: check_positive(self.area, "segment.area", i)?,
+        })
+    }
+}
+
+impl<T: RealField + Copy> Link<T> {
+    fn validated(self, index: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        Ok(Self {
+            mass: check_non_negative(self.mass, "link.mass", i)?,
+            com: check_vector(self.com, "link.com", i)?,
+            volume: check_non_negative(self.volume, "link.volume", i)?,
+            cob: check_vector(self.cob, "link.cob", i)?,
+            segment: match self.segment {
+                Some(segment) => Some(segment.validated(index)?),
+                None => None,
+            },
+        })
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Chain<T, N> {
+    /// Validates and builds a chain. Axes and normals are re-normalized exactly.
+    ///
+    /// # Errors
+    /// The first non-finite, non-positive (lengths, widths, area), negative (mass, volume),
+    /// non-unit or non-perpendicular parameter, naming the field and the joint or link.
+    pub fn new(joints: [Joint<T>; N], links: [Link<T>; N]) -> Result<Self, ModelError> {
+        let mut chain = Self { joints, links };
+        for (index, (joint, link)) in chain
+            .joints
+            .iter_mut()
+            .zip(chain.links.iter_mut())
+            .enumerate()
+        {
+            *joint = joint.validated(index)?;
+            *link = link.validated(index)?;
+        }
+        Ok(chain)
+    }
+
+    /// The joints, as validated.
+    pub const fn joints(&self) -> &[Joint<T>; N] {
+        &self.joints
+    }
+
+    /// The links, as validated.
+    pub const fn links(&self) -> &[Link<T>; N] {
+        &self.links
+    }
+}
+
+/// Table II of the paper, the UWML's parameters (SI units).
+pub mod paper {
+    /// Thigh length `L2` [m].
+    pub const L2: f64 = 0.660;
+    /// Calf length `L3` [m].
+    pub const L3: f64 = 0.714;
+    /// Thigh COM/COB distance from joint 2, `Lc2` [m].
+    pub const LC2: f64 = 0.506;
+    /// Calf COM/COB distance from joint 3, `Lc3` [m].
+    pub const LC3: f64 = 0.560;
+    /// Thigh frontal width for out-of-plane flow, `D21` [m].
+    pub const D21: f64 = 0.131;
+    /// Thigh frontal width for in-plane flow, `D22` [m].
+    pub const D22: f64 = 0.238;
+    /// Calf frontal width for out-of-plane flow, `D31` [m].
+    pub const D31: f64 = 0.131;
+    /// Calf frontal width for in-plane flow, `D32` [m].
+    pub const D32: f64 = 0.279;
+    /// Link masses `m1, m2, m3` [kg].
+    pub const MASSES: [f64; 3] = [10.758, 19.261, 10.375];
+    /// Equivalent link density `ρ_m` [kg/m³]; a link's displaced volume is `m / ρ_m`.
+    pub const LINK_DENSITY: f64 = 2700.0;
+}
+
+impl<T: RealField + Copy> Chain<T, 3> {
+    /// The paper's underwater mechanical leg (UWML, Table II): hip yaw about world z, hip roll
+    /// and knee roll about `-e_t`; thigh along local +x, calf along local −z at `q = 0`.
+    #[must_use]
+    pub fn paper() -> Self {
+        let c = constant::<T>;
+        let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
+        let roll_axis = v(0.0, -1.0, 0.0);
+        let joints = [
+            Joint {
+                origin: Vector3::zeros(),
+                axis: v(0.0, 0.0, 1.0),
+            },
+            Joint {
+                origin: Vector3::zeros(),
+                axis: roll_axis,
+            },
+            Joint {
+                origin: v(paper::L2, 0.0, 0.0),
+                axis: roll_axis,
+            },
+        ];
+        let volume = |m: f64| c(m / paper::LINK_DENSITY);
+        let [m1, m2, m3] = paper::MASSES;
+        let out_of_plane = v(0.0, 1.0, 0.0);
+        let links = [
+            Link {
+                mass: c(m1),
+                com: Vector3::zeros(),
+                volume: volume(m1),
+                cob: Vector3::zeros(),
+                segment: None,
+            },
+            Link {
+                mass: c(m2),
+                com: v(paper::LC2, 0.0, 0.0),
+                volume: volume(m2),
+                cob: v(paper::LC2, 0.0, 0.0),
+                segment: Some(Segment {
+                    start: Vector3::zeros(),
+                    axis: v(1.0, 0.0, 0.0),
+                    length: c(paper::L2),
+                    normals: [out_of_plane, v(0.0, 0.0, 1.0)],
+                    widths: [c(paper::D21), c(paper::D22)],
+                    area: c(paper::D21 * paper::D22),
+                }),
+            },
+            Link {
+                mass: c(m3),
+                com: v(0.0, 0.0, -paper::LC3),
+                volume: volume(m3),
+                cob: v(0.0, 0.0, -paper::LC3),
+                segment: Some(Segment {
+                    start: Vector3::zeros(),
+                    axis: v(0.0, 0.0, -1.0),
+                    length: c(paper::L3),
+                    normals: [out_of_plane, v(1.0, 0.0, 0.0)],
+                    widths: [c(paper::D31), c(paper::D32)],
+                    area: c(paper::D31 * paper::D32),
+                }),
+            },
+        ];
+        Self { joints, links }
+    }
+}
+
+impl<T: RealField + Copy> Water<T> {
+    /// Water of the given density [kg/m³] under the given gravity [m/s²].
+    ///
+    /// # Errors
+    /// Density not positive and finite, or gravity negative or not finite.
+    pub fn new(density: T, gravity: T) -> Result<Self, ModelError> {
+        Ok(Self {
+            density: check_positive(density, "water.density", None)?,
+            gravity: check_non_negative(gravity, "water.gravity", None)?,
+        })
+    }
+
+    /// Density [kg/m³].
+    pub const fn density(&self) -> T {
+        self.density
+    }
+
+    /// Gravitational acceleration [m/s²].
+    pub const fn gravity(&self) -> T {
+        self.gravity
+    }
+}
+
+impl<T: RealField + Copy> Default for Water<T> {
+    /// Fresh water as in the paper: 1000 kg/m³, g = 9.81 m/s².
+    fn default() -> Self {
+        Self {
+            density: constant(1000.0),
+            gravity: constant(9.81),
+        }
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
+    /// One drag and one added-mass coefficient for every link and direction (the paper's model).
+    ///
+    /// # Errors
+    /// A coefficient that is negative or not finite.
+    pub fn uniform(cd: T, cm: T) -> Result<Self, ModelError> {
+        Self::per_direction([[cd; 2]; N], [[cm; 2]; N])
+    }
+
+    /// Coefficients per link and per normal direction, indexed `[link][k]`.
+    ///
+    /// # Errors
+    /// A coefficient that is negative or not finite, naming the link.
+    pub fn per_direction(cd: [[T; 2]; N], cm: [[T; 2]; N]) -> Result<Self, ModelError> {
+        for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
+            for (&d, &m) in cd.iter().zip(cm.iter()) {
+                check_non_negative(d, "cd", Some(index))?;
+                check_non_negative(m, "cm", Some(index))?;
+            }
+        }
+        Ok(Self { cd, cm })
+    }
+
+    /// Drag coefficients `[link][k]`.
+    pub const fn cd(&self) -> &[[T; 2]; N] {
+        &self.cd
+    }
+
+    /// Added-mass coefficients `[link][k]`.
+    pub const fn cm(&self) -> &[[T; 2]; N] {
+        &self.cm
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Default for Coefficients<T, N> {
+    /// The paper's fitted values rounded: `Cd = 2.2`, `Cm = 0.5` everywhere.
+    fn default() -> Self {
+        Self {
+            cd: [[constant(2.2); 2]; N],
+            cm: [[constant(0.5); 2]; N],
+        }
+    }
+}

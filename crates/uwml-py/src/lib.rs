@@ -1,0 +1,528 @@
+//! `uwml._core`: thin Python bindings of `uwml-core`. All physics lives in the core; this
+//! crate converts arrays, dispatches on the number of joints, and loops over samples with the
+//! GIL released. The friendly, validated API is the Python package `uwml`.
+
+use numpy::ndarray::{Array, Dimension, IntoDimension};
+use numpy::{IntoPyArray, PyArray, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::create_exception;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use uwml_core::nalgebra::{SVector, Vector3};
+use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Segment, Water, hydro_regressors};
+
+create_exception!(
+    _core,
+    UwmlModelError,
+    PyValueError,
+    "A non-physical or malformed model parameter."
+);
+
+/// Largest number of joints a chain built from Python may have.
+const MAX_JOINTS: usize = 8;
+/// Floats per joint in the packed layout: origin (3), axis (3).
+const JOINT_WIDTH: usize = 6;
+/// Floats per link in the packed layout: mass, com (3), volume, cob (3), has_segment (0/1),
+/// segment start (3), axis (3), length, normals (2×3), widths (2), area.
+const LINK_WIDTH: usize = 25;
+
+fn model_error(error: ModelError) -> PyErr {
+    UwmlModelError::new_err(error.to_string())
+}
+
+fn next3(values: &mut impl Iterator<Item = f64>) -> Vector3<f64> {
+    let mut next = || values.next().unwrap_or(f64::NAN);
+    Vector3::new(next(), next(), next())
+}
+
+fn unpack_joint(row: &[f64]) -> Joint<f64> {
+    let mut values = row.iter().copied();
+    Joint {
+        origin: next3(&mut values),
+        axis: next3(&mut values),
+    }
+}
+
+fn unpack_link(row: &[f64]) -> Link<f64> {
+    let mut values = row.iter().copied();
+    let scalar = |values: &mut std::iter::Copied<std::slice::Iter<'_, f64>>| {
+        values.next().unwrap_or(f64::NAN)
+    };
+    let mass = scalar(&mut values);
+    let com = next3(&mut values);
+    let volume = scalar(&mut values);
+    let cob = next3(&mut values);
+    let has_segment = scalar(&mut values) != 0.0;
+    let start = next3(&mut values);
+    let axis = next3(&mut values);
+    let length = scalar(&mut values);
+    let normals = [next3(&mut values), next3(&mut values)];
+    let widths = [scalar(&mut values), scalar(&mut values)];
+    let area = scalar(&mut values);
+    let segment = has_segment.then_some(Segment {
+        start,
+        axis,
+        length,
+        normals,
+        widths,
+        area,
+    });
+    Link {
+        mass,
+        com,
+        volume,
+        cob,
+        segment,
+    }
+}
+
+fn pack_link(link: &Link<f64>) -> Vec<f64> {
+    let mut row = Vec::with_capacity(LINK_WIDTH);
+    row.push(link.mass);
+    row.extend(link.com.iter());
+    row.push(link.volume);
+    row.extend(link.cob.iter());
+    match &link.segment {
+        Some(s) => {
+            row.push(1.0);
+            row.extend(s.start.iter());
+            row.extend(s.axis.iter());
+            row.push(s.length);
+            row.extend(s.normals.iter().flat_map(|n| n.iter().copied()));
+            row.extend(s.widths);
+            row.push(s.area);
+        }
+        None => row.resize(LINK_WIDTH, 0.0),
+    }
+    row
+}
+
+fn build<const N: usize>(joints: &[f64], links: &[f64]) -> Result<Chain<f64, N>, ModelError> {
+    let mut joint_array = [Joint {
+        origin: Vector3::zeros(),
+        axis: Vector3::z(),
+    }; N];
+    for (joint, row) in joint_array.iter_mut().zip(joints.chunks_exact(JOINT_WIDTH)) {
+        *joint = unpack_joint(row);
+    }
+    let empty = Link {
+        mass: 0.0,
+        com: Vector3::zeros(),
+        volume: 0.0,
+        cob: Vector3::zeros(),
+        segment: None,
+    };
+    let mut link_array = [empty; N];
+    for (link, row) in link_array.iter_mut().zip(links.chunks_exact(LINK_WIDTH)) {
+        *link = unpack_link(row);
+    }
+    Chain::new(joint_array, link_array)
+}
+
+/// A validated chain with its number of joints known at compile time inside.
+#[derive(Clone, Copy)]
+enum AnyChain {
+    N1(Chain<f64, 1>),
+    N2(Chain<f64, 2>),
+    N3(Chain<f64, 3>),
+    N4(Chain<f64, 4>),
+    N5(Chain<f64, 5>),
+    N6(Chain<f64, 6>),
+    N7(Chain<f64, 7>),
+    N8(Chain<f64, 8>),
+}
+
+macro_rules! dispatch {
+    ($chain:expr, $c:ident => $body:expr) => {
+        match $chain {
+            AnyChain::N1($c) => $body,
+            AnyChain::N2($c) => $body,
+            AnyChain::N3($c) => $body,
+            AnyChain::N4($c) => $body,
+            AnyChain::N5($c) => $body,
+            AnyChain::N6($c) => $body,
+            AnyChain::N7($c) => $body,
+            AnyChain::N8($c) => $body,
+        }
+    };
+}
+
+/// The first non-finite joint state found in a batch.
+struct NonFinite {
+    argument: &'static str,
+    sample: usize,
+    joint: usize,
+    value: f64,
+}
+
+impl From<NonFinite> for PyErr {
+    fn from(e: NonFinite) -> Self {
+        PyValueError::new_err(format!(
+            "{}[{}, {}] is {}: joint states must be finite",
+            e.argument, e.sample, e.joint, e.value
+        ))
+    }
+}
+
+fn load<const N: usize>(
+    values: &[f64],
+    argument: &'static str,
+    sample: usize,
+) -> Result<SVector<f64, N>, NonFinite> {
+    let mut v = SVector::<f64, N>::zeros();
+    for (joint, (slot, &value)) in v.iter_mut().zip(values).enumerate() {
+        if !value.is_finite() {
+            return Err(NonFinite {
+                argument,
+                sample,
+                joint,
+                value,
+            });
+        }
+        *slot = value;
+    }
+    Ok(v)
+}
+
+struct States<'a> {
+    q: &'a [f64],
+    qd: &'a [f64],
+    qdd: &'a [f64],
+}
+
+impl States<'_> {
+    /// Every sample's `(index, q, q̇, q̈)`, or the first non-finite value.
+    fn each<const N: usize>(
+        &self,
+    ) -> impl Iterator<Item = Result<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>), NonFinite>> + '_
+    {
+        let rows = self
+            .q
+            .chunks_exact(N)
+            .zip(self.qd.chunks_exact(N))
+            .zip(self.qdd.chunks_exact(N));
+        rows.enumerate().map(|(sample, ((q, qd), qdd))| {
+            Ok((
+                load(q, "q", sample)?,
+                load(qd, "qd", sample)?,
+                load(qdd, "qdd", sample)?,
+            ))
+        })
+    }
+}
+
+fn coefficients<const N: usize>(
+    cd: &[f64],
+    cm: &[f64],
+) -> Result<Coefficients<f64, N>, ModelError> {
+    let mut cd_array = [[0.0; 2]; N];
+    let mut cm_array = [[0.0; 2]; N];
+    for (slot, pair) in cd_array.iter_mut().zip(cd.chunks_exact(2)) {
+        slot.copy_from_slice(pair);
+    }
+    for (slot, pair) in cm_array.iter_mut().zip(cm.chunks_exact(2)) {
+        slot.copy_from_slice(pair);
+    }
+    Coefficients::per_direction(cd_array, cm_array)
+}
+
+/// Torque arrays of a batch, each `n_samples × N`, row-major.
+struct TorqueBatch {
+    drag: Vec<f64>,
+    added_mass: Vec<f64>,
+    buoyancy: Vec<f64>,
+    gravity: Vec<f64>,
+}
+
+fn hydro_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    coefficients: &Coefficients<f64, N>,
+    states: &States<'_>,
+    n_samples: usize,
+) -> Result<TorqueBatch, NonFinite> {
+    let mut out = TorqueBatch {
+        drag: Vec::with_capacity(n_samples * N),
+        added_mass: Vec::with_capacity(n_samples * N),
+        buoyancy: Vec::with_capacity(n_samples * N),
+        gravity: Vec::with_capacity(n_samples * N),
+    };
+    for state in states.each::<N>() {
+        let (q, qd, qdd) = state?;
+        let tau = hydro_regressors(chain, water, &q, &qd, &qdd).apply(coefficients);
+        out.drag.extend(tau.drag.iter());
+        out.added_mass.extend(tau.added_mass.iter());
+        out.buoyancy.extend(tau.buoyancy.iter());
+        out.gravity.extend(tau.gravity.iter());
+    }
+    Ok(out)
+}
+
+/// Regressor arrays of a batch: buoyancy and gravity `n × N`; drag and added mass either
+/// `n × N` (summed over links and directions) or `n × N × N × 2` (`[sample][joint][link][k]`).
+fn regressor_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    states: &States<'_>,
+    n_samples: usize,
+    per_direction: bool,
+) -> Result<TorqueBatch, NonFinite> {
+    let columns = if per_direction { N * N * 2 } else { N };
+    let mut out = TorqueBatch {
+        drag: Vec::with_capacity(n_samples * columns),
+        added_mass: Vec::with_capacity(n_samples * columns),
+        buoyancy: Vec::with_capacity(n_samples * N),
+        gravity: Vec::with_capacity(n_samples * N),
+    };
+    for state in states.each::<N>() {
+        let (q, qd, qdd) = state?;
+        let r = hydro_regressors(chain, water, &q, &qd, &qdd);
+        out.buoyancy.extend(r.buoyancy.iter());
+        out.gravity.extend(r.gravity.iter());
+        if per_direction {
+            for joint in 0..N {
+                out.drag.extend(joint_row(&r.drag, joint));
+                out.added_mass.extend(joint_row(&r.added_mass, joint));
+            }
+        } else {
+            out.drag.extend(r.drag_uniform().iter());
+            out.added_mass.extend(r.added_mass_uniform().iter());
+        }
+    }
+    Ok(out)
+}
+
+/// Joint `joint`'s entries of per-link, per-direction regressor columns, in `[link][k]` order.
+fn joint_row<const N: usize>(
+    columns: &[[SVector<f64, N>; 2]; N],
+    joint: usize,
+) -> impl Iterator<Item = f64> + '_ {
+    columns
+        .iter()
+        .flatten()
+        .map(move |c| c.get(joint).copied().unwrap_or(f64::NAN))
+}
+
+fn to_numpy<'py, D: Dimension>(
+    py: Python<'py>,
+    values: Vec<f64>,
+    shape: impl IntoDimension<Dim = D>,
+) -> PyResult<Bound<'py, PyArray<f64, D>>> {
+    let array =
+        Array::from_shape_vec(shape, values).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py))
+}
+
+fn contiguous<'a>(array: &'a PyReadonlyArray2<'_, f64>, argument: &str) -> PyResult<&'a [f64]> {
+    array.as_slice().map_err(|_| {
+        PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array"))
+    })
+}
+
+/// A serial chain of revolute joints (validated, immutable). Build it with `Chain(joints,
+/// links)` from packed arrays (see `uwml.Leg`), or `Chain.paper()`.
+#[pyclass(frozen, module = "uwml._core", name = "Chain")]
+struct PyChain {
+    chain: AnyChain,
+}
+
+impl PyChain {
+    fn n_joints(&self) -> usize {
+        dispatch!(&self.chain, c => c.joints().len())
+    }
+
+    fn check_states(
+        &self,
+        q: &PyReadonlyArray2<'_, f64>,
+        qd: &PyReadonlyArray2<'_, f64>,
+        qdd: &PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<usize> {
+        let n = self.n_joints();
+        let shape = q.shape();
+        for (name, array) in [("q", q), ("qd", qd), ("qdd", qdd)] {
+            if array.shape() != shape || shape.get(1) != Some(&n) {
+                return Err(PyValueError::new_err(format!(
+                    "{name} must have shape (n_samples, {n}) like q, got {:?} (q: {:?})",
+                    array.shape(),
+                    shape
+                )));
+            }
+        }
+        Ok(shape.first().copied().unwrap_or(0))
+    }
+}
+
+fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
+    Water::new(density, gravity).map_err(model_error)
+}
+
+#[pymethods]
+impl PyChain {
+    #[new]
+    fn new(joints: PyReadonlyArray2<'_, f64>, links: PyReadonlyArray2<'_, f64>) -> PyResult<Self> {
+        let n = joints.shape().first().copied().unwrap_or(0);
+        if !(1..=MAX_JOINTS).contains(&n) {
+            return Err(PyValueError::new_err(format!(
+                "a chain must have 1 to {MAX_JOINTS} joints, got {n}"
+            )));
+        }
+        if joints.shape() != [n, JOINT_WIDTH] || links.shape() != [n, LINK_WIDTH] {
+            return Err(PyValueError::new_err(format!(
+                "packed joints must have shape ({n}, {JOINT_WIDTH}) and links ({n}, {LINK_WIDTH}), got {:?} and {:?}",
+                joints.shape(),
+                links.shape()
+            )));
+        }
+        let (j, l) = (contiguous(&joints, "joints")?, contiguous(&links, "links")?);
+        let chain = match n {
+            1 => AnyChain::N1(build(j, l).map_err(model_error)?),
+            2 => AnyChain::N2(build(j, l).map_err(model_error)?),
+            3 => AnyChain::N3(build(j, l).map_err(model_error)?),
+            4 => AnyChain::N4(build(j, l).map_err(model_error)?),
+            5 => AnyChain::N5(build(j, l).map_err(model_error)?),
+            6 => AnyChain::N6(build(j, l).map_err(model_error)?),
+            7 => AnyChain::N7(build(j, l).map_err(model_error)?),
+            _ => AnyChain::N8(build(j, l).map_err(model_error)?),
+        };
+        Ok(Self { chain })
+    }
+
+    /// The paper's leg (Table II).
+    #[staticmethod]
+    fn paper() -> Self {
+        Self {
+            chain: AnyChain::N3(Chain::paper()),
+        }
+    }
+
+    /// Number of joints.
+    #[getter(n_joints)]
+    fn py_n_joints(&self) -> usize {
+        self.n_joints()
+    }
+
+    /// The validated parameters, packed as `(joints (N, 6), links (N, 25))`.
+    fn packed<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyArray<f64, numpy::Ix2>>,
+        Bound<'py, PyArray<f64, numpy::Ix2>>,
+    )> {
+        let n = self.n_joints();
+        let (joints, links): (Vec<f64>, Vec<f64>) = dispatch!(&self.chain, c => (
+            c.joints().iter().flat_map(|j| j.origin.iter().chain(j.axis.iter()).copied().collect::<Vec<_>>()).collect(),
+            c.links().iter().flat_map(pack_link).collect(),
+        ));
+        Ok((
+            to_numpy(py, joints, (n, JOINT_WIDTH))?,
+            to_numpy(py, links, (n, LINK_WIDTH))?,
+        ))
+    }
+
+    /// Drag, added-mass, buoyancy and gravity torques, each `(n_samples, N)`.
+    #[allow(clippy::too_many_arguments)]
+    fn hydro<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        cd: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+    ) -> PyResult<Vec<Bound<'py, PyArray<f64, numpy::Ix2>>>> {
+        let n = self.n_joints();
+        let n_samples = self.check_states(&q, &qd, &qdd)?;
+        for (name, c) in [("cd", &cd), ("cm", &cm)] {
+            if c.shape() != [n, 2] {
+                return Err(PyValueError::new_err(format!(
+                    "{name} must have shape ({n}, 2), got {:?}",
+                    c.shape()
+                )));
+            }
+        }
+        let water = water(density, gravity)?;
+        let states = States {
+            q: contiguous(&q, "q")?,
+            qd: contiguous(&qd, "qd")?,
+            qdd: contiguous(&qdd, "qdd")?,
+        };
+        let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
+        let chain = self.chain;
+        let batch = py.detach(|| -> Result<TorqueBatch, PyErrSend> {
+            dispatch!(&chain, c => {
+                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                hydro_batch(c, &water, &coefficients, &states, n_samples).map_err(PyErrSend::State)
+            })
+        })
+        .map_err(PyErr::from)?;
+        [batch.drag, batch.added_mass, batch.buoyancy, batch.gravity]
+            .into_iter()
+            .map(|v| to_numpy(py, v, (n_samples, n)))
+            .collect()
+    }
+
+    /// Regressors: `(buoyancy, gravity, drag, added_mass)`; drag and added mass are
+    /// `(n_samples, N)` at unit coefficients, or `(n_samples, N, N, 2)` per link and direction.
+    #[allow(clippy::too_many_arguments)]
+    fn regressors<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        per_direction: bool,
+    ) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let n = self.n_joints();
+        let n_samples = self.check_states(&q, &qd, &qdd)?;
+        let water = water(density, gravity)?;
+        let states = States {
+            q: contiguous(&q, "q")?,
+            qd: contiguous(&qd, "qd")?,
+            qdd: contiguous(&qdd, "qdd")?,
+        };
+        let chain = self.chain;
+        let batch = py
+            .detach(|| dispatch!(&chain, c => regressor_batch(c, &water, &states, n_samples, per_direction)))?;
+        let mut out = vec![
+            to_numpy(py, batch.buoyancy, (n_samples, n))?.into_any(),
+            to_numpy(py, batch.gravity, (n_samples, n))?.into_any(),
+        ];
+        for columns in [batch.drag, batch.added_mass] {
+            out.push(if per_direction {
+                to_numpy(py, columns, (n_samples, n, n, 2))?.into_any()
+            } else {
+                to_numpy(py, columns, (n_samples, n))?.into_any()
+            });
+        }
+        Ok(out)
+    }
+}
+
+/// Errors raised while detached from the interpreter, turned into Python exceptions after.
+enum PyErrSend {
+    Model(ModelError),
+    State(NonFinite),
+}
+
+impl From<PyErrSend> for PyErr {
+    fn from(e: PyErrSend) -> Self {
+        match e {
+            PyErrSend::Model(e) => model_error(e),
+            PyErrSend::State(e) => e.into(),
+        }
+    }
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyChain>()?;
+    m.add("ModelError", m.py().get_type::<UwmlModelError>())?;
+    m.add("MAX_JOINTS", MAX_JOINTS)?;
+    m.add("JOINT_WIDTH", JOINT_WIDTH)?;
+    m.add("LINK_WIDTH", LINK_WIDTH)?;
+    Ok(())
+}

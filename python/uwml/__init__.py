@@ -1,0 +1,15 @@
+"""uwml: what the deep sea does to each joint of an underwater robot.
+
+Drag, added mass and buoyancy on the links of a serial chain (strip theory, Morison), computed
+exactly by a no_std Rust core and exposed over numpy arrays. Sign convention: every torque is
+the generalized force exerted by the environment on the joint, in the joint's positive
+direction (so drag opposes motion and the motor must supply ``-total`` on top of the land
+torque).
+"""
+
+from ._core import ModelError
+from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
+from .model import Joint, Link, Segment, Water
+
+__all__ = ["Leg", "Joint", "Link", "Segment", "Water", "HydroTorques", "HydroRegressors", "ModelError", "MAX_JOINTS"]
+__version__ = "0.1.0"
