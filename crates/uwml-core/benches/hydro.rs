@@ -13,11 +13,7 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let water = Water::<T>::default();
     let coefficients = Coefficients::<T, 3>::default();
     let v = |a: f64, b: f64, c: f64| {
-        Vector3::new(
-            uwml_core::nalgebra::convert(a),
-            uwml_core::nalgebra::convert(b),
-            uwml_core::nalgebra::convert(c),
-        )
+        Vector3::new(uwml_core::nalgebra::convert(a), uwml_core::nalgebra::convert(b), uwml_core::nalgebra::convert(c))
     };
     let (q, qd, qdd) = (v(0.3, -0.4, 0.6), v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
     c.bench_function(&format!("hydro_torques/paper/{name}"), |b| {
@@ -33,25 +29,10 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
         })
     });
     c.bench_function(&format!("link_motions/paper/{name}"), |b| {
-        b.iter(|| {
-            uwml_core::link_motions(
-                black_box(&leg),
-                black_box(&q),
-                black_box(&qd),
-                black_box(&qdd),
-            )
-        })
+        b.iter(|| uwml_core::link_motions(black_box(&leg), black_box(&q), black_box(&qd), black_box(&qdd)))
     });
     c.bench_function(&format!("hydro_regressors/paper/{name}"), |b| {
-        b.iter(|| {
-            hydro_regressors(
-                black_box(&leg),
-                black_box(&water),
-                black_box(&q),
-                black_box(&qd),
-                black_box(&qdd),
-            )
-        })
+        b.iter(|| hydro_regressors(black_box(&leg), black_box(&water), black_box(&q), black_box(&qd), black_box(&qdd)))
     });
 }
 

@@ -32,22 +32,14 @@ pub struct ModelError {
 
 impl ModelError {
     pub(crate) const fn new(field: &'static str, index: Option<usize>, problem: Problem) -> Self {
-        Self {
-            field,
-            index,
-            problem,
-        }
+        Self { field, index, problem }
     }
 }
 
 impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(i) = self.index {
-            let owner = if self.field.starts_with("joint") {
-                "joint"
-            } else {
-                "link"
-            };
+            let owner = if self.field.starts_with("joint") { "joint" } else { "link" };
             write!(f, "{owner} {i}: ")?;
         }
         let allowed = match self.problem {

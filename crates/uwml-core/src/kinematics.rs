@@ -24,12 +24,7 @@ pub struct LinkMotion<T: RealField + Copy> {
 }
 
 impl<T: RealField + Copy> LinkMotion<T> {
-    const fn at_rest(
-        rotation: Matrix3<T>,
-        origin: Vector3<T>,
-        axis: Vector3<T>,
-        zero: Vector3<T>,
-    ) -> Self {
+    const fn at_rest(rotation: Matrix3<T>, origin: Vector3<T>, axis: Vector3<T>, zero: Vector3<T>) -> Self {
         Self {
             rotation,
             origin,
@@ -52,8 +47,7 @@ impl<T: RealField + Copy> LinkMotion<T> {
     pub fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
         let w = &self.angular_velocity;
         let velocity = self.velocity + w.cross(r);
-        let acceleration =
-            self.acceleration + self.angular_acceleration.cross(r) + w.cross(&w.cross(r));
+        let acceleration = self.acceleration + self.angular_acceleration.cross(r) + w.cross(&w.cross(r));
         (velocity, acceleration)
     }
 }
@@ -90,9 +84,7 @@ pub fn link_motions<T: RealField + Copy, const N: usize>(
     let mut parent = LinkMotion::at_rest(Matrix3::identity(), zero, zero, zero);
     let mut motions = [parent; N];
     let states = q.iter().zip(qd.iter()).zip(qdd.iter());
-    for ((motion, joint), ((&q, &qd), &qdd)) in
-        motions.iter_mut().zip(chain.joints().iter()).zip(states)
-    {
+    for ((motion, joint), ((&q, &qd), &qdd)) in motions.iter_mut().zip(chain.joints().iter()).zip(states) {
         let axis = parent.rotation * joint.axis;
         let origin = parent.point(&joint.origin);
         let (velocity, acceleration) = parent.point_motion(&(origin - parent.origin));

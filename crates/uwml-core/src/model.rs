@@ -83,42 +83,18 @@ pub(crate) fn constant<T: RealField + Copy>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
-fn check_finite<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    if x.is_finite() {
-        Ok(x)
-    } else {
-        Err(ModelError::new(field, index, Problem::NonFinite))
-    }
+fn check_finite<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
+    if x.is_finite() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
 }
 
-fn check_positive<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
+fn check_positive<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
     let x = check_finite(x, field, index)?;
-    if x > T::zero() {
-        Ok(x)
-    } else {
-        Err(ModelError::new(field, index, Problem::NonPositive))
-    }
+    if x > T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonPositive)) }
 }
 
-fn check_non_negative<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
+fn check_non_negative<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
     let x = check_finite(x, field, index)?;
-    if x >= T::zero() {
-        Ok(x)
-    } else {
-        Err(ModelError::new(field, index, Problem::Negative))
-    }
+    if x >= T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::Negative)) }
 }
 
 fn check_vector<T: RealField + Copy>(
@@ -126,11 +102,7 @@ fn check_vector<T: RealField + Copy>(
     field: &'static str,
     index: Option<usize>,
 ) -> Result<Vector3<T>, ModelError> {
-    if v.iter().all(|x| x.is_finite()) {
-        Ok(v)
-    } else {
-        Err(ModelError::new(field, index, Problem::NonFinite))
-    }
+    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
 }
 
 /// Checks that `v` is a unit vector within [`AXIS_TOLERANCE`] and returns it normalized exactly.
@@ -187,10 +159,7 @@ impl<T: RealField + Copy> Segment<T> {
             axis,
             length: check_positive(self.length, "segment.length", i)?,
             normals: [n1, n2],
-            widths: [
-                check_positive(w1, "segment.widths[0]", i)?,
-                check_positive(w2, "segment.widths[1]", i)?,
-            ],
+            widths: [check_positive(w1, "segment.widths[0]", i)?, check_positive(w2, "segment.widths[1]", i)?],
             area: check_positive(self.area, "segment.area", i)?,
         })
     }
@@ -220,12 +189,7 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
     /// non-unit or non-perpendicular parameter, naming the field and the joint or link.
     pub fn new(joints: [Joint<T>; N], links: [Link<T>; N]) -> Result<Self, ModelError> {
         let mut chain = Self { joints, links };
-        for (index, (joint, link)) in chain
-            .joints
-            .iter_mut()
-            .zip(chain.links.iter_mut())
-            .enumerate()
-        {
+        for (index, (joint, link)) in chain.joints.iter_mut().zip(chain.links.iter_mut()).enumerate() {
             *joint = joint.validated(index)?;
             *link = link.validated(index)?;
         }
@@ -276,30 +240,15 @@ impl<T: RealField + Copy> Chain<T, 3> {
         let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
         let roll_axis = v(0.0, -1.0, 0.0);
         let joints = [
-            Joint {
-                origin: Vector3::zeros(),
-                axis: v(0.0, 0.0, 1.0),
-            },
-            Joint {
-                origin: Vector3::zeros(),
-                axis: roll_axis,
-            },
-            Joint {
-                origin: v(paper::L2, 0.0, 0.0),
-                axis: roll_axis,
-            },
+            Joint { origin: Vector3::zeros(), axis: v(0.0, 0.0, 1.0) },
+            Joint { origin: Vector3::zeros(), axis: roll_axis },
+            Joint { origin: v(paper::L2, 0.0, 0.0), axis: roll_axis },
         ];
         let volume = |m: f64| c(m / paper::LINK_DENSITY);
         let [m1, m2, m3] = paper::MASSES;
         let out_of_plane = v(0.0, 1.0, 0.0);
         let links = [
-            Link {
-                mass: c(m1),
-                com: Vector3::zeros(),
-                volume: volume(m1),
-                cob: Vector3::zeros(),
-                segment: None,
-            },
+            Link { mass: c(m1), com: Vector3::zeros(), volume: volume(m1), cob: Vector3::zeros(), segment: None },
             Link {
                 mass: c(m2),
                 com: v(paper::LC2, 0.0, 0.0),
@@ -359,10 +308,7 @@ impl<T: RealField + Copy> Water<T> {
 impl<T: RealField + Copy> Default for Water<T> {
     /// Fresh water as in the paper: 1000 kg/m³, g = 9.81 m/s².
     fn default() -> Self {
-        Self {
-            density: constant(1000.0),
-            gravity: constant(9.81),
-        }
+        Self { density: constant(1000.0), gravity: constant(9.81) }
     }
 }
 
@@ -403,9 +349,6 @@ impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
 impl<T: RealField + Copy, const N: usize> Default for Coefficients<T, N> {
     /// The paper's fitted values rounded: `Cd = 2.2`, `Cm = 0.5` everywhere.
     fn default() -> Self {
-        Self {
-            cd: [[constant(2.2); 2]; N],
-            cm: [[constant(0.5); 2]; N],
-        }
+        Self { cd: [[constant(2.2); 2]; N], cm: [[constant(0.5); 2]; N] }
     }
 }

@@ -33,11 +33,7 @@ pub fn drag_moments<T: RealField + Copy>(v0: T, v1: T, length: T) -> (T, T) {
     let zero = T::zero();
     let end = v0 + v1 * length;
     let crosses = (v0 > zero && end < zero) || (v0 < zero && end > zero);
-    let root = if crosses {
-        length * (v0 / (v0 - end))
-    } else {
-        length
-    };
+    let root = if crosses { length * (v0 / (v0 - end)) } else { length };
     let (a0, a1) = gauss_legendre_2(v0, v1, zero, root);
     let (b0, b1) = gauss_legendre_2(v0, v1, root, length);
     (a0 + b0, a1 + b1)

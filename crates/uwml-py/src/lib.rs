@@ -10,12 +10,7 @@ use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
 use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Segment, Water, hydro_regressors};
 
-create_exception!(
-    _core,
-    UwmlModelError,
-    PyValueError,
-    "A non-physical or malformed model parameter."
-);
+create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
 
 /// Largest number of joints a chain built from Python may have.
 const MAX_JOINTS: usize = 8;
@@ -36,17 +31,12 @@ fn next3(values: &mut impl Iterator<Item = f64>) -> Vector3<f64> {
 
 fn unpack_joint(row: &[f64]) -> Joint<f64> {
     let mut values = row.iter().copied();
-    Joint {
-        origin: next3(&mut values),
-        axis: next3(&mut values),
-    }
+    Joint { origin: next3(&mut values), axis: next3(&mut values) }
 }
 
 fn unpack_link(row: &[f64]) -> Link<f64> {
     let mut values = row.iter().copied();
-    let scalar = |values: &mut std::iter::Copied<std::slice::Iter<'_, f64>>| {
-        values.next().unwrap_or(f64::NAN)
-    };
+    let scalar = |values: &mut std::iter::Copied<std::slice::Iter<'_, f64>>| values.next().unwrap_or(f64::NAN);
     let mass = scalar(&mut values);
     let com = next3(&mut values);
     let volume = scalar(&mut values);
@@ -58,21 +48,8 @@ fn unpack_link(row: &[f64]) -> Link<f64> {
     let normals = [next3(&mut values), next3(&mut values)];
     let widths = [scalar(&mut values), scalar(&mut values)];
     let area = scalar(&mut values);
-    let segment = has_segment.then_some(Segment {
-        start,
-        axis,
-        length,
-        normals,
-        widths,
-        area,
-    });
-    Link {
-        mass,
-        com,
-        volume,
-        cob,
-        segment,
-    }
+    let segment = has_segment.then_some(Segment { start, axis, length, normals, widths, area });
+    Link { mass, com, volume, cob, segment }
 }
 
 fn pack_link(link: &Link<f64>) -> Vec<f64> {
@@ -97,20 +74,11 @@ fn pack_link(link: &Link<f64>) -> Vec<f64> {
 }
 
 fn build<const N: usize>(joints: &[f64], links: &[f64]) -> Result<Chain<f64, N>, ModelError> {
-    let mut joint_array = [Joint {
-        origin: Vector3::zeros(),
-        axis: Vector3::z(),
-    }; N];
+    let mut joint_array = [Joint { origin: Vector3::zeros(), axis: Vector3::z() }; N];
     for (joint, row) in joint_array.iter_mut().zip(joints.chunks_exact(JOINT_WIDTH)) {
         *joint = unpack_joint(row);
     }
-    let empty = Link {
-        mass: 0.0,
-        com: Vector3::zeros(),
-        volume: 0.0,
-        cob: Vector3::zeros(),
-        segment: None,
-    };
+    let empty = Link { mass: 0.0, com: Vector3::zeros(), volume: 0.0, cob: Vector3::zeros(), segment: None };
     let mut link_array = [empty; N];
     for (link, row) in link_array.iter_mut().zip(links.chunks_exact(LINK_WIDTH)) {
         *link = unpack_link(row);
@@ -163,20 +131,11 @@ impl From<NonFinite> for PyErr {
     }
 }
 
-fn load<const N: usize>(
-    values: &[f64],
-    argument: &'static str,
-    sample: usize,
-) -> Result<SVector<f64, N>, NonFinite> {
+fn load<const N: usize>(values: &[f64], argument: &'static str, sample: usize) -> Result<SVector<f64, N>, NonFinite> {
     let mut v = SVector::<f64, N>::zeros();
     for (joint, (slot, &value)) in v.iter_mut().zip(values).enumerate() {
         if !value.is_finite() {
-            return Err(NonFinite {
-                argument,
-                sample,
-                joint,
-                value,
-            });
+            return Err(NonFinite { argument, sample, joint, value });
         }
         *slot = value;
     }
@@ -193,27 +152,15 @@ impl States<'_> {
     /// Every sample's `(index, q, q̇, q̈)`, or the first non-finite value.
     fn each<const N: usize>(
         &self,
-    ) -> impl Iterator<Item = Result<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>), NonFinite>> + '_
-    {
-        let rows = self
-            .q
-            .chunks_exact(N)
-            .zip(self.qd.chunks_exact(N))
-            .zip(self.qdd.chunks_exact(N));
+    ) -> impl Iterator<Item = Result<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>), NonFinite>> + '_ {
+        let rows = self.q.chunks_exact(N).zip(self.qd.chunks_exact(N)).zip(self.qdd.chunks_exact(N));
         rows.enumerate().map(|(sample, ((q, qd), qdd))| {
-            Ok((
-                load(q, "q", sample)?,
-                load(qd, "qd", sample)?,
-                load(qdd, "qdd", sample)?,
-            ))
+            Ok((load(q, "q", sample)?, load(qd, "qd", sample)?, load(qdd, "qdd", sample)?))
         })
     }
 }
 
-fn coefficients<const N: usize>(
-    cd: &[f64],
-    cm: &[f64],
-) -> Result<Coefficients<f64, N>, ModelError> {
+fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f64, N>, ModelError> {
     let mut cd_array = [[0.0; 2]; N];
     let mut cm_array = [[0.0; 2]; N];
     for (slot, pair) in cd_array.iter_mut().zip(cd.chunks_exact(2)) {
@@ -292,14 +239,8 @@ fn regressor_batch<const N: usize>(
 }
 
 /// Joint `joint`'s entries of per-link, per-direction regressor columns, in `[link][k]` order.
-fn joint_row<const N: usize>(
-    columns: &[[SVector<f64, N>; 2]; N],
-    joint: usize,
-) -> impl Iterator<Item = f64> + '_ {
-    columns
-        .iter()
-        .flatten()
-        .map(move |c| c.get(joint).copied().unwrap_or(f64::NAN))
+fn joint_row<const N: usize>(columns: &[[SVector<f64, N>; 2]; N], joint: usize) -> impl Iterator<Item = f64> + '_ {
+    columns.iter().flatten().map(move |c| c.get(joint).copied().unwrap_or(f64::NAN))
 }
 
 fn to_numpy<'py, D: Dimension>(
@@ -307,15 +248,12 @@ fn to_numpy<'py, D: Dimension>(
     values: Vec<f64>,
     shape: impl IntoDimension<Dim = D>,
 ) -> PyResult<Bound<'py, PyArray<f64, D>>> {
-    let array =
-        Array::from_shape_vec(shape, values).map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let array = Array::from_shape_vec(shape, values).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
 
 fn contiguous<'a>(array: &'a PyReadonlyArray2<'_, f64>, argument: &str) -> PyResult<&'a [f64]> {
-    array.as_slice().map_err(|_| {
-        PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array"))
-    })
+    array.as_slice().map_err(|_| PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array")))
 }
 
 /// A serial chain of revolute joints (validated, immutable). Build it with `Chain(joints,
@@ -361,9 +299,7 @@ impl PyChain {
     fn new(joints: PyReadonlyArray2<'_, f64>, links: PyReadonlyArray2<'_, f64>) -> PyResult<Self> {
         let n = joints.shape().first().copied().unwrap_or(0);
         if !(1..=MAX_JOINTS).contains(&n) {
-            return Err(PyValueError::new_err(format!(
-                "a chain must have 1 to {MAX_JOINTS} joints, got {n}"
-            )));
+            return Err(PyValueError::new_err(format!("a chain must have 1 to {MAX_JOINTS} joints, got {n}")));
         }
         if joints.shape() != [n, JOINT_WIDTH] || links.shape() != [n, LINK_WIDTH] {
             return Err(PyValueError::new_err(format!(
@@ -389,9 +325,7 @@ impl PyChain {
     /// The paper's leg (Table II).
     #[staticmethod]
     fn paper() -> Self {
-        Self {
-            chain: AnyChain::N3(Chain::paper()),
-        }
+        Self { chain: AnyChain::N3(Chain::paper()) }
     }
 
     /// Number of joints.
@@ -404,19 +338,13 @@ impl PyChain {
     fn packed<'py>(
         &self,
         py: Python<'py>,
-    ) -> PyResult<(
-        Bound<'py, PyArray<f64, numpy::Ix2>>,
-        Bound<'py, PyArray<f64, numpy::Ix2>>,
-    )> {
+    ) -> PyResult<(Bound<'py, PyArray<f64, numpy::Ix2>>, Bound<'py, PyArray<f64, numpy::Ix2>>)> {
         let n = self.n_joints();
         let (joints, links): (Vec<f64>, Vec<f64>) = dispatch!(&self.chain, c => (
             c.joints().iter().flat_map(|j| j.origin.iter().chain(j.axis.iter()).copied().collect::<Vec<_>>()).collect(),
             c.links().iter().flat_map(pack_link).collect(),
         ));
-        Ok((
-            to_numpy(py, joints, (n, JOINT_WIDTH))?,
-            to_numpy(py, links, (n, LINK_WIDTH))?,
-        ))
+        Ok((to_numpy(py, joints, (n, JOINT_WIDTH))?, to_numpy(py, links, (n, LINK_WIDTH))?))
     }
 
     /// Drag, added-mass, buoyancy and gravity torques, each `(n_samples, N)`.
@@ -436,27 +364,21 @@ impl PyChain {
         let n_samples = self.check_states(&q, &qd, &qdd)?;
         for (name, c) in [("cd", &cd), ("cm", &cm)] {
             if c.shape() != [n, 2] {
-                return Err(PyValueError::new_err(format!(
-                    "{name} must have shape ({n}, 2), got {:?}",
-                    c.shape()
-                )));
+                return Err(PyValueError::new_err(format!("{name} must have shape ({n}, 2), got {:?}", c.shape())));
             }
         }
         let water = water(density, gravity)?;
-        let states = States {
-            q: contiguous(&q, "q")?,
-            qd: contiguous(&qd, "qd")?,
-            qdd: contiguous(&qdd, "qdd")?,
-        };
+        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
         let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
         let chain = self.chain;
-        let batch = py.detach(|| -> Result<TorqueBatch, PyErrSend> {
-            dispatch!(&chain, c => {
-                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                hydro_batch(c, &water, &coefficients, &states, n_samples).map_err(PyErrSend::State)
+        let batch = py
+            .detach(|| -> Result<TorqueBatch, PyErrSend> {
+                dispatch!(&chain, c => {
+                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                    hydro_batch(c, &water, &coefficients, &states, n_samples).map_err(PyErrSend::State)
+                })
             })
-        })
-        .map_err(PyErr::from)?;
+            .map_err(PyErr::from)?;
         [batch.drag, batch.added_mass, batch.buoyancy, batch.gravity]
             .into_iter()
             .map(|v| to_numpy(py, v, (n_samples, n)))
@@ -479,14 +401,10 @@ impl PyChain {
         let n = self.n_joints();
         let n_samples = self.check_states(&q, &qd, &qdd)?;
         let water = water(density, gravity)?;
-        let states = States {
-            q: contiguous(&q, "q")?,
-            qd: contiguous(&qd, "qd")?,
-            qdd: contiguous(&qdd, "qdd")?,
-        };
+        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
         let chain = self.chain;
-        let batch = py
-            .detach(|| dispatch!(&chain, c => regressor_batch(c, &water, &states, n_samples, per_direction)))?;
+        let batch =
+            py.detach(|| dispatch!(&chain, c => regressor_batch(c, &water, &states, n_samples, per_direction)))?;
         let mut out = vec![
             to_numpy(py, batch.buoyancy, (n_samples, n))?.into_any(),
             to_numpy(py, batch.gravity, (n_samples, n))?.into_any(),

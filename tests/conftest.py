@@ -1,0 +1,37 @@
+"""Shared pytest configuration: hypothesis profiles.
+
+Two profiles, chosen by the environment variable ``UWML_HYPOTHESIS_PROFILE``:
+
+* ``fast`` (default): 200 examples per property, for every commit; the whole suite stays
+  well under a minute on two cores.
+* ``slow``: 2000 examples per property, for nightly or pre-release runs.
+
+Tests whose single example is expensive (a batch of thousands of states held against the
+numpy reference) take a fixed fraction of the profile's ``max_examples`` (see ``scaled`` in the
+test modules), so the profile still scales them. No example database is kept (``database=None``),
+so running the suite leaves no ``.hypothesis/`` directory behind.
+"""
+
+import os
+
+from hypothesis import HealthCheck, settings
+
+settings.register_profile(
+    "fast",
+    max_examples=200,
+    deadline=None,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "slow",
+    max_examples=2000,
+    deadline=None,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+
+_PROFILE = os.environ.get("UWML_HYPOTHESIS_PROFILE", "fast")
+if _PROFILE not in ("fast", "slow"):
+    raise ValueError(f"UWML_HYPOTHESIS_PROFILE must be 'fast' or 'slow', got {_PROFILE!r}")
+settings.load_profile(_PROFILE)
