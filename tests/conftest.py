@@ -35,3 +35,10 @@ _PROFILE = os.environ.get("UWML_HYPOTHESIS_PROFILE", "fast")
 if _PROFILE not in ("fast", "slow"):
     raise ValueError(f"UWML_HYPOTHESIS_PROFILE must be 'fast' or 'slow', got {_PROFILE!r}")
 settings.load_profile(_PROFILE)
+
+
+def pytest_configure(config) -> None:
+    # When a property fails, hypothesis's pytest plugin imports its patch writer, which imports a
+    # package that warns about mypy_extensions.TypedDict; with filterwarnings = ["error"] that
+    # turns the failure report into an INTERNALERROR. Ignore that one third-party warning.
+    config.addinivalue_line("filterwarnings", "ignore:mypy_extensions.TypedDict is deprecated:DeprecationWarning")

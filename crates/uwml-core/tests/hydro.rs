@@ -1,0 +1,309 @@
+//! The hydrodynamic torques of the core: MODEL.md reference values, f32 against f64, the
+//! invariants of MODEL.md section 3, and the agreement of the torque and regressor paths.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
+
+use uwml_core::nalgebra::{Matrix3, SVector, Vector3};
+use uwml_core::{
+    Chain, Coefficients, HydroTorques, Joint, Link, Segment, Water, hydro_regressors, hydro_torques, link_motions,
+};
+
+/// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+    fn vector<const N: usize>(&mut self, scale: f64) -> SVector<f64, N> {
+        SVector::from_fn(|_, _| scale * self.next())
+    }
+    fn unit(&mut self) -> Vector3<f64> {
+        loop {
+            let v = Vector3::new(self.next(), self.next(), self.next());
+            if v.norm() > 0.2 {
+                return v.normalize();
+            }
+        }
+    }
+}
+
+fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> HydroTorques<f64, 3> {
+    let c = Coefficients::uniform(2.2, 0.5).unwrap();
+    hydro_torques(&Chain::paper(), &Water::default(), &c, &q.into(), &qd.into(), &qdd.into())
+}
+
+fn assert_close(actual: f64, expected: f64, rel: f64) {
+    assert!((actual - expected).abs() <= rel * expected.abs().max(1e-300), "{actual} vs {expected}");
+}
+
+#[test]
+fn model_section_5_reference_values() {
+    // MODEL.md section 5, from an independent brute-force computation (about 1e-7 relative).
+    let t = paper_torques([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]);
+    let expected = [
+        (t.drag, [-24.24084, -5.060505, -0.7383118]),
+        (t.added_mass, [-8.525438, 21.77596, 9.484545]),
+        (t.buoyancy, [0.0, 59.72457, 4.193843]),
+    ];
+    for (actual, expected) in expected {
+        for (a, e) in actual.iter().zip(expected) {
+            if e == 0.0 {
+                assert_eq!(*a, 0.0);
+            } else {
+                assert_close(*a, e, 2e-7);
+            }
+        }
+    }
+}
+
+#[test]
+fn paper_buoyancy_equations_17_and_21() {
+    let (rho, g, rho_m) = (1000.0, 9.81, 2700.0);
+    let (m2, m3, l2, lc2, lc3) = (19.261, 10.375, 0.660, 0.506, 0.560);
+    let mut rng = Rng(7);
+    for _ in 0..100 {
+        let q = rng.vector::<3>(3.0);
+        let t = paper_torques(q.into(), rng.vector::<3>(2.0).into(), rng.vector::<3>(5.0).into());
+        let eq17 = (m2 * g * lc2 * q[1].cos() + m3 * g * (l2 * q[1].cos() + lc3 * (q[1] + q[2]).sin())) * rho / rho_m;
+        let eq21 = m3 * g * lc3 * (q[1] + q[2]).sin() * rho / rho_m;
+        assert_eq!(t.buoyancy[0], 0.0);
+        assert!((t.buoyancy[1] - eq17).abs() < 1e-12 * 100.0);
+        assert!((t.buoyancy[2] - eq21).abs() < 1e-12 * 100.0);
+    }
+}
+
+#[test]
+fn paper_equations_8_and_9_for_pure_yaw() {
+    // Pure yaw: the slice normal speeds are q̇1·x·cos q2 (thigh) and q̇1·(L2 cos q2 + x sin(q2+q3))
+    // (calf), both along e_t; eqs. (8) and (9) with the eq. (8) typo fixed, integrated densely.
+    let (rho, cd, cm) = (1000.0, 2.2, 0.5);
+    let (l2, l3, d21, d22, d31, d32) = (0.660, 0.714, 0.131, 0.238, 0.131, 0.279);
+    let mut rng = Rng(11);
+    for _ in 0..20 {
+        let (q, qd1, qdd1) = (rng.vector::<3>(1.5), 2.0 * rng.next(), 4.0 * rng.next());
+        let (c2, s23) = (q[1].cos(), (q[1] + q[2]).sin());
+        let n = 20_000;
+        let (mut drag, mut added_mass) = (0.0, 0.0);
+        for (length, arm, width, area) in [
+            (l2, [0.0, c2], d21, d21 * d22),
+            (l3, [l2 * c2, s23], d31, d31 * d32),
+        ] {
+            let dx = length / n as f64;
+            for k in 0..n {
+                let x = (k as f64 + 0.5) * dx;
+                let r = arm[0] + arm[1] * x;
+                let v = qd1 * r;
+                drag += 0.5 * rho * cd * width * r * v * v.abs() * dx;
+                added_mass += rho * cm * area * r * qdd1 * r * dx;
+            }
+        }
+        let t = paper_torques(q.into(), [qd1, 0.0, 0.0], [qdd1, 0.0, 0.0]);
+        // uwml's sign: drag = −τ_d1, added mass = −τ_m1. Midpoint rule error ~ (dx)² ≈ 1e-9.
+        assert!((t.drag[0] + drag).abs() <= 1e-7 * drag.abs().max(1e-3), "{} vs {}", t.drag[0], -drag);
+        assert!((t.added_mass[0] + added_mass).abs() <= 1e-7 * added_mass.abs().max(1e-3));
+    }
+}
+
+/// A random chain of 4 joints with arbitrary axes, offsets, segment directions and normals.
+fn random_chain(rng: &mut Rng) -> Chain<f64, 4> {
+    let joints = core::array::from_fn(|_| Joint { origin: rng.vector::<3>(0.5), axis: rng.unit() });
+    let links = core::array::from_fn(|i| {
+        let axis = rng.unit();
+        let n1 = axis.cross(&rng.unit()).normalize();
+        let segment = (i != 1).then(|| Segment {
+            start: rng.vector::<3>(0.2),
+            axis,
+            length: 0.2 + rng.next().abs(),
+            normals: [n1, axis.cross(&n1)],
+            widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
+            area: 0.01 + 0.02 * rng.next().abs(),
+        });
+        Link {
+            mass: 5.0 + 10.0 * rng.next().abs(),
+            com: rng.vector::<3>(0.4),
+            volume: 0.001 + 0.004 * rng.next().abs(),
+            cob: rng.vector::<3>(0.4),
+            segment,
+        }
+    });
+    Chain::new(joints, links).expect("a valid random chain")
+}
+
+fn per_direction(rng: &mut Rng) -> Coefficients<f64, 4> {
+    let mut draw = || core::array::from_fn(|_| [0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs()]);
+    Coefficients::per_direction(draw(), draw()).unwrap()
+}
+
+#[test]
+fn torque_path_equals_regressors_applied() {
+    let mut rng = Rng(3);
+    let water = Water::new(1025.0, 9.80665).unwrap();
+    for _ in 0..200 {
+        let chain = random_chain(&mut rng);
+        let coefficients = per_direction(&mut rng);
+        let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
+        let fast = hydro_torques(&chain, &water, &coefficients, &q, &qd, &qdd);
+        let slow = hydro_regressors(&chain, &water, &q, &qd, &qdd).apply(&coefficients);
+        for (a, b) in [(fast.drag, slow.drag), (fast.added_mass, slow.added_mass), (fast.buoyancy, slow.buoyancy)] {
+            let scale = b.amax().max(1e-12);
+            assert!((a - b).amax() <= 1e-12 * scale, "{a} vs {b}");
+        }
+    }
+}
+
+#[test]
+fn drag_is_dissipative_and_homogeneous_of_degree_two() {
+    let mut rng = Rng(5);
+    let water = Water::default();
+    for _ in 0..300 {
+        let chain = random_chain(&mut rng);
+        let c = per_direction(&mut rng);
+        let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
+        let drag = hydro_torques(&chain, &water, &c, &q, &qd, &qdd).drag;
+        assert!(qd.dot(&drag) <= 1e-12 * qd.norm() * drag.norm(), "power {}", qd.dot(&drag));
+        for lambda in [-2.5, -1.0, 0.3, 4.0] {
+            let scaled = hydro_torques(&chain, &water, &c, &q, &(qd * lambda), &qdd).drag;
+            let expected = drag * (lambda * f64::abs(lambda));
+            assert!((scaled - expected).amax() <= 1e-12 * expected.amax().max(1e-12));
+        }
+    }
+}
+
+#[test]
+fn added_mass_matrix_is_symmetric_positive_semidefinite() {
+    let mut rng = Rng(9);
+    let water = Water::default();
+    let zero = SVector::<f64, 4>::zeros();
+    for _ in 0..200 {
+        let chain = random_chain(&mut rng);
+        let c = per_direction(&mut rng);
+        let q = rng.vector::<4>(3.0);
+        // M_A = −∂τ_am/∂q̈ at q̇ = 0, column by column (τ_am is linear in q̈).
+        let columns: [SVector<f64, 4>; 4] = core::array::from_fn(|j| {
+            let mut unit = zero;
+            unit[j] = 1.0;
+            -hydro_torques(&chain, &water, &c, &q, &zero, &unit).added_mass
+        });
+        let m = uwml_core::nalgebra::Matrix4::from_columns(&columns);
+        assert!((m - m.transpose()).amax() <= 1e-12 * m.amax());
+        let eigen = m.symmetric_eigen();
+        assert!(eigen.eigenvalues.min() >= -1e-12 * m.amax(), "{}", eigen.eigenvalues);
+        // Linearity in q̈ (also with velocity terms present).
+        let qd = rng.vector::<4>(2.0);
+        let (a, b) = (rng.vector::<4>(5.0), rng.vector::<4>(5.0));
+        let f = |qdd: &SVector<f64, 4>| {
+            hydro_torques(&chain, &water, &c, &q, &qd, qdd).added_mass
+                - hydro_torques(&chain, &water, &c, &q, &qd, &zero).added_mass
+        };
+        let lhs = f(&(a * 2.0 - b * 0.5));
+        let rhs = f(&a) * 2.0 - f(&b) * 0.5;
+        assert!((lhs - rhs).amax() <= 1e-11 * rhs.amax().max(1.0));
+    }
+}
+
+/// ρ g Σ V_i c_i,z: the potential whose gradient is the buoyancy torque.
+fn buoyancy_potential(chain: &Chain<f64, 4>, water: &Water<f64>, q: &SVector<f64, 4>) -> f64 {
+    let zero = SVector::zeros();
+    let motions = link_motions(chain, q, &zero, &zero);
+    chain.links().iter().zip(motions.iter()).map(|(l, m)| water.density() * water.gravity() * l.volume * m.point(&l.cob).z).sum()
+}
+
+#[test]
+fn buoyancy_is_conservative_and_joint_one_of_the_paper_gets_none() {
+    let mut rng = Rng(13);
+    let water = Water::default();
+    let zero = SVector::<f64, 4>::zeros();
+    for _ in 0..100 {
+        let chain = random_chain(&mut rng);
+        let c = per_direction(&mut rng);
+        let q = rng.vector::<4>(3.0);
+        let tau = hydro_torques(&chain, &water, &c, &q, &zero, &zero).buoyancy;
+        let h = 1e-5;
+        for j in 0..4 {
+            let mut dq = zero;
+            dq[j] = h;
+            let gradient =
+                (buoyancy_potential(&chain, &water, &(q + dq)) - buoyancy_potential(&chain, &water, &(q - dq))) / (2.0 * h);
+            assert!((tau[j] - gradient).abs() <= 1e-6 * (1.0 + tau.amax()), "joint {j}: {} vs {gradient}", tau[j]);
+        }
+    }
+    let paper = paper_torques([1.0, -0.3, 0.8], [0.4, 0.1, 0.2], [0.0; 3]);
+    assert_eq!(paper.buoyancy[0], 0.0);
+    assert_eq!(paper.gravity[0], 0.0);
+}
+
+#[test]
+fn gravity_of_the_paper_leg_is_buoyancy_times_minus_link_density_ratio() {
+    // COM = COB and V = m/ρ_m: τ_gravity = −(ρ_m/ρ) τ_buoyancy.
+    let mut rng = Rng(17);
+    for _ in 0..100 {
+        let t = paper_torques(rng.vector::<3>(3.0).into(), [0.0; 3], [0.0; 3]);
+        let expected = -t.buoyancy * 2.7;
+        assert!((t.gravity - expected).amax() <= 1e-12 * (1.0 + expected.amax()));
+    }
+}
+
+#[test]
+fn every_term_is_linear_in_its_coefficient() {
+    let mut rng = Rng(19);
+    let water = Water::default();
+    for _ in 0..100 {
+        let chain = random_chain(&mut rng);
+        let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
+        let one = hydro_torques(&chain, &water, &Coefficients::uniform(1.0, 1.0).unwrap(), &q, &qd, &qdd);
+        let other = hydro_torques(&chain, &water, &Coefficients::uniform(2.2, 0.5).unwrap(), &q, &qd, &qdd);
+        assert!((other.drag - one.drag * 2.2).amax() <= 1e-12 * (1.0 + other.drag.amax()));
+        assert!((other.added_mass - one.added_mass * 0.5).amax() <= 1e-12 * (1.0 + other.added_mass.amax()));
+        assert_eq!(other.buoyancy, one.buoyancy);
+    }
+}
+
+/// The largest relative error of the f32 core against f64 over random states of the paper leg,
+/// per component, scaled by the largest magnitude of that component in the state.
+fn f32_error(states: usize) -> [f64; 3] {
+    let (leg64, leg32) = (Chain::<f64, 3>::paper(), Chain::<f32, 3>::paper());
+    let (c64, c32) = (Coefficients::<f64, 3>::default(), Coefficients::<f32, 3>::default());
+    let mut rng = Rng(23);
+    let mut worst = [0.0f64; 3];
+    for _ in 0..states {
+        let (q, qd, qdd) = (rng.vector::<3>(3.0), rng.vector::<3>(3.0), rng.vector::<3>(10.0));
+        let t64 = hydro_torques(&leg64, &Water::default(), &c64, &q, &qd, &qdd);
+        let t32 = hydro_torques(&leg32, &Water::default(), &c32, &q.cast(), &qd.cast(), &qdd.cast());
+        let pairs = [(t64.drag, t32.drag), (t64.added_mass, t32.added_mass), (t64.buoyancy, t32.buoyancy)];
+        for (w, (a, b)) in worst.iter_mut().zip(pairs) {
+            let err = (a - b.cast::<f64>()).amax() / a.amax().max(1e-12);
+            *w = w.max(err);
+        }
+    }
+    worst
+}
+
+#[test]
+fn f32_core_tracks_f64_within_the_documented_bound() {
+    // Bound documented in docs/model.md ("Precision"): 2e-5 of the largest torque of the kind.
+    let worst = f32_error(20_000);
+    println!("f32 vs f64, worst relative error (drag, added mass, buoyancy): {worst:?}");
+    for w in worst {
+        assert!(w < 2e-5, "{worst:?}");
+    }
+}
+
+#[test]
+fn non_finite_states_give_non_finite_torques_without_panic() {
+    let t = paper_torques([f64::NAN, 0.0, 0.0], [0.0; 3], [0.0; 3]);
+    assert!(t.buoyancy[1].is_nan());
+    let t = paper_torques([0.0; 3], [f64::INFINITY, 0.0, 0.0], [0.0; 3]);
+    assert!(!t.drag[0].is_finite());
+}
+
+#[test]
+fn rotation_matrices_stay_orthonormal() {
+    let mut rng = Rng(29);
+    let chain = random_chain(&mut rng);
+    let zero = SVector::<f64, 4>::zeros();
+    for m in link_motions(&chain, &rng.vector::<4>(10.0), &zero, &zero) {
+        assert!((m.rotation.transpose() * m.rotation - Matrix3::identity()).amax() < 1e-14);
+    }
+}

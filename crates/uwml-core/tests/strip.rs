@@ -1,0 +1,127 @@
+//! The exact strip integrals: special cases with closed forms, and dense quadrature.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing)]
+
+use uwml_core::strip::{added_mass_moments, drag_moments};
+
+/// Composite Gauss-Legendre (2 points) on `pieces` sub-intervals of f over [0, L]: a dense,
+/// independent quadrature whose error shrinks as pieces⁻⁴ away from the kink at the root.
+fn dense(v0: f64, v1: f64, length: f64, pieces: usize) -> (f64, f64) {
+    let f = |s: f64| {
+        let h = v0 + v1 * s;
+        h * h.abs()
+    };
+    let (mut i0, mut i1) = (0.0, 0.0);
+    let step = length / pieces as f64;
+    let offset = 0.5 * step / 3f64.sqrt();
+    for k in 0..pieces {
+        let mid = (k as f64 + 0.5) * step;
+        for s in [mid - offset, mid + offset] {
+            i0 += 0.5 * step * f(s);
+            i1 += 0.5 * step * s * f(s);
+        }
+    }
+    (i0, i1)
+}
+
+fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
+    (a - b).abs() <= rel * scale.max(f64::MIN_POSITIVE)
+}
+
+#[test]
+fn root_at_the_start() {
+    // h = v1·s: ∫ h|h| = v1|v1| L³/3, ∫ s h|h| = v1|v1| L⁴/4.
+    for v1 in [2.5, -0.7] {
+        let (i0, i1) = drag_moments(0.0, v1, 0.8);
+        let k = v1 * f64::abs(v1);
+        assert!(close(i0, k * 0.8f64.powi(3) / 3.0, 1e-14, i0.abs()), "{i0}");
+        assert!(close(i1, k * 0.8f64.powi(4) / 4.0, 1e-14, i1.abs()), "{i1}");
+    }
+}
+
+#[test]
+fn root_at_the_end() {
+    // h = v1 (s − L): h|h| = −v1|v1| (L − s)² for v1 > 0; ∫ = −v1|v1| L³/3, ∫ s·(...) = −v1|v1| L⁴/12.
+    let (v1, length) = (1.3f64, 0.6);
+    let (i0, i1) = drag_moments(-v1 * length, v1, length);
+    let k = v1 * v1;
+    assert!(close(i0, -k * length.powi(3) / 3.0, 1e-14, i0.abs()), "{i0}");
+    assert!(close(i1, -k * length.powi(4) / 12.0, 1e-14, i1.abs()), "{i1}");
+}
+
+#[test]
+fn root_in_the_middle() {
+    // h antisymmetric about L/2: ∫ h|h| = 0, and ∫ s h|h| = 2 ∫_{L/2}^{L} (s − L/2) h|h| = v1² L⁴/32.
+    let (v1, length) = (2.0f64, 1.0);
+    let (i0, i1) = drag_moments(-v1 * length / 2.0, v1, length);
+    assert!(i0.abs() < 1e-15, "{i0}");
+    assert!(close(i1, v1 * v1 * length.powi(4) / 32.0, 1e-14, i1.abs()), "{i1}");
+}
+
+#[test]
+fn uniform_flow() {
+    // v1 = 0: h constant.
+    let (i0, i1) = drag_moments(-1.5, 0.0, 0.7);
+    assert!(close(i0, -2.25 * 0.7, 1e-15, 1.0));
+    assert!(close(i1, -2.25 * 0.49 / 2.0, 1e-15, 1.0));
+    assert_eq!(drag_moments(0.0, 0.0, 0.7), (0.0, 0.0));
+}
+
+#[test]
+fn extreme_magnitudes_scale_exactly() {
+    // h|h| is homogeneous of degree 2 in (v0, v1): scaling by 2^k scales the moments by 4^k
+    // exactly in binary floating point, far into the tiny and huge ranges.
+    let base = drag_moments(0.37, -1.1, 0.9);
+    for k in [-250, -100, -20, 20, 100, 250] {
+        let scale = 2f64.powi(k);
+        let (i0, i1) = drag_moments(0.37 * scale, -1.1 * scale, 0.9);
+        let expected = (base.0 * scale * scale, base.1 * scale * scale);
+        assert!(close(i0, expected.0, 1e-15, expected.0.abs()), "k = {k}: {i0} vs {:?}", expected.0);
+        assert!(close(i1, expected.1, 1e-15, expected.1.abs()), "k = {k}: {i1} vs {:?}", expected.1);
+    }
+    // A root extremely close to either end is handled without blow-up.
+    for v0 in [1e-300, -1e-300, 1e-17] {
+        let (i0, i1) = drag_moments(v0, -1.0, 1.0);
+        assert!(close(i0, -1.0 / 3.0, 1e-12, 1.0) && close(i1, -0.25, 1e-12, 1.0), "{v0}: {i0} {i1}");
+    }
+}
+
+#[test]
+fn agrees_with_dense_quadrature() {
+    let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for _ in 0..200 {
+        let (v0, v1, length) = (3.0 * next(), 5.0 * next(), 0.1 + next().abs());
+        let exact = drag_moments(v0, v1, length);
+        let reference = dense(v0, v1, length, 20_000);
+        let scale = (v0.abs() + v1.abs() * length).powi(2) * length * (1.0 + length);
+        assert!(close(exact.0, reference.0, 1e-9, scale), "{v0} {v1} {length}: {exact:?} vs {reference:?}");
+        assert!(close(exact.1, reference.1, 1e-9, scale), "{v0} {v1} {length}: {exact:?} vs {reference:?}");
+    }
+}
+
+#[test]
+fn works_in_f32() {
+    let (i0, i1) = drag_moments(0.0f32, 2.0, 1.0);
+    assert!((i0 - 4.0 / 3.0).abs() < 1e-6 && (i1 - 1.0).abs() < 1e-6);
+}
+
+#[test]
+fn added_mass_moments_are_polynomial_integrals() {
+    // ∫₀ᴸ (a0 + a1 s) ds and ∫₀ᴸ s (a0 + a1 s) ds with L = 2: 2 a0 + 2 a1, 2 a0 + 8/3 a1.
+    let (j0, j1) = added_mass_moments(1.5, -0.5, 2.0);
+    assert!(close(j0, 3.0 - 1.0, 1e-15, 1.0));
+    assert!(close(j1, 3.0 - 4.0 / 3.0, 1e-15, 1.0));
+}
+
+#[test]
+fn non_finite_inputs_do_not_panic() {
+    let (i0, _) = drag_moments(f64::NAN, 1.0, 1.0);
+    assert!(i0.is_nan());
+    let (i0, _) = drag_moments(f64::INFINITY, -1.0, 1.0);
+    assert!(!i0.is_finite());
+}
