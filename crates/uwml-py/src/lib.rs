@@ -8,7 +8,7 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
-use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Segment, Water, hydro_regressors};
+use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Segment, Water, hydro_regressors, hydro_torques};
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
 
@@ -86,8 +86,10 @@ fn build<const N: usize>(joints: &[f64], links: &[f64]) -> Result<Chain<f64, N>,
     Chain::new(joint_array, link_array)
 }
 
-/// A validated chain with its number of joints known at compile time inside.
+/// A validated chain with its number of joints known at compile time inside. Built once per
+/// `Leg`, so the size difference between variants does not matter.
 #[derive(Clone, Copy)]
+#[allow(clippy::large_enum_variant)]
 enum AnyChain {
     N1(Chain<f64, 1>),
     N2(Chain<f64, 2>),
@@ -142,6 +144,12 @@ fn load<const N: usize>(values: &[f64], argument: &'static str, sample: usize) -
     Ok(v)
 }
 
+/// One sample's `(q, q̇, q̈)`.
+type State<const N: usize> = (SVector<f64, N>, SVector<f64, N>, SVector<f64, N>);
+
+/// A 2-D float64 numpy array.
+type Array2<'py> = Bound<'py, PyArray<f64, numpy::Ix2>>;
+
 struct States<'a> {
     q: &'a [f64],
     qd: &'a [f64],
@@ -150,9 +158,7 @@ struct States<'a> {
 
 impl States<'_> {
     /// Every sample's `(index, q, q̇, q̈)`, or the first non-finite value.
-    fn each<const N: usize>(
-        &self,
-    ) -> impl Iterator<Item = Result<(SVector<f64, N>, SVector<f64, N>, SVector<f64, N>), NonFinite>> + '_ {
+    fn each<const N: usize>(&self) -> impl Iterator<Item = Result<State<N>, NonFinite>> + '_ {
         let rows = self.q.chunks_exact(N).zip(self.qd.chunks_exact(N)).zip(self.qdd.chunks_exact(N));
         rows.enumerate().map(|(sample, ((q, qd), qdd))| {
             Ok((load(q, "q", sample)?, load(qd, "qd", sample)?, load(qdd, "qdd", sample)?))
@@ -187,19 +193,25 @@ fn hydro_batch<const N: usize>(
     states: &States<'_>,
     n_samples: usize,
 ) -> Result<TorqueBatch, NonFinite> {
+    let size = n_samples * N;
     let mut out = TorqueBatch {
-        drag: Vec::with_capacity(n_samples * N),
-        added_mass: Vec::with_capacity(n_samples * N),
-        buoyancy: Vec::with_capacity(n_samples * N),
-        gravity: Vec::with_capacity(n_samples * N),
+        drag: vec![0.0; size],
+        added_mass: vec![0.0; size],
+        buoyancy: vec![0.0; size],
+        gravity: vec![0.0; size],
     };
-    for state in states.each::<N>() {
+    let rows = out
+        .drag
+        .chunks_exact_mut(N)
+        .zip(out.added_mass.chunks_exact_mut(N))
+        .zip(out.buoyancy.chunks_exact_mut(N).zip(out.gravity.chunks_exact_mut(N)));
+    for (state, ((drag, added_mass), (buoyancy, gravity))) in states.each::<N>().zip(rows) {
         let (q, qd, qdd) = state?;
-        let tau = hydro_regressors(chain, water, &q, &qd, &qdd).apply(coefficients);
-        out.drag.extend(tau.drag.iter());
-        out.added_mass.extend(tau.added_mass.iter());
-        out.buoyancy.extend(tau.buoyancy.iter());
-        out.gravity.extend(tau.gravity.iter());
+        let tau = hydro_torques(chain, water, coefficients, &q, &qd, &qdd);
+        drag.copy_from_slice(tau.drag.as_slice());
+        added_mass.copy_from_slice(tau.added_mass.as_slice());
+        buoyancy.copy_from_slice(tau.buoyancy.as_slice());
+        gravity.copy_from_slice(tau.gravity.as_slice());
     }
     Ok(out)
 }
@@ -335,10 +347,7 @@ impl PyChain {
     }
 
     /// The validated parameters, packed as `(joints (N, 6), links (N, 25))`.
-    fn packed<'py>(
-        &self,
-        py: Python<'py>,
-    ) -> PyResult<(Bound<'py, PyArray<f64, numpy::Ix2>>, Bound<'py, PyArray<f64, numpy::Ix2>>)> {
+    fn packed<'py>(&self, py: Python<'py>) -> PyResult<(Array2<'py>, Array2<'py>)> {
         let n = self.n_joints();
         let (joints, links): (Vec<f64>, Vec<f64>) = dispatch!(&self.chain, c => (
             c.joints().iter().flat_map(|j| j.origin.iter().chain(j.axis.iter()).copied().collect::<Vec<_>>()).collect(),
@@ -359,7 +368,7 @@ impl PyChain {
         cm: PyReadonlyArray2<'py, f64>,
         density: f64,
         gravity: f64,
-    ) -> PyResult<Vec<Bound<'py, PyArray<f64, numpy::Ix2>>>> {
+    ) -> PyResult<Vec<Array2<'py>>> {
         let n = self.n_joints();
         let n_samples = self.check_states(&q, &qd, &qdd)?;
         for (name, c) in [("cd", &cd), ("cm", &cm)] {

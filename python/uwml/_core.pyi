@@ -1,0 +1,38 @@
+"""Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
+
+import numpy as np
+from numpy.typing import NDArray
+
+MAX_JOINTS: int
+JOINT_WIDTH: int
+LINK_WIDTH: int
+
+class ModelError(ValueError):
+    """A non-physical or malformed model parameter."""
+
+class Chain:
+    def __new__(cls, joints: NDArray[np.float64], links: NDArray[np.float64]) -> "Chain": ...
+    @staticmethod
+    def paper() -> "Chain": ...
+    @property
+    def n_joints(self) -> int: ...
+    def packed(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+    def hydro(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        cd: NDArray[np.float64],
+        cm: NDArray[np.float64],
+        density: float,
+        gravity: float,
+    ) -> list[NDArray[np.float64]]: ...
+    def regressors(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        per_direction: bool,
+    ) -> list[NDArray[np.float64]]: ...
