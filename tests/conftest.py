@@ -7,9 +7,10 @@ Two profiles, chosen by the environment variable ``UWML_HYPOTHESIS_PROFILE``:
 * ``slow``: 2000 examples per property, for nightly or pre-release runs.
 
 Tests whose single example is expensive (a batch of thousands of states held against the
-numpy reference) take a fixed fraction of the profile's ``max_examples`` (see ``scaled`` in the
-test modules), so the profile still scales them. No example database is kept (``database=None``),
-so running the suite leaves no ``.hypothesis/`` directory behind.
+numpy reference) take a fixed fraction of the profile's ``max_examples`` (see ``scaled`` in
+``test_hydro.py``), so the profile still scales them. No example database is kept
+(``database=None``): a passing run leaves no ``.hypothesis/`` directory behind (a failing one
+gets ``.hypothesis/patches/``, which is gitignored).
 """
 
 import os

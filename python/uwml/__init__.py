@@ -11,5 +11,5 @@ from ._core import ModelError
 from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["Leg", "Joint", "Link", "Segment", "Water", "HydroTorques", "HydroRegressors", "ModelError", "MAX_JOINTS"]
+__all__ = ["MAX_JOINTS", "HydroRegressors", "HydroTorques", "Joint", "Leg", "Link", "ModelError", "Segment", "Water"]
 __version__ = "0.1.0"

@@ -1,5 +1,7 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
+from typing import Self
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -11,9 +13,9 @@ class ModelError(ValueError):
     """A non-physical or malformed model parameter."""
 
 class Chain:
-    def __new__(cls, joints: NDArray[np.float64], links: NDArray[np.float64]) -> "Chain": ...
+    def __new__(cls, joints: NDArray[np.float64], links: NDArray[np.float64]) -> Self: ...
     @staticmethod
-    def paper() -> "Chain": ...
+    def paper() -> Chain: ...
     @property
     def n_joints(self) -> int: ...
     def packed(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...

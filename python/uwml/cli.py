@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
 from .leg import Leg
 from .model import Water
 
-__all__ = ["main", "gait_like_motion"]
+__all__ = ["gait_like_motion", "main"]
 
 
 def gait_like_motion(n_samples: int = 9, period: float = 2.0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -49,7 +49,7 @@ def _demo(args: argparse.Namespace) -> int:
                 f"{t[i]:6.2f} {j + 1:5d} {q[i, j]:8.3f} {qd[i, j]:10.3f} "
                 f"{tau.drag[i, j]:9.3f} {tau.added_mass[i, j]:10.3f} {tau.buoyancy[i, j]:9.3f} {tau.total[i, j]:9.3f}"
             )
-    rms = lambda x: np.sqrt(np.mean(x**2, axis=0))  # noqa: E731
+    rms = lambda x: np.sqrt(np.mean(x**2, axis=0))
     print()
     print("RMS over the cycle     " + "   ".join(f"joint {j + 1}" for j in range(leg.n_joints)))
     for name in ("drag", "added_mass", "buoyancy"):

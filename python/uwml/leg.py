@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal, Sequence, Tuple
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -11,9 +12,12 @@ from numpy.typing import ArrayLike, NDArray
 from . import _core
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["Leg", "HydroTorques", "HydroRegressors", "MAX_JOINTS"]
+__all__ = ["MAX_JOINTS", "HydroRegressors", "HydroTorques", "Leg"]
 
 FloatArray = NDArray[np.float64]
+
+#: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).
+FRESH_WATER = Water()
 
 #: Largest number of joints a chain may have.
 MAX_JOINTS: int = _core.MAX_JOINTS
@@ -67,21 +71,28 @@ class HydroRegressors:
             drag = np.einsum("...jlk,lk->...j", self.drag, cd_table)
             added_mass = np.einsum("...jlk,lk->...j", self.added_mass, cm_table)
         else:
-            if not (np.all(cd_table == cd_table.flat[0]) and np.all(cm_table == cm_table.flat[0])):
-                raise ValueError("per-link or per-direction coefficients need regressors computed with per='direction'")
+            for name, table in (("cd", cd_table), ("cm", cm_table)):
+                if not np.all(table == table.flat[0]):
+                    raise ValueError(f"{name} is given per link or per direction; that needs regressors computed with per='direction'")
             drag = cd_table.flat[0] * self.drag
             added_mass = cm_table.flat[0] * self.added_mass
         return HydroTorques(drag=drag, added_mass=added_mass, buoyancy=self.buoyancy, gravity=self.gravity)
 
 
+def _real_array(value: ArrayLike, name: str, what: str) -> FloatArray:
+    """``value`` as a float64 array, or a TypeError naming the argument."""
+    try:
+        array = np.asarray(value)
+        if np.iscomplexobj(array):
+            raise TypeError("complex values are not allowed")
+        return array.astype(np.float64, copy=False)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be {what}: {exc}") from None
+
+
 def _coefficients(value: ArrayLike, name: str, n_links: int) -> FloatArray:
     """A coefficient given as a scalar, per link ``(n_links,)`` or per link and direction ``(n_links, 2)``."""
-    if np.iscomplexobj(value):
-        raise TypeError(f"{name} must be real, got complex values")
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a number or an array of numbers: {exc}") from None
+    array = _real_array(value, name, "a real number or a rectangular array of real numbers")
     if array.ndim == 0:
         table = np.full((n_links, 2), float(array))
     elif array.shape == (n_links,):
@@ -89,22 +100,19 @@ def _coefficients(value: ArrayLike, name: str, n_links: int) -> FloatArray:
     elif array.shape == (n_links, 2):
         table = np.array(array)
     else:
-        raise ValueError(f"{name} must be a scalar, shape ({n_links},) per link, or ({n_links}, 2) per link and direction; got shape {array.shape}")
+        raise ValueError(
+            f"{name} must be a scalar, shape ({n_links},) per link, or ({n_links}, 2) per link and direction; got shape {array.shape}"
+        )
     if not np.all(np.isfinite(table)) or np.any(table < 0.0):
         raise ValueError(f"{name} must be finite and non-negative, got {array.tolist()}")
     return np.ascontiguousarray(table)
 
 
-def _states(q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, n_joints: int) -> Tuple[Tuple[int, ...], FloatArray, FloatArray, FloatArray]:
+def _states(q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, n_joints: int) -> tuple[tuple[int, ...], FloatArray, FloatArray, FloatArray]:
     """The three joint-state arrays as C-contiguous ``(n_samples, n_joints)`` float64 (no copy if already so)."""
     arrays = []
     for name, value in (("q", q), ("qd", qd), ("qdd", qdd)):
-        if np.iscomplexobj(value):
-            raise TypeError(f"{name} must be real, got complex values")
-        try:
-            array = np.asarray(value, dtype=np.float64)
-        except (TypeError, ValueError) as exc:
-            raise TypeError(f"{name} must be an array of real numbers: {exc}") from None
+        array = _real_array(value, name, "a rectangular array of real numbers")
         if array.ndim not in (1, 2) or array.shape[-1] != n_joints:
             raise ValueError(f"{name} must have shape ({n_joints},) or (n_samples, {n_joints}), got {array.shape}")
         arrays.append(array)
@@ -122,11 +130,11 @@ def _water(water: Water) -> Water:
     return water
 
 
-def _vec(values: Sequence[float]) -> Tuple[float, float, float]:
+def _vec(values: Sequence[float]) -> tuple[float, float, float]:
     return (float(values[0]), float(values[1]), float(values[2]))
 
 
-def _pack(joints: Sequence[Joint], links: Sequence[Link]) -> Tuple[FloatArray, FloatArray]:
+def _pack(joints: Sequence[Joint], links: Sequence[Link]) -> tuple[FloatArray, FloatArray]:
     joint_rows = [[*joint.origin, *joint.axis] for joint in joints]
     link_rows = []
     for link in links:
@@ -137,10 +145,13 @@ def _pack(joints: Sequence[Joint], links: Sequence[Link]) -> Tuple[FloatArray, F
         else:
             row += [1.0, *s.start, *s.axis, s.length, *s.normals[0], *s.normals[1], *s.widths, s.area]
         link_rows.append(row)
-    return (np.array(joint_rows, dtype=np.float64).reshape(-1, _core.JOINT_WIDTH), np.array(link_rows, dtype=np.float64).reshape(-1, _core.LINK_WIDTH))
+    return (
+        np.array(joint_rows, dtype=np.float64).reshape(-1, _core.JOINT_WIDTH),
+        np.array(link_rows, dtype=np.float64).reshape(-1, _core.LINK_WIDTH),
+    )
 
 
-def _unpack(joints: FloatArray, links: FloatArray) -> Tuple[Tuple[Joint, ...], Tuple[Link, ...]]:
+def _unpack(joints: FloatArray, links: FloatArray) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
     joint_list = tuple(Joint(origin=_vec(r[0:3]), axis=_vec(r[3:6])) for r in joints)
     link_list = []
     for r in links:
@@ -179,7 +190,12 @@ class Leg:
     """
 
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
-        joints, links = tuple(joints), tuple(links)
+        try:
+            joints, links = tuple(joints), tuple(links)
+        except TypeError:
+            raise TypeError(
+                f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
+            ) from None
         if not all(isinstance(j, Joint) for j in joints):
             raise TypeError("joints must be uwml.Joint objects")
         if not all(isinstance(link, Link) for link in links):
@@ -190,7 +206,7 @@ class Leg:
         self._joints, self._links = _unpack(*self._chain.packed())
 
     @classmethod
-    def paper(cls) -> "Leg":
+    def paper(cls) -> Leg:
         """The 3-DOF leg of the paper (Table II): hip yaw, hip roll, knee roll."""
         leg = cls.__new__(cls)
         leg._chain = _core.Chain.paper()
@@ -198,12 +214,12 @@ class Leg:
         return leg
 
     @property
-    def joints(self) -> Tuple[Joint, ...]:
+    def joints(self) -> tuple[Joint, ...]:
         """The joints, as validated (axes normalized)."""
         return self._joints
 
     @property
-    def links(self) -> Tuple[Link, ...]:
+    def links(self) -> tuple[Link, ...]:
         """The links, as validated."""
         return self._links
 
@@ -222,7 +238,7 @@ class Leg:
         qdd: ArrayLike,
         cd: ArrayLike = 2.2,
         cm: ArrayLike = 0.5,
-        water: Water = Water(),
+        water: Water = FRESH_WATER,
     ) -> HydroTorques:
         """Drag, added-mass, buoyancy (and gravity) torques on every joint.
 
@@ -246,14 +262,16 @@ class Leg:
         cd_table = _coefficients(cd, "cd", self.n_joints)
         cm_table = _coefficients(cm, "cm", self.n_joints)
         drag, added_mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity)
-        return HydroTorques(drag=drag.reshape(shape), added_mass=added_mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape))
+        return HydroTorques(
+            drag=drag.reshape(shape), added_mass=added_mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
+        )
 
     def hydro_regressors(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        water: Water = Water(),
+        water: Water = FRESH_WATER,
         per: Literal["leg", "direction"] = "leg",
     ) -> HydroRegressors:
         """Regressors such that ``total = buoyancy + cd * drag + cm * added_mass``.

@@ -14,11 +14,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional, Tuple
 
-Vec3 = Tuple[float, float, float]
+Vec3 = tuple[float, float, float]
 
-__all__ = ["Vec3", "Joint", "Segment", "Link", "Water"]
+__all__ = ["Joint", "Link", "Segment", "Vec3", "Water"]
 
 #: Tolerance on unit length and orthogonality of the axes and normals given by users.
 AXIS_TOLERANCE = 1e-6
@@ -50,6 +49,16 @@ def _scalar(value: object, name: str, *, positive: bool) -> float:
     if not positive and x < 0.0:
         raise ValueError(f"{name} must be non-negative, got {x}")
     return x
+
+
+def _pair(value: object, name: str) -> tuple:
+    try:
+        items = tuple(value)  # type: ignore[arg-type]
+    except TypeError:
+        raise TypeError(f"{name} must be a pair (two items), got {value!r}") from None
+    if len(items) != 2:
+        raise ValueError(f"{name} must hold 2 items, got {len(items)}")
+    return items
 
 
 def _dot(a: Vec3, b: Vec3) -> float:
@@ -89,8 +98,8 @@ class Segment:
     start: Vec3
     axis: Vec3
     length: float
-    normals: Tuple[Vec3, Vec3]
-    widths: Tuple[float, float]
+    normals: tuple[Vec3, Vec3]
+    widths: tuple[float, float]
     area: float
 
     def __post_init__(self) -> None:
@@ -98,20 +107,18 @@ class Segment:
         axis = _unit(self.axis, "segment.axis")
         object.__setattr__(self, "axis", axis)
         object.__setattr__(self, "length", _scalar(self.length, "segment.length", positive=True))
-        if len(self.normals) != 2:
-            raise ValueError(f"segment.normals must hold 2 vectors, got {len(self.normals)}")
-        n1 = _unit(self.normals[0], "segment.normals[0]")
-        n2 = _unit(self.normals[1], "segment.normals[1]")
+        normals = _pair(self.normals, "segment.normals")
+        n1 = _unit(normals[0], "segment.normals[0]")
+        n2 = _unit(normals[1], "segment.normals[1]")
         for name, a, b in (("normals[0]·axis", n1, axis), ("normals[1]·axis", n2, axis), ("normals[0]·normals[1]", n1, n2)):
             if abs(_dot(a, b)) > AXIS_TOLERANCE:
                 raise ValueError(f"segment.{name} must be 0 (orthonormal normals perpendicular to the axis), got {_dot(a, b)}")
         object.__setattr__(self, "normals", (n1, n2))
-        if len(self.widths) != 2:
-            raise ValueError(f"segment.widths must hold 2 numbers, got {len(self.widths)}")
+        widths = _pair(self.widths, "segment.widths")
         object.__setattr__(
             self,
             "widths",
-            (_scalar(self.widths[0], "segment.widths[0]", positive=True), _scalar(self.widths[1], "segment.widths[1]", positive=True)),
+            (_scalar(widths[0], "segment.widths[0]", positive=True), _scalar(widths[1], "segment.widths[1]", positive=True)),
         )
         object.__setattr__(self, "area", _scalar(self.area, "segment.area", positive=True))
 
@@ -127,8 +134,8 @@ class Link:
     mass: float
     com: Vec3
     volume: float
-    cob: Optional[Vec3] = None
-    segment: Optional[Segment] = None
+    cob: Vec3 | None = None
+    segment: Segment | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", _scalar(self.mass, "link.mass", positive=False))
