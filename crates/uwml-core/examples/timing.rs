@@ -1,31 +1,62 @@
 //! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
-//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors]`.
+//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors] [f64|f32]`.
 #![allow(missing_docs)]
 
 use std::hint::black_box;
 use std::time::Instant;
 
-use uwml_core::nalgebra::Vector3;
+use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{Chain, Coefficients, Water, hydro_regressors, hydro_torques, link_motions};
+
+// One evaluation each, not inlined into the loop, so that its code can be read on its own; the
+// whole result goes through `black_box`, so that no part of it is optimized away.
+
+type Model<T> = (Chain<T, 3>, Water<T>, Coefficients<T, 3>);
+
+#[inline(never)]
+fn kinematics<T: RealField + Copy>((leg, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+    black_box(link_motions(leg, q, qd, qdd))[2].origin.x
+}
+
+#[inline(never)]
+fn torques<T: RealField + Copy>((leg, water, coefficients): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+    black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
+}
+
+#[inline(never)]
+fn regressors<T: RealField + Copy>((leg, water, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+    black_box(hydro_regressors(leg, water, q, qd, qdd)).drag[2][1].x
+}
+
+/// Sum of one output per call (so nothing is optimized away); q changes every call.
+fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
+    let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default());
+    let v = |a: f64, b: f64, c: f64| Vector3::<T>::new(convert(a), convert(b), convert(c));
+    let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
+    let mut acc = T::zero();
+    for i in 0..n {
+        let q = v(0.3 + i as f64 * 1e-7, -0.4, 0.6);
+        acc += evaluate(black_box(&model), &[q, qd, qdd]);
+    }
+    // Every RealField here is f32 or f64; their Display round-trips.
+    format!("{acc}").parse().unwrap_or(f64::NAN)
+}
+
+fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
+    match mode {
+        "kinematics" => run::<T>(n, kinematics),
+        "regressors" => run::<T>(n, regressors),
+        _ => run::<T>(n, torques),
+    }
+}
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5_000_000);
     let mode = args.next().unwrap_or_else(|| "torques".to_string());
-    let leg = Chain::<f64, 3>::paper();
-    let water = Water::default();
-    let coefficients = Coefficients::default();
-    let (qd, qdd) = (Vector3::new(0.8, 0.5, -0.7), Vector3::new(1.0, -2.0, 0.5));
+    let precision = args.next().unwrap_or_else(|| "f64".to_string());
     let start = Instant::now();
-    let mut acc = 0.0;
-    for i in 0..n {
-        let q = Vector3::new(0.3 + i as f64 * 1e-7, -0.4, 0.6);
-        acc += match mode.as_str() {
-            "kinematics" => link_motions(black_box(&leg), &q, &qd, &qdd)[2].origin.x,
-            "regressors" => hydro_regressors(black_box(&leg), &water, &q, &qd, &qdd).drag[2][1].x,
-            _ => hydro_torques(black_box(&leg), &water, &coefficients, &q, &qd, &qdd).drag.x,
-        };
-    }
+    let acc = if precision == "f32" { run_mode::<f32>(n, &mode) } else { run_mode::<f64>(n, &mode) };
     let ns = start.elapsed().as_nanos() as f64 / n as f64;
-    println!("{mode}: {ns:.1} ns per call ({acc:.3})");
+    println!("{mode} {precision}: {ns:.1} ns per call ({acc:.3})");
 }

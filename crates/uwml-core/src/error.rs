@@ -15,8 +15,10 @@ pub enum Problem {
     NotUnit,
     /// Must be perpendicular to another direction (within [`AXIS_TOLERANCE`](crate::AXIS_TOLERANCE)).
     NotPerpendicular,
-    /// A lower bound exceeds the matching upper bound.
+    /// Below its lower counterpart (a seal's breakaway level below its running level).
     OutOfOrder,
+    /// Outside a documented range (named in the field).
+    OutOfRange,
 }
 
 /// A non-physical or malformed model parameter, found at construction.
@@ -50,7 +52,8 @@ impl fmt::Display for ModelError {
             Problem::NotPerpendicular => {
                 "must be perpendicular (|cos| <= 1e-6) to the segment axis and to the other normal"
             }
-            Problem::OutOfOrder => "must not exceed its upper counterpart",
+            Problem::OutOfOrder => "must be at least its running counterpart (breakaway s0 >= c0, s1 >= c1)",
+            Problem::OutOfRange => "is outside its allowed range",
         };
         write!(f, "{} {allowed}", self.field)
     }

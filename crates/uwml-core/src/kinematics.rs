@@ -1,8 +1,23 @@
-//! Forward kinematics of the chain: world pose, velocity and acceleration of every link frame.
+//! Forward kinematics of the chain in world coordinates, and the small vector helpers shared
+//! with the body-frame recursion of the torque paths (`crate::body`).
 
 use nalgebra::{Matrix3, RealField, SVector, Vector3};
 
-use crate::model::Chain;
+use crate::model::{Chain, Joint};
+
+/// `for $pattern in $items $body`, with the first two items taken out of the loop. LLVM does not
+/// fully unroll loops with bodies as big as a link's, so this gives chains of up to three joints
+/// (the paper's leg) straight-line code: no loop and no state through memory. A macro rather
+/// than a function taking a closure, which LLVM would not inline three times.
+macro_rules! for_each_peeled {
+    ($pattern:pat in $items:expr => $body:block) => {{
+        let mut items = $items;
+        if let Some($pattern) = items.next() $body
+        if let Some($pattern) = items.next() $body
+        for $pattern in items $body
+    }};
+}
+pub(crate) use for_each_peeled;
 
 /// Pose and motion of one link frame (at its joint), in world coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,18 +39,6 @@ pub struct LinkMotion<T: RealField + Copy> {
 }
 
 impl<T: RealField + Copy> LinkMotion<T> {
-    const fn at_rest(rotation: Matrix3<T>, origin: Vector3<T>, axis: Vector3<T>, zero: Vector3<T>) -> Self {
-        Self {
-            rotation,
-            origin,
-            axis,
-            angular_velocity: zero,
-            angular_acceleration: zero,
-            velocity: zero,
-            acceleration: zero,
-        }
-    }
-
     /// World position of a point given in the link frame.
     #[inline]
     pub fn point(&self, local: &Vector3<T>) -> Vector3<T> {
@@ -52,10 +55,9 @@ impl<T: RealField + Copy> LinkMotion<T> {
     }
 }
 
-/// Rotation by `angle` about the unit `axis` (Rodrigues).
-#[inline]
-fn axis_angle<T: RealField + Copy>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
-    let (s, c) = angle.sin_cos();
+/// Rotation by the angle with sine `s` and cosine `c` about the unit `axis` (Rodrigues).
+#[inline(always)]
+fn axis_angle<T: RealField + Copy>(axis: &Vector3<T>, (s, c): (T, T)) -> Matrix3<T> {
     let (x, y, z) = (axis.x, axis.y, axis.z);
     let t = T::one() - c;
     Matrix3::new(
@@ -71,6 +73,43 @@ fn axis_angle<T: RealField + Copy>(axis: &Vector3<T>, angle: T) -> Matrix3<T> {
     )
 }
 
+impl<T: RealField + Copy> LinkMotion<T> {
+    /// The first link: the world is at rest.
+    #[inline(always)]
+    fn first(joint: &Joint<T>, turn: (T, T), qd: T, qdd: T) -> Self {
+        let still = Vector3::zeros();
+        Self {
+            rotation: axis_angle(&joint.axis, turn),
+            origin: joint.origin,
+            axis: joint.axis,
+            angular_velocity: joint.axis * qd,
+            angular_acceleration: joint.axis * qdd,
+            velocity: still,
+            acceleration: still,
+        }
+    }
+
+    /// A later link, moved by `joint` relative to this one.
+    #[inline(always)]
+    fn child(&self, joint: &Joint<T>, turn: (T, T), qd: T, qdd: T) -> Self {
+        let axis = rotate(&self.rotation, &joint.axis);
+        let offset = rotate(&self.rotation, &joint.origin);
+        let (velocity, acceleration) = self.point_motion(&offset);
+        let w = self.angular_velocity;
+        // (`rotate` column by column: nalgebra's product adds each sum to a zero first.)
+        let turned = axis_angle(&joint.axis, turn);
+        Self {
+            rotation: Matrix3::from_columns(&[0, 1, 2].map(|j| rotate(&self.rotation, &turned.column(j).into_owned()))),
+            origin: self.origin + offset,
+            axis,
+            angular_velocity: w + axis * qd,
+            angular_acceleration: self.angular_acceleration + axis * qdd + w.cross(&axis) * qd,
+            velocity,
+            acceleration,
+        }
+    }
+}
+
 /// World pose, velocity and acceleration of every link, by the usual forward recursion.
 ///
 /// Joints with non-finite states give non-finite motions; nothing fails.
@@ -80,25 +119,57 @@ pub fn link_motions<T: RealField + Copy, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> [LinkMotion<T>; N] {
+    // Arrays, not nalgebra's iterators, which cost more than the loop bodies here; all sines and
+    // cosines first, as the calls are independent.
+    let (q, qd, qdd): ([T; N], [T; N], [T; N]) = ((*q).into(), (*qd).into(), (*qdd).into());
+    let turns = q.map(|q| q.sin_cos());
     let zero = Vector3::zeros();
-    let mut parent = LinkMotion::at_rest(Matrix3::identity(), zero, zero, zero);
-    let mut motions = [parent; N];
-    let states = q.iter().zip(qd.iter()).zip(qdd.iter());
-    for ((motion, joint), ((&q, &qd), &qdd)) in motions.iter_mut().zip(chain.joints().iter()).zip(states) {
-        let axis = parent.rotation * joint.axis;
-        let origin = parent.point(&joint.origin);
-        let (velocity, acceleration) = parent.point_motion(&(origin - parent.origin));
-        let w = parent.angular_velocity;
-        *motion = LinkMotion {
-            rotation: parent.rotation * axis_angle(&joint.axis, q),
-            origin,
-            axis,
-            angular_velocity: w + axis * qd,
-            angular_acceleration: parent.angular_acceleration + axis * qdd + w.cross(&axis) * qd,
-            velocity,
-            acceleration,
-        };
+    let rest = LinkMotion {
+        rotation: Matrix3::identity(),
+        origin: zero,
+        axis: zero,
+        angular_velocity: zero,
+        angular_acceleration: zero,
+        velocity: zero,
+        acceleration: zero,
+    };
+    let mut motions = [rest; N];
+    let mut links = motions.iter_mut().zip(chain.joints().iter()).zip(turns.into_iter().zip(qd.into_iter().zip(qdd)));
+    // The first link on its own: its parent, the world, is at rest (no products with zeros).
+    let Some(((motion, joint), (turn, (qd, qdd)))) = links.next() else { return motions };
+    *motion = LinkMotion::first(joint, turn, qd, qdd);
+    let mut parent = *motion;
+    for_each_peeled!(((motion, joint), (turn, (qd, qdd))) in links => {
+        *motion = parent.child(joint, turn, qd, qdd);
         parent = *motion;
-    }
+    });
     motions
+}
+
+/// `a · b`, without the zero accumulator of nalgebra's generic dot.
+#[inline(always)]
+pub(crate) fn dot<T: RealField + Copy>(a: &Vector3<T>, b: &Vector3<T>) -> T {
+    a.x * b.x + a.y * b.y + a.z * b.z
+}
+
+/// `m · v`.
+#[inline(always)]
+pub(crate) fn rotate<T: RealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+    let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
+    Vector3::new(
+        c0.x * v.x + c1.x * v.y + c2.x * v.z,
+        c0.y * v.x + c1.y * v.y + c2.y * v.z,
+        c0.z * v.x + c1.z * v.y + c2.z * v.z,
+    )
+}
+
+/// `mᵀ · v`.
+#[inline(always)]
+pub(crate) fn rotate_back<T: RealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+    let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
+    Vector3::new(
+        c0.x * v.x + c0.y * v.y + c0.z * v.z,
+        c1.x * v.x + c1.y * v.y + c1.z * v.z,
+        c2.x * v.x + c2.y * v.y + c2.z * v.z,
+    )
 }

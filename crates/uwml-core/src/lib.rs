@@ -1,14 +1,20 @@
 #![doc = include_str!("../README.md")]
 #![no_std]
 
+mod body;
 pub mod error;
 pub mod hydro;
 pub mod kinematics;
+pub mod losses;
 pub mod model;
 pub mod strip;
 
 pub use error::{ModelError, Problem};
 pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
 pub use kinematics::{LinkMotion, link_motions};
+pub use losses::{
+    Drive, EnvironmentTorques, JointLoss, JointLosses, LossState, OilDrag, Seal, environment_torques,
+    pressure_at_depth, smooth_sign,
+};
 pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water};
 pub use nalgebra;

@@ -7,6 +7,7 @@
 
 use nalgebra::{RealField, Vector3};
 
+use crate::body::{Body, bodies};
 use crate::error::{ModelError, Problem};
 
 /// Tolerance on unit length and on orthogonality of axes and normals at construction.
@@ -63,6 +64,8 @@ pub struct Link<T: RealField + Copy> {
 pub struct Chain<T: RealField + Copy, const N: usize> {
     joints: [Joint<T>; N],
     links: [Link<T>; N],
+    /// The same chain in body frames, derived once for the torque paths.
+    bodies: [Body<T>; N],
 }
 
 /// The fluid the chain moves in.
@@ -187,13 +190,17 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
     /// # Errors
     /// The first non-finite, non-positive (lengths, widths, area), negative (mass, volume),
     /// non-unit or non-perpendicular parameter, naming the field and the joint or link.
-    pub fn new(joints: [Joint<T>; N], links: [Link<T>; N]) -> Result<Self, ModelError> {
-        let mut chain = Self { joints, links };
-        for (index, (joint, link)) in chain.joints.iter_mut().zip(chain.links.iter_mut()).enumerate() {
+    pub fn new(mut joints: [Joint<T>; N], mut links: [Link<T>; N]) -> Result<Self, ModelError> {
+        for (index, (joint, link)) in joints.iter_mut().zip(links.iter_mut()).enumerate() {
             *joint = joint.validated(index)?;
             *link = link.validated(index)?;
         }
-        Ok(chain)
+        Ok(Self::from_validated(joints, links))
+    }
+
+    /// A chain of valid joints and links (validated, or the paper's), with its body frames.
+    fn from_validated(joints: [Joint<T>; N], links: [Link<T>; N]) -> Self {
+        Self { joints, links, bodies: bodies(&joints, &links) }
     }
 
     /// The joints, as validated.
@@ -204,6 +211,11 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
     /// The links, as validated.
     pub const fn links(&self) -> &[Link<T>; N] {
         &self.links
+    }
+
+    /// The chain in body frames (see `crate::body`).
+    pub(crate) const fn bodies(&self) -> &[Body<T>; N] {
+        &self.bodies
     }
 }
 
@@ -278,7 +290,7 @@ impl<T: RealField + Copy> Chain<T, 3> {
                 }),
             },
         ];
-        Self { joints, links }
+        Self::from_validated(joints, links)
     }
 }
 

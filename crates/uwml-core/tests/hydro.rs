@@ -86,10 +86,7 @@ fn paper_equations_8_and_9_for_pure_yaw() {
         let (c2, s23) = (q[1].cos(), (q[1] + q[2]).sin());
         let n = 20_000;
         let (mut drag, mut added_mass) = (0.0, 0.0);
-        for (length, arm, width, area) in [
-            (l2, [0.0, c2], d21, d21 * d22),
-            (l3, [l2 * c2, s23], d31, d31 * d32),
-        ] {
+        for (length, arm, width, area) in [(l2, [0.0, c2], d21, d21 * d22), (l3, [l2 * c2, s23], d31, d31 * d32)] {
             let dx = length / n as f64;
             for k in 0..n {
                 let x = (k as f64 + 0.5) * dx;
@@ -207,7 +204,12 @@ fn added_mass_matrix_is_symmetric_positive_semidefinite() {
 fn buoyancy_potential(chain: &Chain<f64, 4>, water: &Water<f64>, q: &SVector<f64, 4>) -> f64 {
     let zero = SVector::zeros();
     let motions = link_motions(chain, q, &zero, &zero);
-    chain.links().iter().zip(motions.iter()).map(|(l, m)| water.density() * water.gravity() * l.volume * m.point(&l.cob).z).sum()
+    chain
+        .links()
+        .iter()
+        .zip(motions.iter())
+        .map(|(l, m)| water.density() * water.gravity() * l.volume * m.point(&l.cob).z)
+        .sum()
 }
 
 #[test]
@@ -224,8 +226,9 @@ fn buoyancy_is_conservative_and_joint_one_of_the_paper_gets_none() {
         for j in 0..4 {
             let mut dq = zero;
             dq[j] = h;
-            let gradient =
-                (buoyancy_potential(&chain, &water, &(q + dq)) - buoyancy_potential(&chain, &water, &(q - dq))) / (2.0 * h);
+            let gradient = (buoyancy_potential(&chain, &water, &(q + dq))
+                - buoyancy_potential(&chain, &water, &(q - dq)))
+                / (2.0 * h);
             assert!((tau[j] - gradient).abs() <= 1e-6 * (1.0 + tau.amax()), "joint {j}: {} vs {gradient}", tau[j]);
         }
     }

@@ -1,0 +1,432 @@
+//! Joint losses inside an oil-filled, pressure-compensated joint (MODEL.md section 7): the
+//! oil's viscous (churning) drag on the motor side, the output-shaft seal's friction, and the
+//! drive that turns them into a loss current and a loss torque at the joint output.
+//!
+//! Units: SI (pressures in Pa, speeds in rad/s) except temperatures, in °C. Pressure and
+//! temperature change slowly, so their effect is computed once per change with
+//! [`JointLosses::at`] (one `exp` for the oil, none for the seal); the per-call work of
+//! [`LossState::evaluate`] is then one square root (the smooth sign), one power
+//! `|ω_m|ⁿ` (none if n is exactly 1 or 2) and one `exp` (the Stribeck term).
+//!
+//! Sign: as everywhere in uwml, the returned torques are exerted by the environment on the
+//! joint, so they oppose motion: `ω · τ ≤ 0`.
+
+use nalgebra::{RealField, SVector};
+
+use crate::error::{ModelError, Problem};
+use crate::hydro::{HydroTorques, hydro_torques};
+use crate::model::{Chain, Coefficients, Water, constant};
+
+/// `sgn_ε(x) = x / sqrt(x² + ε²)`: a smooth sign; `ε = 0` gives the hard sign with `sgn(0) = 0`.
+///
+/// Evaluated as `(x/m) / sqrt((x/m)² + (ε/m)²)` with `m = max(|x|, ε)`, so that neither square
+/// overflows or underflows whatever the magnitudes.
+#[inline]
+pub fn smooth_sign<T: RealField + Copy>(x: T, epsilon: T) -> T {
+    let m = x.abs().max(epsilon);
+    // m == 0 only for x = 0 with ε = 0; NaN falls through to x and propagates.
+    if m > T::zero() {
+        let (a, b) = (x / m, epsilon / m);
+        a / (a * a + b * b).sqrt()
+    } else {
+        x
+    }
+}
+
+fn finite<T: RealField + Copy>(x: T, field: &'static str) -> Result<T, ModelError> {
+    if x.is_finite() { Ok(x) } else { Err(ModelError::new(field, None, Problem::NonFinite)) }
+}
+
+fn at_least<T: RealField + Copy>(x: T, low: T, field: &'static str, problem: Problem) -> Result<T, ModelError> {
+    let x = finite(x, field)?;
+    if x >= low { Ok(x) } else { Err(ModelError::new(field, None, problem)) }
+}
+
+fn positive<T: RealField + Copy>(x: T, field: &'static str) -> Result<T, ModelError> {
+    let x = finite(x, field)?;
+    if x > T::zero() { Ok(x) } else { Err(ModelError::new(field, None, Problem::NonPositive)) }
+}
+
+/// Viscous (churning) loss of the compensation oil, as torque at the motor shaft:
+/// `T_oil = k · exp(a_p (p − p_ref)) · exp(−a_T (θ − θ_ref)) · |ω_m|ⁿ · sgn_ε(ω_m)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OilDrag<T: RealField + Copy> {
+    k_oil: T,
+    exponent: T,
+    pressure_sensitivity: T,
+    temperature_sensitivity: T,
+    reference_pressure: T,
+    reference_temperature: T,
+}
+
+impl<T: RealField + Copy> OilDrag<T> {
+    /// `k_oil` [N·m·(rad/s)⁻ⁿ] ≥ 0; `exponent` n in [1, 2]; `pressure_sensitivity` a_p [1/Pa] ≥ 0;
+    /// `temperature_sensitivity` a_T [1/K] ≥ 0; `reference_pressure` [Pa] ≥ 0;
+    /// `reference_temperature` [°C] above absolute zero.
+    ///
+    /// # Errors
+    /// A parameter out of its range or not finite.
+    pub fn new(
+        k_oil: T,
+        exponent: T,
+        pressure_sensitivity: T,
+        temperature_sensitivity: T,
+        reference_pressure: T,
+        reference_temperature: T,
+    ) -> Result<Self, ModelError> {
+        let zero = T::zero();
+        const EXPONENT: &str = "oil.exponent (1 to 2)";
+        let exponent = at_least(exponent, T::one(), EXPONENT, Problem::OutOfRange)?;
+        if exponent > constant(2.0) {
+            return Err(ModelError::new(EXPONENT, None, Problem::OutOfRange));
+        }
+        const TEMPERATURE: &str = "oil.reference_temperature (above -273.15 °C)";
+        let reference_temperature = finite(reference_temperature, TEMPERATURE)?;
+        if reference_temperature <= constant(-273.15) {
+            return Err(ModelError::new(TEMPERATURE, None, Problem::OutOfRange));
+        }
+        Ok(Self {
+            k_oil: at_least(k_oil, zero, "oil.k_oil", Problem::Negative)?,
+            exponent,
+            pressure_sensitivity: at_least(pressure_sensitivity, zero, "oil.pressure_sensitivity", Problem::Negative)?,
+            temperature_sensitivity: at_least(
+                temperature_sensitivity,
+                zero,
+                "oil.temperature_sensitivity",
+                Problem::Negative,
+            )?,
+            reference_pressure: at_least(reference_pressure, zero, "oil.reference_pressure", Problem::Negative)?,
+            reference_temperature,
+        })
+    }
+
+    /// `k · exp(a_p (p − p_ref) − a_T (θ − θ_ref))`: the torque at `|ω_m| = 1 rad/s` at pressure
+    /// `p` [Pa] and temperature `θ` [°C].
+    #[must_use]
+    pub fn scale(&self, pressure: T, temperature: T) -> T {
+        let exponent = self.pressure_sensitivity * (pressure - self.reference_pressure)
+            - self.temperature_sensitivity * (temperature - self.reference_temperature);
+        self.k_oil * exponent.exp()
+    }
+
+    /// The speed exponent n.
+    pub const fn exponent(&self) -> T {
+        self.exponent
+    }
+}
+
+/// Friction of the output-shaft dynamic seal, as torque at the joint output:
+/// `T_seal = sgn_ε(ω) [C(p) + (S(p) − C(p)) exp(−(|ω|/ω_s)²)] + D(p) ω`,
+/// `C = c0 + c1 p`, `S = s0 + s1 p`, `D = d0 + d1 p`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Seal<T: RealField + Copy> {
+    c: [T; 2],
+    s: [T; 2],
+    d: [T; 2],
+    stribeck_speed: T,
+}
+
+impl<T: RealField + Copy> Seal<T> {
+    /// Running level `c0 + c1 p` [N·m, N·m/Pa], breakaway level `s0 + s1 p`, viscous slope
+    /// `d0 + d1 p` [N·m·s/rad, N·m·s/(rad·Pa)] and Stribeck speed ω_s [rad/s] > 0. For every
+    /// pressure ≥ 0, `S ≥ C ≥ 0` and `D ≥ 0`: `s0 ≥ c0 ≥ 0`, `s1 ≥ c1 ≥ 0`, `d0, d1 ≥ 0`.
+    ///
+    /// # Errors
+    /// A parameter out of its range, out of order, or not finite.
+    pub fn new(c: [T; 2], s: [T; 2], d: [T; 2], stribeck_speed: T) -> Result<Self, ModelError> {
+        let zero = T::zero();
+        let [c0, c1] = c;
+        let [s0, s1] = s;
+        let [d0, d1] = d;
+        let c0 = at_least(c0, zero, "seal.c0", Problem::Negative)?;
+        let c1 = at_least(c1, zero, "seal.c1", Problem::Negative)?;
+        Ok(Self {
+            c: [c0, c1],
+            s: [at_least(s0, c0, "seal.s0", Problem::OutOfOrder)?, at_least(s1, c1, "seal.s1", Problem::OutOfOrder)?],
+            d: [at_least(d0, zero, "seal.d0", Problem::Negative)?, at_least(d1, zero, "seal.d1", Problem::Negative)?],
+            stribeck_speed: positive(stribeck_speed, "seal.stribeck_speed")?,
+        })
+    }
+
+    /// `(C(p), S(p), D(p))` at pressure `p` [Pa].
+    #[must_use]
+    pub fn levels(&self, pressure: T) -> (T, T, T) {
+        let line = |[a, b]: [T; 2]| a + b * pressure;
+        (line(self.c), line(self.s), line(self.d))
+    }
+}
+
+/// Motor and reducer of a joint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Drive<T: RealField + Copy> {
+    torque_constant: T,
+    ratio: T,
+    efficiency: T,
+    rated_current: T,
+}
+
+impl<T: RealField + Copy> Drive<T> {
+    /// Torque constant K_t [N·m/A] > 0, gear ratio N > 0, gear efficiency η in (0, 1] (motoring),
+    /// rated current [A] > 0. With K_t = 1, torques read as currents.
+    ///
+    /// # Errors
+    /// A parameter out of its range or not finite.
+    pub fn new(torque_constant: T, ratio: T, efficiency: T, rated_current: T) -> Result<Self, ModelError> {
+        let efficiency = positive(efficiency, "drive.efficiency")?;
+        if efficiency > T::one() {
+            return Err(ModelError::new("drive.efficiency (0 to 1)", None, Problem::OutOfRange));
+        }
+        Ok(Self {
+            torque_constant: positive(torque_constant, "drive.torque_constant")?,
+            ratio: positive(ratio, "drive.ratio")?,
+            efficiency,
+            rated_current: positive(rated_current, "drive.rated_current")?,
+        })
+    }
+
+    /// Gear ratio N.
+    pub const fn ratio(&self) -> T {
+        self.ratio
+    }
+
+    /// Rated current [A].
+    pub const fn rated_current(&self) -> T {
+        self.rated_current
+    }
+}
+
+/// The losses of one joint: its drive, and optionally oil drag and a dynamic seal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLosses<T: RealField + Copy> {
+    /// The drive.
+    pub drive: Drive<T>,
+    /// Oil drag on the motor side, if the joint is oil-filled.
+    pub oil: Option<OilDrag<T>>,
+    /// Output-shaft seal, if any.
+    pub seal: Option<Seal<T>>,
+    epsilon: T,
+}
+
+/// The loss of one joint at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLoss<T: RealField + Copy> {
+    /// Oil drag reflected to the output, `−N η T_oil` [N·m] (environment sign).
+    pub visc: T,
+    /// Seal friction, `−T_seal` [N·m] (environment sign).
+    pub seal: T,
+    /// Loss current `T_oil/K_t + T_seal/(N η K_t)` [A], signed like the motion.
+    pub current: T,
+}
+
+/// A joint's losses at a given pressure and temperature: everything that does not depend on
+/// speed, computed once per change of the conditions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LossState<T: RealField + Copy> {
+    oil_scale: T,
+    exponent: T,
+    seal_running: T,
+    seal_breakaway_excess: T,
+    seal_viscous: T,
+    inverse_stribeck_speed: T,
+    ratio: T,
+    output_per_motor_torque: T,
+    inverse_torque_constant: T,
+    epsilon: T,
+}
+
+impl<T: RealField + Copy> JointLosses<T> {
+    /// A joint's losses; `epsilon` [rad/s, output speed] ≥ 0 is the smooth sign's width (a few
+    /// times the velocity noise; 0 for the hard sign).
+    ///
+    /// # Errors
+    /// `epsilon` negative or not finite.
+    pub fn new(
+        drive: Drive<T>,
+        oil: Option<OilDrag<T>>,
+        seal: Option<Seal<T>>,
+        epsilon: T,
+    ) -> Result<Self, ModelError> {
+        let epsilon = at_least(epsilon, T::zero(), "losses.epsilon", Problem::Negative)?;
+        Ok(Self { drive, oil, seal, epsilon })
+    }
+
+    /// The smooth sign's width [rad/s].
+    pub const fn epsilon(&self) -> T {
+        self.epsilon
+    }
+
+    /// Fixes the ambient pressure `p` [Pa] and oil temperature `θ` [°C].
+    #[must_use]
+    pub fn at(&self, pressure: T, temperature: T) -> LossState<T> {
+        let zero = T::zero();
+        let (oil_scale, exponent) = match &self.oil {
+            Some(oil) => (oil.scale(pressure, temperature), oil.exponent),
+            None => (zero, T::one()),
+        };
+        let (seal_running, seal_breakaway_excess, seal_viscous, inverse_stribeck_speed) = match &self.seal {
+            Some(seal) => {
+                let (c, s, d) = seal.levels(pressure);
+                (c, s - c, d, T::one() / seal.stribeck_speed)
+            }
+            None => (zero, zero, zero, zero),
+        };
+        let drive = &self.drive;
+        LossState {
+            oil_scale,
+            exponent,
+            seal_running,
+            seal_breakaway_excess,
+            seal_viscous,
+            inverse_stribeck_speed,
+            ratio: drive.ratio,
+            output_per_motor_torque: drive.ratio * drive.efficiency,
+            inverse_torque_constant: T::one() / drive.torque_constant,
+            epsilon: self.epsilon,
+        }
+    }
+}
+
+impl<T: RealField + Copy> LossState<T> {
+    /// Oil and seal losses at output speed `speed` [rad/s].
+    #[must_use]
+    #[inline]
+    pub fn evaluate(&self, speed: T) -> JointLoss<T> {
+        // sgn_ε(ω_m) with ε_m = N ε equals sgn_ε(ω): one square root serves both.
+        let sign = smooth_sign(speed, self.epsilon);
+        let magnitude = speed.abs();
+        let motor_speed = self.ratio * magnitude;
+        let power = if self.exponent == T::one() {
+            motor_speed
+        } else if self.exponent == constant(2.0) {
+            motor_speed * motor_speed
+        } else {
+            motor_speed.powf(self.exponent)
+        };
+        let oil = self.oil_scale * power * sign;
+        let x = magnitude * self.inverse_stribeck_speed;
+        let seal =
+            sign * (self.seal_running + self.seal_breakaway_excess * (-(x * x)).exp()) + self.seal_viscous * speed;
+        JointLoss {
+            visc: -self.output_per_motor_torque * oil,
+            seal: -seal,
+            current: (oil + seal / self.output_per_motor_torque) * self.inverse_torque_constant,
+        }
+    }
+}
+
+/// One megapascal in pascals.
+const MPA: f64 = 1e6;
+
+impl<T: RealField + Copy> Default for OilDrag<T> {
+    /// Illustrative (the paper publishes laws, not parameters): k = 1.1933e-3 N·m·(rad/s)^−1.2,
+    /// n = 1.2, a_p = 0.02 /MPa, a_T = 0.06 /K, at 0 MPa and 20 °C. With the default seal and
+    /// drive: 2.85 A of loss current at 10 r/min and 10 MPa (27.4 % of 10.4 A).
+    fn default() -> Self {
+        let c = constant::<T>;
+        Self {
+            k_oil: c(1.1933e-3),
+            exponent: c(1.2),
+            pressure_sensitivity: c(0.02 / MPA),
+            temperature_sensitivity: c(0.06),
+            reference_pressure: T::zero(),
+            reference_temperature: c(20.0),
+        }
+    }
+}
+
+impl<T: RealField + Copy> Default for Seal<T> {
+    /// Illustrative: C = 16 + 3.7 p, S = 21 + 6.7 p [N·m, p in MPa], D = 2.2 + 0.34 p
+    /// [N·m·s/rad], ω_s = 0.05 rad/s.
+    fn default() -> Self {
+        let c = constant::<T>;
+        Self {
+            c: [c(16.0), c(3.7 / MPA)],
+            s: [c(21.0), c(6.7 / MPA)],
+            d: [c(2.2), c(0.34 / MPA)],
+            stribeck_speed: c(0.05),
+        }
+    }
+}
+
+impl<T: RealField + Copy> Default for Drive<T> {
+    /// The paper's hip-roll joint: ratio 160, rated current 10.4 A; K_t = 0.40 N·m/A and
+    /// η = 0.80 are illustrative.
+    fn default() -> Self {
+        let c = constant::<T>;
+        Self { torque_constant: c(0.40), ratio: c(160.0), efficiency: c(0.80), rated_current: c(10.4) }
+    }
+}
+
+impl<T: RealField + Copy> Default for JointLosses<T> {
+    /// Default drive, oil and seal; ε = 1e-3 rad/s.
+    fn default() -> Self {
+        Self {
+            drive: Drive::default(),
+            oil: Some(OilDrag::default()),
+            seal: Some(Seal::default()),
+            epsilon: constant(1e-3),
+        }
+    }
+}
+
+/// Gauge pressure [Pa] at `depth` [m] below the surface: `ρ g z` (no compressibility; within
+/// the bound documented in docs/losses.md of TEOS-10).
+#[must_use]
+pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity: T) -> T {
+    sea_density * gravity * depth
+}
+
+/// Default sea-water density for [`pressure_at_depth`] [kg/m³].
+pub const SEA_WATER_DENSITY: f64 = 1025.0;
+
+/// The environment's torques on every joint: hydrodynamics plus joint losses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnvironmentTorques<T: RealField + Copy, const N: usize> {
+    /// Drag, added mass, buoyancy and gravity.
+    pub hydro: HydroTorques<T, N>,
+    /// Oil drag reflected to the output [N·m] (0 for joints without oil).
+    pub visc: SVector<T, N>,
+    /// Seal friction [N·m] (0 for joints without a seal).
+    pub seal: SVector<T, N>,
+    /// Loss current [A].
+    pub current: SVector<T, N>,
+}
+
+impl<T: RealField + Copy, const N: usize> EnvironmentTorques<T, N> {
+    /// `τ_env = τ_hydro + τ_visc + τ_seal`.
+    #[must_use]
+    pub fn total(&self) -> SVector<T, N> {
+        self.hydro.total() + self.visc + self.seal
+    }
+}
+
+/// The environment torque of every joint, `τ_hydro + τ_visc + τ_seal`, in one call; `losses[i]`
+/// is joint `i`'s [`LossState`] at the current pressure and temperature, or `None`.
+///
+/// Never fails and never panics.
+#[must_use]
+pub fn environment_torques<T: RealField + Copy, const N: usize>(
+    chain: &Chain<T, N>,
+    water: &Water<T>,
+    coefficients: &Coefficients<T, N>,
+    losses: &[Option<LossState<T>>; N],
+    q: &SVector<T, N>,
+    qd: &SVector<T, N>,
+    qdd: &SVector<T, N>,
+) -> EnvironmentTorques<T, N> {
+    let zeros = SVector::<T, N>::zeros();
+    let mut out = EnvironmentTorques {
+        hydro: hydro_torques(chain, water, coefficients, q, qd, qdd),
+        visc: zeros,
+        seal: zeros,
+        current: zeros,
+    };
+    let slots = out.visc.iter_mut().zip(out.seal.iter_mut()).zip(out.current.iter_mut());
+    for (((visc, seal), current), (state, &speed)) in slots.zip(losses.iter().zip(qd.iter())) {
+        if let Some(state) = state {
+            let loss = state.evaluate(speed);
+            (*visc, *seal, *current) = (loss.visc, loss.seal, loss.current);
+        }
+    }
+    out
+}
