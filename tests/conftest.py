@@ -9,8 +9,7 @@ Two profiles, chosen by the environment variable ``UWML_HYPOTHESIS_PROFILE``:
 Tests whose single example is expensive (a batch of thousands of states held against the
 numpy reference) take a fixed fraction of the profile's ``max_examples`` (see ``scaled`` in
 ``test_hydro.py``), so the profile still scales them. No example database is kept
-(``database=None``): a passing run leaves no ``.hypothesis/`` directory behind (a failing one
-gets ``.hypothesis/patches/``, which is gitignored).
+(``database=None``); hypothesis may still write a ``.hypothesis/`` cache, which is gitignored.
 """
 
 import os

@@ -1,0 +1,163 @@
+"""Synthetic data of the paper's three-configuration joint experiment, from known parameters.
+
+**Synthetic**: for tests, demos and planning an experiment, never a stand-in for measurements.
+The paper (Section IV) measured motor current in three configurations of its hip-roll joint;
+:func:`three_configuration_experiment` reproduces that experiment from given loss models
+(:mod:`uwml.losses`), so that the identification in :mod:`uwml.fit` can be checked against the
+truth. Its model of a measurement (every current in A, ω the output speed in rad/s, p the
+pressure in MPa, θ the oil temperature in °C, noise Gaussian with standard deviation
+``noise_a``, independent between rows):
+
+* ``dry`` (housing dry, no output-shaft seal): ``I_dry(ω) = i0 + i1·|ω|``, the rest of the
+  drive's losses (gear, bearings, motor), independent of pressure and temperature. Dry rows are
+  written at pressure 0 (a dry housing is not pressurised).
+* ``oil`` (oil-filled, no seal): ``I_dry(ω) + T_oil(N ω, p, θ)/K_t``.
+* ``oil_seal`` (oil-filled, with the seal): ``I_oil + T_seal(ω, p)/(N η K_t)``.
+
+Start-up rows (``startup = 1``) are the current peak when the joint breaks away from rest
+toward the slowest grid speed. They are evaluated at ``ω → 0⁺`` with the hard sign: the seal
+gives its breakaway level ``S(p)`` (``T_seal(0⁺) = S(p)``), the oil nothing
+(``T_oil(0⁺) = 0``: the oil has not been sheared yet), the dry drive its base ``i0``. So a
+start-up row of ``dry`` or ``oil`` reads ``i0`` and one of ``oil_seal`` reads
+``i0 + S(p)/(N η K_t)``, plus noise. The inertial part of a real start-up peak is the same in
+all configurations and cancels in the differences that :mod:`uwml.fit` takes, so it is left
+out. Their ``speed_rpm`` is the commanded speed (the slowest grid speed), which the model does
+not use.
+
+Steady rows use the hard sign (ε = 0), as the fits do.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from . import reference
+from .losses import RPM, Drive, OilDrag, Seal
+
+__all__ = ["CONFIGURATIONS", "three_configuration_experiment"]
+
+#: The paper's three configurations, in its order.
+CONFIGURATIONS = ("dry", "oil", "oil_seal")
+#: The illustrative defaults of :mod:`uwml.losses`.
+_OIL, _SEAL, _DRIVE = OilDrag(), Seal(), Drive()
+
+
+def _grid(values: Sequence[float], name: str, *, low: float, strict: bool) -> NDArray[np.float64]:
+    """Distinct finite numbers ``>= low`` (``> low`` if ``strict``), as a 1-D array."""
+    try:
+        a = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a sequence of numbers, got {values!r}") from exc
+    if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be a non-empty sequence of finite numbers, got {values!r}")
+    if np.any(a <= low if strict else a < low):
+        raise ValueError(f"{name} must be {'>' if strict else '>='} {low}, got {values!r}")
+    if np.unique(a).size != a.size:
+        raise ValueError(f"{name} must not repeat a value, got {values!r}")
+    return a
+
+
+def three_configuration_experiment(
+    oil: OilDrag = _OIL,
+    seal: Seal = _SEAL,
+    drive: Drive = _DRIVE,
+    *,
+    speeds_rpm: Sequence[float] = (1.0, 2.0, 4.0, 6.0, 8.0, 10.0),
+    pressures_mpa: Sequence[float] = (0.0, 2.0, 4.0, 6.0, 8.0, 10.0),
+    temperatures_c: Sequence[float] | None = None,
+    repeats: int = 5,
+    startup: int = 0,
+    noise_a: float = 0.02,
+    dry_current_a: tuple[float, float] = (0.6, 0.3),
+    rng: np.random.Generator | int | None = None,
+) -> dict[str, NDArray]:
+    """Synthetic motor currents of the three-configuration experiment (see the module docstring).
+
+    Parameters
+    ----------
+    oil, seal, drive
+        The true loss models and drive.
+    speeds_rpm : sequence of float
+        Output speeds [r/min], > 0, distinct.
+    pressures_mpa : sequence of float
+        Ambient pressures [MPa], ≥ 0, distinct (the ``oil`` and ``oil_seal`` runs).
+    temperatures_c : sequence of float, optional
+        Oil temperatures [°C] of the runs (every speed and pressure at each); None: all runs at
+        ``oil.reference_temperature_c`` and no ``temperature_c`` column.
+    repeats : int
+        Steady rows per grid point and configuration, ≥ 1.
+    startup : int
+        Start-up rows per configuration, pressure and temperature, ≥ 0.
+    noise_a : float
+        Standard deviation of the current noise [A], ≥ 0.
+    dry_current_a : (float, float)
+        ``(i0, i1)`` of the dry current ``i0 + i1 |ω|`` [A, A·s/rad].
+    rng : numpy.random.Generator or int or None
+        Random generator, or a seed for ``numpy.random.default_rng``.
+
+    Returns
+    -------
+    dict of ndarray
+        Columns of equal length: ``configuration`` (str), ``speed_rpm``, ``pressure_mpa``,
+        ``current_a``, ``startup`` (int, 0 or 1), and ``temperature_c`` when
+        ``temperatures_c`` is given; the layout of :func:`uwml.fit.write_loss_csv`.
+
+    Raises
+    ------
+    ValueError
+        On empty, repeated, negative or non-finite grids, ``repeats < 1``, ``startup < 0``,
+        negative noise or a negative dry current.
+    """
+    speeds = _grid(speeds_rpm, "speeds_rpm", low=0.0, strict=True)
+    pressures = _grid(pressures_mpa, "pressures_mpa", low=0.0, strict=False)
+    temperatures = None if temperatures_c is None else _grid(temperatures_c, "temperatures_c", low=-273.15, strict=True)
+    if int(repeats) != repeats or repeats < 1:
+        raise ValueError(f"repeats must be an integer >= 1, got {repeats!r}")
+    if int(startup) != startup or startup < 0:
+        raise ValueError(f"startup must be an integer >= 0, got {startup!r}")
+    if not np.isfinite(noise_a) or noise_a < 0.0:
+        raise ValueError(f"noise_a must be finite and >= 0, got {noise_a!r}")
+    i0, i1 = (float(x) for x in dry_current_a)
+    if not (np.isfinite(i0) and np.isfinite(i1)) or i0 < 0.0 or i1 < 0.0:
+        raise ValueError(f"dry_current_a must be two finite numbers >= 0, got {dry_current_a!r}")
+    generator = rng if isinstance(rng, np.random.Generator) else np.random.default_rng(rng)
+
+    thetas = np.array([oil.reference_temperature_c]) if temperatures is None else temperatures
+    rows: list[tuple[str, float, float, float, int]] = []  # configuration, speed, pressure, θ, startup
+    for theta in thetas:
+        for speed in speeds:
+            rows += [("dry", speed, 0.0, theta, 0)] * int(repeats)
+        rows += [("dry", speeds.min(), 0.0, theta, 1)] * int(startup)
+        for configuration in CONFIGURATIONS[1:]:
+            for pressure in pressures:
+                for speed in speeds:
+                    rows += [(configuration, speed, pressure, theta, 0)] * int(repeats)
+                rows += [(configuration, speeds.min(), pressure, theta, 1)] * int(startup)
+
+    configuration = np.array([r[0] for r in rows])
+    speed_rpm, pressure_mpa, temperature_c = (np.array([r[k] for r in rows], dtype=np.float64) for k in (1, 2, 3))
+    is_startup = np.array([r[4] for r in rows], dtype=np.int64)
+    # Start-up rows are evaluated at ω → 0⁺: speed 0 with the sign forced to +1.
+    omega = np.where(is_startup == 1, 0.0, speed_rpm * RPM)
+    t_oil = reference.oil_drag_torque(oil, drive.ratio * omega, pressure_mpa, temperature_c)
+    t_seal_steady = reference.seal_torque(seal, omega, pressure_mpa)
+    breakaway = seal.s0 + seal.s1_per_mpa * pressure_mpa
+    t_seal = np.where(is_startup == 1, breakaway, t_seal_steady)
+    current = i0 + i1 * np.abs(omega)
+    current = current + np.where(configuration != "dry", reference.loss_current(drive, t_oil, 0.0), 0.0)
+    current = current + np.where(configuration == "oil_seal", reference.loss_current(drive, 0.0, t_seal), 0.0)
+    current = current + generator.normal(0.0, noise_a, size=current.shape)
+
+    columns: dict[str, NDArray] = {
+        "configuration": configuration,
+        "speed_rpm": speed_rpm,
+        "pressure_mpa": pressure_mpa,
+        "current_a": current,
+        "startup": is_startup,
+    }
+    if temperatures is not None:
+        columns["temperature_c"] = temperature_c
+    return columns
