@@ -1,6 +1,7 @@
 """uwml: what the deep sea does to each joint of an underwater robot.
 
-Drag, added mass and buoyancy on the links of a serial chain (strip theory, Morison), computed
+Drag, added mass and buoyancy on the links of a serial chain (strip theory, Morison), and the
+oil-viscous and dynamic-seal losses inside oil-filled, pressure-compensated joints, computed
 exactly by a no_std Rust core and exposed over numpy arrays. Sign convention: every torque is
 the generalized force exerted by the environment on the joint, in the joint's positive
 direction (so drag opposes motion and the motor must supply ``-total`` on top of the land
@@ -8,8 +9,27 @@ torque).
 """
 
 from ._core import ModelError
+from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
 from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
+from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_JOINTS", "HydroRegressors", "HydroTorques", "Joint", "Leg", "Link", "ModelError", "Segment", "Water"]
+__all__ = [
+    "MAX_JOINTS",
+    "Drive",
+    "EnvironmentTorques",
+    "HydroRegressors",
+    "HydroTorques",
+    "Joint",
+    "JointLosses",
+    "Leg",
+    "Link",
+    "LossTorques",
+    "ModelError",
+    "OilDrag",
+    "Seal",
+    "Segment",
+    "Water",
+    "pressure_at_depth_mpa",
+]
 __version__ = "0.1.0"

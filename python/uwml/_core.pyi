@@ -8,6 +8,7 @@ from numpy.typing import NDArray
 MAX_JOINTS: int
 JOINT_WIDTH: int
 LINK_WIDTH: int
+LOSS_WIDTH: int
 
 class ModelError(ValueError):
     """A non-physical or malformed model parameter."""
@@ -29,6 +30,19 @@ class Chain:
         density: float,
         gravity: float,
     ) -> list[NDArray[np.float64]]: ...
+    def environment(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        cd: NDArray[np.float64],
+        cm: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        losses: NDArray[np.float64],
+        pressure: NDArray[np.float64],
+        temperature: NDArray[np.float64],
+    ) -> list[NDArray[np.float64]]: ...
     def regressors(
         self,
         q: NDArray[np.float64],
@@ -38,3 +52,10 @@ class Chain:
         gravity: float,
         per_direction: bool,
     ) -> list[NDArray[np.float64]]: ...
+
+def joint_losses(
+    losses: NDArray[np.float64] | None,
+    speed: NDArray[np.float64],
+    pressure: NDArray[np.float64],
+    temperature: NDArray[np.float64],
+) -> list[NDArray[np.float64]]: ...

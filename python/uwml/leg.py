@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
+from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, pack_leg_losses
 from .model import Joint, Link, Segment, Water
 
 __all__ = ["MAX_JOINTS", "HydroRegressors", "HydroTorques", "Leg"]
@@ -265,6 +266,58 @@ class Leg:
         return HydroTorques(
             drag=drag.reshape(shape), added_mass=added_mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
         )
+
+    def environment(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike = 2.2,
+        cm: ArrayLike = 0.5,
+        water: Water = FRESH_WATER,
+        sea_density: float = SEA_WATER_DENSITY,
+    ) -> EnvironmentTorques:
+        """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call.
+
+        Parameters
+        ----------
+        q, qd, qdd
+            Joint states, as for :meth:`hydro`.
+        depth
+            Depth [m] ≥ 0, a scalar or one per sample; the ambient pressure is the hydrostatic
+            ``sea_density · g · depth`` (the core's formula; see :mod:`uwml.seawater` for TEOS-10).
+        temperature_c
+            Oil temperature [°C], a scalar or one per sample.
+        losses
+            One :class:`uwml.JointLosses` for every joint, a sequence with one (or None) per
+            joint, or None for none (the hydrodynamics alone).
+        cd, cm, water
+            As for :meth:`hydro` (``water`` is the fluid the links move in).
+        """
+        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
+        water = _water(water)
+        cd_table = _coefficients(cd, "cd", self.n_joints)
+        cm_table = _coefficients(cm, "cm", self.n_joints)
+        packed = pack_leg_losses(losses, self.n_joints)
+        n_samples = q2.shape[0]
+        conditions = []
+        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
+            array = _real_array(value, name, "a real number or one per sample")
+            if array.ndim > 1 or (array.ndim == 1 and array.shape[0] != n_samples):
+                raise ValueError(f"{name} must be a scalar or have one entry per sample ({n_samples}), got shape {array.shape}")
+            conditions.append(np.ascontiguousarray(np.broadcast_to(array, (n_samples,))))
+        depth_m, temperature = conditions
+        sea_density = float(sea_density)
+        if not np.isfinite(sea_density) or sea_density <= 0:
+            raise ValueError(f"sea_density must be positive, got {sea_density}")
+        if np.any(depth_m < 0):
+            raise ValueError("depth must be >= 0 (metres below the surface)")
+        pressure = np.ascontiguousarray(sea_density * water.gravity * depth_m)
+        columns = self._chain.environment(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
+        return EnvironmentTorques(*(c.reshape(shape) for c in columns))
 
     def hydro_regressors(
         self,

@@ -3,12 +3,15 @@
 //! GIL released. The friendly, validated API is the Python package `uwml`.
 
 use numpy::ndarray::{Array, Dimension, IntoDimension};
-use numpy::{IntoPyArray, PyArray, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
-use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Segment, Water, hydro_regressors, hydro_torques};
+use uwml_core::{
+    Chain, Coefficients, Drive, Joint, JointLosses, Link, LossState, ModelError, OilDrag, Seal, Segment, Water,
+    environment_torques, hydro_regressors, hydro_torques,
+};
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
 
@@ -19,6 +22,32 @@ const JOINT_WIDTH: usize = 6;
 /// Floats per link in the packed layout: mass, com (3), volume, cob (3), has_segment (0/1),
 /// segment start (3), axis (3), length, normals (2×3), widths (2), area.
 const LINK_WIDTH: usize = 25;
+
+/// Floats per joint's losses in the packed layout: has_oil (0/1), k_oil, exponent,
+/// pressure_sensitivity [1/Pa], temperature_sensitivity [1/K], reference_pressure [Pa],
+/// reference_temperature [°C], has_seal (0/1), c0, c1, s0, s1, d0, d1 (per Pa for c1, s1, d1),
+/// stribeck_speed, torque_constant, ratio, efficiency, rated_current, epsilon, has_losses (0/1).
+const LOSS_WIDTH: usize = 21;
+
+fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, ModelError> {
+    let mut values = row.iter().copied();
+    let mut next = || values.next().unwrap_or(f64::NAN);
+    let has_oil = next() != 0.0;
+    let oil = [next(), next(), next(), next(), next(), next()];
+    let has_seal = next() != 0.0;
+    let seal = [next(), next(), next(), next(), next(), next(), next()];
+    let drive = [next(), next(), next(), next()];
+    let epsilon = next();
+    if next() == 0.0 {
+        return Ok(None);
+    }
+    let [k, n, a_p, a_t, p_ref, t_ref] = oil;
+    let oil = if has_oil { Some(OilDrag::new(k, n, a_p, a_t, p_ref, t_ref)?) } else { None };
+    let [c0, c1, s0, s1, d0, d1, w_s] = seal;
+    let seal = if has_seal { Some(Seal::new([c0, c1], [s0, s1], [d0, d1], w_s)?) } else { None };
+    let [kt, ratio, efficiency, rated] = drive;
+    Ok(Some(JointLosses::new(Drive::new(kt, ratio, efficiency, rated)?, oil, seal, epsilon)?))
+}
 
 fn model_error(error: ModelError) -> PyErr {
     UwmlModelError::new_err(error.to_string())
@@ -216,6 +245,76 @@ fn hydro_batch<const N: usize>(
     Ok(out)
 }
 
+/// Joint losses of a batch of samples: visc, seal and current per sample. The
+/// pressure-dependent part is recomputed only when the pressure or temperature changes.
+fn loss_batch(
+    losses: &JointLosses<f64>,
+    speed: &[f64],
+    pressure: &[f64],
+    temperature: &[f64],
+) -> Result<[Vec<f64>; 3], NonFinite> {
+    let n = speed.len();
+    let (mut visc, mut seal, mut current) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    let mut conditions = (f64::NAN, f64::NAN);
+    let mut state = losses.at(0.0, 20.0);
+    for (sample, ((&w, &p), &t)) in speed.iter().zip(pressure).zip(temperature).enumerate() {
+        for (argument, value) in [("speed", w), ("pressure", p), ("temperature", t)] {
+            if !value.is_finite() {
+                return Err(NonFinite { argument, sample, joint: 0, value });
+            }
+        }
+        if conditions != (p, t) {
+            conditions = (p, t);
+            state = losses.at(p, t);
+        }
+        let loss = state.evaluate(w);
+        visc.push(loss.visc);
+        seal.push(loss.seal);
+        current.push(loss.current);
+    }
+    Ok([visc, seal, current])
+}
+
+/// Hydrodynamic and loss torques of a batch: drag, added mass, buoyancy, gravity, visc, seal,
+/// current, each `n_samples × N`.
+fn environment_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    coefficients: &Coefficients<f64, N>,
+    losses: &[Option<JointLosses<f64>>],
+    states: &States<'_>,
+    conditions: (&[f64], &[f64]),
+) -> Result<[Vec<f64>; 7], NonFinite> {
+    let n_samples = conditions.0.len();
+    let mut out: [Vec<f64>; 7] = core::array::from_fn(|_| Vec::with_capacity(n_samples * N));
+    let mut joint_losses = [None; N];
+    for (slot, l) in joint_losses.iter_mut().zip(losses) {
+        *slot = *l;
+    }
+    let mut current_conditions = (f64::NAN, f64::NAN);
+    let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
+    for (sample, (state, (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate() {
+        let (q, qd, qdd) = state?;
+        for (argument, value) in [("pressure", p), ("temperature", t)] {
+            if !value.is_finite() {
+                return Err(NonFinite { argument, sample, joint: 0, value });
+            }
+        }
+        if current_conditions != (p, t) {
+            current_conditions = (p, t);
+            loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));
+        }
+        let env = environment_torques(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
+        let h = &env.hydro;
+        for (column, values) in
+            out.iter_mut().zip([h.drag, h.added_mass, h.buoyancy, h.gravity, env.visc, env.seal, env.current])
+        {
+            column.extend(values.iter());
+        }
+    }
+    Ok(out)
+}
+
 /// Regressor arrays of a batch: buoyancy and gravity `n × N`; drag and added mass either
 /// `n × N` (summed over links and directions) or `n × N × N × 2` (`[sample][joint][link][k]`).
 fn regressor_batch<const N: usize>(
@@ -301,6 +400,15 @@ impl PyChain {
     }
 }
 
+fn check_coefficient_shapes(cd: &PyReadonlyArray2<'_, f64>, cm: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<()> {
+    for (name, c) in [("cd", cd), ("cm", cm)] {
+        if c.shape() != [n, 2] {
+            return Err(PyValueError::new_err(format!("{name} must have shape ({n}, 2), got {:?}", c.shape())));
+        }
+    }
+    Ok(())
+}
+
 fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
     Water::new(density, gravity).map_err(model_error)
 }
@@ -371,11 +479,7 @@ impl PyChain {
     ) -> PyResult<Vec<Array2<'py>>> {
         let n = self.n_joints();
         let n_samples = self.check_states(&q, &qd, &qdd)?;
-        for (name, c) in [("cd", &cd), ("cm", &cm)] {
-            if c.shape() != [n, 2] {
-                return Err(PyValueError::new_err(format!("{name} must have shape ({n}, 2), got {:?}", c.shape())));
-            }
-        }
+        check_coefficient_shapes(&cd, &cm, n)?;
         let water = water(density, gravity)?;
         let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
         let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
@@ -392,6 +496,45 @@ impl PyChain {
             .into_iter()
             .map(|v| to_numpy(py, v, (n_samples, n)))
             .collect()
+    }
+
+    /// Environment torques with joint losses: `(drag, added_mass, buoyancy, gravity, visc,
+    /// seal, current)`, each `(n_samples, N)`; `losses` packed `(N, LOSS_WIDTH)`, pressure [Pa]
+    /// and temperature [°C] per sample.
+    #[allow(clippy::too_many_arguments)]
+    fn environment<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        cd: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        losses: PyReadonlyArray2<'py, f64>,
+        pressure: PyReadonlyArray1<'py, f64>,
+        temperature: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Vec<Array2<'py>>> {
+        let n = self.n_joints();
+        let n_samples = self.check_states(&q, &qd, &qdd)?;
+        check_coefficient_shapes(&cd, &cm, n)?;
+        let water = water(density, gravity)?;
+        let losses = parse_losses(&losses, n)?;
+        let conditions =
+            (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
+        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
+        let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
+        let chain = self.chain;
+        let columns = py
+            .detach(|| -> Result<[Vec<f64>; 7], PyErrSend> {
+                dispatch!(&chain, c => {
+                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                    environment_batch(c, &water, &coefficients, &losses, &states, conditions).map_err(PyErrSend::State)
+                })
+            })
+            .map_err(PyErr::from)?;
+        columns.into_iter().map(|v| to_numpy(py, v, (n_samples, n))).collect()
     }
 
     /// Regressors: `(buoyancy, gravity, drag, added_mass)`; drag and added mass are
@@ -429,6 +572,58 @@ impl PyChain {
     }
 }
 
+fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<Vec<Option<JointLosses<f64>>>> {
+    if losses.shape() != [n, LOSS_WIDTH] {
+        return Err(PyValueError::new_err(format!(
+            "packed losses must have shape ({n}, {LOSS_WIDTH}), got {:?}",
+            losses.shape()
+        )));
+    }
+    contiguous(losses, "losses")?
+        .chunks_exact(LOSS_WIDTH)
+        .enumerate()
+        .map(|(joint, row)| {
+            unpack_losses(row).map_err(|e| UwmlModelError::new_err(format!("losses of joint {joint}: {e}")))
+        })
+        .collect()
+}
+
+fn contiguous1<'a>(array: &'a PyReadonlyArray1<'_, f64>, argument: &str, n: usize) -> PyResult<&'a [f64]> {
+    let values = array
+        .as_slice()
+        .map_err(|_| PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array")))?;
+    if values.len() != n {
+        return Err(PyValueError::new_err(format!("{argument} must have {n} entries, got {}", values.len())));
+    }
+    Ok(values)
+}
+
+/// Oil, seal and current of one joint's losses over a batch (speed [rad/s], pressure [Pa],
+/// temperature [°C], all 1-D of one length). `losses`: packed (1, LOSS_WIDTH), or None for
+/// the core's defaults.
+#[pyfunction]
+#[pyo3(signature = (losses, speed, pressure, temperature))]
+fn joint_losses<'py>(
+    py: Python<'py>,
+    losses: Option<PyReadonlyArray2<'py, f64>>,
+    speed: PyReadonlyArray1<'py, f64>,
+    pressure: PyReadonlyArray1<'py, f64>,
+    temperature: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Vec<Bound<'py, PyArray<f64, numpy::Ix1>>>> {
+    let model = match losses {
+        Some(packed) => parse_losses(&packed, 1)?.into_iter().next().flatten().unwrap_or_default(),
+        None => JointLosses::default(),
+    };
+    let n = speed.len();
+    let (w, p, t) = (
+        contiguous1(&speed, "speed", n)?,
+        contiguous1(&pressure, "pressure", n)?,
+        contiguous1(&temperature, "temperature", n)?,
+    );
+    let columns = py.detach(|| loss_batch(&model, w, p, t))?;
+    Ok(columns.into_iter().map(|c| c.into_pyarray(py)).collect())
+}
+
 /// Errors raised while detached from the interpreter, turned into Python exceptions after.
 enum PyErrSend {
     Model(ModelError),
@@ -447,6 +642,8 @@ impl From<PyErrSend> for PyErr {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
+    m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
+    m.add("LOSS_WIDTH", LOSS_WIDTH)?;
     m.add("ModelError", m.py().get_type::<UwmlModelError>())?;
     m.add("MAX_JOINTS", MAX_JOINTS)?;
     m.add("JOINT_WIDTH", JOINT_WIDTH)?;

@@ -1,0 +1,174 @@
+"""The core-backed joint losses and the whole-leg environment torque, held against the numpy
+reference (``uwml.reference``) and the paper's findings."""
+
+import math
+
+import numpy as np
+import pytest
+import uwml
+from hypothesis import given
+from hypothesis import strategies as st
+from uwml import _core, reference
+from uwml.losses import rpm_to_rad_s
+
+
+def assert_close(actual, expected, rel=1e-12, atol=0.0):
+    actual, expected = np.asarray(actual), np.asarray(expected)
+    scale = np.maximum(np.abs(expected), atol / rel if rel else 0.0)
+    assert np.all(np.abs(actual - expected) <= rel * scale + atol), (actual, expected)
+
+
+positive = st.floats(1e-3, 10.0)
+oils = st.builds(
+    uwml.OilDrag,
+    k_oil=st.floats(1e-5, 1e-2),
+    exponent=st.sampled_from([1.0, 2.0]) | st.floats(1.0, 2.0),
+    pressure_sensitivity_per_mpa=st.floats(0.0, 0.05),
+    temperature_sensitivity_per_k=st.floats(0.0, 0.1),
+    reference_pressure_mpa=st.floats(0.0, 1.0),
+    reference_temperature_c=st.floats(0.0, 40.0),
+)
+
+
+@st.composite
+def seals(draw):
+    c0, c1 = draw(st.floats(0.0, 30.0)), draw(st.floats(0.0, 5.0))
+    return uwml.Seal(
+        c0=c0,
+        c1_per_mpa=c1,
+        s0=c0 + draw(st.floats(0.0, 20.0)),
+        s1_per_mpa=c1 + draw(st.floats(0.0, 5.0)),
+        d0=draw(st.floats(0.0, 5.0)),
+        d1_per_mpa=draw(st.floats(0.0, 1.0)),
+        stribeck_speed=draw(st.floats(1e-3, 1.0)),
+    )
+
+
+drives = st.builds(
+    uwml.Drive, torque_constant=positive, ratio=st.floats(1.0, 200.0), efficiency=st.floats(0.3, 1.0), rated_current=positive
+)
+
+
+@given(
+    drive=drives,
+    oil=st.none() | oils,
+    seal=st.none() | seals(),
+    epsilon=st.sampled_from([0.0, 1e-3]) | st.floats(1e-9, 0.1),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_joint_losses_match_the_reference(drive, oil, seal, epsilon, seed):
+    rng = np.random.default_rng(seed)
+    speed = rng.uniform(-3, 3, 200) * 10.0 ** rng.uniform(-5, 0, 200)
+    speed[:3] = [0.0, epsilon, -epsilon]
+    pressure = rng.uniform(0, 20, 200)
+    temperature = rng.uniform(0, 30, 200)
+    losses = uwml.JointLosses(drive=drive, oil=oil, seal=seal, epsilon=epsilon)
+    core = losses.torques(speed, pressure, temperature)
+    ref = reference.joint_loss_torques(drive, oil, seal, speed, pressure, temperature, epsilon)
+    scale = {name: np.max(np.abs(ref[name])) for name in ref}
+    for name in ("visc", "seal", "current"):
+        assert_close(getattr(core, name), ref[name], rel=1e-12, atol=1e-13 * scale[name])
+    # Losses oppose motion; the current is signed like the motion.
+    assert np.all(speed * core.visc <= 0) and np.all(speed * core.seal <= 0) and np.all(speed * core.current >= 0)
+
+
+def test_python_defaults_are_the_cores_defaults():
+    speed = np.linspace(-2, 2, 41)
+    pressure = np.full_like(speed, 7.5e6)
+    temperature = np.full_like(speed, 3.0)
+    core_default = _core.joint_losses(None, speed, pressure, temperature)
+    python_default = uwml.JointLosses().torques(speed, 7.5, 3.0)
+    for a, b in zip(core_default, (python_default.visc, python_default.seal, python_default.current)):
+        assert_close(b, a, rel=1e-15, atol=1e-15)
+
+
+def test_the_papers_27_4_percent_at_10_rpm_and_10_mpa():
+    losses = uwml.JointLosses()
+    t = losses.torques(rpm_to_rad_s(10.0), 10.0, 20.0)
+    assert abs(float(t.current) - 2.85) < 1e-3
+    assert abs(float(t.current) / 10.4 - 0.274) < 5e-4
+    # Loss torque at the output = loss current × K_t × N × η (the drive's bookkeeping).
+    assert_close(-(t.visc + t.seal), float(t.current) * 0.40 * 160 * 0.80, rel=1e-3)
+
+
+def test_environment_adds_losses_to_hydrodynamics():
+    leg = uwml.Leg.paper()
+    rng = np.random.default_rng(4)
+    q, qd, qdd = rng.uniform(-1, 1, (3, 50, 3))
+    depth = rng.uniform(0, 3000, 50)
+    temperature = rng.uniform(2, 20, 50)
+    joint = uwml.JointLosses(epsilon=1e-2)
+    water = uwml.Water(density=1025.0)
+    env = leg.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=[None, joint, joint], water=water)
+    hydro = leg.hydro(q, qd, qdd, water=water)
+    for name in ("drag", "added_mass", "buoyancy", "gravity"):
+        np.testing.assert_array_equal(getattr(env, name), getattr(hydro, name))
+    pressure = reference.hydrostatic_pressure_mpa(depth, 1025.0, 9.81)
+    for j in (1, 2):
+        ref = reference.joint_loss_torques(joint.drive, joint.oil, joint.seal, qd[:, j], pressure, temperature, 1e-2)
+        for name in ("visc", "seal", "current"):
+            assert_close(getattr(env, name)[:, j], ref[name], rel=1e-11, atol=1e-12)
+    assert np.all(env.visc[:, 0] == 0) and np.all(env.current[:, 0] == 0)
+    assert_close(env.total, hydro.total + env.visc + env.seal, rel=1e-15, atol=1e-12)
+    # One JointLosses for every joint, and no losses at all.
+    every = leg.environment(q[0], qd[0], qdd[0], depth=100.0, losses=joint)
+    assert every.visc.shape == (3,) and np.all(every.visc * qd[0] <= 0)
+    none = leg.environment(q[0], qd[0], qdd[0], depth=100.0)
+    np.testing.assert_array_equal(none.total, leg.hydro(q[0], qd[0], qdd[0]).total)
+
+
+def test_losses_grow_with_depth():
+    leg = uwml.Leg.paper()
+    state = ([0.2, -0.3, 0.5], [0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
+    shallow = leg.environment(*state, depth=10.0, losses=uwml.JointLosses())
+    deep = leg.environment(*state, depth=3000.0, losses=uwml.JointLosses())
+    assert np.all(np.abs(deep.visc) > np.abs(shallow.visc)) and np.all(np.abs(deep.seal) > np.abs(shallow.seal))
+
+
+def test_core_hydrostatic_formula():
+    depth = np.array([0.0, 10.0, 1000.0])
+    assert_close(uwml.pressure_at_depth_mpa(depth), 1025.0 * 9.81 * depth / 1e6, rel=1e-15)
+    assert_close(uwml.pressure_at_depth_mpa(depth), reference.hydrostatic_pressure_mpa(depth), rel=1e-15)
+    with pytest.raises(ValueError, match="depth_m"):
+        uwml.pressure_at_depth_mpa(-1.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"losses": [uwml.JointLosses()]}, ValueError, "one entry per joint"),
+        ({"losses": 3}, TypeError, "losses"),
+        ({"losses": [None, "seal", None]}, TypeError, r"losses\[1\]"),
+        ({"depth": -5.0}, ValueError, "depth"),
+        ({"depth": [1.0, 2.0]}, ValueError, "depth"),
+        ({"depth": "deep"}, TypeError, "depth"),
+        ({"temperature_c": [[1.0]]}, ValueError, "temperature_c"),
+        ({"temperature_c": math.nan}, ValueError, "temperature"),
+        ({"sea_density": 0.0}, ValueError, "sea_density"),
+        ({"cd": -1.0}, ValueError, "cd"),
+    ],
+)
+def test_environment_bad_inputs(kwargs, error, match):
+    leg = uwml.Leg.paper()
+    with pytest.raises(error, match=match):
+        leg.environment([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("make", "error", "match"),
+    [
+        (lambda: uwml.JointLosses(epsilon=-1.0), ValueError, "epsilon"),
+        (lambda: uwml.JointLosses(oil="oil"), TypeError, "oil"),
+        (lambda: uwml.JointLosses(drive=None), TypeError, "drive"),
+        (lambda: uwml.JointLosses().torques([1.0, 2.0], [1.0, 2.0, 3.0]), ValueError, "broadcast"),
+        (lambda: uwml.JointLosses().torques(1.0, -1.0), ValueError, "pressure_mpa"),
+        (lambda: uwml.JointLosses().torques("fast"), TypeError, "speed"),
+        (lambda: uwml.JointLosses().torques(math.inf), ValueError, "speed"),
+        (lambda: uwml.Seal(s0=1.0), ValueError, "seal.s0"),
+        (lambda: uwml.OilDrag(exponent=2.5), ValueError, "oil.exponent"),
+        (lambda: uwml.Drive(efficiency=1.5), ValueError, "drive.efficiency"),
+    ],
+)
+def test_loss_bad_inputs(make, error, match):
+    with pytest.raises(error, match=match):
+        make()
