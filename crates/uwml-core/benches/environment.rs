@@ -6,7 +6,9 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{Chain, Coefficients, JointLosses, Water, environment_torques, hydro_torques, pressure_at_depth};
+use uwml_core::{
+    Chain, Coefficients, JointLosses, OilDrag, Water, environment_torques, hydro_torques, pressure_at_depth,
+};
 
 fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let leg = Chain::<T, 3>::paper();
@@ -27,6 +29,27 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
                 &water,
                 &coefficients,
                 black_box(&losses),
+                black_box(&q),
+                black_box(&qd),
+                &qdd,
+            )
+        })
+    });
+    // Laminar oil (n = 1, the usual regime for this motor class): no power function per call.
+    let defaults = JointLosses::<T>::default();
+    let laminar_oil =
+        OilDrag::new(convert(1.1933e-3), T::one(), convert(0.02e-6), convert(0.06), T::zero(), convert(20.0)).ok();
+    let laminar = JointLosses::new(defaults.drive, laminar_oil, defaults.seal, defaults.epsilon())
+        .map(|l| Some(l.at(pressure, convert(4.0))))
+        .unwrap_or(state);
+    let laminar = [laminar; 3];
+    c.bench_function(&format!("environment_torques/paper+laminar-losses/{name}"), |b| {
+        b.iter(|| {
+            environment_torques(
+                black_box(&leg),
+                &water,
+                &coefficients,
+                black_box(&laminar),
                 black_box(&q),
                 black_box(&qd),
                 &qdd,

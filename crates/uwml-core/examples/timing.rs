@@ -1,36 +1,52 @@
 //! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
-//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors] [f64|f32]`.
+//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`.
 #![allow(missing_docs)]
 
 use std::hint::black_box;
 use std::time::Instant;
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{Chain, Coefficients, Water, hydro_regressors, hydro_torques, link_motions};
+use uwml_core::{
+    Chain, Coefficients, JointLosses, LossState, Water, environment_torques, hydro_regressors, hydro_torques,
+    link_motions, pressure_at_depth,
+};
 
 // One evaluation each, not inlined into the loop, so that its code can be read on its own; the
 // whole result goes through `black_box`, so that no part of it is optimized away.
 
-type Model<T> = (Chain<T, 3>, Water<T>, Coefficients<T, 3>);
+/// The leg, the water, the coefficients, and the default losses of all three joints at 1000 m
+/// (computed once, as a controller does when the pressure changes).
+type Model<T> = (Chain<T, 3>, Water<T>, Coefficients<T, 3>, [Option<LossState<T>>; 3]);
 
 #[inline(never)]
-fn kinematics<T: RealField + Copy>((leg, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+fn kinematics<T: RealField + Copy>((leg, _, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
     black_box(link_motions(leg, q, qd, qdd))[2].origin.x
 }
 
 #[inline(never)]
-fn torques<T: RealField + Copy>((leg, water, coefficients): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+fn torques<T: RealField + Copy>((leg, water, coefficients, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
     black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
 }
 
 #[inline(never)]
-fn regressors<T: RealField + Copy>((leg, water, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+fn regressors<T: RealField + Copy>((leg, water, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
     black_box(hydro_regressors(leg, water, q, qd, qdd)).drag[2][1].x
+}
+
+/// The paper leg's hydrodynamics plus the default joint losses on all three joints.
+#[inline(never)]
+fn environment<T: RealField + Copy>(
+    (leg, water, coefficients, losses): &Model<T>,
+    [q, qd, qdd]: &[Vector3<T>; 3],
+) -> T {
+    black_box(environment_torques(leg, water, coefficients, losses, q, qd, qdd)).seal.x
 }
 
 /// Sum of one output per call (so nothing is optimized away); q changes every call.
 fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
-    let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default());
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
+    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0))); 3];
+    let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default(), losses);
     let v = |a: f64, b: f64, c: f64| Vector3::<T>::new(convert(a), convert(b), convert(c));
     let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
     let mut acc = T::zero();
@@ -46,6 +62,7 @@ fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
     match mode {
         "kinematics" => run::<T>(n, kinematics),
         "regressors" => run::<T>(n, regressors),
+        "environment" => run::<T>(n, environment),
         _ => run::<T>(n, torques),
     }
 }
