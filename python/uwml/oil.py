@@ -22,6 +22,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._checks import finite_array
+
 __all__ = ["ISO_VG32", "OILS", "OilViscosity", "barus_factor", "drag_temperature_sensitivity"]
 
 Array = NDArray[np.float64]
@@ -33,25 +35,15 @@ _WALTHER_OFFSET = 0.7
 _LN10 = math.log(10.0)
 
 
-def _finite(value: ArrayLike, name: str) -> Array:
-    try:
-        a = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number or an array of numbers, got {value!r}") from exc
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} must be finite")
-    return a
-
-
 def _temperature(value: ArrayLike, name: str) -> Array:
-    t = _finite(value, name)
+    t = finite_array(value, name)
     if np.any(t <= -_KELVIN):
         raise ValueError(f"{name} must be above absolute zero (-273.15 °C), got minimum {t.min()}")
     return t
 
 
 def _scalar(value: float, name: str) -> float:
-    a = _finite(value, name)
+    a = finite_array(value, name)
     if a.shape != ():
         raise ValueError(f"{name} must be a single number, got shape {a.shape}")
     return float(a)
@@ -159,7 +151,7 @@ def barus_factor(pressure_mpa: ArrayLike, alpha_per_gpa: float) -> Array:
         If ``pressure_mpa`` is negative or not finite, or ``alpha_per_gpa`` is negative or not
         finite.
     """
-    p = _finite(pressure_mpa, "pressure_mpa")
+    p = finite_array(pressure_mpa, "pressure_mpa")
     if np.any(p < 0.0):
         raise ValueError(f"pressure_mpa must be >= 0, got minimum {p.min()}")
     alpha = _scalar(alpha_per_gpa, "alpha_per_gpa")

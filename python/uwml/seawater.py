@@ -18,6 +18,8 @@ import gsw
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._checks import finite_array
+
 __all__ = ["density_at_depth", "pressure_at_depth_mpa"]
 
 Array = NDArray[np.float64]
@@ -26,21 +28,11 @@ Array = NDArray[np.float64]
 _MPA_PER_DBAR = 0.01
 
 
-def _finite(value: ArrayLike, name: str) -> Array:
-    try:
-        a = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a number or an array of numbers, got {value!r}") from exc
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} must be finite")
-    return a
-
-
 def _depth_and_latitude(depth_m: ArrayLike, latitude_deg: ArrayLike) -> tuple[Array, Array]:
-    depth = _finite(depth_m, "depth_m")
+    depth = finite_array(depth_m, "depth_m")
     if np.any(depth < 0.0):
         raise ValueError(f"depth_m must be >= 0 (metres below the surface), got minimum {depth.min()}")
-    latitude = _finite(latitude_deg, "latitude_deg")
+    latitude = finite_array(latitude_deg, "latitude_deg")
     if np.any(np.abs(latitude) > 90.0):
         raise ValueError(f"latitude_deg must lie in [-90, 90], got {latitude[np.abs(latitude) > 90.0].flat[0]}")
     return depth, latitude
@@ -106,9 +98,9 @@ def density_at_depth(
         not finite.
     """
     depth, latitude = _depth_and_latitude(depth_m, latitude_deg)
-    salinity = _finite(absolute_salinity, "absolute_salinity")
+    salinity = finite_array(absolute_salinity, "absolute_salinity")
     if np.any(salinity < 0.0):
         raise ValueError(f"absolute_salinity must be >= 0 g/kg, got minimum {salinity.min()}")
-    temperature = _finite(conservative_temperature, "conservative_temperature")
+    temperature = finite_array(conservative_temperature, "conservative_temperature")
     pressure_dbar = pressure_at_depth_mpa(depth, latitude) / _MPA_PER_DBAR
     return np.asarray(gsw.rho(salinity, temperature, pressure_dbar), dtype=np.float64)

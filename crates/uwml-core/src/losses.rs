@@ -15,7 +15,7 @@ use nalgebra::{RealField, SVector};
 
 use crate::error::{ModelError, Problem};
 use crate::hydro::{HydroTorques, hydro_torques};
-use crate::model::{Chain, Coefficients, Water, constant};
+use crate::model::{Chain, Coefficients, Water, check_at_least, check_finite, check_positive, constant};
 
 /// `sgn_ε(x) = x / sqrt(x² + ε²)`: a smooth sign; `ε = 0` gives the hard sign with `sgn(0) = 0`.
 ///
@@ -31,20 +31,6 @@ pub fn smooth_sign<T: RealField + Copy>(x: T, epsilon: T) -> T {
     } else {
         x
     }
-}
-
-fn finite<T: RealField + Copy>(x: T, field: &'static str) -> Result<T, ModelError> {
-    if x.is_finite() { Ok(x) } else { Err(ModelError::new(field, None, Problem::NonFinite)) }
-}
-
-fn at_least<T: RealField + Copy>(x: T, low: T, field: &'static str, problem: Problem) -> Result<T, ModelError> {
-    let x = finite(x, field)?;
-    if x >= low { Ok(x) } else { Err(ModelError::new(field, None, problem)) }
-}
-
-fn positive<T: RealField + Copy>(x: T, field: &'static str) -> Result<T, ModelError> {
-    let x = finite(x, field)?;
-    if x > T::zero() { Ok(x) } else { Err(ModelError::new(field, None, Problem::NonPositive)) }
 }
 
 /// Viscous (churning) loss of the compensation oil, as torque at the motor shaft:
@@ -76,26 +62,31 @@ impl<T: RealField + Copy> OilDrag<T> {
     ) -> Result<Self, ModelError> {
         let zero = T::zero();
         const EXPONENT: &str = "oil.exponent (1 to 2)";
-        let exponent = at_least(exponent, T::one(), EXPONENT, Problem::OutOfRange)?;
+        let exponent = check_at_least(exponent, T::one(), EXPONENT, Problem::OutOfRange)?;
         if exponent > constant(2.0) {
             return Err(ModelError::new(EXPONENT, None, Problem::OutOfRange));
         }
         const TEMPERATURE: &str = "oil.reference_temperature (above -273.15 °C)";
-        let reference_temperature = finite(reference_temperature, TEMPERATURE)?;
+        let reference_temperature = check_finite(reference_temperature, TEMPERATURE, None)?;
         if reference_temperature <= constant(-273.15) {
             return Err(ModelError::new(TEMPERATURE, None, Problem::OutOfRange));
         }
         Ok(Self {
-            k_oil: at_least(k_oil, zero, "oil.k_oil", Problem::Negative)?,
+            k_oil: check_at_least(k_oil, zero, "oil.k_oil", Problem::Negative)?,
             exponent,
-            pressure_sensitivity: at_least(pressure_sensitivity, zero, "oil.pressure_sensitivity", Problem::Negative)?,
-            temperature_sensitivity: at_least(
+            pressure_sensitivity: check_at_least(
+                pressure_sensitivity,
+                zero,
+                "oil.pressure_sensitivity",
+                Problem::Negative,
+            )?,
+            temperature_sensitivity: check_at_least(
                 temperature_sensitivity,
                 zero,
                 "oil.temperature_sensitivity",
                 Problem::Negative,
             )?,
-            reference_pressure: at_least(reference_pressure, zero, "oil.reference_pressure", Problem::Negative)?,
+            reference_pressure: check_at_least(reference_pressure, zero, "oil.reference_pressure", Problem::Negative)?,
             reference_temperature,
         })
     }
@@ -138,13 +129,19 @@ impl<T: RealField + Copy> Seal<T> {
         let [c0, c1] = c;
         let [s0, s1] = s;
         let [d0, d1] = d;
-        let c0 = at_least(c0, zero, "seal.c0", Problem::Negative)?;
-        let c1 = at_least(c1, zero, "seal.c1", Problem::Negative)?;
+        let c0 = check_at_least(c0, zero, "seal.c0", Problem::Negative)?;
+        let c1 = check_at_least(c1, zero, "seal.c1", Problem::Negative)?;
         Ok(Self {
             c: [c0, c1],
-            s: [at_least(s0, c0, "seal.s0", Problem::OutOfOrder)?, at_least(s1, c1, "seal.s1", Problem::OutOfOrder)?],
-            d: [at_least(d0, zero, "seal.d0", Problem::Negative)?, at_least(d1, zero, "seal.d1", Problem::Negative)?],
-            stribeck_speed: positive(stribeck_speed, "seal.stribeck_speed")?,
+            s: [
+                check_at_least(s0, c0, "seal.s0", Problem::OutOfOrder)?,
+                check_at_least(s1, c1, "seal.s1", Problem::OutOfOrder)?,
+            ],
+            d: [
+                check_at_least(d0, zero, "seal.d0", Problem::Negative)?,
+                check_at_least(d1, zero, "seal.d1", Problem::Negative)?,
+            ],
+            stribeck_speed: check_positive(stribeck_speed, "seal.stribeck_speed", None)?,
         })
     }
 
@@ -172,15 +169,15 @@ impl<T: RealField + Copy> Drive<T> {
     /// # Errors
     /// A parameter out of its range or not finite.
     pub fn new(torque_constant: T, ratio: T, efficiency: T, rated_current: T) -> Result<Self, ModelError> {
-        let efficiency = positive(efficiency, "drive.efficiency")?;
+        let efficiency = check_positive(efficiency, "drive.efficiency", None)?;
         if efficiency > T::one() {
             return Err(ModelError::new("drive.efficiency (0 to 1)", None, Problem::OutOfRange));
         }
         Ok(Self {
-            torque_constant: positive(torque_constant, "drive.torque_constant")?,
-            ratio: positive(ratio, "drive.ratio")?,
+            torque_constant: check_positive(torque_constant, "drive.torque_constant", None)?,
+            ratio: check_positive(ratio, "drive.ratio", None)?,
             efficiency,
-            rated_current: positive(rated_current, "drive.rated_current")?,
+            rated_current: check_positive(rated_current, "drive.rated_current", None)?,
         })
     }
 
@@ -246,7 +243,7 @@ impl<T: RealField + Copy> JointLosses<T> {
         seal: Option<Seal<T>>,
         epsilon: T,
     ) -> Result<Self, ModelError> {
-        let epsilon = at_least(epsilon, T::zero(), "losses.epsilon", Problem::Negative)?;
+        let epsilon = check_at_least(epsilon, T::zero(), "losses.epsilon", Problem::Negative)?;
         Ok(Self { drive, oil, seal, epsilon })
     }
 

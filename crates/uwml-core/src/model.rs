@@ -86,18 +86,41 @@ pub(crate) fn constant<T: RealField + Copy>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
-fn check_finite<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
+pub(crate) fn check_finite<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
     if x.is_finite() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
 }
 
-fn check_positive<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
+pub(crate) fn check_positive<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
     let x = check_finite(x, field, index)?;
     if x > T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonPositive)) }
 }
 
-fn check_non_negative<T: RealField + Copy>(x: T, field: &'static str, index: Option<usize>) -> Result<T, ModelError> {
+pub(crate) fn check_non_negative<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
     let x = check_finite(x, field, index)?;
     if x >= T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::Negative)) }
+}
+
+/// `x` finite and at least `low`, else `problem`.
+pub(crate) fn check_at_least<T: RealField + Copy>(
+    x: T,
+    low: T,
+    field: &'static str,
+    problem: Problem,
+) -> Result<T, ModelError> {
+    let x = check_finite(x, field, None)?;
+    if x >= low { Ok(x) } else { Err(ModelError::new(field, None, problem)) }
 }
 
 fn check_vector<T: RealField + Copy>(

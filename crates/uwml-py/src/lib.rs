@@ -374,7 +374,37 @@ struct PyChain {
     chain: AnyChain,
 }
 
+/// What every batch evaluation needs, checked and borrowed from the numpy arrays.
+struct BatchInputs<'a> {
+    n: usize,
+    n_samples: usize,
+    water: Water<f64>,
+    states: States<'a>,
+    cd: &'a [f64],
+    cm: &'a [f64],
+}
+
 impl PyChain {
+    fn batch_inputs<'a>(
+        &self,
+        [q, qd, qdd]: [&'a PyReadonlyArray2<'_, f64>; 3],
+        [cd, cm]: [&'a PyReadonlyArray2<'_, f64>; 2],
+        density: f64,
+        gravity: f64,
+    ) -> PyResult<BatchInputs<'a>> {
+        let n = self.n_joints();
+        let n_samples = self.check_states(q, qd, qdd)?;
+        check_coefficient_shapes(cd, cm, n)?;
+        Ok(BatchInputs {
+            n,
+            n_samples,
+            water: water(density, gravity)?,
+            states: States { q: contiguous(q, "q")?, qd: contiguous(qd, "qd")?, qdd: contiguous(qdd, "qdd")? },
+            cd: contiguous(cd, "cd")?,
+            cm: contiguous(cm, "cm")?,
+        })
+    }
+
     fn n_joints(&self) -> usize {
         dispatch!(&self.chain, c => c.joints().len())
     }
@@ -477,12 +507,8 @@ impl PyChain {
         density: f64,
         gravity: f64,
     ) -> PyResult<Vec<Array2<'py>>> {
-        let n = self.n_joints();
-        let n_samples = self.check_states(&q, &qd, &qdd)?;
-        check_coefficient_shapes(&cd, &cm, n)?;
-        let water = water(density, gravity)?;
-        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
-        let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
+        let BatchInputs { n, n_samples, water, states, cd, cm } =
+            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
         let chain = self.chain;
         let batch = py
             .detach(|| -> Result<TorqueBatch, PyErrSend> {
@@ -516,15 +542,11 @@ impl PyChain {
         pressure: PyReadonlyArray1<'py, f64>,
         temperature: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<Vec<Array2<'py>>> {
-        let n = self.n_joints();
-        let n_samples = self.check_states(&q, &qd, &qdd)?;
-        check_coefficient_shapes(&cd, &cm, n)?;
-        let water = water(density, gravity)?;
+        let BatchInputs { n, n_samples, water, states, cd, cm } =
+            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
         let losses = parse_losses(&losses, n)?;
         let conditions =
             (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
-        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
-        let (cd, cm) = (contiguous(&cd, "cd")?, contiguous(&cm, "cm")?);
         let chain = self.chain;
         let columns = py
             .detach(|| -> Result<[Vec<f64>; 7], PyErrSend> {
