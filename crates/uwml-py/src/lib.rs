@@ -162,15 +162,10 @@ impl From<NonFinite> for PyErr {
     }
 }
 
-fn load<const N: usize>(values: &[f64], argument: &'static str, sample: usize) -> Result<SVector<f64, N>, NonFinite> {
-    let mut v = SVector::<f64, N>::zeros();
-    for (joint, (slot, &value)) in v.iter_mut().zip(values).enumerate() {
-        if !value.is_finite() {
-            return Err(NonFinite { argument, sample, joint, value });
-        }
-        *slot = value;
-    }
-    Ok(v)
+/// `values` (exactly N of them) as a vector.
+#[inline]
+fn vector<const N: usize>(values: &[f64]) -> Option<SVector<f64, N>> {
+    <[f64; N]>::try_from(values).ok().map(SVector::from)
 }
 
 /// One sample's `(q, q̇, q̈)`.
@@ -186,12 +181,30 @@ struct States<'a> {
 }
 
 impl States<'_> {
-    /// Every sample's `(index, q, q̇, q̈)`, or the first non-finite value.
-    fn each<const N: usize>(&self) -> impl Iterator<Item = Result<State<N>, NonFinite>> + '_ {
+    /// The first non-finite value of the batch, naming the array, sample and joint. One tight
+    /// scan per array, so that the evaluation loop has nothing to check.
+    fn check_finite<const N: usize>(&self) -> Result<(), NonFinite> {
+        for (argument, values) in [("q", self.q), ("qd", self.qd), ("qdd", self.qdd)] {
+            if let Some(index) = values.iter().position(|v| !v.is_finite()) {
+                let value = values.get(index).copied().unwrap_or(f64::NAN);
+                return Err(NonFinite { argument, sample: index / N, joint: index % N, value });
+            }
+        }
+        Ok(())
+    }
+
+    /// Every sample's `(q, q̇, q̈)`, after [`States::check_finite`].
+    fn each<const N: usize>(&self) -> impl Iterator<Item = State<N>> + '_ {
         let rows = self.q.chunks_exact(N).zip(self.qd.chunks_exact(N)).zip(self.qdd.chunks_exact(N));
-        rows.enumerate().map(|(sample, ((q, qd), qdd))| {
-            Ok((load(q, "q", sample)?, load(qd, "qd", sample)?, load(qdd, "qdd", sample)?))
-        })
+        rows.filter_map(|((q, qd), qdd)| Some((vector(q)?, vector(qd)?, vector(qdd)?)))
+    }
+}
+
+/// Writes `values` into an output row (a plain loop: N is small, no call to memcpy).
+#[inline]
+fn write_row<const N: usize>(row: &mut [f64], values: &SVector<f64, N>) {
+    for (slot, value) in row.iter_mut().zip(values.iter()) {
+        *slot = *value;
     }
 }
 
@@ -234,13 +247,13 @@ fn hydro_batch<const N: usize>(
         .chunks_exact_mut(N)
         .zip(out.added_mass.chunks_exact_mut(N))
         .zip(out.buoyancy.chunks_exact_mut(N).zip(out.gravity.chunks_exact_mut(N)));
-    for (state, ((drag, added_mass), (buoyancy, gravity))) in states.each::<N>().zip(rows) {
-        let (q, qd, qdd) = state?;
+    states.check_finite::<N>()?;
+    for ((q, qd, qdd), ((drag, added_mass), (buoyancy, gravity))) in states.each::<N>().zip(rows) {
         let tau = hydro_torques(chain, water, coefficients, &q, &qd, &qdd);
-        drag.copy_from_slice(tau.drag.as_slice());
-        added_mass.copy_from_slice(tau.added_mass.as_slice());
-        buoyancy.copy_from_slice(tau.buoyancy.as_slice());
-        gravity.copy_from_slice(tau.gravity.as_slice());
+        write_row(drag, &tau.drag);
+        write_row(added_mass, &tau.added_mass);
+        write_row(buoyancy, &tau.buoyancy);
+        write_row(gravity, &tau.gravity);
     }
     Ok(out)
 }
@@ -293,8 +306,9 @@ fn environment_batch<const N: usize>(
     }
     let mut current_conditions = (f64::NAN, f64::NAN);
     let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
-    for (sample, (state, (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate() {
-        let (q, qd, qdd) = state?;
+    states.check_finite::<N>()?;
+    for (sample, ((q, qd, qdd), (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate()
+    {
         for (argument, value) in [("pressure", p), ("temperature", t)] {
             if !value.is_finite() {
                 return Err(NonFinite { argument, sample, joint: 0, value });
@@ -331,8 +345,8 @@ fn regressor_batch<const N: usize>(
         buoyancy: Vec::with_capacity(n_samples * N),
         gravity: Vec::with_capacity(n_samples * N),
     };
-    for state in states.each::<N>() {
-        let (q, qd, qdd) = state?;
+    states.check_finite::<N>()?;
+    for (q, qd, qdd) in states.each::<N>() {
         let r = hydro_regressors(chain, water, &q, &qd, &qdd);
         out.buoyancy.extend(r.buoyancy.iter());
         out.gravity.extend(r.gravity.iter());
