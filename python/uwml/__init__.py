@@ -10,6 +10,7 @@ torque).
 
 from ._core import ModelError
 from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
+from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
@@ -29,7 +30,10 @@ __all__ = [
     "OilDrag",
     "Seal",
     "Segment",
+    "WalkingGait",
     "Water",
+    "paper_leg_foot",
+    "paper_leg_ik",
     "pressure_at_depth_mpa",
 ]
 __version__ = "0.1.0"

@@ -1,9 +1,11 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
-from typing import Self
+from typing import Self, final
 
 import numpy as np
 from numpy.typing import NDArray
+
+__all__ = ["JOINT_WIDTH", "LINK_WIDTH", "LOSS_WIDTH", "MAX_JOINTS", "Chain", "ModelError", "joint_losses"]
 
 MAX_JOINTS: int
 JOINT_WIDTH: int
@@ -13,6 +15,7 @@ LOSS_WIDTH: int
 class ModelError(ValueError):
     """A non-physical or malformed model parameter."""
 
+@final
 class Chain:
     def __new__(cls, joints: NDArray[np.float64], links: NDArray[np.float64]) -> Self: ...
     @staticmethod
@@ -52,6 +55,9 @@ class Chain:
         gravity: float,
         per_direction: bool,
     ) -> list[NDArray[np.float64]]: ...
+    def point_jacobian(
+        self, q: NDArray[np.float64], link: int, point: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
 
 def joint_losses(
     losses: NDArray[np.float64] | None,

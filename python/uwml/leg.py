@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -344,3 +345,71 @@ class Leg:
             drag=drag.reshape(shape + extra),
             added_mass=added_mass.reshape(shape + extra),
         )
+
+    def _link_index(self, link: object) -> int:
+        """``link`` as an index in ``0..n_joints`` (negative counts from the end)."""
+        if isinstance(link, (bool, np.bool_)):
+            raise TypeError(f"link must be an integer, got {link!r}")
+        try:
+            index = operator.index(link)  # type: ignore[arg-type]
+        except TypeError:
+            raise TypeError(f"link must be an integer, got {type(link).__name__}") from None
+        n = self.n_joints
+        if not -n <= index < n:
+            raise ValueError(f"link must be in -{n}..{n - 1} (this leg has {n} links), got {index}")
+        return index % n
+
+    def _default_point(self, link: int) -> tuple[float, float, float]:
+        segment = self._links[link].segment
+        if segment is None:
+            return (0.0, 0.0, 0.0)
+        return _vec([s + segment.length * a for s, a in zip(segment.start, segment.axis)])
+
+    def jacobian(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
+        """World position and geometric Jacobian of a point on a link.
+
+        Parameters
+        ----------
+        q
+            Joint angles [rad], shape ``(..., n_joints)`` (any number of leading axes).
+        link
+            The link carrying the point, ``0 .. n_joints - 1``; negative counts from the end
+            (default ``-1``, the last link).
+        point
+            The point in the link's frame [m], shape ``(3,)``. ``None`` (default): the tip of the
+            link's segment, ``start + length * axis``, if the link has one, else the link frame's
+            origin (its joint). For :meth:`Leg.paper`, link ``-1``'s tip is the foot.
+
+        Returns
+        -------
+        positions, jacobians
+            Shapes ``(..., 3)`` and ``(..., 6, n_joints)``. Column ``j`` of a Jacobian maps
+            ``qd[j]`` to the point's velocity (rows 0-2, ``z_j × (p − o_j)``) and to the link's
+            angular velocity (rows 3-5, ``z_j``); joints after ``link`` have zero columns.
+
+        The batch is evaluated in one call into Rust, with the GIL released.
+        """
+        index = self._link_index(link)
+        if point is None:
+            local = np.array(self._default_point(index))
+        else:
+            local = _real_array(point, "point", "three real numbers")
+            if local.shape != (3,):
+                raise ValueError(f"point must have shape (3,), got {local.shape}")
+            if not np.all(np.isfinite(local)):
+                raise ValueError(f"point must be finite, got {local.tolist()}")
+        angles = _real_array(q, "q", "a rectangular array of real numbers")
+        n = self.n_joints
+        if angles.ndim < 1 or angles.shape[-1] != n:
+            raise ValueError(f"q must have shape (..., {n}), got {angles.shape}")
+        shape = angles.shape[:-1]
+        positions, jacobians = self._chain.point_jacobian(np.ascontiguousarray(angles.reshape(-1, n)), index, np.ascontiguousarray(local))
+        return positions.reshape(shape + (3,)), jacobians.reshape(shape + (6, n))
+
+    def forward_kinematics(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> FloatArray:
+        """World position of a point on a link, shape ``q.shape[:-1] + (3,)``.
+
+        Arguments as for :meth:`jacobian`: by default the tip of the last link (the paper leg's
+        foot, ``L2 u2 + L3 u3`` of MODEL.md section 2).
+        """
+        return self.jacobian(q, link, point)[0]

@@ -4,6 +4,7 @@
 mod body;
 pub mod error;
 pub mod hydro;
+pub mod jacobian;
 pub mod kinematics;
 pub mod losses;
 pub mod model;
@@ -11,6 +12,7 @@ pub mod strip;
 
 pub use error::{ModelError, Problem};
 pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
+pub use jacobian::point_jacobian;
 pub use kinematics::{LinkMotion, link_motions};
 pub use losses::{
     Drive, EnvironmentTorques, JointLoss, JointLosses, LossState, OilDrag, Seal, environment_torques,

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
 use uwml_core::{
     Chain, Coefficients, Drive, Joint, JointLosses, Link, LossState, ModelError, OilDrag, Seal, Segment, Water,
-    environment_torques, hydro_regressors, hydro_torques,
+    environment_torques, hydro_regressors, hydro_torques, point_jacobian,
 };
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
@@ -368,6 +368,29 @@ fn joint_row<const N: usize>(columns: &[[SVector<f64, N>; 2]; N], joint: usize) 
     columns.iter().flatten().map(move |c| c.get(joint).copied().unwrap_or(f64::NAN))
 }
 
+/// Positions `n × 3` and Jacobians `n × 6 × N` (row-major) of a point on link `link` (< N).
+fn jacobian_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    q: &[f64],
+    link: usize,
+    point: &Vector3<f64>,
+) -> Result<(Vec<f64>, Vec<f64>), NonFinite> {
+    if let Some(index) = q.iter().position(|v| !v.is_finite()) {
+        let value = q.get(index).copied().unwrap_or(f64::NAN);
+        return Err(NonFinite { argument: "q", sample: index / N, joint: index % N, value });
+    }
+    let n_samples = q.len() / N;
+    let (mut positions, mut jacobians) = (Vec::with_capacity(n_samples * 3), Vec::with_capacity(n_samples * 6 * N));
+    for q in q.chunks_exact(N).filter_map(vector::<N>) {
+        if let Some((p, j)) = point_jacobian(chain, &q, link, point) {
+            positions.extend(p.iter());
+            // The transpose's column-major order is the Jacobian's row-major order.
+            jacobians.extend(j.transpose().iter());
+        }
+    }
+    Ok((positions, jacobians))
+}
+
 fn to_numpy<'py, D: Dimension>(
     py: Python<'py>,
     values: Vec<f64>,
@@ -605,6 +628,33 @@ impl PyChain {
             });
         }
         Ok(out)
+    }
+    /// World positions `(n_samples, 3)` and geometric Jacobians `(n_samples, 6, N)` (rows 0-2
+    /// linear, 3-5 angular; zero columns after `link`) of `point`, given in link `link`'s frame.
+    fn point_jacobian<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        link: i64,
+        point: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<(Array2<'py>, Bound<'py, PyArray<f64, numpy::Ix3>>)> {
+        let n = self.n_joints();
+        let n_samples = q.shape().first().copied().unwrap_or(0);
+        if q.shape().get(1) != Some(&n) {
+            return Err(PyValueError::new_err(format!("q must have shape (n_samples, {n}), got {:?}", q.shape())));
+        }
+        let link = usize::try_from(link).ok().filter(|&l| l < n).ok_or_else(|| {
+            PyValueError::new_err(format!("link must be in 0..{n} (one of the {n} links), got {link}"))
+        })?;
+        let point = contiguous1(&point, "point", 3)?;
+        if !point.iter().all(|v| v.is_finite()) {
+            return Err(PyValueError::new_err(format!("point must be finite, got {point:?}")));
+        }
+        let point = Vector3::from_column_slice(point);
+        let q = contiguous(&q, "q")?;
+        let chain = self.chain;
+        let (positions, jacobians) = py.detach(|| dispatch!(&chain, c => jacobian_batch(c, q, link, &point)))?;
+        Ok((to_numpy(py, positions, (n_samples, 3))?, to_numpy(py, jacobians, (n_samples, 6, n))?))
     }
 }
 
