@@ -12,6 +12,7 @@ from ._core import ModelError
 from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
 from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
+from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
 
@@ -25,6 +26,7 @@ __all__ = [
     "JointLosses",
     "Leg",
     "Link",
+    "Log",
     "LossTorques",
     "ModelError",
     "OilDrag",
@@ -35,5 +37,7 @@ __all__ = [
     "paper_leg_foot",
     "paper_leg_ik",
     "pressure_at_depth_mpa",
+    "read_log",
+    "write_log",
 ]
 __version__ = "0.1.0"

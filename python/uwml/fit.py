@@ -1,4 +1,6 @@
-"""Identification of the joint losses from the three-configuration current experiment.
+"""Identification: the joint losses from the three-configuration current experiment, and the
+hydrodynamic coefficients Cd and Cm from the land/water experiment (:func:`hydro_coefficients`,
+section "Hydrodynamic coefficients" below).
 
 MODEL.md section 7 and the paper's Section IV: the motor current of a joint is measured with
 the housing dry and no seal (``dry``), oil-filled without the seal (``oil``) and oil-filled with
@@ -54,6 +56,34 @@ scaled by the reduced χ².
   bounded); a final ``least_squares`` over all seven gives the covariance.
 
 Steady rows use the hard sign (ε = 0): the data are at steady, known-sign speeds.
+
+Hydrodynamic coefficients
+-------------------------
+:func:`hydro_coefficients` fits MODEL.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
+with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.logs`, on the selected joints
+(default joint index 0, the paper's joint 1, hip yaw, whose vertical axis gravity and
+buoyancy do not act about). The regressors come from :meth:`uwml.Leg.hydro_regressors`, one
+batch call into Rust. ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,
+``cm_link<l>``, ``l`` the 0-based link index), ``per="direction"`` one per link and normal
+direction (``cd_link<l>_n<k>``, ``k`` as in :meth:`uwml.Leg.hydro`); columns that are zero on
+every selected sample (a link without a segment, a direction that never moves) are dropped and
+named in ``message`` and ``dropped``.
+
+Weights: each joint ``j`` gets ``1/σ_j²``. Given ``sigma`` (the standard error of ``−Δτ``, a
+scalar or one per selected joint [N·m]), those are used and the covariance is scaled by the
+reduced χ² only if ``scale_covar``. Otherwise σ_j is estimated from the residuals of an
+unweighted first pass (their root mean square; for ``robust=True`` their scaled median
+absolute deviation ``1.4826 · MAD``), and the covariance is always scaled by the reduced χ².
+The linear problem is solved directly (``numpy.linalg.lstsq``). ``robust=True`` minimizes
+Huber's loss of the weighted residuals by ``scipy.optimize.least_squares(loss="huber",
+f_scale=HUBER_SCALE)`` with ``HUBER_SCALE = 1.345`` standard errors (95 % efficiency for
+Gaussian noise; residuals larger than that count linearly), twice, re-estimating σ_j from the
+first Huber fit's residuals; its covariance is Huber's asymptotic estimate (*Robust
+Statistics*, 1981, ch. 7) with his small-sample correction K,
+``K² [Σψ²/(n−p)] / [mean ψ']² (XᵀWX)⁻¹``, ``K = 1 + (p/n) var(ψ')/mean(ψ')²``.
+
+With estimated σ_j the reduced χ² is 1 by construction (for ``robust=False``); it says
+something about the model only with a known ``sigma`` (the paper's 2.425 is of that kind).
 """
 
 from __future__ import annotations
@@ -64,7 +94,7 @@ import os
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import scipy.linalg
@@ -73,13 +103,22 @@ import scipy.stats
 from numpy.typing import ArrayLike, NDArray
 
 from . import reference
+from .logs import Log, align_logs, read_log
 from .losses import RPM, Drive, OilDrag, Seal
+from .model import Water
+
+if TYPE_CHECKING:
+    from .leg import Leg
 
 __all__ = [
     "CONFIGURATIONS",
+    "HUBER_SCALE",
+    "FitResult",
+    "HydroFit",
     "LossFit",
     "OilDragFit",
     "SealFit",
+    "hydro_coefficients",
     "oil_drag",
     "read_loss_csv",
     "seal",
@@ -365,12 +404,11 @@ def _json_float(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else float(x)
 
 
-@dataclass(frozen=True, eq=False)
-class LossFit(ABC):
-    """Result of a loss fit, in the style of lmfit's ``MinimizerResult`` / ``ModelResult``.
-
-    Parameters are in the units of :mod:`uwml.losses`; ``data``, ``sigma`` and ``best_fit`` are
-    torques (``unit``): the oil fit's at the motor shaft, the seal fit's at the joint output.
+@dataclass(frozen=True, eq=False, kw_only=True)
+class FitResult:
+    """A fit's result, in the style of lmfit's ``MinimizerResult`` / ``ModelResult``: the part
+    shared by the loss fits (:class:`LossFit`) and the hydrodynamic fit
+    (:class:`HydroFit`): parameters, uncertainties, statistics, report and JSON summary.
     """
 
     #: Fitted (and held) parameters, name → value, in the order of the model's fields.
@@ -381,7 +419,7 @@ class LossFit(ABC):
     var_names: tuple[str, ...]
     #: Values held fixed, name → value.
     fixed: dict[str, float]
-    #: Starting values of the fitted parameters.
+    #: Starting values of the fitted parameters (empty for a direct linear solve).
     init_values: dict[str, float]
     #: Covariance of the fitted parameters (None without error bars).
     covar: Array | None
@@ -401,35 +439,18 @@ class LossFit(ABC):
     residual: Array
     #: The model at the data points.
     best_fit: Array
-    #: The fitted loss torques (differences of group means).
+    #: The fitted data.
     data: Array
     #: Their standard errors.
     sigma: Array
-    #: Output speed [rad/s], pressure [MPa], temperature [°C] and start-up flag of each point.
-    speed: Array
-    pressure_mpa: Array
-    temperature_c: Array
-    startup: NDArray[np.bool_]
     success: bool
     message: str
     #: False when the uncertainties could not be estimated (singular Jacobian, no free dof).
     errorbars: bool
     nfev: int
-    #: The drive used to turn currents into torques.
-    drive: Drive
     #: Unit of ``data`` and ``best_fit``.
     unit: str = "N·m"
     method: str = "least_squares"
-
-    @property
-    @abstractmethod
-    def model(self) -> OilDrag | Seal:
-        """The fitted loss model."""
-
-    @abstractmethod
-    def eval(self, speed: ArrayLike, pressure_mpa: ArrayLike, temperature_c: ArrayLike = 20.0) -> Array:
-        """The fitted loss torque (in ``unit``) at output speed ``speed`` [rad/s], pressure [MPa]
-        and temperature [°C]."""
 
     def conf_int(self, level: float = 0.95) -> dict[str, tuple[float, float]]:
         """Confidence intervals ``value ± t(level, nfree) · stderr`` of the fitted parameters.
@@ -446,6 +467,10 @@ class LossFit(ABC):
         t = float(scipy.stats.t.ppf(0.5 + 0.5 * level, self.nfree))
         return {name: (self.params[name] - t * self.stderr[name], self.params[name] + t * self.stderr[name]) for name in self.var_names}  # type: ignore[operator]
 
+    def _report_statistics(self) -> list[str]:
+        """Extra lines for the ``[[Fit Statistics]]`` block."""
+        return []
+
     def fit_report(self, min_correl: float = _MIN_CORRELATION) -> str:
         """A readable report, as lmfit's: statistics, ``value +/- stderr (pct)``, correlations."""
         lines = [
@@ -460,6 +485,7 @@ class LossFit(ABC):
             f"    Bayesian info crit = {self.bic:.7g}",
             f"    R-squared (COD)    = {self.rsquared:.7g}",
             f"    data unit          = {self.unit}",
+            *self._report_statistics(),
         ]
         if not self.success:
             lines.append(f"##  Warning: the fit did not converge: {self.message}")
@@ -478,7 +504,8 @@ class LossFit(ABC):
             else:
                 pct = f"({100.0 * abs(error / value):.2f}%)" if value != 0.0 else "(inf%)"
                 text = f"{value:.7g} +/- {error:.7g} {pct}"
-            lines.append(f"    {label} {text} (init = {self.init_values[name]:.7g})")
+            init = f" (init = {self.init_values[name]:.7g})" if name in self.init_values else ""
+            lines.append(f"    {label} {text}{init}")
         pairs = sorted(
             ((a, b, c) for a, row in self.correl.items() for b, c in row.items() if a < b and abs(c) >= min_correl),
             key=lambda item: -abs(item[2]),
@@ -488,10 +515,18 @@ class LossFit(ABC):
             lines += [f"    C({a}, {b}) = {c:+.4f}" for a, b, c in pairs]
         return "\n".join(lines)
 
+    def _summary_head(self) -> dict[str, Any]:
+        """Keys put first in :meth:`summary`."""
+        return {}
+
+    def _summary_tail(self) -> dict[str, Any]:
+        """Keys put last in :meth:`summary` (the data points)."""
+        return {}
+
     def summary(self) -> dict[str, Any]:
         """The result as a JSON-safe dict (numbers, strings, None, lists, dicts; no NaN)."""
         return {
-            "model": type(self.model).__name__,
+            **self._summary_head(),
             "method": self.method,
             "success": bool(self.success),
             "message": self.message,
@@ -513,6 +548,43 @@ class LossFit(ABC):
             "rsquared": _json_float(self.rsquared),
             "aic": _json_float(self.aic),
             "bic": _json_float(self.bic),
+            **self._summary_tail(),
+        }
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class LossFit(FitResult, ABC):
+    """Result of a loss fit, in the style of lmfit's ``MinimizerResult`` / ``ModelResult``.
+
+    Parameters are in the units of :mod:`uwml.losses`; ``data``, ``sigma`` and ``best_fit`` are
+    torques (``unit``): the oil fit's at the motor shaft, the seal fit's at the joint output.
+    ``data`` are the fitted loss torques (differences of group means), ``sigma`` their standard
+    errors.
+    """
+
+    #: Output speed [rad/s], pressure [MPa], temperature [°C] and start-up flag of each point.
+    speed: Array
+    pressure_mpa: Array
+    temperature_c: Array
+    startup: NDArray[np.bool_]
+    #: The drive used to turn currents into torques.
+    drive: Drive
+
+    @property
+    @abstractmethod
+    def model(self) -> OilDrag | Seal:
+        """The fitted loss model."""
+
+    @abstractmethod
+    def eval(self, speed: ArrayLike, pressure_mpa: ArrayLike, temperature_c: ArrayLike = 20.0) -> Array:
+        """The fitted loss torque (in ``unit``) at output speed ``speed`` [rad/s], pressure [MPa]
+        and temperature [°C]."""
+
+    def _summary_head(self) -> dict[str, Any]:
+        return {"model": type(self.model).__name__}
+
+    def _summary_tail(self) -> dict[str, Any]:
+        return {
             "points": {
                 "speed": [_json_float(x) for x in self.speed],
                 "pressure_mpa": [_json_float(x) for x in self.pressure_mpa],
@@ -597,15 +669,38 @@ def _statistics(
     points: _Points, best_fit: Array, solution: _Solution, names: tuple[str, ...], transform: Array, scale_covar: bool
 ) -> dict[str, Any]:
     """lmfit's statistics and the covariance of ``transform @ x`` (the reported parameters)."""
-    ndata, nvarys = len(points.data), len(names)
+    stats = _fit_statistics(points.data, points.whiten, points.known, best_fit, solution, names, transform, scale_covar)
+    return stats | {
+        "sigma": points.sigma,
+        "speed": points.speed,
+        "pressure_mpa": points.pressure_mpa,
+        "temperature_c": points.temperature_c,
+        "startup": points.startup,
+    }
+
+
+def _fit_statistics(
+    data: Array,
+    whiten: Callable[[Array], Array],
+    known: bool,
+    best_fit: Array,
+    solution: _Solution,
+    names: tuple[str, ...],
+    transform: Array,
+    scale_covar: bool,
+) -> dict[str, Any]:
+    """lmfit's statistics of a fit to ``data`` whose errors are whitened by ``whiten`` (``L⁻¹``),
+    and the covariance of ``transform @ x``; ``known``: whether the data's covariance is known
+    (else it is scaled by the reduced χ² whatever ``scale_covar`` says)."""
+    ndata, nvarys = len(data), len(names)
     nfree = ndata - nvarys
     chisqr = float(solution.residual @ solution.residual)
     redchi = chisqr / nfree if nfree > 0 else math.nan
-    ones, z = points.whiten(np.ones(ndata)), points.whiten(points.data)
+    ones, z = whiten(np.ones(ndata)), whiten(data)
     centred = z - ones * (ones @ z) / (ones @ ones)
     total = float(centred @ centred)
     neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
-    covar, errorbars, message = None, False, solution.message
+    covar, message = None, solution.message
     singular = np.linalg.svd(solution.jacobian, compute_uv=False)
     if nfree <= 0:
         message += "; no degrees of freedom left for uncertainties"
@@ -614,22 +709,11 @@ def _statistics(
         message += f"; the data do not determine every parameter (singular Jacobian; least sensitive: {weakest})"
     else:
         covar = np.linalg.inv(solution.jacobian.T @ solution.jacobian)
-        if scale_covar or not points.known:
+        if scale_covar or not known:
             covar = covar * redchi
         covar = transform @ covar @ transform.T
-        errorbars = bool(np.all(np.isfinite(covar)) and np.all(np.diag(covar) >= 0.0))
-        covar = covar if errorbars else None
-    stderr = dict.fromkeys(names, None) if covar is None else dict(zip(names, np.sqrt(np.diag(covar)).tolist(), strict=True))
-    correl: dict[str, dict[str, float]] = {}
-    if covar is not None:
-        d = np.sqrt(np.diag(covar))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = covar / np.outer(d, d)
-        correl = {a: {b: float(r[i, j]) for j, b in enumerate(names) if j != i and np.isfinite(r[i, j])} for i, a in enumerate(names)}
     return {
-        "stderr": stderr,
-        "covar": covar,
-        "correl": correl,
+        **_uncertainties(covar, names),
         "ndata": ndata,
         "nvarys": nvarys,
         "nfree": nfree,
@@ -640,17 +724,26 @@ def _statistics(
         "bic": neg2_log_likelihood + math.log(ndata) * nvarys,
         "residual": solution.residual,
         "best_fit": best_fit,
-        "data": points.data,
-        "sigma": points.sigma,
-        "speed": points.speed,
-        "pressure_mpa": points.pressure_mpa,
-        "temperature_c": points.temperature_c,
-        "startup": points.startup,
+        "data": data,
         "success": solution.success,
         "message": message,
-        "errorbars": errorbars,
         "nfev": solution.nfev,
     }
+
+
+def _uncertainties(covar: Array | None, names: tuple[str, ...]) -> dict[str, Any]:
+    """``covar`` (None if not finite or with a negative variance), ``stderr``, ``correl`` and
+    ``errorbars`` of the parameters ``names``."""
+    errorbars = covar is not None and bool(np.all(np.isfinite(covar)) and np.all(np.diag(covar) >= 0.0))
+    covar = covar if errorbars else None
+    stderr = dict.fromkeys(names, None) if covar is None else dict(zip(names, np.sqrt(np.diag(covar)).tolist(), strict=True))
+    correl: dict[str, dict[str, float]] = {}
+    if covar is not None:
+        d = np.sqrt(np.diag(covar))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = covar / np.outer(d, d)
+        correl = {a: {b: float(r[i, j]) for j, b in enumerate(names) if j != i and np.isfinite(r[i, j])} for i, a in enumerate(names)}
+    return {"stderr": stderr, "covar": covar, "correl": correl, "errorbars": errorbars}
 
 
 def _least_squares(
@@ -1031,3 +1124,252 @@ def _stribeck_search(chisqr: Callable[[float], float], low: float, high: float) 
     bracket = (float(grid[max(best - 1, 0)]), float(grid[min(best + 1, len(grid) - 1)]))
     result = scipy.optimize.minimize_scalar(chisqr, bounds=bracket, method="bounded")
     return math.exp(float(result.x) if result.fun <= values[best] else float(grid[best]))
+
+
+# --------------------------------------------------------------------------------------------
+# Hydrodynamic coefficients from the land/water experiment
+# --------------------------------------------------------------------------------------------
+
+#: Huber's threshold, in (weighted) standard errors of the data.
+HUBER_SCALE = 1.345
+#: σ of Gaussian noise per median absolute deviation.
+_MAD_TO_SIGMA = 1.4826
+
+
+@dataclass(frozen=True, eq=False, kw_only=True)
+class HydroFit(FitResult):
+    """Result of :func:`hydro_coefficients`: Cd and Cm (``params``) with the statistics of
+    :class:`FitResult`.
+
+    The data are ``−Δτ_motor − τ_buoy`` [N·m] of the selected joints, sample-major (all selected
+    joints of sample 0, then of sample 1, …); ``time`` and ``joint`` give each point's time [s]
+    and joint index.
+    """
+
+    time: Array
+    joint: NDArray[np.int64]
+    #: "leg", "link" or "direction".
+    per: str
+    #: The selected joints (0-based).
+    joints: tuple[int, ...]
+    #: Coefficients without a regressor on the selected joints, left out of the fit.
+    dropped: tuple[str, ...]
+    #: Where the log came from.
+    source: str
+
+    def _report_statistics(self) -> list[str]:
+        lines = [f"    joints (0-based)   = {', '.join(str(j) for j in self.joints)}", f"    coefficients per   = {self.per}"]
+        if self.dropped:
+            lines.append(f"    dropped (no data)  = {', '.join(self.dropped)}")
+        return lines
+
+    def _summary_head(self) -> dict[str, Any]:
+        return {"model": "hydro", "per": self.per, "joints": list(self.joints), "dropped": list(self.dropped), "source": self.source}
+
+    def _summary_tail(self) -> dict[str, Any]:
+        return {
+            "points": {
+                "time": [_json_float(x) for x in self.time],
+                "joint": [int(x) for x in self.joint],
+                "data": [_json_float(x) for x in self.data],
+                "sigma": [_json_float(x) for x in self.sigma],
+                "best_fit": [_json_float(x) for x in self.best_fit],
+                "residual": [_json_float(x) for x in self.residual],
+            },
+        }
+
+
+def _hydro_log(log_or_path: Any, n_joints: int) -> Log:
+    """A log of the whole experiment from a :class:`Log`, a file, or a (land, water) pair."""
+    if isinstance(log_or_path, tuple | list):
+        if len(log_or_path) != 2:
+            raise ValueError(f"give one log of the whole experiment or a (land, water) pair of logs, got {len(log_or_path)} items")
+        land, water = (item if isinstance(item, Log) else read_log(item, n_joints) for item in log_or_path)
+        for item in (land, water):
+            if item.n_joints != n_joints:
+                raise ValueError(
+                    f"{item.source}: row 1 (header), column 'q{item.n_joints}': the log has {item.n_joints} joints, the leg {n_joints}"
+                )
+        return align_logs(land, water)
+    log = log_or_path if isinstance(log_or_path, Log) else read_log(log_or_path, n_joints)
+    if log.n_joints != n_joints:
+        raise ValueError(f"{log.source}: row 1 (header), column 'q{log.n_joints}': the log has {log.n_joints} joints, the leg {n_joints}")
+    if log.tau_land is None or log.tau_water is None:
+        raise ValueError(
+            f"{log.source}: row 1 (header), column 'tau_land1': need tau_land and tau_water columns "
+            "(or give a (land, water) pair of logs of one environment each)"
+        )
+    return log
+
+
+def _hydro_design(regressors: Any, per: str, joints: list[int]) -> tuple[Array, list[str]]:
+    """The design ``(n, len(joints), p)`` and its column names (all Cd first, then all Cm)."""
+    columns, names = [], []
+    for prefix, table in (("cd", regressors.drag), ("cm", regressors.added_mass)):
+        part = table[:, joints]
+        if per == "leg":
+            columns.append(part[..., None])
+            names.append(prefix)
+        elif per == "link":
+            columns.append(part.sum(axis=-1))
+            names += [f"{prefix}_link{link}" for link in range(part.shape[-2])]
+        else:
+            columns.append(part.reshape(part.shape[:2] + (-1,)))
+            names += [f"{prefix}_link{link}_n{k}" for link in range(part.shape[-2]) for k in range(part.shape[-1])]
+    return np.concatenate(columns, axis=-1), names
+
+
+def _huber_covariance(design: Array, residual: Array, scale: float) -> Array | None:
+    """Huber's covariance estimate of a fit of whitened ``design`` with whitened ``residual``."""
+    n, p = design.shape
+    inside = np.abs(residual) <= scale
+    mean_slope = float(np.mean(inside))
+    if mean_slope == 0.0 or n <= p:
+        return None
+    psi = np.clip(residual, -scale, scale)
+    k = 1.0 + (p / n) * mean_slope * (1.0 - mean_slope) / mean_slope**2
+    factor = k**2 * float(psi @ psi) / (n - p) / mean_slope**2
+    return factor * np.linalg.inv(design.T @ design)
+
+
+def hydro_coefficients(
+    log_or_path: Log | PathOrFile | tuple[Log | PathOrFile, Log | PathOrFile],
+    leg: Leg | None = None,
+    joints: ArrayLike = (0,),
+    per: Literal["leg", "link", "direction"] = "leg",
+    water: Water = Water(),  # noqa: B008 (immutable)
+    robust: bool = False,
+    n_joints: int | None = None,
+    *,
+    sigma: ArrayLike | None = None,
+    scale_covar: bool = True,
+) -> HydroFit:
+    """Fit Cd and Cm to a land/water experiment (module docstring, "Hydrodynamic coefficients").
+
+    Parameters
+    ----------
+    log_or_path : Log, file, or (land, water) pair
+        A log of the whole experiment (``tau_land*`` and ``tau_water*``), as a :class:`uwml.logs.Log`
+        or a file (:func:`uwml.logs.read_log`); or a pair of logs of one environment each
+        (``tau*``), aligned by time (:func:`uwml.logs.align_logs`). Missing velocities and
+        accelerations are estimated (:meth:`uwml.logs.Log.with_derivatives`).
+    leg : Leg, optional
+        Default :meth:`uwml.Leg.paper`.
+    joints : sequence of int
+        The joints whose torques are fitted (0-based; default joint 0, the paper's joint 1).
+    per : {"leg", "link", "direction"}
+        One Cd and one Cm; one per link; one per link and normal direction.
+    water : Water
+        The fluid of the water run.
+    robust : bool
+        Huber's loss instead of squares (resists outliers).
+    n_joints : int, optional
+        The number of joints the log must have; default the leg's.
+    sigma : float or sequence of float, optional
+        Standard error of ``−Δτ`` per selected joint [N·m]; None: estimated.
+    scale_covar : bool
+        Scale the covariance by the reduced χ² (always done when ``sigma`` is estimated).
+
+    Returns
+    -------
+    HydroFit
+
+    Raises
+    ------
+    ValueError
+        On a bad log (naming file, row, column), a log whose number of joints is not the leg's,
+        bad joints, ``per`` or ``sigma``, or when no coefficient has a regressor on the
+        selected joints.
+    """
+    from .leg import Leg
+
+    leg = Leg.paper() if leg is None else leg
+    if per not in ("leg", "link", "direction"):
+        raise ValueError(f"per must be 'leg', 'link' or 'direction', got {per!r}")
+    expected = leg.n_joints if n_joints is None else int(n_joints)
+    if expected != leg.n_joints:
+        raise ValueError(f"n_joints ({n_joints}) differs from the leg's {leg.n_joints} joints")
+    selected = [int(j) for j in np.atleast_1d(np.asarray(joints))]
+    if not selected or len(set(selected)) != len(selected) or any(not 0 <= j < leg.n_joints for j in selected):
+        raise ValueError(f"joints must be distinct indices in 0..{leg.n_joints - 1}, got {joints!r}")
+    log = _hydro_log(log_or_path, expected).with_derivatives()
+    assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+
+    regressors = leg.hydro_regressors(log.q, log.qd, log.qdd, water=water, per="leg" if per == "leg" else "direction")
+    target = -(log.tau_water - log.tau_land) - regressors.buoyancy
+    y = target[:, selected]  # (n, J)
+    design, names = _hydro_design(regressors, per, selected)  # (n, J, p)
+    keep = np.any(design != 0.0, axis=(0, 1))
+    dropped = tuple(name for name, k in zip(names, keep, strict=True) if not k)
+    if not np.any(keep):
+        raise ValueError(f"no coefficient has a regressor on joints {selected}: do they move?")
+    design = design[..., keep]
+    names = [name for name, k in zip(names, keep, strict=True) if k]
+    n_samples, n_selected, p = design.shape
+    x_flat, y_flat = design.reshape(-1, p), y.reshape(-1)
+    joint_of_row = np.tile(np.asarray(selected, dtype=np.int64), n_samples)
+
+    def joint_scale(residual: Array) -> Array:
+        r = residual.reshape(n_samples, n_selected)
+        if robust:
+            scale = _MAD_TO_SIGMA * np.median(np.abs(r - np.median(r, axis=0)), axis=0)
+        else:
+            scale = np.sqrt(np.mean(r**2, axis=0) * n_samples / max(n_samples - p / n_selected, 1.0))
+        positive = scale > 0.0
+        fallback = float(np.max(scale)) if np.any(positive) else 1.0
+        return np.where(positive, scale, fallback)
+
+    known = sigma is not None
+    if known:
+        given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
+        if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
+            raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
+        sigma_joint = np.array(given_sigma)
+    else:
+        first = np.linalg.lstsq(x_flat, y_flat, rcond=None)[0]
+        sigma_joint = joint_scale(x_flat @ first - y_flat)
+
+    def whitened(sigma_joint: Array) -> tuple[Array, Array, Array]:
+        rows = np.tile(sigma_joint, n_samples)
+        return rows, x_flat / rows[:, None], y_flat / rows
+
+    sigma_rows, xw, yw = whitened(sigma_joint)
+    x = np.linalg.lstsq(xw, yw, rcond=None)[0]
+    init: dict[str, float] = {}
+    nfev, success = 1, True
+    message = "linear least squares, solved directly"
+    method = "linear least squares"
+    if robust:
+        init = dict(zip(names, x.tolist(), strict=True))
+        for _ in range(2):
+            result = scipy.optimize.least_squares(
+                lambda b, xw=xw, yw=yw: xw @ b - yw, x, jac=lambda b, xw=xw: xw, loss="huber", f_scale=HUBER_SCALE, method="trf"
+            )
+            x, nfev, success, message = result.x, nfev + int(result.nfev), bool(result.success), str(result.message)
+            if not known:
+                sigma_rows, xw, yw = whitened(joint_scale(x_flat @ x - y_flat))
+        method = f"least_squares (huber, f_scale = {HUBER_SCALE} σ)"
+    if dropped:
+        message += f"; dropped {', '.join(dropped)} (no regressor on joints {selected})"
+    solution = _Solution(x=x, init=x, jacobian=xw, residual=xw @ x - yw, success=success, message=message, nfev=nfev)
+    stats = _fit_statistics(
+        y_flat, lambda v: v / sigma_rows, known, x_flat @ x, solution, tuple(names), np.eye(p), scale_covar or not known
+    )
+    if robust and stats["covar"] is not None:
+        stats |= _uncertainties(_huber_covariance(xw, solution.residual, HUBER_SCALE), tuple(names))
+    return HydroFit(
+        params=dict(zip(names, x.tolist(), strict=True)),
+        var_names=tuple(names),
+        fixed={},
+        init_values=init,
+        sigma=sigma_rows,
+        time=np.repeat(log.time, n_selected),
+        joint=joint_of_row,
+        per=per,
+        joints=tuple(selected),
+        dropped=dropped,
+        source=log.source,
+        unit="N·m (−Δτ_motor − τ_buoy)",
+        method=method,
+        **stats,
+    )

@@ -1,5 +1,5 @@
 """Figures of the joint losses: loss maps (the paper's Figs. 13-14), efficiency over speed and
-depth, and a fit against its data.
+depth, and a fit against its data; the hydrodynamic fit's measured and fitted torque (Fig. 7).
 
 Every function builds a :class:`matplotlib.figure.Figure` directly (no pyplot, no global state,
 so it works under any backend, Agg included), returns it, and saves it when given a path (the
@@ -17,10 +17,10 @@ from matplotlib.figure import Figure
 from numpy.typing import ArrayLike, NDArray
 
 from . import reference, seawater
-from .fit import LossFit
+from .fit import HydroFit, LossFit
 from .losses import RPM, Drive, OilDrag, Seal
 
-__all__ = ["efficiency_map", "fit_plot", "loss_maps"]
+__all__ = ["efficiency_map", "fit_plot", "hydro_fit_plot", "loss_maps"]
 
 #: Speeds of the loss curves [r/min]: up to the paper's 10 r/min, from just above 0 so that the
 #: seal's breakaway peak shows.
@@ -211,4 +211,49 @@ def fit_plot(result: LossFit, path: str | os.PathLike[str] | None = None) -> Fig
     ax_residual.set_xlabel("output speed [r/min]")
     ax_residual.set_ylabel("(measured − fitted) / standard error")
     ax_residual.grid(alpha=0.3)
+    return _save(figure, path)
+
+
+def hydro_fit_plot(result: HydroFit, path: str | os.PathLike[str] | None = None) -> Figure:
+    """Measured and fitted hydrodynamic torque over time, as the paper's Fig. 7.
+
+    One row per fitted joint: left, the measured ``−Δτ_motor − τ_buoy`` (points) and the fitted
+    ``Σ Cd R_d + Cm R_m`` (line) against time; right, the residual ``measured − fitted``.
+
+    Parameters
+    ----------
+    result : HydroFit
+        From :func:`uwml.fit.hydro_coefficients`.
+    path : str or path, optional
+        Where to save the figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    joints = result.joints
+    figure = Figure(figsize=(11.0, 3.2 * len(joints)), layout="constrained")
+    axes = np.atleast_2d(figure.subplots(len(joints), 2, squeeze=False))
+    values = ", ".join(
+        f"{name} = {result.params[name]:.4g}" + ("" if result.stderr[name] is None else f" ± {result.stderr[name]:.2g}")
+        for name in result.var_names
+    )
+    for row, joint in enumerate(joints):
+        ax, ax_residual = axes[row]
+        here = result.joint == joint
+        t = result.time[here]
+        ax.plot(t, result.data[here], ".", ms=2.5, color="0.45", label="measured")
+        ax.plot(t, result.best_fit[here], color="C3", lw=1.3, label="fitted")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel(f"joint {joint + 1} torque [N·m]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize="small", loc="upper right")
+        ax_residual.plot(t, result.data[here] - result.best_fit[here], ".", ms=2.5, color="C0")
+        ax_residual.axhline(0.0, color="k", lw=0.8)
+        ax_residual.set_xlabel("time [s]")
+        ax_residual.set_ylabel("measured − fitted [N·m]")
+        ax_residual.grid(alpha=0.3)
+        if row == 0:
+            ax.set_title(f"hydrodynamic torque −Δτ − τ_buoy: {values}", fontsize="small")
+            ax_residual.set_title(f"residuals; reduced χ² = {result.redchi:.4g}, COD = {result.rsquared:.4f}", fontsize="small")
     return _save(figure, path)

@@ -25,19 +25,39 @@ out. Their ``speed_rpm`` is the commanded speed (the slowest grid speed), which 
 not use.
 
 Steady rows use the hard sign (ε = 0), as the fits do.
+
+:func:`land_water_experiment` reproduces the paper's hydrodynamic experiment (Section III): the
+leg follows one trajectory on land and in water, and the motor torques of both runs are logged
+(:mod:`uwml.logs`), so that :func:`uwml.fit.hydro_coefficients` can be checked against known
+Cd and Cm.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from . import reference
+from .logs import Log
 from .losses import RPM, Drive, OilDrag, Seal
+from .model import Water
 
-__all__ = ["CONFIGURATIONS", "three_configuration_experiment"]
+if TYPE_CHECKING:
+    from .gait import WalkingGait
+    from .leg import Leg
+
+__all__ = [
+    "CONFIGURATIONS",
+    "LAND_COULOMB",
+    "LAND_INERTIA",
+    "LAND_VISCOUS",
+    "YAW_STEP_FOOT",
+    "land_water_experiment",
+    "three_configuration_experiment",
+]
 
 #: The paper's three configurations, in its order.
 CONFIGURATIONS = ("dry", "oil", "oil_seal")
@@ -161,3 +181,109 @@ def three_configuration_experiment(
     if temperatures is not None:
         columns["temperature_c"] = temperature_c
     return columns
+
+
+#: The land torque's illustrative rigid-body and friction terms (every joint): an effective
+#: inertia [kg·m²], a viscous friction [N·m·s/rad] and a Coulomb friction [N·m].
+LAND_INERTIA, LAND_VISCOUS, LAND_COULOMB = 0.3, 2.0, 1.5
+#: Speed scale of the Coulomb friction's smooth sign ``tanh(q̇ / 0.05 rad/s)``.
+_COULOMB_SPEED = 0.05
+#: Nominal foot of the default gait of :func:`land_water_experiment` [m]: beside the hip, so
+#: that stepping along x swings the hip-yaw joint (joint 1) by ±13° as in the paper's
+#: experiment. (:class:`uwml.WalkingGait`'s own default steps radially, which leaves joint 1 at
+#: rest: nothing to identify on it.)
+YAW_STEP_FOOT = (0.1, 0.7, -0.6)
+
+
+def land_water_experiment(
+    leg: Leg | None = None,
+    gait: WalkingGait | None = None,
+    cycles: float = 3,
+    rate_hz: float = 200.0,
+    cd: ArrayLike = 2.2,
+    cm: ArrayLike = 0.5,
+    torque_noise: float = 0.5,
+    model_error: float = 0.0,
+    water: Water = Water(),  # noqa: B008 (immutable)
+    seed: np.random.Generator | int | None = None,
+    *,
+    derivatives: bool = True,
+    start_time: float = 0.0,
+) -> Log:
+    """A synthetic land/water experiment: the motor torques of one trajectory on land and in water.
+
+    **Synthetic**: for tests and demos. The model of the measurement, per joint, at the gait's
+    joint states ``q, q̇, q̈`` (analytic) sampled at ``rate_hz`` from ``start_time``:
+
+    * land: ``τ_land = −τ_gravity + I q̈ + b q̇ + c tanh(q̇ / 0.05)`` with ``τ_gravity`` the
+      weight's torque (:meth:`uwml.Leg.hydro`'s ``gravity``, which the motor holds) and the
+      illustrative ``I = LAND_INERTIA``, ``b = LAND_VISCOUS``, ``c = LAND_COULOMB`` on every
+      joint: an arbitrary but deterministic rigid-body-like torque, identical in both runs, that
+      the difference cancels;
+    * water: ``τ_water = τ_land − τ_hydro − τ_extra``: the motor also supplies minus the water's
+      torque, ``τ_hydro = buoyancy + drag(cd) + added mass(cm)`` (MODEL.md section 4), and minus
+      an unmodelled linear damping ``τ_extra = −model_error · q̇`` (``model_error`` in
+      N·m·s/rad, 0 by default), which the identification's model does not contain;
+    * each measured torque gets independent Gaussian noise of standard deviation
+      ``torque_noise`` [N·m] (so their difference has ``√2 · torque_noise``).
+
+    Parameters
+    ----------
+    leg : Leg, optional
+        Default :meth:`uwml.Leg.paper`.
+    gait : WalkingGait, optional
+        Anything with ``joint_states(t)``; default ``WalkingGait(nominal_foot=YAW_STEP_FOOT)``.
+    cycles : float
+        Duration in gait periods (``gait.period``) (or in seconds, if the gait has no period).
+    rate_hz : float
+        Sample rate [Hz].
+    cd, cm : array_like
+        True coefficients, in any layout :meth:`uwml.Leg.hydro` accepts.
+    torque_noise, model_error : float
+        See above; ≥ 0.
+    water : Water
+        The fluid.
+    seed : numpy.random.Generator or int or None
+        Random generator, or a seed for ``numpy.random.default_rng``.
+    derivatives : bool
+        Write the analytic ``qd`` and ``qdd`` into the log (else only ``q``, and the fit
+        estimates them).
+    start_time : float
+        Time of the first sample [s].
+
+    Returns
+    -------
+    Log
+        A log of the whole experiment (``tau_land`` and ``tau_water``), source ``"<synthetic>"``.
+    """
+    from .gait import WalkingGait
+    from .leg import Leg
+
+    leg = Leg.paper() if leg is None else leg
+    gait = WalkingGait(nominal_foot=YAW_STEP_FOOT) if gait is None else gait
+    for name, value in (("cycles", cycles), ("rate_hz", rate_hz)):
+        if not (np.isfinite(value) and value > 0.0):
+            raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    for name, value in (("torque_noise", torque_noise), ("model_error", model_error)):
+        if not (np.isfinite(value) and value >= 0.0):
+            raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+    generator = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    duration = float(cycles) * float(getattr(gait, "period", 1.0))
+    t = float(start_time) + np.arange(round(duration * rate_hz)) / float(rate_hz)
+    q, qd, qdd = (np.asarray(a, dtype=np.float64) for a in gait.joint_states(t))
+    if q.shape[-1] != leg.n_joints:
+        raise ValueError(f"the gait gives {q.shape[-1]} joints, the leg has {leg.n_joints}")
+    hydro = leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=water)
+    tau_land = -hydro.gravity + LAND_INERTIA * qdd + LAND_VISCOUS * qd + LAND_COULOMB * np.tanh(qd / _COULOMB_SPEED)
+    tau_water = tau_land - hydro.total + model_error * qd
+    tau_land = tau_land + generator.normal(0.0, torque_noise, size=q.shape)
+    tau_water = tau_water + generator.normal(0.0, torque_noise, size=q.shape)
+    return Log(
+        time=t,
+        q=q,
+        qd=qd if derivatives else None,
+        qdd=qdd if derivatives else None,
+        tau_land=tau_land,
+        tau_water=tau_water,
+        source="<synthetic>",
+    )

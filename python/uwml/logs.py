@@ -1,0 +1,409 @@
+"""Joint logs of the land/water experiment: reading, writing, aligning, differentiating.
+
+The paper identifies Cd and Cm by driving the leg along the same trajectory on land and in
+water and taking the difference of the motor torques (MODEL.md section 4, :mod:`uwml.fit`'s
+:func:`~uwml.fit.hydro_coefficients`). This module holds such logs.
+
+CSV format
+----------
+One header row, then one row per sample, in increasing time. Rows are numbered as in a
+spreadsheet: the header is row 1, the first sample row 2. Joints are numbered from 1 in the
+column names (``q1`` is joint index 0 in Python). Extra columns are ignored.
+
+====================  ===========  =========================================================
+column                required     meaning
+====================  ===========  =========================================================
+``time``              yes          time [s], strictly increasing
+``q1`` … ``qN``       yes          joint positions [rad]
+``qd1`` … ``qdN``     no           joint velocities [rad/s]; estimated if absent
+``qdd1`` … ``qddN``   no           joint accelerations [rad/s²]; estimated if absent
+``tau_land1`` …       see below    motor torque on land [N·m]
+``tau_water1`` …      see below    motor torque in water [N·m], same trajectory
+``tau1`` … ``tauN``   see below    motor torque of a log of one environment [N·m]
+====================  ===========  =========================================================
+
+Torques are the **motor's** torque on the joint (what the drive supplies, positive in the
+joint's positive direction), not the environment's. A log of the whole experiment carries
+both ``tau_land*`` and ``tau_water*`` (one log with both columns, the trajectory run twice
+with the same time stamps). Alternatively, two logs of one environment each carry ``tau*``
+and :func:`align_logs` pairs them **by time**: the water log's torques are linearly
+interpolated (``numpy.interp``) onto the land log's time stamps, and only land rows inside
+the water log's time span are kept. The land log's positions (and velocities and
+accelerations) describe the trajectory; both runs are assumed to follow it (time zero of both
+logs at the same point of the trajectory, e.g. the start of the commanded motion).
+
+A column family must be complete: ``q1`` … ``qN`` all present and no ``q(N+1)``; the same for
+each optional family present. With ``n_joints`` given, a log with another number of joints
+is an error.
+
+Parquet (``.parquet`` files) holds the same columns; it needs ``pyarrow``, which is optional.
+
+Derivatives
+-----------
+If ``qd*`` or ``qdd*`` are absent, :meth:`Log.with_derivatives` (called by the fit) estimates
+them from ``q`` with a Savitzky-Golay filter (``scipy.signal.savgol_filter``, ``deriv=1`` and
+``2``, ``mode="interp"``, polynomial order 3). **Window rule**: the odd number of samples
+closest to ``WINDOW_S = 0.1 s`` of log, ``2·round(WINDOW_S · rate / 2) + 1`` (21 samples
+at 200 Hz, 101 at 1 kHz), and at least ``polyorder + 2`` rounded up to odd (5). The sample rate is
+``1 / median(Δt)``. Savitzky-Golay assumes uniform sampling: every step must be within 1 %
+(``UNIFORM_TOLERANCE``) of the median step, otherwise the error names the first offending row.
+0.1 s is short against the gait's features (a 0.8 s swing) and long enough to average out
+sensor noise; the derivative error it leaves on our walking gait is bounded in
+``tests/test_identification.py``.
+
+Errors (``ValueError``) name the file (or ``<stream>``), the row and the column.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from typing import IO, Any
+
+import numpy as np
+import scipy.signal
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "POLYORDER",
+    "UNIFORM_TOLERANCE",
+    "WINDOW_S",
+    "Log",
+    "align_logs",
+    "estimate_derivatives",
+    "read_log",
+    "savgol_window",
+    "write_log",
+]
+
+Array = NDArray[np.float64]
+PathOrFile = str | os.PathLike[str] | IO[str]
+
+#: Time covered by the Savitzky-Golay window [s].
+WINDOW_S = 0.1
+#: Polynomial order of the Savitzky-Golay filter.
+POLYORDER = 3
+#: Largest relative deviation of a time step from the median step for derivative estimation.
+UNIFORM_TOLERANCE = 0.01
+#: Column families, in the order they are written.
+_FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
+_COLUMN = re.compile(r"^(q|qd|qdd|tau_land|tau_water|tau)(\d+)$")
+
+
+@dataclass(frozen=True, eq=False)
+class Log:
+    """A joint log (module docstring): arrays of shape ``(n_samples,)`` (time) and
+    ``(n_samples, n_joints)`` (the rest); absent columns are None."""
+
+    time: Array
+    q: Array
+    qd: Array | None = None
+    qdd: Array | None = None
+    #: Motor torques on land and in water (a log of the whole experiment).
+    tau_land: Array | None = None
+    tau_water: Array | None = None
+    #: Motor torque of a log of one environment.
+    tau: Array | None = None
+    #: Where the log came from (a file name), for error messages.
+    source: str = "<log>"
+
+    def __post_init__(self) -> None:
+        time = np.asarray(self.time, dtype=np.float64)
+        q = np.asarray(self.q, dtype=np.float64)
+        if time.ndim != 1 or q.ndim != 2 or q.shape[0] != time.shape[0]:
+            raise ValueError(f"{self.source}: time must have shape (n,) and q (n, n_joints), got {time.shape} and {q.shape}")
+        object.__setattr__(self, "time", time)
+        object.__setattr__(self, "q", q)
+        for name in ("qd", "qdd", "tau_land", "tau_water", "tau"):
+            value = getattr(self, name)
+            if value is not None:
+                array = np.asarray(value, dtype=np.float64)
+                if array.shape != q.shape:
+                    raise ValueError(f"{self.source}: {name} must have the shape of q {q.shape}, got {array.shape}")
+                object.__setattr__(self, name, array)
+
+    @property
+    def n_samples(self) -> int:
+        """Number of samples (rows)."""
+        return int(self.time.shape[0])
+
+    @property
+    def n_joints(self) -> int:
+        """Number of joints."""
+        return int(self.q.shape[1])
+
+    def land(self) -> Log:
+        """The land half of a log of the whole experiment, as a log of one environment."""
+        if self.tau_land is None:
+            raise ValueError(f"{self.source}: no tau_land columns")
+        return replace(self, tau_land=None, tau_water=None, tau=self.tau_land)
+
+    def water(self) -> Log:
+        """The water half of a log of the whole experiment, as a log of one environment."""
+        if self.tau_water is None:
+            raise ValueError(f"{self.source}: no tau_water columns")
+        return replace(self, tau_land=None, tau_water=None, tau=self.tau_water)
+
+    def with_derivatives(self, window_s: float = WINDOW_S, polyorder: int = POLYORDER) -> Log:
+        """This log with ``qd`` and ``qdd`` filled in by :func:`estimate_derivatives` where absent."""
+        if self.qd is not None and self.qdd is not None:
+            return self
+        qd, qdd = estimate_derivatives(self.time, self.q, window_s, polyorder, source=self.source)
+        return replace(self, qd=qd if self.qd is None else self.qd, qdd=qdd if self.qdd is None else self.qdd)
+
+
+def savgol_window(rate_hz: float, window_s: float = WINDOW_S, polyorder: int = POLYORDER) -> int:
+    """The Savitzky-Golay window [samples] of the module docstring's rule."""
+    if not (math.isfinite(rate_hz) and rate_hz > 0.0):
+        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz!r}")
+    if not (math.isfinite(window_s) and window_s > 0.0):
+        raise ValueError(f"window_s must be finite and > 0, got {window_s!r}")
+    window = 2 * round(0.5 * window_s * rate_hz) + 1
+    smallest = polyorder + 2 + (polyorder + 2 + 1) % 2
+    return max(int(window), smallest)
+
+
+def estimate_derivatives(
+    time: ArrayLike, q: ArrayLike, window_s: float = WINDOW_S, polyorder: int = POLYORDER, *, source: str = "<log>"
+) -> tuple[Array, Array]:
+    """Velocities and accelerations of ``q`` (shape ``(n, n_joints)``) by a Savitzky-Golay filter.
+
+    Raises
+    ------
+    ValueError
+        Naming the first row (the header is row 1) whose time step is not within
+        ``UNIFORM_TOLERANCE`` of the median step, or when the log is shorter than the window.
+    """
+    t = np.asarray(time, dtype=np.float64)
+    positions = np.asarray(q, dtype=np.float64)
+    if t.size < 2:
+        raise ValueError(f"{source}: row 2, column 'time': need at least 2 samples to estimate derivatives")
+    step = np.diff(t)
+    dt = float(np.median(step))
+    bad = np.flatnonzero(~(np.abs(step - dt) <= UNIFORM_TOLERANCE * dt))
+    if bad.size:
+        i = int(bad[0])
+        raise ValueError(
+            f"{source}: row {i + 3}, column 'time': non-uniform sampling (step {step[i]:.6g} s, median {dt:.6g} s); "
+            "velocities and accelerations are estimated by a Savitzky-Golay filter, which needs uniform sampling: "
+            "resample the log, or give qd and qdd columns"
+        )
+    window = savgol_window(1.0 / dt, window_s, polyorder)
+    if window > t.size:
+        raise ValueError(
+            f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({window} samples)"
+        )
+    qd = scipy.signal.savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
+    qdd = scipy.signal.savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
+    return np.asarray(qd, dtype=np.float64), np.asarray(qdd, dtype=np.float64)
+
+
+def align_logs(land: Log, water: Log) -> Log:
+    """One log of the whole experiment from a land log and a water log, paired by time.
+
+    The water torques are interpolated linearly onto the land log's time stamps; land rows
+    outside the water log's time span are dropped. Each log's torque is its ``tau`` (or, for a
+    log of the whole experiment, its ``tau_land`` and ``tau_water`` respectively).
+    """
+    tau_land = land.tau if land.tau is not None else land.tau_land
+    tau_water = water.tau if water.tau is not None else water.tau_water
+    if tau_land is None:
+        raise ValueError(f"{land.source}: row 1 (header), column 'tau1': the land log has no torque columns")
+    if tau_water is None:
+        raise ValueError(f"{water.source}: row 1 (header), column 'tau1': the water log has no torque columns")
+    if land.n_joints != water.n_joints:
+        raise ValueError(
+            f"{water.source}: row 1 (header), column 'q{water.n_joints}': the water log has {water.n_joints} joints, "
+            f"the land log ({land.source}) {land.n_joints}"
+        )
+    inside = (land.time >= water.time[0]) & (land.time <= water.time[-1])
+    if np.count_nonzero(inside) < 2:
+        raise ValueError(
+            f"{water.source}: row 2, column 'time': its time span [{water.time[0]:g}, {water.time[-1]:g}] s overlaps "
+            f"the land log ({land.source}) in fewer than 2 samples"
+        )
+    t = land.time[inside]
+    interpolated = np.column_stack([np.interp(t, water.time, tau_water[:, j]) for j in range(water.n_joints)])
+
+    def cut(a: Array | None) -> Array | None:
+        return None if a is None else a[inside]
+
+    return Log(
+        time=t,
+        q=land.q[inside],
+        qd=cut(land.qd),
+        qdd=cut(land.qdd),
+        tau_land=tau_land[inside],
+        tau_water=interpolated,
+        source=f"{land.source} + {water.source}",
+    )
+
+
+# --------------------------------------------------------------------------------------------
+# Files
+# --------------------------------------------------------------------------------------------
+
+
+def _source(path_or_file: Any) -> str:
+    if isinstance(path_or_file, str | os.PathLike):
+        return os.fspath(path_or_file)
+    return str(getattr(path_or_file, "name", "<stream>"))
+
+
+def _is_parquet(path_or_file: Any) -> bool:
+    return isinstance(path_or_file, str | os.PathLike) and os.fspath(path_or_file).lower().endswith(".parquet")
+
+
+def _pyarrow() -> Any:
+    try:
+        import pyarrow  # noqa: F401
+        import pyarrow.parquet as pq
+    except ImportError:
+        raise ImportError("Parquet logs need pyarrow (pip install pyarrow); CSV needs nothing more") from None
+    return pq
+
+
+def _from_columns(columns: Mapping[str, list[Any]], n_joints: int | None, source: str) -> Log:
+    """Check the columns (cells as text or numbers) and build a :class:`Log`."""
+    if "time" not in columns:
+        raise ValueError(f"{source}: row 1 (header), column 'time': missing column")
+    present: dict[str, set[int]] = {family: set() for family in _FAMILIES}
+    for name in columns:
+        match = _COLUMN.match(name)
+        if match:
+            present[match.group(1)].add(int(match.group(2)))
+    if not present["q"]:
+        raise ValueError(f"{source}: row 1 (header), column 'q1': missing column (joint positions q1 … qN)")
+    n = max(present["q"]) if n_joints is None else int(n_joints)
+    if n < 1:
+        raise ValueError(f"n_joints must be >= 1, got {n_joints!r}")
+    for family, numbers in present.items():
+        if not numbers:
+            continue
+        extra = sorted(k for k in numbers if k < 1 or k > n)
+        if extra:
+            raise ValueError(f"{source}: row 1 (header), column '{family}{extra[0]}': the log has more joints than the {n} expected")
+        for k in range(1, n + 1):
+            if k not in numbers:
+                raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column (the log has {n} joints)")
+    torques = {family for family in ("tau_land", "tau_water", "tau") if present[family]}
+    if torques and torques not in ({"tau_land", "tau_water"}, {"tau"}):
+        name = "tau_water1" if "tau_water" not in torques else "tau_land1"
+        if torques == {"tau_land", "tau_water", "tau"}:
+            name = "tau1"
+        raise ValueError(
+            f"{source}: row 1 (header), column {name!r}: a log carries either tau_land and tau_water (both environments) "
+            "or tau (one environment)"
+        )
+    names = ["time"] + [f"{family}{k}" for family in _FAMILIES if present[family] for k in range(1, n + 1)]
+    n_rows = len(columns["time"])
+    if n_rows == 0:
+        raise ValueError(f"{source}: row 2, column 'time': no data rows")
+    values: dict[str, Array] = {}
+    for name in names:
+        cells = columns[name]
+        out = np.empty(n_rows)
+        for i, cell in enumerate(cells):
+            try:
+                x = float(cell.strip() if isinstance(cell, str) else cell)
+            except (TypeError, ValueError):
+                raise ValueError(f"{source}: row {i + 2}, column {name!r}: expected a number, got {cell!r}") from None
+            if not math.isfinite(x):
+                raise ValueError(f"{source}: row {i + 2}, column {name!r}: expected a finite number, got {cell!r}")
+            out[i] = x
+        values[name] = out
+    time = values["time"]
+    bad = np.flatnonzero(np.diff(time) <= 0.0)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise ValueError(f"{source}: row {i + 2}, column 'time': time must increase strictly ({time[i - 1]!r} then {time[i]!r})")
+
+    def family(name: str) -> Array | None:
+        if not present[name]:
+            return None
+        return np.column_stack([values[f"{name}{k}"] for k in range(1, n + 1)])
+
+    q = family("q")
+    assert q is not None
+    return Log(
+        time=time,
+        q=q,
+        qd=family("qd"),
+        qdd=family("qdd"),
+        tau_land=family("tau_land"),
+        tau_water=family("tau_water"),
+        tau=family("tau"),
+        source=source,
+    )
+
+
+def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
+    """Read and check a log (format in the module docstring).
+
+    Parameters
+    ----------
+    path_or_file : str, path or text file
+        A CSV file (or ``.parquet``, with pyarrow), or an open text stream of CSV.
+    n_joints : int, optional
+        The number of joints the log must have; None: as many as its ``q`` columns.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, row (header = row 1) and column of the first problem: a missing column,
+        a log with another number of joints, an incomplete column family, a cell that is not a
+        finite number, a row with fewer cells than the header, time not strictly increasing.
+    """
+    source = _source(path_or_file)
+    if _is_parquet(path_or_file):
+        table = _pyarrow().read_table(path_or_file)
+        return _from_columns(table.to_pydict(), n_joints, source)
+    if isinstance(path_or_file, str | os.PathLike):
+        with open(path_or_file, newline="", encoding="utf-8") as handle:
+            records = [record for record in csv.reader(handle) if any(cell.strip() for cell in record)]
+    else:
+        records = [record for record in csv.reader(path_or_file) if any(cell.strip() for cell in record)]
+    if not records:
+        raise ValueError(f"{source}: row 1 (header), column 'time': empty file, expected a header row")
+    header = [cell.strip() for cell in records[0]]
+    columns: dict[str, list[str]] = {name: [] for name in header}
+    for row, record in enumerate(records[1:], start=2):
+        if len(record) < len(header):
+            raise ValueError(
+                f"{source}: row {row}, column {header[len(record)]!r}: missing value ({len(record)} cells, header has {len(header)})"
+            )
+        for name, cell in zip(header, record, strict=False):
+            columns[name].append(cell)
+    return _from_columns(columns, n_joints, source)
+
+
+def write_log(log: Log, path_or_file: PathOrFile) -> None:
+    """Write a log (format in the module docstring): CSV, or Parquet for a ``.parquet`` path.
+
+    Numbers are written in their shortest round-trip form, so :func:`read_log` gives the same
+    values back.
+    """
+    names = ["time"]
+    arrays = [log.time[:, None]]
+    for family in _FAMILIES:
+        value = getattr(log, family)
+        if value is not None:
+            names += [f"{family}{k}" for k in range(1, log.n_joints + 1)]
+            arrays.append(value)
+    table = np.concatenate(arrays, axis=1)
+    if _is_parquet(path_or_file):
+        import pyarrow
+
+        _pyarrow().write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}), path_or_file)
+        return
+    if isinstance(path_or_file, str | os.PathLike):
+        with open(path_or_file, "w", newline="", encoding="utf-8") as handle:
+            write_log(log, handle)
+        return
+    writer = csv.writer(path_or_file, lineterminator="\n")
+    writer.writerow(names)
+    writer.writerows([repr(float(x)) for x in row] for row in table.tolist())
