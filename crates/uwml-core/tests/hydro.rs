@@ -2,32 +2,13 @@
 //! invariants of MODEL.md section 3, and the agreement of the torque and regressor paths.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
-use uwml_core::nalgebra::{Matrix3, SVector, Vector3};
+use uwml_core::nalgebra::{Matrix3, SVector};
 use uwml_core::{
     Chain, Coefficients, HydroTorques, Joint, Link, Segment, Water, hydro_regressors, hydro_torques, link_motions,
 };
 
-/// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn vector<const N: usize>(&mut self, scale: f64) -> SVector<f64, N> {
-        SVector::from_fn(|_, _| scale * self.next())
-    }
-    fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(self.next(), self.next(), self.next());
-            if v.norm() > 0.2 {
-                return v.normalize();
-            }
-        }
-    }
-}
+mod common;
+use common::Rng;
 
 fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> HydroTorques<f64, 3> {
     let c = Coefficients::uniform(2.2, 0.5).unwrap();

@@ -5,27 +5,8 @@
 use uwml_core::nalgebra::{SVector, Vector3};
 use uwml_core::{Chain, Joint, Link, link_motions, point_jacobian};
 
-/// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
-    fn vector<const N: usize>(&mut self, scale: f64) -> SVector<f64, N> {
-        SVector::from_fn(|_, _| scale * self.next())
-    }
-    fn unit(&mut self) -> Vector3<f64> {
-        loop {
-            let v = Vector3::new(self.next(), self.next(), self.next());
-            if v.norm() > 0.2 {
-                return v.normalize();
-            }
-        }
-    }
-}
+mod common;
+use common::Rng;
 
 /// A random chain of `N` joints with arbitrary axes and offsets (no hydrodynamic geometry).
 fn random_chain<const N: usize>(rng: &mut Rng) -> Chain<f64, N> {
