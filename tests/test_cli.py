@@ -1,0 +1,346 @@
+"""The ``uwml`` command line's subcommands, each run in a subprocess on small generated inputs:
+``paper``, ``torques``, ``fit hydro``, ``fit losses`` (``demo`` is tested in test_api.py)."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import uwml
+import uwml.cli
+from uwml import fit, synthetic
+from uwml.logs import Log, write_log
+
+LEG = uwml.Leg.paper()
+
+
+def _command(args: tuple[str | os.PathLike[str], ...]) -> list[str]:
+    return [sys.executable, "-m", "uwml", *(os.fspath(a) for a in args)]
+
+
+_ENV = {**os.environ, "PYTHONIOENCODING": "utf-8", "PYTHONWARNINGS": "error"}
+
+
+def _uwml(*args: str | os.PathLike[str]) -> subprocess.CompletedProcess:
+    """``python -m uwml ARGS`` in a subprocess."""
+    return subprocess.run(_command(args), capture_output=True, text=True, encoding="utf-8", env=_ENV, timeout=120, check=False)
+
+
+def _uwml_all(*commands: tuple[str | os.PathLike[str], ...]) -> list[subprocess.CompletedProcess]:
+    """Several ``python -m uwml`` runs in concurrent subprocesses (each pays the start-up once)."""
+    processes = [
+        subprocess.Popen(_command(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, encoding="utf-8", env=_ENV)
+        for args in commands
+    ]
+    results = []
+    try:
+        for process in processes:
+            stdout, stderr = process.communicate(timeout=120)
+            results.append(subprocess.CompletedProcess(process.args, process.returncode, stdout, stderr))
+    finally:
+        for process in processes:
+            if process.poll() is None:
+                process.kill()
+                process.wait()
+    return results
+
+
+def _in_process(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    """``uwml.cli.main(args)`` in this process: the exit status (argparse's SystemExit too), stdout, stderr."""
+    try:
+        status = uwml.cli.main(args)
+    except SystemExit as exit_info:
+        status = exit_info.code if isinstance(exit_info.code, int) else 0
+    captured = capsys.readouterr()
+    return status, captured.out, captured.err
+
+
+def _read_csv(path: Path) -> tuple[list[str], np.ndarray]:
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    return rows[0], np.array(rows[1:], dtype=np.float64)
+
+
+def _assert_bad_file(result: subprocess.CompletedProcess, path: Path, row: int, column: str) -> None:
+    assert result.returncode == 2, (result.stdout, result.stderr)
+    assert "Traceback" not in result.stderr, result.stderr
+    message = result.stderr.strip()
+    assert message.startswith("uwml: error: "), message
+    assert str(path) in message and f"row {row}" in message and repr(column) in message, message
+
+
+def _replace_cell(path: Path, out: Path, row: int, column: str, value: str) -> None:
+    """Copy a CSV file with one cell (spreadsheet row, header = 1) replaced."""
+    with open(path, newline="", encoding="utf-8") as handle:
+        rows = list(csv.reader(handle))
+    rows[row - 1][rows[0].index(column)] = value
+    with open(out, "w", newline="", encoding="utf-8") as handle:
+        csv.writer(handle, lineterminator="\n").writerows(rows)
+
+
+@pytest.fixture(scope="module")
+def experiment(tmp_path_factory: pytest.TempPathFactory) -> Log:
+    return synthetic.land_water_experiment(cycles=1, seed=3)
+
+
+# --------------------------------------------------------------------------------------------
+# --help
+# --------------------------------------------------------------------------------------------
+
+
+_HELP = [
+    ([], ["paper", "torques", "fit"]),
+    (["paper"], ["--out", "--seed", "report.md", "fig8_torques.png"]),
+    (["torques"], ["LOG", "--out", "--depth", "--temperature", "--cd", "--cm", "--losses", "--joints", "drag1", "total1"]),
+    (["fit"], ["hydro", "losses"]),
+    (["fit", "hydro"], ["LOG_WATER", "--joints", "--per", "--robust", "--json", "--plot", "tau_land1"]),
+    (["fit", "losses"], ["CSV", "--json", "--plot", "configuration", "current_a"]),
+]
+
+
+@pytest.mark.parametrize("command, words", _HELP, ids=[" ".join(c) or "uwml" for c, _ in _HELP])
+def test_help_describes_each_subcommand(command: list[str], words: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    status, out, _ = _in_process([*command, "--help"], capsys)
+    assert status == 0
+    for word in words:
+        assert word in out, (word, out)
+
+
+def test_help_in_a_subprocess() -> None:
+    result = _uwml("fit", "hydro", "--help")
+    assert result.returncode == 0 and "usage: uwml fit hydro" in result.stdout and not result.stderr, result.stderr
+
+
+# --------------------------------------------------------------------------------------------
+# uwml paper
+# --------------------------------------------------------------------------------------------
+
+
+def test_paper_writes_figures_report_and_summary(tmp_path: Path) -> None:
+    out = tmp_path / "paper"
+    result = _uwml("paper", "--out", out)
+    assert result.returncode == 0, result.stderr
+    for name in ("fig8_torques.png", "fig7_fit.png", "fig13_14_loss_maps.png", "efficiency_map.png"):
+        assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", name
+    report = (out / "report.md").read_text(encoding="utf-8")
+    for text in ("Cd", "Cm", "synthetic", "illustrative", "27.4 %", "](fig7_fit.png)", "](fig8_torques.png)"):
+        assert text in report, text
+
+    # The printed fit: within 3 standard errors of the true coefficients.
+    number = r"([-+0-9.eE]+)"
+    for name, truth in (("Cd", 2.2), ("Cm", 0.5)):
+        match = re.search(rf"^\s*{name} = {number} ± {number}$", result.stdout, re.MULTILINE)
+        assert match, result.stdout
+        value, error = float(match.group(1)), float(match.group(2))
+        assert 0.0 < error and abs(value - truth) <= 3.0 * error, (name, value, error)
+        assert f"{value:.5f}" in report
+    assert re.search(r"reduced chi-square = [0-9.]+, COD = 0\.99", result.stdout), result.stdout
+    # The loss budget at 10 r/min, 10 MPa.
+    assert re.search(r"loss current = 2\.850 A = 27\.4 % of the 10\.4 A rated current", result.stdout), result.stdout
+    # The RMS table parses: one row per component, one number per joint, drag and added mass > 0.
+    rms = {}
+    for line in result.stdout.splitlines():
+        tokens = line.split()
+        if len(tokens) >= 4 and tokens[0] in ("total", "drag", "added", "buoyancy"):
+            rms[tokens[0]] = [float(t) for t in tokens[-3:]]
+    assert set(rms) == {"total", "drag", "added", "buoyancy"}, result.stdout
+    assert rms["drag"][0] > 0 and rms["added"][0] > 0 and rms["buoyancy"][0] == 0.0  # hip yaw: vertical axis
+    # The synthetic log it writes is a valid input of `uwml fit hydro`.
+    assert uwml.read_log(out / "land_water.csv").tau_water is not None
+
+
+# --------------------------------------------------------------------------------------------
+# uwml torques
+# --------------------------------------------------------------------------------------------
+
+
+def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
+    path = tmp_path / "trajectory.csv"
+    write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), path)
+    out = tmp_path / "torques.csv"
+    result = _uwml("torques", path, "--out", out, "--cd", "1.8", "--cm", "0.7")
+    assert result.returncode == 0, result.stderr
+    header, table = _read_csv(out)
+    assert header == ["time"] + [f"{f}{k}" for f in ("drag", "added_mass", "buoyancy") for k in (1, 2, 3)]
+    assert table.shape == (experiment.n_samples, 10)
+    expected = LEG.hydro(experiment.q, experiment.qd, experiment.qdd, cd=1.8, cm=0.7)
+    np.testing.assert_allclose(table[:, 0], experiment.time, rtol=1e-11)
+    for i, name in enumerate(("drag", "added_mass", "buoyancy")):
+        np.testing.assert_allclose(table[:, 1 + 3 * i : 4 + 3 * i], getattr(expected, name), rtol=1e-10, atol=1e-10, err_msg=name)
+
+
+def test_torques_with_losses_and_estimated_derivatives(tmp_path: Path, experiment: Log) -> None:
+    path = tmp_path / "positions.csv"
+    write_log(Log(time=experiment.time, q=experiment.q), path)  # no qd, qdd: estimated
+    out = tmp_path / "torques.csv"
+    result = _uwml("torques", path, "--out", out, "--losses", "--depth", "500", "--temperature", "4", "--joints", "3")
+    assert result.returncode == 0, result.stderr
+    header, table = _read_csv(out)
+    families = ("drag", "added_mass", "buoyancy", "visc", "seal", "current", "total")
+    assert header == ["time"] + [f"{f}{k}" for f in families for k in (1, 2, 3)]
+    assert table.shape == (experiment.n_samples, 22) and np.all(np.isfinite(table))
+    column = {name: table[:, i] for i, name in enumerate(header)}
+    for k in (1, 2, 3):
+        parts = sum(column[f"{f}{k}"] for f in ("drag", "added_mass", "buoyancy", "visc", "seal"))
+        np.testing.assert_allclose(column[f"total{k}"], parts, rtol=1e-9, atol=1e-9)
+    # Losses oppose motion and need current; the seal at 500 m is not negligible.
+    moving = np.abs(experiment.qd[:, 0]) > 0.05
+    assert np.all(column["seal1"][moving] * experiment.qd[moving, 0] < 0)
+    assert np.all(np.abs(column["current1"][moving]) > 0)
+
+
+def test_torques_to_standard_output_and_progress_on_long_inputs(tmp_path: Path) -> None:
+    n = 100_001
+    time = np.arange(n) * 0.005
+    angle = 2.0 * np.pi * time / 2.0
+    q = np.column_stack([0.2 * np.sin(angle), -0.3 + 0.1 * np.cos(angle), 0.5 + 0.1 * np.sin(angle)])
+    qd = np.column_stack([0.2 * np.pi * np.cos(angle), -0.1 * np.pi * np.sin(angle), 0.1 * np.pi * np.cos(angle)])
+    path = tmp_path / "long.csv"
+    write_log(Log(time=time, q=q, qd=qd, qdd=np.zeros_like(q)), path)
+    result = _uwml("torques", path)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].startswith("time,drag1,") and len(lines) == n + 1
+    assert float(lines[-1].split(",")[0]) == pytest.approx(time[-1])
+    assert "100000/100001 rows" in result.stderr and "100001/100001 rows (100 %)" in result.stderr, result.stderr
+
+
+def test_torques_parquet(tmp_path: Path, experiment: Log) -> None:
+    path = tmp_path / "trajectory.csv"
+    write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), path)
+    out = tmp_path / "torques.parquet"
+    result = _uwml("torques", path, "--out", out)
+    try:
+        import pyarrow.parquet
+    except ImportError:
+        assert result.returncode == 2 and "pyarrow" in result.stderr and str(out) in result.stderr, result.stderr
+        assert not out.exists()
+        return
+    assert result.returncode == 0, result.stderr
+    table = pyarrow.parquet.read_table(out)
+    assert table.num_rows == experiment.n_samples and table.column_names[:2] == ["time", "drag1"]
+
+
+def test_torques_bad_files(tmp_path: Path, experiment: Log, capsys: pytest.CaptureFixture[str]) -> None:
+    good = tmp_path / "good.csv"
+    write_log(Log(time=experiment.time, q=experiment.q), good)
+    cell = tmp_path / "cell.csv"
+    _replace_cell(good, cell, 7, "q2", "1.2.3")
+    missing = tmp_path / "missing.csv"
+    missing.write_text(good.read_text(encoding="utf-8").replace("q2", "x2", 1), encoding="utf-8")
+    two = tmp_path / "two.csv"
+    write_log(Log(time=experiment.time, q=experiment.q[:, :2]), two)  # the leg has 3 joints
+    results = _uwml_all(("torques", cell), ("torques", missing), ("torques", two), ("torques", two, "--joints", "2"))
+    _assert_bad_file(results[0], cell, 7, "q2")
+    _assert_bad_file(results[1], missing, 1, "q2")
+    _assert_bad_file(results[2], two, 1, "q3")
+    _assert_bad_file(results[3], two, 1, "q3")
+    status, _, err = _in_process(["torques", str(tmp_path / "absent.csv")], capsys)
+    assert status == 2 and err.startswith("uwml: error: ") and "absent.csv" in err, err
+
+
+# --------------------------------------------------------------------------------------------
+# uwml fit hydro
+# --------------------------------------------------------------------------------------------
+
+
+def test_fit_hydro_report_json_and_plot(tmp_path: Path) -> None:
+    log = synthetic.land_water_experiment(seed=5)
+    path = tmp_path / "both.csv"
+    write_log(log, path)
+    figure = tmp_path / "fig7.png"
+    result, json_result = _uwml_all(("fit", "hydro", path, "--plot", figure), ("fit", "hydro", path, "--json", "--robust"))
+    assert result.returncode == 0, result.stderr
+    assert "[[Fit Statistics]]" in result.stdout and "R-squared (COD)" in result.stdout
+    values = {
+        m.group(1): (float(m.group(2)), float(m.group(3)))
+        for m in re.finditer(r"^\s+(cd|cm):\s+(\S+) \+/- (\S+)", result.stdout, re.MULTILINE)
+    }
+    assert set(values) == {"cd", "cm"}, result.stdout
+    for name, truth in (("cd", 2.2), ("cm", 0.5)):
+        assert abs(values[name][0] - truth) <= 3.0 * values[name][1], (name, values[name])
+    assert figure.read_bytes()[:4] == b"\x89PNG"
+
+    result = json_result
+    assert result.returncode == 0, result.stderr
+    summary = json.loads(result.stdout)  # JSON only
+    assert {"params", "stderr", "covar", "redchi", "rsquared", "ndata", "points", "joints", "per"} <= set(summary)
+    assert summary["joints"] == [0] and summary["ndata"] == log.n_samples
+    assert summary["params"]["cd"] == pytest.approx(2.2, rel=0.02) and summary["params"]["cm"] == pytest.approx(0.5, rel=0.02)
+
+
+def test_fit_hydro_two_logs_per_link(tmp_path: Path) -> None:
+    log = synthetic.land_water_experiment(seed=6)
+    land, water = tmp_path / "land.csv", tmp_path / "water.csv"
+    write_log(log.land(), land)
+    write_log(log.water(), water)
+    result = _uwml("fit", "hydro", land, water, "--joints", "1,2,3", "--per", "link", "--json")
+    assert result.returncode == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert summary["joints"] == [0, 1, 2] and summary["per"] == "link"
+    assert set(summary["params"]) == {"cd_link1", "cd_link2", "cm_link1", "cm_link2"}
+    assert str(land) in summary["source"] and str(water) in summary["source"]
+
+
+def test_fit_hydro_bad_files(tmp_path: Path, experiment: Log, capsys: pytest.CaptureFixture[str]) -> None:
+    good = tmp_path / "good.csv"
+    write_log(experiment, good)
+    cell = tmp_path / "cell.csv"
+    _replace_cell(good, cell, 12, "tau_water1", "n/a")
+    trajectory = tmp_path / "trajectory.csv"
+    write_log(Log(time=experiment.time, q=experiment.q), trajectory)  # no torques
+    results = _uwml_all(("fit", "hydro", cell), ("fit", "hydro", trajectory))
+    _assert_bad_file(results[0], cell, 12, "tau_water1")
+    _assert_bad_file(results[1], trajectory, 1, "tau_land1")
+    status, _, err = _in_process(["fit", "hydro", str(good), "--joints", "4"], capsys)
+    assert status == 2 and "--joints" in err, err
+    status, _, err = _in_process(["fit", "hydro", str(good), "--per", "joint"], capsys)
+    assert status == 2 and "--per" in err, err
+
+
+# --------------------------------------------------------------------------------------------
+# uwml fit losses
+# --------------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def loss_csv(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("losses") / "losses.csv"
+    fit.write_loss_csv(synthetic.three_configuration_experiment(repeats=3, startup=3, rng=0), path)
+    return path
+
+
+def test_fit_losses_report_json_and_plots(tmp_path: Path, loss_csv: Path) -> None:
+    figures = tmp_path / "figures"
+    result, json_result = _uwml_all(("fit", "losses", loss_csv, "--plot", figures), ("fit", "losses", loss_csv, "--json"))
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.count("[[Fit Statistics]]") == 2
+    for name in ("k_oil:", "exponent:", "c0:", "s0:", "stribeck_speed:"):
+        assert name in result.stdout, name
+    for name in ("oil_drag_fit.png", "seal_fit.png"):
+        assert (figures / name).read_bytes()[:4] == b"\x89PNG", name
+
+    result = json_result
+    assert result.returncode == 0, result.stderr
+    summary = json.loads(result.stdout)
+    assert set(summary) == {"oil_drag", "seal"}
+    assert {"k_oil", "exponent", "pressure_sensitivity_per_mpa"} <= set(summary["oil_drag"]["params"])
+    assert {"c0", "s0", "stribeck_speed"} <= set(summary["seal"]["params"])
+    assert all(isinstance(v, float) for v in summary["seal"]["params"].values())
+
+
+def test_fit_losses_bad_files(tmp_path: Path, loss_csv: Path) -> None:
+    cell = tmp_path / "cell.csv"
+    _replace_cell(loss_csv, cell, 9, "current_a", "1,5A")
+    missing = tmp_path / "missing.csv"
+    missing.write_text(loss_csv.read_text(encoding="utf-8").replace("pressure_mpa", "pressure", 1), encoding="utf-8")
+    results = _uwml_all(("fit", "losses", cell), ("fit", "losses", missing))
+    _assert_bad_file(results[0], cell, 9, "current_a")
+    _assert_bad_file(results[1], missing, 1, "pressure_mpa")
