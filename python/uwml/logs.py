@@ -65,7 +65,6 @@ from dataclasses import dataclass, replace
 from typing import IO, Any
 
 import numpy as np
-import scipy.signal
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
@@ -197,8 +196,11 @@ def estimate_derivatives(
         raise ValueError(
             f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({window} samples)"
         )
-    qd = scipy.signal.savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
-    qdd = scipy.signal.savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
+    # Imported here: scipy.signal takes most of a second to import, and `import uwml` should not.
+    from scipy.signal import savgol_filter
+
+    qd = savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
+    qdd = savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
     return np.asarray(qd, dtype=np.float64), np.asarray(qdd, dtype=np.float64)
 
 
