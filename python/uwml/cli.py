@@ -21,6 +21,7 @@ import os
 import sys
 import time
 from collections.abc import Sequence
+from dataclasses import fields, replace
 from pathlib import Path
 from typing import IO, Any
 
@@ -62,6 +63,19 @@ def _rms(x: np.ndarray) -> np.ndarray:
     return np.sqrt(np.mean(x**2, axis=0))
 
 
+def _component_table(t: np.ndarray, q: np.ndarray, qd: np.ndarray, tau: Any) -> list[str]:
+    """The torque components on every joint at each sample time, as table lines."""
+    header = f"{'t [s]':>6} {'joint':>5} {'q [rad]':>8} {'qd [rad/s]':>10} {'drag':>9} {'added mass':>10} {'buoyancy':>9} {'total':>9}"
+    lines = [header, "-" * len(header)]
+    for i in range(len(t)):
+        for j in range(q.shape[1]):
+            lines.append(
+                f"{t[i]:6.2f} {j + 1:5d} {q[i, j]:8.3f} {qd[i, j]:10.3f} "
+                f"{tau.drag[i, j]:9.3f} {tau.added_mass[i, j]:10.3f} {tau.buoyancy[i, j]:9.3f} {tau.total[i, j]:9.3f}"
+            )
+    return lines
+
+
 def _demo(args: argparse.Namespace) -> int:
     leg = Leg.paper()
     water = Water(density=args.density, gravity=9.81)
@@ -69,15 +83,7 @@ def _demo(args: argparse.Namespace) -> int:
     tau = leg.hydro(q, qd, qdd, cd=args.cd, cm=args.cm, water=water)
     print(f"uwml demo: the paper's leg (Table II) in water of {water.density:g} kg/m³, Cd = {args.cd:g}, Cm = {args.cm:g},")
     print(f"along a gait-like motion of period {args.period:g} s. Torques on each joint [N·m], environment on joint.")
-    header = f"{'t [s]':>6} {'joint':>5} {'q [rad]':>8} {'qd [rad/s]':>10} {'drag':>9} {'added mass':>10} {'buoyancy':>9} {'total':>9}"
-    print(header)
-    print("-" * len(header))
-    for i in range(len(t)):
-        for j in range(leg.n_joints):
-            print(
-                f"{t[i]:6.2f} {j + 1:5d} {q[i, j]:8.3f} {qd[i, j]:10.3f} "
-                f"{tau.drag[i, j]:9.3f} {tau.added_mass[i, j]:10.3f} {tau.buoyancy[i, j]:9.3f} {tau.total[i, j]:9.3f}"
-            )
+    print("\n".join(_component_table(t, q, qd, tau)))
     print()
     print("RMS over the cycle     " + "   ".join(f"joint {j + 1}" for j in range(leg.n_joints)))
     for name in ("drag", "added_mass", "buoyancy"):
@@ -89,11 +95,17 @@ def _demo(args: argparse.Namespace) -> int:
 # uwml paper
 # --------------------------------------------------------------------------------------------
 
-#: Samples of the torque figure over one gait cycle.
+#: Samples of the torque figure over one gait cycle, and the stride of the printed table.
 _PAPER_SAMPLES = 400
+_PAPER_TABLE_STEP = 50
 #: The paper's operating point of the loss budget: 10 r/min output speed, 10 MPa, oil at 20 °C.
 _PAPER_SPEED_RPM, _PAPER_PRESSURE_MPA, _PAPER_TEMPERATURE_C = 10.0, 10.0, 20.0
 _COMPONENTS = (("total", "total"), ("drag", "drag"), ("added_mass", "added mass"), ("buoyancy", "buoyancy"))
+
+
+def _every(tau: Any, step: int) -> Any:
+    """Every ``step``-th sample of a torque result."""
+    return replace(tau, **{f.name: getattr(tau, f.name)[::step] for f in fields(tau)})
 
 
 def _torque_figure(t: np.ndarray, tau: Any, path: Path) -> None:
@@ -123,7 +135,7 @@ def _paper(args: argparse.Namespace) -> int:
     from . import fit, plot, synthetic
     from .environment import JointLosses
     from .gait import WalkingGait
-    from .losses import RPM
+    from .losses import RPM, Drive, OilDrag, Seal
 
     start = time.perf_counter()
     out = Path(args.out)
@@ -148,10 +160,10 @@ def _paper(args: argparse.Namespace) -> int:
     plot.hydro_fit_plot(result, out / "fig7_fit.png")
 
     # Joint losses (Figs. 13-14) and the current budget.
-    losses = JointLosses()
-    assert losses.oil is not None and losses.seal is not None
-    plot.loss_maps(losses.oil, losses.seal, losses.drive, path=out / "fig13_14_loss_maps.png")
-    plot.efficiency_map(losses.oil, losses.seal, losses.drive, path=out / "efficiency_map.png")
+    oil, seal, drive = OilDrag(), Seal(), Drive()
+    losses = JointLosses(drive=drive, oil=oil, seal=seal)
+    plot.loss_maps(oil, seal, drive, path=out / "fig13_14_loss_maps.png")
+    plot.efficiency_map(oil, seal, drive, path=out / "efficiency_map.png")
     current = float(np.abs(losses.torques(_PAPER_SPEED_RPM * RPM, _PAPER_PRESSURE_MPA, _PAPER_TEMPERATURE_C).current))
     share = 100.0 * current / losses.drive.rated_current
 
@@ -183,6 +195,9 @@ def _paper(args: argparse.Namespace) -> int:
     n = leg.n_joints
     lines = [
         f"uwml paper: the paper's leg (Table II), our walking gait (period {gait.period:g} s), written to {out}/ in {elapsed:.1f} s",
+        "",
+        f"Torque components along the gait [N·m] (every {_PAPER_TABLE_STEP}th of {_PAPER_SAMPLES} samples; all in {out}/fig8_torques.png):",
+        *_component_table(t[::_PAPER_TABLE_STEP], q[::_PAPER_TABLE_STEP], qd[::_PAPER_TABLE_STEP], _every(tau, _PAPER_TABLE_STEP)),
         "",
         "RMS torque over one cycle [N·m]   " + "  ".join(f"{'joint ' + str(j + 1):>8}" for j in range(n)),
     ]
