@@ -1,4 +1,8 @@
-"""Input checks shared by the pure-Python modules."""
+"""Input checks and the CSV reader shared by the pure-Python modules."""
+
+import csv
+import os
+from typing import IO, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -13,3 +17,28 @@ def finite_array(value: ArrayLike, name: str) -> NDArray[np.float64]:
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite")
     return a
+
+
+def read_csv_columns(path_or_file: "str | os.PathLike[str] | IO[str]", prefix: str, first_column: str) -> dict[str, list[str]]:
+    """The cells of a CSV file with a header row, column by column (blank rows skipped).
+
+    Errors are ValueErrors starting with ``prefix`` (e.g. the file's name) and naming the row
+    (header = row 1) and column: an empty file (reported at ``first_column``), or a row with
+    fewer cells than the header.
+    """
+    if isinstance(path_or_file, str | os.PathLike):
+        with open(path_or_file, newline="", encoding="utf-8") as handle:
+            return read_csv_columns(handle, prefix, first_column)
+    records: list[list[Any]] = [record for record in csv.reader(path_or_file) if any(cell.strip() for cell in record)]
+    if not records:
+        raise ValueError(f"{prefix}row 1 (header), column {first_column!r}: empty file, expected a header row")
+    header = [cell.strip() for cell in records[0]]
+    columns: dict[str, list[str]] = {name: [] for name in header}
+    for row, record in enumerate(records[1:], start=2):
+        if len(record) < len(header):
+            raise ValueError(
+                f"{prefix}row {row}, column {header[len(record)]!r}: missing value ({len(record)} cells, header has {len(header)})"
+            )
+        for name, cell in zip(header, record, strict=False):
+            columns[name].append(cell)
+    return columns

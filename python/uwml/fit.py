@@ -103,6 +103,7 @@ import scipy.stats
 from numpy.typing import ArrayLike, NDArray
 
 from . import reference
+from ._checks import read_csv_columns
 from .logs import Log, align_logs, read_log
 from .losses import RPM, Drive, OilDrag, Seal
 from .model import Water
@@ -292,20 +293,7 @@ def read_loss_csv(path_or_file: PathOrFile) -> Columns:
         Naming the row (header = row 1) and column of the first problem; also for an empty file
         or a row with fewer cells than the header.
     """
-    if isinstance(path_or_file, str | os.PathLike):
-        with open(path_or_file, newline="", encoding="utf-8") as handle:
-            return read_loss_csv(handle)
-    records = [record for record in csv.reader(path_or_file) if any(cell.strip() for cell in record)]
-    if not records:
-        raise ValueError(f"row 1 (header), column {_REQUIRED[0]!r}: empty file, expected a header row")
-    header = [cell.strip() for cell in records[0]]
-    columns: dict[str, list[str]] = {name: [] for name in header}
-    for row, record in enumerate(records[1:], start=2):
-        if len(record) < len(header):
-            raise ValueError(f"row {row}, column {header[len(record)]!r}: missing value ({len(record)} cells, header has {len(header)})")
-        for name, cell in zip(header, record, strict=False):
-            columns[name].append(cell)
-    return validate_loss_data(columns)
+    return validate_loss_data(read_csv_columns(path_or_file, "", _REQUIRED[0]))
 
 
 def write_loss_csv(data: Mapping[str, ArrayLike], path_or_file: PathOrFile) -> None:

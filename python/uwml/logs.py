@@ -67,6 +67,8 @@ from typing import IO, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._checks import read_csv_columns
+
 __all__ = [
     "POLYORDER",
     "UNIFORM_TOLERANCE",
@@ -364,23 +366,7 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
     if _is_parquet(path_or_file):
         table = _pyarrow().read_table(path_or_file)
         return _from_columns(table.to_pydict(), n_joints, source)
-    if isinstance(path_or_file, str | os.PathLike):
-        with open(path_or_file, newline="", encoding="utf-8") as handle:
-            records = [record for record in csv.reader(handle) if any(cell.strip() for cell in record)]
-    else:
-        records = [record for record in csv.reader(path_or_file) if any(cell.strip() for cell in record)]
-    if not records:
-        raise ValueError(f"{source}: row 1 (header), column 'time': empty file, expected a header row")
-    header = [cell.strip() for cell in records[0]]
-    columns: dict[str, list[str]] = {name: [] for name in header}
-    for row, record in enumerate(records[1:], start=2):
-        if len(record) < len(header):
-            raise ValueError(
-                f"{source}: row {row}, column {header[len(record)]!r}: missing value ({len(record)} cells, header has {len(header)})"
-            )
-        for name, cell in zip(header, record, strict=False):
-            columns[name].append(cell)
-    return _from_columns(columns, n_joints, source)
+    return _from_columns(read_csv_columns(path_or_file, f"{source}: ", "time"), n_joints, source)
 
 
 def write_log(log: Log, path_or_file: PathOrFile) -> None:
