@@ -1,0 +1,148 @@
+//! Compiles `tests/c/paper_leg.c` against `include/uwml.h` and the static library that cargo
+//! built for this test run, runs it (reference torques, losses, error paths), and checks that
+//! C sees every struct with the size, alignment and field offsets that Rust gives it.
+//!
+//! The C compiler is `$CC`, else `cc`.
+#![allow(missing_docs, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
+
+use std::collections::HashMap;
+use std::mem::{align_of, offset_of, size_of};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use uwml_ffi::*;
+
+/// The static library that cargo built for this test run. `cargo test` builds the library's
+/// `staticlib` crate type next to the rlib the test links, as `target/<profile>/deps/
+/// libuwml_ffi-<hash>.a` (and `cargo build` uplifts one to `target/<profile>/libuwml_ffi.a`).
+/// Builds of other feature sets may sit beside it: take the newest one that is not newer than
+/// this test executable (which is linked after the library it depends on).
+fn static_library() -> PathBuf {
+    let exe = std::env::current_exe().expect("the test executable has a path");
+    let deps = exe.parent().expect("the test runs from target/<profile>/deps");
+    let built = |path: &Path| std::fs::metadata(path).and_then(|m| m.modified()).ok();
+    let exe_built = built(&exe).expect("the test executable has a modification time");
+    let mut candidates: Vec<PathBuf> = std::fs::read_dir(deps)
+        .expect("target/<profile>/deps is readable")
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .filter(|path| {
+            let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+            name.starts_with("libuwml_ffi-") && name.ends_with(".a")
+        })
+        .collect();
+    candidates.extend(deps.parent().map(|profile| profile.join("libuwml_ffi.a")).filter(|p| p.is_file()));
+    let library = candidates
+        .into_iter()
+        .filter_map(|path| built(&path).filter(|&t| t <= exe_built).map(|t| (t, path)))
+        .max()
+        .map(|(_, path)| path);
+    let library = library.unwrap_or_else(|| {
+        panic!(
+            "no libuwml_ffi-*.a in {}: cargo builds it (crate-type staticlib) with the tests of uwml-ffi; \
+             run the test through `cargo test`",
+            deps.display()
+        )
+    });
+    println!("static library: {}", library.display());
+    library
+}
+
+fn run(command: &mut Command) -> String {
+    let output = command.output().unwrap_or_else(|e| panic!("cannot run {command:?}: {e}"));
+    let stdout = String::from_utf8_lossy(&output.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        output.status.success(),
+        "{command:?} failed ({})\n--- stdout\n{stdout}\n--- stderr\n{stderr}",
+        output.status
+    );
+    stdout
+}
+
+fn compile_and_run() -> String {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let exe = Path::new(env!("CARGO_TARGET_TMPDIR")).join("paper_leg");
+    let compiler = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
+    run(Command::new(compiler)
+        .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-I"])
+        .arg(crate_dir.join("include"))
+        .arg(crate_dir.join("tests/c/paper_leg.c"))
+        .arg(static_library())
+        .arg("-lm")
+        .arg("-o")
+        .arg(&exe));
+    run(&mut Command::new(&exe))
+}
+
+#[test]
+fn c_program_passes_and_sees_the_rust_layout() {
+    let stdout = compile_and_run();
+    println!("{stdout}");
+    assert!(stdout.lines().any(|line| line == "0 failed"), "no summary line in the C program's output");
+
+    let mut sizes = HashMap::new();
+    let mut offsets = HashMap::new();
+    for line in stdout.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let number = |i: usize| words.get(i).and_then(|w| w.parse::<usize>().ok()).expect("a number");
+        match words.first() {
+            Some(&"size") => {
+                sizes.insert(words[1].to_owned(), (number(2), number(3)));
+            }
+            Some(&"offset") => {
+                offsets.insert(words[1].to_owned(), number(2));
+            }
+            _ => {}
+        }
+    }
+
+    macro_rules! layouts {
+        ($($t:ident),* $(,)?) => {{
+            let expected: Vec<(&str, (usize, usize))> =
+                vec![$((stringify!($t), (size_of::<$t>(), align_of::<$t>()))),*];
+            expected
+        }};
+    }
+    let expected = layouts!(
+        UwmlError,
+        UwmlLeg3F64,
+        UwmlJointParamsF64,
+        UwmlSegmentParamsF64,
+        UwmlLinkParamsF64,
+        UwmlDriveParamsF64,
+        UwmlOilParamsF64,
+        UwmlSealParamsF64,
+        UwmlJointLossParamsF64,
+        UwmlHydro3F64,
+        UwmlEnvironment3F64,
+        UwmlLeg3F32,
+        UwmlJointParamsF32,
+        UwmlSegmentParamsF32,
+        UwmlLinkParamsF32,
+        UwmlDriveParamsF32,
+        UwmlOilParamsF32,
+        UwmlSealParamsF32,
+        UwmlJointLossParamsF32,
+        UwmlHydro3F32,
+        UwmlEnvironment3F32,
+    );
+    assert_eq!(sizes.len(), expected.len(), "the C program prints every struct once");
+    for (name, layout) in expected {
+        assert_eq!(sizes.get(name), Some(&layout), "{name}: (size, alignment) in C vs Rust");
+    }
+    let expected_offsets = [
+        ("UwmlError.field", offset_of!(UwmlError, field)),
+        ("UwmlLinkParamsF64.segment", offset_of!(UwmlLinkParamsF64, segment)),
+        ("UwmlLinkParamsF64.has_segment", offset_of!(UwmlLinkParamsF64, has_segment)),
+        ("UwmlJointLossParamsF64.has_seal", offset_of!(UwmlJointLossParamsF64, has_seal)),
+        ("UwmlLinkParamsF32.has_segment", offset_of!(UwmlLinkParamsF32, has_segment)),
+        ("UwmlJointLossParamsF32.has_seal", offset_of!(UwmlJointLossParamsF32, has_seal)),
+    ];
+    assert_eq!(offsets.len(), expected_offsets.len());
+    for (name, offset) in expected_offsets {
+        assert_eq!(offsets.get(name), Some(&offset), "offset of {name} in C vs Rust");
+    }
+    // The sizes the header's preamble and docs/firmware.md state.
+    assert_eq!(size_of::<UwmlLeg3F64>(), 3208);
+    assert_eq!(size_of::<UwmlLeg3F32>(), 1608);
+}
