@@ -22,7 +22,7 @@ positive = st.floats(1e-3, 10.0)
 oils = st.builds(
     uwml.OilDrag,
     k_oil=st.floats(1e-5, 1e-2),
-    exponent=st.sampled_from([1.0, 2.0]) | st.floats(1.0, 2.0),
+    exponent=st.sampled_from([1.0, 1.5, 2.0]) | st.floats(1.0, 2.0),
     pressure_sensitivity_per_mpa=st.floats(0.0, 0.05),
     temperature_sensitivity_per_k=st.floats(0.0, 0.1),
     reference_pressure_mpa=st.floats(0.0, 1.0),

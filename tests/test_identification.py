@@ -353,3 +353,105 @@ def test_hydro_fit_plot(tmp_path) -> None:
     measured, fitted = figure.axes[0].lines[:2]
     np.testing.assert_array_equal(measured.get_ydata(), result.data[result.joint == 0])
     np.testing.assert_array_equal(fitted.get_ydata(), result.best_fit[result.joint == 0])
+
+
+# --------------------------------------------------------------------------------------------
+# The streamed fit (large logs)
+# --------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("per", ["leg", "link", "direction"])
+def test_one_pass_design_is_the_regressors(per: str) -> None:
+    """The core's one-pass design equals the regressors of ``Leg.hydro_regressors`` (held
+    against the numpy reference elsewhere), grouped as ``per`` says, with the target last."""
+    log = synthetic.land_water_experiment(cycles=0.5, seed=3)
+    leg, joints = uwml.Leg.paper(), [2, 0]
+    delta = log.tau_water - log.tau_land
+    design = leg._chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, joints, per)
+    reg = leg.hydro_regressors(log.q, log.qd, log.qdd, per="direction")  # (n, joint, link, k)
+    for block, joint in zip(design, joints, strict=True):
+        drag, added = reg.drag[:, joint], reg.added_mass[:, joint]
+        if per == "leg":
+            columns = [drag.sum(axis=(1, 2)), added.sum(axis=(1, 2))]
+        elif per == "link":
+            columns = [*drag.sum(axis=2).T, *added.sum(axis=2).T]
+        else:
+            columns = [*drag.reshape(len(drag), -1).T, *added.reshape(len(added), -1).T]
+        expected = np.column_stack([*columns, -delta[:, joint] - reg.buoyancy[:, joint]])
+        np.testing.assert_allclose(block, expected, rtol=1e-13, atol=1e-12)
+
+
+def test_design_input_errors() -> None:
+    log = synthetic.land_water_experiment(cycles=0.1, seed=3)
+    chain, delta = uwml.Leg.paper()._chain, log.tau_water - log.tau_land
+    bad = delta.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(ValueError, match=r"delta\[3, 1\] is NaN: every value must be finite"):
+        chain.hydro_design(log.q, log.qd, log.qdd, bad, 1000.0, 9.81, [0], "leg")
+    with pytest.raises(ValueError, match="delta must have shape"):
+        chain.hydro_design(log.q, log.qd, log.qdd, delta[:-1], 1000.0, 9.81, [0], "leg")
+    with pytest.raises(ValueError, match="joints must be indices in 0..2, got 3"):
+        chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, [0, 3], "leg")
+    with pytest.raises(ValueError, match="per must be"):
+        chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, [0], "joint")
+
+
+@pytest.mark.parametrize("robust", [False, True])
+def test_streamed_fit_is_independent_of_chunks_and_cache(monkeypatch, robust: bool) -> None:
+    """Chunks of 97 samples (none aligned with anything), with and without the cache, give the
+    fit of one chunk holding everything."""
+    log = synthetic.land_water_experiment(seed=4, model_error=0.3)
+    kwargs = {"joints": (0, 1, 2), "per": "link", "robust": robust}
+    whole = fit.hydro_coefficients(log, **kwargs)
+    monkeypatch.setattr(fit, "CHUNK_SAMPLES", 97)
+    for cache_bytes in (0, 1 << 30):
+        chunked = fit.hydro_coefficients(log, cache_bytes=cache_bytes, **kwargs)
+        assert chunked.var_names == whole.var_names
+        for name in whole.var_names:
+            assert chunked.params[name] == pytest.approx(whole.params[name], rel=1e-9, abs=1e-12)
+            assert chunked.stderr[name] == pytest.approx(whole.stderr[name], rel=1e-7)
+        np.testing.assert_allclose(chunked.residual, whole.residual, rtol=1e-7, atol=1e-9)
+        assert chunked.chisqr == pytest.approx(whole.chisqr, rel=1e-9)
+
+
+def test_huber_iteration_finds_the_minimum_scipy_finds() -> None:
+    """The iteratively reweighted fit minimizes Huber's loss: scipy's minimizer of the same loss
+    on the same whitened problem agrees, and the loss is not lower nearby."""
+    import scipy.optimize
+
+    log = synthetic.land_water_experiment(seed=1)
+    rng = np.random.default_rng(7)
+    outliers = rng.choice(log.n_samples, 40, replace=False)
+    log.tau_water[outliers, 0] += rng.normal(0.0, 40.0, outliers.size)
+    result = fit.hydro_coefficients(log, robust=True, sigma=0.7)
+    leg = uwml.Leg.paper()
+    design = leg._chain.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, [0], "leg")[0]
+    x, y = design[:, :2] / 0.7, design[:, 2] / 0.7
+    reference = scipy.optimize.least_squares(
+        lambda b: x @ b - y, [1.0, 1.0], loss="huber", f_scale=fit.HUBER_SCALE, xtol=1e-14, ftol=1e-14, gtol=1e-14
+    )
+    np.testing.assert_allclose([result.params["cd"], result.params["cm"]], reference.x, rtol=1e-7)
+
+    def huber(b: np.ndarray) -> float:
+        r = np.abs(x @ b - y)
+        c = fit.HUBER_SCALE
+        return float(np.sum(np.where(r <= c, 0.5 * r**2, c * r - 0.5 * c**2)))
+
+    best = np.array([result.params["cd"], result.params["cm"]])
+    for step in ([1e-4, 0.0], [0.0, 1e-4], [-1e-4, 1e-4]):
+        assert huber(best) <= huber(best + np.array(step)) and huber(best) <= huber(best - np.array(step))
+
+
+@pytest.mark.parametrize("per", ["leg", "link", "direction"])
+def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
+    """The fit's values come from the torques at the fitted coefficients (linearity), also for
+    negative ones: they equal the one-pass design times the coefficients."""
+    log = synthetic.land_water_experiment(cycles=0.5, seed=5)
+    leg, joints = uwml.Leg.paper(), [0, 2]
+    design = fit._HydroDesign(leg, log, uwml.Water(), per, joints, cache_bytes=0)
+    x = np.random.default_rng(2).normal(0.0, 2.0, len(design.names))
+    assert np.any(x < 0.0) and np.any(x > 0.0)
+    values, targets = design.fitted(x)
+    problem = leg._chain.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, joints, per)
+    np.testing.assert_allclose(values, (problem[..., :-1] @ x).T.reshape(-1), rtol=1e-10, atol=1e-10)
+    np.testing.assert_array_equal(targets, problem[..., -1].T.reshape(-1))

@@ -33,10 +33,10 @@ def test_loss_maps(tmp_path) -> None:
     oil_axes, seal_axes = figure.axes[:2]
     assert [len(ax.lines) for ax in (oil_axes, seal_axes)] == [2, 2]
     # The 10 MPa curves end at 10 r/min on the loss currents worked out by hand:
-    # oil  1.1933e-3 · e^{0.2} · (160 · 10 · 2π/60)^1.2 / 0.4,
+    # oil  3.3234e-3 · e^{0.2} · 160 · 10 · 2π/60 / 0.4,
     # seal (16 + 3.7·10 + (2.2 + 0.34·10) · 10 · 2π/60) / (160 · 0.8 · 0.4); together 2.85 A.
     omega = 10.0 * 2.0 * math.pi / 60.0
-    oil_current = 1.1933e-3 * math.exp(0.2) * (160.0 * omega) ** 1.2 / 0.4
+    oil_current = 3.3234e-3 * math.exp(0.2) * 160.0 * omega / 0.4
     seal_current = (53.0 + 5.6 * omega) / 51.2
     assert oil_axes.lines[1].get_ydata()[-1] == pytest.approx(oil_current, rel=1e-12)
     assert seal_axes.lines[1].get_ydata()[-1] == pytest.approx(seal_current, rel=1e-12)

@@ -11,7 +11,7 @@ torque).
 from ._core import ModelError
 from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
 from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
-from .leg import MAX_JOINTS, HydroRegressors, HydroTorques, Leg
+from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques, Leg
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
@@ -19,6 +19,7 @@ from .model import Joint, Link, Segment, Water
 __all__ = [
     "MAX_JOINTS",
     "Drive",
+    "EnvironmentJacobians",
     "EnvironmentTorques",
     "HydroRegressors",
     "HydroTorques",

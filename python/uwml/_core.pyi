@@ -1,5 +1,6 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
+from collections.abc import Sequence
 from typing import Self, final
 
 import numpy as np
@@ -46,6 +47,19 @@ class Chain:
         pressure: NDArray[np.float64],
         temperature: NDArray[np.float64],
     ) -> list[NDArray[np.float64]]: ...
+    def jacobians(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        cd: NDArray[np.float64],
+        cm: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        losses: NDArray[np.float64],
+        pressure: NDArray[np.float64],
+        temperature: NDArray[np.float64],
+    ) -> list[NDArray[np.float64]]: ...
     def regressors(
         self,
         q: NDArray[np.float64],
@@ -55,6 +69,17 @@ class Chain:
         gravity: float,
         per_direction: bool,
     ) -> list[NDArray[np.float64]]: ...
+    def hydro_design(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        delta: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        joints: Sequence[int],
+        per: str,
+    ) -> NDArray[np.float64]: ...
     def point_jacobian(
         self, q: NDArray[np.float64], link: int, point: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...

@@ -62,8 +62,7 @@ Hydrodynamic coefficients
 :func:`hydro_coefficients` fits MODEL.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
 with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.logs`, on the selected joints
 (default joint index 0, the paper's joint 1, hip yaw, whose vertical axis gravity and
-buoyancy do not act about). The regressors come from :meth:`uwml.Leg.hydro_regressors`, one
-batch call into Rust. ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,
+buoyancy do not act about). ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,
 ``cm_link<l>``, ``l`` the 0-based link index), ``per="direction"`` one per link and normal
 direction (``cd_link<l>_n<k>``, ``k`` as in :meth:`uwml.Leg.hydro`); columns that are zero on
 every selected sample (a link without a segment, a direction that never moves) are dropped and
@@ -74,13 +73,23 @@ scalar or one per selected joint [N·m]), those are used and the covariance is s
 reduced χ² only if ``scale_covar``. Otherwise σ_j is estimated from the residuals of an
 unweighted first pass (their root mean square; for ``robust=True`` their scaled median
 absolute deviation ``1.4826 · MAD``), and the covariance is always scaled by the reduced χ².
-The linear problem is solved directly (``numpy.linalg.lstsq``). ``robust=True`` minimizes
-Huber's loss of the weighted residuals by ``scipy.optimize.least_squares(loss="huber",
-f_scale=HUBER_SCALE)`` with ``HUBER_SCALE = 1.345`` standard errors (95 % efficiency for
-Gaussian noise; residuals larger than that count linearly), twice, re-estimating σ_j from the
-first Huber fit's residuals; its covariance is Huber's asymptotic estimate (*Robust
+``robust=True`` minimizes Huber's loss of the weighted residuals with ``HUBER_SCALE = 1.345``
+standard errors (95 % efficiency for Gaussian noise; residuals larger than that count
+linearly), by iteratively reweighted least squares (the loss is convex: the minimum is the one
+``scipy.optimize.least_squares(loss="huber", f_scale=HUBER_SCALE)`` finds, which a test
+checks), twice, re-estimating σ_j from the first Huber fit's residuals; its covariance is Huber's asymptotic estimate (*Robust
 Statistics*, 1981, ch. 7) with his small-sample correction K,
 ``K² [Σψ²/(n−p)] / [mean ψ']² (XᵀWX)⁻¹``, ``K = 1 + (p/n) var(ψ')/mean(ψ')²``.
+
+Logs of any length: the Rust core assembles the problem (regressors and target of each
+selected joint) chunk by chunk (``CHUNK_SAMPLES`` samples) in one pass over the log, and the fit
+accumulates the normal equations ``XᵀX``, ``Xᵀy`` per joint, so the design is never held whole
+(it is kept for the robust fit's later passes only while it takes less than ``cache_bytes``).
+The normal equations are solved with their columns scaled to unit norm; fitted values come
+from the torques at the fitted coefficients (linearity), at a third of the regressors' cost.
+The result's per-point arrays (data, fit, residuals, σ, time, joint) are what grows with the
+log: about 6 floats per fitted point. Measured on 10 million samples:
+``python benches/large_log.py`` (docs/identification.md).
 
 With estimated σ_j the reduced χ² is 1 by construction (for ``robust=False``); it says
 something about the model only with a known ``sigma`` (the paper's 2.425 is of that kind).
@@ -92,7 +101,7 @@ import csv
 import math
 import os
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from typing import IO, TYPE_CHECKING, Any, Literal
 
@@ -646,11 +655,34 @@ class _Points:
 class _Solution:
     x: Array
     init: Array
-    jacobian: Array
+    #: The whitened Jacobian, or None where only its Gram matrix ``JᵀJ`` is kept (streamed fits).
+    jacobian: Array | None
     residual: Array
     success: bool
     message: str
     nfev: int
+    gram: Array | None = None
+
+    def normal_matrix(self) -> Array:
+        """``JᵀJ``."""
+        if self.gram is not None:
+            return self.gram
+        assert self.jacobian is not None
+        return self.jacobian.T @ self.jacobian
+
+    def singular_values(self) -> Array:
+        """Singular values of the whitened Jacobian, largest first (from ``JᵀJ`` if that is all
+        there is: exact down to about 1e-8 of the largest, far below the rank tolerance's use)."""
+        if self.jacobian is not None:
+            return np.linalg.svd(self.jacobian, compute_uv=False)
+        return np.sqrt(np.clip(np.linalg.eigvalsh(self.normal_matrix())[::-1], 0.0, None))
+
+    def rank_tolerance(self) -> float:
+        """The smallest singular value, relative to the largest, that counts as non-zero: from
+        ``JᵀJ``, rounding alone leaves singular values near ``sqrt(ε)`` of the largest."""
+        if self.jacobian is not None:
+            return _RANK_TOLERANCE
+        return max(_RANK_TOLERANCE, math.sqrt(64.0 * np.finfo(float).eps * max(len(self.x), 1)))
 
 
 def _statistics(
@@ -689,14 +721,15 @@ def _fit_statistics(
     total = float(centred @ centred)
     neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
     covar, message = None, solution.message
-    singular = np.linalg.svd(solution.jacobian, compute_uv=False)
+    singular = solution.singular_values()
+    gram = solution.normal_matrix()
     if nfree <= 0:
         message += "; no degrees of freedom left for uncertainties"
-    elif singular.size < nvarys or singular[-1] <= _RANK_TOLERANCE * singular[0]:
-        weakest = names[int(np.argmin(np.linalg.norm(solution.jacobian, axis=0)))]
+    elif singular.size < nvarys or singular[-1] <= solution.rank_tolerance() * singular[0]:
+        weakest = names[int(np.argmin(np.diag(gram)))]
         message += f"; the data do not determine every parameter (singular Jacobian; least sensitive: {weakest})"
     else:
-        covar = np.linalg.inv(solution.jacobian.T @ solution.jacobian)
+        covar = np.linalg.inv(gram)
         if scale_covar or not known:
             covar = covar * redchi
         covar = transform @ covar @ transform.T
@@ -1190,26 +1223,196 @@ def _hydro_log(log_or_path: Any, n_joints: int) -> Log:
     return log
 
 
-def _hydro_design(regressors: Any, per: str, joints: list[int]) -> tuple[Array, list[str]]:
-    """The design ``(n, len(joints), p)`` and its column names (all Cd first, then all Cm)."""
-    columns, names = [], []
-    for prefix, table in (("cd", regressors.drag), ("cm", regressors.added_mass)):
-        part = table[:, joints]
-        if per == "leg":
-            columns.append(part[..., None])
-            names.append(prefix)
-        elif per == "link":
-            columns.append(part.sum(axis=-1))
-            names += [f"{prefix}_link{link}" for link in range(part.shape[-2])]
-        else:
-            columns.append(part.reshape(part.shape[:2] + (-1,)))
-            names += [f"{prefix}_link{link}_n{k}" for link in range(part.shape[-2]) for k in range(part.shape[-1])]
-    return np.concatenate(columns, axis=-1), names
+#: Samples per chunk of the streamed hydro identification (the design of a chunk is at most
+#: ``CHUNK_SAMPLES × J × 4N`` floats: 37 MB for all three joints of the paper leg per direction).
+CHUNK_SAMPLES = 1 << 17
+
+#: Default of ``hydro_coefficients(cache_bytes=...)``: designs up to this size stay in memory
+#: between passes.
+DESIGN_CACHE_BYTES = 1 << 30
 
 
-def _huber_covariance(design: Array, residual: Array, scale: float) -> Array | None:
-    """Huber's covariance estimate of a fit of whitened ``design`` with whitened ``residual``."""
-    n, p = design.shape
+def _positive(scale: Array) -> Array:
+    """Per-joint scales, with zeros (a joint fitted exactly) replaced by the largest one (or 1)."""
+    positive = scale > 0.0
+    fallback = float(np.max(scale)) if np.any(positive) else 1.0
+    return np.where(positive, scale, fallback)
+
+
+@dataclass(frozen=True)
+class _Moments:
+    """Per selected joint ``j``: ``XⱼᵀXⱼ`` (``gram[j]``), ``Xⱼᵀyⱼ``, ``yⱼᵀyⱼ`` of the design."""
+
+    gram: Array  # (J, P, P)
+    xty: Array  # (J, P)
+    yty: Array  # (J,)
+
+    def kept(self, keep: NDArray[np.bool_]) -> _Moments:
+        return _Moments(self.gram[:, keep][:, :, keep], self.xty[:, keep], self.yty)
+
+    def weighted_gram(self, sigma_joint: Array) -> Array:
+        return np.einsum("j,jab->ab", sigma_joint**-2.0, self.gram)
+
+    def solve(self, sigma_joint: Array) -> Array:
+        """Weighted least squares from the normal equations, with the columns scaled to unit
+        norm first (the Gram matrix's condition number is then that of the correlations)."""
+        gram = self.weighted_gram(sigma_joint)
+        rhs = np.einsum("j,ja->a", sigma_joint**-2.0, self.xty)
+        scale = np.sqrt(np.diag(gram))
+        scale = np.where(scale > 0.0, scale, 1.0)
+        return np.linalg.lstsq(gram / np.outer(scale, scale), rhs / scale, rcond=None)[0] / scale
+
+    def residual_squares(self, x: Array) -> Array:
+        """``|Xⱼx − yⱼ|²`` per joint, from the moments (an estimate of scale: it loses the
+        digits that ``|y|²`` has beyond the residuals')."""
+        return np.clip(self.yty - 2.0 * self.xty @ x + np.einsum("a,jab,b->j", x, self.gram, x), 0.0, None)
+
+
+class _HydroDesign:
+    """The identification design of a log (MODEL.md section 4) and its target
+    ``y = −Δτ_motor − τ_buoy`` on the selected joints, assembled by the Rust core in one pass per
+    chunk of samples; the chunks are kept while they fit into ``cache_bytes``."""
+
+    def __init__(self, leg: Leg, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        self._leg, self._log, self._water, self._per, self._joints = leg, log, water, per, joints
+        n_links = leg.n_joints
+        self.names: list[str] = []
+        for prefix in ("cd", "cm"):
+            if per == "leg":
+                self.names.append(prefix)
+            elif per == "link":
+                self.names += [f"{prefix}_link{link}" for link in range(n_links)]
+            else:
+                self.names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
+        size = log.n_samples * len(joints) * (len(self.names) + 1) * 8
+        self._cache: list[Array] | None = [] if size <= cache_bytes else None
+        self._cached = False
+        self._keep: NDArray[np.bool_] | None = None
+
+    def keep(self, keep: NDArray[np.bool_]) -> None:
+        """Leave out the design's columns where ``keep`` is False (coefficients then index the
+        kept columns only)."""
+        self._keep = keep
+
+    def _full(self, x: Array) -> Array:
+        """Kept-column coefficients as coefficients of every column (zero where dropped)."""
+        if self._keep is None:
+            return x
+        full = np.zeros(self._keep.size)
+        full[self._keep] = x
+        return full
+
+    def _compute(self, start: int, stop: int) -> Array:
+        log = self._log
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        rows = slice(start, stop)
+        chunk = [np.ascontiguousarray(a[rows]) for a in (log.q, log.qd, log.qdd)]
+        delta = np.ascontiguousarray(log.tau_water[rows] - log.tau_land[rows])
+        return self._leg._chain.hydro_design(*chunk, delta, self._water.density, self._water.gravity, self._joints, self._per)
+
+    def chunks(self) -> Iterator[Array]:
+        """The problem chunk by chunk, joint-major ``(J, c, P + 1)``: every column's regressor,
+        then the target ``y``."""
+        if self._cached and self._cache is not None:
+            yield from self._cache
+            return
+        n = self._log.n_samples
+        for start in range(0, n, CHUNK_SAMPLES):
+            chunk = self._compute(start, min(start + CHUNK_SAMPLES, n))
+            if self._cache is not None:
+                self._cache.append(chunk)
+            yield chunk
+        self._cached = self._cache is not None
+
+    def moments(self) -> _Moments:
+        """Per-joint moments of all columns, in one pass (one product ``[X y]ᵀ[X y]`` per joint
+        and chunk)."""
+        n_selected, p = len(self._joints), len(self.names)
+        gram, xty, yty = np.zeros((n_selected, p, p)), np.zeros((n_selected, p)), np.zeros(n_selected)
+        for chunk in self.chunks():
+            for j, block in enumerate(chunk):
+                g = block.T @ block
+                gram[j] += g[:p, :p]
+                xty[j] += g[:p, p]
+                yty[j] += g[p, p]
+        return _Moments(gram, xty, yty)
+
+    def _table(self, values: Array) -> Array:
+        """One kind of coefficient (the Cd or the Cm half of the columns) as a per link and
+        direction table ``(n_links, 2)``."""
+        n_links = self._leg.n_joints
+        if self._per == "leg":
+            return np.full((n_links, 2), values[0])
+        if self._per == "link":
+            return np.repeat(values[:, None], 2, axis=1)
+        return values.reshape(n_links, 2)
+
+    def fitted(self, x: Array) -> tuple[Array, Array]:
+        """``(Xx, y)``, sample-major (all selected joints of sample 0, then sample 1, …).
+
+        The torques are linear in the coefficients, so ``Xx`` is the drag plus added-mass torque
+        at coefficients ``x`` (negative ones by a second evaluation at their magnitudes): a
+        third of the cost of the design's regressors, and nothing to keep between passes."""
+        full = self._full(x)
+        half = full.size // 2
+        cd, cm = self._table(full[:half]), self._table(full[half:])
+        log, leg, joints = self._log, self._leg, self._joints
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        signs = (1.0, -1.0) if np.any(full < 0.0) else (1.0,)
+        fits, targets = [], []
+        for start in range(0, log.n_samples, CHUNK_SAMPLES):
+            rows = slice(start, start + CHUNK_SAMPLES)
+            fit = np.zeros((len(log.q[rows]), leg.n_joints))
+            buoyancy = fit
+            for sign in signs:
+                tau = leg.hydro(
+                    log.q[rows], log.qd[rows], log.qdd[rows], np.clip(sign * cd, 0.0, None), np.clip(sign * cm, 0.0, None), self._water
+                )
+                fit += sign * (tau.drag + tau.added_mass)
+                buoyancy = tau.buoyancy
+            target = -(log.tau_water[rows] - log.tau_land[rows]) - buoyancy
+            fits.append(fit[:, joints].reshape(-1))
+            targets.append(target[:, joints].reshape(-1))
+        return np.concatenate(fits), np.concatenate(targets)
+
+    def residuals(self, x: Array, sigma_joint: Array) -> Array:
+        fit, y = self.fitted(x)
+        return (fit - y) / np.tile(sigma_joint, self._log.n_samples)
+
+    def huber(self, x: Array, sigma_joint: Array, scale: float, max_passes: int = 200) -> tuple[Array, int, bool]:
+        """Huber's estimate by iteratively reweighted least squares from ``x``, on residuals
+        whitened by ``sigma_joint``: ``(x, passes, converged)``. The weights are
+        ``min(1, scale/|r|)``; the loss is convex, so the iteration converges to its unique
+        minimum (the one ``scipy.optimize.least_squares(loss="huber")`` finds)."""
+        keep = np.ones(len(self.names), dtype=bool) if self._keep is None else self._keep
+        p = keep.size
+        passes, converged = 0, False
+        for passes in range(1, max_passes + 1):
+            coefficients = np.append(self._full(x), -1.0)
+            gram, rhs = np.zeros((p, p)), np.zeros(p)
+            for chunk in self.chunks():
+                r = (chunk @ coefficients) / sigma_joint[:, None]
+                w = np.minimum(1.0, scale / np.maximum(np.abs(r), 1e-300)) * sigma_joint[:, None] ** -2.0
+                for block, weights in zip(chunk, w, strict=True):
+                    g = (block * weights[:, None]).T @ block
+                    gram += g[:p, :p]
+                    rhs += g[:p, p]
+            gram, rhs = gram[keep][:, keep], rhs[keep]
+            d = np.sqrt(np.diag(gram))
+            d = np.where(d > 0.0, d, 1.0)
+            new = np.linalg.lstsq(gram / np.outer(d, d), rhs / d, rcond=None)[0] / d
+            converged = bool(np.all(np.abs(new - x) <= 1e-12 * (np.abs(new) + np.max(np.abs(new)) + 1e-300)))
+            x = new
+            if converged:
+                break
+        return x, passes, converged
+
+
+def _huber_covariance(gram: Array, residual: Array, scale: float) -> Array | None:
+    """Huber's covariance estimate of a fit with whitened residuals ``residual`` whose whitened
+    design has the Gram matrix ``gram`` (``XᵀX``)."""
+    n, p = residual.size, gram.shape[0]
     inside = np.abs(residual) <= scale
     mean_slope = float(np.mean(inside))
     if mean_slope == 0.0 or n <= p:
@@ -1217,7 +1420,7 @@ def _huber_covariance(design: Array, residual: Array, scale: float) -> Array | N
     psi = np.clip(residual, -scale, scale)
     k = 1.0 + (p / n) * mean_slope * (1.0 - mean_slope) / mean_slope**2
     factor = k**2 * float(psi @ psi) / (n - p) / mean_slope**2
-    return factor * np.linalg.inv(design.T @ design)
+    return factor * np.linalg.inv(gram)
 
 
 def hydro_coefficients(
@@ -1231,6 +1434,7 @@ def hydro_coefficients(
     *,
     sigma: ArrayLike | None = None,
     scale_covar: bool = True,
+    cache_bytes: int = DESIGN_CACHE_BYTES,
 ) -> HydroFit:
     """Fit Cd and Cm to a land/water experiment (module docstring, "Hydrodynamic coefficients").
 
@@ -1257,6 +1461,10 @@ def hydro_coefficients(
         Standard error of ``−Δτ`` per selected joint [N·m]; None: estimated.
     scale_covar : bool
         Scale the covariance by the reduced χ² (always done when ``sigma`` is estimated).
+    cache_bytes : int
+        The design is computed by the Rust core chunk by chunk and, while it takes no more than
+        this, kept for the later passes; above, each pass computes it again (memory stays
+        bounded by one chunk whatever the log's length).
 
     Returns
     -------
@@ -1283,68 +1491,60 @@ def hydro_coefficients(
     log = _hydro_log(log_or_path, expected).with_derivatives()
     assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
 
-    regressors = leg.hydro_regressors(log.q, log.qd, log.qdd, water=water, per="leg" if per == "leg" else "direction")
-    target = -(log.tau_water - log.tau_land) - regressors.buoyancy
-    y = target[:, selected]  # (n, J)
-    design, names = _hydro_design(regressors, per, selected)  # (n, J, p)
-    keep = np.any(design != 0.0, axis=(0, 1))
-    dropped = tuple(name for name, k in zip(names, keep, strict=True) if not k)
+    design = _HydroDesign(leg, log, water, per, selected, cache_bytes)
+    n_samples, n_selected = log.n_samples, len(selected)
+    moments = design.moments()
+    keep = np.diag(moments.gram.sum(axis=0)) > 0.0
+    dropped = tuple(name for name, k in zip(design.names, keep, strict=True) if not k)
     if not np.any(keep):
         raise ValueError(f"no coefficient has a regressor on joints {selected}: do they move?")
-    design = design[..., keep]
-    names = [name for name, k in zip(names, keep, strict=True) if k]
-    n_samples, n_selected, p = design.shape
-    x_flat, y_flat = design.reshape(-1, p), y.reshape(-1)
+    design.keep(keep)
+    moments = moments.kept(keep)
+    names = [name for name, k in zip(design.names, keep, strict=True) if k]
+    p = len(names)
     joint_of_row = np.tile(np.asarray(selected, dtype=np.int64), n_samples)
 
-    def joint_scale(residual: Array) -> Array:
-        r = residual.reshape(n_samples, n_selected)
-        if robust:
-            scale = _MAD_TO_SIGMA * np.median(np.abs(r - np.median(r, axis=0)), axis=0)
-        else:
-            scale = np.sqrt(np.mean(r**2, axis=0) * n_samples / max(n_samples - p / n_selected, 1.0))
-        positive = scale > 0.0
-        fallback = float(np.max(scale)) if np.any(positive) else 1.0
-        return np.where(positive, scale, fallback)
+    def joint_scale_robust(x: Array) -> Array:
+        r = design.residuals(x, np.ones(n_selected)).reshape(n_samples, n_selected)
+        return _positive(_MAD_TO_SIGMA * np.median(np.abs(r - np.median(r, axis=0)), axis=0))
 
     known = sigma is not None
+    first = moments.solve(np.ones(n_selected))
     if known:
         given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
         if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
             raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
         sigma_joint = np.array(given_sigma)
+    elif robust:
+        sigma_joint = joint_scale_robust(first)
     else:
-        first = np.linalg.lstsq(x_flat, y_flat, rcond=None)[0]
-        sigma_joint = joint_scale(x_flat @ first - y_flat)
-
-    def whitened(sigma_joint: Array) -> tuple[Array, Array, Array]:
-        rows = np.tile(sigma_joint, n_samples)
-        return rows, x_flat / rows[:, None], y_flat / rows
-
-    sigma_rows, xw, yw = whitened(sigma_joint)
-    x = np.linalg.lstsq(xw, yw, rcond=None)[0]
+        sigma_joint = _positive(np.sqrt(moments.residual_squares(first) / max(n_samples - p / n_selected, 1.0)))
+    x = moments.solve(sigma_joint)
+    gram = moments.weighted_gram(sigma_joint)
     init: dict[str, float] = {}
     nfev, success = 1, True
-    message = "linear least squares, solved directly"
+    message = "linear least squares: normal equations accumulated over the log in one pass"
     method = "linear least squares"
     if robust:
         init = dict(zip(names, x.tolist(), strict=True))
+        nfev = 0
         for _ in range(2):
-            result = scipy.optimize.least_squares(
-                lambda b, xw=xw, yw=yw: xw @ b - yw, x, jac=lambda b, xw=xw: xw, loss="huber", f_scale=HUBER_SCALE, method="trf"
-            )
-            x, nfev, success, message = result.x, nfev + int(result.nfev), bool(result.success), str(result.message)
+            x, passes, success = design.huber(x, sigma_joint, HUBER_SCALE)
+            nfev += passes
             if not known:
-                sigma_rows, xw, yw = whitened(joint_scale(x_flat @ x - y_flat))
-        method = f"least_squares (huber, f_scale = {HUBER_SCALE} σ)"
+                sigma_joint = joint_scale_robust(x)
+        gram = moments.weighted_gram(sigma_joint)
+        message = "Huber's loss by iteratively reweighted least squares, " + ("converged" if success else "not converged")
+        method = f"iteratively reweighted least squares (huber, f_scale = {HUBER_SCALE} σ)"
     if dropped:
         message += f"; dropped {', '.join(dropped)} (no regressor on joints {selected})"
-    solution = _Solution(x=x, init=x, jacobian=xw, residual=xw @ x - yw, success=success, message=message, nfev=nfev)
-    stats = _fit_statistics(
-        y_flat, lambda v: v / sigma_rows, known, x_flat @ x, solution, tuple(names), np.eye(p), scale_covar or not known
-    )
+    sigma_rows = np.tile(sigma_joint, n_samples)
+    best_fit, y_flat = design.fitted(x)
+    residual = (best_fit - y_flat) / sigma_rows
+    solution = _Solution(x=x, init=x, jacobian=None, residual=residual, success=success, message=message, nfev=nfev, gram=gram)
+    stats = _fit_statistics(y_flat, lambda v: v / sigma_rows, known, best_fit, solution, tuple(names), np.eye(p), scale_covar or not known)
     if robust and stats["covar"] is not None:
-        stats |= _uncertainties(_huber_covariance(xw, solution.residual, HUBER_SCALE), tuple(names))
+        stats |= _uncertainties(_huber_covariance(gram, residual, HUBER_SCALE), tuple(names))
     return HydroFit(
         params=dict(zip(names, x.tolist(), strict=True)),
         var_names=tuple(names),

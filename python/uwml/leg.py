@@ -14,9 +14,12 @@ from . import _core
 from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, pack_leg_losses
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_JOINTS", "HydroRegressors", "HydroTorques", "Leg"]
+__all__ = ["MAX_JOINTS", "EnvironmentJacobians", "HydroRegressors", "HydroTorques", "Leg"]
 
 FloatArray = NDArray[np.float64]
+#: The native ``Chain.environment``/``Chain.jacobians`` arguments after ``(self)``:
+#: q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature.
+_EnvironmentArguments = tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float, float, FloatArray, FloatArray, FloatArray]
 
 #: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).
 FRESH_WATER = Water()
@@ -79,6 +82,24 @@ class HydroRegressors:
             drag = cd_table.flat[0] * self.drag
             added_mass = cm_table.flat[0] * self.added_mass
         return HydroTorques(drag=drag, added_mass=added_mass, buoyancy=self.buoyancy, gravity=self.gravity)
+
+
+@dataclass(frozen=True)
+class EnvironmentJacobians:
+    """The environment torque ``τ_env`` of :meth:`Leg.environment` and its derivatives, for control.
+
+    Shapes: ``value`` like ``q``, ``(n_joints,)`` or ``(n_samples, n_joints)``; the matrices
+    ``(n_joints, n_joints)`` or ``(n_samples, n_joints, n_joints)``, entry ``[..., i, j]`` being
+    ``∂τ_i/∂q_j`` (``d_q`` [N·m/rad]), ``∂τ_i/∂q̇_j`` (``d_qd`` [N·m·s/rad]) or ``M_A[i, j]``
+    [kg·m²]. Sign: environment torques, as everywhere in uwml. The added-mass torque is
+    ``−M_A(q) q̈`` plus terms in ``q̇``, so ``∂τ_env/∂q̈ = −added_mass_matrix``, and a simulator adds
+    ``added_mass_matrix`` (symmetric, positive semi-definite) to the rigid-body inertia.
+    """
+
+    value: FloatArray
+    d_q: FloatArray
+    d_qd: FloatArray
+    added_mass_matrix: FloatArray
 
 
 def _real_array(value: ArrayLike, name: str, what: str) -> FloatArray:
@@ -298,6 +319,25 @@ class Leg:
         cd, cm, water
             As for :meth:`hydro` (``water`` is the fluid the links move in).
         """
+        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
+        columns = self._chain.environment(*arguments)
+        return EnvironmentTorques(*(c.reshape(shape) for c in columns))
+
+    def _environment_arguments(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike,
+        temperature_c: ArrayLike,
+        losses: JointLosses | Sequence[JointLosses | None] | None,
+        cd: ArrayLike,
+        cm: ArrayLike,
+        water: Water,
+        sea_density: float,
+    ) -> tuple[tuple[int, ...], _EnvironmentArguments]:
+        """The arguments of :meth:`environment` (and :meth:`jacobians`), validated: the shape of ``q``
+        and the native call's arguments ``(q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature)``."""
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
         cd_table = _coefficients(cd, "cd", self.n_joints)
@@ -317,8 +357,41 @@ class Leg:
         if np.any(depth_m < 0):
             raise ValueError("depth must be >= 0 (metres below the surface)")
         pressure = np.ascontiguousarray(sea_density * water.gravity * depth_m)
-        columns = self._chain.environment(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
-        return EnvironmentTorques(*(c.reshape(shape) for c in columns))
+        return shape, (q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
+
+    def jacobians(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike = 2.2,
+        cm: ArrayLike = 0.5,
+        water: Water = FRESH_WATER,
+        sea_density: float = SEA_WATER_DENSITY,
+    ) -> EnvironmentJacobians:
+        """The environment torque of :meth:`environment` and its derivatives, for control.
+
+        Arguments exactly as for :meth:`environment`. Returns an :class:`EnvironmentJacobians`:
+        ``value`` (``τ_env``, equal to ``environment(...).total``), ``d_q = ∂τ_env/∂q``,
+        ``d_qd = ∂τ_env/∂q̇`` and ``added_mass_matrix = M_A(q)``, with
+        ``added_mass(q, 0, q̈) = −M_A(q) q̈``. The derivatives are exact (forward-mode dual
+        numbers through the same Rust code, not finite differences); at a joint speed of exactly
+        zero with a hard sign (``epsilon=0``) the losses jump and their slope is not meaningful.
+
+        The whole batch is evaluated in one call into Rust, with the GIL released.
+        """
+        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
+        value, d_q, d_qd, added_mass_matrix = self._chain.jacobians(*arguments)
+        matrix = shape + shape[-1:]
+        return EnvironmentJacobians(
+            value=value.reshape(shape),
+            d_q=d_q.reshape(matrix),
+            d_qd=d_qd.reshape(matrix),
+            added_mass_matrix=added_mass_matrix.reshape(matrix),
+        )
 
     def hydro_regressors(
         self,

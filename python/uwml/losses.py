@@ -18,7 +18,8 @@ takes one says ``mpa``), temperatures in °C, torques in N·m, currents in A.
 The defaults are **illustrative**: the paper publishes laws, not parameters. They are chosen so
 that the paper's laws hold (the oil loss is the more speed-sensitive, the seal loss the more
 pressure-sensitive, breakaway exceeds running friction, both grow with pressure) and the total
-loss current at 10 r/min and 10 MPa is 2.85 A, 27.4 % of the 10.4 A rated current.
+loss current at 10 r/min and 10 MPa is 2.85 A, 27.4 % of the 10.4 A rated current. The oil's
+speed exponent is 1: laminar Couette flow in the gap (MODEL.md section 7).
 """
 
 from __future__ import annotations
@@ -65,7 +66,8 @@ class OilDrag:
     k_oil
         Torque at ``|ω_m| = 1 rad/s`` at the reference pressure and temperature [N·m·(rad/s)^−n].
     exponent
-        Speed exponent n, 1 (laminar Couette flow in the gap) to 2 (Taylor vortices).
+        Speed exponent n in [1, 2]: 1 for laminar Couette flow in the gap (the default), 1.5 with
+        Taylor vortices (MODEL.md section 7); 1, 1.5 and 2 cost no power function.
     pressure_sensitivity_per_mpa
         a_p [1/MPa]: the Barus pressure-viscosity coefficient α times 1 (laminar) or 0.5 (vortex).
     temperature_sensitivity_per_k
@@ -74,8 +76,8 @@ class OilDrag:
         Where ``k_oil`` was measured.
     """
 
-    k_oil: float = 1.1933e-3
-    exponent: float = 1.2
+    k_oil: float = 3.3234e-3
+    exponent: float = 1.0
     pressure_sensitivity_per_mpa: float = 0.02
     temperature_sensitivity_per_k: float = 0.06
     reference_pressure_mpa: float = 0.0

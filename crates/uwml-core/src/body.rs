@@ -440,3 +440,64 @@ pub(crate) fn body_states<T: RealField + Copy, const N: usize>(
     }
     states
 }
+
+impl<T: RealField + Copy> Body<T> {
+    /// Every number mapped by `f` (see `Chain::map_scalars`); the structure (which optional
+    /// parts are present, aligned or general segment frames) is kept.
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Body<U> {
+        let (sin, cos) = self.angle_offset;
+        Body {
+            turn: self.turn.map(|m| m.map(f)),
+            angle_offset: (f(sin), f(cos)),
+            origin: self.origin.map(|o| o.map_scalars(f)),
+            unit_turn: self.unit_turn.map_scalars(f),
+            volume_moment: self.volume_moment.map(f),
+            mass_moment: self.mass_moment.map(f),
+            segment: self.segment.map(|s| s.map_scalars(f)),
+        }
+    }
+}
+
+impl<T: RealField + Copy> Origin<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Origin<U> {
+        Origin {
+            position: self.position.map(f),
+            carried_volume_moment: self.carried_volume_moment.map(f),
+            carried_mass_moment: self.carried_mass_moment.map(f),
+        }
+    }
+}
+
+impl<T: RealField + Copy> UnitTurn<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> UnitTurn<U> {
+        UnitTurn { axis: self.axis.map(f), tangential: self.tangential.map(f), centripetal: self.centripetal.map(f) }
+    }
+}
+
+impl<T: RealField + Copy> BodySegment<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> BodySegment<U> {
+        BodySegment {
+            start: self.start.map(|s| s.map(f)),
+            frame: self.frame.map_scalars(f),
+            sign: f(self.sign),
+            length: f(self.length),
+            widths: self.widths.map(f),
+            area: f(self.area),
+        }
+    }
+}
+
+impl<T: RealField + Copy> SegmentFrame<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentFrame<U> {
+        match self {
+            Self::Aligned { swapped } => SegmentFrame::Aligned { swapped: *swapped },
+            Self::General { axis, normals } => {
+                SegmentFrame::General { axis: axis.map(f), normals: normals.map(|n| n.map(f)) }
+            }
+        }
+    }
+}

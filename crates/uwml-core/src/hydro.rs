@@ -27,6 +27,7 @@ pub struct HydroTorques<T: RealField + Copy, const N: usize> {
 impl<T: RealField + Copy, const N: usize> HydroTorques<T, N> {
     /// `drag + added_mass + buoyancy`: the paper's `τ_w`.
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn total(&self) -> SVector<T, N> {
         self.drag + self.added_mass + self.buoyancy
     }
@@ -65,6 +66,7 @@ fn sum_columns<T: RealField + Copy, const N: usize>(columns: &[[SVector<T, N>; 2
 impl<T: RealField + Copy, const N: usize> HydroRegressors<T, N> {
     /// The torques for the given coefficients.
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn apply(&self, coefficients: &Coefficients<T, N>) -> HydroTorques<T, N> {
         HydroTorques {
             drag: contract(&self.drag, coefficients.cd()),
@@ -76,12 +78,14 @@ impl<T: RealField + Copy, const N: usize> HydroRegressors<T, N> {
 
     /// The paper's drag regressor `R_d = −α`: drag torques with Cd = 1 everywhere.
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn drag_uniform(&self) -> SVector<T, N> {
         sum_columns(&self.drag)
     }
 
     /// The paper's added-mass regressor `R_m = −β`: added-mass torques with Cm = 1 everywhere.
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn added_mass_uniform(&self) -> SVector<T, N> {
         sum_columns(&self.added_mass)
     }
@@ -303,6 +307,7 @@ fn unit_scales<T: RealField + Copy>(segment: &BodySegment<T>, water: &Water<T>) 
 ///
 /// Never fails and never panics; non-finite states give NaN.
 #[must_use]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn hydro_regressors<T: RealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
@@ -344,6 +349,7 @@ pub fn hydro_regressors<T: RealField + Copy, const N: usize>(
 /// carried down the chain from the last link to the first, as in recursive Newton-Euler.
 /// Never fails and never panics; non-finite states give NaN.
 #[must_use]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn hydro_torques<T: RealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,

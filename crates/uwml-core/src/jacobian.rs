@@ -13,6 +13,7 @@ use crate::model::Chain;
 /// the angular parts), with `z_j` and `o_j` joint `j`'s world axis and origin. Joints after
 /// `link` do not move the point: their columns are zero. Non-finite angles give non-finite
 /// results; nothing fails.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn point_jacobian<T: RealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     q: &SVector<T, N>,

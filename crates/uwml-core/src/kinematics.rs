@@ -41,12 +41,14 @@ pub struct LinkMotion<T: RealField + Copy> {
 impl<T: RealField + Copy> LinkMotion<T> {
     /// World position of a point given in the link frame.
     #[inline]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn point(&self, local: &Vector3<T>) -> Vector3<T> {
         self.origin + self.rotation * local
     }
 
     /// Velocity and acceleration of the material point at world offset `r` from the origin.
     #[inline]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
         let w = &self.angular_velocity;
         let velocity = self.velocity + w.cross(r);
@@ -113,6 +115,7 @@ impl<T: RealField + Copy> LinkMotion<T> {
 /// World pose, velocity and acceleration of every link, by the usual forward recursion.
 ///
 /// Joints with non-finite states give non-finite motions; nothing fails.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn link_motions<T: RealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     q: &SVector<T, N>,

@@ -2,6 +2,8 @@
 #![no_std]
 
 mod body;
+pub mod derivatives;
+pub mod dual;
 pub mod error;
 pub mod hydro;
 pub mod jacobian;
@@ -10,6 +12,8 @@ pub mod losses;
 pub mod model;
 pub mod strip;
 
+pub use derivatives::{EnvironmentJacobians, environment_jacobians, hydro_jacobians};
+pub use dual::Dual;
 pub use error::{ModelError, Problem};
 pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
 pub use jacobian::point_jacobian;

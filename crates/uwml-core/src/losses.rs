@@ -22,6 +22,7 @@ use crate::model::{Chain, Coefficients, Water, check_at_least, check_finite, che
 /// Evaluated as `(x/m) / sqrt((x/m)² + (ε/m)²)` with `m = max(|x|, ε)`, so that neither square
 /// overflows or underflows whatever the magnitudes.
 #[inline]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn smooth_sign<T: RealField + Copy>(x: T, epsilon: T) -> T {
     let m = x.abs().max(epsilon);
     // m == 0 only for x = 0 with ε = 0; NaN falls through to x and propagates.
@@ -94,6 +95,7 @@ impl<T: RealField + Copy> OilDrag<T> {
     /// `k · exp(a_p (p − p_ref) − a_T (θ − θ_ref))`: the torque at `|ω_m| = 1 rad/s` at pressure
     /// `p` [Pa] and temperature `θ` [°C].
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn scale(&self, pressure: T, temperature: T) -> T {
         let exponent = self.pressure_sensitivity * (pressure - self.reference_pressure)
             - self.temperature_sensitivity * (temperature - self.reference_temperature);
@@ -147,6 +149,7 @@ impl<T: RealField + Copy> Seal<T> {
 
     /// `(C(p), S(p), D(p))` at pressure `p` [Pa].
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn levels(&self, pressure: T) -> (T, T, T) {
         let line = |[a, b]: [T; 2]| a + b * pressure;
         (line(self.c), line(self.s), line(self.d))
@@ -254,6 +257,7 @@ impl<T: RealField + Copy> JointLosses<T> {
 
     /// Fixes the ambient pressure `p` [Pa] and oil temperature `θ` [°C].
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn at(&self, pressure: T, temperature: T) -> LossState<T> {
         let zero = T::zero();
         let (oil_scale, exponent) = match &self.oil {
@@ -287,13 +291,19 @@ impl<T: RealField + Copy> LossState<T> {
     /// Oil and seal losses at output speed `speed` [rad/s].
     #[must_use]
     #[inline]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn evaluate(&self, speed: T) -> JointLoss<T> {
         // sgn_ε(ω_m) with ε_m = N ε equals sgn_ε(ω): one square root serves both.
         let sign = smooth_sign(speed, self.epsilon);
         let magnitude = speed.abs();
         let motor_speed = self.ratio * magnitude;
+        // The flow regimes' exponents (laminar 1, Taylor vortices 1.5) and 2 need no power
+        // function: one square root at most.
         let power = if self.exponent == T::one() {
             motor_speed
+        } else if self.exponent == constant(1.5) {
+            // At rest exactly 0 (and so is its slope, which the square root's would not give).
+            if motor_speed > T::zero() { motor_speed * motor_speed.sqrt() } else { T::zero() }
         } else if self.exponent == constant(2.0) {
             motor_speed * motor_speed
         } else {
@@ -315,14 +325,15 @@ impl<T: RealField + Copy> LossState<T> {
 const MPA: f64 = 1e6;
 
 impl<T: RealField + Copy> Default for OilDrag<T> {
-    /// Illustrative (the paper publishes laws, not parameters): k = 1.1933e-3 N·m·(rad/s)^−1.2,
-    /// n = 1.2, a_p = 0.02 /MPa, a_T = 0.06 /K, at 0 MPa and 20 °C. With the default seal and
-    /// drive: 2.85 A of loss current at 10 r/min and 10 MPa (27.4 % of 10.4 A).
+    /// Illustrative (the paper publishes laws, not parameters): k = 3.3234e-3 N·m·s/rad,
+    /// n = 1 (laminar Couette flow in the gap, which MODEL.md finds for this motor class in
+    /// nearly all cases), a_p = 0.02 /MPa, a_T = 0.06 /K, at 0 MPa and 20 °C. With the default
+    /// seal and drive: 2.85 A of loss current at 10 r/min and 10 MPa (27.4 % of 10.4 A).
     fn default() -> Self {
         let c = constant::<T>;
         Self {
-            k_oil: c(1.1933e-3),
-            exponent: c(1.2),
+            k_oil: c(3.3234e-3),
+            exponent: T::one(),
             pressure_sensitivity: c(0.02 / MPA),
             temperature_sensitivity: c(0.06),
             reference_pressure: T::zero(),
@@ -369,6 +380,7 @@ impl<T: RealField + Copy> Default for JointLosses<T> {
 /// Gauge pressure [Pa] at `depth` [m] below the surface: `ρ g z` (no compressibility; within
 /// the bound documented in docs/losses.md of TEOS-10).
 #[must_use]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity: T) -> T {
     sea_density * gravity * depth
 }
@@ -392,6 +404,7 @@ pub struct EnvironmentTorques<T: RealField + Copy, const N: usize> {
 impl<T: RealField + Copy, const N: usize> EnvironmentTorques<T, N> {
     /// `τ_env = τ_hydro + τ_visc + τ_seal`.
     #[must_use]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
     pub fn total(&self) -> SVector<T, N> {
         self.hydro.total() + self.visc + self.seal
     }
@@ -402,6 +415,7 @@ impl<T: RealField + Copy, const N: usize> EnvironmentTorques<T, N> {
 ///
 /// Never fails and never panics.
 #[must_use]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn environment_torques<T: RealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
@@ -426,4 +440,23 @@ pub fn environment_torques<T: RealField + Copy, const N: usize>(
         }
     }
     out
+}
+
+impl<T: RealField + Copy> LossState<T> {
+    /// The same state over another scalar type, every number mapped by `f`, which must keep
+    /// values (as `Dual::constant` does).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U) -> LossState<U> {
+        LossState {
+            oil_scale: f(self.oil_scale),
+            exponent: f(self.exponent),
+            seal_running: f(self.seal_running),
+            seal_breakaway_excess: f(self.seal_breakaway_excess),
+            seal_viscous: f(self.seal_viscous),
+            inverse_stribeck_speed: f(self.inverse_stribeck_speed),
+            ratio: f(self.ratio),
+            output_per_motor_torque: f(self.output_per_motor_torque),
+            inverse_torque_constant: f(self.inverse_torque_constant),
+            epsilon: f(self.epsilon),
+        }
+    }
 }

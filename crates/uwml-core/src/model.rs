@@ -387,3 +387,64 @@ impl<T: RealField + Copy, const N: usize> Default for Coefficients<T, N> {
         Self { cd: [[constant(2.2); 2]; N], cm: [[constant(0.5); 2]; N] }
     }
 }
+
+impl<T: RealField + Copy> Joint<T> {
+    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Joint<U> {
+        Joint { origin: self.origin.map(f), axis: self.axis.map(f) }
+    }
+}
+
+impl<T: RealField + Copy> Segment<T> {
+    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Segment<U> {
+        Segment {
+            start: self.start.map(f),
+            axis: self.axis.map(f),
+            length: f(self.length),
+            normals: self.normals.map(|n| n.map(f)),
+            widths: self.widths.map(f),
+            area: f(self.area),
+        }
+    }
+}
+
+impl<T: RealField + Copy> Link<T> {
+    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Link<U> {
+        Link {
+            mass: f(self.mass),
+            com: self.com.map(f),
+            volume: f(self.volume),
+            cob: self.cob.map(f),
+            segment: self.segment.map(|s| s.map_scalars(f)),
+        }
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Chain<T, N> {
+    /// The same chain over another scalar type, every number (including the precomputed body
+    /// frames) mapped by `f`, which must keep values (as `Dual::constant` does): nothing is
+    /// validated or derived again, so the mapped chain takes the same branches as this one.
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Chain<U, N> {
+        Chain {
+            joints: self.joints.map(|j| j.map_scalars(f)),
+            links: self.links.map(|l| l.map_scalars(f)),
+            bodies: self.bodies.map(|b| b.map_scalars(f)),
+        }
+    }
+}
+
+impl<T: RealField + Copy> Water<T> {
+    /// The same water over another scalar type (see [`Chain::map_scalars`]).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U) -> Water<U> {
+        Water { density: f(self.density), gravity: f(self.gravity) }
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
+    /// The same coefficients over another scalar type (see [`Chain::map_scalars`]).
+    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Coefficients<U, N> {
+        Coefficients { cd: self.cd.map(|c| c.map(f)), cm: self.cm.map(|c| c.map(f)) }
+    }
+}

@@ -37,6 +37,7 @@ fn sign_change<T: RealField + Copy>(v0: T, v1: T, length: T) -> T {
 /// Gauss-Legendre on both sides of the [sign change](sign_change), where the second side is
 /// empty if there is none.
 #[inline]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn drag_moments<T: RealField + Copy>(v0: T, v1: T, length: T) -> (T, T) {
     let root = sign_change(v0, v1, length);
     let (a0, a1) = gauss_legendre_2(v0, v1, T::zero(), root);
@@ -63,6 +64,7 @@ pub(crate) fn drag_moments_2<T: RealField + Copy>([v0, w0]: [T; 2], [v1, w1]: [T
 
 /// `(∫₀ᴸ (a0 + a1 s) ds, ∫₀ᴸ s (a0 + a1 s) ds)` in closed form.
 #[inline]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn added_mass_moments<T: RealField + Copy>(a0: T, a1: T, length: T) -> (T, T) {
     let l2 = length * length * constant::<T>(0.5);
     let l3 = length * length * length * constant::<T>(1.0 / 3.0);

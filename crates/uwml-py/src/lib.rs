@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
 use uwml_core::{
     Chain, Coefficients, Drive, Joint, JointLosses, Link, LossState, ModelError, OilDrag, Seal, Segment, Water,
-    environment_torques, hydro_regressors, hydro_torques, point_jacobian,
+    environment_jacobians, environment_torques, hydro_regressors, hydro_torques, point_jacobian,
 };
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
@@ -156,8 +156,12 @@ struct NonFinite {
 impl From<NonFinite> for PyErr {
     fn from(e: NonFinite) -> Self {
         PyValueError::new_err(format!(
-            "{}[{}, {}] is {}: joint states must be finite",
-            e.argument, e.sample, e.joint, e.value
+            "{}[{}, {}] is {}: {} must be finite",
+            e.argument,
+            e.sample,
+            e.joint,
+            e.value,
+            if e.argument.starts_with('q') { "joint states" } else { "every value" }
         ))
     }
 }
@@ -329,6 +333,53 @@ fn environment_batch<const N: usize>(
     Ok(out)
 }
 
+/// Environment torques and their derivatives over a batch: `value` (`n_samples × N`), and
+/// `d_q`, `d_qd` and the added-mass matrix (each `n_samples × N × N`, row-major: `[sample][i][j]`).
+/// Pressure and temperature as for [`environment_batch`].
+fn environment_jacobian_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    coefficients: &Coefficients<f64, N>,
+    losses: &[Option<JointLosses<f64>>],
+    states: &States<'_>,
+    conditions: (&[f64], &[f64]),
+) -> Result<[Vec<f64>; 4], NonFinite> {
+    let n_samples = conditions.0.len();
+    let mut out = [
+        Vec::with_capacity(n_samples * N),
+        Vec::with_capacity(n_samples * N * N),
+        Vec::with_capacity(n_samples * N * N),
+        Vec::with_capacity(n_samples * N * N),
+    ];
+    let mut joint_losses = [None; N];
+    for (slot, l) in joint_losses.iter_mut().zip(losses) {
+        *slot = *l;
+    }
+    let mut current_conditions = (f64::NAN, f64::NAN);
+    let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
+    states.check_finite::<N>()?;
+    for (sample, ((q, qd, qdd), (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate()
+    {
+        for (argument, value) in [("pressure", p), ("temperature", t)] {
+            if !value.is_finite() {
+                return Err(NonFinite { argument, sample, joint: 0, value });
+            }
+        }
+        if current_conditions != (p, t) {
+            current_conditions = (p, t);
+            loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));
+        }
+        let j = environment_jacobians(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
+        let [value, d_q, d_qd, added_mass_matrix] = &mut out;
+        value.extend(j.value.iter());
+        // The transposes' column-major order is the matrices' row-major order.
+        for (column, matrix) in [(d_q, j.d_q), (d_qd, j.d_qd), (added_mass_matrix, j.added_mass_matrix)] {
+            column.extend(matrix.transpose().iter());
+        }
+    }
+    Ok(out)
+}
+
 /// Regressor arrays of a batch: buoyancy and gravity `n × N`; drag and added mass either
 /// `n × N` (summed over links and directions) or `n × N × N × 2` (`[sample][joint][link][k]`).
 fn regressor_batch<const N: usize>(
@@ -389,6 +440,109 @@ fn jacobian_batch<const N: usize>(
         }
     }
     Ok((positions, jacobians))
+}
+
+/// How the identification design groups the coefficients (`uwml.fit.hydro_coefficients`'s `per`).
+#[derive(Clone, Copy, PartialEq)]
+enum Per {
+    Leg,
+    Link,
+    Direction,
+}
+
+impl Per {
+    fn parse(per: &str) -> PyResult<Self> {
+        match per {
+            "leg" => Ok(Self::Leg),
+            "link" => Ok(Self::Link),
+            "direction" => Ok(Self::Direction),
+            _ => Err(PyValueError::new_err(format!("per must be 'leg', 'link' or 'direction', got {per:?}"))),
+        }
+    }
+
+    /// Columns of the design of an N-joint chain: Cd then Cm, one each, per link, or per link
+    /// and direction.
+    const fn columns(self, n: usize) -> usize {
+        match self {
+            Self::Leg => 2,
+            Self::Link => 2 * n,
+            Self::Direction => 4 * n,
+        }
+    }
+}
+
+/// The identification problem of the selected joints, assembled in one pass over the batch:
+/// `J × n × (P + 1)`, joint-major so that each joint's block is contiguous; a row holds the
+/// regressors of the torque on joint `joints[j]` (Cd columns then Cm columns, grouped as `per`
+/// says) and, last, the target `y = −Δτ − τ_buoy` (MODEL.md section 4), where `delta` is the
+/// measured `τ_water − τ_land`, `n × N`.
+fn design_batch<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    states: &States<'_>,
+    delta: &[f64],
+    joints: &[usize],
+    per: Per,
+) -> Result<Vec<f64>, NonFinite> {
+    let n_samples = delta.len() / N;
+    let width = per.columns(N) + 1;
+    let mut design = vec![0.0; joints.len() * n_samples * width];
+    states.check_finite::<N>()?;
+    if let Some(index) = delta.iter().position(|v| !v.is_finite()) {
+        let value = delta.get(index).copied().unwrap_or(f64::NAN);
+        return Err(NonFinite { argument: "delta", sample: index / N, joint: index % N, value });
+    }
+    // Per selected joint: its rows, consumed sample by sample.
+    let mut blocks: Vec<_> = design
+        .chunks_exact_mut(n_samples * width)
+        .zip(joints)
+        .map(|(rows, &joint)| (rows.chunks_exact_mut(width), joint))
+        .collect();
+    // One Cd and one Cm: the torques at unit coefficients are the two columns, at a third of
+    // the cost of the regressors of every link and direction.
+    let unit = Coefficients::uniform(1.0, 1.0).ok().filter(|_| per == Per::Leg);
+    for ((q, qd, qdd), delta) in states.each::<N>().zip(delta.chunks_exact(N)) {
+        if let Some(unit) = &unit {
+            let tau = hydro_torques(chain, water, unit, &q, &qd, &qdd);
+            for (rows, joint) in &mut blocks {
+                let on_joint = |column: &SVector<f64, N>| column.get(*joint).copied().unwrap_or(f64::NAN);
+                if let Some([drag, added_mass, target]) =
+                    rows.next().and_then(|row| <&mut [f64; 3]>::try_from(row).ok())
+                {
+                    (*drag, *added_mass) = (on_joint(&tau.drag), on_joint(&tau.added_mass));
+                    *target = -delta.get(*joint).copied().unwrap_or(f64::NAN) - on_joint(&tau.buoyancy);
+                }
+            }
+            continue;
+        }
+        let r = hydro_regressors(chain, water, &q, &qd, &qdd);
+        for (rows, joint) in &mut blocks {
+            let on_joint = |column: &SVector<f64, N>| column.get(*joint).copied().unwrap_or(f64::NAN);
+            let Some((target, row)) = rows.next().and_then(|row| row.split_last_mut()) else { continue };
+            *target = -delta.get(*joint).copied().unwrap_or(f64::NAN) - on_joint(&r.buoyancy);
+            let (cd, cm) = row.split_at_mut(row.len() / 2);
+            for (half, table) in [(cd, &r.drag), (cm, &r.added_mass)] {
+                match per {
+                    Per::Leg => {
+                        for value in half.iter_mut() {
+                            *value = table.iter().flatten().map(on_joint).sum();
+                        }
+                    }
+                    Per::Link => {
+                        for (value, [n0, n1]) in half.iter_mut().zip(table.iter()) {
+                            *value = on_joint(n0) + on_joint(n1);
+                        }
+                    }
+                    Per::Direction => {
+                        for (value, column) in half.iter_mut().zip(table.iter().flatten()) {
+                            *value = on_joint(column);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(design)
 }
 
 fn to_numpy<'py, D: Dimension>(
@@ -596,6 +750,46 @@ impl PyChain {
         columns.into_iter().map(|v| to_numpy(py, v, (n_samples, n))).collect()
     }
 
+    /// Environment torques and their derivatives: `(value (n_samples, N), d_q (n_samples, N, N),
+    /// d_qd (n_samples, N, N), added_mass_matrix (n_samples, N, N))`, entry `[s, i, j]` of a
+    /// matrix being `∂τ_i/∂q_j` (or `∂τ_i/∂q̇_j`, or `M_A[i, j]`); arguments as for `environment`.
+    #[allow(clippy::too_many_arguments)]
+    fn jacobians<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        cd: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        losses: PyReadonlyArray2<'py, f64>,
+        pressure: PyReadonlyArray1<'py, f64>,
+        temperature: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Vec<Bound<'py, PyAny>>> {
+        let BatchInputs { n, n_samples, water, states, cd, cm } =
+            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
+        let losses = parse_losses(&losses, n)?;
+        let conditions =
+            (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
+        let chain = self.chain;
+        let [value, d_q, d_qd, added_mass_matrix] = py
+            .detach(|| -> Result<[Vec<f64>; 4], PyErrSend> {
+                dispatch!(&chain, c => {
+                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                    environment_jacobian_batch(c, &water, &coefficients, &losses, &states, conditions)
+                        .map_err(PyErrSend::State)
+                })
+            })
+            .map_err(PyErr::from)?;
+        let mut out = vec![to_numpy(py, value, (n_samples, n))?.into_any()];
+        for matrices in [d_q, d_qd, added_mass_matrix] {
+            out.push(to_numpy(py, matrices, (n_samples, n, n))?.into_any());
+        }
+        Ok(out)
+    }
+
     /// Regressors: `(buoyancy, gravity, drag, added_mass)`; drag and added mass are
     /// `(n_samples, N)` at unit coefficients, or `(n_samples, N, N, 2)` per link and direction.
     #[allow(clippy::too_many_arguments)]
@@ -628,6 +822,44 @@ impl PyChain {
             });
         }
         Ok(out)
+    }
+
+    /// The identification problem of the joints `joints` in one pass: `(len(joints), n_samples,
+    /// P + 1)`, each row the regressors of one joint's torque (Cd columns then Cm columns;
+    /// `per`: "leg" P = 2, "link" P = 2N, "direction" P = 4N, link-major then direction) and,
+    /// last, the target `−delta − buoyancy`; `delta` `(n_samples, N)` is `τ_water − τ_land`.
+    #[allow(clippy::too_many_arguments)]
+    fn hydro_design<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        delta: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        joints: Vec<usize>,
+        per: &str,
+    ) -> PyResult<Bound<'py, PyArray<f64, numpy::Ix3>>> {
+        let n = self.n_joints();
+        let per = Per::parse(per)?;
+        if let Some(bad) = joints.iter().find(|&&j| j >= n) {
+            return Err(PyValueError::new_err(format!("joints must be indices in 0..{}, got {bad}", n - 1)));
+        }
+        let n_samples = self.check_states(&q, &qd, &qdd)?;
+        if delta.shape() != q.shape() {
+            return Err(PyValueError::new_err(format!(
+                "delta must have shape (n_samples, {n}) like q, got {:?} (q: {:?})",
+                delta.shape(),
+                q.shape()
+            )));
+        }
+        let water = water(density, gravity)?;
+        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
+        let delta = contiguous(&delta, "delta")?;
+        let chain = self.chain;
+        let design = py.detach(|| dispatch!(&chain, c => design_batch(c, &water, &states, delta, &joints, per)))?;
+        to_numpy(py, design, (joints.len(), n_samples, per.columns(n) + 1))
     }
     /// World positions `(n_samples, 3)` and geometric Jacobians `(n_samples, 6, N)` (rows 0-2
     /// linear, 3-5 angular; zero columns after `link`) of `point`, given in link `link`'s frame.
