@@ -1,0 +1,211 @@
+//! Calls every public evaluation function of uwml-core, for `f32` and `f64` and for chains of 1,
+//! 3 (the paper's leg) and 6 joints, on inputs hidden from the optimizer by `black_box`, and
+//! counts the results that are not what they should be (finite, or NaN for a NaN state).
+//!
+//! Shared by the no_std binary (src/main.rs: the link proof) and the hosted one
+//! (src/bin/no_panic_proof.rs: the no-panic proof), so both prove the same instantiations.
+
+use core::hint::black_box;
+
+use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
+use uwml_core::strip::{added_mass_moments, drag_moments};
+use uwml_core::{
+    Chain, Coefficients, Joint, JointLosses, Link, LossState, OilDrag, Segment, Water, environment_jacobians,
+    environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, point_jacobian,
+    pressure_at_depth, smooth_sign,
+};
+
+/// Counts unexpected results.
+struct Tally<T> {
+    bad: u32,
+    _real: core::marker::PhantomData<T>,
+}
+
+impl<T: RealField + Copy> Tally<T> {
+    fn finite(&mut self, x: T) {
+        if !black_box(x).is_finite() {
+            self.bad += 1;
+        }
+    }
+
+    fn all_finite<'a>(&mut self, xs: impl IntoIterator<Item = &'a T>)
+    where
+        T: 'a,
+    {
+        for &x in xs {
+            self.finite(x);
+        }
+    }
+
+    fn expect(&mut self, ok: bool) {
+        if !black_box(ok) {
+            self.bad += 1;
+        }
+    }
+}
+
+fn c<T: RealField + Copy>(x: f64) -> T {
+    convert(black_box(x))
+}
+
+fn vector<T: RealField + Copy, const N: usize>(base: f64, step: f64) -> SVector<T, N> {
+    SVector::from_fn(|i, _| c(base + step * i as f64))
+}
+
+/// A chain of `N` joints whose axes turn between z, −y and x, with segments along and across
+/// them (aligned and general body frames) and every third link without one.
+fn chain<T: RealField + Copy, const N: usize>() -> Option<Chain<T, N>> {
+    let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
+    let joints = core::array::from_fn(|i| Joint {
+        origin: v(0.1 * i as f64, 0.02, -0.03 * i as f64),
+        axis: match i % 3 {
+            0 => v(0.0, 0.0, 1.0),
+            1 => v(0.0, -1.0, 0.0),
+            _ => v(1.0, 0.0, 0.0),
+        },
+    });
+    let links = core::array::from_fn(|i| {
+        let tilt = 0.25 * i as f64;
+        let (s, co) = (sin_series(tilt), cos_series(tilt));
+        let mass = 2.0 + i as f64;
+        Link {
+            mass: c(mass),
+            com: v(0.2, 0.01 * i as f64, -0.05),
+            volume: c(mass / 2700.0),
+            cob: v(0.2, 0.0, -0.04),
+            segment: (i % 3 != 2).then(|| Segment {
+                start: v(0.0, 0.0, 0.01 * i as f64),
+                axis: v(co, 0.0, s),
+                length: c(0.4 + 0.1 * i as f64),
+                normals: [v(0.0, 1.0, 0.0), v(-s, 0.0, co)],
+                widths: [c(0.1), c(0.2)],
+                area: c(0.02),
+            }),
+        }
+    });
+    Chain::new(black_box(joints), black_box(links)).ok()
+}
+
+/// `sin` by its Taylor series, for the small test angles here: the check crate itself needs no
+/// float library.
+fn sin_series(x: f64) -> f64 {
+    let x2 = x * x;
+    x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))))
+}
+
+fn cos_series(x: f64) -> f64 {
+    let x2 = x * x;
+    1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))))
+}
+
+/// Per-joint losses: none, the default, and oil with exponents 1.2 (`powf`), 1.5 (`sqrt`) and 2, so
+/// that every branch of `LossState::evaluate` is instantiated and, for 6 joints, taken.
+fn losses<T: RealField + Copy, const N: usize>(pressure: T, temperature: T) -> [Option<LossState<T>>; N] {
+    let oil = |n: f64| OilDrag::new(c(1e-3), c(n), c(2e-8), c(0.06), c(0.0), c(20.0)).ok();
+    core::array::from_fn(|i| {
+        let mut joint = JointLosses::<T>::default();
+        match i % 6 {
+            0 => return None,
+            1 | 5 => {}
+            2 => joint.oil = oil(1.2),
+            3 => joint.oil = oil(1.5),
+            _ => joint.oil = oil(2.0),
+        }
+        Some(joint.at(pressure, temperature))
+    })
+}
+
+/// Every evaluation function at one joint state of one chain.
+fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mut Tally<T>) {
+    let water = black_box(Water::<T>::default());
+    let coefficients = black_box(Coefficients::<T, N>::default());
+    let (q, qd, qdd) = (black_box(vector(0.3, -0.2)), black_box(vector(0.8, -0.45)), black_box(vector(1.0, -0.7)));
+
+    let tau = hydro_torques(chain, &water, &coefficients, &q, &qd, &qdd);
+    tally.all_finite(tau.total().iter().chain(tau.gravity.iter()));
+
+    let regressors = hydro_regressors(chain, &water, &q, &qd, &qdd);
+    let applied = regressors.apply(&coefficients);
+    tally.all_finite(applied.total().iter().chain(applied.gravity.iter()));
+    tally.all_finite(regressors.drag_uniform().iter().chain(regressors.added_mass_uniform().iter()));
+
+    let pressure = pressure_at_depth(c(1000.0), c(1025.0), c(9.81));
+    tally.finite(pressure);
+    let losses = black_box(losses::<T, N>(pressure, c(4.0)));
+    let env = environment_torques(chain, &water, &coefficients, &losses, &q, &qd, &qdd);
+    tally.all_finite(env.total().iter().chain(env.current.iter()));
+    for (state, &speed) in losses.iter().flatten().zip(qd.iter()) {
+        let loss = state.evaluate(speed);
+        tally.all_finite([loss.visc, loss.seal, loss.current].iter());
+    }
+
+    // Derivatives, by dual numbers through the same functions (instantiated at `Dual<T, N>`).
+    for jacobians in [
+        environment_jacobians(chain, &water, &coefficients, &losses, &q, &qd, &qdd),
+        hydro_jacobians(chain, &water, &coefficients, &q, &qd, &qdd),
+    ] {
+        let matrices = jacobians.d_q.iter().chain(jacobians.d_qd.iter()).chain(jacobians.added_mass_matrix.iter());
+        tally.all_finite(jacobians.value.iter().chain(matrices));
+    }
+    tally.expect(environment_jacobians(chain, &water, &coefficients, &losses, &q, &qd, &qdd).value == env.total());
+
+    // A NaN state gives non-finite (NaN) torques everywhere, not only where the NaN reaches.
+    let mut nan_q = q;
+    nan_q[0] = c(f64::NAN);
+    let nan = black_box(nan_q);
+    tally.expect(hydro_torques(chain, &water, &coefficients, &nan, &qd, &qdd).total().iter().all(|x| !x.is_finite()));
+    tally.expect(hydro_regressors(chain, &water, &nan, &qd, &qdd).buoyancy.iter().all(|x| !x.is_finite()));
+
+    let motions = link_motions(chain, &q, &qd, &qdd);
+    let point = black_box(Vector3::new(c(0.1), c(-0.05), c(0.2)));
+    for motion in &motions {
+        let (v, a) = motion.point_motion(&point);
+        tally.all_finite(motion.point(&point).iter().chain(v.iter()).chain(a.iter()));
+    }
+    match point_jacobian(chain, &q, black_box(N - 1), &point) {
+        Some((position, jacobian)) => tally.all_finite(position.iter().chain(jacobian.iter())),
+        None => tally.expect(false),
+    }
+    tally.expect(point_jacobian(chain, &q, black_box(N), &point).is_none());
+}
+
+/// The scalar functions, for one float type.
+fn scalars<T: RealField + Copy>(tally: &mut Tally<T>) {
+    for (x, epsilon) in [(0.3, 1e-3), (-2.0, 0.0), (0.0, 0.0), (1e-30, 1e-3)] {
+        tally.finite(smooth_sign(c::<T>(x), c(epsilon)));
+    }
+    // With and without a sign change of the normal speed along the segment.
+    for (v0, v1) in [(-1.0, 3.0), (0.5, 0.25), (0.0, 0.0)] {
+        let (a, b) = drag_moments(c::<T>(v0), c(v1), c(0.7));
+        let (m0, m1) = added_mass_moments(c::<T>(v0), c(v1), c(0.7));
+        tally.all_finite([a, b, m0, m1].iter());
+    }
+    let oil = OilDrag::<T>::default();
+    tally.finite(oil.scale(c(1e7), c(4.0)));
+    let (running, breakaway, viscous) = uwml_core::Seal::<T>::default().levels(c(1e7));
+    tally.all_finite([running, breakaway, viscous].iter());
+}
+
+fn for_type<T: RealField + Copy>() -> u32 {
+    let mut tally = Tally::<T> { bad: 0, _real: core::marker::PhantomData };
+    scalars(&mut tally);
+    match chain::<T, 1>() {
+        Some(chain) => evaluate(&black_box(chain), &mut tally),
+        None => tally.expect(false),
+    }
+    evaluate(&black_box(Chain::<T, 3>::paper()), &mut tally);
+    match chain::<T, 3>() {
+        Some(chain) => evaluate(&black_box(chain), &mut tally),
+        None => tally.expect(false),
+    }
+    match chain::<T, 6>() {
+        Some(chain) => evaluate(&black_box(chain), &mut tally),
+        None => tally.expect(false),
+    }
+    tally.bad
+}
+
+/// The number of unexpected results over all calls: 0 when everything is as it should be.
+pub fn exercise() -> u32 {
+    for_type::<f32>() + for_type::<f64>()
+}
