@@ -1,7 +1,8 @@
-"""Throughput of the batch call ``Leg.hydro`` against the numpy reference, on one thread.
+"""Throughput of the batch calls ``Leg.hydro`` and ``Leg.environment`` (with the default losses on
+all three joints) on one and on two threads, against the numpy reference.
 
-Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for both and
-their ratio, measured in this one run (best of 3 for the Rust path, 1 run of the reference).
+Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
+the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
 """
 
 import sys
@@ -12,6 +13,15 @@ import uwml
 from uwml import reference
 
 
+def best_of(runs: int, call) -> float:
+    best = np.inf
+    for _ in range(runs):
+        start = time.perf_counter()
+        call()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
 def main() -> None:
     n = int(float(sys.argv[1])) if len(sys.argv) > 1 else 1_000_000
     rng = np.random.default_rng(0)
@@ -19,27 +29,31 @@ def main() -> None:
     qd = rng.uniform(-3, 3, (n, 3))
     qdd = rng.uniform(-10, 10, (n, 3))
     leg = uwml.Leg.paper()
+    losses = uwml.JointLosses()
     leg.hydro(q[:10], qd[:10], qdd[:10])
 
-    best = np.inf
-    for _ in range(3):
-        start = time.perf_counter()
-        leg.hydro(q, qd, qdd)
-        best = min(best, time.perf_counter() - start)
-    start = time.perf_counter()
-    leg.hydro_regressors(q, qd, qdd)
-    regressors = time.perf_counter() - start
+    print(f"states: {n:,}")
+    timings = {}
+    for label, call in [
+        ("Leg.hydro, 1 thread", lambda: leg.hydro(q, qd, qdd)),
+        ("Leg.hydro, 2 threads", lambda: leg.hydro(q, qd, qdd, threads=2)),
+        ("Leg.environment (losses), 1 thread", lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses)),
+        (
+            "Leg.environment (losses), 2 threads",
+            lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses, threads=2),
+        ),
+        ("Leg.hydro_regressors, 1 thread", lambda: leg.hydro_regressors(q, qd, qdd)),
+    ]:
+        t = timings[label] = best_of(3, call)
+        print(f"uwml {label:38s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
 
     m = min(n, 200_000)
     start = time.perf_counter()
     reference.hydro(leg.joints, leg.links, q[:m], qd[:m], qdd[:m])
     numpy_time = (time.perf_counter() - start) * n / m
-
-    print(f"states: {n:,}")
-    print(f"uwml Leg.hydro (Rust, GIL released): {best:8.3f} s  {n / best / 1e6:7.2f} M states/s  {best / n * 1e9:7.1f} ns/state")
-    print(f"uwml Leg.hydro_regressors:           {regressors:8.3f} s  {n / regressors / 1e6:7.2f} M states/s")
-    print(f"uwml.reference.hydro (numpy):        {numpy_time:8.3f} s  {n / numpy_time / 1e6:7.2f} M states/s  (timed on {m:,} states)")
-    print(f"speed-up of the Rust path over the numpy reference: {numpy_time / best:.1f}x")
+    print(f"uwml.reference.hydro (numpy){'':15s} {numpy_time:7.3f} s  {n / numpy_time / 1e6:7.2f} M states/s  (timed on {m:,} states)")
+    one, two = timings["Leg.hydro, 1 thread"], timings["Leg.hydro, 2 threads"]
+    print(f"speed-up of Leg.hydro over the numpy reference: {numpy_time / one:.1f}x; 2 threads over 1: {one / two:.2f}x")
 
 
 if __name__ == "__main__":

@@ -11,6 +11,7 @@ import threading
 import time
 
 import numpy as np
+import pytest
 import uwml
 
 
@@ -39,7 +40,7 @@ def test_batch_call_releases_the_gil():
         rate = (count - start_count) / (time.perf_counter() - start)
         # Its progress during the batch call.
         start_count, start = count, time.perf_counter()
-        chain.hydro(q, qd, qdd, cd, cm, 1000.0, 9.81)
+        chain.hydro(q, qd, qdd, cd, cm, 1000.0, 9.81, 1)
         duration = time.perf_counter() - start
         progress = count - start_count
     finally:
@@ -51,3 +52,49 @@ def test_batch_call_releases_the_gil():
     # Held GIL: progress <= rate * switch, i.e. at most 1/8 of rate * duration. Released: about
     # rate * duration (the spinner runs on the other core); a quarter leaves room for scheduling.
     assert progress > 0.25 * rate * duration, (progress, rate, duration)
+
+
+def _states(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    return rng.uniform(-3, 3, (n, 3)), rng.uniform(-2, 2, (n, 3)), rng.uniform(-9, 9, (n, 3))
+
+
+def test_threads_give_the_same_results_bit_for_bit():
+    """Splitting a batch over threads changes nothing: each sample is the same evaluation."""
+    leg, losses = uwml.Leg.paper(), [None, uwml.JointLosses(), uwml.JointLosses()]
+    q, qd, qdd = _states(10_007)  # not a multiple of any thread count below
+    depth = np.linspace(0.0, 3000.0, len(q))
+    one = leg.hydro(q, qd, qdd)
+    env_one = leg.environment(q, qd, qdd, depth=depth, losses=losses)
+    for threads in (2, 3, 16, 20_000):
+        many = leg.hydro(q, qd, qdd, threads=threads)
+        for name in ("drag", "added_mass", "buoyancy", "gravity"):
+            np.testing.assert_array_equal(getattr(many, name), getattr(one, name))
+        env_many = leg.environment(q, qd, qdd, depth=depth, losses=losses, threads=threads)
+        for name in ("drag", "added_mass", "buoyancy", "gravity", "visc", "seal", "current"):
+            np.testing.assert_array_equal(getattr(env_many, name), getattr(env_one, name))
+    # One sample, and none, on several threads.
+    np.testing.assert_array_equal(leg.hydro(q[0], qd[0], qdd[0], threads=4).total, one.total[0])
+    assert leg.hydro(q[:0], qd[:0], qdd[:0], threads=4).total.shape == (0, 3)
+
+
+def test_threads_report_the_first_bad_sample_of_the_whole_batch():
+    leg = uwml.Leg.paper()
+    q, qd, qdd = _states(1000)
+    qd[700, 2] = np.nan  # in the last of 4 parts
+    qdd[900, 0] = np.inf
+    with pytest.raises(ValueError, match=r"qd\[700, 2\] is NaN"):
+        leg.hydro(q, qd, qdd, threads=4)
+    depth = np.zeros(len(q))
+    depth[600] = np.nan
+    with pytest.raises(ValueError, match=r"depth\[600\] is nan: depth must be finite"):
+        leg.environment(q, np.zeros_like(qd), np.zeros_like(qdd), depth=depth, threads=4)
+
+
+@pytest.mark.parametrize("threads", [0, -1, 1.5, True, "2", None])
+def test_bad_thread_counts(threads):
+    leg = uwml.Leg.paper()
+    with pytest.raises(ValueError, match="threads must be an integer >= 1"):
+        leg.hydro([0.1, 0.2, 0.3], [0.0] * 3, [0.0] * 3, threads=threads)
+    with pytest.raises(ValueError, match="threads must be an integer >= 1"):
+        leg.environment([0.1, 0.2, 0.3], [0.0] * 3, [0.0] * 3, threads=threads)

@@ -33,6 +33,7 @@ class Chain:
         cm: NDArray[np.float64],
         density: float,
         gravity: float,
+        threads: int,
     ) -> list[NDArray[np.float64]]: ...
     def environment(
         self,
@@ -46,6 +47,7 @@ class Chain:
         losses: NDArray[np.float64],
         pressure: NDArray[np.float64],
         temperature: NDArray[np.float64],
+        threads: int,
     ) -> list[NDArray[np.float64]]: ...
     def jacobians(
         self,

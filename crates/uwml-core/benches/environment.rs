@@ -35,21 +35,22 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
             )
         })
     });
-    // Laminar oil (n = 1, the usual regime for this motor class): no power function per call.
+    // The defaults are laminar (n = 1: no power function per call); a fitted n = 1.2 costs one
+    // `powf` per joint.
     let defaults = JointLosses::<T>::default();
-    let laminar_oil =
-        OilDrag::new(convert(1.1933e-3), T::one(), convert(0.02e-6), convert(0.06), T::zero(), convert(20.0)).ok();
-    let laminar = JointLosses::new(defaults.drive, laminar_oil, defaults.seal, defaults.epsilon())
+    let fitted_oil =
+        OilDrag::new(convert(1.1933e-3), convert(1.2), convert(0.02e-6), convert(0.06), T::zero(), convert(20.0)).ok();
+    let fitted = JointLosses::new(defaults.drive, fitted_oil, defaults.seal, defaults.epsilon())
         .map(|l| Some(l.at(pressure, convert(4.0))))
         .unwrap_or(state);
-    let laminar = [laminar; 3];
-    c.bench_function(&format!("environment_torques/paper+laminar-losses/{name}"), |b| {
+    let fitted = [fitted; 3];
+    c.bench_function(&format!("environment_torques/paper+losses-n1.2/{name}"), |b| {
         b.iter(|| {
             environment_torques(
                 black_box(&leg),
                 &water,
                 &coefficients,
-                black_box(&laminar),
+                black_box(&fitted),
                 black_box(&q),
                 black_box(&qd),
                 &qdd,

@@ -2,6 +2,8 @@
 //! crate converts arrays, dispatches on the number of joints, and loops over samples with the
 //! GIL released. The friendly, validated API is the Python package `uwml`.
 
+use std::ops::Range;
+
 use numpy::ndarray::{Array, Dimension, IntoDimension};
 use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
@@ -184,7 +186,7 @@ struct States<'a> {
     qdd: &'a [f64],
 }
 
-impl States<'_> {
+impl<'a> States<'a> {
     /// The first non-finite value of the batch, naming the array, sample and joint. One tight
     /// scan per array, so that the evaluation loop has nothing to check.
     fn check_finite<const N: usize>(&self) -> Result<(), NonFinite> {
@@ -195,6 +197,12 @@ impl States<'_> {
             }
         }
         Ok(())
+    }
+
+    /// The samples `range` (of `n` joints each).
+    fn range(&self, range: &Range<usize>, n: usize) -> Self {
+        let rows = |values: &'a [f64]| values.get(range.start * n..range.end * n).unwrap_or(&[]);
+        States { q: rows(self.q), qd: rows(self.qd), qdd: rows(self.qdd) }
     }
 
     /// Every sample's `(q, q̇, q̈)`, after [`States::check_finite`].
@@ -222,6 +230,44 @@ fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f
         slot.copy_from_slice(pair);
     }
     Coefficients::per_direction(cd_array, cm_array)
+}
+
+/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` at once (scoped
+/// threads; one part, on this thread, for `threads` ≤ 1) and joins the parts' columns in order.
+/// `batch` gets a part's sample range and reports errors with sample indices within the part;
+/// the first error in sample order is returned, with its index in the whole batch.
+fn in_parallel<const K: usize>(
+    n_samples: usize,
+    threads: usize,
+    batch: impl Fn(&Range<usize>) -> Result<[Vec<f64>; K], NonFinite> + Sync,
+) -> Result<[Vec<f64>; K], NonFinite> {
+    let threads = threads.clamp(1, n_samples.max(1));
+    let size = n_samples.div_ceil(threads);
+    let ranges: Vec<_> = (0..threads).map(|i| i * size..((i + 1) * size).min(n_samples)).collect();
+    let [first, rest @ ..] = ranges.as_slice() else { return batch(&(0..n_samples)) };
+    if rest.is_empty() {
+        return batch(first);
+    }
+    let parts: Vec<_> = std::thread::scope(|scope| {
+        let batch = &batch;
+        let handles: Vec<_> = ranges.iter().map(|range| scope.spawn(move || (range.start, batch(range)))).collect();
+        handles
+            .into_iter()
+            .map(|handle| handle.join().unwrap_or_else(|payload| std::panic::resume_unwind(payload)))
+            .collect()
+    });
+    let mut out: [Vec<f64>; K] = core::array::from_fn(|_| Vec::new());
+    for (start, part) in parts {
+        let columns = part.map_err(|e| NonFinite { sample: e.sample + start, ..e })?;
+        for (column, values) in out.iter_mut().zip(columns) {
+            if column.is_empty() {
+                *column = values;
+            } else {
+                column.extend_from_slice(&values);
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Torque arrays of a batch, each `n_samples × N`, row-major.
@@ -697,22 +743,24 @@ impl PyChain {
         cm: PyReadonlyArray2<'py, f64>,
         density: f64,
         gravity: f64,
+        threads: usize,
     ) -> PyResult<Vec<Array2<'py>>> {
         let BatchInputs { n, n_samples, water, states, cd, cm } =
             self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
         let chain = self.chain;
-        let batch = py
-            .detach(|| -> Result<TorqueBatch, PyErrSend> {
+        let columns = py
+            .detach(|| -> Result<[Vec<f64>; 4], PyErrSend> {
                 dispatch!(&chain, c => {
                     let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                    hydro_batch(c, &water, &coefficients, &states, n_samples).map_err(PyErrSend::State)
+                    in_parallel(n_samples, threads, |range| {
+                        let b = hydro_batch(c, &water, &coefficients, &states.range(range, n), range.len())?;
+                        Ok([b.drag, b.added_mass, b.buoyancy, b.gravity])
+                    })
+                    .map_err(PyErrSend::State)
                 })
             })
             .map_err(PyErr::from)?;
-        [batch.drag, batch.added_mass, batch.buoyancy, batch.gravity]
-            .into_iter()
-            .map(|v| to_numpy(py, v, (n_samples, n)))
-            .collect()
+        columns.into_iter().map(|v| to_numpy(py, v, (n_samples, n))).collect()
     }
 
     /// Environment torques with joint losses: `(drag, added_mass, buoyancy, gravity, visc,
@@ -732,18 +780,26 @@ impl PyChain {
         losses: PyReadonlyArray2<'py, f64>,
         pressure: PyReadonlyArray1<'py, f64>,
         temperature: PyReadonlyArray1<'py, f64>,
+        threads: usize,
     ) -> PyResult<Vec<Array2<'py>>> {
         let BatchInputs { n, n_samples, water, states, cd, cm } =
             self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
         let losses = parse_losses(&losses, n)?;
-        let conditions =
+        let (pressure, temperature) =
             (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
         let chain = self.chain;
         let columns = py
             .detach(|| -> Result<[Vec<f64>; 7], PyErrSend> {
                 dispatch!(&chain, c => {
                     let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                    environment_batch(c, &water, &coefficients, &losses, &states, conditions).map_err(PyErrSend::State)
+                    in_parallel(n_samples, threads, |range| {
+                        let conditions = (
+                            pressure.get(range.clone()).unwrap_or(&[]),
+                            temperature.get(range.clone()).unwrap_or(&[]),
+                        );
+                        environment_batch(c, &water, &coefficients, &losses, &states.range(range, n), conditions)
+                    })
+                    .map_err(PyErrSend::State)
                 })
             })
             .map_err(PyErr::from)?;

@@ -1,0 +1,61 @@
+//! A batch of 1024 evaluations of the paper leg at varied states, as a controller bank or an
+//! offline tool runs them: hydrodynamics alone and with the default losses on all three joints,
+//! f64 and f32. Criterion prints the time per batch and the states per second.
+//! Run: `cargo bench -p uwml-core --features std --bench batch`.
+#![allow(missing_docs)]
+
+use std::hint::black_box;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use uwml_core::nalgebra::{RealField, Vector3, convert};
+use uwml_core::{Chain, Coefficients, JointLosses, Water, environment_torques, hydro_torques, pressure_at_depth};
+
+const BATCH: usize = 1024;
+
+/// Deterministic states spread over the joints' ranges (a fixed linear congruential sequence).
+fn states<T: RealField + Copy>() -> Vec<[Vector3<T>; 3]> {
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = |scale: f64| {
+        x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        convert::<f64, T>(scale * ((x >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0))
+    };
+    (0..BATCH)
+        .map(|_| {
+            let mut v = |scale| Vector3::new(uniform(scale), uniform(scale), uniform(scale));
+            [v(3.0), v(2.0), v(9.0)]
+        })
+        .collect()
+}
+
+fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
+    let leg = Chain::<T, 3>::paper();
+    let (water, coefficients) = (Water::<T>::default(), Coefficients::<T, 3>::default());
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
+    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0))); 3];
+    let states = states::<T>();
+    let mut group = c.benchmark_group(format!("batch{BATCH}/{name}"));
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("hydro_torques", |b| {
+        b.iter(|| {
+            for [q, qd, qdd] in black_box(&states) {
+                black_box(hydro_torques(&leg, &water, &coefficients, q, qd, qdd));
+            }
+        })
+    });
+    group.bench_function("environment_torques", |b| {
+        b.iter(|| {
+            for [q, qd, qdd] in black_box(&states) {
+                black_box(environment_torques(&leg, &water, &coefficients, &losses, q, qd, qdd));
+            }
+        })
+    });
+    group.finish();
+}
+
+fn benches(c: &mut Criterion) {
+    bench_for::<f64>(c, "f64");
+    bench_for::<f32>(c, "f32");
+}
+
+criterion_group!(batch, benches);
+criterion_main!(batch);
