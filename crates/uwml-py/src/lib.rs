@@ -5,7 +5,10 @@
 use std::ops::Range;
 
 use numpy::ndarray::{Array, Dimension, IntoDimension};
-use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    IntoPyArray, PyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2,
+    PyUntypedArrayMethods,
+};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -232,42 +235,54 @@ fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f
     Coefficients::per_direction(cd_array, cm_array)
 }
 
-/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` at once (scoped
-/// threads; one part, on this thread, for `threads` ≤ 1) and joins the parts' columns in order.
-/// `batch` gets a part's sample range and reports errors with sample indices within the part;
-/// the first error in sample order is returned, with its index in the whole batch.
+/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` (of `n` joints) at
+/// once, on scoped threads (on this thread for `threads` ≤ 1), each part writing its rows of the
+/// `K` outputs (`n_samples × n` each). `batch` gets a part's sample range and reports errors with
+/// sample indices within the part; the first error in sample order is returned, with its index in
+/// the whole batch.
 fn in_parallel<const K: usize>(
     n_samples: usize,
+    n: usize,
     threads: usize,
-    batch: impl Fn(&Range<usize>) -> Result<[Vec<f64>; K], NonFinite> + Sync,
-) -> Result<[Vec<f64>; K], NonFinite> {
+    out: [&mut [f64]; K],
+    batch: impl Fn(&Range<usize>, [&mut [f64]; K]) -> Result<(), NonFinite> + Sync,
+) -> Result<(), NonFinite> {
     let threads = threads.clamp(1, n_samples.max(1));
-    let size = n_samples.div_ceil(threads);
-    let ranges: Vec<_> = (0..threads).map(|i| i * size..((i + 1) * size).min(n_samples)).collect();
-    let [first, rest @ ..] = ranges.as_slice() else { return batch(&(0..n_samples)) };
-    if rest.is_empty() {
-        return batch(first);
+    if threads == 1 {
+        return batch(&(0..n_samples), out);
     }
-    let parts: Vec<_> = std::thread::scope(|scope| {
+    let size = n_samples.div_ceil(threads);
+    let mut parts = out.map(|column| column.chunks_mut((size * n).max(1)));
+    let errors: Vec<_> = std::thread::scope(|scope| {
         let batch = &batch;
-        let handles: Vec<_> = ranges.iter().map(|range| scope.spawn(move || (range.start, batch(range)))).collect();
+        let handles: Vec<_> = (0..threads)
+            .map(|i| {
+                let range = i * size..((i + 1) * size).min(n_samples);
+                let part = parts.each_mut().map(|columns| columns.next().unwrap_or_default());
+                scope.spawn(move || batch(&range, part).map_err(|e| NonFinite { sample: e.sample + range.start, ..e }))
+            })
+            .collect();
         handles
             .into_iter()
             .map(|handle| handle.join().unwrap_or_else(|payload| std::panic::resume_unwind(payload)))
             .collect()
     });
-    let mut out: [Vec<f64>; K] = core::array::from_fn(|_| Vec::new());
-    for (start, part) in parts {
-        let columns = part.map_err(|e| NonFinite { sample: e.sample + start, ..e })?;
-        for (column, values) in out.iter_mut().zip(columns) {
-            if column.is_empty() {
-                *column = values;
-            } else {
-                column.extend_from_slice(&values);
-            }
-        }
+    errors.into_iter().collect()
+}
+
+/// `K` zeroed float64 arrays `rows × columns`, allocated by numpy (which asks for huge pages:
+/// a fresh output then costs far fewer page faults than one from Rust's allocator).
+fn zeroed<'py, const K: usize>(py: Python<'py>, rows: usize, columns: usize) -> [Array2<'py>; K] {
+    core::array::from_fn(|_| PyArray2::zeros(py, (rows, columns), false))
+}
+
+/// Write access to `K` fresh arrays' data.
+fn writable<'a, 'py, const K: usize>(guards: &'a mut [PyReadwriteArray2<'py, f64>; K]) -> PyResult<[&'a mut [f64]; K]> {
+    let mut slices = guards.each_mut().map(|guard| guard.as_slice_mut().ok());
+    if slices.iter().any(Option::is_none) {
+        return Err(PyValueError::new_err("internal error: a fresh output array is not contiguous"));
     }
-    Ok(out)
+    Ok(slices.each_mut().map(|slice| slice.take().unwrap_or_default()))
 }
 
 /// Torque arrays of a batch, each `n_samples × N`, row-major.
@@ -278,26 +293,19 @@ struct TorqueBatch {
     gravity: Vec<f64>,
 }
 
-fn hydro_batch<const N: usize>(
+/// Drag, added-mass, buoyancy and gravity torques of a batch into `out` (each `n_samples × N`).
+fn hydro_into<const N: usize>(
     chain: &Chain<f64, N>,
     water: &Water<f64>,
     coefficients: &Coefficients<f64, N>,
     states: &States<'_>,
-    n_samples: usize,
-) -> Result<TorqueBatch, NonFinite> {
-    let size = n_samples * N;
-    let mut out = TorqueBatch {
-        drag: vec![0.0; size],
-        added_mass: vec![0.0; size],
-        buoyancy: vec![0.0; size],
-        gravity: vec![0.0; size],
-    };
-    let rows = out
-        .drag
-        .chunks_exact_mut(N)
-        .zip(out.added_mass.chunks_exact_mut(N))
-        .zip(out.buoyancy.chunks_exact_mut(N).zip(out.gravity.chunks_exact_mut(N)));
+    [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
+) -> Result<(), NonFinite> {
     states.check_finite::<N>()?;
+    let rows = drag
+        .chunks_exact_mut(N)
+        .zip(added_mass.chunks_exact_mut(N))
+        .zip(buoyancy.chunks_exact_mut(N).zip(gravity.chunks_exact_mut(N)));
     for ((q, qd, qdd), ((drag, added_mass), (buoyancy, gravity))) in states.each::<N>().zip(rows) {
         let tau = hydro_torques(chain, water, coefficients, &q, &qd, &qdd);
         write_row(drag, &tau.drag);
@@ -305,7 +313,7 @@ fn hydro_batch<const N: usize>(
         write_row(buoyancy, &tau.buoyancy);
         write_row(gravity, &tau.gravity);
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Joint losses of a batch of samples: visc, seal and current per sample. The
@@ -340,16 +348,16 @@ fn loss_batch(
 
 /// Hydrodynamic and loss torques of a batch: drag, added mass, buoyancy, gravity, visc, seal,
 /// current, each `n_samples × N`.
-fn environment_batch<const N: usize>(
+fn environment_into<const N: usize>(
     chain: &Chain<f64, N>,
     water: &Water<f64>,
     coefficients: &Coefficients<f64, N>,
     losses: &[Option<JointLosses<f64>>],
     states: &States<'_>,
     conditions: (&[f64], &[f64]),
-) -> Result<[Vec<f64>; 7], NonFinite> {
-    let n_samples = conditions.0.len();
-    let mut out: [Vec<f64>; 7] = core::array::from_fn(|_| Vec::with_capacity(n_samples * N));
+    out: [&mut [f64]; 7],
+) -> Result<(), NonFinite> {
+    let mut rows = out.map(|column| column.chunks_exact_mut(N));
     let mut joint_losses = [None; N];
     for (slot, l) in joint_losses.iter_mut().zip(losses) {
         *slot = *l;
@@ -371,12 +379,14 @@ fn environment_batch<const N: usize>(
         let env = environment_torques(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
         let h = &env.hydro;
         for (column, values) in
-            out.iter_mut().zip([h.drag, h.added_mass, h.buoyancy, h.gravity, env.visc, env.seal, env.current])
+            rows.iter_mut().zip([h.drag, h.added_mass, h.buoyancy, h.gravity, env.visc, env.seal, env.current])
         {
-            column.extend(values.iter());
+            if let Some(row) = column.next() {
+                write_row(row, &values);
+            }
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// Environment torques and their derivatives over a batch: `value` (`n_samples × N`), and
@@ -748,19 +758,21 @@ impl PyChain {
         let BatchInputs { n, n_samples, water, states, cd, cm } =
             self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
         let chain = self.chain;
-        let columns = py
-            .detach(|| -> Result<[Vec<f64>; 4], PyErrSend> {
-                dispatch!(&chain, c => {
-                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                    in_parallel(n_samples, threads, |range| {
-                        let b = hydro_batch(c, &water, &coefficients, &states.range(range, n), range.len())?;
-                        Ok([b.drag, b.added_mass, b.buoyancy, b.gravity])
-                    })
-                    .map_err(PyErrSend::State)
+        let arrays = zeroed::<4>(py, n_samples, n);
+        let mut guards = arrays.each_ref().map(|a| a.readwrite());
+        let out = writable(&mut guards)?;
+        py.detach(|| -> Result<(), PyErrSend> {
+            dispatch!(&chain, c => {
+                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                in_parallel(n_samples, n, threads, out, |range, out| {
+                    hydro_into(c, &water, &coefficients, &states.range(range, n), out)
                 })
+                .map_err(PyErrSend::State)
             })
-            .map_err(PyErr::from)?;
-        columns.into_iter().map(|v| to_numpy(py, v, (n_samples, n))).collect()
+        })
+        .map_err(PyErr::from)?;
+        drop(guards);
+        Ok(arrays.into())
     }
 
     /// Environment torques with joint losses: `(drag, added_mass, buoyancy, gravity, visc,
@@ -788,22 +800,23 @@ impl PyChain {
         let (pressure, temperature) =
             (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
         let chain = self.chain;
-        let columns = py
-            .detach(|| -> Result<[Vec<f64>; 7], PyErrSend> {
-                dispatch!(&chain, c => {
-                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                    in_parallel(n_samples, threads, |range| {
-                        let conditions = (
-                            pressure.get(range.clone()).unwrap_or(&[]),
-                            temperature.get(range.clone()).unwrap_or(&[]),
-                        );
-                        environment_batch(c, &water, &coefficients, &losses, &states.range(range, n), conditions)
-                    })
-                    .map_err(PyErrSend::State)
+        let arrays = zeroed::<7>(py, n_samples, n);
+        let mut guards = arrays.each_ref().map(|a| a.readwrite());
+        let out = writable(&mut guards)?;
+        py.detach(|| -> Result<(), PyErrSend> {
+            dispatch!(&chain, c => {
+                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                in_parallel(n_samples, n, threads, out, |range, out| {
+                    let conditions =
+                        (pressure.get(range.clone()).unwrap_or(&[]), temperature.get(range.clone()).unwrap_or(&[]));
+                    environment_into(c, &water, &coefficients, &losses, &states.range(range, n), conditions, out)
                 })
+                .map_err(PyErrSend::State)
             })
-            .map_err(PyErr::from)?;
-        columns.into_iter().map(|v| to_numpy(py, v, (n_samples, n))).collect()
+        })
+        .map_err(PyErr::from)?;
+        drop(guards);
+        Ok(arrays.into())
     }
 
     /// Environment torques and their derivatives: `(value (n_samples, N), d_q (n_samples, N, N),
