@@ -46,8 +46,7 @@ pub fn drag_moments<T: RealField + Copy>(v0: T, v1: T, length: T) -> (T, T) {
 }
 
 /// [`drag_moments`] for two normal directions at once: the same operations side by side, which
-/// the compiler pairs into SIMD instructions, and the side after a sign change only where either
-/// direction has one.
+/// the compiler pairs into SIMD instructions.
 #[inline(always)]
 pub(crate) fn drag_moments_2<T: RealField + Copy>([v0, w0]: [T; 2], [v1, w1]: [T; 2], length: T) -> [(T, T); 2] {
     let roots = [sign_change(v0, v1, length), sign_change(w0, w1, length)];
