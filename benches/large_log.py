@@ -66,8 +66,8 @@ def main() -> None:
         print(f"{label:38s} {elapsed:6.2f} s  peak memory +{peak_mb() - before:,.0f} MB over the log's  ({values}, ...)")
 
     # The dense alternative: the design materialized, then one least-squares solve.
-    rows = n * 1
-    if rows * 2 * 8 * 4 < 2e9:
+    # The joint-1 regressors (drag, added mass, buoyancy, gravity: 4 × 3 floats a row) under 2 GB.
+    if n * 12 * 8 < 2e9:
         regressors = leg.hydro_regressors(log.q, log.qd, log.qdd)
         x = np.stack([regressors.drag[:, 0], regressors.added_mass[:, 0]], axis=1)
         y = -(log.tau_water[:, 0] - log.tau_land[:, 0]) - regressors.buoyancy[:, 0]

@@ -516,9 +516,21 @@ class FitResult:
         """Keys put first in :meth:`summary`."""
         return {}
 
-    def _summary_tail(self) -> dict[str, Any]:
-        """Keys put last in :meth:`summary` (the data points)."""
+    def _point_coordinates(self) -> dict[str, list[Any]]:
+        """Where each data point was taken, for :meth:`summary` (JSON-safe lists)."""
         return {}
+
+    def _summary_tail(self) -> dict[str, Any]:
+        """Keys put last in :meth:`summary`: the data points, their coordinates first."""
+        return {
+            "points": {
+                **self._point_coordinates(),
+                "data": [_json_float(x) for x in self.data],
+                "sigma": [_json_float(x) for x in self.sigma],
+                "best_fit": [_json_float(x) for x in self.best_fit],
+                "residual": [_json_float(x) for x in self.residual],
+            },
+        }
 
     def summary(self) -> dict[str, Any]:
         """The result as a JSON-safe dict (numbers, strings, None, lists, dicts; no NaN)."""
@@ -580,18 +592,12 @@ class LossFit(FitResult, ABC):
     def _summary_head(self) -> dict[str, Any]:
         return {"model": type(self.model).__name__}
 
-    def _summary_tail(self) -> dict[str, Any]:
+    def _point_coordinates(self) -> dict[str, list[Any]]:
         return {
-            "points": {
-                "speed": [_json_float(x) for x in self.speed],
-                "pressure_mpa": [_json_float(x) for x in self.pressure_mpa],
-                "temperature_c": [_json_float(x) for x in self.temperature_c],
-                "startup": [bool(x) for x in self.startup],
-                "data": [_json_float(x) for x in self.data],
-                "sigma": [_json_float(x) for x in self.sigma],
-                "best_fit": [_json_float(x) for x in self.best_fit],
-                "residual": [_json_float(x) for x in self.residual],
-            },
+            "speed": [_json_float(x) for x in self.speed],
+            "pressure_mpa": [_json_float(x) for x in self.pressure_mpa],
+            "temperature_c": [_json_float(x) for x in self.temperature_c],
+            "startup": [bool(x) for x in self.startup],
         }
 
 
@@ -1187,17 +1193,8 @@ class HydroFit(FitResult):
     def _summary_head(self) -> dict[str, Any]:
         return {"model": "hydro", "per": self.per, "joints": list(self.joints), "dropped": list(self.dropped), "source": self.source}
 
-    def _summary_tail(self) -> dict[str, Any]:
-        return {
-            "points": {
-                "time": [_json_float(x) for x in self.time],
-                "joint": [int(x) for x in self.joint],
-                "data": [_json_float(x) for x in self.data],
-                "sigma": [_json_float(x) for x in self.sigma],
-                "best_fit": [_json_float(x) for x in self.best_fit],
-                "residual": [_json_float(x) for x in self.residual],
-            },
-        }
+    def _point_coordinates(self) -> dict[str, list[Any]]:
+        return {"time": [_json_float(x) for x in self.time], "joint": [int(x) for x in self.joint]}
 
 
 def _hydro_log(log_or_path: Any, n_joints: int) -> Log:
@@ -1289,6 +1286,9 @@ class _HydroDesign:
         self._cache: list[Array] | None = [] if size <= cache_bytes else None
         self._cached = False
         self._keep: NDArray[np.bool_] | None = None
+        # The last coefficients given to `fitted`, and its result (the robust fit's last scale
+        # estimate and the result's fitted values are of the same coefficients).
+        self._last_fit: tuple[Array, tuple[Array, Array]] | None = None
 
     def keep(self, keep: NDArray[np.bool_]) -> None:
         """Leave out the design's columns where ``keep`` is False (coefficients then index the
@@ -1354,6 +1354,8 @@ class _HydroDesign:
         The torques are linear in the coefficients, so ``Xx`` is the drag plus added-mass torque
         at coefficients ``x`` (negative ones by a second evaluation at their magnitudes): a
         third of the cost of the design's regressors, and nothing to keep between passes."""
+        if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
+            return self._last_fit[1]
         full = self._full(x)
         half = full.size // 2
         cd, cm = self._table(full[:half]), self._table(full[half:])
@@ -1374,11 +1376,14 @@ class _HydroDesign:
             target = -(log.tau_water[rows] - log.tau_land[rows]) - buoyancy
             fits.append(fit[:, joints].reshape(-1))
             targets.append(target[:, joints].reshape(-1))
-        return np.concatenate(fits), np.concatenate(targets)
+        result = np.concatenate(fits), np.concatenate(targets)
+        self._last_fit = (np.array(x), result)
+        return result
 
-    def residuals(self, x: Array, sigma_joint: Array) -> Array:
+    def residuals(self, x: Array) -> Array:
+        """``Xx − y``, sample-major."""
         fit, y = self.fitted(x)
-        return (fit - y) / np.tile(sigma_joint, self._log.n_samples)
+        return fit - y
 
     def huber(self, x: Array, sigma_joint: Array, scale: float, max_passes: int = 200) -> tuple[Array, int, bool]:
         """Huber's estimate by iteratively reweighted least squares from ``x``, on residuals
@@ -1491,8 +1496,15 @@ def hydro_coefficients(
     log = _hydro_log(log_or_path, expected).with_derivatives()
     assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
 
-    design = _HydroDesign(leg, log, water, per, selected, cache_bytes)
     n_samples, n_selected = log.n_samples, len(selected)
+    known = sigma is not None
+    given_sigma: Array | None = None
+    if sigma is not None:
+        # Checked before the pass over the log.
+        given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
+        if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
+            raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
+    design = _HydroDesign(leg, log, water, per, selected, cache_bytes)
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0
     dropped = tuple(name for name, k in zip(design.names, keep, strict=True) if not k)
@@ -1505,19 +1517,15 @@ def hydro_coefficients(
     joint_of_row = np.tile(np.asarray(selected, dtype=np.int64), n_samples)
 
     def joint_scale_robust(x: Array) -> Array:
-        r = design.residuals(x, np.ones(n_selected)).reshape(n_samples, n_selected)
+        r = design.residuals(x).reshape(n_samples, n_selected)
         return _positive(_MAD_TO_SIGMA * np.median(np.abs(r - np.median(r, axis=0)), axis=0))
 
-    known = sigma is not None
-    first = moments.solve(np.ones(n_selected))
-    if known:
-        given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
-        if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
-            raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
+    if given_sigma is not None:
         sigma_joint = np.array(given_sigma)
     elif robust:
-        sigma_joint = joint_scale_robust(first)
+        sigma_joint = joint_scale_robust(moments.solve(np.ones(n_selected)))
     else:
+        first = moments.solve(np.ones(n_selected))
         sigma_joint = _positive(np.sqrt(moments.residual_squares(first) / max(n_samples - p / n_selected, 1.0)))
     x = moments.solve(sigma_joint)
     gram = moments.weighted_gram(sigma_joint)

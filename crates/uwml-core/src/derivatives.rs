@@ -9,8 +9,8 @@
 //! and positive semi-definite (the kinetic energy of the entrained water).
 //!
 //! Cost: two dual passes of width `N` (one seeded in `q`, one in `q̇`; each costs a few real
-//! evaluations, the derivative parts being `N` wide) and `N + 1` real evaluations (the value, and
-//! the `N` columns of `M_A`). Stable Rust cannot size one dual number `2N` or `3N` wide from a
+//! evaluations, the derivative parts being `N` wide; the first's real parts are the value) and `N`
+//! real evaluations (the columns of `M_A`). Stable Rust cannot size one dual number `2N` or `3N` wide from a
 //! `const N` (no generic const expressions), and two passes of width `N` cost about as much as one
 //! of width `2N`: the real part is computed twice, each of `2N` derivatives once.
 
@@ -97,13 +97,16 @@ pub fn environment_jacobians<T: RealField + Copy, const N: usize>(
     let dual_water = water.map_scalars(constant);
     let dual_coefficients = coefficients.map_scalars(constant);
     let dual_losses = losses.map(|state| state.map(|state| state.map_scalars(constant)));
+    let qdd_constant = constants(qdd);
     let pass = |q: &SVector<Dual<T, N>, N>, qd: &SVector<Dual<T, N>, N>| {
-        let qdd = constants(qdd);
-        environment_torques(&dual_chain, &dual_water, &dual_coefficients, &dual_losses, q, qd, &qdd).total()
+        environment_torques(&dual_chain, &dual_water, &dual_coefficients, &dual_losses, q, qd, &qdd_constant).total()
     };
+    let in_q = pass(&seeded(q), &constants(qd));
     EnvironmentJacobians {
-        value: environment_torques(chain, water, coefficients, losses, q, qd, qdd).total(),
-        d_q: jacobian(&pass(&seeded(q), &constants(qd))),
+        // A dual number's real part goes through the very operations of `T`: the value is the
+        // real evaluation's, bit for bit, without a third pass.
+        value: in_q.map(|t| t.re),
+        d_q: jacobian(&in_q),
         d_qd: jacobian(&pass(&constants(q), &seeded(qd))),
         added_mass_matrix: added_mass_matrix(chain, water, coefficients, q),
     }

@@ -106,6 +106,31 @@ impl<T: RealField + Copy> OilDrag<T> {
     pub const fn exponent(&self) -> T {
         self.exponent
     }
+
+    /// `k_oil` [N·m·(rad/s)⁻ⁿ].
+    pub const fn k_oil(&self) -> T {
+        self.k_oil
+    }
+
+    /// `a_p` [1/Pa].
+    pub const fn pressure_sensitivity(&self) -> T {
+        self.pressure_sensitivity
+    }
+
+    /// `a_T` [1/K].
+    pub const fn temperature_sensitivity(&self) -> T {
+        self.temperature_sensitivity
+    }
+
+    /// `p_ref` [Pa].
+    pub const fn reference_pressure(&self) -> T {
+        self.reference_pressure
+    }
+
+    /// `θ_ref` [°C].
+    pub const fn reference_temperature(&self) -> T {
+        self.reference_temperature
+    }
 }
 
 /// Friction of the output-shaft dynamic seal, as torque at the joint output:
@@ -154,6 +179,26 @@ impl<T: RealField + Copy> Seal<T> {
         let line = |[a, b]: [T; 2]| a + b * pressure;
         (line(self.c), line(self.s), line(self.d))
     }
+
+    /// `[c0, c1]` of the running level `C(p) = c0 + c1 p`.
+    pub const fn running(&self) -> [T; 2] {
+        self.c
+    }
+
+    /// `[s0, s1]` of the breakaway level `S(p)`.
+    pub const fn breakaway(&self) -> [T; 2] {
+        self.s
+    }
+
+    /// `[d0, d1]` of the viscous slope `D(p)`.
+    pub const fn viscous(&self) -> [T; 2] {
+        self.d
+    }
+
+    /// The Stribeck speed ω_s [rad/s].
+    pub const fn stribeck_speed(&self) -> T {
+        self.stribeck_speed
+    }
 }
 
 /// Motor and reducer of a joint.
@@ -192,6 +237,16 @@ impl<T: RealField + Copy> Drive<T> {
     /// Rated current [A].
     pub const fn rated_current(&self) -> T {
         self.rated_current
+    }
+
+    /// Torque constant K_t [N·m/A].
+    pub const fn torque_constant(&self) -> T {
+        self.torque_constant
+    }
+
+    /// Gear efficiency η.
+    pub const fn efficiency(&self) -> T {
+        self.efficiency
     }
 }
 

@@ -7,12 +7,12 @@
 
 use uwml_core::nalgebra::{ComplexField, RealField, SMatrix, SVector, convert};
 use uwml_core::{
-    Chain, Coefficients, Drive, Dual, EnvironmentJacobians, Joint, JointLosses, Link, LossState, OilDrag, Segment,
-    Water, environment_jacobians, environment_torques, hydro_jacobians, hydro_torques, pressure_at_depth,
+    Chain, Coefficients, Drive, Dual, EnvironmentJacobians, JointLosses, LossState, OilDrag, Water,
+    environment_jacobians, environment_torques, hydro_jacobians, hydro_torques, pressure_at_depth,
 };
 
 mod common;
-use common::Rng;
+use common::{Rng, random_chain};
 
 /// Central difference step and the tolerance it allows, relative to the matrix's largest entry.
 const H: f64 = 1e-6;
@@ -263,32 +263,6 @@ fn paper_leg_with_losses_matches_finite_differences() {
     println!("paper leg with losses: worst relative error d_q {:.1e}, d_qd {:.1e}", worst.0, worst.1);
 }
 
-/// A random chain of 4 joints with arbitrary axes, offsets, segment directions and normals (the
-/// general body frames and the full recursion, which the paper leg does not reach).
-fn random_chain(rng: &mut Rng) -> Chain<f64, 4> {
-    let joints = core::array::from_fn(|_| Joint { origin: rng.vector::<3>(0.5), axis: rng.unit() });
-    let links = core::array::from_fn(|i| {
-        let axis = rng.unit();
-        let n1 = axis.cross(&rng.unit()).normalize();
-        let segment = (i != 1).then(|| Segment {
-            start: rng.vector::<3>(0.2),
-            axis,
-            length: 0.2 + rng.next().abs(),
-            normals: [n1, axis.cross(&n1)],
-            widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
-            area: 0.01 + 0.02 * rng.next().abs(),
-        });
-        Link {
-            mass: 5.0 + 10.0 * rng.next().abs(),
-            com: rng.vector::<3>(0.4),
-            volume: 0.001 + 0.004 * rng.next().abs(),
-            cob: rng.vector::<3>(0.4),
-            segment,
-        }
-    });
-    Chain::new(joints, links).expect("a valid random chain")
-}
-
 #[test]
 fn random_chains_match_finite_differences() {
     let mut rng = Rng(13);
@@ -389,8 +363,8 @@ fn the_dual_pass_computes_the_real_values_and_minus_the_added_mass_matrix_in_qdd
         )
         .total();
         let real = model.torques(&q, &qd, &qdd);
-        // Real parts: the same operations, but the f64 path may take a faster sine and cosine
-        // (a few ulp apart), so agreement is to rounding rather than bit for bit.
+        // Real parts: the same operations as the f64 path (environment_jacobians takes its value
+        // from them; this checks the open-coded pass to rounding).
         let re = tau.map(|t| t.re);
         assert!((re - real).amax() <= 1e-14 * real.amax(), "{re} vs {real}");
         let d_qdd = SMatrix::<f64, 3, 3>::from_fn(|i, j| tau[i].eps[j]);

@@ -3,12 +3,10 @@
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{Matrix3, SVector};
-use uwml_core::{
-    Chain, Coefficients, HydroTorques, Joint, Link, Segment, Water, hydro_regressors, hydro_torques, link_motions,
-};
+use uwml_core::{Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques, link_motions};
 
 mod common;
-use common::Rng;
+use common::{Rng, random_chain};
 
 fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> HydroTorques<f64, 3> {
     let c = Coefficients::uniform(2.2, 0.5).unwrap();
@@ -82,31 +80,6 @@ fn paper_equations_8_and_9_for_pure_yaw() {
         assert!((t.drag[0] + drag).abs() <= 1e-7 * drag.abs().max(1e-3), "{} vs {}", t.drag[0], -drag);
         assert!((t.added_mass[0] + added_mass).abs() <= 1e-7 * added_mass.abs().max(1e-3));
     }
-}
-
-/// A random chain of 4 joints with arbitrary axes, offsets, segment directions and normals.
-fn random_chain(rng: &mut Rng) -> Chain<f64, 4> {
-    let joints = core::array::from_fn(|_| Joint { origin: rng.vector::<3>(0.5), axis: rng.unit() });
-    let links = core::array::from_fn(|i| {
-        let axis = rng.unit();
-        let n1 = axis.cross(&rng.unit()).normalize();
-        let segment = (i != 1).then(|| Segment {
-            start: rng.vector::<3>(0.2),
-            axis,
-            length: 0.2 + rng.next().abs(),
-            normals: [n1, axis.cross(&n1)],
-            widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
-            area: 0.01 + 0.02 * rng.next().abs(),
-        });
-        Link {
-            mass: 5.0 + 10.0 * rng.next().abs(),
-            com: rng.vector::<3>(0.4),
-            volume: 0.001 + 0.004 * rng.next().abs(),
-            cob: rng.vector::<3>(0.4),
-            segment,
-        }
-    });
-    Chain::new(joints, links).expect("a valid random chain")
 }
 
 fn per_direction(rng: &mut Rng) -> Coefficients<f64, 4> {

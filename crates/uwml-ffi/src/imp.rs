@@ -193,36 +193,36 @@ macro_rules! precision {
                 JointLosses::new(drive, oil, seal, p.epsilon)
             }
 
-            /// The values of `JointLosses::default()` (documented on the core's `Default`
-            /// impls), converted exactly as the core converts them; `tests/api.rs` checks that
-            /// they build a `JointLosses` equal to the default.
+            /// The parameters of `JointLosses::default()`, read from the core (its `Default` impls
+            /// document them); `tests/api.rs` checks that they build that `JointLosses` again.
             fn default_loss_params() -> $loss {
-                let c = |x: f64| -> $t { nalgebra::convert(x) };
-                const MPA: f64 = 1e6;
+                let defaults = JointLosses::<$t>::default();
+                let (drive, oil, seal) =
+                    (defaults.drive, defaults.oil.unwrap_or_default(), defaults.seal.unwrap_or_default());
                 $loss {
                     drive: $drive {
-                        torque_constant: c(0.40),
-                        ratio: c(160.0),
-                        efficiency: c(0.80),
-                        rated_current: c(10.4),
+                        torque_constant: drive.torque_constant(),
+                        ratio: drive.ratio(),
+                        efficiency: drive.efficiency(),
+                        rated_current: drive.rated_current(),
                     },
                     oil: $oil {
-                        k_oil: c(3.3234e-3),
-                        exponent: c(1.0),
-                        pressure_sensitivity: c(0.02 / MPA),
-                        temperature_sensitivity: c(0.06),
-                        reference_pressure: c(0.0),
-                        reference_temperature: c(20.0),
+                        k_oil: oil.k_oil(),
+                        exponent: oil.exponent(),
+                        pressure_sensitivity: oil.pressure_sensitivity(),
+                        temperature_sensitivity: oil.temperature_sensitivity(),
+                        reference_pressure: oil.reference_pressure(),
+                        reference_temperature: oil.reference_temperature(),
                     },
                     seal: $seal {
-                        c: [c(16.0), c(3.7 / MPA)],
-                        s: [c(21.0), c(6.7 / MPA)],
-                        d: [c(2.2), c(0.34 / MPA)],
-                        stribeck_speed: c(0.05),
+                        c: seal.running(),
+                        s: seal.breakaway(),
+                        d: seal.viscous(),
+                        stribeck_speed: seal.stribeck_speed(),
                     },
-                    epsilon: c(1e-3),
-                    has_oil: 1,
-                    has_seal: 1,
+                    epsilon: defaults.epsilon(),
+                    has_oil: i32::from(defaults.oil.is_some()),
+                    has_seal: i32::from(defaults.seal.is_some()),
                 }
             }
 

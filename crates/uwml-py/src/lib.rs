@@ -796,9 +796,7 @@ impl PyChain {
     ) -> PyResult<Vec<Array2<'py>>> {
         let BatchInputs { n, n_samples, water, states, cd, cm } =
             self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
-        let losses = parse_losses(&losses, n)?;
-        let (pressure, temperature) =
-            (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
+        let (losses, (pressure, temperature)) = loss_inputs(&losses, [&pressure, &temperature], n, n_samples)?;
         let chain = self.chain;
         let arrays = zeroed::<7>(py, n_samples, n);
         let mut guards = arrays.each_ref().map(|a| a.readwrite());
@@ -839,9 +837,7 @@ impl PyChain {
     ) -> PyResult<Vec<Bound<'py, PyAny>>> {
         let BatchInputs { n, n_samples, water, states, cd, cm } =
             self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
-        let losses = parse_losses(&losses, n)?;
-        let conditions =
-            (contiguous1(&pressure, "pressure", n_samples)?, contiguous1(&temperature, "temperature", n_samples)?);
+        let (losses, conditions) = loss_inputs(&losses, [&pressure, &temperature], n, n_samples)?;
         let chain = self.chain;
         let [value, d_q, d_qd, added_mass_matrix] = py
             .detach(|| -> Result<[Vec<f64>; 4], PyErrSend> {
@@ -973,6 +969,22 @@ fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<Vec<Op
             unpack_losses(row).map_err(|e| UwmlModelError::new_err(format!("losses of joint {joint}: {e}")))
         })
         .collect()
+}
+
+/// An environment batch's joint losses (packed `(N, LOSS_WIDTH)`) and its per-sample pressure and
+/// temperature, checked.
+type LossInputs<'a> = (Vec<Option<JointLosses<f64>>>, (&'a [f64], &'a [f64]));
+
+fn loss_inputs<'a>(
+    losses: &PyReadonlyArray2<'_, f64>,
+    [pressure, temperature]: [&'a PyReadonlyArray1<'_, f64>; 2],
+    n: usize,
+    n_samples: usize,
+) -> PyResult<LossInputs<'a>> {
+    let losses = parse_losses(losses, n)?;
+    let conditions =
+        (contiguous1(pressure, "pressure", n_samples)?, contiguous1(temperature, "temperature", n_samples)?);
+    Ok((losses, conditions))
 }
 
 fn contiguous1<'a>(array: &'a PyReadonlyArray1<'_, f64>, argument: &str, n: usize) -> PyResult<&'a [f64]> {

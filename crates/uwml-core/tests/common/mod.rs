@@ -2,6 +2,7 @@
 #![allow(dead_code, missing_docs)]
 
 use uwml_core::nalgebra::{SVector, Vector3};
+use uwml_core::{Chain, Joint, Link, Segment};
 
 /// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
 pub struct Rng(pub u64);
@@ -23,4 +24,30 @@ impl Rng {
             }
         }
     }
+}
+
+/// A random chain of 4 joints with arbitrary axes, offsets, segment directions and normals (the
+/// general body frames and the full recursion, which the paper leg does not reach).
+pub fn random_chain(rng: &mut Rng) -> Chain<f64, 4> {
+    let joints = core::array::from_fn(|_| Joint { origin: rng.vector::<3>(0.5), axis: rng.unit() });
+    let links = core::array::from_fn(|i| {
+        let axis = rng.unit();
+        let n1 = axis.cross(&rng.unit()).normalize();
+        let segment = (i != 1).then(|| Segment {
+            start: rng.vector::<3>(0.2),
+            axis,
+            length: 0.2 + rng.next().abs(),
+            normals: [n1, axis.cross(&n1)],
+            widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
+            area: 0.01 + 0.02 * rng.next().abs(),
+        });
+        Link {
+            mass: 5.0 + 10.0 * rng.next().abs(),
+            com: rng.vector::<3>(0.4),
+            volume: 0.001 + 0.004 * rng.next().abs(),
+            cob: rng.vector::<3>(0.4),
+            segment,
+        }
+    });
+    Chain::new(joints, links).expect("a valid random chain")
 }
