@@ -37,7 +37,12 @@ def assert_matches_finite_differences(leg, q, qd, qdd, **kwargs):
     def total(q=q, qd=qd, qdd=qdd):
         return leg.environment(q, qd, qdd, **kwargs).total
 
-    np.testing.assert_array_equal(jac.value, total())
+    # The same torques: the batch evaluates four states at once with a SIMD sine and cosine, the
+    # derivatives one state at a time with the platform's, which differ by a few units in the
+    # last place.
+    value = total()
+    scale = np.maximum(np.abs(value).max(axis=1, keepdims=True), 1.0)
+    assert (np.abs(jac.value - value) / scale).max() <= 1e-13
     for name, fd in (("d_q", central(lambda x: total(q=x), q)), ("d_qd", central(lambda x: total(qd=x), qd))):
         scale = np.maximum(np.abs(fd).max(axis=(1, 2)), 1.0)[:, None, None]
         error = np.abs(getattr(jac, name) - fd) / scale

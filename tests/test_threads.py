@@ -78,6 +78,31 @@ def test_threads_give_the_same_results_bit_for_bit():
     assert leg.hydro(q[:0], qd[:0], qdd[:0], threads=4).total.shape == (0, 3)
 
 
+@pytest.mark.parametrize("n", [1, 2, 3, 4, 5, 6, 7, 9, 13])
+def test_each_row_is_its_states_own_evaluation(n: int):
+    """The batch evaluates four states at once, one per SIMD lane, and pads a last group of fewer
+    than four: a state's row does not depend on its neighbours, its place, or the padding."""
+    leg, losses = uwml.Leg.paper(), [None, uwml.JointLosses(), uwml.JointLosses()]
+    q, qd, qdd = _states(n, seed=n)
+    depth = np.linspace(0.0, 3000.0, n)
+    batch = leg.hydro(q, qd, qdd)
+    env = leg.environment(q, qd, qdd, depth=depth, losses=losses)
+    regressors = leg.hydro_regressors(q, qd, qdd, per="direction")
+    order = np.random.default_rng(n).permutation(n)
+    shuffled = leg.hydro(q[order], qd[order], qdd[order])
+    for s in range(n):
+        single = leg.hydro(q[s], qd[s], qdd[s])
+        for name in ("drag", "added_mass", "buoyancy", "gravity"):
+            np.testing.assert_array_equal(getattr(batch, name)[s], getattr(single, name))
+            np.testing.assert_array_equal(getattr(shuffled, name)[np.argsort(order)][s], getattr(single, name))
+        single_env = leg.environment(q[s], qd[s], qdd[s], depth=depth[s], losses=losses)
+        for name in ("drag", "buoyancy", "visc", "seal", "current"):
+            np.testing.assert_array_equal(getattr(env, name)[s], getattr(single_env, name))
+        single_regressors = leg.hydro_regressors(q[s], qd[s], qdd[s], per="direction")
+        for name in ("drag", "added_mass", "buoyancy"):
+            np.testing.assert_array_equal(getattr(regressors, name)[s], getattr(single_regressors, name))
+
+
 def test_threads_report_the_first_bad_sample_of_the_whole_batch():
     leg = uwml.Leg.paper()
     q, qd, qdd = _states(1000)

@@ -52,9 +52,39 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     group.finish();
 }
 
+fn bench_lanes(c: &mut Criterion) {
+    use simba::simd::WideF64x4;
+    let leg = Chain::<f64, 3>::paper().splat::<WideF64x4>();
+    let (water, coefficients) = (Water::<f64>::default().splat(), Coefficients::<f64, 3>::default().splat());
+    let states = states::<f64>();
+    // Four states side by side, one per lane.
+    let lanes: Vec<[Vector3<WideF64x4>; 3]> = states
+        .chunks_exact(4)
+        .map(|four| {
+            let lane = |k: usize, j: usize| {
+                WideF64x4::from(
+                    [0, 1, 2, 3].map(|l| four.get(l).and_then(|s| s.get(k)?.get(j).copied()).unwrap_or(0.0)),
+                )
+            };
+            core::array::from_fn(|k| Vector3::from_fn(|j, _| lane(k, j)))
+        })
+        .collect();
+    let mut group = c.benchmark_group(format!("batch{BATCH}/f64x4 (WideF64x4, 4 states per call)"));
+    group.throughput(Throughput::Elements(BATCH as u64));
+    group.bench_function("hydro_torques", |b| {
+        b.iter(|| {
+            for [q, qd, qdd] in black_box(&lanes) {
+                black_box(hydro_torques(&leg, &water, &coefficients, q, qd, qdd));
+            }
+        })
+    });
+    group.finish();
+}
+
 fn benches(c: &mut Criterion) {
     bench_for::<f64>(c, "f64");
     bench_for::<f32>(c, "f32");
+    bench_lanes(c);
 }
 
 criterion_group!(batch, benches);

@@ -1,9 +1,12 @@
 //! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
-//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`.
+//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`,
+//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call.
 #![allow(missing_docs)]
 
 use std::hint::black_box;
 use std::time::Instant;
+
+use simba::simd::{SimdValue, WideF64x4};
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
@@ -67,13 +70,41 @@ fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
     }
 }
 
+/// `hydro_torques` over four lanes: four states per call.
+#[inline(never)]
+fn torques_lanes(
+    (leg, water, coefficients): &(Chain<WideF64x4, 3>, Water<WideF64x4>, Coefficients<WideF64x4, 3>),
+    [q, qd, qdd]: &[Vector3<WideF64x4>; 3],
+) -> WideF64x4 {
+    black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
+}
+
+/// [`run`] for [`torques_lanes`]: the sum over the lanes of every call's output.
+fn run_lanes(n: usize) -> f64 {
+    let model =
+        (Chain::<f64, 3>::paper().splat(), Water::<f64>::default().splat(), Coefficients::<f64, 3>::default().splat());
+    let v = |a: f64, b: f64, c: f64| Vector3::new(WideF64x4::splat(a), WideF64x4::splat(b), WideF64x4::splat(c));
+    let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
+    let mut acc = WideF64x4::splat(0.0);
+    for i in 0..n {
+        let first = WideF64x4::from([0.0, 1e-3, 2e-3, 3e-3].map(|d| 0.3 + d + i as f64 * 1e-7));
+        let q = Vector3::new(first, WideF64x4::splat(-0.4), WideF64x4::splat(0.6));
+        acc += torques_lanes(black_box(&model), &[q, qd, qdd]);
+    }
+    <[f64; 4]>::from(acc).iter().sum()
+}
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5_000_000);
     let mode = args.next().unwrap_or_else(|| "torques".to_string());
     let precision = args.next().unwrap_or_else(|| "f64".to_string());
     let start = Instant::now();
-    let acc = if precision == "f32" { run_mode::<f32>(n, &mode) } else { run_mode::<f64>(n, &mode) };
+    let acc = match precision.as_str() {
+        "f32" => run_mode::<f32>(n, &mode),
+        "f64x4" => run_lanes(n),
+        _ => run_mode::<f64>(n, &mode),
+    };
     let ns = start.elapsed().as_nanos() as f64 / n as f64;
     println!("{mode} {precision}: {ns:.1} ns per call ({acc:.3})");
 }

@@ -7,14 +7,14 @@
 //! geometry is constant, and an aligned segment's projections are plain components. Everything
 //! that does not depend on the joint state is computed once, when the [`Chain`] is built.
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3};
+use nalgebra::{Matrix3, RealField, SVector, SimdRealField, Vector3};
 
 use crate::kinematics::{dot, rotate, rotate_back};
 use crate::model::{Chain, Joint, Link, Segment};
 
 /// Link `i` and the joint that moves it, in the body frame `F_i`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Body<T: RealField + Copy> {
+pub(crate) struct Body<T: SimdRealField + Copy> {
     /// `F_i` at `q_i = 0` in `F_{i-1}` (the world frame for the first joint), where the two
     /// differ by more than a turn about the joint axis.
     pub(crate) turn: Option<Matrix3<T>>,
@@ -35,7 +35,7 @@ pub(crate) struct Body<T: RealField + Copy> {
 
 /// A joint origin off the parent frame's origin.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Origin<T: RealField + Copy> {
+pub(crate) struct Origin<T: SimdRealField + Copy> {
     /// Position in `F_{i-1}` [m].
     pub(crate) position: Vector3<T>,
     /// The volume of this link and all links after it, times `position`: what the first moment
@@ -50,7 +50,7 @@ pub(crate) struct Origin<T: RealField + Copy> {
 /// rates (the world is at rest). By duality, the same vectors give the moment about the parent
 /// joint's axis of a wrench at this joint.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct UnitTurn<T: RealField + Copy> {
+pub(crate) struct UnitTurn<T: SimdRealField + Copy> {
     /// Angular velocity: the parent's axis, `e_z`.
     axis: Vector3<T>,
     /// Velocity of the origin, and its acceleration per unit angular acceleration: `e_z × p`.
@@ -61,7 +61,7 @@ pub(crate) struct UnitTurn<T: RealField + Copy> {
 
 /// A link's [`Segment`] in its body frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct BodySegment<T: RealField + Copy> {
+pub(crate) struct BodySegment<T: SimdRealField + Copy> {
     /// Start point; `None` at the body origin.
     pub(crate) start: Option<Vector3<T>>,
     pub(crate) frame: SegmentFrame<T>,
@@ -75,7 +75,7 @@ pub(crate) struct BodySegment<T: RealField + Copy> {
 
 /// The directions of a segment in its body frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) enum SegmentFrame<T: RealField + Copy> {
+pub(crate) enum SegmentFrame<T: SimdRealField + Copy> {
     /// Along the body axes, as for most links: the segment along x, one normal along the joint
     /// axis z and the other along y (`normals[0]` along z where `swapped`). A normal's sign does
     /// not matter: flipping it flips the normal speed, acceleration and moment direction, and the
@@ -85,7 +85,7 @@ pub(crate) enum SegmentFrame<T: RealField + Copy> {
     General { axis: Vector3<T>, normals: [Vector3<T>; 2] },
 }
 
-impl<T: RealField + Copy> SegmentFrame<T> {
+impl<T: SimdRealField + Copy> SegmentFrame<T> {
     /// `(v · normals[0], v · normals[1])`.
     #[inline(always)]
     pub(crate) fn normal_components(&self, v: &Vector3<T>) -> [T; 2] {
@@ -147,14 +147,16 @@ fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, previous: &Matrix3<T>) ->
     Matrix3::from_columns(&[x, axis.cross(&x), *axis])
 }
 
-impl<T: RealField + Copy> Body<T> {
+impl<T: SimdRealField + Copy> Body<T> {
     /// `(sin, cos)` of the joint angle plus its offset, from those of the joint angle.
     #[inline(always)]
     fn offset(&self, (sin, cos): (T, T)) -> (T, T) {
         let (sin_offset, cos_offset) = self.angle_offset;
         (sin * cos_offset + cos * sin_offset, cos * cos_offset - sin * sin_offset)
     }
+}
 
+impl<T: RealField + Copy> Body<T> {
     /// Joint `i` and link `i` in `F_i`, whose axes (columns, in link coordinates) are `frame`,
     /// given those of `F_{i-1}`; `carried`: the volume and mass of link `i` and all after it.
     fn new(joint: &Joint<T>, link: &Link<T>, previous: &Matrix3<T>, frame: &Matrix3<T>, carried: (T, T)) -> Self {
@@ -251,7 +253,7 @@ pub(crate) fn bodies<T: RealField + Copy, const N: usize>(
 
 /// The motion of a link in its body frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct BodyMotion<T: RealField + Copy> {
+pub(crate) struct BodyMotion<T: SimdRealField + Copy> {
     pub(crate) angular_velocity: Vector3<T>,
     pub(crate) angular_acceleration: Vector3<T>,
     /// Velocity of the joint origin.
@@ -260,7 +262,7 @@ pub(crate) struct BodyMotion<T: RealField + Copy> {
     pub(crate) acceleration: Vector3<T>,
 }
 
-impl<T: RealField + Copy> BodyMotion<T> {
+impl<T: SimdRealField + Copy> BodyMotion<T> {
     /// Velocity `v + ω × r` and acceleration `a + α × r + ω × (ω × r)` of the material point at `r`.
     #[inline(always)]
     pub(crate) fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
@@ -272,7 +274,7 @@ impl<T: RealField + Copy> BodyMotion<T> {
 
 /// Joint `i`'s turn, the world's up and the link's motion in `F_i`: what the torque paths need.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct BodyState<T: RealField + Copy> {
+pub(crate) struct BodyState<T: SimdRealField + Copy> {
     /// `sin` and `cos` of the joint angle plus its offset.
     pub(crate) turn: (T, T),
     /// The world's up direction in `F_i`.
@@ -282,20 +284,20 @@ pub(crate) struct BodyState<T: RealField + Copy> {
 
 /// `Rz(q)ᵀ v` for `turn = (sin q, cos q)`.
 #[inline(always)]
-fn turn_back<T: RealField + Copy>((sin, cos): (T, T), v: &Vector3<T>) -> Vector3<T> {
+fn turn_back<T: SimdRealField + Copy>((sin, cos): (T, T), v: &Vector3<T>) -> Vector3<T> {
     Vector3::new(cos * v.x + sin * v.y, cos * v.y - sin * v.x, v.z)
 }
 
 /// `v` (in `F_{i-1}`) in `F_i` before joint `i` turns.
 #[inline(always)]
-fn before_turn<T: RealField + Copy>(body: &Body<T>, v: &Vector3<T>) -> Vector3<T> {
+fn before_turn<T: SimdRealField + Copy>(body: &Body<T>, v: &Vector3<T>) -> Vector3<T> {
     match &body.turn {
         Some(turn) => rotate_back(turn, v),
         None => *v,
     }
 }
 
-impl<T: RealField + Copy> BodyState<T> {
+impl<T: SimdRealField + Copy> BodyState<T> {
     /// `v` (in `F_i`) in `F_{i-1}`.
     #[inline(always)]
     pub(crate) fn in_parent(&self, body: &Body<T>, v: &Vector3<T>) -> Vector3<T> {
@@ -398,13 +400,13 @@ impl<T: RealField + Copy> BodyState<T> {
 
 /// Whether the first joint turns about world z (no turn into its frame): then buoyancy and
 /// gravity have no moment about it, and up is its axis.
-pub(crate) fn first_axis_vertical<T: RealField + Copy>(bodies: &[Body<T>]) -> bool {
+pub(crate) fn first_axis_vertical<T: SimdRealField + Copy>(bodies: &[Body<T>]) -> bool {
     bodies.first().is_some_and(|body| body.turn.is_none())
 }
 
 /// The body-frame state of every joint, by the forward recursion.
 #[inline(always)]
-pub(crate) fn body_states<T: RealField + Copy, const N: usize>(
+pub(crate) fn body_states<T: SimdRealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     q: &SVector<T, N>,
     qd: &SVector<T, N>,
@@ -416,7 +418,7 @@ pub(crate) fn body_states<T: RealField + Copy, const N: usize>(
     // recursion's registers.
     let mut turns = [(T::zero(), T::zero()); N];
     for ((turn, &q), body) in turns.iter_mut().zip(q.iter()).zip(chain.bodies().iter()) {
-        *turn = body.offset(q.sin_cos());
+        *turn = body.offset(q.simd_sin_cos());
     }
     let still = BodyMotion {
         angular_velocity: Vector3::zeros(),
@@ -441,10 +443,10 @@ pub(crate) fn body_states<T: RealField + Copy, const N: usize>(
     states
 }
 
-impl<T: RealField + Copy> Body<T> {
+impl<T: SimdRealField + Copy> Body<T> {
     /// Every number mapped by `f` (see `Chain::map_scalars`); the structure (which optional
     /// parts are present, aligned or general segment frames) is kept.
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Body<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Body<U> {
         let (sin, cos) = self.angle_offset;
         Body {
             turn: self.turn.map(|m| m.map(f)),
@@ -458,9 +460,9 @@ impl<T: RealField + Copy> Body<T> {
     }
 }
 
-impl<T: RealField + Copy> Origin<T> {
+impl<T: SimdRealField + Copy> Origin<T> {
     /// Every number mapped by `f`.
-    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Origin<U> {
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Origin<U> {
         Origin {
             position: self.position.map(f),
             carried_volume_moment: self.carried_volume_moment.map(f),
@@ -469,16 +471,16 @@ impl<T: RealField + Copy> Origin<T> {
     }
 }
 
-impl<T: RealField + Copy> UnitTurn<T> {
+impl<T: SimdRealField + Copy> UnitTurn<T> {
     /// Every number mapped by `f`.
-    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> UnitTurn<U> {
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> UnitTurn<U> {
         UnitTurn { axis: self.axis.map(f), tangential: self.tangential.map(f), centripetal: self.centripetal.map(f) }
     }
 }
 
-impl<T: RealField + Copy> BodySegment<T> {
+impl<T: SimdRealField + Copy> BodySegment<T> {
     /// Every number mapped by `f`.
-    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> BodySegment<U> {
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> BodySegment<U> {
         BodySegment {
             start: self.start.map(|s| s.map(f)),
             frame: self.frame.map_scalars(f),
@@ -490,9 +492,9 @@ impl<T: RealField + Copy> BodySegment<T> {
     }
 }
 
-impl<T: RealField + Copy> SegmentFrame<T> {
+impl<T: SimdRealField + Copy> SegmentFrame<T> {
     /// Every number mapped by `f`.
-    fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentFrame<U> {
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentFrame<U> {
         match self {
             Self::Aligned { swapped } => SegmentFrame::Aligned { swapped: *swapped },
             Self::General { axis, normals } => {

@@ -4,7 +4,7 @@
 //! Sign: every torque is exerted by the environment on the joint, in the joint's positive
 //! direction (`M q̈ + c + g = τ_motor + τ_env`).
 
-use nalgebra::{RealField, SVector, Vector3};
+use nalgebra::{SVector, SimdBool, SimdRealField, Vector3};
 
 use crate::body::{Body, BodyMotion, BodySegment, BodyState, body_states, first_axis_vertical};
 use crate::kinematics::for_each_peeled;
@@ -13,7 +13,7 @@ use crate::strip::{added_mass_moments, drag_moments_2};
 
 /// The environment's generalized forces on every joint [N·m].
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HydroTorques<T: RealField + Copy, const N: usize> {
+pub struct HydroTorques<T: SimdRealField + Copy, const N: usize> {
     /// Drag (Morison, quadratic in velocity); `q̇ · drag ≤ 0`.
     pub drag: SVector<T, N>,
     /// Added mass (reaction of the accelerated water).
@@ -24,7 +24,7 @@ pub struct HydroTorques<T: RealField + Copy, const N: usize> {
     pub gravity: SVector<T, N>,
 }
 
-impl<T: RealField + Copy, const N: usize> HydroTorques<T, N> {
+impl<T: SimdRealField + Copy, const N: usize> HydroTorques<T, N> {
     /// `drag + added_mass + buoyancy`: the paper's `τ_w`.
     #[must_use]
     #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
@@ -35,7 +35,7 @@ impl<T: RealField + Copy, const N: usize> HydroTorques<T, N> {
 
 /// The terms of `τ_hydro = buoyancy + Σ Cd[l][k]·drag[l][k] + Σ Cm[l][k]·added_mass[l][k]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HydroRegressors<T: RealField + Copy, const N: usize> {
+pub struct HydroRegressors<T: SimdRealField + Copy, const N: usize> {
     /// Buoyancy torques.
     pub buoyancy: SVector<T, N>,
     /// Gravity torques (not part of `τ_hydro`).
@@ -46,7 +46,7 @@ pub struct HydroRegressors<T: RealField + Copy, const N: usize> {
     pub added_mass: [[SVector<T, N>; 2]; N],
 }
 
-fn contract<T: RealField + Copy, const N: usize>(
+fn contract<T: SimdRealField + Copy, const N: usize>(
     columns: &[[SVector<T, N>; 2]; N],
     coefficients: &[[T; 2]; N],
 ) -> SVector<T, N> {
@@ -59,11 +59,11 @@ fn contract<T: RealField + Copy, const N: usize>(
     sum
 }
 
-fn sum_columns<T: RealField + Copy, const N: usize>(columns: &[[SVector<T, N>; 2]; N]) -> SVector<T, N> {
+fn sum_columns<T: SimdRealField + Copy, const N: usize>(columns: &[[SVector<T, N>; 2]; N]) -> SVector<T, N> {
     columns.iter().flatten().fold(SVector::zeros(), |acc, column| acc + column)
 }
 
-impl<T: RealField + Copy, const N: usize> HydroRegressors<T, N> {
+impl<T: SimdRealField + Copy, const N: usize> HydroRegressors<T, N> {
     /// The torques for the given coefficients.
     #[must_use]
     #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
@@ -94,12 +94,12 @@ impl<T: RealField + Copy, const N: usize> HydroRegressors<T, N> {
 /// The exact strip moments of a segment along each normal direction `k` (MODEL.md section 3):
 /// drag `(∫ v_k|v_k| ds, ∫ s v_k|v_k| ds)` and added mass `(∫ a_k ds, ∫ s a_k ds)`.
 #[derive(Clone, Copy)]
-struct StripMoments<T: RealField + Copy> {
+struct StripMoments<T: SimdRealField + Copy> {
     drag: [(T, T); 2],
     added_mass: [(T, T); 2],
 }
 
-impl<T: RealField + Copy> StripMoments<T> {
+impl<T: SimdRealField + Copy> StripMoments<T> {
     #[inline(always)]
     fn new(segment: &BodySegment<T>, motion: &BodyMotion<T>) -> Self {
         let (v_start, a_start) = match &segment.start {
@@ -127,12 +127,12 @@ impl<T: RealField + Copy> StripMoments<T> {
 
 /// A force and its moment about a joint origin, in that joint's body frame.
 #[derive(Clone, Copy)]
-struct Wrench<T: RealField + Copy> {
+struct Wrench<T: SimdRealField + Copy> {
     force: Vector3<T>,
     moment: Vector3<T>,
 }
 
-impl<T: RealField + Copy> Wrench<T> {
+impl<T: SimdRealField + Copy> Wrench<T> {
     /// The resultant about the body origin of strip forces `scales[k]·f_k(s)` along the normals,
     /// whose integrals over the segment are `integrals[k] = (∫ f_k ds, ∫ s f_k ds)`.
     #[inline(always)]
@@ -162,12 +162,12 @@ impl<T: RealField + Copy> Wrench<T> {
 
 /// The drag and the added-mass wrench, carried down the chain together.
 #[derive(Clone, Copy)]
-struct Wrenches<T: RealField + Copy> {
+struct Wrenches<T: SimdRealField + Copy> {
     drag: Wrench<T>,
     added_mass: Wrench<T>,
 }
 
-impl<T: RealField + Copy> Wrenches<T> {
+impl<T: SimdRealField + Copy> Wrenches<T> {
     fn zero() -> Self {
         let zero = Wrench { force: Vector3::zeros(), moment: Vector3::zeros() };
         Self { drag: zero, added_mass: zero }
@@ -211,7 +211,7 @@ impl<T: RealField + Copy> Wrenches<T> {
 /// (`applied(j)`: link j's, in `F_j` about joint j), carried down the chain from the last link to
 /// the first as in recursive Newton-Euler.
 #[inline(always)]
-fn carry_down<T: RealField + Copy, const N: usize>(
+fn carry_down<T: SimdRealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     states: &[BodyState<T>; N],
     applied: impl Fn(usize) -> Option<Wrenches<T>>,
@@ -252,7 +252,7 @@ fn carry_down<T: RealField + Copy, const N: usize>(
 /// Buoyancy and gravity torques on every joint. Both are vertical, so the torque on a joint is
 /// fixed by the first moments `Σ V_i c_i` and `Σ m_i c_i` of the links it carries.
 #[inline(always)]
-fn static_torques<T: RealField + Copy, const N: usize>(
+fn static_torques<T: SimdRealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     states: &[BodyState<T>; N],
@@ -285,19 +285,30 @@ fn static_torques<T: RealField + Copy, const N: usize>(
     (buoyancy.into(), gravity.into())
 }
 
-/// Whether every joint state is finite. Otherwise the torques are NaN, rather than whatever the
-/// non-finite input reaches: in body frames, for instance, no torque depends on the first joint
-/// angle but through buoyancy and gravity, and those not at all where the first axis is vertical.
+/// Which lanes have every joint state finite (for a scalar `T`, whether it has). Where one has
+/// not, the torques are NaN, rather than whatever the non-finite input reaches: in body frames,
+/// for instance, no torque depends on the first joint angle but through buoyancy and gravity,
+/// and those not at all where the first axis is vertical.
 #[inline(always)]
-fn all_finite<T: RealField + Copy, const N: usize>(q: &SVector<T, N>, qd: &SVector<T, N>, qdd: &SVector<T, N>) -> bool {
+fn finite_lanes<T: SimdRealField + Copy, const N: usize>(
+    q: &SVector<T, N>,
+    qd: &SVector<T, N>,
+    qdd: &SVector<T, N>,
+) -> T::SimdBool {
     // 0·x is 0 for finite x and NaN otherwise: one comparison instead of 3N.
     let states = q.as_slice().iter().chain(qd.as_slice()).chain(qdd.as_slice());
-    states.fold(T::zero(), |sum, &x| sum + x * T::zero()) == T::zero()
+    states.fold(T::zero(), |sum, &x| sum + x * T::zero()).simd_eq(T::zero())
+}
+
+/// NaN in the lanes that are not `finite`.
+#[inline(always)]
+fn nan_unless<T: SimdRealField + Copy, const N: usize>(finite: T::SimdBool, v: SVector<T, N>) -> SVector<T, N> {
+    v.map(|x| x.select(finite, T::zero() / T::zero()))
 }
 
 /// `−½ρ w_k` and `−ρ A`: the drag and added-mass scales of a segment at unit coefficients.
 #[inline(always)]
-fn unit_scales<T: RealField + Copy>(segment: &BodySegment<T>, water: &Water<T>) -> ([T; 2], T) {
+fn unit_scales<T: SimdRealField + Copy>(segment: &BodySegment<T>, water: &Water<T>) -> ([T; 2], T) {
     let rho = water.density();
     (segment.widths.map(|w| -constant::<T>(0.5) * rho * w), -rho * segment.area)
 }
@@ -308,14 +319,15 @@ fn unit_scales<T: RealField + Copy>(segment: &BodySegment<T>, water: &Water<T>) 
 /// Never fails and never panics; non-finite states give NaN.
 #[must_use]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn hydro_regressors<T: RealField + Copy, const N: usize>(
+pub fn hydro_regressors<T: SimdRealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     q: &SVector<T, N>,
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> HydroRegressors<T, N> {
-    if !all_finite(q, qd, qdd) {
+    let finite = finite_lanes(q, qd, qdd);
+    if finite.none() {
         let nan = SVector::repeat(T::zero() / T::zero());
         return HydroRegressors { buoyancy: nan, gravity: nan, drag: [[nan; 2]; N], added_mass: [[nan; 2]; N] };
     }
@@ -340,7 +352,16 @@ pub fn hydro_regressors<T: RealField + Copy, const N: usize>(
             (*drag, *added_mass) = (d.into(), a.into());
         }
     }
-    HydroRegressors { buoyancy, gravity, drag, added_mass }
+    if finite.all() {
+        return HydroRegressors { buoyancy, gravity, drag, added_mass };
+    }
+    let columns = |c: [[SVector<T, N>; 2]; N]| c.map(|c| c.map(|c| nan_unless(finite, c)));
+    HydroRegressors {
+        buoyancy: nan_unless(finite, buoyancy),
+        gravity: nan_unless(finite, gravity),
+        drag: columns(drag),
+        added_mass: columns(added_mass),
+    }
 }
 
 /// Drag, added-mass, buoyancy and gravity torques at joint state `(q, q̇, q̈)`.
@@ -350,7 +371,7 @@ pub fn hydro_regressors<T: RealField + Copy, const N: usize>(
 /// Never fails and never panics; non-finite states give NaN.
 #[must_use]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn hydro_torques<T: RealField + Copy, const N: usize>(
+pub fn hydro_torques<T: SimdRealField + Copy, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     coefficients: &Coefficients<T, N>,
@@ -358,7 +379,8 @@ pub fn hydro_torques<T: RealField + Copy, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> HydroTorques<T, N> {
-    if !all_finite(q, qd, qdd) {
+    let finite = finite_lanes(q, qd, qdd);
+    if finite.none() {
         let nan = SVector::repeat(T::zero() / T::zero());
         return HydroTorques { drag: nan, added_mass: nan, buoyancy: nan, gravity: nan };
     }
@@ -374,5 +396,14 @@ pub fn hydro_torques<T: RealField + Copy, const N: usize>(
         }
     });
     let (drag, added_mass) = carry_down(chain, &states, |j| applied.get(j).copied().flatten());
-    HydroTorques { drag: drag.into(), added_mass: added_mass.into(), buoyancy, gravity }
+    let torques = HydroTorques { drag: drag.into(), added_mass: added_mass.into(), buoyancy, gravity };
+    if finite.all() {
+        return torques;
+    }
+    HydroTorques {
+        drag: nan_unless(finite, torques.drag),
+        added_mass: nan_unless(finite, torques.added_mass),
+        buoyancy: nan_unless(finite, torques.buoyancy),
+        gravity: nan_unless(finite, torques.gravity),
+    }
 }

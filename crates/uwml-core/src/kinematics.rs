@@ -1,7 +1,7 @@
 //! Forward kinematics of the chain in world coordinates, and the small vector helpers shared
 //! with the body-frame recursion of the torque paths (`crate::body`).
 
-use nalgebra::{Matrix3, RealField, SVector, Vector3};
+use nalgebra::{Matrix3, RealField, SVector, SimdRealField, Vector3};
 
 use crate::model::{Chain, Joint};
 
@@ -151,13 +151,13 @@ pub fn link_motions<T: RealField + Copy, const N: usize>(
 
 /// `a · b`, without the zero accumulator of nalgebra's generic dot.
 #[inline(always)]
-pub(crate) fn dot<T: RealField + Copy>(a: &Vector3<T>, b: &Vector3<T>) -> T {
+pub(crate) fn dot<T: SimdRealField + Copy>(a: &Vector3<T>, b: &Vector3<T>) -> T {
     a.x * b.x + a.y * b.y + a.z * b.z
 }
 
 /// `m · v`.
 #[inline(always)]
-pub(crate) fn rotate<T: RealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+pub(crate) fn rotate<T: SimdRealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
     let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
     Vector3::new(
         c0.x * v.x + c1.x * v.y + c2.x * v.z,
@@ -168,7 +168,7 @@ pub(crate) fn rotate<T: RealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vec
 
 /// `mᵀ · v`.
 #[inline(always)]
-pub(crate) fn rotate_back<T: RealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
+pub(crate) fn rotate_back<T: SimdRealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
     let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
     Vector3::new(
         c0.x * v.x + c0.y * v.y + c0.z * v.z,

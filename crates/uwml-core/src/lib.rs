@@ -19,7 +19,7 @@ pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
 pub use jacobian::point_jacobian;
 pub use kinematics::{LinkMotion, link_motions};
 pub use losses::{
-    Drive, EnvironmentTorques, JointLoss, JointLosses, LossState, OilDrag, Seal, environment_torques,
+    Drive, EnvironmentTorques, JointLoss, JointLosses, LossState, OilDrag, Seal, environment_torques, loss_torques,
     pressure_at_depth, smooth_sign,
 };
 pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water};

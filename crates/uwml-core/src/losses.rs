@@ -480,21 +480,30 @@ pub fn environment_torques<T: RealField + Copy, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> EnvironmentTorques<T, N> {
+    let (visc, seal, current) = loss_torques(losses, qd);
+    EnvironmentTorques { hydro: hydro_torques(chain, water, coefficients, q, qd, qdd), visc, seal, current }
+}
+
+/// The joint losses of [`environment_torques`] alone: `(visc, seal, current)` of every joint at
+/// its speed `q̇[i]`, zero where `losses[i]` is `None`.
+///
+/// Never fails and never panics.
+#[must_use]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn loss_torques<T: RealField + Copy, const N: usize>(
+    losses: &[Option<LossState<T>>; N],
+    qd: &SVector<T, N>,
+) -> (SVector<T, N>, SVector<T, N>, SVector<T, N>) {
     let zeros = SVector::<T, N>::zeros();
-    let mut out = EnvironmentTorques {
-        hydro: hydro_torques(chain, water, coefficients, q, qd, qdd),
-        visc: zeros,
-        seal: zeros,
-        current: zeros,
-    };
-    let slots = out.visc.iter_mut().zip(out.seal.iter_mut()).zip(out.current.iter_mut());
+    let (mut visc, mut seal, mut current) = (zeros, zeros, zeros);
+    let slots = visc.iter_mut().zip(seal.iter_mut()).zip(current.iter_mut());
     for (((visc, seal), current), (state, &speed)) in slots.zip(losses.iter().zip(qd.iter())) {
         if let Some(state) = state {
             let loss = state.evaluate(speed);
             (*visc, *seal, *current) = (loss.visc, loss.seal, loss.current);
         }
     }
-    out
+    (visc, seal, current)
 }
 
 impl<T: RealField + Copy> LossState<T> {

@@ -5,7 +5,7 @@
 //! world frame for the first joint) and turns link `i` about `axis` by `q[i]`. Link `i`'s
 //! geometry is given in its own frame, whose origin is joint `i`. World z points up.
 
-use nalgebra::{RealField, Vector3};
+use nalgebra::{RealField, SimdRealField, Vector3};
 
 use crate::body::{Body, bodies};
 use crate::error::{ModelError, Problem};
@@ -15,7 +15,7 @@ pub const AXIS_TOLERANCE: f64 = 1e-6;
 
 /// A revolute joint: origin and unit axis in the parent link's frame at `q = 0`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Joint<T: RealField + Copy> {
+pub struct Joint<T: SimdRealField + Copy> {
     /// Position of the joint in the parent frame [m].
     pub origin: Vector3<T>,
     /// Unit rotation axis in the parent frame.
@@ -28,7 +28,7 @@ pub struct Joint<T: RealField + Copy> {
 /// principal cross-flow directions (orthonormal, perpendicular to `axis`); `widths[k]` is the
 /// frontal width seen by flow along `normals[k]`; `area` is the section area for added mass.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Segment<T: RealField + Copy> {
+pub struct Segment<T: SimdRealField + Copy> {
     /// Start point of the segment [m].
     pub start: Vector3<T>,
     /// Unit direction of the segment.
@@ -46,7 +46,7 @@ pub struct Segment<T: RealField + Copy> {
 /// A rigid link: mass and centre of mass, displaced volume and centre of buoyancy, and
 /// optionally a straight segment that meets the water.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Link<T: RealField + Copy> {
+pub struct Link<T: SimdRealField + Copy> {
     /// Mass [kg], zero or positive.
     pub mass: T,
     /// Centre of mass in the link frame [m].
@@ -61,7 +61,7 @@ pub struct Link<T: RealField + Copy> {
 
 /// A validated serial chain of `N` revolute joints, link `i` moved by joint `i`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Chain<T: RealField + Copy, const N: usize> {
+pub struct Chain<T: SimdRealField + Copy, const N: usize> {
     joints: [Joint<T>; N],
     links: [Link<T>; N],
     /// The same chain in body frames, derived once for the torque paths.
@@ -70,19 +70,19 @@ pub struct Chain<T: RealField + Copy, const N: usize> {
 
 /// The fluid the chain moves in.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Water<T: RealField + Copy> {
+pub struct Water<T: SimdRealField + Copy> {
     density: T,
     gravity: T,
 }
 
 /// Drag and added-mass coefficients per link and per normal direction (`[link][k]`).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Coefficients<T: RealField + Copy, const N: usize> {
+pub struct Coefficients<T: SimdRealField + Copy, const N: usize> {
     cd: [[T; 2]; N],
     cm: [[T; 2]; N],
 }
 
-pub(crate) fn constant<T: RealField + Copy>(x: f64) -> T {
+pub(crate) fn constant<T: SimdRealField + Copy>(x: f64) -> T {
     nalgebra::convert(x)
 }
 
@@ -225,7 +225,9 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
     fn from_validated(joints: [Joint<T>; N], links: [Link<T>; N]) -> Self {
         Self { joints, links, bodies: bodies(&joints, &links) }
     }
+}
 
+impl<T: SimdRealField + Copy, const N: usize> Chain<T, N> {
     /// The joints, as validated.
     pub const fn joints(&self) -> &[Joint<T>; N] {
         &self.joints
@@ -328,7 +330,9 @@ impl<T: RealField + Copy> Water<T> {
             gravity: check_non_negative(gravity, "water.gravity", None)?,
         })
     }
+}
 
+impl<T: SimdRealField + Copy> Water<T> {
     /// Density [kg/m³].
     pub const fn density(&self) -> T {
         self.density
@@ -369,7 +373,9 @@ impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
         }
         Ok(Self { cd, cm })
     }
+}
 
+impl<T: SimdRealField + Copy, const N: usize> Coefficients<T, N> {
     /// Drag coefficients `[link][k]`.
     pub const fn cd(&self) -> &[[T; 2]; N] {
         &self.cd
@@ -390,14 +396,14 @@ impl<T: RealField + Copy, const N: usize> Default for Coefficients<T, N> {
 
 impl<T: RealField + Copy> Joint<T> {
     /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Joint<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Joint<U> {
         Joint { origin: self.origin.map(f), axis: self.axis.map(f) }
     }
 }
 
 impl<T: RealField + Copy> Segment<T> {
     /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Segment<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Segment<U> {
         Segment {
             start: self.start.map(f),
             axis: self.axis.map(f),
@@ -411,7 +417,7 @@ impl<T: RealField + Copy> Segment<T> {
 
 impl<T: RealField + Copy> Link<T> {
     /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Link<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Link<U> {
         Link {
             mass: f(self.mass),
             com: self.com.map(f),
@@ -426,7 +432,7 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
     /// The same chain over another scalar type, every number (including the precomputed body
     /// frames) mapped by `f`, which must keep values (as `Dual::constant` does): nothing is
     /// validated or derived again, so the mapped chain takes the same branches as this one.
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Chain<U, N> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Chain<U, N> {
         Chain {
             joints: self.joints.map(|j| j.map_scalars(f)),
             links: self.links.map(|l| l.map_scalars(f)),
@@ -437,14 +443,40 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
 
 impl<T: RealField + Copy> Water<T> {
     /// The same water over another scalar type (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U) -> Water<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U) -> Water<U> {
         Water { density: f(self.density), gravity: f(self.gravity) }
     }
 }
 
 impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
     /// The same coefficients over another scalar type (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Coefficients<U, N> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Coefficients<U, N> {
         Coefficients { cd: self.cd.map(|c| c.map(f)), cm: self.cm.map(|c| c.map(f)) }
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Chain<T, N> {
+    /// The same chain over a SIMD type `L` whose lanes are `T`s (such as simba's `WideF64x4`),
+    /// every number splat across the lanes: the torque paths then evaluate one joint state per
+    /// lane in one call, with the same operations as for `T`.
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Chain<L, N> {
+        self.map_scalars(L::splat)
+    }
+}
+
+impl<T: RealField + Copy> Water<T> {
+    /// The same water over a SIMD type (see [`Chain::splat`]).
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Water<L> {
+        self.map_scalars(L::splat)
+    }
+}
+
+impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
+    /// The same coefficients over a SIMD type (see [`Chain::splat`]).
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Coefficients<L, N> {
+        self.map_scalars(L::splat)
     }
 }

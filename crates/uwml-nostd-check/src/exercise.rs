@@ -1,17 +1,19 @@
 //! Calls every public evaluation function of uwml-core, for `f32` and `f64` and for chains of 1,
-//! 3 (the paper's leg) and 6 joints, on inputs hidden from the optimizer by `black_box`, and
-//! counts the results that are not what they should be (finite, or NaN for a NaN state).
+//! 3 (the paper's leg) and 6 joints, and the torque paths over SIMD lanes (`WideF32x4`,
+//! `WideF64x4`), on inputs hidden from the optimizer by `black_box`, and counts the results that
+//! are not what they should be (finite, or NaN for a NaN state).
 //!
 //! Shared by the no_std binary (src/main.rs: the link proof) and the hosted one
 //! (src/bin/no_panic_proof.rs: the no-panic proof), so both prove the same instantiations.
 
 use core::hint::black_box;
 
+use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
 use uwml_core::strip::{added_mass_moments, drag_moments};
 use uwml_core::{
     Chain, Coefficients, Joint, JointLosses, Link, LossState, OilDrag, Segment, Water, environment_jacobians,
-    environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, point_jacobian,
+    environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian,
     pressure_at_depth, smooth_sign,
 };
 
@@ -34,6 +36,13 @@ impl<T: RealField + Copy> Tally<T> {
     {
         for &x in xs {
             self.finite(x);
+        }
+    }
+
+    fn nan(&mut self, x: T) {
+        let x = black_box(x);
+        if x == x {
+            self.bad += 1;
         }
     }
 
@@ -148,6 +157,7 @@ fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mu
         tally.all_finite(jacobians.value.iter().chain(matrices));
     }
     tally.expect(environment_jacobians(chain, &water, &coefficients, &losses, &q, &qd, &qdd).value == env.total());
+    tally.expect(loss_torques(&losses, &qd) == (env.visc, env.seal, env.current));
 
     // A NaN state gives non-finite (NaN) torques everywhere, not only where the NaN reaches.
     let mut nan_q = q;
@@ -205,7 +215,58 @@ fn for_type<T: RealField + Copy>() -> u32 {
     tally.bad
 }
 
+/// The torque paths over SIMD lanes (four states per call, the batch path of the Python
+/// bindings), with a NaN in one lane, which must give NaN in that lane only.
+fn lanes<L: SimdRealField + Copy, const N: usize>(chain: &Chain<L::Element, N>, tally: &mut Tally<L::Element>)
+where
+    L::Element: RealField + Copy,
+{
+    let (lane_chain, water, coefficients) =
+        (chain.splat::<L>(), Water::default().splat::<L>(), Coefficients::<_, N>::default().splat::<L>());
+    let lanes = |base: f64, step: f64| {
+        SVector::<L, N>::from_fn(|i, _| {
+            let mut lane = L::splat(c(base + step * i as f64));
+            for l in 0..L::LANES {
+                lane.replace(l, c(base + step * i as f64 + 0.1 * l as f64));
+            }
+            lane
+        })
+    };
+    let (q, qd, qdd) = (black_box(lanes(0.3, -0.2)), black_box(lanes(0.8, -0.45)), black_box(lanes(1.0, -0.7)));
+    let mut nan_q = q;
+    if let Some(first) = nan_q.get_mut(0) {
+        first.replace(0, c(f64::NAN));
+    }
+    let nan = black_box(nan_q);
+    let tau = hydro_torques(&lane_chain, &water, &coefficients, &nan, &qd, &qdd).total();
+    let regressors = hydro_regressors(&lane_chain, &water, &nan, &qd, &qdd).buoyancy;
+    for l in 0..L::LANES {
+        let (lane_tau, lane_regressor) = (tau.map(|x| x.extract(l)), regressors.map(|x| x.extract(l)));
+        if l == 0 {
+            for &x in lane_tau.iter().chain(lane_regressor.iter()) {
+                tally.nan(x);
+            }
+        } else {
+            tally.all_finite(lane_tau.iter().chain(lane_regressor.iter()));
+        }
+    }
+}
+
+fn for_lanes() -> u32 {
+    let (mut single, mut double) = (
+        Tally::<f32> { bad: 0, _real: core::marker::PhantomData },
+        Tally::<f64> { bad: 0, _real: core::marker::PhantomData },
+    );
+    lanes::<WideF32x4, 3>(&black_box(Chain::paper()), &mut single);
+    lanes::<WideF64x4, 3>(&black_box(Chain::paper()), &mut double);
+    match chain::<f64, 6>() {
+        Some(chain) => lanes::<WideF64x4, 6>(&black_box(chain), &mut double),
+        None => double.expect(false),
+    }
+    single.bad + double.bad
+}
+
 /// The number of unexpected results over all calls: 0 when everything is as it should be.
 pub fn exercise() -> u32 {
-    for_type::<f32>() + for_type::<f64>()
+    for_type::<f32>() + for_type::<f64>() + for_lanes()
 }

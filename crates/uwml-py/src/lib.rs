@@ -13,9 +13,13 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, Vector3};
+
+/// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64).
+type Lanes = simba::simd::WideF64x4;
 use uwml_core::{
-    Chain, Coefficients, Drive, Joint, JointLosses, Link, LossState, ModelError, OilDrag, Seal, Segment, Water,
-    environment_jacobians, environment_torques, hydro_regressors, hydro_torques, point_jacobian,
+    Chain, Coefficients, Drive, HydroRegressors, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
+    OilDrag, Seal, Segment, Water, environment_jacobians, hydro_regressors, hydro_torques, loss_torques,
+    point_jacobian,
 };
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
@@ -293,7 +297,64 @@ struct TorqueBatch {
     gravity: Vec<f64>,
 }
 
-/// Drag, added-mass, buoyancy and gravity torques of a batch into `out` (each `n_samples × N`).
+/// Up to four samples of one array (rows of N values) as one vector of lanes, the missing
+/// samples of a last group zero.
+#[inline(always)]
+fn lanes<const N: usize>(rows: &[f64]) -> SVector<Lanes, N> {
+    SVector::from_fn(|j, _| Lanes::from([0, 1, 2, 3].map(|l| rows.get(l * N + j).copied().unwrap_or(0.0))))
+}
+
+/// The four samples (one per lane) of a vector of lanes.
+#[inline(always)]
+fn unpack<const N: usize>(v: &SVector<Lanes, N>) -> [SVector<f64, N>; 4] {
+    let joints: [[f64; 4]; N] = core::array::from_fn(|j| v.get(j).map_or([f64::NAN; 4], |&x| x.into()));
+    core::array::from_fn(|l| SVector::from_fn(|j, _| joints.get(j).and_then(|x| x.get(l)).copied().unwrap_or(f64::NAN)))
+}
+
+/// The four samples' torques.
+#[inline(always)]
+fn unpack_torques<const N: usize>(t: &HydroTorques<Lanes, N>) -> [HydroTorques<f64, N>; 4] {
+    let [drag, added_mass, buoyancy, gravity] = [&t.drag, &t.added_mass, &t.buoyancy, &t.gravity].map(unpack);
+    core::array::from_fn(|l| {
+        let of = |v: &[SVector<f64, N>; 4]| v.get(l).copied().unwrap_or_else(|| SVector::repeat(f64::NAN));
+        HydroTorques { drag: of(&drag), added_mass: of(&added_mass), buoyancy: of(&buoyancy), gravity: of(&gravity) }
+    })
+}
+
+/// The four samples' regressors.
+#[inline(always)]
+fn unpack_regressors<const N: usize>(r: &HydroRegressors<Lanes, N>) -> [HydroRegressors<f64, N>; 4] {
+    let columns = |c: &[[SVector<Lanes, N>; 2]; N]| c.map(|c| c.map(|c| unpack(&c)));
+    let (drag, added_mass) = (columns(&r.drag), columns(&r.added_mass));
+    let [buoyancy, gravity] = [&r.buoyancy, &r.gravity].map(unpack);
+    core::array::from_fn(|l| {
+        let of = |v: &[SVector<f64, N>; 4]| v.get(l).copied().unwrap_or_else(|| SVector::repeat(f64::NAN));
+        let columns = |c: &[[[SVector<f64, N>; 4]; 2]; N]| c.map(|c| c.map(|c| of(&c)));
+        HydroRegressors {
+            buoyancy: of(&buoyancy),
+            gravity: of(&gravity),
+            drag: columns(&drag),
+            added_mass: columns(&added_mass),
+        }
+    })
+}
+
+impl<'a> States<'a> {
+    /// `evaluate` on the samples four at a time, one per SIMD lane (a last group of fewer than
+    /// four padded with zero states, whose results are dropped): every sample's result, in order.
+    fn each_in_lanes<'s, const N: usize, R: 's>(
+        &'s self,
+        evaluate: impl Fn(&SVector<Lanes, N>, &SVector<Lanes, N>, &SVector<Lanes, N>) -> [R; 4] + 's,
+    ) -> impl Iterator<Item = R> + 's {
+        let group = 4 * N;
+        let groups = self.q.chunks(group).zip(self.qd.chunks(group)).zip(self.qdd.chunks(group));
+        groups
+            .flat_map(move |((q, qd), qdd)| evaluate(&lanes(q), &lanes(qd), &lanes(qdd)).into_iter().take(q.len() / N))
+    }
+}
+
+/// Drag, added-mass, buoyancy and gravity torques of a batch into `out` (each `n_samples × N`),
+/// four samples per evaluation.
 fn hydro_into<const N: usize>(
     chain: &Chain<f64, N>,
     water: &Water<f64>,
@@ -302,12 +363,14 @@ fn hydro_into<const N: usize>(
     [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
 ) -> Result<(), NonFinite> {
     states.check_finite::<N>()?;
+    let (chain, water, coefficients) = (chain.splat::<Lanes>(), water.splat(), coefficients.splat());
+    let torques = states
+        .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(&chain, &water, &coefficients, q, qd, qdd)));
     let rows = drag
         .chunks_exact_mut(N)
         .zip(added_mass.chunks_exact_mut(N))
         .zip(buoyancy.chunks_exact_mut(N).zip(gravity.chunks_exact_mut(N)));
-    for ((q, qd, qdd), ((drag, added_mass), (buoyancy, gravity))) in states.each::<N>().zip(rows) {
-        let tau = hydro_torques(chain, water, coefficients, &q, &qd, &qdd);
+    for (tau, ((drag, added_mass), (buoyancy, gravity))) in torques.zip(rows) {
         write_row(drag, &tau.drag);
         write_row(added_mass, &tau.added_mass);
         write_row(buoyancy, &tau.buoyancy);
@@ -355,18 +418,20 @@ fn environment_into<const N: usize>(
     losses: &[Option<JointLosses<f64>>],
     states: &States<'_>,
     conditions: (&[f64], &[f64]),
-    out: [&mut [f64]; 7],
+    [drag, added_mass, buoyancy, gravity, visc, seal, current]: [&mut [f64]; 7],
 ) -> Result<(), NonFinite> {
-    let mut rows = out.map(|column| column.chunks_exact_mut(N));
+    // The hydrodynamics exactly as `Leg.hydro` has them (four samples per evaluation), then
+    // the losses of each loaded joint at its speed, as `environment_torques` adds them.
+    hydro_into(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity])?;
     let mut joint_losses = [None; N];
     for (slot, l) in joint_losses.iter_mut().zip(losses) {
         *slot = *l;
     }
     let mut current_conditions = (f64::NAN, f64::NAN);
     let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
-    states.check_finite::<N>()?;
-    for (sample, ((q, qd, qdd), (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate()
-    {
+    let rows = visc.chunks_exact_mut(N).zip(seal.chunks_exact_mut(N)).zip(current.chunks_exact_mut(N));
+    let per_sample = states.qd.chunks_exact(N).filter_map(vector).zip(conditions.0.iter().zip(conditions.1));
+    for (sample, ((qd, (&p, &t)), ((visc, seal), current))) in per_sample.zip(rows).enumerate() {
         for (argument, value) in [("pressure", p), ("temperature", t)] {
             if !value.is_finite() {
                 return Err(NonFinite { argument, sample, joint: 0, value });
@@ -376,14 +441,9 @@ fn environment_into<const N: usize>(
             current_conditions = (p, t);
             loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));
         }
-        let env = environment_torques(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
-        let h = &env.hydro;
-        for (column, values) in
-            rows.iter_mut().zip([h.drag, h.added_mass, h.buoyancy, h.gravity, env.visc, env.seal, env.current])
-        {
-            if let Some(row) = column.next() {
-                write_row(row, &values);
-            }
+        let (v, s, c) = loss_torques(&loss_states, &qd);
+        for (row, values) in [(visc, v), (seal, s), (current, c)] {
+            write_row(row, &values);
         }
     }
     Ok(())
@@ -453,8 +513,9 @@ fn regressor_batch<const N: usize>(
         gravity: Vec::with_capacity(n_samples * N),
     };
     states.check_finite::<N>()?;
-    for (q, qd, qdd) in states.each::<N>() {
-        let r = hydro_regressors(chain, water, &q, &qd, &qdd);
+    let (chain, water) = (chain.splat::<Lanes>(), water.splat());
+    for r in states.each_in_lanes::<N, _>(|q, qd, qdd| unpack_regressors(&hydro_regressors(&chain, &water, q, qd, qdd)))
+    {
         out.buoyancy.extend(r.buoyancy.iter());
         out.gravity.extend(r.gravity.iter());
         if per_direction {
@@ -556,10 +617,13 @@ fn design_batch<const N: usize>(
         .collect();
     // One Cd and one Cm: the torques at unit coefficients are the two columns, at a third of
     // the cost of the regressors of every link and direction.
-    let unit = Coefficients::uniform(1.0, 1.0).ok().filter(|_| per == Per::Leg);
-    for ((q, qd, qdd), delta) in states.each::<N>().zip(delta.chunks_exact(N)) {
-        if let Some(unit) = &unit {
-            let tau = hydro_torques(chain, water, unit, &q, &qd, &qdd);
+    // Four samples per evaluation.
+    let (chain, water) = (chain.splat::<Lanes>(), water.splat());
+    if let (Per::Leg, Ok(unit)) = (per, Coefficients::uniform(1.0, 1.0)) {
+        let unit = unit.splat();
+        let torques = states
+            .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(&chain, &water, &unit, q, qd, qdd)));
+        for (tau, delta) in torques.zip(delta.chunks_exact(N)) {
             for (rows, joint) in &mut blocks {
                 let on_joint = |column: &SVector<f64, N>| column.get(*joint).copied().unwrap_or(f64::NAN);
                 if let Some([drag, added_mass, target]) =
@@ -569,9 +633,12 @@ fn design_batch<const N: usize>(
                     *target = -delta.get(*joint).copied().unwrap_or(f64::NAN) - on_joint(&tau.buoyancy);
                 }
             }
-            continue;
         }
-        let r = hydro_regressors(chain, water, &q, &qd, &qdd);
+        return Ok(design);
+    }
+    let regressors =
+        states.each_in_lanes::<N, _>(|q, qd, qdd| unpack_regressors(&hydro_regressors(&chain, &water, q, qd, qdd)));
+    for (r, delta) in regressors.zip(delta.chunks_exact(N)) {
         for (rows, joint) in &mut blocks {
             let on_joint = |column: &SVector<f64, N>| column.get(*joint).copied().unwrap_or(f64::NAN);
             let Some((target, row)) = rows.next().and_then(|row| row.split_last_mut()) else { continue };
