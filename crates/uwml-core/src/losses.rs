@@ -480,8 +480,9 @@ pub fn environment_torques<T: RealField + Copy, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> EnvironmentTorques<T, N> {
+    let hydro = hydro_torques(chain, water, coefficients, q, qd, qdd);
     let (visc, seal, current) = loss_torques(losses, qd);
-    EnvironmentTorques { hydro: hydro_torques(chain, water, coefficients, q, qd, qdd), visc, seal, current }
+    EnvironmentTorques { hydro, visc, seal, current }
 }
 
 /// The joint losses of [`environment_torques`] alone: `(visc, seal, current)` of every joint at
