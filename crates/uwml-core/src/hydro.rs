@@ -31,6 +31,18 @@ impl<T: SimdRealField + Copy, const N: usize> HydroTorques<T, N> {
     pub fn total(&self) -> SVector<T, N> {
         self.drag + self.added_mass + self.buoyancy
     }
+
+    /// Every torque vector mapped by `f`: one lane of SIMD torques, say, or a mask applied.
+    #[must_use]
+    #[inline(always)]
+    pub fn map<U: SimdRealField + Copy>(&self, f: impl Fn(&SVector<T, N>) -> SVector<U, N>) -> HydroTorques<U, N> {
+        HydroTorques {
+            drag: f(&self.drag),
+            added_mass: f(&self.added_mass),
+            buoyancy: f(&self.buoyancy),
+            gravity: f(&self.gravity),
+        }
+    }
 }
 
 /// The terms of `τ_hydro = buoyancy + Σ Cd[l][k]·drag[l][k] + Σ Cm[l][k]·added_mass[l][k]`.
@@ -64,6 +76,19 @@ fn sum_columns<T: SimdRealField + Copy, const N: usize>(columns: &[[SVector<T, N
 }
 
 impl<T: SimdRealField + Copy, const N: usize> HydroRegressors<T, N> {
+    /// Every column mapped by `f` (see [`HydroTorques::map`]).
+    #[must_use]
+    #[inline(always)]
+    pub fn map<U: SimdRealField + Copy>(&self, f: impl Fn(&SVector<T, N>) -> SVector<U, N>) -> HydroRegressors<U, N> {
+        let columns = |c: &[[SVector<T, N>; 2]; N]| c.each_ref().map(|c| c.each_ref().map(&f));
+        HydroRegressors {
+            buoyancy: f(&self.buoyancy),
+            gravity: f(&self.gravity),
+            drag: columns(&self.drag),
+            added_mass: columns(&self.added_mass),
+        }
+    }
+
     /// The torques for the given coefficients.
     #[must_use]
     #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
@@ -302,7 +327,7 @@ fn finite_lanes<T: SimdRealField + Copy, const N: usize>(
 
 /// NaN in the lanes that are not `finite`.
 #[inline(always)]
-fn nan_unless<T: SimdRealField + Copy, const N: usize>(finite: T::SimdBool, v: SVector<T, N>) -> SVector<T, N> {
+fn nan_unless<T: SimdRealField + Copy, const N: usize>(finite: T::SimdBool, v: &SVector<T, N>) -> SVector<T, N> {
     v.map(|x| x.select(finite, T::zero() / T::zero()))
 }
 
@@ -352,16 +377,8 @@ pub fn hydro_regressors<T: SimdRealField + Copy, const N: usize>(
             (*drag, *added_mass) = (d.into(), a.into());
         }
     }
-    if finite.all() {
-        return HydroRegressors { buoyancy, gravity, drag, added_mass };
-    }
-    let columns = |c: [[SVector<T, N>; 2]; N]| c.map(|c| c.map(|c| nan_unless(finite, c)));
-    HydroRegressors {
-        buoyancy: nan_unless(finite, buoyancy),
-        gravity: nan_unless(finite, gravity),
-        drag: columns(drag),
-        added_mass: columns(added_mass),
-    }
+    let regressors = HydroRegressors { buoyancy, gravity, drag, added_mass };
+    if finite.all() { regressors } else { regressors.map(|v| nan_unless(finite, v)) }
 }
 
 /// Drag, added-mass, buoyancy and gravity torques at joint state `(q, q̇, q̈)`.
@@ -397,13 +414,5 @@ pub fn hydro_torques<T: SimdRealField + Copy, const N: usize>(
     });
     let (drag, added_mass) = carry_down(chain, &states, |j| applied.get(j).copied().flatten());
     let torques = HydroTorques { drag: drag.into(), added_mass: added_mass.into(), buoyancy, gravity };
-    if finite.all() {
-        return torques;
-    }
-    HydroTorques {
-        drag: nan_unless(finite, torques.drag),
-        added_mass: nan_unless(finite, torques.added_mass),
-        buoyancy: nan_unless(finite, torques.buoyancy),
-        gravity: nan_unless(finite, torques.gravity),
-    }
+    if finite.all() { torques } else { torques.map(|v| nan_unless(finite, v)) }
 }

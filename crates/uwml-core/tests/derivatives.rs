@@ -12,7 +12,7 @@ use uwml_core::{
 };
 
 mod common;
-use common::{Rng, random_chain};
+use common::{Rng, random_chain, random_coefficients};
 
 /// Central difference step and the tolerance it allows, relative to the matrix's largest entry.
 const H: f64 = 1e-6;
@@ -268,8 +268,7 @@ fn random_chains_match_finite_differences() {
     let mut rng = Rng(13);
     let seal_only = JointLosses::new(Drive::default(), None, JointLosses::default().seal, 0.02).unwrap();
     for k in 0..100 {
-        let mut draw = || core::array::from_fn(|_| [0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs()]);
-        let coefficients = Coefficients::per_direction(draw(), draw()).unwrap();
+        let coefficients = random_coefficients(&mut rng);
         let losses = [None, Some(JointLosses::default().at(5e6, 10.0)), None, Some(seal_only.at(2e7, 2.0))];
         let model = Model {
             chain: random_chain(&mut rng),

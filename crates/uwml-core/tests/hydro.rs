@@ -6,7 +6,7 @@ use uwml_core::nalgebra::{Matrix3, SVector};
 use uwml_core::{Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques, link_motions};
 
 mod common;
-use common::{Rng, random_chain};
+use common::{Rng, random_chain, random_coefficients};
 
 fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> HydroTorques<f64, 3> {
     let c = Coefficients::uniform(2.2, 0.5).unwrap();
@@ -82,18 +82,13 @@ fn paper_equations_8_and_9_for_pure_yaw() {
     }
 }
 
-fn per_direction(rng: &mut Rng) -> Coefficients<f64, 4> {
-    let mut draw = || core::array::from_fn(|_| [0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs()]);
-    Coefficients::per_direction(draw(), draw()).unwrap()
-}
-
 #[test]
 fn torque_path_equals_regressors_applied() {
     let mut rng = Rng(3);
     let water = Water::new(1025.0, 9.80665).unwrap();
     for _ in 0..200 {
         let chain = random_chain(&mut rng);
-        let coefficients = per_direction(&mut rng);
+        let coefficients = random_coefficients(&mut rng);
         let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
         let fast = hydro_torques(&chain, &water, &coefficients, &q, &qd, &qdd);
         let slow = hydro_regressors(&chain, &water, &q, &qd, &qdd).apply(&coefficients);
@@ -110,7 +105,7 @@ fn drag_is_dissipative_and_homogeneous_of_degree_two() {
     let water = Water::default();
     for _ in 0..300 {
         let chain = random_chain(&mut rng);
-        let c = per_direction(&mut rng);
+        let c = random_coefficients(&mut rng);
         let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
         let drag = hydro_torques(&chain, &water, &c, &q, &qd, &qdd).drag;
         assert!(qd.dot(&drag) <= 1e-12 * qd.norm() * drag.norm(), "power {}", qd.dot(&drag));
@@ -129,7 +124,7 @@ fn added_mass_matrix_is_symmetric_positive_semidefinite() {
     let zero = SVector::<f64, 4>::zeros();
     for _ in 0..200 {
         let chain = random_chain(&mut rng);
-        let c = per_direction(&mut rng);
+        let c = random_coefficients(&mut rng);
         let q = rng.vector::<4>(3.0);
         // M_A = −∂τ_am/∂q̈ at q̇ = 0, column by column (τ_am is linear in q̈).
         let columns: [SVector<f64, 4>; 4] = core::array::from_fn(|j| {
@@ -173,7 +168,7 @@ fn buoyancy_is_conservative_and_joint_one_of_the_paper_gets_none() {
     let zero = SVector::<f64, 4>::zeros();
     for _ in 0..100 {
         let chain = random_chain(&mut rng);
-        let c = per_direction(&mut rng);
+        let c = random_coefficients(&mut rng);
         let q = rng.vector::<4>(3.0);
         let tau = hydro_torques(&chain, &water, &c, &q, &zero, &zero).buoyancy;
         let h = 1e-5;

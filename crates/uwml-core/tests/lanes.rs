@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{Rng, random_chain};
+use common::{Rng, random_chain, random_coefficients};
 use simba::simd::{SimdValue, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{SVector, Scalar};
 use uwml_core::{Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques};
@@ -26,11 +26,6 @@ where
     L::Element: Copy + PartialEq + core::fmt::Debug + 'static,
 {
     v.map(|x| x.extract(l))
-}
-
-fn per_direction(rng: &mut Rng) -> Coefficients<f64, 4> {
-    let mut pair = || [1.0 + rng.next().abs(), 1.0 + rng.next().abs()];
-    Coefficients::per_direction([pair(), pair(), pair(), pair()], [pair(), pair(), pair(), pair()]).unwrap()
 }
 
 /// The largest difference between a lane and its scalar evaluation, relative to `1 +` the
@@ -83,7 +78,7 @@ fn f64_lanes_match_the_scalar_path_on_the_paper_leg_and_random_chains() {
     let mut random = 0.0f64;
     for _ in 0..20 {
         let chain = random_chain(&mut rng);
-        let coefficients = per_direction(&mut rng);
+        let coefficients = random_coefficients(&mut rng);
         random = random.max(worst_difference(&chain, &coefficients, &mut rng, 250));
     }
     println!("f64 lanes vs scalar, worst relative difference: paper {paper:.2e}, random chains {random:.2e}");

@@ -12,10 +12,7 @@ use numpy::{
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use uwml_core::nalgebra::{SVector, Vector3};
-
-/// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64).
-type Lanes = simba::simd::WideF64x4;
+use uwml_core::nalgebra::{SVector, SimdValue, Vector3};
 use uwml_core::{
     Chain, Coefficients, Drive, HydroRegressors, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
     OilDrag, Seal, Segment, Water, environment_jacobians, hydro_regressors, hydro_torques, loss_torques,
@@ -297,6 +294,9 @@ struct TorqueBatch {
     gravity: Vec<f64>,
 }
 
+/// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64).
+type Lanes = simba::simd::WideF64x4;
+
 /// Up to four samples of one array (rows of N values) as one vector of lanes, the missing
 /// samples of a last group zero.
 #[inline(always)]
@@ -304,39 +304,16 @@ fn lanes<const N: usize>(rows: &[f64]) -> SVector<Lanes, N> {
     SVector::from_fn(|j, _| Lanes::from([0, 1, 2, 3].map(|l| rows.get(l * N + j).copied().unwrap_or(0.0))))
 }
 
-/// The four samples (one per lane) of a vector of lanes.
-#[inline(always)]
-fn unpack<const N: usize>(v: &SVector<Lanes, N>) -> [SVector<f64, N>; 4] {
-    let joints: [[f64; 4]; N] = core::array::from_fn(|j| v.get(j).map_or([f64::NAN; 4], |&x| x.into()));
-    core::array::from_fn(|l| SVector::from_fn(|j, _| joints.get(j).and_then(|x| x.get(l)).copied().unwrap_or(f64::NAN)))
-}
-
 /// The four samples' torques.
 #[inline(always)]
 fn unpack_torques<const N: usize>(t: &HydroTorques<Lanes, N>) -> [HydroTorques<f64, N>; 4] {
-    let [drag, added_mass, buoyancy, gravity] = [&t.drag, &t.added_mass, &t.buoyancy, &t.gravity].map(unpack);
-    core::array::from_fn(|l| {
-        let of = |v: &[SVector<f64, N>; 4]| v.get(l).copied().unwrap_or_else(|| SVector::repeat(f64::NAN));
-        HydroTorques { drag: of(&drag), added_mass: of(&added_mass), buoyancy: of(&buoyancy), gravity: of(&gravity) }
-    })
+    core::array::from_fn(|l| t.map(|v| v.map(|x| x.extract(l))))
 }
 
 /// The four samples' regressors.
 #[inline(always)]
 fn unpack_regressors<const N: usize>(r: &HydroRegressors<Lanes, N>) -> [HydroRegressors<f64, N>; 4] {
-    let columns = |c: &[[SVector<Lanes, N>; 2]; N]| c.map(|c| c.map(|c| unpack(&c)));
-    let (drag, added_mass) = (columns(&r.drag), columns(&r.added_mass));
-    let [buoyancy, gravity] = [&r.buoyancy, &r.gravity].map(unpack);
-    core::array::from_fn(|l| {
-        let of = |v: &[SVector<f64, N>; 4]| v.get(l).copied().unwrap_or_else(|| SVector::repeat(f64::NAN));
-        let columns = |c: &[[[SVector<f64, N>; 4]; 2]; N]| c.map(|c| c.map(|c| of(&c)));
-        HydroRegressors {
-            buoyancy: of(&buoyancy),
-            gravity: of(&gravity),
-            drag: columns(&drag),
-            added_mass: columns(&added_mass),
-        }
-    })
+    core::array::from_fn(|l| r.map(|v| v.map(|x| x.extract(l))))
 }
 
 impl<'a> States<'a> {
@@ -360,9 +337,21 @@ fn hydro_into<const N: usize>(
     water: &Water<f64>,
     coefficients: &Coefficients<f64, N>,
     states: &States<'_>,
-    [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
+    out: [&mut [f64]; 4],
 ) -> Result<(), NonFinite> {
     states.check_finite::<N>()?;
+    hydro_rows(chain, water, coefficients, states, out);
+    Ok(())
+}
+
+/// [`hydro_into`] after [`States::check_finite`].
+fn hydro_rows<const N: usize>(
+    chain: &Chain<f64, N>,
+    water: &Water<f64>,
+    coefficients: &Coefficients<f64, N>,
+    states: &States<'_>,
+    [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
+) {
     let (chain, water, coefficients) = (chain.splat::<Lanes>(), water.splat(), coefficients.splat());
     let torques = states
         .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(&chain, &water, &coefficients, q, qd, qdd)));
@@ -376,7 +365,6 @@ fn hydro_into<const N: usize>(
         write_row(buoyancy, &tau.buoyancy);
         write_row(gravity, &tau.gravity);
     }
-    Ok(())
 }
 
 /// Joint losses of a batch of samples: visc, seal and current per sample. The
@@ -420,9 +408,18 @@ fn environment_into<const N: usize>(
     conditions: (&[f64], &[f64]),
     [drag, added_mass, buoyancy, gravity, visc, seal, current]: [&mut [f64]; 7],
 ) -> Result<(), NonFinite> {
-    // The hydrodynamics exactly as `Leg.hydro` has them (four samples per evaluation), then
+    // Every input checked first (the states, then pressure and temperature sample by sample);
+    // then the hydrodynamics exactly as `Leg.hydro` has them (four samples per evaluation), and
     // the losses of each loaded joint at its speed, as `environment_torques` adds them.
-    hydro_into(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity])?;
+    states.check_finite::<N>()?;
+    for (sample, (&p, &t)) in conditions.0.iter().zip(conditions.1).enumerate() {
+        for (argument, value) in [("pressure", p), ("temperature", t)] {
+            if !value.is_finite() {
+                return Err(NonFinite { argument, sample, joint: 0, value });
+            }
+        }
+    }
+    hydro_rows(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity]);
     let mut joint_losses = [None; N];
     for (slot, l) in joint_losses.iter_mut().zip(losses) {
         *slot = *l;
@@ -431,12 +428,7 @@ fn environment_into<const N: usize>(
     let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
     let rows = visc.chunks_exact_mut(N).zip(seal.chunks_exact_mut(N)).zip(current.chunks_exact_mut(N));
     let per_sample = states.qd.chunks_exact(N).filter_map(vector).zip(conditions.0.iter().zip(conditions.1));
-    for (sample, ((qd, (&p, &t)), ((visc, seal), current))) in per_sample.zip(rows).enumerate() {
-        for (argument, value) in [("pressure", p), ("temperature", t)] {
-            if !value.is_finite() {
-                return Err(NonFinite { argument, sample, joint: 0, value });
-            }
-        }
+    for ((qd, (&p, &t)), ((visc, seal), current)) in per_sample.zip(rows) {
         if current_conditions != (p, t) {
             current_conditions = (p, t);
             loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));

@@ -2,7 +2,7 @@
 #![allow(dead_code, missing_docs)]
 
 use uwml_core::nalgebra::{SVector, Vector3};
-use uwml_core::{Chain, Joint, Link, Segment};
+use uwml_core::{Chain, Coefficients, Joint, Link, Segment};
 
 /// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
 pub struct Rng(pub u64);
@@ -50,4 +50,11 @@ pub fn random_chain(rng: &mut Rng) -> Chain<f64, 4> {
         }
     });
     Chain::new(joints, links).expect("a valid random chain")
+}
+
+/// Random drag (0.5 to 2.5) and added-mass (0.1 to 1.1) coefficients per link and direction for
+/// a 4-joint chain.
+pub fn random_coefficients(rng: &mut Rng) -> Coefficients<f64, 4> {
+    let mut draw = || core::array::from_fn(|_| [0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs()]);
+    Coefficients::per_direction(draw(), draw()).expect("valid coefficients")
 }
