@@ -10,7 +10,10 @@ pub mod jacobian;
 pub mod kinematics;
 pub mod losses;
 pub mod model;
+pub mod motion;
+pub mod robot;
 pub mod strip;
+pub mod tree;
 
 pub use derivatives::{EnvironmentJacobians, environment_jacobians, hydro_jacobians};
 pub use dual::Dual;
@@ -23,4 +26,7 @@ pub use losses::{
     pressure_at_depth, smooth_sign,
 };
 pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water};
+pub use motion::{BaseMotion, Current};
 pub use nalgebra;
+pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
+pub use tree::{EnvironmentWrench, JointForces, RobotData, Wrench, robot_hydro};

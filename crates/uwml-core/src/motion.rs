@@ -1,0 +1,156 @@
+//! The motion of a robot's base and of the water around it, per evaluation (MODEL.md 9.2).
+//!
+//! Base: orientation `R` (world from base) as a unit quaternion `(w, x, y, z)`, scalar first
+//! (MuJoCo's order); the twist `ν = (v, ω)`, velocity of the base origin and angular velocity,
+//! in base-frame components; `ν̇ = (v̇, ω̇)`, the time derivatives of those components (Fossen's
+//! `ν̇`; Pinocchio's free-flyer acceleration in the LOCAL frame), so that the base origin's
+//! classical acceleration is `v̇ + ω × v`. Current: a uniform water velocity and acceleration
+//! in world components.
+
+use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
+
+use crate::error::{ModelError, Problem};
+use crate::model::{AXIS_TOLERANCE, constant};
+
+/// The base's orientation and motion at one instant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BaseMotion<T: SimdRealField + Copy> {
+    /// World from base.
+    pub(crate) rotation: Matrix3<T>,
+    pub(crate) velocity: Vector3<T>,
+    pub(crate) angular_velocity: Vector3<T>,
+    pub(crate) acceleration: Vector3<T>,
+    pub(crate) angular_acceleration: Vector3<T>,
+}
+
+/// The water's uniform velocity and acceleration, world frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Current<T: SimdRealField + Copy> {
+    pub(crate) velocity: Vector3<T>,
+    pub(crate) acceleration: Vector3<T>,
+}
+
+fn finite<T: RealField + Copy>(v: Vector3<T>, field: &'static str) -> Result<Vector3<T>, ModelError> {
+    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, None, Problem::NonFinite)) }
+}
+
+/// The rotation of the unit quaternion `(w, x, y, z)`.
+fn rotation_of<T: RealField + Copy>([w, x, y, z]: [T; 4]) -> Matrix3<T> {
+    let two = constant::<T>(2.0);
+    let one = T::one();
+    Matrix3::new(
+        one - two * (y * y + z * z),
+        two * (x * y - w * z),
+        two * (x * z + w * y),
+        two * (x * y + w * z),
+        one - two * (x * x + z * z),
+        two * (y * z - w * x),
+        two * (x * z - w * y),
+        two * (y * z + w * x),
+        one - two * (x * x + y * y),
+    )
+}
+
+impl<T: RealField + Copy> BaseMotion<T> {
+    /// A fixed, upright base: the default of MODEL.md sections 1-8.
+    #[must_use]
+    pub fn fixed() -> Self {
+        let zero = Vector3::zeros();
+        Self {
+            rotation: Matrix3::identity(),
+            velocity: zero,
+            angular_velocity: zero,
+            acceleration: zero,
+            angular_acceleration: zero,
+        }
+    }
+
+    /// The base at `orientation` (a unit quaternion `(w, x, y, z)`, normalized here), moving with
+    /// `velocity` and `angular_velocity` (base components) and their component derivatives.
+    ///
+    /// # Errors
+    /// A non-finite number (naming `base.orientation`, `base.velocity`, ...), or an orientation
+    /// whose norm is not 1 within [`AXIS_TOLERANCE`](crate::AXIS_TOLERANCE).
+    pub fn new(
+        orientation: [T; 4],
+        velocity: Vector3<T>,
+        angular_velocity: Vector3<T>,
+        acceleration: Vector3<T>,
+        angular_acceleration: Vector3<T>,
+    ) -> Result<Self, ModelError> {
+        if !orientation.iter().all(|x| x.is_finite()) {
+            return Err(ModelError::new("base.orientation", None, Problem::NonFinite));
+        }
+        let norm = orientation.iter().fold(T::zero(), |sum, &x| sum + x * x).sqrt();
+        if (norm - T::one()).abs() > constant(AXIS_TOLERANCE) {
+            return Err(ModelError::new("base.orientation", None, Problem::NotUnit));
+        }
+        Ok(Self {
+            rotation: rotation_of(orientation.map(|x| x / norm)),
+            velocity: finite(velocity, "base.velocity")?,
+            angular_velocity: finite(angular_velocity, "base.angular_velocity")?,
+            acceleration: finite(acceleration, "base.acceleration")?,
+            angular_acceleration: finite(angular_acceleration, "base.angular_acceleration")?,
+        })
+    }
+}
+
+impl<T: SimdRealField + Copy> BaseMotion<T> {
+    /// World from base.
+    pub const fn rotation(&self) -> &Matrix3<T> {
+        &self.rotation
+    }
+
+    /// `(v, ω)`, base components.
+    pub const fn twist(&self) -> (Vector3<T>, Vector3<T>) {
+        (self.velocity, self.angular_velocity)
+    }
+
+    /// `(v̇, ω̇)`, the derivatives of the base components.
+    pub const fn twist_derivative(&self) -> (Vector3<T>, Vector3<T>) {
+        (self.acceleration, self.angular_acceleration)
+    }
+}
+
+impl<T: RealField + Copy> Default for BaseMotion<T> {
+    fn default() -> Self {
+        Self::fixed()
+    }
+}
+
+impl<T: RealField + Copy> Current<T> {
+    /// Still water.
+    #[must_use]
+    pub fn still() -> Self {
+        Self { velocity: Vector3::zeros(), acceleration: Vector3::zeros() }
+    }
+
+    /// Water moving with `velocity` and `acceleration`, world components.
+    ///
+    /// # Errors
+    /// A non-finite number, naming `current.velocity` or `current.acceleration`.
+    pub fn new(velocity: Vector3<T>, acceleration: Vector3<T>) -> Result<Self, ModelError> {
+        Ok(Self {
+            velocity: finite(velocity, "current.velocity")?,
+            acceleration: finite(acceleration, "current.acceleration")?,
+        })
+    }
+}
+
+impl<T: SimdRealField + Copy> Current<T> {
+    /// Velocity, world components.
+    pub const fn velocity(&self) -> &Vector3<T> {
+        &self.velocity
+    }
+
+    /// Acceleration, world components.
+    pub const fn acceleration(&self) -> &Vector3<T> {
+        &self.acceleration
+    }
+}
+
+impl<T: RealField + Copy> Default for Current<T> {
+    fn default() -> Self {
+        Self::still()
+    }
+}

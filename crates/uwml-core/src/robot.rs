@@ -1,0 +1,444 @@
+//! The immutable, validated description of a whole robot: a kinematic tree of revolute and
+//! prismatic joints on a base that may carry a body of its own, with any number of straight
+//! segments per body (up to a fixed capacity), rectangular or circular (MODEL.md section 9).
+//!
+//! Frames follow URDF without fixed rotations: every link frame is parallel to the base frame
+//! when all joint positions are zero. Joint `i` sits at `origin` in its parent's frame (link
+//! `parent`, or the base) and moves link `i`: a revolute joint turns it about `axis` by `q[i]`,
+//! a prismatic joint slides it along `axis` by `q[i]`. A body's geometry is given in its own
+//! frame, whose origin is its joint (the base origin for the base).
+//!
+//! A [`Robot`] holds up to `J` joints and `S` segments in fixed arrays: it needs no allocation,
+//! and its evaluation costs what its actual joints and segments cost, not its capacity.
+
+use nalgebra::{RealField, SimdRealField, Vector3};
+
+use crate::error::{ModelError, Problem};
+use crate::model::{AXIS_TOLERANCE, Chain, check_non_negative, check_positive, constant};
+
+/// How a joint moves its link.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum JointKind {
+    /// Turns the link about the axis by `q` [rad]; the generalized force is a torque [N·m].
+    #[default]
+    Revolute,
+    /// Slides the link along the axis by `q` [m]; the generalized force is a force [N].
+    Prismatic,
+}
+
+/// A joint of a tree: its parent, kind, origin and unit axis in the parent's frame at `q = 0`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TreeJoint<T: SimdRealField + Copy> {
+    /// The parent link (an earlier joint's link), or `None` for the base.
+    pub parent: Option<usize>,
+    /// Revolute or prismatic.
+    pub kind: JointKind,
+    /// Position of the joint in the parent frame [m].
+    pub origin: Vector3<T>,
+    /// Unit axis in the parent frame.
+    pub axis: Vector3<T>,
+}
+
+/// The bulk of a rigid body: mass and centre of mass, displaced volume and centre of buoyancy,
+/// in the body's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RigidBody<T: SimdRealField + Copy> {
+    /// Mass [kg], zero or positive.
+    pub mass: T,
+    /// Centre of mass [m].
+    pub com: Vector3<T>,
+    /// Displaced volume [m³], zero or positive.
+    pub volume: T,
+    /// Centre of buoyancy [m].
+    pub cob: Vector3<T>,
+}
+
+/// The cross-section of a segment, and how the water's force on it is modelled (MODEL.md 9.3).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Section<T: SimdRealField + Copy> {
+    /// Independence principle: one drag and one added-mass term per principal normal direction
+    /// (`normals`, orthonormal and perpendicular to the axis), with frontal width `widths[k]`
+    /// for flow along `normals[k]`: the paper's model.
+    Rectangular {
+        /// The two principal normal directions, in the body frame.
+        normals: [Vector3<T>; 2],
+        /// Frontal width for flow along each normal [m], positive.
+        widths: [T; 2],
+    },
+    /// Cross-flow principle: drag `−½ρ Cd D |v⊥| v⊥` on the whole normal velocity and added
+    /// mass on the whole normal acceleration; no preferred normal direction.
+    Circular {
+        /// Diameter `D` [m], positive.
+        diameter: T,
+    },
+}
+
+/// Which body a segment belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Owner {
+    /// The base's own body.
+    Base,
+    /// Link `i` (the link that joint `i` moves).
+    Link(usize),
+}
+
+/// A straight piece of a body that meets the water (strip theory), in its body's frame, with its
+/// own coefficients (used unless an evaluation is given others).
+///
+/// A slice at arc length `s ∈ [0, length]` lies at `start + s·axis`; `area` is the section area
+/// for added mass. `cd` and `cm` are per normal direction for a rectangular section; a circular
+/// section uses `cd[0]` and `cm[0]` (construction requires both entries equal).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RobotSegment<T: SimdRealField + Copy> {
+    /// The body it belongs to.
+    pub owner: Owner,
+    /// Start point [m].
+    pub start: Vector3<T>,
+    /// Unit direction.
+    pub axis: Vector3<T>,
+    /// Length [m], positive.
+    pub length: T,
+    /// Cross-section area for added mass [m²], positive.
+    pub area: T,
+    /// The kind of section and its dimensions.
+    pub section: Section<T>,
+    /// Drag coefficients, zero or positive.
+    pub cd: [T; 2],
+    /// Added-mass coefficients, zero or positive.
+    pub cm: [T; 2],
+}
+
+/// A validated robot of up to `J` joints (each moving its own link) and `S` segments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
+    joints: [TreeJoint<T>; J],
+    links: [RigidBody<T>; J],
+    base: RigidBody<T>,
+    segments: [RobotSegment<T>; S],
+    joint_count: usize,
+    segment_count: usize,
+}
+
+/// Drag and added-mass coefficients per segment and normal direction (`[segment][k]`), to
+/// evaluate a robot with other coefficients than its segments' own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SegmentCoefficients<T: SimdRealField + Copy, const S: usize> {
+    pub(crate) cd: [[T; 2]; S],
+    pub(crate) cm: [[T; 2]; S],
+}
+
+fn check_vector<T: RealField + Copy>(
+    v: Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
+}
+
+fn check_unit<T: RealField + Copy>(
+    v: Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    let v = check_vector(v, field, index)?;
+    let norm = v.norm();
+    if (norm - T::one()).abs() <= constant(AXIS_TOLERANCE) {
+        Ok(v / norm)
+    } else {
+        Err(ModelError::new(field, index, Problem::NotUnit))
+    }
+}
+
+/// `v` made exactly perpendicular to the unit `axis` and normalized, if it was within
+/// [`AXIS_TOLERANCE`] of perpendicular and of unit length.
+fn check_normal<T: RealField + Copy>(
+    v: Vector3<T>,
+    axis: &Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    let v = check_unit(v, field, index)?;
+    if v.dot(axis).abs() > constant(AXIS_TOLERANCE) {
+        return Err(ModelError::new(field, index, Problem::NotPerpendicular));
+    }
+    Ok((v - axis * v.dot(axis)).normalize())
+}
+
+impl<T: RealField + Copy> TreeJoint<T> {
+    fn validated(self, index: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        if self.parent.is_some_and(|parent| parent >= index) {
+            return Err(ModelError::new("joint.parent", i, Problem::OutOfRange));
+        }
+        Ok(Self {
+            origin: check_vector(self.origin, "joint.origin", i)?,
+            axis: check_unit(self.axis, "joint.axis", i)?,
+            ..self
+        })
+    }
+}
+
+impl<T: RealField + Copy> RigidBody<T> {
+    fn validated(self, index: Option<usize>) -> Result<Self, ModelError> {
+        Ok(Self {
+            mass: check_non_negative(self.mass, "link.mass", index)?,
+            com: check_vector(self.com, "link.com", index)?,
+            volume: check_non_negative(self.volume, "link.volume", index)?,
+            cob: check_vector(self.cob, "link.cob", index)?,
+        })
+    }
+
+    /// A body without mass or volume (the default base).
+    #[must_use]
+    pub fn empty() -> Self {
+        Self { mass: T::zero(), com: Vector3::zeros(), volume: T::zero(), cob: Vector3::zeros() }
+    }
+}
+
+impl<T: RealField + Copy> RobotSegment<T> {
+    /// Validated; normals made exactly orthonormal and perpendicular to the axis (Gram-Schmidt
+    /// on the ones given, which must be within [`AXIS_TOLERANCE`] of that).
+    fn validated(self, index: usize, joint_count: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        if let Owner::Link(link) = self.owner
+            && link >= joint_count
+        {
+            return Err(ModelError::new("segment.owner", i, Problem::OutOfRange));
+        }
+        let axis = check_unit(self.axis, "segment.axis", i)?;
+        let section = match self.section {
+            Section::Rectangular { normals: [n0, n1], widths: [w0, w1] } => {
+                let n0 = check_normal(n0, &axis, "segment.normals[0]", i)?;
+                let n1 = check_normal(n1, &axis, "segment.normals[1]", i)?;
+                if n0.dot(&n1).abs() > constant(AXIS_TOLERANCE) {
+                    return Err(ModelError::new("segment.normals[1]", i, Problem::NotPerpendicular));
+                }
+                // The second normal exactly perpendicular to both, on the side it was given.
+                let n1 = axis.cross(&n0) * axis.cross(&n0).dot(&n1).signum();
+                Section::Rectangular {
+                    normals: [n0, n1],
+                    widths: [check_positive(w0, "segment.widths[0]", i)?, check_positive(w1, "segment.widths[1]", i)?],
+                }
+            }
+            Section::Circular { diameter } => {
+                let [cd0, cd1] = self.cd;
+                let [cm0, cm1] = self.cm;
+                if cd0 != cd1 {
+                    return Err(ModelError::new("segment.cd", i, Problem::OutOfRange));
+                }
+                if cm0 != cm1 {
+                    return Err(ModelError::new("segment.cm", i, Problem::OutOfRange));
+                }
+                Section::Circular { diameter: check_positive(diameter, "segment.diameter", i)? }
+            }
+        };
+        let [cd0, cd1] = self.cd;
+        let [cm0, cm1] = self.cm;
+        Ok(Self {
+            owner: self.owner,
+            start: check_vector(self.start, "segment.start", i)?,
+            axis,
+            length: check_positive(self.length, "segment.length", i)?,
+            area: check_positive(self.area, "segment.area", i)?,
+            section,
+            cd: [check_non_negative(cd0, "segment.cd", i)?, check_non_negative(cd1, "segment.cd", i)?],
+            cm: [check_non_negative(cm0, "segment.cm", i)?, check_non_negative(cm1, "segment.cm", i)?],
+        })
+    }
+}
+
+impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+    /// Validates and builds a robot from its joints, the links they move (same length), the
+    /// base's own body, and the segments of all bodies.
+    ///
+    /// # Errors
+    /// More joints than `J` or segments than `S` (`"joints"`/`"segments"`, out of range), as many
+    /// links as joints; a parent that is not an earlier link (`"joint.parent"`); a segment owned
+    /// by a link that does not exist (`"segment.owner"`); a circular segment with different
+    /// coefficients per direction; and every check of [`Chain::new`], naming the field and index.
+    pub fn new(
+        joints: &[TreeJoint<T>],
+        links: &[RigidBody<T>],
+        base: RigidBody<T>,
+        segments: &[RobotSegment<T>],
+    ) -> Result<Self, ModelError> {
+        if joints.len() > J {
+            return Err(ModelError::new("joints", None, Problem::OutOfRange));
+        }
+        if links.len() != joints.len() {
+            return Err(ModelError::new("links", None, Problem::OutOfRange));
+        }
+        if segments.len() > S {
+            return Err(ModelError::new("segments", None, Problem::OutOfRange));
+        }
+        let mut robot = Self::empty();
+        robot.base = base.validated(None)?;
+        for (index, ((joint, link), (slot, link_slot))) in
+            joints.iter().zip(links).zip(robot.joints.iter_mut().zip(robot.links.iter_mut())).enumerate()
+        {
+            *slot = joint.validated(index)?;
+            *link_slot = link.validated(Some(index))?;
+        }
+        for (index, (segment, slot)) in segments.iter().zip(robot.segments.iter_mut()).enumerate() {
+            *slot = segment.validated(index, joints.len())?;
+        }
+        robot.joint_count = joints.len();
+        robot.segment_count = segments.len();
+        Ok(robot)
+    }
+
+    /// No joints, no segments, an empty base.
+    fn empty() -> Self {
+        let zero = Vector3::zeros();
+        let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: zero, axis: Vector3::z() };
+        let segment = RobotSegment {
+            owner: Owner::Base,
+            start: zero,
+            axis: Vector3::x(),
+            length: T::one(),
+            area: T::one(),
+            section: Section::Circular { diameter: T::one() },
+            cd: [T::zero(); 2],
+            cm: [T::zero(); 2],
+        };
+        Self {
+            joints: [joint; J],
+            links: [RigidBody::empty(); J],
+            base: RigidBody::empty(),
+            segments: [segment; S],
+            joint_count: 0,
+            segment_count: 0,
+        }
+    }
+
+    /// A serial chain as a robot on a fixed base without a body of its own: joint `i`'s parent is
+    /// link `i − 1`, every joint is revolute, every link's segment (if any) rectangular, with
+    /// `coefficients` as its own.
+    ///
+    /// # Errors
+    /// More joints than `J` or links with segments than `S`.
+    pub fn from_chain<const N: usize>(
+        chain: &Chain<T, N>,
+        coefficients: &crate::model::Coefficients<T, N>,
+    ) -> Result<Self, ModelError> {
+        if N > J {
+            return Err(ModelError::new("joints", None, Problem::OutOfRange));
+        }
+        let mut robot = Self::empty();
+        let mut segment_count = 0;
+        let mut free = robot.segments.iter_mut();
+        let per_link = chain.joints().iter().zip(chain.links()).zip(coefficients.cd().iter().zip(coefficients.cm()));
+        for (index, ((joint, link), (cd, cm))) in per_link.enumerate() {
+            if let Some(slot) = robot.joints.get_mut(index) {
+                *slot = TreeJoint {
+                    parent: index.checked_sub(1),
+                    kind: JointKind::Revolute,
+                    origin: joint.origin,
+                    axis: joint.axis,
+                };
+            }
+            if let Some(slot) = robot.links.get_mut(index) {
+                *slot = RigidBody { mass: link.mass, com: link.com, volume: link.volume, cob: link.cob };
+            }
+            if let Some(segment) = &link.segment {
+                let Some(slot) = free.next() else {
+                    return Err(ModelError::new("segments", None, Problem::OutOfRange));
+                };
+                *slot = RobotSegment {
+                    owner: Owner::Link(index),
+                    start: segment.start,
+                    axis: segment.axis,
+                    length: segment.length,
+                    area: segment.area,
+                    section: Section::Rectangular { normals: segment.normals, widths: segment.widths },
+                    cd: *cd,
+                    cm: *cm,
+                };
+                segment_count += 1;
+            }
+        }
+        robot.joint_count = N;
+        robot.segment_count = segment_count;
+        Ok(robot)
+    }
+}
+
+impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+    /// The joints, as validated.
+    pub fn joints(&self) -> &[TreeJoint<T>] {
+        self.joints.get(..self.joint_count).unwrap_or(&[])
+    }
+
+    /// The links (link `i` is moved by joint `i`), as validated.
+    pub fn links(&self) -> &[RigidBody<T>] {
+        self.links.get(..self.joint_count).unwrap_or(&[])
+    }
+
+    /// The base's own body.
+    pub const fn base(&self) -> &RigidBody<T> {
+        &self.base
+    }
+
+    /// The segments, as validated (normals exactly orthonormal).
+    pub fn segments(&self) -> &[RobotSegment<T>] {
+        self.segments.get(..self.segment_count).unwrap_or(&[])
+    }
+
+    /// The number of joints (and links).
+    pub const fn joint_count(&self) -> usize {
+        self.joint_count
+    }
+
+    /// The segments' own coefficients.
+    #[must_use]
+    pub fn coefficients(&self) -> SegmentCoefficients<T, S> {
+        SegmentCoefficients { cd: self.segments.map(|s| s.cd), cm: self.segments.map(|s| s.cm) }
+    }
+
+    /// The full joint array (capacity `J`), for the evaluation.
+    pub(crate) const fn joint_slots(&self) -> &[TreeJoint<T>; J] {
+        &self.joints
+    }
+
+    /// The full link array (capacity `J`), for the evaluation.
+    pub(crate) const fn link_slots(&self) -> &[RigidBody<T>; J] {
+        &self.links
+    }
+}
+
+impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
+    /// One drag and one added-mass coefficient for every segment and direction.
+    ///
+    /// # Errors
+    /// A coefficient that is negative or not finite.
+    pub fn uniform(cd: T, cm: T) -> Result<Self, ModelError> {
+        Self::per_segment([[cd; 2]; S], [[cm; 2]; S])
+    }
+
+    /// Coefficients per segment and normal direction, `[segment][k]` (a circular segment uses
+    /// entry 0).
+    ///
+    /// # Errors
+    /// A coefficient that is negative or not finite, naming the segment.
+    pub fn per_segment(cd: [[T; 2]; S], cm: [[T; 2]; S]) -> Result<Self, ModelError> {
+        for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
+            for (&d, &m) in cd.iter().zip(cm.iter()) {
+                check_non_negative(d, "segment.cd", Some(index))?;
+                check_non_negative(m, "segment.cm", Some(index))?;
+            }
+        }
+        Ok(Self { cd, cm })
+    }
+}
+
+impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {
+    /// Drag coefficients `[segment][k]`.
+    pub const fn cd(&self) -> &[[T; 2]; S] {
+        &self.cd
+    }
+
+    /// Added-mass coefficients `[segment][k]`.
+    pub const fn cm(&self) -> &[[T; 2]; S] {
+        &self.cm
+    }
+}

@@ -1,0 +1,547 @@
+//! Whole robots (MODEL.md section 9): the chain special case, the circular strip integrals
+//! against dense quadrature, the invariants of section 9.6, and the checks at construction.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
+
+use uwml_core::nalgebra::{Matrix3, UnitQuaternion, Vector3};
+use uwml_core::strip::circular_speed_moments;
+use uwml_core::{
+    BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, Problem, RigidBody, Robot,
+    RobotData, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_torques, robot_hydro,
+};
+
+mod common;
+use common::{Rng, random_chain, random_coefficients};
+
+const J: usize = 12;
+const S: usize = 16;
+type Model = Robot<f64, J, S>;
+
+fn states(rng: &mut Rng, n: usize) -> [[f64; J]; 3] {
+    let mut out = [[0.0; J]; 3];
+    for (k, scale) in [3.0, 2.0, 5.0].into_iter().enumerate() {
+        for x in out[k].iter_mut().take(n) {
+            *x = scale * rng.next();
+        }
+    }
+    out
+}
+
+fn evaluate(
+    robot: &Model,
+    coefficients: Option<&SegmentCoefficients<f64, S>>,
+    motion: &BaseMotion<f64>,
+    current: &Current<f64>,
+    [q, qd, qdd]: &[[f64; J]; 3],
+) -> RobotData<f64, J> {
+    let mut data = RobotData::new();
+    robot_hydro(robot, &Water::default(), coefficients, motion, current, q, qd, qdd, &mut data);
+    data
+}
+
+/// `|a − b| ≤ rel · scale`.
+fn assert_close(a: f64, b: f64, scale: f64, rel: f64, what: &str) {
+    assert!((a - b).abs() <= rel * scale, "{what}: {a} vs {b} (scale {scale})");
+}
+
+#[test]
+fn a_chain_on_a_fixed_base_in_still_water_is_the_chain() {
+    // Sections 1-8 as the special case: the paper's leg and random chains, through the tree
+    // path, agree with the chain path to 1e-14 of each component's largest torque.
+    let mut rng = Rng(11);
+    let paper = Chain::<f64, 3>::paper();
+    let paper_coefficients = Coefficients::uniform(2.2, 0.5).unwrap();
+    let paper_robot = Model::from_chain(&paper, &paper_coefficients).unwrap();
+    for trial in 0..400 {
+        let (chain_torques, robot, n) = if trial % 2 == 0 {
+            let s = states(&mut rng, 3);
+            let t = hydro_torques(
+                &paper,
+                &Water::default(),
+                &paper_coefficients,
+                &s[0][..3].try_into().map(|a: [f64; 3]| a.into()).unwrap(),
+                &<[f64; 3]>::try_from(&s[1][..3]).unwrap().into(),
+                &<[f64; 3]>::try_from(&s[2][..3]).unwrap().into(),
+            );
+            (
+                (
+                    t.drag.as_slice().to_vec(),
+                    t.added_mass.as_slice().to_vec(),
+                    t.buoyancy.as_slice().to_vec(),
+                    t.gravity.as_slice().to_vec(),
+                ),
+                (paper_robot, s),
+                3,
+            )
+        } else {
+            let chain = random_chain(&mut rng);
+            let coefficients = random_coefficients(&mut rng);
+            let s = states(&mut rng, 4);
+            let t = hydro_torques(
+                &chain,
+                &Water::default(),
+                &coefficients,
+                &<[f64; 4]>::try_from(&s[0][..4]).unwrap().into(),
+                &<[f64; 4]>::try_from(&s[1][..4]).unwrap().into(),
+                &<[f64; 4]>::try_from(&s[2][..4]).unwrap().into(),
+            );
+            let robot = Model::from_chain(&chain, &coefficients).unwrap();
+            (
+                (
+                    t.drag.as_slice().to_vec(),
+                    t.added_mass.as_slice().to_vec(),
+                    t.buoyancy.as_slice().to_vec(),
+                    t.gravity.as_slice().to_vec(),
+                ),
+                (robot, s),
+                4,
+            )
+        };
+        let (robot, s) = robot;
+        let data = evaluate(&robot, None, &BaseMotion::fixed(), &Current::still(), &s);
+        let forces = data.joint_forces();
+        assert_eq!(forces.len(), n);
+        let (drag, added_mass, buoyancy, gravity) = chain_torques;
+        for (component, expected, actual) in [
+            ("drag", &drag, forces.iter().map(|f| f.drag).collect::<Vec<_>>()),
+            ("added mass", &added_mass, forces.iter().map(|f| f.added_mass).collect()),
+            ("buoyancy", &buoyancy, forces.iter().map(|f| f.buoyancy).collect()),
+            ("gravity", &gravity, forces.iter().map(|f| f.gravity).collect()),
+        ] {
+            let scale = expected.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+            for (a, e) in actual.iter().zip(expected.iter()) {
+                assert_close(*a, *e, scale, 1e-14, component);
+            }
+        }
+    }
+}
+
+/// `(∫ s^k |p + s r| ds)_{k=0,1,2}` by composite 8-point Gauss-Legendre, 16 panels between
+/// breakpoints graded geometrically (ratio 4) about the minimum of the speed, from its miss
+/// distance `c` out to the ends: the integrand bends on the scale `c` there (a kink at `c = 0`).
+fn dense_moments(p: &Vector3<f64>, r: &Vector3<f64>, length: f64) -> [f64; 3] {
+    let nodes = [
+        (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+        (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+        (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+        (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+    ];
+    let rr = r.dot(r);
+    let mut breaks = vec![0.0, length];
+    if rr > 0.0 {
+        let minimum = -p.dot(r) / rr;
+        let miss = (p.cross(r).norm() / rr).max(length * 1e-300);
+        breaks.push(minimum);
+        let mut width = miss / 4.0;
+        while width < 4.0 * length {
+            breaks.extend([minimum - width, minimum + width]);
+            width *= 4.0;
+        }
+    }
+    breaks.retain(|s| (0.0..=length).contains(s));
+    breaks.sort_by(f64::total_cmp);
+    let mut out = [0.0; 3];
+    for pair in breaks.windows(2) {
+        let panels = 16;
+        let h = (pair[1] - pair[0]) / panels as f64;
+        for i in 0..panels {
+            let (middle, half) = (pair[0] + h * (i as f64 + 0.5), h / 2.0);
+            for (x, w) in nodes {
+                for s in [middle - half * x, middle + half * x] {
+                    let f = (p + r * s).norm() * w * half;
+                    out[0] += f;
+                    out[1] += s * f;
+                    out[2] += s * s * f;
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn circular_speed_moments_match_dense_quadrature() {
+    let mut rng = Rng(5);
+    let mut worst: f64 = 0.0;
+    for trial in 0..1200 {
+        let length = 0.05 + 2.0 * rng.next().abs();
+        let r = rng.vector::<3>(3.0) * 10f64.powf(2.0 * rng.next());
+        let p = match trial % 5 {
+            // The speed passes through zero inside the segment, exactly.
+            0 => -r * (length * rng.next().abs()),
+            // Nearly: a small miss distance.
+            1 => {
+                -r * (length * rng.next().abs()) + rng.vector::<3>(1.0) * 10f64.powf(-8.0 * rng.next().abs()) * r.norm()
+            }
+            // Nearly uniform speed.
+            2 => rng.vector::<3>(100.0) + r * 50.0,
+            // Zero crossing just outside either end.
+            3 => -r * (length * (1.0 + 0.01 * rng.next())),
+            _ => rng.vector::<3>(3.0),
+        };
+        let exact = dense_moments(&p, &r, length);
+        let fast = circular_speed_moments(&p, &r, length);
+        for (a, e) in fast.iter().zip(exact.iter()) {
+            let relative = (a - e).abs() / e.abs();
+            worst = worst.max(relative);
+            assert!(relative <= 1e-12, "trial {trial}: {a} vs {e} ({relative:e}); p {p:?}, r {r:?}, L {length}");
+        }
+    }
+    // Zero velocity everywhere: zero moments, not NaN.
+    assert_eq!(circular_speed_moments(&Vector3::zeros(), &Vector3::zeros(), 1.0), [0.0; 3]);
+    // Uniform speed: exactly |p| L^(k+1)/(k+1).
+    let [i0, i1, i2] = circular_speed_moments(&Vector3::new(3.0, 4.0, 0.0), &Vector3::zeros(), 2.0);
+    assert_close(i0, 10.0, 10.0, 1e-15, "uniform I0");
+    assert_close(i1, 10.0, 10.0, 1e-15, "uniform I1");
+    assert_close(i2, 5.0 * 8.0 / 3.0, 13.4, 1e-15, "uniform I2");
+    // Through zero at the start: |r| L^(k+2)/(k+2).
+    let [i0, i1, i2] = circular_speed_moments(&Vector3::zeros(), &Vector3::new(0.0, 2.0, 0.0), 1.5);
+    assert_close(i0, 2.0 * 1.5f64.powi(2) / 2.0, 3.0, 1e-15, "linear I0");
+    assert_close(i1, 2.0 * 1.5f64.powi(3) / 3.0, 3.0, 1e-15, "linear I1");
+    assert_close(i2, 2.0 * 1.5f64.powi(4) / 4.0, 3.0, 1e-15, "linear I2");
+    eprintln!("circular speed moments: worst relative error {worst:e} over 1200 cases");
+}
+
+/// A random robot: `n` joints with random parents, kinds, axes; every body (base too) with
+/// random mass, volume and one or two segments, rectangular or circular.
+fn random_robot(rng: &mut Rng, n: usize) -> Model {
+    let joints: Vec<_> = (0..n)
+        .map(|i| TreeJoint {
+            parent: if i == 0 || rng.next() < -0.5 {
+                None
+            } else {
+                Some(((rng.next() + 1.0) / 2.0 * i as f64) as usize)
+            },
+            kind: if rng.next() < -0.4 { JointKind::Prismatic } else { JointKind::Revolute },
+            origin: rng.vector::<3>(0.5),
+            axis: rng.unit(),
+        })
+        .collect();
+    let body = |rng: &mut Rng| RigidBody {
+        mass: 5.0 + 10.0 * rng.next().abs(),
+        com: rng.vector::<3>(0.4),
+        volume: 0.001 + 0.004 * rng.next().abs(),
+        cob: rng.vector::<3>(0.4),
+    };
+    let links: Vec<_> = (0..n).map(|_| body(rng)).collect();
+    let base = body(rng);
+    let mut segments = Vec::new();
+    for owner in core::iter::once(Owner::Base).chain((0..n).map(Owner::Link)) {
+        for _ in 0..(1 + usize::from(rng.next() > 0.3)) {
+            if segments.len() == S {
+                break;
+            }
+            let axis = rng.unit();
+            let n0 = axis.cross(&rng.unit()).normalize();
+            let circular = rng.next() > 0.0;
+            let (cd, cm) = (0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs());
+            segments.push(RobotSegment {
+                owner,
+                start: rng.vector::<3>(0.2),
+                axis,
+                length: 0.2 + rng.next().abs(),
+                area: 0.01 + 0.02 * rng.next().abs(),
+                section: if circular {
+                    Section::Circular { diameter: 0.05 + 0.1 * rng.next().abs() }
+                } else {
+                    Section::Rectangular {
+                        normals: [n0, axis.cross(&n0)],
+                        widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
+                    }
+                },
+                cd: if circular { [cd; 2] } else { [cd, 0.5 + 2.0 * rng.next().abs()] },
+                cm: if circular { [cm; 2] } else { [cm, 0.1 + rng.next().abs()] },
+            });
+        }
+    }
+    Model::new(&joints, &links, base, &segments).expect("a valid random robot")
+}
+
+fn random_motion(rng: &mut Rng) -> BaseMotion<f64> {
+    let q = UnitQuaternion::from_scaled_axis(rng.vector::<3>(2.0));
+    BaseMotion::new(
+        [q.w, q.i, q.j, q.k],
+        rng.vector::<3>(1.0),
+        rng.vector::<3>(1.0),
+        rng.vector::<3>(2.0),
+        rng.vector::<3>(2.0),
+    )
+    .unwrap()
+}
+
+fn wrench_scale(w: &EnvironmentWrench<f64>) -> f64 {
+    [w.drag, w.added_mass, w.buoyancy, w.gravity]
+        .iter()
+        .flat_map(|w| w.to_array())
+        .fold(1e-300_f64, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn frame_invariance_rotating_the_base_and_the_current_together() {
+    let mut rng = Rng(21);
+    for trial in 0..200 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
+        // Gravity stays put: buoyancy and gravity are invariant under turns about the vertical
+        // only; drag and added mass under any turn.
+        let vertical = trial % 2 == 0;
+        let turn = if vertical {
+            UnitQuaternion::from_scaled_axis(Vector3::z() * (3.0 * rng.next()))
+        } else {
+            UnitQuaternion::from_scaled_axis(rng.vector::<3>(3.0))
+        };
+        let q = turn * UnitQuaternion::from_matrix(motion.rotation());
+        let (v, w) = motion.twist();
+        let (vd, wd) = motion.twist_derivative();
+        let turned = BaseMotion::new([q.w, q.i, q.j, q.k], v, w, vd, wd).unwrap();
+        let turned_current = Current::new(turn * current.velocity(), turn * current.acceleration()).unwrap();
+        let a = evaluate(&robot, None, &motion, &current, &s);
+        let b = evaluate(&robot, None, &turned, &turned_current, &s);
+        let scale = wrench_scale(a.base_wrench());
+        let (wa, wb) = (a.base_wrench(), b.base_wrench());
+        let mut pairs = vec![(wa.drag, wb.drag), (wa.added_mass, wb.added_mass)];
+        if vertical {
+            pairs.extend([(wa.buoyancy, wb.buoyancy), (wa.gravity, wb.gravity)]);
+        }
+        for (x, y) in pairs {
+            for (x, y) in x.to_array().iter().zip(y.to_array()) {
+                assert_close(*x, y, scale, 1e-12, "base wrench");
+            }
+        }
+        for (x, y) in a.joint_forces().iter().zip(b.joint_forces()) {
+            assert_close(x.drag, y.drag, scale, 1e-12, "joint drag");
+            assert_close(x.added_mass, y.added_mass, scale, 1e-12, "joint added mass");
+            if vertical {
+                assert_close(x.buoyancy, y.buoyancy, scale, 1e-12, "joint buoyancy");
+                assert_close(x.gravity, y.gravity, scale, 1e-12, "joint gravity");
+            }
+        }
+        if !vertical {
+            // And a turn off the vertical does change the static part (the test can fail).
+            assert!((wa.buoyancy.moment - wb.buoyancy.moment).norm() > 0.0 || wa.buoyancy.moment.norm() == 0.0);
+        }
+    }
+}
+
+#[test]
+fn galilean_a_base_moving_with_the_current_feels_no_drag() {
+    let mut rng = Rng(3);
+    for _ in 0..200 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let mut s = states(&mut rng, n);
+        s[1] = [0.0; J];
+        let moving = random_motion(&mut rng);
+        let drift = rng.vector::<3>(2.0);
+        // The base translates with the water, without turning.
+        let q = UnitQuaternion::from_matrix(moving.rotation());
+        let motion = BaseMotion::new(
+            [q.w, q.i, q.j, q.k],
+            q.inverse() * drift,
+            Vector3::zeros(),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        )
+        .unwrap();
+        let data = evaluate(&robot, None, &motion, &Current::new(drift, Vector3::zeros()).unwrap(), &s);
+        let still = evaluate(&robot, None, &BaseMotion::fixed(), &Current::still(), &[s[0], [0.0; J], [0.0; J]]);
+        let scale = wrench_scale(still.base_wrench()).max(1.0);
+        for x in data.base_wrench().drag.to_array() {
+            assert!(x.abs() <= 1e-13 * scale, "base drag {x}");
+        }
+        for f in data.joint_forces() {
+            assert!(f.drag.abs() <= 1e-13 * scale, "joint drag {}", f.drag);
+        }
+        // Moving at the current's velocity with the joints at rest: drag zero, but moving
+        // without current is not.
+        let dry = evaluate(&robot, None, &motion, &Current::still(), &s);
+        assert!(dry.base_wrench().drag.force.norm() > 0.0);
+    }
+}
+
+#[test]
+fn drag_is_dissipative_in_still_water() {
+    let mut rng = Rng(8);
+    for _ in 0..300 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let data = evaluate(&robot, None, &motion, &Current::still(), &s);
+        let (v, w) = motion.twist();
+        let power = data.joint_forces().iter().zip(s[1]).map(|(f, qd)| f.drag * qd).sum::<f64>()
+            + data.base_wrench().drag.force.dot(&v)
+            + data.base_wrench().drag.moment.dot(&w);
+        let scale = wrench_scale(data.base_wrench());
+        assert!(power <= 1e-12 * scale, "drag power {power}");
+    }
+}
+
+/// The robot on six virtual joints at the base (prismatic along x, y, z, then revolute about x,
+/// y, z, at zero displacement): their generalized forces are the base wrench (velocity level).
+#[test]
+fn six_virtual_joints_give_the_base_wrench() {
+    let mut rng = Rng(31);
+    for _ in 0..100 {
+        let n = 1 + (rng.next().abs() * 5.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let (v, w) = (rng.vector::<3>(1.0), rng.vector::<3>(1.0));
+        // Translations first (their axes stay the base axes), then rotations about x, y, z at
+        // zero angle: the rotation rates, composed, give the angular velocity ω with components
+        // taken about axes that the earlier rotations do not move at zero angle.
+        let axes = [Vector3::x(), Vector3::y(), Vector3::z()];
+        let mut joints: Vec<TreeJoint<f64>> = Vec::new();
+        for (k, kind) in [JointKind::Prismatic, JointKind::Revolute].into_iter().enumerate() {
+            for (i, axis) in axes.iter().enumerate() {
+                let index = 3 * k + i;
+                joints.push(TreeJoint { parent: index.checked_sub(1), kind, origin: Vector3::zeros(), axis: *axis });
+            }
+        }
+        let mut links = vec![RigidBody::empty(); 5];
+        links.push(*robot.base());
+        for joint in robot.joints() {
+            joints.push(TreeJoint { parent: Some(joint.parent.map_or(5, |p| p + 6)), ..*joint });
+        }
+        links.extend_from_slice(robot.links());
+        let segments: Vec<_> = robot
+            .segments()
+            .iter()
+            .map(|s| RobotSegment {
+                owner: match s.owner {
+                    Owner::Base => Owner::Link(5),
+                    Owner::Link(i) => Owner::Link(i + 6),
+                },
+                ..*s
+            })
+            .collect();
+        let virtual_robot = Robot::<f64, 18, S>::new(&joints, &links, RigidBody::empty(), &segments).unwrap();
+        let mut q = [0.0; 18];
+        let mut qd = [0.0; 18];
+        let qdd = [0.0; 18];
+        q[6..6 + n].copy_from_slice(&s[0][..n]);
+        qd[6..6 + n].copy_from_slice(&s[1][..n]);
+        qd[..3].copy_from_slice(v.as_slice());
+        qd[3..6].copy_from_slice(w.as_slice());
+        // The same motion as a base twist, zero base acceleration and joint accelerations: the
+        // virtual joints' chain has the same velocities (drag, buoyancy and gravity agree).
+        let motion = BaseMotion::new([1.0, 0.0, 0.0, 0.0], v, w, Vector3::zeros(), Vector3::zeros()).unwrap();
+        let mut s_zero = s;
+        s_zero[2] = [0.0; J];
+        let on_base = evaluate(&robot, None, &motion, &Current::still(), &s_zero);
+        let mut data = RobotData::<f64, 18>::new();
+        robot_hydro(
+            &virtual_robot,
+            &Water::default(),
+            None,
+            &BaseMotion::fixed(),
+            &Current::still(),
+            &q,
+            &qd,
+            &qdd,
+            &mut data,
+        );
+        let scale = wrench_scale(on_base.base_wrench());
+        let virtual_forces = data.joint_forces();
+        let base = on_base.base_wrench();
+        let (drag, buoyancy, gravity) = (base.drag.to_array(), base.buoyancy.to_array(), base.gravity.to_array());
+        for (k, forces) in virtual_forces.iter().take(6).enumerate() {
+            assert_close(forces.drag, drag[k], scale, 1e-12, "drag");
+            assert_close(forces.buoyancy, buoyancy[k], scale, 1e-12, "buoyancy");
+            assert_close(forces.gravity, gravity[k], scale, 1e-12, "gravity");
+        }
+        for (a, b) in on_base.joint_forces().iter().zip(&virtual_forces[6..]) {
+            assert_close(a.drag, b.drag, scale, 1e-12, "joint drag");
+            assert_close(a.buoyancy, b.buoyancy, scale, 1e-12, "joint buoyancy");
+        }
+    }
+}
+
+#[test]
+fn everything_is_linear_in_each_coefficient() {
+    let mut rng = Rng(41);
+    for _ in 0..50 {
+        let n = 1 + (rng.next().abs() * 6.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
+        let k = (rng.next().abs() * robot.segments().len() as f64) as usize % robot.segments().len();
+        let with = |cd: f64, cm: f64| {
+            let mut c = robot.coefficients();
+            let (mut cds, mut cms) = (*c.cd(), *c.cm());
+            cds[k] = [cd; 2];
+            cms[k] = [cm; 2];
+            c = SegmentCoefficients::per_segment(cds, cms).unwrap();
+            evaluate(&robot, Some(&c), &motion, &current, &s)
+        };
+        let (zero, one, three) = (with(0.0, 0.0), with(1.0, 1.0), with(3.0, 3.0));
+        let scale = wrench_scale(three.base_wrench());
+        for ((z, o), t) in zero.joint_forces().iter().zip(one.joint_forces()).zip(three.joint_forces()) {
+            assert_close(t.drag - z.drag, 3.0 * (o.drag - z.drag), scale, 1e-12, "drag");
+            assert_close(t.added_mass - z.added_mass, 3.0 * (o.added_mass - z.added_mass), scale, 1e-12, "added mass");
+        }
+    }
+}
+
+#[test]
+fn a_non_finite_state_gives_nan_and_nothing_else_fails() {
+    let mut rng = Rng(2);
+    let robot = random_robot(&mut rng, 4);
+    let mut s = states(&mut rng, 4);
+    s[1][2] = f64::INFINITY;
+    let data = evaluate(&robot, None, &random_motion(&mut rng), &Current::still(), &s);
+    assert!(data.joint_forces().iter().all(|f| f.drag.is_nan() && f.buoyancy.is_nan()));
+    assert!(data.base_wrench().drag.to_array().iter().all(|x| x.is_nan()));
+}
+
+#[test]
+fn bad_models_and_motions_are_errors_naming_the_field() {
+    let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() };
+    let body = RigidBody::empty();
+    // A parent that is not an earlier link.
+    let bad = [joint, TreeJoint { parent: Some(1), ..joint }];
+    let error = Model::new(&bad, &[body; 2], body, &[]).unwrap_err();
+    assert_eq!((error.field, error.index, error.problem), ("joint.parent", Some(1), Problem::OutOfRange));
+    // Too many joints for the capacity.
+    let error = Robot::<f64, 1, 1>::new(&[joint; 2], &[body; 2], body, &[]).unwrap_err();
+    assert_eq!(error.field, "joints");
+    // A segment on a link that does not exist.
+    let segment = RobotSegment {
+        owner: Owner::Link(3),
+        start: Vector3::zeros(),
+        axis: Vector3::x(),
+        length: 1.0,
+        area: 0.01,
+        section: Section::Circular { diameter: 0.1 },
+        cd: [1.2; 2],
+        cm: [1.0; 2],
+    };
+    let error = Model::new(&[joint], &[body], body, &[segment]).unwrap_err();
+    assert_eq!((error.field, error.index), ("segment.owner", Some(0)));
+    // A circular segment with two drag coefficients.
+    let error = Model::new(&[joint], &[body], body, &[RobotSegment { owner: Owner::Base, cd: [1.0, 2.0], ..segment }])
+        .unwrap_err();
+    assert_eq!(error.field, "segment.cd");
+    // Zero, non-unit and non-finite orientations; non-finite motion and current.
+    let zero = Vector3::zeros();
+    for (orientation, problem) in [
+        ([0.0; 4], Problem::NotUnit),
+        ([1.0, 0.1, 0.0, 0.0], Problem::NotUnit),
+        ([f64::NAN, 0.0, 0.0, 0.0], Problem::NonFinite),
+    ] {
+        let error = BaseMotion::new(orientation, zero, zero, zero, zero).unwrap_err();
+        assert_eq!((error.field, error.problem), ("base.orientation", problem));
+    }
+    let inf = Vector3::new(0.0, f64::INFINITY, 0.0);
+    assert_eq!(
+        BaseMotion::new([1.0, 0.0, 0.0, 0.0], zero, zero, zero, inf).unwrap_err().field,
+        "base.angular_acceleration"
+    );
+    assert_eq!(Current::new(zero, inf).unwrap_err().field, "current.acceleration");
+    // A quaternion within tolerance of unit is normalized exactly.
+    let motion = BaseMotion::new([1.0 + 1e-9, 0.0, 0.0, 0.0], zero, zero, zero, zero).unwrap();
+    assert_eq!(*motion.rotation(), Matrix3::identity());
+}
