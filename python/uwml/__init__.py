@@ -1,6 +1,7 @@
 """uwml: what the deep sea does to each joint of an underwater robot.
 
-Drag, added mass and buoyancy on the links of a serial chain (strip theory, Morison), and the
+Drag, added mass and buoyancy on the links of a serial chain or a whole robot on a moving base
+in a current (strip theory, Morison), with the wrench on the base, and the
 oil-viscous and dynamic-seal losses inside oil-filled, pressure-compensated joints, computed
 exactly by a no_std Rust core and exposed over numpy arrays. Sign convention: every torque is
 the generalized force exerted by the environment on the joint, in the joint's positive
@@ -15,9 +16,16 @@ from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
+from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotTorques
 
 __all__ = [
     "MAX_JOINTS",
+    "MAX_ROBOT_JOINTS",
+    "MAX_SEGMENTS",
+    "BaseMotion",
+    "BaseWrench",
+    "Robot",
+    "RobotTorques",
     "Drive",
     "EnvironmentJacobians",
     "EnvironmentTorques",

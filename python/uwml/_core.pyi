@@ -6,12 +6,31 @@ from typing import Self, final
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["JOINT_WIDTH", "LINK_WIDTH", "LOSS_WIDTH", "MAX_JOINTS", "Chain", "ModelError", "joint_losses"]
+__all__ = [
+    "BODY_WIDTH",
+    "JOINT_WIDTH",
+    "LINK_WIDTH",
+    "LOSS_WIDTH",
+    "MAX_JOINTS",
+    "MAX_ROBOT_JOINTS",
+    "MAX_SEGMENTS",
+    "SEGMENT_WIDTH",
+    "TREE_JOINT_WIDTH",
+    "Chain",
+    "ModelError",
+    "Robot",
+    "joint_losses",
+]
 
 MAX_JOINTS: int
 JOINT_WIDTH: int
 LINK_WIDTH: int
 LOSS_WIDTH: int
+MAX_ROBOT_JOINTS: int
+MAX_SEGMENTS: int
+TREE_JOINT_WIDTH: int
+BODY_WIDTH: int
+SEGMENT_WIDTH: int
 
 class ModelError(ValueError):
     """A non-physical or malformed model parameter."""
@@ -85,6 +104,32 @@ class Chain:
     def point_jacobian(
         self, q: NDArray[np.float64], link: int, point: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+
+@final
+class Robot:
+    def __new__(
+        cls, joints: NDArray[np.float64], links: NDArray[np.float64], base: NDArray[np.float64], segments: NDArray[np.float64]
+    ) -> Self: ...
+    @property
+    def n_joints(self) -> int: ...
+    def hydro(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        cd: NDArray[np.float64],
+        cm: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        orientation: NDArray[np.float64],
+        velocity: NDArray[np.float64],
+        angular_velocity: NDArray[np.float64],
+        acceleration: NDArray[np.float64],
+        angular_acceleration: NDArray[np.float64],
+        current: NDArray[np.float64],
+        current_acceleration: NDArray[np.float64],
+        threads: int,
+    ) -> list[NDArray[np.float64]]: ...
 
 def joint_losses(
     losses: NDArray[np.float64] | None,

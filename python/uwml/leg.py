@@ -232,6 +232,16 @@ class Leg:
             raise TypeError("links must be uwml.Link objects")
         if len(joints) != len(links) or not 1 <= len(joints) <= MAX_JOINTS:
             raise ValueError(f"a leg needs as many links as joints, 1 to {MAX_JOINTS}; got {len(joints)} joints and {len(links)} links")
+        for index, joint in enumerate(joints):
+            if joint.kind != "revolute" or joint.parent not in (None, index - 1):
+                raise ValueError(
+                    f"joints[{index}]: a uwml.Leg is a serial chain of revolute joints (parent = previous link); use uwml.Robot for trees and prismatic joints"
+                )
+        for index, link in enumerate(links):
+            if len(link.segments) > 1 or (link.segment is not None and link.segment.section != "rectangular"):
+                raise ValueError(
+                    f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
+                )
         self._chain = _core.Chain(*_pack(joints, links))
         self._joints, self._links = _unpack(*self._chain.packed())
 

@@ -1,26 +1,45 @@
-"""Plain descriptions of a serial chain: joints, links, their hydrodynamic geometry, the water.
+"""Plain descriptions of a robot: joints, links, their hydrodynamic geometry, the water.
 
 These classes only hold and check numbers; the physics lives in the Rust core (``uwml._core``)
 and, independently, in :mod:`uwml.reference`.
 
-Frames (URDF style, without fixed rotations): every link frame is parallel to the world frame
-when all joint angles are zero. Joint ``i`` sits at ``origin`` in the frame of link ``i - 1``
-(the world frame for the first joint) and turns link ``i`` about ``axis`` (a unit vector in the
-same frame) by ``q[i]``. Link ``i``'s geometry is given in its own frame, whose origin is joint
-``i``. World z points up, against gravity.
+Frames (URDF style, without fixed rotations; MODEL.md sections 3 and 9.1): every link frame is
+parallel to the base frame (the world frame for a fixed, upright base) when all joint positions
+are zero. Joint ``i`` sits at ``origin`` in the frame of its parent (link ``parent``, or the base
+for ``-1``; by default the previous link, so that a list of joints is a serial chain) and moves
+link ``i``: a revolute joint turns it about ``axis`` (a unit vector in the parent's frame) by
+``q[i]``, a prismatic joint slides it along ``axis`` by ``q[i]``. Link ``i``'s geometry is given
+in its own frame, whose origin is joint ``i``. World z points up, against gravity.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+
+import numpy as np
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["Joint", "Link", "Segment", "Vec3", "Water"]
+__all__ = ["CIRCULAR_DEFAULTS", "RECTANGULAR_DEFAULTS", "SECTIONS", "Joint", "Link", "Segment", "Vec3", "Water"]
 
 #: Tolerance on unit length and orthogonality of the axes and normals given by users.
 AXIS_TOLERANCE = 1e-6
+
+#: The section kinds of a :class:`Segment` (MODEL.md 9.3).
+SECTIONS = ("rectangular", "circular")
+#: The joint kinds of a :class:`Joint`.
+JOINT_KINDS = ("revolute", "prismatic")
+
+#: Default ``(Cd, Cm)`` of a rectangular section: the paper's fitted values, rounded (Cd =
+#: 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344 on the UWML's box-section links; the defaults of
+#: :class:`uwml.Leg`).
+RECTANGULAR_DEFAULTS = (2.2, 0.5)
+#: Default ``(Cd, Cm)`` of a circular section: Cm = 1 is the potential-flow added-mass
+#: coefficient of a circular cylinder in cross-flow (exact); Cd = 1.2 is the usual
+#: cross-flow drag coefficient of a smooth circular cylinder at subcritical Reynolds numbers
+#: (DNV-RP-C205, section 6).
+CIRCULAR_DEFAULTS = (1.2, 1.0)
 
 
 def _vec3(value: object, name: str) -> Vec3:
@@ -75,38 +94,99 @@ def _unit(value: object, name: str) -> Vec3:
 
 @dataclass(frozen=True)
 class Joint:
-    """A revolute joint: its origin and unit axis in the parent link's frame at q = 0."""
+    """A joint: its origin and unit axis in the parent's frame at q = 0, its parent and kind.
+
+    ``parent`` is the index of the parent link, ``-1`` for the base, or ``None`` (the default)
+    for the previous link (the base for the first joint), so that a list of joints without
+    parents is a serial chain. ``kind`` is ``"revolute"`` (turns about ``axis`` by ``q``, the
+    generalized force is a torque [N·m]) or ``"prismatic"`` (slides along ``axis`` by ``q``, the
+    generalized force is a force [N]).
+    """
 
     origin: Vec3
     axis: Vec3
+    parent: int | None = None
+    kind: str = "revolute"
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "origin", _vec3(self.origin, "joint.origin"))
         object.__setattr__(self, "axis", _unit(self.axis, "joint.axis"))
+        if self.parent is not None:
+            if isinstance(self.parent, bool) or not isinstance(self.parent, (int, np.integer)):
+                raise TypeError(f"joint.parent must be a link index (int), -1 for the base, or None; got {self.parent!r}")
+            if self.parent < -1:
+                raise ValueError(f"joint.parent must be -1 (the base) or a link index >= 0, got {self.parent}")
+            object.__setattr__(self, "parent", int(self.parent))
+        if self.kind not in JOINT_KINDS:
+            raise ValueError(f"joint.kind must be one of {JOINT_KINDS}, got {self.kind!r}")
+
+
+def _coefficient_pair(value: object, name: str, section: str, default: float) -> tuple[float, float]:
+    """A coefficient given as ``None`` (the section's default), one number, or one per normal."""
+    if value is None:
+        return (default, default)
+    if isinstance(value, (int, float, np.floating, np.integer)) and not isinstance(value, bool):
+        x = _scalar(value, name, positive=False)
+        return (x, x)
+    if section == "circular":
+        raise TypeError(f"{name} of a circular segment must be one number (the cross-flow principle has one coefficient), got {value!r}")
+    pair = _pair(value, name)
+    return (_scalar(pair[0], f"{name}[0]", positive=False), _scalar(pair[1], f"{name}[1]", positive=False))
 
 
 @dataclass(frozen=True)
 class Segment:
-    """Hydrodynamic geometry of a straight link (strip theory), in the link's frame.
+    """Hydrodynamic geometry of a straight piece of a link (strip theory), in the link's frame.
 
-    A slice at arc length ``s`` in ``[0, length]`` lies at ``start + s * axis``. ``normals`` are
-    the two principal directions of cross-flow (orthonormal, perpendicular to ``axis``);
+    A slice at arc length ``s`` in ``[0, length]`` lies at ``start + s * axis``.
+
+    ``section="rectangular"`` (the paper's links; independence principle, MODEL.md 3): ``normals``
+    are the two principal directions of cross-flow (orthonormal, perpendicular to ``axis``);
     ``widths[k]`` is the frontal width seen by flow along ``normals[k]`` (the drag reference
     width); ``area`` is the cross-section area used for added mass.
+
+    ``section="circular"`` (a cylinder; cross-flow principle on the whole normal velocity,
+    MODEL.md 9.3): give ``diameter``; ``area`` defaults to ``π diameter² / 4``; ``normals`` and
+    ``widths`` are not used (they are set to a pair of normals and ``(diameter, diameter)``).
+
+    ``cd`` and ``cm``: the segment's own drag and added-mass coefficients, used when an evaluation
+    is not given coefficients. One number, or (rectangular only) one per normal direction;
+    ``None`` takes the section's documented default (:data:`RECTANGULAR_DEFAULTS`,
+    :data:`CIRCULAR_DEFAULTS`).
     """
 
     start: Vec3
     axis: Vec3
     length: float
-    normals: tuple[Vec3, Vec3]
-    widths: tuple[float, float]
-    area: float
+    normals: tuple[Vec3, Vec3] | None = None
+    widths: tuple[float, float] | None = None
+    area: float | None = None
+    section: str = "rectangular"
+    diameter: float | None = None
+    cd: float | tuple[float, float] | None = None
+    cm: float | tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
+        if self.section not in SECTIONS:
+            raise ValueError(f"segment.section must be one of {SECTIONS}, got {self.section!r}")
         object.__setattr__(self, "start", _vec3(self.start, "segment.start"))
         axis = _unit(self.axis, "segment.axis")
         object.__setattr__(self, "axis", axis)
         object.__setattr__(self, "length", _scalar(self.length, "segment.length", positive=True))
+        if self.section == "circular":
+            self._circular(axis)
+        else:
+            self._rectangular(axis)
+        cd_default, cm_default = RECTANGULAR_DEFAULTS if self.section == "rectangular" else CIRCULAR_DEFAULTS
+        object.__setattr__(self, "cd", _coefficient_pair(self.cd, "segment.cd", self.section, cd_default))
+        object.__setattr__(self, "cm", _coefficient_pair(self.cm, "segment.cm", self.section, cm_default))
+
+    def _rectangular(self, axis: Vec3) -> None:
+        for name in ("normals", "widths", "area"):
+            if getattr(self, name) is None:
+                raise ValueError(f"a rectangular segment needs segment.{name}")
+        if self.diameter is not None:
+            raise ValueError("segment.diameter is for circular sections; a rectangular segment takes widths and area")
         normals = _pair(self.normals, "segment.normals")
         n1 = _unit(normals[0], "segment.normals[0]")
         n2 = _unit(normals[1], "segment.normals[1]")
@@ -122,13 +202,38 @@ class Segment:
         )
         object.__setattr__(self, "area", _scalar(self.area, "segment.area", positive=True))
 
+    def _circular(self, axis: Vec3) -> None:
+        if self.diameter is None:
+            raise ValueError("a circular segment needs segment.diameter")
+        diameter = _scalar(self.diameter, "segment.diameter", positive=True)
+        object.__setattr__(self, "diameter", diameter)
+        area = math.pi * diameter * diameter / 4.0 if self.area is None else _scalar(self.area, "segment.area", positive=True)
+        object.__setattr__(self, "area", area)
+        if self.widths is not None and tuple(self.widths) != (diameter, diameter):
+            raise ValueError(f"segment.widths of a circular segment are (diameter, diameter); got {self.widths!r}")
+        object.__setattr__(self, "widths", (diameter, diameter))
+        object.__setattr__(self, "normals", _normals_of(axis))
+
+
+def _normals_of(axis: Vec3) -> tuple[Vec3, Vec3]:
+    """Two unit normals that make ``(axis, n0, n1)`` orthonormal (any pair: a circular section
+    does not depend on them)."""
+    a = np.asarray(axis)
+    helper = np.eye(3)[int(np.argmin(np.abs(a)))]
+    n0 = helper - a * float(a @ helper)
+    n0 /= np.linalg.norm(n0)
+    n1 = np.cross(a, n0)
+    return ((float(n0[0]), float(n0[1]), float(n0[2])), (float(n1[0]), float(n1[1]), float(n1[2])))
+
 
 @dataclass(frozen=True)
 class Link:
-    """A rigid link: mass and centre of mass, displaced volume and centre of buoyancy, and
-    optionally a straight segment that meets the water (``None``: no drag or added mass).
+    """A rigid body: mass and centre of mass, displaced volume and centre of buoyancy, and the
+    straight segments that meet the water.
 
-    ``cob`` defaults to ``com`` (as the paper assumes).
+    ``cob`` defaults to ``com`` (as the paper assumes). Give one segment as ``segment=`` or any
+    number as ``segments=(...)``; ``segments`` always holds them all (``segment`` is the single
+    one, or ``None`` when there are none or several).
     """
 
     mass: float
@@ -136,6 +241,7 @@ class Link:
     volume: float
     cob: Vec3 | None = None
     segment: Segment | None = None
+    segments: tuple[Segment, ...] = field(default=())
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", _scalar(self.mass, "link.mass", positive=False))
@@ -145,6 +251,19 @@ class Link:
         object.__setattr__(self, "cob", _vec3(cob, "link.cob"))
         if self.segment is not None and not isinstance(self.segment, Segment):
             raise TypeError(f"link.segment must be a uwml.Segment or None, got {type(self.segment).__name__}")
+        try:
+            segments = tuple(self.segments)
+        except TypeError:
+            raise TypeError(f"link.segments must be a sequence of uwml.Segment, got {type(self.segments).__name__}") from None
+        for index, segment in enumerate(segments):
+            if not isinstance(segment, Segment):
+                raise TypeError(f"link.segments[{index}] must be a uwml.Segment, got {type(segment).__name__}")
+        if self.segment is not None and segments and segments != (self.segment,):
+            raise ValueError("give a link's segments either as segment= (one) or as segments=(...), not both")
+        if self.segment is not None:
+            segments = (self.segment,)
+        object.__setattr__(self, "segments", segments)
+        object.__setattr__(self, "segment", segments[0] if len(segments) == 1 else None)
 
 
 @dataclass(frozen=True)

@@ -462,9 +462,11 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
     let (buoyancy, gravity) = static_wrenches(&base, robot.base(), &surroundings);
     let mut total = EnvironmentWrench { buoyancy, gravity, ..EnvironmentWrench::zero() };
     // Each segment's drag and added mass, on its body.
-    let own = robot.coefficients();
-    let coefficients = coefficients.unwrap_or(&own);
-    for (segment, (&cd, &cm)) in robot.segments().iter().zip(coefficients.cd.iter().zip(coefficients.cm.iter())) {
+    for (k, segment) in robot.segments().iter().enumerate() {
+        let (cd, cm) = match coefficients {
+            Some(c) => (c.cd.get(k).copied().unwrap_or(segment.cd), c.cm.get(k).copied().unwrap_or(segment.cm)),
+            None => (segment.cd, segment.cm),
+        };
         let (frame, body) = match segment.owner {
             Owner::Base => (&base, &mut total),
             Owner::Link(i) => match (data.frames.get(i), data.subtree.get_mut(i)) {

@@ -4,6 +4,8 @@
 
 use std::ops::Range;
 
+mod robot;
+
 use numpy::ndarray::{Array, Dimension, IntoDimension};
 use numpy::{
     IntoPyArray, PyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2,
@@ -159,6 +161,13 @@ struct NonFinite {
     value: f64,
 }
 
+impl NonFinite {
+    /// The same error with its sample counted from `start` earlier.
+    fn shifted(self, start: usize) -> Self {
+        Self { sample: self.sample + start, ..self }
+    }
+}
+
 impl From<NonFinite> for PyErr {
     fn from(e: NonFinite) -> Self {
         PyValueError::new_err(format!(
@@ -236,31 +245,37 @@ fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f
     Coefficients::per_direction(cd_array, cm_array)
 }
 
-/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` (of `n` joints) at
-/// once, on scoped threads (on this thread for `threads` ≤ 1), each part writing its rows of the
-/// `K` outputs (`n_samples × n` each). `batch` gets a part's sample range and reports errors with
+/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` at once, on scoped
+/// threads (on this thread for `threads` ≤ 1), each part writing its rows of the `K` outputs
+/// (`n_samples × widths[k]` each). `batch` gets a part's sample range and reports errors with
 /// sample indices within the part; the first error in sample order is returned, with its index in
 /// the whole batch.
-fn in_parallel<const K: usize>(
+fn in_parallel<const K: usize, E: Send>(
     n_samples: usize,
-    n: usize,
+    widths: [usize; K],
     threads: usize,
     out: [&mut [f64]; K],
-    batch: impl Fn(&Range<usize>, [&mut [f64]; K]) -> Result<(), NonFinite> + Sync,
-) -> Result<(), NonFinite> {
+    batch: impl Fn(&Range<usize>, [&mut [f64]; K]) -> Result<(), E> + Sync,
+    shift: impl Fn(E, usize) -> E + Sync,
+) -> Result<(), E> {
     let threads = threads.clamp(1, n_samples.max(1));
     if threads == 1 {
         return batch(&(0..n_samples), out);
     }
     let size = n_samples.div_ceil(threads);
-    let mut parts = out.map(|column| column.chunks_mut((size * n).max(1)));
+    let mut parts = core::array::from_fn::<_, K, _>(|_| None);
+    for ((part, column), width) in parts.iter_mut().zip(out).zip(widths) {
+        *part = Some(column.chunks_mut((size * width).max(1)));
+    }
     let errors: Vec<_> = std::thread::scope(|scope| {
         let batch = &batch;
         let handles: Vec<_> = (0..threads)
             .map(|i| {
                 let range = i * size..((i + 1) * size).min(n_samples);
-                let part = parts.each_mut().map(|columns| columns.next().unwrap_or_default());
-                scope.spawn(move || batch(&range, part).map_err(|e| NonFinite { sample: e.sample + range.start, ..e }))
+                let part =
+                    parts.each_mut().map(|columns| columns.as_mut().and_then(Iterator::next).unwrap_or_default());
+                let shift = &shift;
+                scope.spawn(move || batch(&range, part).map_err(|e| shift(e, range.start)))
             })
             .collect();
         handles
@@ -823,9 +838,9 @@ impl PyChain {
         py.detach(|| -> Result<(), PyErrSend> {
             dispatch!(&chain, c => {
                 let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                in_parallel(n_samples, n, threads, out, |range, out| {
+                in_parallel(n_samples, [n; _], threads, out, |range, out| {
                     hydro_into(c, &water, &coefficients, &states.range(range, n), out)
-                })
+                }, NonFinite::shifted)
                 .map_err(PyErrSend::State)
             })
         })
@@ -863,11 +878,11 @@ impl PyChain {
         py.detach(|| -> Result<(), PyErrSend> {
             dispatch!(&chain, c => {
                 let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                in_parallel(n_samples, n, threads, out, |range, out| {
+                in_parallel(n_samples, [n; _], threads, out, |range, out| {
                     let conditions =
                         (pressure.get(range.clone()).unwrap_or(&[]), temperature.get(range.clone()).unwrap_or(&[]));
                     environment_into(c, &water, &coefficients, &losses, &states.range(range, n), conditions, out)
-                })
+                }, NonFinite::shifted)
                 .map_err(PyErrSend::State)
             })
         })
@@ -1100,6 +1115,12 @@ impl From<PyErrSend> for PyErr {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
+    m.add_class::<robot::PyRobot>()?;
+    m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
+    m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
+    m.add("TREE_JOINT_WIDTH", robot::TREE_JOINT_WIDTH)?;
+    m.add("BODY_WIDTH", robot::BODY_WIDTH)?;
+    m.add("SEGMENT_WIDTH", robot::SEGMENT_WIDTH)?;
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
     m.add("LOSS_WIDTH", LOSS_WIDTH)?;
     m.add("ModelError", m.py().get_type::<UwmlModelError>())?;

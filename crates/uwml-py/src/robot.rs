@@ -1,0 +1,388 @@
+//! `uwml._core.Robot`: a whole robot (tree, base body, segments of any section) in moving water.
+//! Thin: unpacks the model, broadcasts the per-sample base motion and current, loops over samples
+//! with the GIL released (optionally on several threads), writes numpy arrays.
+
+use std::ops::Range;
+use std::sync::Mutex;
+
+use numpy::{PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use uwml_core::nalgebra::Vector3;
+use uwml_core::{
+    BaseMotion, Current, JointKind, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
+    SegmentCoefficients, TreeJoint, Water, robot_hydro,
+};
+
+use crate::{Array2, contiguous, in_parallel, model_error, water, writable, zeroed};
+
+/// Largest number of joints of a robot built from Python.
+pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
+/// Largest number of segments of a robot built from Python.
+pub(crate) const MAX_SEGMENTS: usize = 256;
+/// Floats per joint in the packed layout: parent (−1 for the base), kind (0 revolute,
+/// 1 prismatic), origin (3), axis (3).
+pub(crate) const TREE_JOINT_WIDTH: usize = 8;
+/// Floats per body: mass, com (3), volume, cob (3).
+pub(crate) const BODY_WIDTH: usize = 8;
+/// Floats per segment: owner (−1 base, else link), section (0 rectangular, 1 circular),
+/// start (3), axis (3), length, area, normals (2×3), widths (2), diameter, cd (2), cm (2).
+pub(crate) const SEGMENT_WIDTH: usize = 23;
+
+type Model = Robot<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
+type Data = RobotData<f64, MAX_ROBOT_JOINTS>;
+type Coefficients = SegmentCoefficients<f64, MAX_SEGMENTS>;
+
+fn v3(x: &[f64]) -> Vector3<f64> {
+    Vector3::from_iterator(x.iter().copied().chain(core::iter::repeat(f64::NAN)).take(3))
+}
+
+fn body(row: &[f64]) -> RigidBody<f64> {
+    let at = |i: usize| row.get(i).copied().unwrap_or(f64::NAN);
+    let tail = |i: usize| row.get(i..).unwrap_or(&[]);
+    RigidBody { mass: at(0), com: v3(tail(1)), volume: at(4), cob: v3(tail(5)) }
+}
+
+/// An index from a float, or an error naming the field.
+fn index(x: f64, field: &'static str, i: usize) -> Result<Option<usize>, ModelError> {
+    if x == -1.0 {
+        Ok(None)
+    } else if x >= 0.0 && x.fract() == 0.0 && x < 1e9 {
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Ok(Some(x as usize))
+    } else {
+        Err(ModelError { field, index: Some(i), problem: uwml_core::Problem::OutOfRange })
+    }
+}
+
+fn build(joints: &[f64], links: &[f64], base: &[f64], segments: &[f64]) -> Result<Model, ModelError> {
+    let joint_list = joints
+        .chunks_exact(TREE_JOINT_WIDTH)
+        .enumerate()
+        .map(|(i, r)| {
+            let tail = |k: usize| r.get(k..).unwrap_or(&[]);
+            Ok(TreeJoint {
+                parent: index(r.first().copied().unwrap_or(f64::NAN), "joint.parent", i)?,
+                kind: if r.get(1) == Some(&1.0) { JointKind::Prismatic } else { JointKind::Revolute },
+                origin: v3(tail(2)),
+                axis: v3(tail(5)),
+            })
+        })
+        .collect::<Result<Vec<_>, ModelError>>()?;
+    let link_list: Vec<_> = links.chunks_exact(BODY_WIDTH).map(body).collect();
+    let segment_list = segments
+        .chunks_exact(SEGMENT_WIDTH)
+        .enumerate()
+        .map(|(i, r)| {
+            let at = |k: usize| r.get(k).copied().unwrap_or(f64::NAN);
+            let tail = |k: usize| r.get(k..).unwrap_or(&[]);
+            let section = if at(1) == 1.0 {
+                Section::Circular { diameter: at(18) }
+            } else {
+                Section::Rectangular { normals: [v3(tail(10)), v3(tail(13))], widths: [at(16), at(17)] }
+            };
+            Ok(RobotSegment {
+                owner: index(at(0), "segment.owner", i)?.map_or(Owner::Base, Owner::Link),
+                start: v3(tail(2)),
+                axis: v3(tail(5)),
+                length: at(8),
+                area: at(9),
+                section,
+                cd: [at(19), at(20)],
+                cm: [at(21), at(22)],
+            })
+        })
+        .collect::<Result<Vec<_>, ModelError>>()?;
+    Model::new(&joint_list, &link_list, body(base), &segment_list)
+}
+
+/// A per-sample input given once (one row, broadcast) or per sample.
+#[derive(Clone, Copy)]
+struct Rows<'a> {
+    values: &'a [f64],
+    width: usize,
+    broadcast: bool,
+}
+
+impl<'a> Rows<'a> {
+    fn new(array: &'a PyReadonlyArray2<'_, f64>, name: &str, width: usize, n_samples: usize) -> PyResult<Self> {
+        let shape = array.shape();
+        let rows = shape.first().copied().unwrap_or(0);
+        if shape.get(1) != Some(&width) || !(rows == 1 || rows == n_samples) {
+            return Err(PyValueError::new_err(format!(
+                "{name} must have shape ({width},) or (n_samples, {width}) with n_samples = {n_samples}, got {shape:?}"
+            )));
+        }
+        Ok(Self { values: contiguous(array, name)?, width, broadcast: rows == 1 })
+    }
+
+    fn row(&self, sample: usize) -> &'a [f64] {
+        let i = if self.broadcast { 0 } else { sample };
+        self.values.get(i * self.width..(i + 1) * self.width).unwrap_or(&[])
+    }
+}
+
+/// The base motion and current of every sample.
+#[derive(Clone, Copy)]
+struct Surroundings<'a> {
+    orientation: Rows<'a>,
+    velocity: Rows<'a>,
+    angular_velocity: Rows<'a>,
+    acceleration: Rows<'a>,
+    angular_acceleration: Rows<'a>,
+    current: Rows<'a>,
+    current_acceleration: Rows<'a>,
+}
+
+/// An input error of one sample, raised as a ValueError once the GIL is back.
+struct SampleError {
+    sample: usize,
+    message: String,
+}
+
+impl Surroundings<'_> {
+    fn at(&self, sample: usize) -> Result<(BaseMotion<f64>, Current<f64>), SampleError> {
+        let o = self.orientation.row(sample);
+        let quaternion = [0, 1, 2, 3].map(|k| o.get(k).copied().unwrap_or(f64::NAN));
+        let fail = |e: ModelError| SampleError { sample, message: e.to_string() };
+        let motion = BaseMotion::new(
+            quaternion,
+            v3(self.velocity.row(sample)),
+            v3(self.angular_velocity.row(sample)),
+            v3(self.acceleration.row(sample)),
+            v3(self.angular_acceleration.row(sample)),
+        )
+        .map_err(fail)?;
+        let current =
+            Current::new(v3(self.current.row(sample)), v3(self.current_acceleration.row(sample))).map_err(fail)?;
+        Ok((motion, current))
+    }
+
+    /// Whether every input is one row for all samples.
+    fn constant(&self) -> bool {
+        [
+            self.orientation,
+            self.velocity,
+            self.angular_velocity,
+            self.acceleration,
+            self.angular_acceleration,
+            self.current,
+            self.current_acceleration,
+        ]
+        .iter()
+        .all(|r| r.broadcast)
+    }
+}
+
+/// A whole robot (validated, immutable): `Robot(joints, links, base, segments)` from packed
+/// arrays (see `uwml.Robot`).
+#[pyclass(frozen, module = "uwml._core", name = "Robot")]
+pub(crate) struct PyRobot {
+    robot: Box<Model>,
+    /// A workspace kept for one-thread calls, so that they do not set up a new one.
+    data: Mutex<Box<Data>>,
+}
+
+/// Evaluates samples `range` into `out` (4 joint arrays `n`-wide, 4 base arrays 6-wide).
+#[allow(clippy::too_many_arguments)]
+fn hydro_range(
+    robot: &Model,
+    water: &Water<f64>,
+    coefficients: Option<&Coefficients>,
+    surroundings: &Surroundings<'_>,
+    [q, qd, qdd]: [&[f64]; 3],
+    range: &Range<usize>,
+    data: &mut Data,
+    out: [&mut [f64]; 8],
+) -> Result<(), SampleError> {
+    let n = robot.joint_count();
+    let [drag, added_mass, buoyancy, gravity, base_drag, base_added_mass, base_buoyancy, base_gravity] = out;
+    let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+    let fixed = if surroundings.constant() { Some(surroundings.at(0)?) } else { None };
+    for (k, sample) in range.clone().enumerate() {
+        let rows = |values: &[f64], out: &mut [f64; MAX_ROBOT_JOINTS]| {
+            for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
+                *slot = *x;
+            }
+        };
+        rows(q, &mut qs);
+        rows(qd, &mut qds);
+        rows(qdd, &mut qdds);
+        let (motion, current) = match fixed {
+            Some(both) => both,
+            None => surroundings.at(sample)?,
+        };
+        robot_hydro(robot, water, coefficients, &motion, &current, &qs, &qds, &qdds, data);
+        let joint_row = |out: &mut [f64], value: &dyn Fn(&uwml_core::JointForces<f64>) -> f64| {
+            if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
+                for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
+                    *slot = value(forces);
+                }
+            }
+        };
+        joint_row(drag, &|f| f.drag);
+        joint_row(added_mass, &|f| f.added_mass);
+        joint_row(buoyancy, &|f| f.buoyancy);
+        joint_row(gravity, &|f| f.gravity);
+        let base = data.base_wrench();
+        for (out, wrench) in [
+            (&mut *base_drag, &base.drag),
+            (&mut *base_added_mass, &base.added_mass),
+            (&mut *base_buoyancy, &base.buoyancy),
+            (&mut *base_gravity, &base.gravity),
+        ] {
+            if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
+                row.copy_from_slice(&wrench.to_array());
+            }
+        }
+    }
+    Ok(())
+}
+
+#[pymethods]
+impl PyRobot {
+    #[new]
+    fn new(
+        joints: PyReadonlyArray2<'_, f64>,
+        links: PyReadonlyArray2<'_, f64>,
+        base: PyReadonlyArray2<'_, f64>,
+        segments: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Self> {
+        let n = joints.shape().first().copied().unwrap_or(0);
+        let s = segments.shape().first().copied().unwrap_or(0);
+        if n > MAX_ROBOT_JOINTS || s > MAX_SEGMENTS {
+            return Err(PyValueError::new_err(format!(
+                "a robot may have up to {MAX_ROBOT_JOINTS} joints and {MAX_SEGMENTS} segments, got {n} and {s}"
+            )));
+        }
+        let expected = [[n, TREE_JOINT_WIDTH], [n, BODY_WIDTH], [1, BODY_WIDTH], [s, SEGMENT_WIDTH]];
+        let given = [joints.shape(), links.shape(), base.shape(), segments.shape()];
+        if given.iter().zip(expected.iter()).any(|(g, e)| *g != e.as_slice()) {
+            return Err(PyValueError::new_err(format!(
+                "packed robot arrays must have shapes {expected:?}, got {given:?}"
+            )));
+        }
+        let robot = build(
+            contiguous(&joints, "joints")?,
+            contiguous(&links, "links")?,
+            contiguous(&base, "base")?,
+            contiguous(&segments, "segments")?,
+        )
+        .map_err(model_error)?;
+        Ok(Self { robot: Box::new(robot), data: Mutex::new(Box::new(Data::new())) })
+    }
+
+    /// Number of joints.
+    #[getter]
+    fn n_joints(&self) -> usize {
+        self.robot.joint_count()
+    }
+
+    /// Drag, added mass, buoyancy, gravity on the joints (each `(n_samples, N)`), then on the
+    /// base (each `(n_samples, 6)`). Base motion and current: `(1, k)` for all samples or
+    /// `(n_samples, k)`. `cd`, `cm`: `(S, 2)`, or `(0, 2)` for the segments' own.
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads))]
+    fn hydro<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        cd: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        orientation: PyReadonlyArray2<'py, f64>,
+        velocity: PyReadonlyArray2<'py, f64>,
+        angular_velocity: PyReadonlyArray2<'py, f64>,
+        acceleration: PyReadonlyArray2<'py, f64>,
+        angular_acceleration: PyReadonlyArray2<'py, f64>,
+        current: PyReadonlyArray2<'py, f64>,
+        current_acceleration: PyReadonlyArray2<'py, f64>,
+        threads: usize,
+    ) -> PyResult<Vec<Array2<'py>>> {
+        let n = self.robot.joint_count();
+        let shape = q.shape();
+        for (name, array) in [("q", &q), ("qd", &qd), ("qdd", &qdd)] {
+            if array.shape() != shape || shape.get(1) != Some(&n) {
+                return Err(PyValueError::new_err(format!(
+                    "{name} must have shape (n_samples, {n}) like q, got {:?} (q: {shape:?})",
+                    array.shape()
+                )));
+            }
+        }
+        let n_samples = shape.first().copied().unwrap_or(0);
+        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
+        for (name, values) in [("q", states[0]), ("qd", states[1]), ("qdd", states[2])] {
+            if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+                let value = values.get(i).copied().unwrap_or(f64::NAN);
+                return Err(PyValueError::new_err(format!(
+                    "{name}[{}, {}] is {value}: joint states must be finite",
+                    i / n.max(1),
+                    i % n.max(1)
+                )));
+            }
+        }
+        let surroundings = Surroundings {
+            orientation: Rows::new(&orientation, "orientation", 4, n_samples)?,
+            velocity: Rows::new(&velocity, "velocity", 3, n_samples)?,
+            angular_velocity: Rows::new(&angular_velocity, "angular_velocity", 3, n_samples)?,
+            acceleration: Rows::new(&acceleration, "acceleration", 3, n_samples)?,
+            angular_acceleration: Rows::new(&angular_acceleration, "angular_acceleration", 3, n_samples)?,
+            current: Rows::new(&current, "current", 3, n_samples)?,
+            current_acceleration: Rows::new(&current_acceleration, "current_acceleration", 3, n_samples)?,
+        };
+        let segments = self.robot.segments().len();
+        let coefficients = match (cd.shape(), cm.shape()) {
+            ([0, 2], [0, 2]) => None,
+            (a, b) if a == [segments, 2] && b == [segments, 2] => {
+                let (mut cd_table, mut cm_table) = ([[0.0; 2]; MAX_SEGMENTS], [[0.0; 2]; MAX_SEGMENTS]);
+                for (slot, pair) in cd_table.iter_mut().zip(contiguous(&cd, "cd")?.chunks_exact(2)) {
+                    slot.copy_from_slice(pair);
+                }
+                for (slot, pair) in cm_table.iter_mut().zip(contiguous(&cm, "cm")?.chunks_exact(2)) {
+                    slot.copy_from_slice(pair);
+                }
+                Some(Coefficients::per_segment(cd_table, cm_table).map_err(model_error)?)
+            }
+            (a, b) => {
+                return Err(PyValueError::new_err(format!(
+                    "cd and cm must have shape ({segments}, 2) (one pair per segment), got {a:?} and {b:?}"
+                )));
+            }
+        };
+        let water = water(density, gravity)?;
+        let robot = &*self.robot;
+        let [drag, added_mass, buoyancy, weight] = zeroed::<4>(py, n_samples, n);
+        let [base_drag, base_added_mass, base_buoyancy, base_weight] = zeroed::<4>(py, n_samples, 6);
+        let arrays = [drag, added_mass, buoyancy, weight, base_drag, base_added_mass, base_buoyancy, base_weight];
+        let mut guards = arrays.each_ref().map(|a| a.readwrite());
+        let out = writable(&mut guards)?;
+        let coefficients = coefficients.as_ref();
+        let shared = &self.data;
+        let result = py.detach(|| {
+            if threads <= 1 {
+                let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                hydro_range(robot, &water, coefficients, &surroundings, states, &(0..n_samples), &mut data, out)
+            } else {
+                // Samples are numbered in the whole batch already.
+                let shift = |e: SampleError, _start: usize| e;
+                in_parallel(
+                    n_samples,
+                    [n, n, n, n, 6, 6, 6, 6],
+                    threads,
+                    out,
+                    |range, out| {
+                        let mut data = Box::new(Data::new());
+                        hydro_range(robot, &water, coefficients, &surroundings, states, range, &mut data, out)
+                    },
+                    shift,
+                )
+            }
+        });
+        drop(guards);
+        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
+        Ok(arrays.into())
+    }
+}

@@ -1,0 +1,353 @@
+"""A whole robot in moving water: a kinematic tree on a moving base, in a current (MODEL.md 9).
+
+:class:`Robot` takes :class:`uwml.Joint` (with ``parent`` and ``kind``), :class:`uwml.Link`
+(any number of ``segments``, rectangular or circular) and an optional base body, and gives the
+environment's generalized force on every joint *and* the wrench on the base, computed by the
+Rust core. :class:`BaseMotion` says how the base moves; the current is a world-frame velocity.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import _core
+from .leg import FRESH_WATER, HydroTorques, _real_array, _threads, _water
+from .model import Joint, Link, Segment, Water
+
+__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotTorques"]
+
+FloatArray = NDArray[np.float64]
+
+#: Largest number of joints of a :class:`Robot`.
+MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
+#: Largest number of segments (all bodies together) of a :class:`Robot`.
+MAX_SEGMENTS: int = _core.MAX_SEGMENTS
+
+
+def _quaternion(value: Any) -> FloatArray:
+    """A scalar-first quaternion array from numbers or a ``scipy.spatial.transform.Rotation``."""
+    as_quat = getattr(value, "as_quat", None)
+    if callable(as_quat):
+        return np.asarray(as_quat(scalar_first=True), dtype=np.float64)
+    return _real_array(value, "orientation", "a quaternion (w, x, y, z), an (n, 4) array of them, or a scipy Rotation")
+
+
+@dataclass(frozen=True)
+class BaseMotion:
+    """How the base moves at each sample (MODEL.md 9.2).
+
+    ``orientation``: world from base, a unit quaternion ``(w, x, y, z)`` scalar first (MuJoCo's
+    order), or a ``scipy.spatial.transform.Rotation``. ``velocity`` and ``angular_velocity``:
+    the base origin's velocity [m/s] and the angular velocity [rad/s], in BASE-frame components
+    (Fossen's ν; Pinocchio's free-flyer ``v`` in the LOCAL frame). ``acceleration`` and
+    ``angular_acceleration``: the time derivatives of those components (Fossen's ν̇), so the base
+    origin's classical acceleration is ``acceleration + angular_velocity × velocity``.
+
+    Each is one value for every sample, or one per sample: ``(n, 4)`` and ``(n, 3)``.
+    The default is a fixed, upright base.
+    """
+
+    orientation: Any = (1.0, 0.0, 0.0, 0.0)
+    velocity: ArrayLike = (0.0, 0.0, 0.0)
+    angular_velocity: ArrayLike = (0.0, 0.0, 0.0)
+    acceleration: ArrayLike = (0.0, 0.0, 0.0)
+    angular_acceleration: ArrayLike = (0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "orientation", _quaternion(self.orientation))
+        for name in ("velocity", "angular_velocity", "acceleration", "angular_acceleration"):
+            object.__setattr__(self, name, _real_array(getattr(self, name), name, "a 3-vector or an (n, 3) array"))
+        for name, width in (("orientation", 4), ("velocity", 3), ("angular_velocity", 3), ("acceleration", 3), ("angular_acceleration", 3)):
+            array = getattr(self, name)
+            if array.ndim not in (1, 2) or array.shape[-1] != width:
+                raise ValueError(f"base_motion.{name} must have shape ({width},) or (n_samples, {width}), got {array.shape}")
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"base_motion.{name} must be finite, got {array.tolist()}")
+        norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
+        bad = np.flatnonzero(np.abs(norms - 1.0) > 1e-6)
+        if bad.size:
+            raise ValueError(
+                f"base_motion.orientation must be a unit quaternion (w, x, y, z) (norm 1 within 1e-6); sample {bad[0]} has norm {norms[bad[0]]}"
+            )
+
+
+@dataclass(frozen=True)
+class BaseWrench:
+    """The environment's wrench on the whole robot, per component, at the base (MODEL.md 9.5).
+
+    Each array is ``(..., 6)``: force ``[0:3]`` [N] and moment ``[3:6]`` [N·m] about the base
+    origin, in base-frame components: the generalized force of the base's six degrees of freedom.
+    """
+
+    drag: FloatArray
+    added_mass: FloatArray
+    buoyancy: FloatArray
+    #: Weight of all bodies; not part of ``total``.
+    gravity: FloatArray
+
+    @property
+    def total(self) -> FloatArray:
+        """``drag + added_mass + buoyancy``."""
+        return self.drag + self.added_mass + self.buoyancy
+
+
+@dataclass(frozen=True)
+class RobotTorques(HydroTorques):
+    """Generalized forces on every joint (shaped like ``q``; N·m, or N for prismatic joints),
+    and ``base``, the wrench on the base (:class:`BaseWrench`)."""
+
+    base: BaseWrench
+
+
+def _segment_row(owner: int, s: Segment) -> list[float]:
+    section = 1.0 if s.section == "circular" else 0.0
+    diameter = s.diameter if s.diameter is not None else 0.0
+    normals = s.normals if s.normals is not None else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    widths = s.widths if s.widths is not None else (0.0, 0.0)
+    cd, cm = s.cd, s.cm
+    return [float(owner), section, *s.start, *s.axis, s.length, float(s.area or 0.0), *normals[0], *normals[1], *widths, diameter, *cd, *cm]  # type: ignore[misc]
+
+
+def _body_row(body: Link) -> list[float]:
+    return [body.mass, *body.com, body.volume, *(body.cob or body.com)]
+
+
+class Robot:
+    """A robot: joints in a tree, the links they move, and optionally the base's own body.
+
+    Joints come in topological order: a joint's ``parent`` is an earlier link, or ``-1`` for the
+    base (``None``, the default, means the previous link: a list of joints is a serial chain).
+    Frames, kinds and segments are described in :mod:`uwml.model`. ``base`` is a
+    :class:`uwml.Link` in the base frame (a vehicle's hull, a walking robot's body), or ``None``
+    for a base without volume, mass or segments of its own.
+
+    Segments are numbered base first, then link 0's, link 1's, ...: the order of per-segment
+    coefficients and of :attr:`segments`.
+
+    Example: a 2-joint arm of cylinders on an ROV that pitches and surges in a current::
+
+        import uwml
+        from scipy.spatial.transform import Rotation
+        arm = uwml.Robot(
+            joints=[uwml.Joint((0.5, 0, -0.3), (0, 0, 1)), uwml.Joint((0, 0, -0.4), (0, 1, 0))],
+            links=[uwml.Link(4.0, (0, 0, -0.2), 0.002, segments=[uwml.Segment((0, 0, 0), (0, 0, -1), 0.4, section="circular", diameter=0.08)]),
+                   uwml.Link(3.0, (0.25, 0, 0), 0.0015, segments=[uwml.Segment((0, 0, 0), (1, 0, 0), 0.5, section="circular", diameter=0.06)])],
+        )
+        motion = uwml.BaseMotion(orientation=Rotation.from_euler("y", 0.1), velocity=(0.5, 0, 0))
+        result = arm.hydro([0.3, -0.5], [0.2, 0.1], [0, 0], base_motion=motion, current=(0.2, 0, 0))
+        result.total, result.base.total   # joint torques; base force and moment
+    """
+
+    def __init__(self, joints: Sequence[Joint], links: Sequence[Link], base: Link | None = None) -> None:
+        try:
+            joints, links = tuple(joints), tuple(links)
+        except TypeError:
+            raise TypeError(
+                f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
+            ) from None
+        for name, items, kind in (("joints", joints, Joint), ("links", links, Link)):
+            for index, item in enumerate(items):
+                if not isinstance(item, kind):
+                    raise TypeError(f"{name}[{index}] must be a uwml.{kind.__name__}, got {type(item).__name__}")
+        if base is not None and not isinstance(base, Link):
+            raise TypeError(f"base must be a uwml.Link or None, got {type(base).__name__}")
+        if len(joints) != len(links) or not 1 <= len(joints) <= MAX_ROBOT_JOINTS:
+            raise ValueError(f"a robot needs as many links as joints, 1 to {MAX_ROBOT_JOINTS}; got {len(joints)} joints and {len(links)} links")
+        parents = []
+        for index, joint in enumerate(joints):
+            parent = index - 1 if joint.parent is None else joint.parent
+            if parent >= index:
+                raise ValueError(f"joints[{index}].parent must be -1 (the base) or an earlier link (< {index}), got {parent}")
+            parents.append(parent)
+        base_body = base if base is not None else Link(mass=0.0, com=(0.0, 0.0, 0.0), volume=0.0)
+        owned = [(-1, s) for s in base_body.segments] + [(i, s) for i, link in enumerate(links) for s in link.segments]
+        if len(owned) > MAX_SEGMENTS:
+            raise ValueError(f"a robot may have up to {MAX_SEGMENTS} segments, got {len(owned)}")
+        joint_rows = [[float(p), 1.0 if j.kind == "prismatic" else 0.0, *j.origin, *j.axis] for p, j in zip(parents, joints)]
+        self._core = _core.Robot(
+            np.array(joint_rows, dtype=np.float64).reshape(-1, _core.TREE_JOINT_WIDTH),
+            np.array([_body_row(link) for link in links], dtype=np.float64).reshape(-1, _core.BODY_WIDTH),
+            np.array([_body_row(base_body)], dtype=np.float64),
+            np.array([_segment_row(o, s) for o, s in owned], dtype=np.float64).reshape(-1, _core.SEGMENT_WIDTH),
+        )
+        self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind) for p, j in zip(parents, joints))
+        self._links = links
+        self._base = base
+        self._segments = tuple(s for _, s in owned)
+        self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
+
+    @classmethod
+    def from_leg(cls, leg: Any) -> Robot:
+        """The serial chain of a :class:`uwml.Leg` as a robot on a fixed base."""
+        return cls(leg.joints, leg.links)
+
+    @property
+    def joints(self) -> tuple[Joint, ...]:
+        """The joints, with every ``parent`` explicit (``-1`` for the base)."""
+        return self._joints
+
+    @property
+    def links(self) -> tuple[Link, ...]:
+        """The links, link ``i`` moved by joint ``i``."""
+        return self._links
+
+    @property
+    def base(self) -> Link | None:
+        """The base's own body, if any."""
+        return self._base
+
+    @property
+    def segments(self) -> tuple[Segment, ...]:
+        """Every segment, base first, then link by link: the order of per-segment coefficients."""
+        return self._segments
+
+    @property
+    def n_joints(self) -> int:
+        """Number of joints (and links)."""
+        return len(self._joints)
+
+    def __repr__(self) -> str:
+        return f"Robot(n_joints={self.n_joints}, n_segments={len(self._segments)}, base={'body' if self._base is not None else None})"
+
+    def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
+        """``(S, 2)`` per segment and direction, or ``(0, 2)`` for the segments' own."""
+        n = len(self._segments)
+        if value is None:
+            return np.zeros((0, 2))
+        array = _real_array(value, name, "None, a real number, or an array per segment")
+        if array.ndim == 0:
+            table = np.full((n, 2), float(array))
+        elif array.shape == (n,):
+            table = np.repeat(array[:, None], 2, axis=1)
+        elif array.shape == (n, 2):
+            table = np.array(array)
+        else:
+            raise ValueError(f"{name} must be None, a scalar, shape ({n},) per segment, or ({n}, 2) per segment and direction; got shape {array.shape}")
+        if not np.all(np.isfinite(table)) or np.any(table < 0.0):
+            raise ValueError(f"{name} must be finite and non-negative, got {array.tolist()}")
+        unequal = np.flatnonzero(self._circular & (table[:, 0] != table[:, 1]))
+        if unequal.size:
+            raise ValueError(f"{name}: segment {unequal[0]} is circular and takes one coefficient; got {table[unequal[0]].tolist()}")
+        return np.ascontiguousarray(table)
+
+    def hydro(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        threads: int = 1,
+    ) -> RobotTorques:
+        """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the base.
+
+        Parameters
+        ----------
+        q, qd, qdd
+            Joint positions, velocities, accelerations [rad or m]: ``(n_joints,)`` or
+            ``(n_samples, n_joints)``, the same shape for all three.
+        cd, cm
+            ``None`` (default): each segment's own coefficients. Otherwise a scalar for all, an
+            array ``(n_segments,)`` per segment or ``(n_segments, 2)`` per segment and normal
+            direction (a circular segment takes one: its two entries must be equal).
+        water
+            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
+        base_motion
+            How the base moves (:class:`BaseMotion`); default a fixed, upright base.
+        current, current_acceleration
+            The water's velocity [m/s] and acceleration [m/s²], WORLD frame: ``(3,)`` or
+            ``(n_samples, 3)``. Drag acts on the velocity relative to the water, added mass on
+            the acceleration relative to it, and every body's centre of buoyancy carries
+            ``ρ V (current_acceleration − g)``.
+        threads
+            Threads to split a batch over (≥ 1).
+
+        Any argument with a sample axis gives results with one; the others are broadcast.
+        """
+        threads = _threads(threads)
+        water = _water(water)
+        motion = base_motion if base_motion is not None else BaseMotion()
+        if not isinstance(motion, BaseMotion):
+            raise TypeError(f"base_motion must be a uwml.BaseMotion or None, got {type(motion).__name__}")
+        n = self.n_joints
+        states = []
+        for name, value in (("q", q), ("qd", qd), ("qdd", qdd)):
+            array = _real_array(value, name, "a rectangular array of real numbers")
+            if array.ndim not in (1, 2) or array.shape[-1] != n:
+                raise ValueError(f"{name} must have shape ({n},) or (n_samples, {n}), got {array.shape}")
+            states.append(array)
+        for name, array in zip(("qd", "qdd"), states[1:]):
+            if array.shape != states[0].shape:
+                raise ValueError(f"{name} must have the same shape as q {states[0].shape}, got {array.shape}")
+        flows = []
+        for name, value in (("current", current), ("current_acceleration", current_acceleration)):
+            array = _real_array(value, name, "a 3-vector or an (n, 3) array")
+            if array.ndim not in (1, 2) or array.shape[-1] != 3:
+                raise ValueError(f"{name} must have shape (3,) or (n_samples, 3), got {array.shape}")
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{name} must be finite, got {array.tolist()}")
+            flows.append(array)
+        per_sample = {
+            name: array
+            for name, array in (
+                ("q", states[0]),
+                ("base_motion.orientation", motion.orientation),
+                ("base_motion.velocity", motion.velocity),
+                ("base_motion.angular_velocity", motion.angular_velocity),
+                ("base_motion.acceleration", motion.acceleration),
+                ("base_motion.angular_acceleration", motion.angular_acceleration),
+                ("current", flows[0]),
+                ("current_acceleration", flows[1]),
+            )
+            if array.ndim == 2
+        }
+        counts = {len(a) for a in per_sample.values()}
+        if len(counts) > 1:
+            sizes = ", ".join(f"{k}: {len(v)}" for k, v in per_sample.items())
+            raise ValueError(f"arguments given per sample must agree on the number of samples; got {sizes}")
+        batched = bool(per_sample)
+        n_samples = counts.pop() if counts else 1
+
+        def rows(array: FloatArray, width: int) -> FloatArray:
+            return np.ascontiguousarray(array.reshape(-1, width), dtype=np.float64)
+
+        def joint_rows(array: FloatArray) -> FloatArray:
+            return np.ascontiguousarray(np.broadcast_to(array.reshape(-1, n), (n_samples, n)), dtype=np.float64)
+
+        out = self._core.hydro(
+            joint_rows(states[0]),
+            joint_rows(states[1]),
+            joint_rows(states[2]),
+            self._coefficients(cd, "cd"),
+            self._coefficients(cm, "cm"),
+            water.density,
+            water.gravity,
+            rows(motion.orientation, 4),
+            rows(motion.velocity, 3),
+            rows(motion.angular_velocity, 3),
+            rows(motion.acceleration, 3),
+            rows(motion.angular_acceleration, 3),
+            rows(flows[0], 3),
+            rows(flows[1], 3),
+            threads,
+        )
+        joint_shape = (n_samples, n) if batched else (n,)
+        base_shape = (n_samples, 6) if batched else (6,)
+        joints = [a.reshape(joint_shape) for a in out[:4]]
+        base = [a.reshape(base_shape) for a in out[4:]]
+        return RobotTorques(
+            drag=joints[0],
+            added_mass=joints[1],
+            buoyancy=joints[2],
+            gravity=joints[3],
+            base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
+        )
