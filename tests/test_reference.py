@@ -1,6 +1,6 @@
-"""Tests of the numpy reference ``python/uwml/reference.py``.
+"""Tests of the numpy reference ``python/uwml/reference/`` (serial chains, the paper, losses).
 
-The module is loaded standalone from its file, so these tests run without the compiled
+The package is loaded standalone from its directory, so these tests run without the compiled
 extension. The brute-force checks below share no code with it: forward kinematics by
 quaternions, joint Jacobians by complex-step differentiation (the principle of virtual work:
 the moment arm of joint j is ``∂p/∂q_j``), slice accelerations by finite differences of those
@@ -10,6 +10,7 @@ exact velocities along a trajectory, and high-order Gauss-Legendre quadrature.
 import importlib.util
 import itertools
 import math
+import sys
 from pathlib import Path
 from types import ModuleType, SimpleNamespace
 from typing import Any
@@ -21,11 +22,22 @@ from hypothesis import strategies as st
 
 
 def _load_reference() -> ModuleType:
-    path = Path(__file__).resolve().parents[1] / "python" / "uwml" / "reference.py"
-    spec = importlib.util.spec_from_file_location("uwml_reference_standalone", path)
+    """The package ``python/uwml/reference/`` on its own, without ``uwml/__init__.py`` (which
+    imports the compiled extension): registered under a name of its own so that its relative
+    imports resolve to its own submodules."""
+    name = "uwml_reference_standalone"
+    if name in sys.modules:
+        return sys.modules[name]
+    directory = Path(__file__).resolve().parents[1] / "python" / "uwml" / "reference"
+    spec = importlib.util.spec_from_file_location(name, directory / "__init__.py", submodule_search_locations=[str(directory)])
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[name]
+        raise
     return module
 
 

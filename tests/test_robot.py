@@ -1,0 +1,252 @@
+"""``uwml.Robot`` (the Rust path) held against the numpy reference ``uwml.reference.robot_hydro``
+on random trees, base motions and currents, against ``uwml.Leg`` on serial chains, and checked
+for its inputs: shapes, broadcasting, orientations, errors that name the argument.
+
+Expected values come from the reference (an independent numpy implementation), from ``uwml.Leg``
+(the chain path of the core, a different algorithm), or from numbers written here.
+"""
+
+import numpy as np
+import pytest
+import uwml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
+from uwml import reference as ref
+
+#: Tolerance of the core against the reference, relative to the largest entry of a sample.
+RTOL_REFERENCE = 1e-10
+EXAMPLES = settings(max_examples=max(5, int(settings.default.max_examples / 4)))
+COMPONENTS = ("drag", "added_mass", "buoyancy", "gravity")
+
+
+def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True) -> uwml.Robot:
+    """A random tree of ``n`` joints: random parents, kinds, axes; every body with one or two
+    segments, rectangular or circular, with their own coefficients."""
+
+    def unit() -> np.ndarray:
+        v = rng.normal(size=3)
+        return v / np.linalg.norm(v)
+
+    def segments() -> list[uwml.Segment]:
+        out = []
+        for _ in range(rng.integers(0, 3)):
+            axis = unit()
+            n0 = np.cross(axis, unit())
+            n0 /= np.linalg.norm(n0)
+            start, length = rng.uniform(-0.2, 0.2, 3), rng.uniform(0.1, 1.0)
+            if rng.random() < 0.5:
+                out.append(uwml.Segment(start, axis, length, section="circular", diameter=rng.uniform(0.03, 0.2), cd=rng.uniform(0.5, 2), cm=rng.uniform(0.2, 1.5)))
+            else:
+                out.append(
+                    uwml.Segment(
+                        start,
+                        axis,
+                        length,
+                        normals=(n0, np.cross(axis, n0)),
+                        widths=rng.uniform(0.03, 0.3, 2),
+                        area=rng.uniform(0.005, 0.05),
+                        cd=tuple(rng.uniform(0.5, 2.5, 2)),
+                        cm=tuple(rng.uniform(0.1, 1.5, 2)),
+                    )
+                )
+        return out
+
+    def body() -> uwml.Link:
+        return uwml.Link(rng.uniform(1, 20), rng.uniform(-0.4, 0.4, 3), rng.uniform(0.0005, 0.02), cob=rng.uniform(-0.4, 0.4, 3), segments=segments())
+
+    joints = [
+        uwml.Joint(
+            rng.uniform(-0.5, 0.5, 3),
+            unit(),
+            parent=int(rng.integers(-1, i)) if i else -1,
+            kind="prismatic" if rng.random() < 0.3 else "revolute",
+        )
+        for i in range(n)
+    ]
+    links = [body() for _ in range(n)]
+    return uwml.Robot(joints, links, base=body() if base_body else None)
+
+
+def random_quaternions(rng: np.random.Generator, n: int) -> np.ndarray:
+    q = rng.normal(size=(n, 4))
+    return q / np.linalg.norm(q, axis=1, keepdims=True)
+
+
+def motion_arguments(rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
+    return {
+        "orientation": random_quaternions(rng, n),
+        "velocity": rng.normal(size=(n, 3)),
+        "angular_velocity": rng.normal(size=(n, 3)),
+        "acceleration": rng.normal(size=(n, 3)),
+        "angular_acceleration": rng.normal(size=(n, 3)),
+    }
+
+
+def assert_close(actual: np.ndarray, expected: np.ndarray, scale: np.ndarray, rtol: float, what: str) -> None:
+    error = np.max(np.abs(actual - expected).reshape(len(scale), -1), axis=1) / scale
+    worst = int(np.argmax(error))
+    assert error[worst] <= rtol, f"{what}: sample {worst} off by {error[worst]:.3g} relative\n{actual[worst]}\n{expected[worst]}"
+
+
+@EXAMPLES
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 9))
+def test_core_matches_the_reference_on_random_trees_in_moving_water(seed: int, n: int) -> None:
+    rng = np.random.default_rng(seed)
+    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.8))
+    samples = 20
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    motion = motion_arguments(rng, samples)
+    current, current_acceleration = rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+    density, gravity = rng.uniform(990, 1040), rng.uniform(9.7, 9.9)
+    # Per-evaluation coefficients half of the time (circular segments take one per segment).
+    cd = cm = None
+    if rng.random() < 0.5:
+        circular = np.array([s.section == "circular" for s in robot.segments], dtype=bool)
+        cd = rng.uniform(0.5, 2.5, (len(robot.segments), 2))
+        cm = rng.uniform(0.1, 1.5, (len(robot.segments), 2))
+        cd[circular, 1], cm[circular, 1] = cd[circular, 0], cm[circular, 0]
+    result = robot.hydro(
+        q, qd, qdd, cd=cd, cm=cm, water=uwml.Water(density, gravity), base_motion=uwml.BaseMotion(**motion), current=current, current_acceleration=current_acceleration
+    )
+    expected = ref.robot_hydro(
+        robot.joints, robot.links, robot.base, q, qd, qdd, cd=cd, cm=cm, density=density, gravity=gravity,
+        current=current, current_acceleration=current_acceleration, **motion,
+    )  # fmt: skip
+    actual = {name: getattr(result, name) for name in COMPONENTS} | {f"base_{name}": getattr(result.base, name) for name in COMPONENTS}
+    scale = np.maximum.reduce([np.max(np.abs(expected[k]), axis=1) for k in actual]) + 1e-300
+    for key, value in actual.items():
+        assert_close(value, expected[key], scale, RTOL_REFERENCE, key)
+
+
+def test_a_serial_chain_as_a_robot_is_the_leg() -> None:
+    leg = uwml.Leg.paper()
+    robot = uwml.Robot.from_leg(leg)
+    rng = np.random.default_rng(1)
+    q, qd, qdd = rng.uniform(-3, 3, (500, 3)), rng.uniform(-2, 2, (500, 3)), rng.uniform(-5, 5, (500, 3))
+    a, b = robot.hydro(q, qd, qdd), leg.hydro(q, qd, qdd)
+    for name in COMPONENTS:
+        scale = np.max(np.abs(getattr(b, name)), axis=1) + 1e-300
+        assert_close(getattr(a, name), getattr(b, name), scale, 1e-14, name)
+    # MODEL.md section 5.
+    t = robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
+    np.testing.assert_allclose(t.drag, [-24.24084, -5.060505, -0.7383118], rtol=2e-7)
+    np.testing.assert_allclose(t.added_mass, [-8.525438, 21.77596, 9.484545], rtol=2e-7)
+    np.testing.assert_allclose(t.buoyancy, [0.0, 59.72457, 4.193843], rtol=2e-7, atol=1e-12)
+
+
+def test_a_cylinder_dragged_broadside_by_its_base() -> None:
+    # A horizontal cylinder (length L, diameter D) on a base moving at U across it: the base
+    # feels −½ρ Cd D L U|U|; at rest in a current c, +½ρ Cd D L c|c|; along its axis, nothing.
+    length, diameter, cd, rho = 0.8, 0.1, 1.1, 1025.0
+    rod = uwml.Link(0.0, (0, 0, 0), 0.0, segments=[uwml.Segment((-0.4, 0, 0), (1, 0, 0), length, section="circular", diameter=diameter, cd=cd, cm=0.0)])
+    robot = uwml.Robot([uwml.Joint((0, 0, 0), (0, 0, 1))], [uwml.Link(0.0, (0, 0, 0), 0.0)], base=rod)
+    water = uwml.Water(rho, 9.81)
+    expected = -0.5 * rho * cd * diameter * length * 0.7 * 0.7
+    moving = robot.hydro([0.0], [0.0], [0.0], water=water, base_motion=uwml.BaseMotion(velocity=(0, 0.7, 0)))
+    np.testing.assert_allclose(moving.base.drag, [0, expected, 0, 0, 0, 0], atol=1e-12)
+    drifting = robot.hydro([0.0], [0.0], [0.0], water=water, current=(0, 0.7, 0))
+    np.testing.assert_allclose(drifting.base.drag, [0, -expected, 0, 0, 0, 0], atol=1e-12)
+    # The base turned a quarter about z: the same current now runs along the rod.
+    quarter = uwml.BaseMotion(orientation=Rotation.from_euler("z", 90, degrees=True))
+    along = robot.hydro([0.0], [0.0], [0.0], water=water, base_motion=quarter, current=(0, 0.7, 0))
+    np.testing.assert_allclose(along.base.drag, np.zeros(6), atol=1e-12)
+
+
+def test_broadcasting_shapes_and_threads() -> None:
+    rng = np.random.default_rng(4)
+    robot = random_robot(rng, 4)
+    q = rng.uniform(-1, 1, 4)
+    single = robot.hydro(q, q, q, current=(0.1, 0.2, 0.0))
+    assert single.drag.shape == (4,) and single.base.drag.shape == (6,)
+    motion = motion_arguments(rng, 7)
+    batch = robot.hydro(q, q, q, base_motion=uwml.BaseMotion(**motion))
+    assert batch.drag.shape == (7, 4) and batch.base.total.shape == (7, 6)
+    for i in (0, 6):
+        one = robot.hydro(q, q, q, base_motion=uwml.BaseMotion(**{k: v[i] for k, v in motion.items()}))
+        np.testing.assert_array_equal(batch.total[i], one.total)
+        np.testing.assert_array_equal(batch.base.total[i], one.base.total)
+    many = rng.uniform(-1, 1, (101, 4))
+    motion = motion_arguments(rng, 101)
+    arguments = {"base_motion": uwml.BaseMotion(**motion), "current": rng.normal(size=(101, 3))}
+    one_thread = robot.hydro(many, many, many, **arguments)
+    two_threads = robot.hydro(many, many, many, **arguments, threads=2)
+    for name in COMPONENTS:
+        np.testing.assert_array_equal(getattr(one_thread, name), getattr(two_threads, name))
+        np.testing.assert_array_equal(getattr(one_thread.base, name), getattr(two_threads.base, name))
+
+
+def test_orientation_as_a_scipy_rotation_or_a_quaternion() -> None:
+    rng = np.random.default_rng(5)
+    robot = random_robot(rng, 3)
+    q = rng.uniform(-1, 1, 3)
+    rotations = Rotation.random(5, random_state=3)
+    by_rotation = robot.hydro(q, q, q, base_motion=uwml.BaseMotion(orientation=rotations))
+    quaternions = rotations.as_quat(scalar_first=True)
+    by_numbers = robot.hydro(q, q, q, base_motion=uwml.BaseMotion(orientation=quaternions))
+    np.testing.assert_array_equal(by_rotation.base.total, by_numbers.base.total)
+    # −q is the same rotation.
+    flipped = robot.hydro(q, q, q, base_motion=uwml.BaseMotion(orientation=-quaternions))
+    np.testing.assert_allclose(flipped.base.total, by_numbers.base.total, rtol=1e-13, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"base_motion": "fixed"}, "base_motion must be a uwml.BaseMotion"),
+        ({"current": (0.0, 1.0)}, r"current must have shape \(3,\)"),
+        ({"current": (0.0, np.nan, 0.0)}, "current must be finite"),
+        ({"current_acceleration": np.zeros((2, 3)), "current": np.zeros((3, 3))}, "must agree on the number of samples"),
+        ({"cd": [1.0, 2.0, 3.0]}, "cd must be None, a scalar"),
+        ({"cm": -1.0}, "cm must be finite and non-negative"),
+    ],
+)
+def test_bad_arguments_name_themselves(kwargs: dict, message: str) -> None:
+    robot = random_robot(np.random.default_rng(6), 2)
+    with pytest.raises((ValueError, TypeError), match=message):
+        robot.hydro([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"orientation": (0.0, 0.0, 0.0, 0.0)}, "unit quaternion"),
+        ({"orientation": (1.0, 0.1, 0.0, 0.0)}, "unit quaternion"),
+        ({"orientation": (1.0, 0.0, 0.0)}, r"orientation must have shape \(4,\)"),
+        ({"velocity": (0.0, np.inf, 0.0)}, "velocity must be finite"),
+        ({"angular_acceleration": np.zeros((2, 2))}, r"angular_acceleration must have shape \(3,\)"),
+    ],
+)
+def test_bad_base_motions_name_themselves(kwargs: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        uwml.BaseMotion(**kwargs)
+
+
+def test_bad_robots_name_the_joint_link_or_segment() -> None:
+    link = uwml.Link(1.0, (0, 0, 0), 0.001)
+    with pytest.raises(ValueError, match=r"joints\[1\].parent must be -1 \(the base\) or an earlier link"):
+        uwml.Robot([uwml.Joint((0, 0, 0), (0, 0, 1)), uwml.Joint((0, 0, 0), (0, 0, 1), parent=1)], [link, link])
+    with pytest.raises(ValueError, match="joint.parent must be -1"):
+        uwml.Joint((0, 0, 0), (0, 0, 1), parent=-2)
+    with pytest.raises(ValueError, match="joint.kind must be one of"):
+        uwml.Joint((0, 0, 0), (0, 0, 1), kind="spherical")
+    with pytest.raises(ValueError, match="segment.section must be one of"):
+        uwml.Segment((0, 0, 0), (1, 0, 0), 1.0, section="elliptic", diameter=0.1)
+    with pytest.raises(ValueError, match="a circular segment needs segment.diameter"):
+        uwml.Segment((0, 0, 0), (1, 0, 0), 1.0, section="circular")
+    with pytest.raises(TypeError, match="circular segment must be one number"):
+        uwml.Segment((0, 0, 0), (1, 0, 0), 1.0, section="circular", diameter=0.1, cd=(1.0, 2.0))
+    with pytest.raises(ValueError, match="a rectangular segment needs segment.normals"):
+        uwml.Segment((0, 0, 0), (1, 0, 0), 1.0)
+    with pytest.raises(ValueError, match="either as segment="):
+        s1 = uwml.Segment((0, 0, 0), (1, 0, 0), 1.0, section="circular", diameter=0.1)
+        uwml.Link(1.0, (0, 0, 0), 0.001, segment=s1, segments=[s1, s1])
+    with pytest.raises(ValueError, match="use uwml.Robot"):
+        uwml.Leg([uwml.Joint((0, 0, 0), (0, 0, 1), kind="prismatic")], [link])
+    with pytest.raises(ValueError, match="use uwml.Robot"):
+        uwml.Leg([uwml.Joint((0, 0, 0), (0, 0, 1))], [uwml.Link(1.0, (0, 0, 0), 0.001, segment=s1)])
+    robot = random_robot(np.random.default_rng(2), 2)
+    with pytest.raises(ValueError, match=r"q must have shape \(2,\) or \(n_samples, 2\)"):
+        robot.hydro([0.0], [0.0], [0.0])
+    with pytest.raises(ValueError, match=r"qd\[0, 1\] is NaN: joint states must be finite"):
+        robot.hydro([0.0, 0.0], [0.0, np.nan], [0.0, 0.0])
