@@ -1,5 +1,6 @@
 //! Calls every public evaluation function of uwml-core, for `f32` and `f64` and for chains of 1,
-//! 3 (the paper's leg) and 6 joints, and the torque paths over SIMD lanes (`WideF32x4`,
+//! 3 (the paper's leg) and 6 joints and a tree with a prismatic joint and circular segments on a
+//! moving base in a current, and the torque paths over SIMD lanes (`WideF32x4`,
 //! `WideF64x4`), on inputs hidden from the optimizer by `black_box`, and counts the results that
 //! are not what they should be (finite, or NaN for a NaN state).
 //!
@@ -10,11 +11,12 @@ use core::hint::black_box;
 
 use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
-use uwml_core::strip::{added_mass_moments, drag_moments};
+use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 use uwml_core::{
-    Chain, Coefficients, Joint, JointLosses, Link, LossState, OilDrag, Segment, Water, environment_jacobians,
+    BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag, Owner,
+    RigidBody, Robot, RobotData, RobotSegment, Section, Segment, TreeJoint, Water, environment_jacobians,
     environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian,
-    pressure_at_depth, smooth_sign,
+    pressure_at_depth, robot_hydro, smooth_sign,
 };
 
 /// Counts unexpected results.
@@ -179,6 +181,84 @@ fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mu
     tally.expect(point_jacobian(chain, &q, black_box(N), &point).is_none());
 }
 
+/// A tree of four joints (one prismatic, two from the base) with rectangular and circular
+/// segments on a base body.
+fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6>> {
+    let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
+    let joint = |parent, kind, origin, axis| TreeJoint { parent, kind, origin, axis };
+    let joints = [
+        joint(None, JointKind::Revolute, v(0.3, 0.0, 0.0), v(0.0, 0.0, 1.0)),
+        joint(Some(0), JointKind::Prismatic, v(0.2, 0.0, 0.0), v(1.0, 0.0, 0.0)),
+        joint(None, JointKind::Revolute, v(-0.3, 0.0, 0.0), v(0.0, 1.0, 0.0)),
+        joint(Some(2), JointKind::Revolute, v(0.0, 0.0, -0.4), v(0.6, 0.8, 0.0)),
+    ];
+    let body = |m: f64| RigidBody { mass: c(m), com: v(0.1, 0.0, -0.1), volume: c(m / 2700.0), cob: v(0.1, 0.0, -0.1) };
+    let circular = |owner, axis| RobotSegment {
+        owner,
+        start: v(0.0, 0.0, 0.0),
+        axis,
+        length: c(0.4),
+        area: c(0.005),
+        section: Section::Circular { diameter: c(0.08) },
+        cd: [c(1.2); 2],
+        cm: [c(1.0); 2],
+    };
+    let rectangular = |owner| RobotSegment {
+        section: Section::Rectangular { normals: [v(0.0, 1.0, 0.0), v(0.0, 0.0, 1.0)], widths: [c(0.1), c(0.2)] },
+        cd: [c(2.2); 2],
+        cm: [c(0.5); 2],
+        ..circular(owner, v(1.0, 0.0, 0.0))
+    };
+    let segments = [
+        circular(Owner::Base, v(1.0, 0.0, 0.0)),
+        rectangular(Owner::Link(0)),
+        circular(Owner::Link(1), v(0.0, 0.0, -1.0)),
+        circular(Owner::Link(3), v(0.0, 0.6, 0.8)),
+    ];
+    Robot::new(&joints, &[body(4.0), body(3.0), body(2.0), body(1.0)], body(50.0), &segments).ok()
+}
+
+/// The whole-robot path on a moving base in a current, and a NaN state.
+fn evaluate_robot<T: RealField + Copy>(robot: &Robot<T, 6, 6>, tally: &mut Tally<T>) {
+    let water = black_box(Water::<T>::default());
+    let (q, qd, qdd): ([T; 6], [T; 6], [T; 6]) =
+        (vector::<T, 6>(0.3, -0.2).into(), vector::<T, 6>(0.8, -0.45).into(), vector::<T, 6>(1.0, -0.7).into());
+    let (q, qd, qdd) = (black_box(q), black_box(qd), black_box(qdd));
+    let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
+    let half = c::<T>(0.5);
+    let (Ok(motion), Ok(current)) = (
+        BaseMotion::new(
+            [half, half, half, half],
+            v(0.5, 0.1, 0.0),
+            v(0.0, 0.2, 0.1),
+            v(0.1, 0.0, 0.3),
+            v(0.0, 0.0, 0.2),
+        ),
+        Current::new(v(0.2, 0.0, 0.0), v(0.0, 0.05, 0.0)),
+    ) else {
+        return tally.expect(false);
+    };
+    let mut data = RobotData::<T, 6>::new();
+    robot_hydro(robot, &water, None, &black_box(motion), &black_box(current), &q, &qd, &qdd, &mut data);
+    for forces in data.joint_forces() {
+        tally.all_finite([forces.total(), forces.gravity].iter());
+    }
+    let base = data.base_wrench();
+    tally.all_finite(base.total().to_array().iter().chain(base.gravity.to_array().iter()));
+    for body in [None, Some(0), Some(3)] {
+        match data.body_wrench(robot, body) {
+            Some(w) => tally.all_finite(w.to_array().iter()),
+            None => tally.expect(false),
+        }
+    }
+    tally.expect(data.body_wrench(robot, Some(4)).is_none());
+    let mut nan = q;
+    nan[1] = c(f64::NAN);
+    robot_hydro(robot, &water, None, &motion, &current, &black_box(nan), &qd, &qdd, &mut data);
+    tally.expect(data.joint_forces().iter().all(|f| !f.total().is_finite()));
+    tally.expect(data.base_wrench().drag.to_array().iter().all(|x| !x.is_finite()));
+}
+
 /// The scalar functions, for one float type.
 fn scalars<T: RealField + Copy>(tally: &mut Tally<T>) {
     for (x, epsilon) in [(0.3, 1e-3), (-2.0, 0.0), (0.0, 0.0), (1e-30, 1e-3)] {
@@ -189,6 +269,13 @@ fn scalars<T: RealField + Copy>(tally: &mut Tally<T>) {
         let (a, b) = drag_moments(c::<T>(v0), c(v1), c(0.7));
         let (m0, m1) = added_mass_moments(c::<T>(v0), c(v1), c(0.7));
         tally.all_finite([a, b, m0, m1].iter());
+    }
+    // The normal speed of a circular segment: through zero inside, nearly, and uniform.
+    for (p, r) in
+        [((-0.3, 0.1, 0.0), (1.0, 0.0, 0.0)), ((-0.3, 1e-9, 0.0), (1.0, 0.0, 0.0)), ((0.2, 0.1, 0.0), (0.0, 0.0, 0.0))]
+    {
+        let v = |(x, y, z): (f64, f64, f64)| Vector3::new(c::<T>(x), c(y), c(z));
+        tally.all_finite(circular_speed_moments(&v(p), &v(r), c(0.7)).iter());
     }
     let oil = OilDrag::<T>::default();
     tally.finite(oil.scale(c(1e7), c(4.0)));
@@ -210,6 +297,10 @@ fn for_type<T: RealField + Copy>() -> u32 {
     }
     match chain::<T, 6>() {
         Some(chain) => evaluate(&black_box(chain), &mut tally),
+        None => tally.expect(false),
+    }
+    match robot::<T>() {
+        Some(robot) => evaluate_robot(&black_box(robot), &mut tally),
         None => tally.expect(false),
     }
     tally.bad
