@@ -250,3 +250,31 @@ def test_bad_robots_name_the_joint_link_or_segment() -> None:
         robot.hydro([0.0], [0.0], [0.0])
     with pytest.raises(ValueError, match=r"qd\[0, 1\] is NaN: joint states must be finite"):
         robot.hydro([0.0, 0.0], [0.0, np.nan], [0.0, 0.0])
+
+
+@EXAMPLES
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 8))
+def test_link_wrenches_and_added_mass_matrix_match_the_reference(seed: int, n: int) -> None:
+    rng = np.random.default_rng(seed)
+    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.8))
+    samples = 6
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    motion = motion_arguments(rng, samples)
+    current = rng.normal(size=(samples, 3))
+    wrenches = robot.link_wrenches(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current)
+    expected = ref.robot_link_wrenches(robot.joints, robot.links, robot.base, q, qd, qdd, current=current, **motion)
+    assert wrenches.shape == expected.shape == (samples, n + 1, 6)
+    scale = np.max(np.abs(expected).reshape(samples, -1), axis=1) + 1e-300
+    assert_close(wrenches, expected, scale, RTOL_REFERENCE, "link wrenches")
+    matrices = robot.added_mass_matrix(q)
+    expected_matrices = ref.robot_added_mass_matrix(robot.joints, robot.links, robot.base, q)
+    assert matrices.shape == (samples, n + 6, n + 6)
+    scale = np.max(np.abs(expected_matrices).reshape(samples, -1), axis=1) + 1e-300
+    assert_close(matrices, expected_matrices, scale, RTOL_REFERENCE, "added-mass matrix")
+    np.testing.assert_array_equal(matrices, np.swapaxes(matrices, 1, 2))
+    assert np.all(np.linalg.eigvalsh(matrices) >= -1e-12 * scale[:, None])
+    # −M_A times the accelerations is the added-mass part at zero velocity.
+    still = robot.hydro(q, np.zeros_like(q), qdd, base_motion=uwml.BaseMotion(acceleration=motion["acceleration"], angular_acceleration=motion["angular_acceleration"]))
+    accelerations = np.concatenate([motion["acceleration"], motion["angular_acceleration"], qdd], axis=1)
+    forces = np.concatenate([still.base.added_mass, still.added_mass], axis=1)
+    assert_close(-np.einsum("sij,sj->si", matrices, accelerations), forces, np.max(np.abs(forces), axis=1) + scale, 1e-12, "M_A a")

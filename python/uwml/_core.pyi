@@ -129,7 +129,9 @@ class Robot:
         current: NDArray[np.float64],
         current_acceleration: NDArray[np.float64],
         threads: int,
+        body_wrenches: bool,
     ) -> list[NDArray[np.float64]]: ...
+    def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
 
 def joint_losses(
     losses: NDArray[np.float64] | None,

@@ -235,45 +235,20 @@ class Robot:
             raise ValueError(f"{name}: segment {unequal[0]} is circular and takes one coefficient; got {table[unequal[0]].tolist()}")
         return np.ascontiguousarray(table)
 
-    def hydro(
+    def _evaluation(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        cd: ArrayLike | None = None,
-        cm: ArrayLike | None = None,
-        water: Water = FRESH_WATER,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        threads: int = 1,
-    ) -> RobotTorques:
-        """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the base.
-
-        Parameters
-        ----------
-        q, qd, qdd
-            Joint positions, velocities, accelerations [rad or m]: ``(n_joints,)`` or
-            ``(n_samples, n_joints)``, the same shape for all three.
-        cd, cm
-            ``None`` (default): each segment's own coefficients. Otherwise a scalar for all, an
-            array ``(n_segments,)`` per segment or ``(n_segments, 2)`` per segment and normal
-            direction (a circular segment takes one: its two entries must be equal).
-        water
-            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
-        base_motion
-            How the base moves (:class:`BaseMotion`); default a fixed, upright base.
-        current, current_acceleration
-            The water's velocity [m/s] and acceleration [m/s²], WORLD frame: ``(3,)`` or
-            ``(n_samples, 3)``. Drag acts on the velocity relative to the water, added mass on
-            the acceleration relative to it, and every body's centre of buoyancy carries
-            ``ρ V (current_acceleration − g)``.
-        threads
-            Threads to split a batch over (≥ 1).
-
-        Any argument with a sample axis gives results with one; the others are broadcast.
-        """
-        threads = _threads(threads)
+        cd: ArrayLike | None,
+        cm: ArrayLike | None,
+        water: Water,
+        base_motion: BaseMotion | None,
+        current: ArrayLike,
+        current_acceleration: ArrayLike,
+    ) -> tuple[tuple[Any, ...], bool, int]:
+        """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
+        sample axis, and the number of samples."""
         water = _water(water)
         motion = base_motion if base_motion is not None else BaseMotion()
         if not isinstance(motion, BaseMotion):
@@ -314,7 +289,6 @@ class Robot:
         if len(counts) > 1:
             sizes = ", ".join(f"{k}: {len(v)}" for k, v in per_sample.items())
             raise ValueError(f"arguments given per sample must agree on the number of samples; got {sizes}")
-        batched = bool(per_sample)
         n_samples = counts.pop() if counts else 1
 
         def rows(array: FloatArray, width: int) -> FloatArray:
@@ -323,7 +297,7 @@ class Robot:
         def joint_rows(array: FloatArray) -> FloatArray:
             return np.ascontiguousarray(np.broadcast_to(array.reshape(-1, n), (n_samples, n)), dtype=np.float64)
 
-        out = self._core.hydro(
+        arguments = (
             joint_rows(states[0]),
             joint_rows(states[1]),
             joint_rows(states[2]),
@@ -338,12 +312,55 @@ class Robot:
             rows(motion.angular_acceleration, 3),
             rows(flows[0], 3),
             rows(flows[1], 3),
-            threads,
         )
+        return arguments, bool(per_sample), n_samples
+
+    def hydro(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        threads: int = 1,
+    ) -> RobotTorques:
+        """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the base.
+
+        Parameters
+        ----------
+        q, qd, qdd
+            Joint positions, velocities, accelerations [rad or m]: ``(n_joints,)`` or
+            ``(n_samples, n_joints)``, the same shape for all three.
+        cd, cm
+            ``None`` (default): each segment's own coefficients. Otherwise a scalar for all, an
+            array ``(n_segments,)`` per segment or ``(n_segments, 2)`` per segment and normal
+            direction (a circular segment takes one: its two entries must be equal).
+        water
+            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
+        base_motion
+            How the base moves (:class:`BaseMotion`); default a fixed, upright base.
+        current, current_acceleration
+            The water's velocity [m/s] and acceleration [m/s²], WORLD frame: ``(3,)`` or
+            ``(n_samples, 3)``. Drag acts on the velocity relative to the water, added mass on
+            the acceleration relative to it, and every body's centre of buoyancy carries
+            ``ρ V (current_acceleration − g)``.
+        threads
+            Threads to split a batch over (≥ 1).
+
+        Any argument with a sample axis gives results with one; the others are broadcast.
+        """
+        threads = _threads(threads)
+        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
+        out = self._core.hydro(*arguments, threads, False)
+        n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
         joints = [a.reshape(joint_shape) for a in out[:4]]
-        base = [a.reshape(base_shape) for a in out[4:]]
+        base = [a.reshape(base_shape) for a in out[4:8]]
         return RobotTorques(
             drag=joints[0],
             added_mass=joints[1],
@@ -351,3 +368,47 @@ class Robot:
             gravity=joints[3],
             base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
         )
+
+    def link_wrenches(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        threads: int = 1,
+    ) -> FloatArray:
+        """The environment's wrench on every body, for coupling to a simulator.
+
+        Arguments as for :meth:`hydro`. Returns ``(n_joints + 1, 6)`` (or ``(n_samples,
+        n_joints + 1, 6)``): row 0 the base, row ``i + 1`` link ``i``; each the total force
+        (drag, added mass, buoyancy with Froude-Krylov, and gravity) [N] and its moment about the
+        body's centre of mass [N·m], in WORLD components.
+        """
+        threads = _threads(threads)
+        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
+        wrenches = self._core.hydro(*arguments, threads, True)[8]
+        shape = (n_samples, self.n_joints + 1, 6) if batched else (self.n_joints + 1, 6)
+        return wrenches.reshape(shape)
+
+    def added_mass_matrix(self, q: ArrayLike, cm: ArrayLike | None = None, water: Water = FRESH_WATER) -> FloatArray:
+        """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)`` (MODEL.md 9.5).
+
+        ``(6 + n_joints)²`` (or one per sample of ``q``), base first (linear, then angular, base
+        frame), then the joints: symmetric, positive semi-definite, independent of the base's
+        orientation and motion. A simulator adds it to the rigid-body mass matrix; the added-mass
+        forces are then ``−M_A (ν̇, q̈)`` plus terms in the velocities. ``cm`` as for :meth:`hydro`.
+        """
+        water = _water(water)
+        n = self.n_joints
+        array = _real_array(q, "q", "a rectangular array of real numbers")
+        if array.ndim not in (1, 2) or array.shape[-1] != n:
+            raise ValueError(f"q must have shape ({n},) or (n_samples, {n}), got {array.shape}")
+        rows = np.ascontiguousarray(array.reshape(-1, n), dtype=np.float64)
+        matrices = self._core.added_mass_matrix(rows, self._coefficients(cm, "cm"), water.density)
+        size = 6 + n
+        return matrices.reshape((len(rows), size, size) if array.ndim == 2 else (size, size))

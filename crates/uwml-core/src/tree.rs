@@ -525,3 +525,61 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
         }
     }
 }
+
+/// The added-mass matrix over base and joints, `M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)` (MODEL.md 9.5),
+/// `(6 + n)²` entries row-major into `out` (`n = robot.joint_count()`; base first: linear, then
+/// angular, then the joints), at joint positions `q` (the first `n` entries).
+///
+/// Column `k` is minus the added-mass forces at unit acceleration `k` with every velocity and
+/// the current zero: exact, as the added-mass forces are linear in the accelerations and have no
+/// other terms there. The matrix is then symmetrized (`½(M + Mᵀ)`: the two triangles differ by
+/// rounding only); it is positive semi-definite. It does not depend on the base's orientation
+/// or motion. `data` is the workspace (overwritten). An `out` shorter than `(6 + n)²` gets what
+/// fits; a non-finite `q` gives NaN. Never fails, never panics.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+) {
+    let n = robot.joint_count();
+    let size = 6 + n;
+    let zero = Vector3::zeros();
+    let still = Current { velocity: zero, acceleration: zero };
+    let rest = [T::zero(); J];
+    for k in 0..size {
+        let unit = |i: usize| if i == k { T::one() } else { T::zero() };
+        let motion = BaseMotion {
+            rotation: Matrix3::identity(),
+            velocity: zero,
+            angular_velocity: zero,
+            acceleration: Vector3::new(unit(0), unit(1), unit(2)),
+            angular_acceleration: Vector3::new(unit(3), unit(4), unit(5)),
+        };
+        let qdd: [T; J] = core::array::from_fn(|j| unit(j + 6));
+        robot_hydro(robot, water, coefficients, &motion, &still, q, &rest, &qdd, data);
+        let base = data.base.added_mass.to_array();
+        let column = base.iter().copied().chain(data.joint_forces().iter().map(|f| f.added_mass));
+        for (row, value) in column.enumerate() {
+            if let Some(slot) = out.get_mut(row * size + k) {
+                *slot = -value;
+            }
+        }
+    }
+    let half = constant::<T>(0.5);
+    for row in 0..size {
+        for column in row + 1..size {
+            if let (Some(&a), Some(&b)) = (out.get(row * size + column), out.get(column * size + row)) {
+                let mean = (a + b) * half;
+                for index in [row * size + column, column * size + row] {
+                    if let Some(slot) = out.get_mut(index) {
+                        *slot = mean;
+                    }
+                }
+            }
+        }
+    }
+}

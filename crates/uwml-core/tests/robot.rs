@@ -6,7 +6,8 @@ use uwml_core::nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use uwml_core::strip::circular_speed_moments;
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, Problem, RigidBody, Robot,
-    RobotData, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_torques, robot_hydro,
+    RobotData, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_jacobians, hydro_torques,
+    robot_added_mass_matrix, robot_hydro,
 };
 
 mod common;
@@ -544,4 +545,74 @@ fn bad_models_and_motions_are_errors_naming_the_field() {
     // A quaternion within tolerance of unit is normalized exactly.
     let motion = BaseMotion::new([1.0 + 1e-9, 0.0, 0.0, 0.0], zero, zero, zero, zero).unwrap();
     assert_eq!(*motion.rotation(), Matrix3::identity());
+}
+
+/// `M_A` of a robot, `(6 + n)²` row-major.
+fn added_mass_matrix<const JJ: usize>(robot: &Robot<f64, JJ, S>, q: &[f64; JJ]) -> Vec<f64> {
+    let size = 6 + robot.joint_count();
+    let mut out = vec![f64::NAN; size * size];
+    let mut data = RobotData::new();
+    robot_added_mass_matrix(robot, &Water::default(), None, q, &mut data, &mut out);
+    out
+}
+
+#[test]
+fn the_added_mass_matrix_is_symmetric_positive_semi_definite_and_the_chains() {
+    let mut rng = Rng(51);
+    for _ in 0..100 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let q = states(&mut rng, n)[0];
+        let m = added_mass_matrix(&robot, &q);
+        let size = 6 + n;
+        let scale = m.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
+        for i in 0..size {
+            for j in 0..size {
+                assert_eq!(m[i * size + j], m[j * size + i]);
+            }
+        }
+        // xᵀ M x ≥ 0 for random x (the kinetic energy of the entrained water).
+        for _ in 0..20 {
+            let x: Vec<f64> = (0..size).map(|_| rng.next()).collect();
+            let energy: f64 = (0..size)
+                .flat_map(|i| (0..size).map(move |j| (i, j)))
+                .map(|(i, j)| x[i] * m[i * size + j] * x[j])
+                .sum();
+            assert!(energy >= -1e-12 * scale, "xᵀ M_A x = {energy}");
+        }
+        // The added-mass forces at any acceleration (velocities zero) are −M_A times it.
+        let mut s = states(&mut rng, n);
+        s[1] = [0.0; J];
+        let (v_dot, w_dot) = (rng.vector::<3>(1.0), rng.vector::<3>(1.0));
+        let motion = BaseMotion::new([1.0, 0.0, 0.0, 0.0], Vector3::zeros(), Vector3::zeros(), v_dot, w_dot).unwrap();
+        let data = evaluate(&robot, None, &motion, &Current::still(), &[q, s[1], s[2]]);
+        let a: Vec<f64> = v_dot.iter().chain(w_dot.iter()).copied().chain(s[2][..n].iter().copied()).collect();
+        let forces: Vec<f64> = data
+            .base_wrench()
+            .added_mass
+            .to_array()
+            .into_iter()
+            .chain(data.joint_forces().iter().map(|f| f.added_mass))
+            .collect();
+        for i in 0..size {
+            let product: f64 = (0..size).map(|j| m[i * size + j] * a[j]).sum();
+            assert_close(-product, forces[i], scale * 10.0, 1e-13, "M_A a");
+        }
+    }
+    // A chain's joint block is the chain path's M_A.
+    let chain = random_chain(&mut rng);
+    let coefficients = random_coefficients(&mut rng);
+    let robot = Model::from_chain(&chain, &coefficients).unwrap();
+    let q = states(&mut rng, 4)[0];
+    let m = added_mass_matrix(&robot, &q);
+    let q4: [f64; 4] = q[..4].try_into().unwrap();
+    let expected =
+        hydro_jacobians(&chain, &Water::default(), &coefficients, &q4.into(), &[0.0; 4].into(), &[0.0; 4].into())
+            .added_mass_matrix;
+    let scale = expected.amax();
+    for i in 0..4 {
+        for j in 0..4 {
+            assert_close(m[(6 + i) * 10 + 6 + j], expected[(i, j)], scale, 1e-14, "chain M_A");
+        }
+    }
 }

@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
     BaseMotion, Current, JointKind, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
-    SegmentCoefficients, TreeJoint, Water, robot_hydro,
+    SegmentCoefficients, TreeJoint, Water, robot_added_mass_matrix, robot_hydro,
 };
 
 use crate::{Array2, contiguous, in_parallel, model_error, water, writable, zeroed};
@@ -183,7 +183,9 @@ pub(crate) struct PyRobot {
     data: Mutex<Box<Data>>,
 }
 
-/// Evaluates samples `range` into `out` (4 joint arrays `n`-wide, 4 base arrays 6-wide).
+/// Evaluates samples `range` into `out`: 4 joint arrays `n`-wide, 4 base arrays 6-wide, and the
+/// bodies' world wrenches about their centres of mass (`(n + 1)·6` wide, base first), unless that
+/// array is empty.
 #[allow(clippy::too_many_arguments)]
 fn hydro_range(
     robot: &Model,
@@ -193,10 +195,11 @@ fn hydro_range(
     [q, qd, qdd]: [&[f64]; 3],
     range: &Range<usize>,
     data: &mut Data,
-    out: [&mut [f64]; 8],
+    out: [&mut [f64]; 9],
 ) -> Result<(), SampleError> {
     let n = robot.joint_count();
-    let [drag, added_mass, buoyancy, gravity, base_drag, base_added_mass, base_buoyancy, base_gravity] = out;
+    let [drag, added_mass, buoyancy, gravity, base_drag, base_added_mass, base_buoyancy, base_gravity, wrenches] = out;
+    let bodies = (n + 1) * 6;
     let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
     let fixed = if surroundings.constant() { Some(surroundings.at(0)?) } else { None };
     for (k, sample) in range.clone().enumerate() {
@@ -233,6 +236,12 @@ fn hydro_range(
         ] {
             if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
                 row.copy_from_slice(&wrench.to_array());
+            }
+        }
+        if let Some(row) = wrenches.get_mut(k * bodies..(k + 1) * bodies) {
+            for (body, slot) in core::iter::once(None).chain((0..n).map(Some)).zip(row.chunks_exact_mut(6)) {
+                let wrench = data.body_wrench(robot, body).map_or([f64::NAN; 6], |w| w.to_array());
+                slot.copy_from_slice(&wrench);
             }
         }
     }
@@ -282,7 +291,7 @@ impl PyRobot {
     /// base (each `(n_samples, 6)`). Base motion and current: `(1, k)` for all samples or
     /// `(n_samples, k)`. `cd`, `cm`: `(S, 2)`, or `(0, 2)` for the segments' own.
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads))]
+    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches))]
     fn hydro<'py>(
         &self,
         py: Python<'py>,
@@ -301,6 +310,7 @@ impl PyRobot {
         current: PyReadonlyArray2<'py, f64>,
         current_acceleration: PyReadonlyArray2<'py, f64>,
         threads: usize,
+        body_wrenches: bool,
     ) -> PyResult<Vec<Array2<'py>>> {
         let n = self.robot.joint_count();
         let shape = q.shape();
@@ -314,16 +324,7 @@ impl PyRobot {
         }
         let n_samples = shape.first().copied().unwrap_or(0);
         let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
-        for (name, values) in [("q", states[0]), ("qd", states[1]), ("qdd", states[2])] {
-            if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-                let value = values.get(i).copied().unwrap_or(f64::NAN);
-                return Err(PyValueError::new_err(format!(
-                    "{name}[{}, {}] is {value}: joint states must be finite",
-                    i / n.max(1),
-                    i % n.max(1)
-                )));
-            }
-        }
+        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
         let surroundings = Surroundings {
             orientation: Rows::new(&orientation, "orientation", 4, n_samples)?,
             velocity: Rows::new(&velocity, "velocity", 3, n_samples)?,
@@ -333,30 +334,15 @@ impl PyRobot {
             current: Rows::new(&current, "current", 3, n_samples)?,
             current_acceleration: Rows::new(&current_acceleration, "current_acceleration", 3, n_samples)?,
         };
-        let segments = self.robot.segments().len();
-        let coefficients = match (cd.shape(), cm.shape()) {
-            ([0, 2], [0, 2]) => None,
-            (a, b) if a == [segments, 2] && b == [segments, 2] => {
-                let (mut cd_table, mut cm_table) = ([[0.0; 2]; MAX_SEGMENTS], [[0.0; 2]; MAX_SEGMENTS]);
-                for (slot, pair) in cd_table.iter_mut().zip(contiguous(&cd, "cd")?.chunks_exact(2)) {
-                    slot.copy_from_slice(pair);
-                }
-                for (slot, pair) in cm_table.iter_mut().zip(contiguous(&cm, "cm")?.chunks_exact(2)) {
-                    slot.copy_from_slice(pair);
-                }
-                Some(Coefficients::per_segment(cd_table, cm_table).map_err(model_error)?)
-            }
-            (a, b) => {
-                return Err(PyValueError::new_err(format!(
-                    "cd and cm must have shape ({segments}, 2) (one pair per segment), got {a:?} and {b:?}"
-                )));
-            }
-        };
+        let coefficients = self.coefficients(&cd, &cm)?;
         let water = water(density, gravity)?;
         let robot = &*self.robot;
         let [drag, added_mass, buoyancy, weight] = zeroed::<4>(py, n_samples, n);
         let [base_drag, base_added_mass, base_buoyancy, base_weight] = zeroed::<4>(py, n_samples, 6);
-        let arrays = [drag, added_mass, buoyancy, weight, base_drag, base_added_mass, base_buoyancy, base_weight];
+        let wrench_width = if body_wrenches { (n + 1) * 6 } else { 0 };
+        let [wrenches] = zeroed::<1>(py, n_samples, wrench_width);
+        let arrays =
+            [drag, added_mass, buoyancy, weight, base_drag, base_added_mass, base_buoyancy, base_weight, wrenches];
         let mut guards = arrays.each_ref().map(|a| a.readwrite());
         let out = writable(&mut guards)?;
         let coefficients = coefficients.as_ref();
@@ -368,9 +354,10 @@ impl PyRobot {
             } else {
                 // Samples are numbered in the whole batch already.
                 let shift = |e: SampleError, _start: usize| e;
+                let widths = [n, n, n, n, 6, 6, 6, 6, wrench_width];
                 in_parallel(
                     n_samples,
-                    [n, n, n, n, 6, 6, 6, 6],
+                    widths,
                     threads,
                     out,
                     |range, out| {
@@ -384,5 +371,86 @@ impl PyRobot {
         drop(guards);
         result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
         Ok(arrays.into())
+    }
+
+    /// The added-mass matrices `(n_samples, (6 + N)²)` (row-major, base first) at joint
+    /// positions `q` `(n_samples, N)`; `cm` as for `hydro` (`(0, 2)`: the segments' own).
+    fn added_mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+    ) -> PyResult<Array2<'py>> {
+        let n = self.robot.joint_count();
+        let shape = q.shape();
+        if shape.get(1) != Some(&n) {
+            return Err(PyValueError::new_err(format!("q must have shape (n_samples, {n}), got {shape:?}")));
+        }
+        let n_samples = shape.first().copied().unwrap_or(0);
+        let values = contiguous(&q, "q")?;
+        check_states(&[("q", values)], n)?;
+        let coefficients = self.coefficients(&cm, &cm)?;
+        let water = water(density, 0.0)?;
+        let size = (6 + n) * (6 + n);
+        let [matrices] = zeroed::<1>(py, n_samples, size);
+        let mut guards = [matrices.readwrite()];
+        let [out] = writable(&mut guards)?;
+        let robot = &*self.robot;
+        let shared = &self.data;
+        py.detach(|| {
+            let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            let mut qs = [0.0; MAX_ROBOT_JOINTS];
+            for (row, matrix) in values.chunks_exact(n.max(1)).zip(out.chunks_exact_mut(size)) {
+                for (slot, x) in qs.iter_mut().zip(row) {
+                    *slot = *x;
+                }
+                robot_added_mass_matrix(robot, &water, coefficients.as_ref(), &qs, &mut data, matrix);
+            }
+        });
+        drop(guards);
+        Ok(matrices)
+    }
+}
+
+/// The first non-finite joint state, naming the array, sample and joint.
+fn check_states(states: &[(&str, &[f64])], n: usize) -> PyResult<()> {
+    for (name, values) in states {
+        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+            let value = values.get(i).copied().unwrap_or(f64::NAN);
+            return Err(PyValueError::new_err(format!(
+                "{name}[{}, {}] is {value}: joint states must be finite",
+                i / n.max(1),
+                i % n.max(1)
+            )));
+        }
+    }
+    Ok(())
+}
+
+impl PyRobot {
+    /// Per-segment coefficients `(S, 2)`, or `None` for `(0, 2)` (the segments' own).
+    fn coefficients(
+        &self,
+        cd: &PyReadonlyArray2<'_, f64>,
+        cm: &PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<Option<Coefficients>> {
+        let segments = self.robot.segments().len();
+        match (cd.shape(), cm.shape()) {
+            ([0, 2], [0, 2]) => Ok(None),
+            (a, b) if a == [segments, 2] && b == [segments, 2] => {
+                let (mut cd_table, mut cm_table) = ([[0.0; 2]; MAX_SEGMENTS], [[0.0; 2]; MAX_SEGMENTS]);
+                for (slot, pair) in cd_table.iter_mut().zip(contiguous(cd, "cd")?.chunks_exact(2)) {
+                    slot.copy_from_slice(pair);
+                }
+                for (slot, pair) in cm_table.iter_mut().zip(contiguous(cm, "cm")?.chunks_exact(2)) {
+                    slot.copy_from_slice(pair);
+                }
+                Ok(Some(Coefficients::per_segment(cd_table, cm_table).map_err(model_error)?))
+            }
+            (a, b) => Err(PyValueError::new_err(format!(
+                "cd and cm must have shape ({segments}, 2) (one pair per segment), got {a:?} and {b:?}"
+            ))),
+        }
     }
 }
