@@ -278,3 +278,28 @@ def test_link_wrenches_and_added_mass_matrix_match_the_reference(seed: int, n: i
     accelerations = np.concatenate([motion["acceleration"], motion["angular_acceleration"], qdd], axis=1)
     forces = np.concatenate([still.base.added_mass, still.added_mass], axis=1)
     assert_close(-np.einsum("sij,sj->si", matrices, accelerations), forces, np.max(np.abs(forces), axis=1) + scale, 1e-12, "M_A a")
+
+
+def test_environment_is_hydro_plus_the_legs_losses() -> None:
+    # The losses of each joint depend on its speed only: a robot's environment is its hydro
+    # plus what uwml.Leg.environment adds for the same joint speeds, depth and temperature.
+    leg = uwml.Leg.paper()
+    robot = uwml.Robot.from_leg(leg)
+    rng = np.random.default_rng(8)
+    q, qd, qdd = rng.uniform(-2, 2, (40, 3)), rng.uniform(-1, 1, (40, 3)), rng.uniform(-3, 3, (40, 3))
+    depth, temperature = rng.uniform(0, 6000, 40), rng.uniform(0, 20, 40)
+    losses = [None, uwml.JointLosses(), uwml.JointLosses()]
+    motion = uwml.BaseMotion(velocity=(0.3, 0.0, 0.1))
+    env = robot.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=losses, base_motion=motion, threads=2)
+    hydro = robot.hydro(q, qd, qdd, base_motion=motion)
+    reference = leg.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=losses)
+    for name in ("visc", "seal", "current"):
+        np.testing.assert_array_equal(getattr(env, name), getattr(reference, name))
+    assert np.all(env.seal[:, 0] == 0.0) and np.all(env.seal[:, 1:] * qd[:, 1:] <= 0.0)
+    np.testing.assert_array_equal(env.hydro, hydro.total)
+    np.testing.assert_array_equal(env.base.total, hydro.base.total)
+    np.testing.assert_array_equal(env.total, hydro.total + env.visc + env.seal)
+    with pytest.raises(ValueError, match="depth must be >= 0"):
+        robot.environment(q[0], qd[0], qdd[0], depth=-1.0)
+    with pytest.raises(ValueError, match="losses must have one entry per joint"):
+        robot.environment(q[0], qd[0], qdd[0], losses=[None])

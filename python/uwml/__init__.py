@@ -16,7 +16,7 @@ from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
-from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotTorques
+from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotEnvironment, RobotTorques
 
 __all__ = [
     "MAX_JOINTS",
@@ -25,6 +25,7 @@ __all__ = [
     "BaseMotion",
     "BaseWrench",
     "Robot",
+    "RobotEnvironment",
     "RobotTorques",
     "Drive",
     "EnvironmentJacobians",

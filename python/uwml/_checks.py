@@ -8,6 +8,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
+def real_array(value: ArrayLike, name: str, what: str) -> NDArray[np.float64]:
+    """``value`` as a float64 array, or a TypeError naming the argument."""
+    try:
+        array = np.asarray(value)
+        if np.iscomplexobj(array):
+            raise TypeError("complex values are not allowed")
+        return array.astype(np.float64, copy=False)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be {what}: {exc}") from None
+
+
 def finite_array(value: ArrayLike, name: str) -> NDArray[np.float64]:
     """``value`` as a float64 array of finite numbers, or a ValueError naming ``name``."""
     try:

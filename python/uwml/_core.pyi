@@ -130,6 +130,9 @@ class Robot:
         current_acceleration: NDArray[np.float64],
         threads: int,
         body_wrenches: bool,
+        losses: NDArray[np.float64] | None = None,
+        pressure: NDArray[np.float64] | None = None,
+        temperature: NDArray[np.float64] | None = None,
     ) -> list[NDArray[np.float64]]: ...
     def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
 

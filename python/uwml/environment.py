@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
+from ._checks import real_array as _real_array
 from .losses import Drive, OilDrag, Seal
 
 __all__ = ["SEA_WATER_DENSITY", "EnvironmentTorques", "JointLosses", "LossTorques", "pressure_at_depth_mpa"]
@@ -155,6 +156,29 @@ class EnvironmentTorques:
     def total(self) -> FloatArray:
         """``τ_env = τ_hydro + τ_visc + τ_seal``."""
         return self.hydro + self.visc + self.seal
+
+
+def loss_conditions(depth: ArrayLike, temperature_c: ArrayLike, sea_density: float, gravity: float, n_samples: int) -> tuple[FloatArray, FloatArray]:
+    """The hydrostatic pressure [Pa] (``sea_density · gravity · depth``) and the temperature
+    [°C] of every sample, checked: depth and temperature a scalar or one per sample, finite,
+    depth ≥ 0, ``sea_density`` positive."""
+    conditions = []
+    for name, value in (("depth", depth), ("temperature_c", temperature_c)):
+        array = _real_array(value, name, "a real number or one per sample")
+        if array.ndim > 1 or (array.ndim == 1 and array.shape[0] != n_samples):
+            raise ValueError(f"{name} must be a scalar or have one entry per sample ({n_samples}), got shape {array.shape}")
+        conditions.append(np.ascontiguousarray(np.broadcast_to(array, (n_samples,))))
+    depth_m, temperature = conditions
+    sea_density = float(sea_density)
+    if not np.isfinite(sea_density) or sea_density <= 0:
+        raise ValueError(f"sea_density must be positive, got {sea_density}")
+    for name, values in (("depth", depth_m), ("temperature_c", temperature)):
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise ValueError(f"{name}[{bad[0]}] is {values[bad[0]]}: {name} must be finite")
+    if np.any(depth_m < 0):
+        raise ValueError("depth must be >= 0 (metres below the surface)")
+    return np.ascontiguousarray(sea_density * gravity * depth_m), temperature
 
 
 def pack_leg_losses(losses: JointLosses | Sequence[JointLosses | None] | None, n_joints: int) -> FloatArray:

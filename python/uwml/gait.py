@@ -17,7 +17,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .leg import _real_array
+from ._checks import real_array as _real_array
 from .reference import PAPER_L2, PAPER_L3
 
 __all__ = ["WalkingGait", "paper_leg_foot", "paper_leg_ik"]

@@ -11,7 +11,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, pack_leg_losses
+from ._checks import real_array as _real_array
+from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, pack_leg_losses
 from .model import Joint, Link, Segment, Water
 
 __all__ = ["MAX_JOINTS", "EnvironmentJacobians", "HydroRegressors", "HydroTorques", "Leg"]
@@ -100,17 +101,6 @@ class EnvironmentJacobians:
     d_q: FloatArray
     d_qd: FloatArray
     added_mass_matrix: FloatArray
-
-
-def _real_array(value: ArrayLike, name: str, what: str) -> FloatArray:
-    """``value`` as a float64 array, or a TypeError naming the argument."""
-    try:
-        array = np.asarray(value)
-        if np.iscomplexobj(array):
-            raise TypeError("complex values are not allowed")
-        return array.astype(np.float64, copy=False)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be {what}: {exc}") from None
 
 
 def _coefficients(value: ArrayLike, name: str, n_links: int) -> FloatArray:
@@ -367,24 +357,7 @@ class Leg:
         cd_table = _coefficients(cd, "cd", self.n_joints)
         cm_table = _coefficients(cm, "cm", self.n_joints)
         packed = pack_leg_losses(losses, self.n_joints)
-        n_samples = q2.shape[0]
-        conditions = []
-        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
-            array = _real_array(value, name, "a real number or one per sample")
-            if array.ndim > 1 or (array.ndim == 1 and array.shape[0] != n_samples):
-                raise ValueError(f"{name} must be a scalar or have one entry per sample ({n_samples}), got shape {array.shape}")
-            conditions.append(np.ascontiguousarray(np.broadcast_to(array, (n_samples,))))
-        depth_m, temperature = conditions
-        sea_density = float(sea_density)
-        if not np.isfinite(sea_density) or sea_density <= 0:
-            raise ValueError(f"sea_density must be positive, got {sea_density}")
-        for name, values in (("depth", depth_m), ("temperature_c", temperature)):
-            bad = np.flatnonzero(~np.isfinite(values))
-            if bad.size:
-                raise ValueError(f"{name}[{bad[0]}] is {values[bad[0]]}: {name} must be finite")
-        if np.any(depth_m < 0):
-            raise ValueError("depth must be >= 0 (metres below the surface)")
-        pressure = np.ascontiguousarray(sea_density * water.gravity * depth_m)
+        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, water.gravity, q2.shape[0])
         return shape, (q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
 
     def jacobians(

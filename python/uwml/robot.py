@@ -16,10 +16,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from .leg import FRESH_WATER, HydroTorques, _real_array, _threads, _water
+from ._checks import real_array as _real_array
+from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, pack_leg_losses
+from .leg import FRESH_WATER, HydroTorques, _threads, _water
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotTorques"]
+__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotTorques"]
 
 FloatArray = NDArray[np.float64]
 
@@ -100,6 +102,16 @@ class BaseWrench:
 class RobotTorques(HydroTorques):
     """Generalized forces on every joint (shaped like ``q``; N·m, or N for prismatic joints),
     and ``base``, the wrench on the base (:class:`BaseWrench`)."""
+
+    base: BaseWrench
+
+
+@dataclass(frozen=True)
+class RobotEnvironment(EnvironmentTorques):
+    """Everything the environment does to every joint (hydrodynamics and joint losses, shaped
+    like ``q``), and ``base``, the hydrodynamic wrench on the base (:class:`BaseWrench`). Joint
+    losses act between a link and its parent, inside the robot: they add nothing to the base
+    wrench."""
 
     base: BaseWrench
 
@@ -368,6 +380,42 @@ class Robot:
             gravity=joints[3],
             base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
         )
+
+    def environment(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        sea_density: float = SEA_WATER_DENSITY,
+        threads: int = 1,
+    ) -> RobotEnvironment:
+        """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call.
+
+        ``depth`` [m] ≥ 0 and ``temperature_c`` [°C]: a scalar or one per sample (the pressure is
+        the hydrostatic ``sea_density · g · depth``, as for :meth:`uwml.Leg.environment`).
+        ``losses``: one :class:`uwml.JointLosses` for every joint, a sequence with one (or None)
+        per joint, or None. The other arguments as for :meth:`hydro`.
+        """
+        threads = _threads(threads)
+        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
+        packed = pack_leg_losses(losses, self.n_joints)
+        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, _water(water).gravity, n_samples)
+        out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature)
+        n = self.n_joints
+        joint_shape = (n_samples, n) if batched else (n,)
+        base_shape = (n_samples, 6) if batched else (6,)
+        joints = [out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11)]
+        base = [a.reshape(base_shape) for a in out[4:8]]
+        return RobotEnvironment(*joints, base=BaseWrench(*base))
 
     def link_wrenches(
         self,

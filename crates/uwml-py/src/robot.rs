@@ -5,16 +5,24 @@
 use std::ops::Range;
 use std::sync::Mutex;
 
-use numpy::{PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
-    BaseMotion, Current, JointKind, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
-    SegmentCoefficients, TreeJoint, Water, robot_added_mass_matrix, robot_hydro,
+    BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData,
+    RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, loss_torques, robot_added_mass_matrix, robot_hydro,
 };
 
-use crate::{Array2, contiguous, in_parallel, model_error, water, writable, zeroed};
+use crate::{Array2, contiguous, contiguous1, in_parallel, model_error, parse_losses, water, writable, zeroed};
+
+/// The joint losses of an environment evaluation: per joint, and the pressure [Pa] and
+/// temperature [°C] of every sample (checked finite).
+struct Losses<'a> {
+    joints: [Option<JointLosses<f64>>; MAX_ROBOT_JOINTS],
+    pressure: &'a [f64],
+    temperature: &'a [f64],
+}
 
 /// Largest number of joints of a robot built from Python.
 pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
@@ -193,13 +201,29 @@ fn hydro_range(
     coefficients: Option<&Coefficients>,
     surroundings: &Surroundings<'_>,
     [q, qd, qdd]: [&[f64]; 3],
+    losses: Option<&Losses<'_>>,
     range: &Range<usize>,
     data: &mut Data,
-    out: [&mut [f64]; 9],
+    out: [&mut [f64]; 12],
 ) -> Result<(), SampleError> {
     let n = robot.joint_count();
-    let [drag, added_mass, buoyancy, gravity, base_drag, base_added_mass, base_buoyancy, base_gravity, wrenches] = out;
+    let [
+        drag,
+        added_mass,
+        buoyancy,
+        gravity,
+        base_drag,
+        base_added_mass,
+        base_buoyancy,
+        base_gravity,
+        wrenches,
+        visc,
+        seal,
+        loss_current,
+    ] = out;
     let bodies = (n + 1) * 6;
+    let mut conditions = (f64::NAN, f64::NAN);
+    let mut loss_states: [Option<LossState<f64>>; MAX_ROBOT_JOINTS] = [None; MAX_ROBOT_JOINTS];
     let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
     let fixed = if surroundings.constant() { Some(surroundings.at(0)?) } else { None };
     for (k, sample) in range.clone().enumerate() {
@@ -242,6 +266,22 @@ fn hydro_range(
             for (body, slot) in core::iter::once(None).chain((0..n).map(Some)).zip(row.chunks_exact_mut(6)) {
                 let wrench = data.body_wrench(robot, body).map_or([f64::NAN; 6], |w| w.to_array());
                 slot.copy_from_slice(&wrench);
+            }
+        }
+        if let Some(losses) = losses {
+            let at = |values: &[f64]| values.get(sample).copied().unwrap_or(f64::NAN);
+            let here = (at(losses.pressure), at(losses.temperature));
+            if here != conditions {
+                conditions = here;
+                loss_states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
+            }
+            let (v, f, c) = loss_torques(&loss_states, &qds.into());
+            for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
+                if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
+                    for (slot, x) in row.iter_mut().zip(values.iter()) {
+                        *slot = *x;
+                    }
+                }
             }
         }
     }
@@ -291,7 +331,7 @@ impl PyRobot {
     /// base (each `(n_samples, 6)`). Base motion and current: `(1, k)` for all samples or
     /// `(n_samples, k)`. `cd`, `cm`: `(S, 2)`, or `(0, 2)` for the segments' own.
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches))]
+    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches, losses=None, pressure=None, temperature=None))]
     fn hydro<'py>(
         &self,
         py: Python<'py>,
@@ -311,6 +351,9 @@ impl PyRobot {
         current_acceleration: PyReadonlyArray2<'py, f64>,
         threads: usize,
         body_wrenches: bool,
+        losses: Option<PyReadonlyArray2<'py, f64>>,
+        pressure: Option<PyReadonlyArray1<'py, f64>>,
+        temperature: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<Vec<Array2<'py>>> {
         let n = self.robot.joint_count();
         let shape = q.shape();
@@ -336,25 +379,58 @@ impl PyRobot {
         };
         let coefficients = self.coefficients(&cd, &cm)?;
         let water = water(density, gravity)?;
+        let losses = match (&losses, &pressure, &temperature) {
+            (Some(losses), Some(pressure), Some(temperature)) => {
+                let mut joints = [None; MAX_ROBOT_JOINTS];
+                for (slot, l) in joints.iter_mut().zip(parse_losses(losses, n)?) {
+                    *slot = l;
+                }
+                let pressure = contiguous1(pressure, "pressure", n_samples)?;
+                let temperature = contiguous1(temperature, "temperature", n_samples)?;
+                for (name, values) in [("pressure", pressure), ("temperature", temperature)] {
+                    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+                        return Err(PyValueError::new_err(format!("{name}[{i}] must be finite")));
+                    }
+                }
+                Some(Losses { joints, pressure, temperature })
+            }
+            (None, None, None) => None,
+            _ => return Err(PyValueError::new_err("losses, pressure and temperature come together")),
+        };
+        let loss_width = if losses.is_some() { n } else { 0 };
         let robot = &*self.robot;
         let [drag, added_mass, buoyancy, weight] = zeroed::<4>(py, n_samples, n);
         let [base_drag, base_added_mass, base_buoyancy, base_weight] = zeroed::<4>(py, n_samples, 6);
         let wrench_width = if body_wrenches { (n + 1) * 6 } else { 0 };
         let [wrenches] = zeroed::<1>(py, n_samples, wrench_width);
-        let arrays =
-            [drag, added_mass, buoyancy, weight, base_drag, base_added_mass, base_buoyancy, base_weight, wrenches];
+        let [visc, seal, loss_current] = zeroed::<3>(py, n_samples, loss_width);
+        let arrays = [
+            drag,
+            added_mass,
+            buoyancy,
+            weight,
+            base_drag,
+            base_added_mass,
+            base_buoyancy,
+            base_weight,
+            wrenches,
+            visc,
+            seal,
+            loss_current,
+        ];
         let mut guards = arrays.each_ref().map(|a| a.readwrite());
         let out = writable(&mut guards)?;
         let coefficients = coefficients.as_ref();
+        let losses = losses.as_ref();
         let shared = &self.data;
         let result = py.detach(|| {
             if threads <= 1 {
                 let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                hydro_range(robot, &water, coefficients, &surroundings, states, &(0..n_samples), &mut data, out)
+                hydro_range(robot, &water, coefficients, &surroundings, states, losses, &(0..n_samples), &mut data, out)
             } else {
                 // Samples are numbered in the whole batch already.
                 let shift = |e: SampleError, _start: usize| e;
-                let widths = [n, n, n, n, 6, 6, 6, 6, wrench_width];
+                let widths = [n, n, n, n, 6, 6, 6, 6, wrench_width, loss_width, loss_width, loss_width];
                 in_parallel(
                     n_samples,
                     widths,
@@ -362,7 +438,7 @@ impl PyRobot {
                     out,
                     |range, out| {
                         let mut data = Box::new(Data::new());
-                        hydro_range(robot, &water, coefficients, &surroundings, states, range, &mut data, out)
+                        hydro_range(robot, &water, coefficients, &surroundings, states, losses, range, &mut data, out)
                     },
                     shift,
                 )
