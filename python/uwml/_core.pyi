@@ -134,6 +134,22 @@ class Robot:
         pressure: NDArray[np.float64] | None = None,
         temperature: NDArray[np.float64] | None = None,
     ) -> list[NDArray[np.float64]]: ...
+    def regressors(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        orientation: NDArray[np.float64],
+        velocity: NDArray[np.float64],
+        angular_velocity: NDArray[np.float64],
+        acceleration: NDArray[np.float64],
+        angular_acceleration: NDArray[np.float64],
+        current: NDArray[np.float64],
+        current_acceleration: NDArray[np.float64],
+        threads: int,
+    ) -> list[NDArray[np.float64]]: ...
     def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
 
 def joint_losses(

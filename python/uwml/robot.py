@@ -21,7 +21,7 @@ from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, los
 from .leg import FRESH_WATER, HydroTorques, _threads, _water
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotTorques"]
+__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotRegressors", "RobotTorques"]
 
 FloatArray = NDArray[np.float64]
 
@@ -114,6 +114,59 @@ class RobotEnvironment(EnvironmentTorques):
     wrench."""
 
     base: BaseWrench
+
+
+@dataclass(frozen=True)
+class RobotRegressors:
+    """Regressors of a robot's hydrodynamic forces (MODEL.md section 4, for whole robots).
+
+    ``drag[..., j, k, d]`` is the generalized force on joint ``j`` of segment ``k``'s drag along
+    its normal direction ``d`` at unit coefficient (a circular segment: all in ``d = 0``), shape
+    ``(..., n_joints, n_segments, 2)``; ``base_drag[..., i, k, d]`` the same for the base wrench's
+    component ``i`` (force xyz, moment xyz), ``(..., 6, n_segments, 2)``; likewise
+    ``added_mass`` and ``base_added_mass``. So for coefficients ``cd``, ``cm`` per segment and
+    direction, ``total = buoyancy + einsum("...jkd,kd->...j", drag, cd) + (same for added
+    mass)``: linear least squares for an arm on a moving vehicle. Segments are ordered as
+    :attr:`Robot.segments`.
+    """
+
+    buoyancy: FloatArray
+    gravity: FloatArray
+    drag: FloatArray
+    added_mass: FloatArray
+    base_buoyancy: FloatArray
+    base_gravity: FloatArray
+    base_drag: FloatArray
+    base_added_mass: FloatArray
+
+    def torques(self, cd: ArrayLike, cm: ArrayLike) -> RobotTorques:
+        """The forces at coefficients ``cd``, ``cm``: scalars, ``(n_segments,)`` or ``(n_segments, 2)``."""
+        n_segments = self.drag.shape[-2]
+
+        def table(value: ArrayLike, name: str) -> FloatArray:
+            array = _real_array(value, name, "a scalar or an array per segment")
+            if array.ndim == 0:
+                return np.full((n_segments, 2), float(array))
+            if array.shape == (n_segments,):
+                return np.repeat(array[:, None], 2, axis=1)
+            if array.shape == (n_segments, 2):
+                return array
+            raise ValueError(f"{name} must be a scalar, ({n_segments},) or ({n_segments}, 2); got shape {array.shape}")
+
+        cd_table, cm_table = table(cd, "cd"), table(cm, "cm")
+
+        def apply(columns: FloatArray, coefficients: FloatArray) -> FloatArray:
+            return np.einsum("...jkd,kd->...j", columns, coefficients)
+
+        base = BaseWrench(
+            drag=apply(self.base_drag, cd_table),
+            added_mass=apply(self.base_added_mass, cm_table),
+            buoyancy=self.base_buoyancy,
+            gravity=self.base_gravity,
+        )
+        return RobotTorques(
+            drag=apply(self.drag, cd_table), added_mass=apply(self.added_mass, cm_table), buoyancy=self.buoyancy, gravity=self.gravity, base=base
+        )
 
 
 def _segment_row(owner: int, s: Segment) -> list[float]:
@@ -416,6 +469,38 @@ class Robot:
         joints = [out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11)]
         base = [a.reshape(base_shape) for a in out[4:8]]
         return RobotEnvironment(*joints, base=BaseWrench(*base))
+
+    def hydro_regressors(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        threads: int = 1,
+    ) -> RobotRegressors:
+        """Regressors of the drag and added-mass forces, one column per segment and normal
+        direction, on the joints and on the base (:class:`RobotRegressors`). Arguments as for
+        :meth:`hydro`."""
+        threads = _threads(threads)
+        arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)
+        states, (density, gravity), motion = arguments[:3], arguments[5:7], arguments[7:]
+        out = self._core.regressors(*states, density, gravity, *motion, threads)
+        n, s = self.n_joints, len(self._segments)
+        lead = (n_samples,) if batched else ()
+        columns = out[4].reshape(*lead, 6 + n, s, 2), out[5].reshape(*lead, 6 + n, s, 2)
+        return RobotRegressors(
+            buoyancy=out[0].reshape(*lead, n),
+            gravity=out[1].reshape(*lead, n),
+            drag=columns[0][..., 6:, :, :],
+            added_mass=columns[1][..., 6:, :, :],
+            base_buoyancy=out[2].reshape(*lead, 6),
+            base_gravity=out[3].reshape(*lead, 6),
+            base_drag=columns[0][..., :6, :, :],
+            base_added_mass=columns[1][..., :6, :, :],
+        )
 
     def link_wrenches(
         self,

@@ -29,4 +29,6 @@ pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water
 pub use motion::{BaseMotion, Current};
 pub use nalgebra;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
-pub use tree::{EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro};
+pub use tree::{
+    EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+};

@@ -583,3 +583,85 @@ pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S:
         }
     }
 }
+
+/// Regressors of the drag and added-mass forces (MODEL.md section 4 for whole robots): with
+/// `s = robot.segments().len()` and `n = robot.joint_count()`, entry `(row, 2k + d)` of `drag`
+/// (row-major, `(6 + n) × 2s`) is the generalized force on row `row` (the base wrench's six
+/// components first, then the joints) of segment `k`'s drag along its normal direction `d` at
+/// unit coefficient (a circular segment has all of it in `d = 0`, and zeros in `d = 1`); the
+/// same for `added_mass`. So the drag forces at coefficients `cd` are `Σ_{k,d} cd[k][d] ·
+/// drag[row, 2k + d]`, and the hydrodynamic forces are those two sums plus the buoyancy of
+/// [`RobotData::joint_forces`] and [`RobotData::base_wrench`], which this also evaluates into
+/// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+    drag: &mut [T],
+    added_mass: &mut [T],
+) {
+    let zero = [[T::zero(); 2]; S];
+    let none = SegmentCoefficients { cd: zero, cm: zero };
+    robot_hydro(robot, water, Some(&none), motion, current, q, qd, qdd, data);
+    let n = robot.joint_count();
+    let columns = 2 * robot.segments().len();
+    let rotation = motion.rotation();
+    let surroundings = Surroundings {
+        density: water.density(),
+        gravity: Vector3::zeros(),
+        current: rotate_back(rotation, current.velocity()),
+        current_acceleration: rotate_back(rotation, current.acceleration()),
+    };
+    let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
+    let nan = T::zero() / T::zero();
+    let base = Frame::base(motion);
+    let (one, nothing) = (T::one(), T::zero());
+    for (k, segment) in robot.segments().iter().enumerate() {
+        let (frame, owner) = match segment.owner {
+            Owner::Base => (&base, None),
+            Owner::Link(i) => match data.frames.get(i) {
+                Some(frame) => (frame, Some(i)),
+                None => continue,
+            },
+        };
+        for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
+            let (drag_wrench, mass_wrench) = segment_wrenches(frame, segment, unit, unit, &surroundings);
+            let column = 2 * k + d;
+            for (out, wrench) in [(&mut *drag, &drag_wrench), (&mut *added_mass, &mass_wrench)] {
+                for (row, value) in wrench.to_array().into_iter().enumerate() {
+                    if let Some(slot) = out.get_mut(row * columns + column) {
+                        *slot = value.select(finite, nan);
+                    }
+                }
+                // Every joint: zero, unless it moves the segment's body.
+                for j in 0..n {
+                    if let Some(slot) = out.get_mut((6 + j) * columns + column) {
+                        *slot = T::zero().select(finite, nan);
+                    }
+                }
+                let mut ancestor = owner;
+                while let Some(j) = ancestor {
+                    let (Some(joint), Some(joint_frame)) = (robot.joints().get(j), data.frames.get(j)) else { break };
+                    let value = match joint.kind {
+                        JointKind::Revolute => {
+                            dot(&joint_frame.axis, &(wrench.moment - joint_frame.position.cross(&wrench.force)))
+                        }
+                        JointKind::Prismatic => dot(&joint_frame.axis, &wrench.force),
+                    };
+                    if let Some(slot) = out.get_mut((6 + j) * columns + column) {
+                        *slot = value.select(finite, nan);
+                    }
+                    // Parents come before children: the walk ends.
+                    ancestor = joint.parent.filter(|&p| p < j);
+                }
+            }
+        }
+    }
+}

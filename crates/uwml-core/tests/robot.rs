@@ -7,7 +7,7 @@ use uwml_core::strip::circular_speed_moments;
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, Problem, RigidBody, Robot,
     RobotData, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_jacobians, hydro_torques,
-    robot_added_mass_matrix, robot_hydro,
+    robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
 };
 
 mod common;
@@ -614,5 +614,60 @@ fn the_added_mass_matrix_is_symmetric_positive_semi_definite_and_the_chains() {
         for j in 0..4 {
             assert_close(m[(6 + i) * 10 + 6 + j], expected[(i, j)], scale, 1e-14, "chain M_A");
         }
+    }
+}
+
+#[test]
+fn regressors_times_coefficients_are_the_forces() {
+    let mut rng = Rng(61);
+    for _ in 0..100 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
+        let segments = robot.segments().len();
+        let columns = 2 * segments;
+        let rows = 6 + n;
+        let (mut drag, mut added_mass) = (vec![f64::NAN; rows * columns], vec![f64::NAN; rows * columns]);
+        let mut data = RobotData::new();
+        robot_hydro_regressors(
+            &robot,
+            &Water::default(),
+            &motion,
+            &current,
+            &s[0],
+            &s[1],
+            &s[2],
+            &mut data,
+            &mut drag,
+            &mut added_mass,
+        );
+        let statics = (data.base_wrench().buoyancy, data.joint_forces().iter().map(|f| f.buoyancy).collect::<Vec<_>>());
+        let coefficients = robot.coefficients();
+        let expected = evaluate(&robot, None, &motion, &current, &s);
+        let scale = wrench_scale(expected.base_wrench());
+        let apply = |table: &[f64], c: &[[f64; 2]; S], row: usize| -> f64 {
+            (0..segments)
+                .map(|k| c[k][0] * table[row * columns + 2 * k] + c[k][1] * table[row * columns + 2 * k + 1])
+                .sum()
+        };
+        let base = expected.base_wrench();
+        for (row, (d, m)) in base.drag.to_array().iter().zip(base.added_mass.to_array()).enumerate() {
+            assert_close(apply(&drag, coefficients.cd(), row), *d, scale, 1e-12, "base drag");
+            assert_close(apply(&added_mass, coefficients.cm(), row), m, scale, 1e-12, "base added mass");
+        }
+        for (j, forces) in expected.joint_forces().iter().enumerate() {
+            assert_close(apply(&drag, coefficients.cd(), 6 + j), forces.drag, scale, 1e-12, "joint drag");
+            assert_close(
+                apply(&added_mass, coefficients.cm(), 6 + j),
+                forces.added_mass,
+                scale,
+                1e-12,
+                "joint added mass",
+            );
+            assert_eq!(statics.1[j], forces.buoyancy);
+        }
+        assert_eq!(statics.0, base.buoyancy);
     }
 }

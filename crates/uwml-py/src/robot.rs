@@ -12,6 +12,7 @@ use uwml_core::nalgebra::Vector3;
 use uwml_core::{
     BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData,
     RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, loss_torques, robot_added_mass_matrix, robot_hydro,
+    robot_hydro_regressors,
 };
 
 use crate::{Array2, contiguous, contiguous1, in_parallel, model_error, parse_losses, water, writable, zeroed};
@@ -148,7 +149,42 @@ struct SampleError {
     message: String,
 }
 
-impl Surroundings<'_> {
+impl<'a> Surroundings<'a> {
+    /// The seven per-sample inputs, in the order of the fields, checked against `n_samples`.
+    fn new(arrays: [&'a PyReadonlyArray2<'_, f64>; 7], n_samples: usize) -> PyResult<Self> {
+        let names = [
+            "orientation",
+            "velocity",
+            "angular_velocity",
+            "acceleration",
+            "angular_acceleration",
+            "current",
+            "current_acceleration",
+        ];
+        let mut rows = Vec::with_capacity(7);
+        for (array, name) in arrays.into_iter().zip(names) {
+            rows.push(Rows::new(array, name, if name == "orientation" { 4 } else { 3 }, n_samples)?);
+        }
+        let [
+            orientation,
+            velocity,
+            angular_velocity,
+            acceleration,
+            angular_acceleration,
+            current,
+            current_acceleration,
+        ] = <[Rows<'a>; 7]>::try_from(rows).map_err(|_| PyValueError::new_err("internal error: seven inputs"))?;
+        Ok(Self {
+            orientation,
+            velocity,
+            angular_velocity,
+            acceleration,
+            angular_acceleration,
+            current,
+            current_acceleration,
+        })
+    }
+
     fn at(&self, sample: usize) -> Result<(BaseMotion<f64>, Current<f64>), SampleError> {
         let o = self.orientation.row(sample);
         let quaternion = [0, 1, 2, 3].map(|k| o.get(k).copied().unwrap_or(f64::NAN));
@@ -288,6 +324,58 @@ fn hydro_range(
     Ok(())
 }
 
+/// Evaluates the regressors of samples `range` into `out`: buoyancy and gravity on the joints
+/// (`n` wide) and on the base (6 wide), then the drag and added-mass regressors (`(6 + n) · 2s`
+/// wide, see `robot_hydro_regressors`).
+#[allow(clippy::too_many_arguments)]
+fn regressor_range(
+    robot: &Model,
+    water: &Water<f64>,
+    surroundings: &Surroundings<'_>,
+    [q, qd, qdd]: [&[f64]; 3],
+    range: &Range<usize>,
+    data: &mut Data,
+    [buoyancy, gravity, base_buoyancy, base_gravity, drag, added_mass]: [&mut [f64]; 6],
+) -> Result<(), SampleError> {
+    let n = robot.joint_count();
+    let width = (6 + n) * 2 * robot.segments().len();
+    let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+    for (k, sample) in range.clone().enumerate() {
+        for (values, out) in [(q, &mut qs), (qd, &mut qds), (qdd, &mut qdds)] {
+            for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
+                *slot = *x;
+            }
+        }
+        let (motion, current) = surroundings.at(sample)?;
+        let (Some(drag), Some(added_mass)) =
+            (drag.get_mut(k * width..(k + 1) * width), added_mass.get_mut(k * width..(k + 1) * width))
+        else {
+            continue;
+        };
+        robot_hydro_regressors(robot, water, &motion, &current, &qs, &qds, &qdds, data, drag, added_mass);
+        for (out, value) in [
+            (
+                &mut *buoyancy,
+                &(|f: &uwml_core::JointForces<f64>| f.buoyancy) as &dyn Fn(&uwml_core::JointForces<f64>) -> f64,
+            ),
+            (&mut *gravity, &|f: &uwml_core::JointForces<f64>| f.gravity),
+        ] {
+            if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
+                for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
+                    *slot = value(forces);
+                }
+            }
+        }
+        let base = data.base_wrench();
+        for (out, wrench) in [(&mut *base_buoyancy, &base.buoyancy), (&mut *base_gravity, &base.gravity)] {
+            if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
+                row.copy_from_slice(&wrench.to_array());
+            }
+        }
+    }
+    Ok(())
+}
+
 #[pymethods]
 impl PyRobot {
     #[new]
@@ -356,27 +444,21 @@ impl PyRobot {
         temperature: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<Vec<Array2<'py>>> {
         let n = self.robot.joint_count();
-        let shape = q.shape();
-        for (name, array) in [("q", &q), ("qd", &qd), ("qdd", &qdd)] {
-            if array.shape() != shape || shape.get(1) != Some(&n) {
-                return Err(PyValueError::new_err(format!(
-                    "{name} must have shape (n_samples, {n}) like q, got {:?} (q: {shape:?})",
-                    array.shape()
-                )));
-            }
-        }
-        let n_samples = shape.first().copied().unwrap_or(0);
+        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
         let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
         check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
-        let surroundings = Surroundings {
-            orientation: Rows::new(&orientation, "orientation", 4, n_samples)?,
-            velocity: Rows::new(&velocity, "velocity", 3, n_samples)?,
-            angular_velocity: Rows::new(&angular_velocity, "angular_velocity", 3, n_samples)?,
-            acceleration: Rows::new(&acceleration, "acceleration", 3, n_samples)?,
-            angular_acceleration: Rows::new(&angular_acceleration, "angular_acceleration", 3, n_samples)?,
-            current: Rows::new(&current, "current", 3, n_samples)?,
-            current_acceleration: Rows::new(&current_acceleration, "current_acceleration", 3, n_samples)?,
-        };
+        let surroundings = Surroundings::new(
+            [
+                &orientation,
+                &velocity,
+                &angular_velocity,
+                &acceleration,
+                &angular_acceleration,
+                &current,
+                &current_acceleration,
+            ],
+            n_samples,
+        )?;
         let coefficients = self.coefficients(&cd, &cm)?;
         let water = water(density, gravity)?;
         let losses = match (&losses, &pressure, &temperature) {
@@ -449,6 +531,71 @@ impl PyRobot {
         Ok(arrays.into())
     }
 
+    /// Regressors: buoyancy, gravity (`(n_samples, N)`), base buoyancy, base gravity
+    /// (`(n_samples, 6)`), drag and added mass (`(n_samples, (6 + N)·2S)`: rows base then joints,
+    /// columns segment and direction).
+    #[allow(clippy::too_many_arguments)]
+    fn regressors<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        orientation: PyReadonlyArray2<'py, f64>,
+        velocity: PyReadonlyArray2<'py, f64>,
+        angular_velocity: PyReadonlyArray2<'py, f64>,
+        acceleration: PyReadonlyArray2<'py, f64>,
+        angular_acceleration: PyReadonlyArray2<'py, f64>,
+        current: PyReadonlyArray2<'py, f64>,
+        current_acceleration: PyReadonlyArray2<'py, f64>,
+        threads: usize,
+    ) -> PyResult<Vec<Array2<'py>>> {
+        let n = self.robot.joint_count();
+        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
+        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
+        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
+        let surroundings = Surroundings::new(
+            [
+                &orientation,
+                &velocity,
+                &angular_velocity,
+                &acceleration,
+                &angular_acceleration,
+                &current,
+                &current_acceleration,
+            ],
+            n_samples,
+        )?;
+        let water = water(density, gravity)?;
+        let width = (6 + n) * 2 * self.robot.segments().len();
+        let [buoyancy, weight] = zeroed::<2>(py, n_samples, n);
+        let [base_buoyancy, base_weight] = zeroed::<2>(py, n_samples, 6);
+        let [drag, added_mass] = zeroed::<2>(py, n_samples, width);
+        let arrays = [buoyancy, weight, base_buoyancy, base_weight, drag, added_mass];
+        let mut guards = arrays.each_ref().map(|a| a.readwrite());
+        let out = writable(&mut guards)?;
+        let robot = &*self.robot;
+        let result = py.detach(|| {
+            let shift = |e: SampleError, _start: usize| e;
+            in_parallel(
+                n_samples,
+                [n, n, 6, 6, width, width],
+                threads,
+                out,
+                |range, out| {
+                    let mut data = Box::new(Data::new());
+                    regressor_range(robot, &water, &surroundings, states, range, &mut data, out)
+                },
+                shift,
+            )
+        });
+        drop(guards);
+        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
+        Ok(arrays.into())
+    }
+
     /// The added-mass matrices `(n_samples, (6 + N)²)` (row-major, base first) at joint
     /// positions `q` `(n_samples, N)`; `cm` as for `hydro` (`(0, 2)`: the segments' own).
     fn added_mass_matrix<'py>(
@@ -487,6 +634,20 @@ impl PyRobot {
         drop(guards);
         Ok(matrices)
     }
+}
+
+/// The number of samples of `q`, `qd`, `qdd`, each `(n_samples, n)`.
+fn check_state_shapes(states: [&PyReadonlyArray2<'_, f64>; 3], n: usize) -> PyResult<usize> {
+    let shape = states[0].shape();
+    for (name, array) in ["q", "qd", "qdd"].into_iter().zip(states) {
+        if array.shape() != shape || shape.get(1) != Some(&n) {
+            return Err(PyValueError::new_err(format!(
+                "{name} must have shape (n_samples, {n}) like q, got {:?} (q: {shape:?})",
+                array.shape()
+            )));
+        }
+    }
+    Ok(shape.first().copied().unwrap_or(0))
 }
 
 /// The first non-finite joint state, naming the array, sample and joint.
