@@ -341,3 +341,42 @@ def test_identifying_cd_and_cm_of_an_arm_on_a_moving_vehicle() -> None:
     design = np.stack([regressors.drag.sum(axis=(-1, -2)).ravel(), regressors.added_mass.sum(axis=(-1, -2)).ravel()], axis=1)
     (cd, cm), *_ = np.linalg.lstsq(design, (measured - regressors.buoyancy).ravel(), rcond=None)
     assert abs(cd - 1.05) < 0.02 and abs(cm - 0.85) < 0.02, (cd, cm)
+
+
+def test_jacobians_of_a_robot_are_the_slopes_and_the_legs_for_a_chain() -> None:
+    rng = np.random.default_rng(21)
+    robot = random_robot(rng, 5)
+    q, qd, qdd = rng.uniform(-2, 2, 5), rng.uniform(-1, 1, 5), rng.uniform(-3, 3, 5)
+    motion = {k: v[0] for k, v in motion_arguments(rng, 1).items()}
+    losses = [uwml.JointLosses(epsilon=0.01)] * 5
+    kwargs = {"depth": 2000.0, "temperature_c": 4.0, "losses": losses, "current": (0.3, -0.1, 0.0)}
+    jac = robot.jacobians(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), **kwargs)
+
+    def value(q: np.ndarray, qd: np.ndarray, velocity: np.ndarray, angular_velocity: np.ndarray) -> np.ndarray:
+        moved = uwml.BaseMotion(**(motion | {"velocity": velocity, "angular_velocity": angular_velocity}))
+        env = robot.environment(q, qd, qdd, base_motion=moved, **kwargs)
+        return np.concatenate([env.base.total, env.total])
+
+    v, w = np.asarray(motion["velocity"]), np.asarray(motion["angular_velocity"])
+    here = value(q, qd, v, w)
+    np.testing.assert_allclose(jac.value, here, rtol=0, atol=1e-13 * np.abs(here).max())
+    h, scale = 1e-6, np.abs(here).max()
+    for k in range(5):
+        e = np.eye(5)[k] * h
+        np.testing.assert_allclose(jac.d_q[:, k], (value(q + e, qd, v, w) - value(q - e, qd, v, w)) / (2 * h), atol=1e-6 * scale)
+        np.testing.assert_allclose(jac.d_velocity[:, 6 + k], (value(q, qd + e, v, w) - value(q, qd - e, v, w)) / (2 * h), atol=1e-6 * scale)
+    for k in range(6):
+        e = np.eye(6)[k] * h
+        slope = (value(q, qd, v + e[:3], w + e[3:]) - value(q, qd, v - e[:3], w - e[3:])) / (2 * h)
+        np.testing.assert_allclose(jac.d_velocity[:, k], slope, atol=1e-6 * scale)
+    np.testing.assert_array_equal(jac.added_mass_matrix, robot.added_mass_matrix(q))
+    # A chain: the joint blocks are uwml.Leg's.
+    leg = uwml.Leg.paper()
+    chain = uwml.Robot.from_leg(leg)
+    Q = rng.uniform(-2, 2, (4, 3))
+    a = chain.jacobians(Q, Q, Q, depth=1000.0, losses=uwml.JointLosses(epsilon=0.01))
+    b = leg.jacobians(Q, Q, Q, depth=1000.0, losses=uwml.JointLosses(epsilon=0.01))
+    tol = 1e-12 * np.abs(b.d_q).max()
+    np.testing.assert_allclose(a.d_q[:, 6:, :], b.d_q, atol=tol)
+    np.testing.assert_allclose(a.d_velocity[:, 6:, 6:], b.d_qd, atol=tol)
+    np.testing.assert_allclose(a.added_mass_matrix[:, 6:, 6:], b.added_mass_matrix, atol=1e-12 * np.abs(b.added_mass_matrix).max())

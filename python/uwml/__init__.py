@@ -16,7 +16,7 @@ from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
-from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotEnvironment, RobotRegressors, RobotTorques
+from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
 
 __all__ = [
     "MAX_JOINTS",
@@ -26,6 +26,7 @@ __all__ = [
     "BaseWrench",
     "Robot",
     "RobotEnvironment",
+    "RobotJacobians",
     "RobotRegressors",
     "RobotTorques",
     "Drive",

@@ -150,6 +150,26 @@ class Robot:
         current_acceleration: NDArray[np.float64],
         threads: int,
     ) -> list[NDArray[np.float64]]: ...
+    def jacobians(
+        self,
+        q: NDArray[np.float64],
+        qd: NDArray[np.float64],
+        qdd: NDArray[np.float64],
+        cd: NDArray[np.float64],
+        cm: NDArray[np.float64],
+        density: float,
+        gravity: float,
+        orientation: NDArray[np.float64],
+        velocity: NDArray[np.float64],
+        angular_velocity: NDArray[np.float64],
+        acceleration: NDArray[np.float64],
+        angular_acceleration: NDArray[np.float64],
+        current: NDArray[np.float64],
+        current_acceleration: NDArray[np.float64],
+        losses: NDArray[np.float64],
+        pressure: NDArray[np.float64],
+        temperature: NDArray[np.float64],
+    ) -> list[NDArray[np.float64]]: ...
     def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
 
 def joint_losses(

@@ -21,7 +21,7 @@ from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, los
 from .leg import FRESH_WATER, HydroTorques, _threads, _water
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotRegressors", "RobotTorques"]
+__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotJacobians", "RobotRegressors", "RobotTorques"]
 
 FloatArray = NDArray[np.float64]
 
@@ -167,6 +167,24 @@ class RobotRegressors:
         return RobotTorques(
             drag=apply(self.drag, cd_table), added_mass=apply(self.added_mass, cm_table), buoyancy=self.buoyancy, gravity=self.gravity, base=base
         )
+
+
+@dataclass(frozen=True)
+class RobotJacobians:
+    """The environment's forces on base and joints and their derivatives, for control.
+
+    With ``m = 6 + n_joints`` (rows: the base wrench's force and moment, base frame, then the
+    joints): ``value`` ``(..., m)`` is ``(base.total, total)`` of :meth:`Robot.environment`;
+    ``d_q`` ``(..., m, n_joints)`` is ``∂value/∂q``; ``d_velocity`` ``(..., m, m)`` is
+    ``∂value/∂(ν, q̇)``, columns the base twist (``v``, ``ω``, base components) then the joint
+    rates; ``added_mass_matrix`` ``(..., m, m)`` is ``M_A`` (:meth:`Robot.added_mass_matrix`), so
+    ``∂value/∂(ν̇, q̈) = −M_A``. Exact derivatives (dual numbers through the same Rust code).
+    """
+
+    value: FloatArray
+    d_q: FloatArray
+    d_velocity: FloatArray
+    added_mass_matrix: FloatArray
 
 
 def _segment_row(owner: int, s: Segment) -> list[float]:
@@ -469,6 +487,38 @@ class Robot:
         joints = [out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11)]
         base = [a.reshape(base_shape) for a in out[4:8]]
         return RobotEnvironment(*joints, base=BaseWrench(*base))
+
+    def jacobians(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
+        water: Water = FRESH_WATER,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        sea_density: float = SEA_WATER_DENSITY,
+    ) -> RobotJacobians:
+        """The forces of :meth:`environment` on base and joints and their derivatives
+        (:class:`RobotJacobians`); arguments as for :meth:`environment`."""
+        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
+        packed = pack_leg_losses(losses, self.n_joints)
+        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, _water(water).gravity, n_samples)
+        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature)
+        n = self.n_joints
+        m = 6 + n
+        lead = (n_samples,) if batched else ()
+        return RobotJacobians(
+            value=value.reshape(*lead, m),
+            d_q=d_q.reshape(*lead, m, n),
+            d_velocity=d_velocity.reshape(*lead, m, m),
+            added_mass_matrix=matrix.reshape(*lead, m, m),
+        )
 
     def hydro_regressors(
         self,

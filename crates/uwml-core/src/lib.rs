@@ -12,6 +12,7 @@ pub mod losses;
 pub mod model;
 pub mod motion;
 pub mod robot;
+pub mod robot_derivatives;
 pub mod strip;
 pub mod tree;
 
@@ -29,6 +30,7 @@ pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water
 pub use motion::{BaseMotion, Current};
 pub use nalgebra;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
+pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians};
 pub use tree::{
     EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
 };

@@ -154,3 +154,23 @@ impl<T: RealField + Copy> Default for Current<T> {
         Self::still()
     }
 }
+
+impl<T: SimdRealField + Copy> BaseMotion<T> {
+    /// The same motion over another scalar type (see `Robot::map_scalars`).
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> BaseMotion<U> {
+        BaseMotion {
+            rotation: self.rotation.map(f),
+            velocity: self.velocity.map(f),
+            angular_velocity: self.angular_velocity.map(f),
+            acceleration: self.acceleration.map(f),
+            angular_acceleration: self.angular_acceleration.map(f),
+        }
+    }
+}
+
+impl<T: SimdRealField + Copy> Current<T> {
+    /// The same current over another scalar type.
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Current<U> {
+        Current { velocity: self.velocity.map(f), acceleration: self.acceleration.map(f) }
+    }
+}

@@ -442,3 +442,58 @@ impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {
         &self.cm
     }
 }
+
+impl<T: SimdRealField + Copy> RobotSegment<T> {
+    /// Every number mapped by `f` (which must keep values, as `Dual::constant` does).
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> RobotSegment<U> {
+        RobotSegment {
+            owner: self.owner,
+            start: self.start.map(f),
+            axis: self.axis.map(f),
+            length: f(self.length),
+            area: f(self.area),
+            section: match self.section {
+                Section::Rectangular { normals, widths } => {
+                    Section::Rectangular { normals: normals.map(|n| n.map(f)), widths: widths.map(f) }
+                }
+                Section::Circular { diameter } => Section::Circular { diameter: f(diameter) },
+            },
+            cd: self.cd.map(f),
+            cm: self.cm.map(f),
+        }
+    }
+}
+
+impl<T: SimdRealField + Copy> RigidBody<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> RigidBody<U> {
+        RigidBody { mass: f(self.mass), com: self.com.map(f), volume: f(self.volume), cob: self.cob.map(f) }
+    }
+}
+
+impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+    /// The same robot over another scalar type, every number mapped by `f`, which must keep
+    /// values (as `Dual::constant` does): nothing is validated again.
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Robot<U, J, S> {
+        Robot {
+            joints: self.joints.map(|j| TreeJoint {
+                parent: j.parent,
+                kind: j.kind,
+                origin: j.origin.map(f),
+                axis: j.axis.map(f),
+            }),
+            links: self.links.map(|l| l.map_scalars(f)),
+            base: self.base.map_scalars(f),
+            segments: self.segments.map(|s| s.map_scalars(f)),
+            joint_count: self.joint_count,
+            segment_count: self.segment_count,
+        }
+    }
+}
+
+impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {
+    /// The same coefficients over another scalar type (see [`Robot::map_scalars`]).
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentCoefficients<U, S> {
+        SegmentCoefficients { cd: self.cd.map(|c| c.map(f)), cm: self.cm.map(|c| c.map(f)) }
+    }
+}

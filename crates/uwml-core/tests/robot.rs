@@ -6,8 +6,8 @@ use uwml_core::nalgebra::{Matrix3, UnitQuaternion, Vector3};
 use uwml_core::strip::circular_speed_moments;
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, Problem, RigidBody, Robot,
-    RobotData, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_jacobians, hydro_torques,
-    robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+    RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water,
+    hydro_jacobians, hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
 };
 
 mod common;
@@ -669,5 +669,130 @@ fn regressors_times_coefficients_are_the_forces() {
             assert_eq!(statics.1[j], forces.buoyancy);
         }
         assert_eq!(statics.0, base.buoyancy);
+    }
+}
+
+/// `(W, τ)` hydrodynamic totals, base first.
+fn totals(data: &RobotData<f64, J>) -> Vec<f64> {
+    data.base_wrench().total().to_array().into_iter().chain(data.joint_forces().iter().map(|f| f.total())).collect()
+}
+
+#[test]
+fn jacobians_are_the_slopes_of_the_forces() {
+    let mut rng = Rng(71);
+    for _ in 0..40 {
+        let n = 1 + (rng.next().abs() * 7.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
+        let m = 6 + n;
+        let (mut value, mut d_q, mut d_velocity, mut matrix) =
+            (vec![0.0; m], vec![0.0; m * n], vec![0.0; m * m], vec![0.0; m * m]);
+        let mut work = Box::new(RobotJacobianData::new(&robot));
+        let out = RobotJacobians {
+            value: &mut value,
+            d_q: &mut d_q,
+            d_velocity: &mut d_velocity,
+            added_mass_matrix: &mut matrix,
+        };
+        robot_jacobians(
+            &robot,
+            &Water::default(),
+            None,
+            &[None; J],
+            &motion,
+            &current,
+            &s[0],
+            &s[1],
+            &s[2],
+            &mut work,
+            out,
+        );
+        let here = totals(&evaluate(&robot, None, &motion, &current, &s));
+        let scale = here.iter().fold(1.0_f64, |a, x| a.max(x.abs()));
+        for (a, b) in value.iter().zip(&here) {
+            assert_close(*a, *b, scale, 1e-14, "value");
+        }
+        assert_eq!(matrix, added_mass_matrix(&robot, &s[0]));
+        // Central differences, step h: error O(h²) from the smooth parts.
+        let h = 1e-6;
+        for k in 0..n {
+            let (mut plus, mut minus) = (s, s);
+            plus[0][k] += h;
+            minus[0][k] -= h;
+            let (p, mi) = (
+                totals(&evaluate(&robot, None, &motion, &current, &plus)),
+                totals(&evaluate(&robot, None, &motion, &current, &minus)),
+            );
+            for row in 0..m {
+                assert_close(d_q[row * n + k], (p[row] - mi[row]) / (2.0 * h), scale, 1e-6, "d_q");
+            }
+            (plus, minus) = (s, s);
+            plus[1][k] += h;
+            minus[1][k] -= h;
+            let (p, mi) = (
+                totals(&evaluate(&robot, None, &motion, &current, &plus)),
+                totals(&evaluate(&robot, None, &motion, &current, &minus)),
+            );
+            for row in 0..m {
+                assert_close(d_velocity[row * m + 6 + k], (p[row] - mi[row]) / (2.0 * h), scale, 1e-6, "d_qd");
+            }
+        }
+        let (v, w) = motion.twist();
+        let (vd, wd) = motion.twist_derivative();
+        let q = UnitQuaternion::from_matrix(motion.rotation());
+        for k in 0..6 {
+            let shifted = |step: f64| {
+                let (mut v, mut w) = (v, w);
+                if k < 3 {
+                    v[k] += step
+                } else {
+                    w[k - 3] += step
+                }
+                BaseMotion::new([q.w, q.i, q.j, q.k], v, w, vd, wd).unwrap()
+            };
+            let p = totals(&evaluate(&robot, None, &shifted(h), &current, &s));
+            let mi = totals(&evaluate(&robot, None, &shifted(-h), &current, &s));
+            for row in 0..m {
+                assert_close(d_velocity[row * m + k], (p[row] - mi[row]) / (2.0 * h), scale, 1e-6, "d_nu");
+            }
+        }
+    }
+    // A chain on a fixed base: the joint blocks are the chain path's derivatives.
+    let chain = random_chain(&mut rng);
+    let coefficients = random_coefficients(&mut rng);
+    let robot = Model::from_chain(&chain, &coefficients).unwrap();
+    let s = states(&mut rng, 4);
+    let (mut value, mut d_q, mut d_velocity, mut matrix) =
+        (vec![0.0; 10], vec![0.0; 40], vec![0.0; 100], vec![0.0; 100]);
+    let mut work = Box::new(RobotJacobianData::new(&robot));
+    let out = RobotJacobians {
+        value: &mut value,
+        d_q: &mut d_q,
+        d_velocity: &mut d_velocity,
+        added_mass_matrix: &mut matrix,
+    };
+    robot_jacobians(
+        &robot,
+        &Water::default(),
+        None,
+        &[None; J],
+        &BaseMotion::fixed(),
+        &Current::still(),
+        &s[0],
+        &s[1],
+        &s[2],
+        &mut work,
+        out,
+    );
+    let four = |x: &[f64; J]| -> uwml_core::nalgebra::SVector<f64, 4> { <[f64; 4]>::try_from(&x[..4]).unwrap().into() };
+    let expected = hydro_jacobians(&chain, &Water::default(), &coefficients, &four(&s[0]), &four(&s[1]), &four(&s[2]));
+    let scale = expected.d_q.amax().max(expected.d_qd.amax());
+    for i in 0..4 {
+        for j in 0..4 {
+            assert_close(d_q[(6 + i) * 4 + j], expected.d_q[(i, j)], scale, 1e-13, "chain d_q");
+            assert_close(d_velocity[(6 + i) * 10 + 6 + j], expected.d_qd[(i, j)], scale, 1e-13, "chain d_qd");
+        }
     }
 }

@@ -14,9 +14,10 @@ use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag, Owner,
-    RigidBody, Robot, RobotData, RobotSegment, Section, Segment, TreeJoint, Water, environment_jacobians,
-    environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian,
-    pressure_at_depth, robot_hydro, smooth_sign,
+    RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water,
+    environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions,
+    loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+    robot_jacobians, smooth_sign,
 };
 
 /// Counts unexpected results.
@@ -252,6 +253,21 @@ fn evaluate_robot<T: RealField + Copy>(robot: &Robot<T, 6, 6>, tally: &mut Tally
         }
     }
     tally.expect(data.body_wrench(robot, Some(4)).is_none());
+    // Regressors, the added-mass matrix and the derivatives (10 = 6 + 4 rows).
+    let (mut drag, mut added_mass) = ([c::<T>(f64::NAN); 80], [c::<T>(f64::NAN); 80]);
+    robot_hydro_regressors(robot, &water, &motion, &current, &q, &qd, &qdd, &mut data, &mut drag, &mut added_mass);
+    tally.all_finite(drag.iter().chain(added_mass.iter()));
+    let mut matrix = [c::<T>(f64::NAN); 100];
+    robot_added_mass_matrix(robot, &water, None, &q, &mut data, &mut matrix);
+    tally.all_finite(matrix.iter());
+    let (mut value, mut d_q, mut d_velocity, mut m_a) =
+        ([c::<T>(f64::NAN); 10], [c::<T>(f64::NAN); 40], [c::<T>(f64::NAN); 100], [c::<T>(f64::NAN); 100]);
+    let mut work = RobotJacobianData::new(robot);
+    let out =
+        RobotJacobians { value: &mut value, d_q: &mut d_q, d_velocity: &mut d_velocity, added_mass_matrix: &mut m_a };
+    robot_jacobians(robot, &water, None, &[None; 6], &motion, &current, &q, &qd, &qdd, &mut work, out);
+    tally.all_finite(value.iter().chain(d_q.iter()).chain(d_velocity.iter()).chain(m_a.iter()));
+    tally.expect(m_a == matrix);
     let mut nan = q;
     nan[1] = c(f64::NAN);
     robot_hydro(robot, &water, None, &motion, &current, &black_box(nan), &qd, &qdd, &mut data);

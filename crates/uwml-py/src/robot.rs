@@ -11,8 +11,8 @@ use pyo3::prelude::*;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
     BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData,
-    RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, loss_torques, robot_added_mass_matrix, robot_hydro,
-    robot_hydro_regressors,
+    RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, loss_torques,
+    robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
 };
 
 use crate::{Array2, contiguous, contiguous1, in_parallel, model_error, parse_losses, water, writable, zeroed};
@@ -225,6 +225,8 @@ pub(crate) struct PyRobot {
     robot: Box<Model>,
     /// A workspace kept for one-thread calls, so that they do not set up a new one.
     data: Mutex<Box<Data>>,
+    /// The derivatives' workspace (the robot over dual numbers), made at the first call.
+    jacobian_data: Mutex<Option<Box<RobotJacobianData<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>>>>,
 }
 
 /// Evaluates samples `range` into `out`: 4 joint arrays `n`-wide, 4 base arrays 6-wide, and the
@@ -406,7 +408,7 @@ impl PyRobot {
             contiguous(&segments, "segments")?,
         )
         .map_err(model_error)?;
-        Ok(Self { robot: Box::new(robot), data: Mutex::new(Box::new(Data::new())) })
+        Ok(Self { robot: Box::new(robot), data: Mutex::new(Box::new(Data::new())), jacobian_data: Mutex::new(None) })
     }
 
     /// Number of joints.
@@ -463,18 +465,7 @@ impl PyRobot {
         let water = water(density, gravity)?;
         let losses = match (&losses, &pressure, &temperature) {
             (Some(losses), Some(pressure), Some(temperature)) => {
-                let mut joints = [None; MAX_ROBOT_JOINTS];
-                for (slot, l) in joints.iter_mut().zip(parse_losses(losses, n)?) {
-                    *slot = l;
-                }
-                let pressure = contiguous1(pressure, "pressure", n_samples)?;
-                let temperature = contiguous1(temperature, "temperature", n_samples)?;
-                for (name, values) in [("pressure", pressure), ("temperature", temperature)] {
-                    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-                        return Err(PyValueError::new_err(format!("{name}[{i}] must be finite")));
-                    }
-                }
-                Some(Losses { joints, pressure, temperature })
+                Some(check_losses(losses, pressure, temperature, n, n_samples)?)
             }
             (None, None, None) => None,
             _ => return Err(PyValueError::new_err("losses, pressure and temperature come together")),
@@ -596,6 +587,103 @@ impl PyRobot {
         Ok(arrays.into())
     }
 
+    /// `(value (m), d_q (m·N), d_velocity (m²), added_mass_matrix (m²))` per sample, `m = 6 + N`,
+    /// rows base then joints, velocity columns `(ν, q̇)`; arguments as for `hydro` with losses.
+    #[allow(clippy::too_many_arguments)]
+    fn jacobians<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        cd: PyReadonlyArray2<'py, f64>,
+        cm: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        orientation: PyReadonlyArray2<'py, f64>,
+        velocity: PyReadonlyArray2<'py, f64>,
+        angular_velocity: PyReadonlyArray2<'py, f64>,
+        acceleration: PyReadonlyArray2<'py, f64>,
+        angular_acceleration: PyReadonlyArray2<'py, f64>,
+        current: PyReadonlyArray2<'py, f64>,
+        current_acceleration: PyReadonlyArray2<'py, f64>,
+        losses: PyReadonlyArray2<'py, f64>,
+        pressure: PyReadonlyArray1<'py, f64>,
+        temperature: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Vec<Array2<'py>>> {
+        let n = self.robot.joint_count();
+        let m = 6 + n;
+        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
+        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
+        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
+        let surroundings = Surroundings::new(
+            [
+                &orientation,
+                &velocity,
+                &angular_velocity,
+                &acceleration,
+                &angular_acceleration,
+                &current,
+                &current_acceleration,
+            ],
+            n_samples,
+        )?;
+        let coefficients = self.coefficients(&cd, &cm)?;
+        let water = water(density, gravity)?;
+        let losses = check_losses(&losses, &pressure, &temperature, n, n_samples)?;
+        let [value] = zeroed::<1>(py, n_samples, m);
+        let [d_q] = zeroed::<1>(py, n_samples, m * n);
+        let [d_velocity, matrix] = zeroed::<2>(py, n_samples, m * m);
+        let arrays = [value, d_q, d_velocity, matrix];
+        let mut guards = arrays.each_ref().map(|a| a.readwrite());
+        let [value, d_q, d_velocity, matrix] = writable(&mut guards)?;
+        let robot = &*self.robot;
+        let mut work = self.jacobian_data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let work = work.get_or_insert_with(|| Box::new(RobotJacobianData::new(robot)));
+        let result = py.detach(|| -> Result<(), SampleError> {
+            let (mut qs, mut qds, mut qdds) =
+                ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+            let mut conditions = (f64::NAN, f64::NAN);
+            let mut loss_states: [Option<LossState<f64>>; MAX_ROBOT_JOINTS] = [None; MAX_ROBOT_JOINTS];
+            let rows = value
+                .chunks_exact_mut(m)
+                .zip(d_q.chunks_exact_mut(m * n))
+                .zip(d_velocity.chunks_exact_mut(m * m).zip(matrix.chunks_exact_mut(m * m)));
+            for (sample, ((value, d_q), (d_velocity, added_mass_matrix))) in rows.enumerate() {
+                for (values, out) in [(states[0], &mut qs), (states[1], &mut qds), (states[2], &mut qdds)] {
+                    for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
+                        *slot = *x;
+                    }
+                }
+                let at = |values: &[f64]| values.get(sample).copied().unwrap_or(f64::NAN);
+                let here = (at(losses.pressure), at(losses.temperature));
+                if here != conditions {
+                    conditions = here;
+                    loss_states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
+                }
+                let (motion, current) = surroundings.at(sample)?;
+                let out = RobotJacobians { value, d_q, d_velocity, added_mass_matrix };
+                robot_jacobians(
+                    robot,
+                    &water,
+                    coefficients.as_ref(),
+                    &loss_states,
+                    &motion,
+                    &current,
+                    &qs,
+                    &qds,
+                    &qdds,
+                    work,
+                    out,
+                );
+            }
+            Ok(())
+        });
+        drop(guards);
+        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
+        Ok(arrays.into())
+    }
+
     /// The added-mass matrices `(n_samples, (6 + N)²)` (row-major, base first) at joint
     /// positions `q` `(n_samples, N)`; `cm` as for `hydro` (`(0, 2)`: the segments' own).
     fn added_mass_matrix<'py>(
@@ -634,6 +722,28 @@ impl PyRobot {
         drop(guards);
         Ok(matrices)
     }
+}
+
+/// Packed joint losses `(n, LOSS_WIDTH)` and the pressure and temperature of every sample.
+fn check_losses<'a>(
+    losses: &PyReadonlyArray2<'_, f64>,
+    pressure: &'a PyReadonlyArray1<'_, f64>,
+    temperature: &'a PyReadonlyArray1<'_, f64>,
+    n: usize,
+    n_samples: usize,
+) -> PyResult<Losses<'a>> {
+    let mut joints = [None; MAX_ROBOT_JOINTS];
+    for (slot, l) in joints.iter_mut().zip(parse_losses(losses, n)?) {
+        *slot = l;
+    }
+    let pressure = contiguous1(pressure, "pressure", n_samples)?;
+    let temperature = contiguous1(temperature, "temperature", n_samples)?;
+    for (name, values) in [("pressure", pressure), ("temperature", temperature)] {
+        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+            return Err(PyValueError::new_err(format!("{name}[{i}] must be finite")));
+        }
+    }
+    Ok(Losses { joints, pressure, temperature })
 }
 
 /// The number of samples of `q`, `qd`, `qdd`, each `(n_samples, n)`.

@@ -1,0 +1,141 @@
+//! Derivatives of a whole robot's environment forces for control (MODEL.md 9, section 7's losses):
+//! the generalized forces on the base (its wrench) and on the joints, their derivatives with
+//! respect to the joint positions and to the velocities (base twist and joint rates), and the
+//! added-mass matrix, by forward-mode dual numbers ([`Dual`]) through the very same
+//! [`robot_hydro`] and [`loss_torques`].
+//!
+//! Rows are `(W, τ)`: the base wrench's six components (force, moment about the base origin,
+//! base frame) then the joints. Columns of `d_velocity` are `(ν, q̇)`: the base twist (`v`, `ω`,
+//! base components) then the joint rates. The dual numbers are [`DUAL_WIDTH`] wide; the `2n + 6`
+//! directions are taken in passes of that many, so the cost grows with the robot, not with the
+//! capacity.
+
+use nalgebra::{RealField, SVector};
+
+use crate::dual::Dual;
+use crate::losses::{LossState, loss_torques};
+use crate::model::Water;
+use crate::motion::{BaseMotion, Current};
+use crate::robot::{Robot, SegmentCoefficients};
+use crate::tree::{RobotData, robot_added_mass_matrix, robot_hydro};
+
+/// Derivative directions per dual pass.
+pub const DUAL_WIDTH: usize = 8;
+
+type D<T> = Dual<T, DUAL_WIDTH>;
+
+/// The workspace of [`robot_jacobians`]: the robot over dual numbers (made once, by
+/// [`RobotJacobianData::new`]) and the evaluations' data. Large for a large capacity (the
+/// robot's every number `DUAL_WIDTH + 1` times): keep one, on the heap where stacks are small.
+#[derive(Clone, Debug)]
+pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize> {
+    robot: Robot<D<T>, J, S>,
+    dual: RobotData<D<T>, J>,
+    real: RobotData<T, J>,
+}
+
+impl<T: RealField + Copy, const J: usize, const S: usize> RobotJacobianData<T, J, S> {
+    /// The workspace for `robot` (and only for it).
+    #[must_use]
+    pub fn new(robot: &Robot<T, J, S>) -> Self {
+        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new(), real: RobotData::new() }
+    }
+}
+
+/// Where [`robot_jacobians`] writes, each row-major with `m = 6 + n` rows (`n` joints).
+pub struct RobotJacobians<'a, T> {
+    /// `(W, τ)` at the state, hydrodynamics plus joint losses (`m`).
+    pub value: &'a mut [T],
+    /// `∂(W, τ)/∂q` (`m × n`).
+    pub d_q: &'a mut [T],
+    /// `∂(W, τ)/∂(ν, q̇)` (`m × m`).
+    pub d_velocity: &'a mut [T],
+    /// The added-mass matrix `M_A = −∂(W, τ)/∂(ν̇, q̈)` (`m × m`), as [`robot_added_mass_matrix`].
+    pub added_mass_matrix: &'a mut [T],
+}
+
+/// The environment's forces on base and joints, `(W, τ) = hydro (+ joint losses on τ)`, and
+/// their derivatives, into `out` (see [`RobotJacobians`]); arguments as for [`robot_hydro`],
+/// `losses[i]` joint `i`'s [`LossState`] or `None`.
+///
+/// The derivatives are exact (up to rounding) for the branch the evaluation takes; at a joint
+/// speed of exactly zero with a hard-sign loss model they are one-sided. Outputs shorter than
+/// their sizes get what fits. Never fails, never panics.
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_jacobians<T: RealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    losses: &[Option<LossState<T>>; J],
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    work: &mut RobotJacobianData<T, J, S>,
+    out: RobotJacobians<'_, T>,
+) {
+    let n = robot.joint_count();
+    let m = 6 + n;
+    let constant = D::<T>::constant;
+    let water_d = water.map_scalars(constant);
+    let coefficients_d = coefficients.map(|c| c.map_scalars(constant));
+    let losses_d = losses.map(|state| state.map(|state| state.map_scalars(constant)));
+    let current_d = current.map_scalars(constant);
+    let motion_d = motion.map_scalars(constant);
+    let qdd_d = qdd.map(constant);
+    // Direction `k`: q_k for k < n, then ν_{k − n} (6), then q̇_{k − n − 6}.
+    let directions = n + m;
+    let mut start = 0;
+    while start < directions {
+        let seed = |k: usize, x: T| match k.checked_sub(start) {
+            Some(slot) if slot < DUAL_WIDTH => Dual::variable(x, slot),
+            _ => constant(x),
+        };
+        let q_d: [D<T>; J] = core::array::from_fn(|j| seed(j, q.get(j).copied().unwrap_or(T::zero())));
+        let qd_d: [D<T>; J] = core::array::from_fn(|j| seed(n + 6 + j, qd.get(j).copied().unwrap_or(T::zero())));
+        let mut motion_seeded = motion_d;
+        for (i, slot) in motion_seeded.velocity.iter_mut().chain(motion_seeded.angular_velocity.iter_mut()).enumerate()
+        {
+            *slot = seed(n + i, slot.re);
+        }
+        robot_hydro(
+            &work.robot,
+            &water_d,
+            coefficients_d.as_ref(),
+            &motion_seeded,
+            &current_d,
+            &q_d,
+            &qd_d,
+            &qdd_d,
+            &mut work.dual,
+        );
+        let (visc, seal, _) = loss_torques(&losses_d, &SVector::from(qd_d));
+        let base = work.dual.base_wrench().total().to_array();
+        let joints =
+            work.dual.joint_forces().iter().zip(visc.iter().zip(seal.iter())).map(|(f, (v, s))| f.total() + *v + *s);
+        for (row, value) in base.into_iter().chain(joints).enumerate() {
+            if start == 0
+                && let Some(slot) = out.value.get_mut(row)
+            {
+                *slot = value.re;
+            }
+            for (slot, derivative) in value.eps.iter().enumerate() {
+                let k = start + slot;
+                let target = if k < n {
+                    out.d_q.get_mut(row * n + k)
+                } else if k < directions {
+                    out.d_velocity.get_mut(row * m + k - n)
+                } else {
+                    None
+                };
+                if let Some(target) = target {
+                    *target = *derivative;
+                }
+            }
+        }
+        start += DUAL_WIDTH;
+    }
+    robot_added_mass_matrix(robot, water, coefficients, q, &mut work.real, out.added_mass_matrix);
+}
