@@ -1,6 +1,9 @@
 //! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
 //! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`,
-//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call.
+//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call;
+//! `... [n_calls] robot-leg|robot-leg-moving|robot-arm [f64|f32]`: `robot_hydro` on the paper leg
+//! (fixed base in still water, or on a moving base in a current) and on a 7-joint arm of 14
+//! segments on a moving ROV in a current (`benches/common/arm.rs`).
 #![allow(missing_docs)]
 
 use std::hint::black_box;
@@ -10,9 +13,12 @@ use simba::simd::{SimdValue, WideF64x4};
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
-    Chain, Coefficients, JointLosses, LossState, Water, environment_torques, hydro_regressors, hydro_torques,
-    link_motions, pressure_at_depth,
+    BaseMotion, Chain, Coefficients, Current, JointLosses, LossState, Robot, RobotData, Water, environment_torques,
+    hydro_regressors, hydro_torques, link_motions, pressure_at_depth, robot_hydro,
 };
+
+#[path = "../benches/common/arm.rs"]
+mod arm;
 
 // One evaluation each, not inlined into the loop, so that its code can be read on its own; the
 // whole result goes through `black_box`, so that no part of it is optimized away.
@@ -61,8 +67,41 @@ fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) 
     format!("{acc}").parse().unwrap_or(f64::NAN)
 }
 
+/// One `robot_hydro` evaluation.
+#[inline(never)]
+fn robot_torques<T: RealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    (motion, current): &(BaseMotion<T>, Current<T>),
+    [q, qd, qdd]: &[[T; J]; 3],
+    data: &mut RobotData<T, J>,
+) -> T {
+    robot_hydro(robot, &Water::default(), None, motion, current, q, qd, qdd, data);
+    black_box(data.base_wrench()).drag.force.x + black_box(data.joint_forces()).first().map_or(T::zero(), |f| f.drag)
+}
+
+/// [`run`] for [`robot_torques`] on `robot`.
+fn run_robot<T: RealField + Copy, const J: usize, const S: usize>(
+    n: usize,
+    robot: &Robot<T, J, S>,
+    surroundings: (BaseMotion<T>, Current<T>),
+) -> f64 {
+    let state = |base: f64, step: f64| core::array::from_fn(|i| convert::<f64, T>(base + step * i as f64));
+    let (qd, qdd) = (state(0.8, -0.45), state(1.0, -0.7));
+    let mut data = RobotData::new();
+    let mut acc = T::zero();
+    for i in 0..n {
+        let q = state(0.3 + i as f64 * 1e-7, -0.2);
+        acc += robot_torques(black_box(robot), &surroundings, &[q, qd, qdd], &mut data);
+    }
+    format!("{acc}").parse().unwrap_or(f64::NAN)
+}
+
 fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
+    let leg = || Robot::<T, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default());
     match mode {
+        "robot-leg" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, (BaseMotion::fixed(), Current::still()))),
+        "robot-leg-moving" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, arm::rov_motion())),
+        "robot-arm" => run_robot(n, &arm::arm_on_rov::<T, 7, 15>(), arm::rov_motion()),
         "kinematics" => run::<T>(n, kinematics),
         "regressors" => run::<T>(n, regressors),
         "environment" => run::<T>(n, environment),
