@@ -1,5 +1,7 @@
 """Throughput of the batch calls ``Leg.hydro`` and ``Leg.environment`` (with the default losses on
-all three joints) on one and on two threads, against the numpy reference.
+all three joints) on one and on two threads, against the numpy reference; and of ``Robot.hydro``:
+the paper's leg as a robot (fixed, and on a moving base in a current) and the 7-joint arm of 14
+segments on an ROV of :func:`uwml.examples.arm_on_rov` (moving, in a current).
 
 Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
 the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
@@ -11,6 +13,7 @@ import time
 import numpy as np
 import uwml
 from uwml import reference
+from uwml.examples import arm_on_rov
 
 
 def best_of(runs: int, call) -> float:
@@ -31,6 +34,15 @@ def main() -> None:
     leg = uwml.Leg.paper()
     losses = uwml.JointLosses()
     leg.hydro(q[:10], qd[:10], qdd[:10])
+    robot, arm = uwml.Robot.from_leg(leg), arm_on_rov()
+    q7, qd7, qdd7 = (rng.uniform(-1, 1, (n, 7)) * scale for scale in (1.0, 0.5, 2.0))
+    quaternion = rng.normal(size=(n, 4))
+    motion = uwml.BaseMotion(
+        orientation=quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True),
+        velocity=rng.normal(0, 0.3, (n, 3)),
+        angular_velocity=rng.normal(0, 0.1, (n, 3)),
+    )
+    current = (0.3, 0.1, 0.0)
 
     print(f"states: {n:,}")
     timings = {}
@@ -43,9 +55,13 @@ def main() -> None:
             lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses, threads=2),
         ),
         ("Leg.hydro_regressors, 1 thread", lambda: leg.hydro_regressors(q, qd, qdd)),
+        ("Robot.hydro, paper leg, fixed", lambda: robot.hydro(q, qd, qdd)),
+        ("Robot.hydro, paper leg, moving, current", lambda: robot.hydro(q, qd, qdd, base_motion=motion, current=current)),
+        ("Robot.hydro, 7-joint arm on ROV", lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current)),
+        ("Robot.hydro, 7-joint arm on ROV, 2 thr.", lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current, threads=2)),
     ]:
         t = timings[label] = best_of(3, call)
-        print(f"uwml {label:38s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
+        print(f"uwml {label:42s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
 
     m = min(n, 200_000)
     start = time.perf_counter()

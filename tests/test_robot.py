@@ -380,3 +380,24 @@ def test_jacobians_of_a_robot_are_the_slopes_and_the_legs_for_a_chain() -> None:
     np.testing.assert_allclose(a.d_q[:, 6:, :], b.d_q, atol=tol)
     np.testing.assert_allclose(a.d_velocity[:, 6:, 6:], b.d_qd, atol=tol)
     np.testing.assert_allclose(a.added_mass_matrix[:, 6:, 6:], b.added_mass_matrix, atol=1e-12 * np.abs(b.added_mass_matrix).max())
+
+
+def test_the_example_arm_on_an_rov_matches_the_reference() -> None:
+    from uwml.examples import arm_on_rov
+
+    arm = arm_on_rov()
+    assert arm.n_joints == 7 and len(arm.segments) == 15 and arm.joints[6].kind == "prismatic"
+    rng = np.random.default_rng(30)
+    q, qd, qdd = rng.uniform(-1, 1, (10, 7)), rng.uniform(-0.5, 0.5, (10, 7)), rng.uniform(-2, 2, (10, 7))
+    motion = motion_arguments(rng, 10)
+    result = arm.hydro(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=(0.3, 0.1, 0.0))
+    expected = ref.robot_hydro(arm.joints, arm.links, arm.base, q, qd, qdd, current=(0.3, 0.1, 0.0), **motion)
+    for name in COMPONENTS:
+        scale = np.max(np.abs(expected[f"base_{name}"]), axis=1) + 1e-300
+        assert_close(getattr(result.base, name), expected[f"base_{name}"], scale, RTOL_REFERENCE, name)
+    # The hull floats: buoyancy 0.29 m³ of fresh water against 300 kg, both on the base wrench.
+    still = arm.hydro(np.zeros(7), np.zeros(7), np.zeros(7))
+    total_mass = 300.0 + sum(link.mass for link in arm.links)
+    total_volume = 0.29 + sum(link.volume for link in arm.links)
+    np.testing.assert_allclose(still.base.gravity[2], -total_mass * 9.81, rtol=1e-14)
+    np.testing.assert_allclose(still.base.buoyancy[2], 1000.0 * total_volume * 9.81, rtol=1e-14)
