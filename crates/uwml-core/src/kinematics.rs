@@ -59,7 +59,7 @@ impl<T: RealField + Copy> LinkMotion<T> {
 
 /// Rotation by the angle with sine `s` and cosine `c` about the unit `axis` (Rodrigues).
 #[inline(always)]
-fn axis_angle<T: RealField + Copy>(axis: &Vector3<T>, (s, c): (T, T)) -> Matrix3<T> {
+pub(crate) fn axis_angle<T: SimdRealField + Copy>(axis: &Vector3<T>, (s, c): (T, T)) -> Matrix3<T> {
     let (x, y, z) = (axis.x, axis.y, axis.z);
     let t = T::one() - c;
     Matrix3::new(

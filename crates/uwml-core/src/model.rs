@@ -123,7 +123,23 @@ pub(crate) fn check_at_least<T: RealField + Copy>(
     if x >= low { Ok(x) } else { Err(ModelError::new(field, None, problem)) }
 }
 
-fn check_vector<T: RealField + Copy>(
+/// Every drag and added-mass coefficient of a table (`[owner][k]`) finite and non-negative, or
+/// an error naming `fields` and the owner's index.
+pub(crate) fn check_coefficient_table<T: RealField + Copy>(
+    cd: &[[T; 2]],
+    cm: &[[T; 2]],
+    [cd_field, cm_field]: [&'static str; 2],
+) -> Result<(), ModelError> {
+    for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
+        for (&d, &m) in cd.iter().zip(cm.iter()) {
+            check_non_negative(d, cd_field, Some(index))?;
+            check_non_negative(m, cm_field, Some(index))?;
+        }
+    }
+    Ok(())
+}
+
+pub(crate) fn check_vector<T: RealField + Copy>(
     v: Vector3<T>,
     field: &'static str,
     index: Option<usize>,
@@ -132,7 +148,7 @@ fn check_vector<T: RealField + Copy>(
 }
 
 /// Checks that `v` is a unit vector within [`AXIS_TOLERANCE`] and returns it normalized exactly.
-fn check_unit<T: RealField + Copy>(
+pub(crate) fn check_unit<T: RealField + Copy>(
     v: Vector3<T>,
     field: &'static str,
     index: Option<usize>,
@@ -365,12 +381,7 @@ impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
     /// # Errors
     /// A coefficient that is negative or not finite, naming the link.
     pub fn per_direction(cd: [[T; 2]; N], cm: [[T; 2]; N]) -> Result<Self, ModelError> {
-        for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
-            for (&d, &m) in cd.iter().zip(cm.iter()) {
-                check_non_negative(d, "cd", Some(index))?;
-                check_non_negative(m, "cm", Some(index))?;
-            }
-        }
+        check_coefficient_table(&cd, &cm, ["cd", "cm"])?;
         Ok(Self { cd, cm })
     }
 }

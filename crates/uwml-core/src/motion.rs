@@ -10,7 +10,7 @@
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
-use crate::model::{AXIS_TOLERANCE, constant};
+use crate::model::{AXIS_TOLERANCE, check_vector, constant};
 
 /// The base's orientation and motion at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,10 +28,6 @@ pub struct BaseMotion<T: SimdRealField + Copy> {
 pub struct Current<T: SimdRealField + Copy> {
     pub(crate) velocity: Vector3<T>,
     pub(crate) acceleration: Vector3<T>,
-}
-
-fn finite<T: RealField + Copy>(v: Vector3<T>, field: &'static str) -> Result<Vector3<T>, ModelError> {
-    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, None, Problem::NonFinite)) }
 }
 
 /// The rotation of the unit quaternion `(w, x, y, z)`.
@@ -87,10 +83,10 @@ impl<T: RealField + Copy> BaseMotion<T> {
         }
         Ok(Self {
             rotation: rotation_of(orientation.map(|x| x / norm)),
-            velocity: finite(velocity, "base.velocity")?,
-            angular_velocity: finite(angular_velocity, "base.angular_velocity")?,
-            acceleration: finite(acceleration, "base.acceleration")?,
-            angular_acceleration: finite(angular_acceleration, "base.angular_acceleration")?,
+            velocity: check_vector(velocity, "base.velocity", None)?,
+            angular_velocity: check_vector(angular_velocity, "base.angular_velocity", None)?,
+            acceleration: check_vector(acceleration, "base.acceleration", None)?,
+            angular_acceleration: check_vector(angular_acceleration, "base.angular_acceleration", None)?,
         })
     }
 }
@@ -131,8 +127,8 @@ impl<T: RealField + Copy> Current<T> {
     /// A non-finite number, naming `current.velocity` or `current.acceleration`.
     pub fn new(velocity: Vector3<T>, acceleration: Vector3<T>) -> Result<Self, ModelError> {
         Ok(Self {
-            velocity: finite(velocity, "current.velocity")?,
-            acceleration: finite(acceleration, "current.acceleration")?,
+            velocity: check_vector(velocity, "current.velocity", None)?,
+            acceleration: check_vector(acceleration, "current.acceleration", None)?,
         })
     }
 }

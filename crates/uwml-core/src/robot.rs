@@ -14,7 +14,10 @@
 use nalgebra::{RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
-use crate::model::{AXIS_TOLERANCE, Chain, check_non_negative, check_positive, constant};
+use crate::model::{
+    AXIS_TOLERANCE, Chain, check_coefficient_table, check_non_negative, check_positive, check_unit, check_vector,
+    constant,
+};
 
 /// How a joint moves its link.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -125,28 +128,6 @@ pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
 pub struct SegmentCoefficients<T: SimdRealField + Copy, const S: usize> {
     pub(crate) cd: [[T; 2]; S],
     pub(crate) cm: [[T; 2]; S],
-}
-
-fn check_vector<T: RealField + Copy>(
-    v: Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
-}
-
-fn check_unit<T: RealField + Copy>(
-    v: Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    let v = check_vector(v, field, index)?;
-    let norm = v.norm();
-    if (norm - T::one()).abs() <= constant(AXIS_TOLERANCE) {
-        Ok(v / norm)
-    } else {
-        Err(ModelError::new(field, index, Problem::NotUnit))
-    }
 }
 
 /// `v` made exactly perpendicular to the unit `axis` and normalized, if it was within
@@ -421,12 +402,7 @@ impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
     /// # Errors
     /// A coefficient that is negative or not finite, naming the segment.
     pub fn per_segment(cd: [[T; 2]; S], cm: [[T; 2]; S]) -> Result<Self, ModelError> {
-        for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
-            for (&d, &m) in cd.iter().zip(cm.iter()) {
-                check_non_negative(d, "segment.cd", Some(index))?;
-                check_non_negative(m, "segment.cm", Some(index))?;
-            }
-        }
+        check_coefficient_table(&cd, &cm, ["segment.cd", "segment.cm"])?;
         Ok(Self { cd, cm })
     }
 }

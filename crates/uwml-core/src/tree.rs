@@ -13,7 +13,7 @@ use core::ops::{Add, AddAssign};
 
 use nalgebra::{Matrix3, SimdBool, SimdRealField, Vector3};
 
-use crate::kinematics::{dot, rotate, rotate_back};
+use crate::kinematics::{axis_angle, dot, rotate, rotate_back};
 use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
 use crate::robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients};
@@ -243,24 +243,6 @@ impl<T: SimdRealField + Copy, const J: usize> Default for RobotData<T, J> {
     }
 }
 
-/// `(sin, cos)` rotation by an angle about a unit axis (Rodrigues).
-#[inline(always)]
-fn axis_angle<T: SimdRealField + Copy>(axis: &Vector3<T>, (s, c): (T, T)) -> Matrix3<T> {
-    let (x, y, z) = (axis.x, axis.y, axis.z);
-    let t = T::one() - c;
-    Matrix3::new(
-        t * x * x + c,
-        t * x * y - s * z,
-        t * x * z + s * y,
-        t * x * y + s * z,
-        t * y * y + c,
-        t * y * z - s * x,
-        t * x * z - s * y,
-        t * y * z + s * x,
-        t * z * z + c,
-    )
-}
-
 impl<T: SimdRealField + Copy> Frame<T> {
     /// The base's own frame.
     fn base(motion: &BaseMotion<T>) -> Self {
@@ -329,6 +311,19 @@ struct Surroundings<T: SimdRealField + Copy> {
     gravity: Vector3<T>,
     current: Vector3<T>,
     current_acceleration: Vector3<T>,
+}
+
+impl<T: SimdRealField + Copy> Surroundings<T> {
+    /// The water and gravity of an evaluation, in the components of the base at `motion`.
+    fn new(water: &Water<T>, motion: &BaseMotion<T>, current: &Current<T>) -> Self {
+        let rotation = motion.rotation();
+        Self {
+            density: water.density(),
+            gravity: rotate_back(rotation, &Vector3::z()) * -water.gravity(),
+            current: rotate_back(rotation, current.velocity()),
+            current_acceleration: rotate_back(rotation, current.acceleration()),
+        }
+    }
 }
 
 /// A segment's drag and added-mass wrenches about the base origin, at coefficients `cd`, `cm`.
@@ -435,15 +430,9 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
 ) {
     let n = robot.joint_count();
     let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
-    let rotation = motion.rotation();
-    let surroundings = Surroundings {
-        density: water.density(),
-        gravity: rotate_back(rotation, &Vector3::z()) * -water.gravity(),
-        current: rotate_back(rotation, current.velocity()),
-        current_acceleration: rotate_back(rotation, current.acceleration()),
-    };
+    let surroundings = Surroundings::new(water, motion, current);
     data.joint_count = n;
-    data.base_rotation = *rotation;
+    data.base_rotation = *motion.rotation();
     // Forward: every link's frame, parents first; each body's own static wrenches.
     let base = Frame::base(motion);
     let per_joint = robot.joint_slots().iter().zip(robot.link_slots()).zip(q.iter().zip(qd).zip(qdd)).take(n);
@@ -612,13 +601,7 @@ pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: 
     robot_hydro(robot, water, Some(&none), motion, current, q, qd, qdd, data);
     let n = robot.joint_count();
     let columns = 2 * robot.segments().len();
-    let rotation = motion.rotation();
-    let surroundings = Surroundings {
-        density: water.density(),
-        gravity: Vector3::zeros(),
-        current: rotate_back(rotation, current.velocity()),
-        current_acceleration: rotate_back(rotation, current.acceleration()),
-    };
+    let surroundings = Surroundings::new(water, motion, current);
     let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
     let nan = T::zero() / T::zero();
     let base = Frame::base(motion);

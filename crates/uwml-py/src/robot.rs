@@ -143,6 +143,51 @@ struct Surroundings<'a> {
     current_acceleration: Rows<'a>,
 }
 
+/// One sample's joint states, in the core's fixed-size arrays.
+struct StateRow {
+    q: [f64; MAX_ROBOT_JOINTS],
+    qd: [f64; MAX_ROBOT_JOINTS],
+    qdd: [f64; MAX_ROBOT_JOINTS],
+}
+
+impl StateRow {
+    fn new() -> Self {
+        Self { q: [0.0; MAX_ROBOT_JOINTS], qd: [0.0; MAX_ROBOT_JOINTS], qdd: [0.0; MAX_ROBOT_JOINTS] }
+    }
+
+    /// Sample `sample`'s rows of the batch `states` (`n` joints).
+    fn load(&mut self, states: [&[f64]; 3], sample: usize, n: usize) {
+        for (values, out) in states.into_iter().zip([&mut self.q, &mut self.qd, &mut self.qdd]) {
+            for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
+                *slot = *x;
+            }
+        }
+    }
+}
+
+/// The joints' loss states at the last sample's pressure and temperature, made again only when
+/// those change.
+struct LossStates {
+    conditions: (f64, f64),
+    states: [Option<LossState<f64>>; MAX_ROBOT_JOINTS],
+}
+
+impl LossStates {
+    fn new() -> Self {
+        Self { conditions: (f64::NAN, f64::NAN), states: [None; MAX_ROBOT_JOINTS] }
+    }
+
+    fn at(&mut self, losses: &Losses<'_>, sample: usize) -> &[Option<LossState<f64>>; MAX_ROBOT_JOINTS] {
+        let at = |values: &[f64]| values.get(sample).copied().unwrap_or(f64::NAN);
+        let here = (at(losses.pressure), at(losses.temperature));
+        if here != self.conditions {
+            self.conditions = here;
+            self.states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
+        }
+        &self.states
+    }
+}
+
 /// An input error of one sample, raised as a ValueError once the GIL is back.
 struct SampleError {
     sample: usize,
@@ -260,24 +305,16 @@ fn hydro_range(
         loss_current,
     ] = out;
     let bodies = (n + 1) * 6;
-    let mut conditions = (f64::NAN, f64::NAN);
-    let mut loss_states: [Option<LossState<f64>>; MAX_ROBOT_JOINTS] = [None; MAX_ROBOT_JOINTS];
-    let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+    let mut loss_states = LossStates::new();
+    let mut row = StateRow::new();
     let fixed = if surroundings.constant() { Some(surroundings.at(0)?) } else { None };
     for (k, sample) in range.clone().enumerate() {
-        let rows = |values: &[f64], out: &mut [f64; MAX_ROBOT_JOINTS]| {
-            for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
-                *slot = *x;
-            }
-        };
-        rows(q, &mut qs);
-        rows(qd, &mut qds);
-        rows(qdd, &mut qdds);
+        row.load([q, qd, qdd], sample, n);
         let (motion, current) = match fixed {
             Some(both) => both,
             None => surroundings.at(sample)?,
         };
-        robot_hydro(robot, water, coefficients, &motion, &current, &qs, &qds, &qdds, data);
+        robot_hydro(robot, water, coefficients, &motion, &current, &row.q, &row.qd, &row.qdd, data);
         let joint_row = |out: &mut [f64], value: &dyn Fn(&uwml_core::JointForces<f64>) -> f64| {
             if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
                 for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
@@ -307,13 +344,7 @@ fn hydro_range(
             }
         }
         if let Some(losses) = losses {
-            let at = |values: &[f64]| values.get(sample).copied().unwrap_or(f64::NAN);
-            let here = (at(losses.pressure), at(losses.temperature));
-            if here != conditions {
-                conditions = here;
-                loss_states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
-            }
-            let (v, f, c) = loss_torques(&loss_states, &qds.into());
+            let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());
             for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
                 if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
                     for (slot, x) in row.iter_mut().zip(values.iter()) {
@@ -341,20 +372,16 @@ fn regressor_range(
 ) -> Result<(), SampleError> {
     let n = robot.joint_count();
     let width = (6 + n) * 2 * robot.segments().len();
-    let (mut qs, mut qds, mut qdds) = ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+    let mut row = StateRow::new();
     for (k, sample) in range.clone().enumerate() {
-        for (values, out) in [(q, &mut qs), (qd, &mut qds), (qdd, &mut qdds)] {
-            for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
-                *slot = *x;
-            }
-        }
+        row.load([q, qd, qdd], sample, n);
         let (motion, current) = surroundings.at(sample)?;
         let (Some(drag), Some(added_mass)) =
             (drag.get_mut(k * width..(k + 1) * width), added_mass.get_mut(k * width..(k + 1) * width))
         else {
             continue;
         };
-        robot_hydro_regressors(robot, water, &motion, &current, &qs, &qds, &qdds, data, drag, added_mass);
+        robot_hydro_regressors(robot, water, &motion, &current, &row.q, &row.qd, &row.qdd, data, drag, added_mass);
         for (out, value) in [
             (
                 &mut *buoyancy,
@@ -641,38 +668,26 @@ impl PyRobot {
         let mut work = self.jacobian_data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let work = work.get_or_insert_with(|| Box::new(RobotJacobianData::new(robot)));
         let result = py.detach(|| -> Result<(), SampleError> {
-            let (mut qs, mut qds, mut qdds) =
-                ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
-            let mut conditions = (f64::NAN, f64::NAN);
-            let mut loss_states: [Option<LossState<f64>>; MAX_ROBOT_JOINTS] = [None; MAX_ROBOT_JOINTS];
+            let mut row = StateRow::new();
+            let mut loss_states = LossStates::new();
             let rows = value
                 .chunks_exact_mut(m)
                 .zip(d_q.chunks_exact_mut(m * n))
                 .zip(d_velocity.chunks_exact_mut(m * m).zip(matrix.chunks_exact_mut(m * m)));
             for (sample, ((value, d_q), (d_velocity, added_mass_matrix))) in rows.enumerate() {
-                for (values, out) in [(states[0], &mut qs), (states[1], &mut qds), (states[2], &mut qdds)] {
-                    for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
-                        *slot = *x;
-                    }
-                }
-                let at = |values: &[f64]| values.get(sample).copied().unwrap_or(f64::NAN);
-                let here = (at(losses.pressure), at(losses.temperature));
-                if here != conditions {
-                    conditions = here;
-                    loss_states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
-                }
+                row.load(states, sample, n);
                 let (motion, current) = surroundings.at(sample)?;
                 let out = RobotJacobians { value, d_q, d_velocity, added_mass_matrix };
                 robot_jacobians(
                     robot,
                     &water,
                     coefficients.as_ref(),
-                    &loss_states,
+                    loss_states.at(&losses, sample),
                     &motion,
                     &current,
-                    &qs,
-                    &qds,
-                    &qdds,
+                    &row.q,
+                    &row.qd,
+                    &row.qdd,
                     work,
                     out,
                 );
