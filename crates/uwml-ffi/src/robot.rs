@@ -254,24 +254,62 @@ unsafe fn block_mut<'a, T: RobotPrecision>(robot: *mut T::Robot) -> Result<&'a m
     if tag != T::TAG {
         return Err(Failure::new(UWML_ERR_UNINITIALIZED, "robot", None));
     }
-    // SAFETY: the tag is only ever written by `store`, right after a valid `Block<T>` was written
+    // SAFETY: the tag is only ever written by `finish`, right after a valid `Block<T>` was written
     // at `storage_mut(robot)`, which is in bounds and aligned (compile-time assertions in the
     // crate root); the caller grants exclusive access during `'a` (contract).
     Ok(unsafe { &mut *storage_mut::<T>(robot) })
 }
 
-/// Writes a robot, a fresh workspace and the tag, field by field (no whole block on the stack).
+/// Validates a robot and writes it into the block's robot field if valid (nothing otherwise).
+/// Not inlined, so that the core's robot under construction and its `Result` (each as large as
+/// the robot) live in this frame, not in the caller's beside the converted inputs: on a
+/// Cortex-M this halves the stack that construction needs.
 ///
 /// # Safety
-/// `out` is not null and valid for writes of a `T::Robot`.
-unsafe fn store<T: RobotPrecision>(out: *mut T::Robot, robot: &Robot<T, J, S>, water: Water<T>) {
+/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+#[inline(never)]
+unsafe fn write_robot<T: RobotPrecision>(
+    block: *mut Block<T>,
+    joints: &[TreeJoint<T>],
+    links: &[RigidBody<T>],
+    base: RigidBody<T>,
+    segments: &[RobotSegment<T>],
+) -> Result<(), ModelError> {
+    let result = Robot::new(joints, links, base, segments);
+    let robot = result.as_ref().map_err(|e| *e)?;
+    // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
+    // computed without reading the block.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    Ok(())
+}
+
+/// The paper's leg into the block's robot field; as [`write_robot`].
+///
+/// # Safety
+/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+#[inline(never)]
+unsafe fn write_paper<T: RobotPrecision>(block: *mut Block<T>) -> Result<(), ModelError> {
+    let result = Robot::from_chain(&Chain::<T, 3>::paper(), &Coefficients::default());
+    let robot = result.as_ref().map_err(|e| *e)?;
+    // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
+    // computed without reading the block.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    Ok(())
+}
+
+/// Completes a block whose robot field was just written: the water, a fresh workspace, and the
+/// tag, last, so that a block carries the tag only once its contents are valid. Not inlined: the
+/// workspace built here does not add to the caller's frame.
+///
+/// # Safety
+/// `out` is not null and valid for writes of a `T::Robot` whose robot field holds a valid robot.
+#[inline(never)]
+unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
     let block = storage_mut::<T>(out);
     // SAFETY: `block` is in bounds and aligned for `Block<T>` (compile-time assertions in the
     // crate root) and `out` is valid for writes (contract); the field places are computed without
-    // reading or referencing the (possibly uninitialized) block. The tag goes last, so a block
-    // carries the tag only once its contents are valid.
+    // reading or referencing the (possibly uninitialized) block.
     unsafe {
-        (&raw mut (*block).robot).write(*robot);
         (&raw mut (*block).water).write(water);
         (&raw mut (*block).data).write(RobotData::new());
         out.cast::<u64>().write(T::TAG);
@@ -302,9 +340,10 @@ fn count(n: u32, capacity: usize, field: &'static str) -> Result<usize, Failure>
 /// `out` is null or valid for writes of a `T::Robot`.
 pub(crate) unsafe fn paper<T: RobotPrecision>(out: *mut T::Robot) -> Result<(), Failure> {
     let out = non_null(out, "robot")?;
-    let robot = Robot::from_chain(&Chain::<T, 3>::paper(), &Coefficients::default())?;
-    // SAFETY: not null, valid for writes (contract).
-    unsafe { store::<T>(out, &robot, Water::default()) };
+    // SAFETY: not null, valid for writes (contract); in bounds and aligned (crate root).
+    unsafe { write_paper::<T>(storage_mut::<T>(out)) }?;
+    // SAFETY: as above, and the robot field was just written.
+    unsafe { finish::<T>(out, Water::default()) };
     Ok(())
 }
 
@@ -351,17 +390,23 @@ pub(crate) unsafe fn new<T: RobotPrecision>(out: *mut T::Robot, params: &Params<
     for (index, (slot, segment)) in pieces.iter_mut().zip(segments).enumerate() {
         *slot = T::segment(segment, index)?;
     }
-    let used = |n: usize| ..n;
-    let robot = Robot::new(
-        tree.get(used(n_joints)).unwrap_or(&[]),
-        bodies.get(used(n_joints)).unwrap_or(&[]),
-        base,
-        pieces.get(used(n_segments)).unwrap_or(&[]),
-    )
-    .map_err(construction_failure)?;
+    // The water first: once the robot is written, nothing may fail.
     let water = Water::new(params.density, params.gravity)?;
-    // SAFETY: not null, valid for writes (contract).
-    unsafe { store::<T>(out, &robot, water) };
+    let used = |n: usize| ..n;
+    // SAFETY: not null, valid for writes (contract); in bounds and aligned (crate root). On
+    // error nothing is written.
+    unsafe {
+        write_robot::<T>(
+            storage_mut::<T>(out),
+            tree.get(used(n_joints)).unwrap_or(&[]),
+            bodies.get(used(n_joints)).unwrap_or(&[]),
+            base,
+            pieces.get(used(n_segments)).unwrap_or(&[]),
+        )
+    }
+    .map_err(construction_failure)?;
+    // SAFETY: as above, and the robot field was just written.
+    unsafe { finish::<T>(out, water) };
     Ok(())
 }
 
