@@ -5,14 +5,14 @@
 use core::ffi::CStr;
 use core::ptr::{null, null_mut};
 
-use uwml_core::{Chain, Coefficients, Water};
+use uwml_core::Water;
 use uwml_ffi::*;
 
 mod robots;
 use robots::{
     ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_motion, core_current,
-    core_hydro, core_motion, core_robot, current32, forces32, forces64, motion32, paper_motion, params32, wrench32,
-    wrench64,
+    core_hydro, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion, params32,
+    wrench32, wrench64,
 };
 
 fn blank_error() -> UwmlError {
@@ -294,51 +294,6 @@ fn a_base_wrench_pointer_may_be_null_and_a_copy_is_a_robot() {
     assert_eq!(forces_bits64(&again.forces), forces_bits64(&with.forces));
 }
 
-/// The paper's leg as C would give it: 3 revolute joints in a chain, rectangular segments with
-/// Cd 2.2, Cm 0.5, no base body.
-fn paper_params() -> Params {
-    let chain = Chain::<f64, 3>::paper();
-    let coefficients = Coefficients::<f64, 3>::default();
-    let joints = chain
-        .joints()
-        .iter()
-        .enumerate()
-        .map(|(i, j)| UwmlTreeJointF64 {
-            parent: i32::try_from(i).unwrap() - 1,
-            kind: UWML_JOINT_REVOLUTE,
-            origin: j.origin.into(),
-            axis: j.axis.into(),
-        })
-        .collect();
-    let links = chain.links().iter().map(|l| UwmlBodyF64 {
-        mass: l.mass,
-        com: l.com.into(),
-        volume: l.volume,
-        cob: l.cob.into(),
-    });
-    let segments = chain
-        .links()
-        .iter()
-        .enumerate()
-        .filter_map(|(i, l)| {
-            l.segment.map(|s| UwmlRobotSegmentF64 {
-                owner: i32::try_from(i).unwrap(),
-                section: UWML_SECTION_RECTANGULAR,
-                start: s.start.into(),
-                axis: s.axis.into(),
-                length: s.length,
-                area: s.area,
-                normals: s.normals.map(Into::into),
-                widths: s.widths,
-                cd: coefficients.cd()[i],
-                cm: coefficients.cm()[i],
-                ..Default::default()
-            })
-        })
-        .collect();
-    Params { joints, links: links.collect(), base: None, segments }
-}
-
 #[test]
 fn the_paper_robot_is_the_core_and_the_leg() {
     let mut preset = zeroed64();
@@ -347,7 +302,7 @@ fn the_paper_robot_is_the_core_and_the_leg() {
     let mut preset32 = zeroed32();
     // SAFETY: a live local.
     assert_eq!(unsafe { uwml_robot_paper_f32(&mut *preset32) }, UWML_OK);
-    let params = paper_params();
+    let params = paper();
     let mut robot = zeroed64();
     let (code, _) = new64(&mut robot, &params, 1000.0);
     assert_eq!(code, UWML_OK);

@@ -3,12 +3,12 @@
 //! and rectangular segments) on a vehicle with a body and a circular hull, moving in a current;
 //! and the paper's leg. Shared by `robot_api.rs` (the C API against the core, bit for bit) and
 //! `robot_expected.rs` (the core's values for `tests/c/robot.c`).
-#![allow(dead_code, clippy::indexing_slicing)]
+#![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    BaseMotion, Current, JointKind, Owner, RigidBody, Robot, RobotData, RobotSegment, Section, TreeJoint, Water,
-    robot_hydro,
+    BaseMotion, Chain, Coefficients, Current, JointKind, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
+    TreeJoint, Water, robot_hydro,
 };
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR,
@@ -183,6 +183,51 @@ pub fn arm_motion() -> UwmlBaseMotionF64 {
 
 /// A current across the vehicle's path, speeding up.
 pub const ARM_CURRENT: UwmlCurrentF64 = UwmlCurrentF64 { velocity: [0.3, -0.4, 0.05], acceleration: [0.02, 0.01, 0.0] };
+
+/// The paper's leg as C would give it (what `uwml_robot_paper_*` holds): 3 revolute joints in a chain, rectangular segments with
+/// Cd 2.2, Cm 0.5, no base body.
+pub fn paper() -> Params {
+    let chain = Chain::<f64, 3>::paper();
+    let coefficients = Coefficients::<f64, 3>::default();
+    let joints = chain
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, j)| UwmlTreeJointF64 {
+            parent: i32::try_from(i).unwrap() - 1,
+            kind: UWML_JOINT_REVOLUTE,
+            origin: j.origin.into(),
+            axis: j.axis.into(),
+        })
+        .collect();
+    let links = chain.links().iter().map(|l| UwmlBodyF64 {
+        mass: l.mass,
+        com: l.com.into(),
+        volume: l.volume,
+        cob: l.cob.into(),
+    });
+    let segments = chain
+        .links()
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| {
+            l.segment.map(|s| UwmlRobotSegmentF64 {
+                owner: i32::try_from(i).unwrap(),
+                section: UWML_SECTION_RECTANGULAR,
+                start: s.start.into(),
+                axis: s.axis.into(),
+                length: s.length,
+                area: s.area,
+                normals: s.normals.map(Into::into),
+                widths: s.widths,
+                cd: coefficients.cd()[i],
+                cm: coefficients.cm()[i],
+                ..Default::default()
+            })
+        })
+        .collect();
+    Params { joints, links: links.collect(), base: None, segments }
+}
 
 /// MODEL.md section 5's state of the paper's leg.
 pub const PAPER_STATE: [[f64; 3]; 3] = [[0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]];
