@@ -205,3 +205,14 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
     assert_eq!(size_of::<UwmlRobotF32>(), 8776);
 }
 
+/// The C example of docs/firmware.md is the one `tests/c/robot.c` compiles and runs.
+#[test]
+fn firmware_doc_c_robot_example_is_tested() {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let source = std::fs::read_to_string(crate_dir.join("tests/c/robot.c")).expect("tests/c/robot.c");
+    let (begin, end) = ("/* --- docs/firmware.md: robot */\n", "/* --- end */");
+    let start = source.find(begin).expect("the example's start marker") + begin.len();
+    let example = &source[start..start + source[start..].find(end).expect("the example's end marker")];
+    let doc = std::fs::read_to_string(crate_dir.join("../../docs/firmware.md")).expect("docs/firmware.md");
+    assert!(doc.contains(example), "docs/firmware.md does not show tests/c/robot.c's example verbatim:\n{example}");
+}
