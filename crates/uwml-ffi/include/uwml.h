@@ -1,34 +1,48 @@
 /*
  * uwml.h: the C ABI of uwml-core (libuwml_ffi.a), for controller firmware.
  *
- * Hydrodynamic (drag, added mass, buoyancy) and joint-loss (oil drag, seal) torques of a
- * 3-joint underwater leg, the paper's UWML or one of your own. The API is fixed to N = 3 joints
- * (UWML_LEG3_JOINTS), in double (_f64) and float (_f32). See docs/firmware.md.
+ * Two APIs, each in double (_f64) and float (_f32). See docs/firmware.md.
+ *   uwml_leg3_*: hydrodynamic (drag, added mass, buoyancy) and joint-loss (oil drag, seal)
+ *     torques of a 3-joint underwater leg (UWML_LEG3_JOINTS), the paper's UWML or your own.
+ *   uwml_robot_*: hydrodynamic forces on every joint and the wrench on the base of any robot up
+ *     to UWML_ROBOT_MAX_JOINTS (16) revolute or prismatic joints in a tree and
+ *     UWML_ROBOT_MAX_SEGMENTS (32) rectangular or circular segments, on a base that may move
+ *     and carry a body of its own, in a current.
  *
  * Memory: no heap, no globals, no locks. All structs are plain data that the caller allocates,
- * statically or on the stack. A leg is opaque and fixed-size:
- *   sizeof(UwmlLeg3F64) = 8 * (1 + UWML_LEG3_F64_WORDS) = 3208 bytes, 8-aligned,
- *   sizeof(UwmlLeg3F32) = 8 * (1 + UWML_LEG3_F32_WORDS) = 1608 bytes, 8-aligned.
- * Functions are reentrant: different legs may be used from different threads; one leg may be
- * read (evaluated) concurrently but not while a setter changes it.
+ * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
+ *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  3208 bytes,
+ *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  1608 bytes,
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 16328 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) =  8776 bytes.
+ * Functions are reentrant: different legs and robots may be used from different threads; one
+ * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
+ * evaluation's workspace, so it is evaluated by one thread at a time.
  *
- * Call sequence:
+ * Call sequence, leg:
  *   1. uwml_leg3_paper_f64(&leg) or uwml_leg3_new_f64(joints, links, &leg, &err);
  *   2. optionally uwml_leg3_set_water_f64, uwml_leg3_set_coefficients_f64 (or _per_direction),
  *      uwml_leg3_set_losses_f64 per joint (start from uwml_leg3_default_losses_f64);
  *   3. when depth or oil temperature change: uwml_leg3_set_conditions_f64;
  *   4. every control period: uwml_leg3_environment_f64 (or uwml_leg3_hydro_f64).
+ * Call sequence, robot:
+ *   1. uwml_robot_paper_f64(&robot) or uwml_robot_new_f64(&robot, joints, n_joints, links,
+ *      &base, segments, n_segments, density, gravity, &err), once;
+ *   2. every control period: uwml_robot_hydro_f64(&robot, q, qd, qdd, n, &motion, &current,
+ *      forces, &wrench, &err).
  *
  * Errors: every function returns UWML_OK (0) or a UWML_ERR_* code; those with a trailing
- * `UwmlError *error` (may be NULL) also fill it with the code, the joint or link index (-1 if
- * none) and the offending field. Every pointer is checked for NULL (UWML_ERR_NULL_POINTER) and
- * never dereferenced then. On error nothing is written except `*error`, with one exception:
- * the evaluation functions given a NaN or infinite state still write NaN torques and return
- * UWML_ERR_NON_FINITE.
+ * `UwmlError *error` (may be NULL) also fill it with the code, the joint, link or segment index
+ * (-1 if none) and the offending field. Every pointer is checked for NULL and never
+ * dereferenced then: UWML_ERR_NULL_POINTER, unless documented as optional (a robot's base body,
+ * base motion, current and base wrench; arrays of zero elements). On error nothing is written
+ * except `*error`, with one exception: the evaluation functions given a NaN or infinite state
+ * still write NaN torques and return UWML_ERR_NON_FINITE.
  *
- * Units SI (m, kg, s, rad, N·m, Pa, A), temperatures in °C. Sign: every torque is exerted by
- * the environment on the joint, in the joint's positive direction (drag and losses oppose
- * motion); the motor must supply -total on top of its land torque.
+ * Units SI (m, kg, s, rad, N·m, Pa, A), temperatures in °C. Sign: every torque (or force, for
+ * a prismatic joint) is exerted by the environment on the joint, in the joint's positive
+ * direction (drag and losses oppose motion); the motor must supply -total on top of its land
+ * torque.
  */
 
 #ifndef UWML_H
@@ -90,7 +104,8 @@
 #define UWML_ERR_INDEX_OUT_OF_RANGE 9
 
 /**
- * The leg was not written by `uwml_leg3_paper_*` or `uwml_leg3_new_*` (e.g. a zeroed static).
+ * The leg or robot was not written by `uwml_leg3_paper_*`/`uwml_leg3_new_*` or
+ * `uwml_robot_paper_*`/`uwml_robot_new_*` (e.g. a zeroed static).
  */
 #define UWML_ERR_UNINITIALIZED 10
 
@@ -113,6 +128,53 @@
  * Opaque words of `UwmlLeg3F32`: `sizeof(UwmlLeg3F32) = 8 * (1 + UWML_LEG3_F32_WORDS)` bytes.
  */
 #define UWML_LEG3_F32_WORDS 200
+
+/**
+ * The most joints (and links) a robot of the `uwml_robot_*` API may have.
+ */
+#define UWML_ROBOT_MAX_JOINTS 16
+
+/**
+ * The most segments a robot of the `uwml_robot_*` API may have (on all bodies together).
+ */
+#define UWML_ROBOT_MAX_SEGMENTS 32
+
+/**
+ * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
+ */
+#define UWML_ROBOT_F64_WORDS 2040
+
+/**
+ * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
+ */
+#define UWML_ROBOT_F32_WORDS 1096
+
+/**
+ * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
+ */
+#define UWML_BASE -1
+
+/**
+ * `UwmlTreeJoint*.kind`: turns its link about the axis by q [rad]; the force is a torque [N·m].
+ */
+#define UWML_JOINT_REVOLUTE 0
+
+/**
+ * `UwmlTreeJoint*.kind`: slides its link along the axis by q [m]; the force is a force [N].
+ */
+#define UWML_JOINT_PRISMATIC 1
+
+/**
+ * `UwmlRobotSegment*.section`: drag and added mass per principal normal (`normals`, `widths`,
+ * `cd[k]`, `cm[k]`): the paper's model.
+ */
+#define UWML_SECTION_RECTANGULAR 0
+
+/**
+ * `UwmlRobotSegment*.section`: cross-flow drag and added mass on the whole normal motion
+ * (`diameter`, `cd[0]`, `cm[0]`).
+ */
+#define UWML_SECTION_CIRCULAR 1
 
 /**
  * A leg (chain, water, coefficients, joint losses) in f64, for C to allocate (statically:
@@ -215,8 +277,8 @@ typedef struct UwmlError {
      */
     int32_t code;
     /**
-     * The joint or link (0-based) the field belongs to, or the offending element of a joint
-     * state or `joint_index` itself; -1 if none.
+     * The joint, link or segment (0-based) the field belongs to, or the offending element of a
+     * joint state or `joint_index` itself; -1 if none.
      */
     int32_t index;
     /**
@@ -651,6 +713,420 @@ typedef struct UwmlEnvironment3F32 {
     float total[3];
 } UwmlEnvironment3F32;
 
+/**
+ * A robot (tree, bodies, segments, water) and its evaluation workspace, in f64, for C to
+ * allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
+ * `uwml_robot_paper_f64` or `uwml_robot_new_f64`; `uwml_robot_hydro_f64` uses its workspace.
+ * It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
+ * did not write (`UWML_ERR_UNINITIALIZED`).
+ */
+typedef struct UwmlRobotF64 {
+    /**
+     * A tag saying that the library wrote this robot. Do not touch.
+     */
+    uint64_t opaque_tag;
+    /**
+     * The robot. Do not touch.
+     */
+    uint64_t opaque[UWML_ROBOT_F64_WORDS];
+} UwmlRobotF64;
+
+/**
+ * A joint of a robot: joint `i` moves link `i`. Every frame is parallel to the base frame when
+ * all joint positions are zero (URDF without fixed rotations).
+ */
+typedef struct UwmlTreeJointF64 {
+    /**
+     * The parent: an earlier link (0 to i - 1), or `UWML_BASE` (-1).
+     */
+    int32_t parent;
+    /**
+     * `UWML_JOINT_REVOLUTE` (0) or `UWML_JOINT_PRISMATIC` (1).
+     */
+    int32_t kind;
+    /**
+     * Position of the joint in the parent's frame (the parent link's joint, or the base
+     * origin) [m].
+     */
+    double origin[3];
+    /**
+     * Unit axis in the parent's frame (norm 1 within 1e-6; re-normalized).
+     */
+    double axis[3];
+} UwmlTreeJointF64;
+
+/**
+ * The bulk of a body (a link or the base), in its own frame (whose origin is its joint, or the
+ * base origin).
+ */
+typedef struct UwmlBodyF64 {
+    /**
+     * Mass [kg], zero or positive.
+     */
+    double mass;
+    /**
+     * Centre of mass [m].
+     */
+    double com[3];
+    /**
+     * Displaced volume [m³], zero or positive.
+     */
+    double volume;
+    /**
+     * Centre of buoyancy [m].
+     */
+    double cob[3];
+} UwmlBodyF64;
+
+/**
+ * A straight piece of a body that meets the water (strip theory), in its body's frame: the
+ * slice at arc length s in [0, length] lies at `start + s axis`.
+ */
+typedef struct UwmlRobotSegmentF64 {
+    /**
+     * The body: a link (0 to n_joints - 1), or `UWML_BASE` (-1).
+     */
+    int32_t owner;
+    /**
+     * `UWML_SECTION_RECTANGULAR` (0) or `UWML_SECTION_CIRCULAR` (1).
+     */
+    int32_t section;
+    /**
+     * Start point [m].
+     */
+    double start[3];
+    /**
+     * Unit direction.
+     */
+    double axis[3];
+    /**
+     * Length [m], positive.
+     */
+    double length;
+    /**
+     * Cross-section area for added mass [m²], positive.
+     */
+    double area;
+    /**
+     * Rectangular only: the two principal normal directions, unit, perpendicular to `axis`
+     * and to each other (within 1e-6; made exact).
+     */
+    double normals[2][3];
+    /**
+     * Rectangular only: frontal width for flow along each normal [m], positive.
+     */
+    double widths[2];
+    /**
+     * Circular only: diameter [m], positive.
+     */
+    double diameter;
+    /**
+     * Drag coefficients per normal, zero or positive; circular: one, `cd[0] == cd[1]`.
+     */
+    double cd[2];
+    /**
+     * Added-mass coefficients per normal, zero or positive; circular: `cm[0] == cm[1]`.
+     */
+    double cm[2];
+} UwmlRobotSegmentF64;
+
+/**
+ * The base's orientation and motion at one instant (MODEL.md 9.2).
+ */
+typedef struct UwmlBaseMotionF64 {
+    /**
+     * World from base, a unit quaternion `(w, x, y, z)`, scalar first (norm 1 within 1e-6;
+     * re-normalized). The world's z axis points up.
+     */
+    double orientation[4];
+    /**
+     * Velocity of the base origin v [m/s], base components.
+     */
+    double velocity[3];
+    /**
+     * Angular velocity ω [rad/s], base components.
+     */
+    double angular_velocity[3];
+    /**
+     * dv/dt of the base components [m/s²] (Fossen's ν̇: the classical acceleration of the base
+     * origin is `acceleration + angular_velocity × velocity`).
+     */
+    double acceleration[3];
+    /**
+     * dω/dt [rad/s²], base components.
+     */
+    double angular_acceleration[3];
+} UwmlBaseMotionF64;
+
+/**
+ * The water's uniform velocity and acceleration, world components.
+ */
+typedef struct UwmlCurrentF64 {
+    /**
+     * Velocity [m/s].
+     */
+    double velocity[3];
+    /**
+     * Acceleration [m/s²].
+     */
+    double acceleration[3];
+} UwmlCurrentF64;
+
+/**
+ * The environment's generalized force on one joint, in the joint's positive direction
+ * [N·m for a revolute joint, N for a prismatic one].
+ */
+typedef struct UwmlJointForcesF64 {
+    /**
+     * Drag (relative to the current).
+     */
+    double drag;
+    /**
+     * Added mass (relative to the current's acceleration).
+     */
+    double added_mass;
+    /**
+     * Buoyancy, with the Froude-Krylov force of an accelerating current.
+     */
+    double buoyancy;
+    /**
+     * Gravity of the links (not part of `total`).
+     */
+    double gravity;
+    /**
+     * `drag + added_mass + buoyancy`.
+     */
+    double total;
+} UwmlJointForcesF64;
+
+/**
+ * The wrench of everything the environment exerts on the whole robot (base body included):
+ * each component `{Fx, Fy, Fz, Mx, My, Mz}`, force [N] and moment about the base origin [N·m],
+ * in base components.
+ */
+typedef struct UwmlBaseWrenchF64 {
+    /**
+     * Drag.
+     */
+    double drag[6];
+    /**
+     * Added mass.
+     */
+    double added_mass[6];
+    /**
+     * Buoyancy and Froude-Krylov.
+     */
+    double buoyancy[6];
+    /**
+     * Gravity (not part of `total`).
+     */
+    double gravity[6];
+    /**
+     * `drag + added_mass + buoyancy`.
+     */
+    double total[6];
+} UwmlBaseWrenchF64;
+
+/**
+ * A robot in f32; as `UwmlRobotF64`.
+ */
+typedef struct UwmlRobotF32 {
+    /**
+     * A tag saying that the library wrote this robot. Do not touch.
+     */
+    uint64_t opaque_tag;
+    /**
+     * The robot. Do not touch.
+     */
+    uint64_t opaque[UWML_ROBOT_F32_WORDS];
+} UwmlRobotF32;
+
+/**
+ * `UwmlTreeJointF64` in f32.
+ */
+typedef struct UwmlTreeJointF32 {
+    /**
+     * The parent: an earlier link, or `UWML_BASE` (-1).
+     */
+    int32_t parent;
+    /**
+     * `UWML_JOINT_REVOLUTE` (0) or `UWML_JOINT_PRISMATIC` (1).
+     */
+    int32_t kind;
+    /**
+     * Position of the joint in the parent's frame [m].
+     */
+    float origin[3];
+    /**
+     * Unit axis in the parent's frame.
+     */
+    float axis[3];
+} UwmlTreeJointF32;
+
+/**
+ * `UwmlBodyF64` in f32.
+ */
+typedef struct UwmlBodyF32 {
+    /**
+     * Mass [kg], zero or positive.
+     */
+    float mass;
+    /**
+     * Centre of mass [m].
+     */
+    float com[3];
+    /**
+     * Displaced volume [m³], zero or positive.
+     */
+    float volume;
+    /**
+     * Centre of buoyancy [m].
+     */
+    float cob[3];
+} UwmlBodyF32;
+
+/**
+ * `UwmlRobotSegmentF64` in f32.
+ */
+typedef struct UwmlRobotSegmentF32 {
+    /**
+     * The body: a link, or `UWML_BASE` (-1).
+     */
+    int32_t owner;
+    /**
+     * `UWML_SECTION_RECTANGULAR` (0) or `UWML_SECTION_CIRCULAR` (1).
+     */
+    int32_t section;
+    /**
+     * Start point [m].
+     */
+    float start[3];
+    /**
+     * Unit direction.
+     */
+    float axis[3];
+    /**
+     * Length [m], positive.
+     */
+    float length;
+    /**
+     * Cross-section area for added mass [m²], positive.
+     */
+    float area;
+    /**
+     * Rectangular only: the two principal normal directions.
+     */
+    float normals[2][3];
+    /**
+     * Rectangular only: frontal width for flow along each normal [m], positive.
+     */
+    float widths[2];
+    /**
+     * Circular only: diameter [m], positive.
+     */
+    float diameter;
+    /**
+     * Drag coefficients per normal; circular: `cd[0] == cd[1]`.
+     */
+    float cd[2];
+    /**
+     * Added-mass coefficients per normal; circular: `cm[0] == cm[1]`.
+     */
+    float cm[2];
+} UwmlRobotSegmentF32;
+
+/**
+ * `UwmlBaseMotionF64` in f32.
+ */
+typedef struct UwmlBaseMotionF32 {
+    /**
+     * World from base, a unit quaternion `(w, x, y, z)`.
+     */
+    float orientation[4];
+    /**
+     * Velocity of the base origin [m/s], base components.
+     */
+    float velocity[3];
+    /**
+     * Angular velocity [rad/s], base components.
+     */
+    float angular_velocity[3];
+    /**
+     * dv/dt of the base components [m/s²].
+     */
+    float acceleration[3];
+    /**
+     * dω/dt [rad/s²], base components.
+     */
+    float angular_acceleration[3];
+} UwmlBaseMotionF32;
+
+/**
+ * `UwmlCurrentF64` in f32.
+ */
+typedef struct UwmlCurrentF32 {
+    /**
+     * Velocity [m/s], world components.
+     */
+    float velocity[3];
+    /**
+     * Acceleration [m/s²], world components.
+     */
+    float acceleration[3];
+} UwmlCurrentF32;
+
+/**
+ * `UwmlJointForcesF64` in f32.
+ */
+typedef struct UwmlJointForcesF32 {
+    /**
+     * Drag.
+     */
+    float drag;
+    /**
+     * Added mass.
+     */
+    float added_mass;
+    /**
+     * Buoyancy and Froude-Krylov.
+     */
+    float buoyancy;
+    /**
+     * Gravity (not part of `total`).
+     */
+    float gravity;
+    /**
+     * `drag + added_mass + buoyancy`.
+     */
+    float total;
+} UwmlJointForcesF32;
+
+/**
+ * `UwmlBaseWrenchF64` in f32.
+ */
+typedef struct UwmlBaseWrenchF32 {
+    /**
+     * Drag.
+     */
+    float drag[6];
+    /**
+     * Added mass.
+     */
+    float added_mass[6];
+    /**
+     * Buoyancy and Froude-Krylov.
+     */
+    float buoyancy[6];
+    /**
+     * Gravity (not part of `total`).
+     */
+    float gravity[6];
+    /**
+     * `drag + added_mass + buoyancy`.
+     */
+    float total[6];
+} UwmlBaseWrenchF32;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -926,6 +1402,114 @@ int32_t uwml_leg3_environment_f32(const struct UwmlLeg3F32 *leg,
                                   const float *qdd,
                                   struct UwmlEnvironment3F32 *out,
                                   struct UwmlError *error);
+
+/**
+ * Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
+ * fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
+ * water (1000 kg/m³, g = 9.81).
+ *
+ * # Safety
+ * `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
+ */
+int32_t uwml_robot_paper_f64(struct UwmlRobotF64 *robot);
+
+/**
+ * Validates a robot and writes it to `*robot`: `n_joints` joints (at most
+ * `UWML_ROBOT_MAX_JOINTS`) and as many links (joint `i` moves link `i`), the base's own body
+ * (`base`, NULL for none), `n_segments` segments of all bodies (at most
+ * `UWML_ROBOT_MAX_SEGMENTS`), in water of `density` [kg/m³] (positive) under `gravity` [m/s²]
+ * (zero or positive). Errors name the field and the joint, link or segment index: e.g.
+ * "joint.parent", "link.volume", "base.mass" (index -1), "segment.diameter",
+ * "n_joints (at most 16)". On error `*robot` is left as it was.
+ *
+ * # Safety
+ * `robot` is NULL or valid for writes of a `UwmlRobotF64`; `joints` and `links` are NULL or
+ * point to `n_joints` elements each (NULL allowed, and not read, when `n_joints` is 0);
+ * `segments` likewise with `n_segments`; `base` is NULL or valid for reads of a `UwmlBodyF64`;
+ * `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ */
+int32_t uwml_robot_new_f64(struct UwmlRobotF64 *robot,
+                           const struct UwmlTreeJointF64 *joints,
+                           uint32_t n_joints,
+                           const struct UwmlBodyF64 *links,
+                           const struct UwmlBodyF64 *base,
+                           const struct UwmlRobotSegmentF64 *segments,
+                           uint32_t n_segments,
+                           double density,
+                           double gravity,
+                           struct UwmlError *error);
+
+/**
+ * Generalized forces on every joint and the wrench on the base of `robot` at joint state `q`,
+ * `qd`, `qdd` (`n` values each, `n` the robot's joint count; [rad] or [m] and their
+ * derivatives), base motion `*motion` (NULL: a fixed, upright base) and current `*current`
+ * (NULL: still water). Writes `n` `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench`
+ * is not NULL, the base wrench.
+ *
+ * The motion and the current are validated on every call: an error ("base.orientation" not a
+ * unit quaternion, "current.velocity" not finite, ...) writes nothing. A non-finite joint state
+ * writes NaN forces and returns `UWML_ERR_NON_FINITE` (field "q", "qd" or "qdd", index the
+ * element).
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call (it holds the evaluation's workspace); `q`, `qd`, `qdd` are NULL or point to
+ * `n` values; `joint_forces` is NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and
+ * these allowed when `n` is 0); `motion`, `current` and `base_wrench` are NULL or valid for one
+ * element; `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ */
+int32_t uwml_robot_hydro_f64(struct UwmlRobotF64 *robot,
+                             const double *q,
+                             const double *qd,
+                             const double *qdd,
+                             uint32_t n,
+                             const struct UwmlBaseMotionF64 *motion,
+                             const struct UwmlCurrentF64 *current,
+                             struct UwmlJointForcesF64 *joint_forces,
+                             struct UwmlBaseWrenchF64 *base_wrench,
+                             struct UwmlError *error);
+
+/**
+ * `uwml_robot_paper_f64` in f32.
+ *
+ * # Safety
+ * `robot` is NULL or valid for writes of a `UwmlRobotF32`.
+ */
+int32_t uwml_robot_paper_f32(struct UwmlRobotF32 *robot);
+
+/**
+ * `uwml_robot_new_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_new_f64`, with the f32 types.
+ */
+int32_t uwml_robot_new_f32(struct UwmlRobotF32 *robot,
+                           const struct UwmlTreeJointF32 *joints,
+                           uint32_t n_joints,
+                           const struct UwmlBodyF32 *links,
+                           const struct UwmlBodyF32 *base,
+                           const struct UwmlRobotSegmentF32 *segments,
+                           uint32_t n_segments,
+                           float density,
+                           float gravity,
+                           struct UwmlError *error);
+
+/**
+ * `uwml_robot_hydro_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_hydro_f64`, with the f32 types.
+ */
+int32_t uwml_robot_hydro_f32(struct UwmlRobotF32 *robot,
+                             const float *q,
+                             const float *qd,
+                             const float *qdd,
+                             uint32_t n,
+                             const struct UwmlBaseMotionF32 *motion,
+                             const struct UwmlCurrentF32 *current,
+                             struct UwmlJointForcesF32 *joint_forces,
+                             struct UwmlBaseWrenchF32 *base_wrench,
+                             struct UwmlError *error);
 
 #ifdef __cplusplus
 }  // extern "C"

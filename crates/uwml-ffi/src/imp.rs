@@ -58,11 +58,11 @@ pub(crate) struct Failure {
 }
 
 impl Failure {
-    const fn new(code: i32, field: &'static str, index: Option<usize>) -> Self {
+    pub(crate) const fn new(code: i32, field: &'static str, index: Option<usize>) -> Self {
         Self { code, index, field }
     }
 
-    const fn null(field: &'static str) -> Self {
+    pub(crate) const fn null(field: &'static str) -> Self {
         Self::new(UWML_ERR_NULL_POINTER, field, None)
     }
 
@@ -351,13 +351,13 @@ unsafe fn read_array<P: Copy, const K: usize>(p: *const P, name: &'static str) -
 ///
 /// # Safety
 /// `p` is null or valid for reads of a `P`.
-unsafe fn read_one<P: Copy>(p: *const P, name: &'static str) -> Result<P, Failure> {
+pub(crate) unsafe fn read_one<P: Copy>(p: *const P, name: &'static str) -> Result<P, Failure> {
     // SAFETY: forwarded contract, with K = 1.
     let [value] = unsafe { read_array::<P, 1>(p, name) }?;
     Ok(value)
 }
 
-fn non_null<P>(p: *mut P, name: &'static str) -> Result<*mut P, Failure> {
+pub(crate) fn non_null<P>(p: *mut P, name: &'static str) -> Result<*mut P, Failure> {
     if p.is_null() { Err(Failure::null(name)) } else { Ok(p) }
 }
 

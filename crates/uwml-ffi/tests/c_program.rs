@@ -1,6 +1,9 @@
-//! Compiles `tests/c/paper_leg.c` against `include/uwml.h` and the static library that cargo
-//! built for this test run, runs it (reference torques, losses, error paths), and checks that
-//! C sees every struct with the size, alignment and field offsets that Rust gives it.
+//! Compiles `tests/c/paper_leg.c` (the leg API: reference torques, losses, error paths) and
+//! `tests/c/robot.c` (the robot API: an arm on a moving vehicle and the paper's leg against the
+//! core's values in `tests/c/robot_expected.h`, error paths, the example of docs/firmware.md)
+//! against `include/uwml.h` and the static library that cargo built for this test run, runs
+//! them, and checks that C sees every struct with the size, alignment and field offsets that
+//! Rust gives it.
 //!
 //! The C compiler is `$CC`, else `cc`.
 #![allow(missing_docs, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
@@ -59,14 +62,15 @@ fn run(command: &mut Command) -> String {
     stdout
 }
 
-fn compile_and_run() -> String {
+/// Compiles `tests/c/<name>.c` against the header and the library, runs it, returns its output.
+fn compile_and_run(name: &str) -> String {
     let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let exe = Path::new(env!("CARGO_TARGET_TMPDIR")).join("paper_leg");
+    let exe = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let compiler = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
     run(Command::new(compiler)
         .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-I"])
         .arg(crate_dir.join("include"))
-        .arg(crate_dir.join("tests/c/paper_leg.c"))
+        .arg(crate_dir.join(format!("tests/c/{name}.c")))
         .arg(static_library())
         .arg("-lm")
         .arg("-o")
@@ -74,12 +78,10 @@ fn compile_and_run() -> String {
     run(&mut Command::new(&exe))
 }
 
-#[test]
-fn c_program_passes_and_sees_the_rust_layout() {
-    let stdout = compile_and_run();
-    println!("{stdout}");
-    assert!(stdout.lines().any(|line| line == "0 failed"), "no summary line in the C program's output");
+/// The program's `size NAME SIZE ALIGN` and `offset NAME OFFSET` lines.
+type Layouts = (HashMap<String, (usize, usize)>, HashMap<String, usize>);
 
+fn layouts(stdout: &str) -> Layouts {
     let mut sizes = HashMap::new();
     let mut offsets = HashMap::new();
     for line in stdout.lines() {
@@ -95,14 +97,36 @@ fn c_program_passes_and_sees_the_rust_layout() {
             _ => {}
         }
     }
+    (sizes, offsets)
+}
 
-    macro_rules! layouts {
-        ($($t:ident),* $(,)?) => {{
-            let expected: Vec<(&str, (usize, usize))> =
-                vec![$((stringify!($t), (size_of::<$t>(), align_of::<$t>()))),*];
-            expected
-        }};
+/// Runs the program, checks its summary line and that C's layouts are Rust's.
+fn check_program(name: &str, expected: &[(&str, (usize, usize))], expected_offsets: &[(&str, usize)]) -> String {
+    let stdout = compile_and_run(name);
+    println!("{stdout}");
+    assert!(stdout.lines().any(|line| line == "0 failed"), "no summary line in the C program's output");
+    let (sizes, offsets) = layouts(&stdout);
+    assert_eq!(sizes.len(), expected.len(), "the C program prints every struct once");
+    for (name, layout) in expected {
+        assert_eq!(sizes.get(*name), Some(layout), "{name}: (size, alignment) in C vs Rust");
     }
+    assert_eq!(offsets.len(), expected_offsets.len());
+    for (name, offset) in expected_offsets {
+        assert_eq!(offsets.get(*name), Some(offset), "offset of {name} in C vs Rust");
+    }
+    stdout
+}
+
+macro_rules! layouts {
+    ($($t:ident),* $(,)?) => {{
+        let expected: Vec<(&str, (usize, usize))> =
+            vec![$((stringify!($t), (size_of::<$t>(), align_of::<$t>()))),*];
+        expected
+    }};
+}
+
+#[test]
+fn c_program_passes_and_sees_the_rust_layout() {
     let expected = layouts!(
         UwmlError,
         UwmlLeg3F64,
@@ -126,10 +150,6 @@ fn c_program_passes_and_sees_the_rust_layout() {
         UwmlHydro3F32,
         UwmlEnvironment3F32,
     );
-    assert_eq!(sizes.len(), expected.len(), "the C program prints every struct once");
-    for (name, layout) in expected {
-        assert_eq!(sizes.get(name), Some(&layout), "{name}: (size, alignment) in C vs Rust");
-    }
     let expected_offsets = [
         ("UwmlError.field", offset_of!(UwmlError, field)),
         ("UwmlLinkParamsF64.segment", offset_of!(UwmlLinkParamsF64, segment)),
@@ -138,11 +158,61 @@ fn c_program_passes_and_sees_the_rust_layout() {
         ("UwmlLinkParamsF32.has_segment", offset_of!(UwmlLinkParamsF32, has_segment)),
         ("UwmlJointLossParamsF32.has_seal", offset_of!(UwmlJointLossParamsF32, has_seal)),
     ];
-    assert_eq!(offsets.len(), expected_offsets.len());
-    for (name, offset) in expected_offsets {
-        assert_eq!(offsets.get(name), Some(&offset), "offset of {name} in C vs Rust");
-    }
+    check_program("paper_leg", &expected, &expected_offsets);
     // The sizes the header's preamble and docs/firmware.md state.
     assert_eq!(size_of::<UwmlLeg3F64>(), 3208);
     assert_eq!(size_of::<UwmlLeg3F32>(), 1608);
+}
+
+#[test]
+fn c_robot_program_passes_and_sees_the_rust_layout() {
+    let expected = layouts!(
+        UwmlRobotF64,
+        UwmlTreeJointF64,
+        UwmlBodyF64,
+        UwmlRobotSegmentF64,
+        UwmlBaseMotionF64,
+        UwmlCurrentF64,
+        UwmlJointForcesF64,
+        UwmlBaseWrenchF64,
+        UwmlRobotF32,
+        UwmlTreeJointF32,
+        UwmlBodyF32,
+        UwmlRobotSegmentF32,
+        UwmlBaseMotionF32,
+        UwmlCurrentF32,
+        UwmlJointForcesF32,
+        UwmlBaseWrenchF32,
+    );
+    let expected_offsets = [
+        ("UwmlTreeJointF64.origin", offset_of!(UwmlTreeJointF64, origin)),
+        ("UwmlRobotSegmentF64.start", offset_of!(UwmlRobotSegmentF64, start)),
+        ("UwmlRobotSegmentF64.normals", offset_of!(UwmlRobotSegmentF64, normals)),
+        ("UwmlRobotSegmentF64.diameter", offset_of!(UwmlRobotSegmentF64, diameter)),
+        ("UwmlRobotSegmentF64.cm", offset_of!(UwmlRobotSegmentF64, cm)),
+        ("UwmlBaseMotionF64.velocity", offset_of!(UwmlBaseMotionF64, velocity)),
+        ("UwmlBaseWrenchF64.total", offset_of!(UwmlBaseWrenchF64, total)),
+        ("UwmlTreeJointF32.origin", offset_of!(UwmlTreeJointF32, origin)),
+        ("UwmlRobotSegmentF32.start", offset_of!(UwmlRobotSegmentF32, start)),
+        ("UwmlRobotSegmentF32.diameter", offset_of!(UwmlRobotSegmentF32, diameter)),
+        ("UwmlRobotSegmentF32.cm", offset_of!(UwmlRobotSegmentF32, cm)),
+        ("UwmlBaseMotionF32.angular_acceleration", offset_of!(UwmlBaseMotionF32, angular_acceleration)),
+    ];
+    let stdout = check_program("robot", &expected, &expected_offsets);
+    assert!(stdout.lines().filter(|l| l.starts_with("ok ")).count() > 100, "the robot program runs its checks");
+    // The sizes the header's preamble and docs/firmware.md state.
+    assert_eq!(size_of::<UwmlRobotF64>(), 16328);
+    assert_eq!(size_of::<UwmlRobotF32>(), 8776);
+}
+
+/// The C example of docs/firmware.md is the one `tests/c/robot.c` compiles and runs.
+#[test]
+fn firmware_doc_c_robot_example_is_tested() {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let source = std::fs::read_to_string(crate_dir.join("tests/c/robot.c")).expect("tests/c/robot.c");
+    let (begin, end) = ("/* --- docs/firmware.md: robot */\n", "/* --- end */");
+    let start = source.find(begin).expect("the example's start marker") + begin.len();
+    let example = &source[start..start + source[start..].find(end).expect("the example's end marker")];
+    let doc = std::fs::read_to_string(crate_dir.join("../../docs/firmware.md")).expect("docs/firmware.md");
+    assert!(doc.contains(example), "docs/firmware.md does not show tests/c/robot.c's example verbatim:\n{example}");
 }

@@ -1,0 +1,480 @@
+//! The precision-generic implementation of the `uwml_robot_*` functions of the crate root: any
+//! robot up to `J` joints and `S` segments (MODEL.md section 9), in an opaque block that also
+//! holds the evaluation's workspace, so that an evaluation needs no other storage.
+//!
+//! As in `imp`: every caller pointer is checked for null before anything else, inputs are copied
+//! by value, outputs are written at the end, and nothing is written on error (except NaN
+//! forces for a non-finite joint state).
+
+use uwml_core::nalgebra::{RealField, Vector3};
+use uwml_core::{
+    BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, ModelError, Owner, RigidBody,
+    Robot, RobotData, RobotSegment, Section, TreeJoint, Water, robot_hydro,
+};
+
+use crate::imp::{Failure, non_null, read_one};
+use crate::{
+    UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC,
+    UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64,
+    UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32,
+    UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32,
+    UwmlTreeJointF64,
+};
+
+/// The joint capacity of the C API's robot.
+pub(crate) const J: usize = 16;
+/// The segment capacity of the C API's robot.
+pub(crate) const S: usize = 32;
+
+/// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`.
+pub(crate) struct Block<T: RealField + Copy> {
+    robot: Robot<T, J, S>,
+    water: Water<T>,
+    /// The workspace and results of the last evaluation.
+    data: RobotData<T, J>,
+}
+
+/// The arguments of `uwml_robot_new_*`.
+pub(crate) struct Params<T: RobotPrecision> {
+    pub(crate) joints: *const T::Joint,
+    pub(crate) n_joints: u32,
+    pub(crate) links: *const T::Body,
+    pub(crate) base: *const T::Body,
+    pub(crate) segments: *const T::Segment,
+    pub(crate) n_segments: u32,
+    pub(crate) density: T,
+    pub(crate) gravity: T,
+}
+
+/// The arguments of `uwml_robot_hydro_*` after the robot.
+pub(crate) struct Evaluation<T: RobotPrecision> {
+    pub(crate) q: *const T,
+    pub(crate) qd: *const T,
+    pub(crate) qdd: *const T,
+    pub(crate) n: u32,
+    pub(crate) motion: *const T::Motion,
+    pub(crate) current: *const T::Current,
+    pub(crate) joint_forces: *mut T::JointForces,
+    pub(crate) base_wrench: *mut T::BaseWrench,
+}
+
+/// The f32 and f64 halves of the robot API.
+pub(crate) trait RobotPrecision: RealField + Copy {
+    /// The caller-allocated opaque robot: one tag word, then the `Block<Self>`.
+    type Robot;
+    type Joint: Copy;
+    type Body: Copy;
+    type Segment: Copy;
+    type Motion: Copy;
+    type Current: Copy;
+    type JointForces: Copy;
+    type BaseWrench: Copy;
+    /// The tag word of a robot written by this library ("UWMLRF64" / "UWMLRF32" in ASCII).
+    const TAG: u64;
+    /// # Errors
+    /// A parent or kind that is not one of the documented values.
+    fn joint(p: &Self::Joint, index: usize) -> Result<TreeJoint<Self>, Failure>;
+    fn body(p: &Self::Body) -> RigidBody<Self>;
+    /// # Errors
+    /// An owner or section that is not one of the documented values.
+    fn segment(p: &Self::Segment, index: usize) -> Result<RobotSegment<Self>, Failure>;
+    /// # Errors
+    /// What `BaseMotion::new` rejects.
+    fn motion(p: &Self::Motion) -> Result<BaseMotion<Self>, ModelError>;
+    /// # Errors
+    /// What `Current::new` rejects.
+    fn current(p: &Self::Current) -> Result<Current<Self>, ModelError>;
+    fn joint_forces(f: &JointForces<Self>) -> Self::JointForces;
+    fn base_wrench(w: &EnvironmentWrench<Self>) -> Self::BaseWrench;
+}
+
+/// `UWML_BASE` or an index (checked against the joints by the core).
+fn body_index(value: i32, field: &'static str, index: usize) -> Result<Option<usize>, Failure> {
+    if value == UWML_BASE {
+        return Ok(None);
+    }
+    usize::try_from(value).map(Some).map_err(|_| Failure::new(UWML_ERR_OUT_OF_RANGE, field, Some(index)))
+}
+
+fn joint_kind(value: i32, index: usize) -> Result<JointKind, Failure> {
+    match value {
+        UWML_JOINT_REVOLUTE => Ok(JointKind::Revolute),
+        UWML_JOINT_PRISMATIC => Ok(JointKind::Prismatic),
+        _ => Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "joint.kind", Some(index))),
+    }
+}
+
+/// Which section a segment has: `Ok(true)` for circular.
+fn circular(value: i32, index: usize) -> Result<bool, Failure> {
+    match value {
+        UWML_SECTION_RECTANGULAR => Ok(false),
+        UWML_SECTION_CIRCULAR => Ok(true),
+        _ => Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "segment.section", Some(index))),
+    }
+}
+
+macro_rules! robot_precision {
+    ($t:ty, $tag:expr, $robot:ty, $joint:ty, $body:ty, $segment:ty, $motion:ty, $current:ty, $forces:ident,
+     $wrench:ident) => {
+        impl RobotPrecision for $t {
+            type Robot = $robot;
+            type Joint = $joint;
+            type Body = $body;
+            type Segment = $segment;
+            type Motion = $motion;
+            type Current = $current;
+            type JointForces = $forces;
+            type BaseWrench = $wrench;
+            const TAG: u64 = $tag;
+
+            fn joint(p: &$joint, index: usize) -> Result<TreeJoint<$t>, Failure> {
+                Ok(TreeJoint {
+                    parent: body_index(p.parent, "joint.parent", index)?,
+                    kind: joint_kind(p.kind, index)?,
+                    origin: p.origin.into(),
+                    axis: p.axis.into(),
+                })
+            }
+
+            fn body(p: &$body) -> RigidBody<$t> {
+                RigidBody { mass: p.mass, com: p.com.into(), volume: p.volume, cob: p.cob.into() }
+            }
+
+            fn segment(p: &$segment, index: usize) -> Result<RobotSegment<$t>, Failure> {
+                let owner = body_index(p.owner, "segment.owner", index)?.map_or(Owner::Base, Owner::Link);
+                let [n0, n1] = p.normals;
+                let section = if circular(p.section, index)? {
+                    Section::Circular { diameter: p.diameter }
+                } else {
+                    Section::Rectangular { normals: [n0.into(), n1.into()], widths: p.widths }
+                };
+                Ok(RobotSegment {
+                    owner,
+                    start: p.start.into(),
+                    axis: p.axis.into(),
+                    length: p.length,
+                    area: p.area,
+                    section,
+                    cd: p.cd,
+                    cm: p.cm,
+                })
+            }
+
+            fn motion(p: &$motion) -> Result<BaseMotion<$t>, ModelError> {
+                BaseMotion::new(
+                    p.orientation,
+                    p.velocity.into(),
+                    p.angular_velocity.into(),
+                    p.acceleration.into(),
+                    p.angular_acceleration.into(),
+                )
+            }
+
+            fn current(p: &$current) -> Result<Current<$t>, ModelError> {
+                Current::new(p.velocity.into(), p.acceleration.into())
+            }
+
+            fn joint_forces(f: &JointForces<$t>) -> $forces {
+                $forces {
+                    drag: f.drag,
+                    added_mass: f.added_mass,
+                    buoyancy: f.buoyancy,
+                    gravity: f.gravity,
+                    total: f.total(),
+                }
+            }
+
+            fn base_wrench(w: &EnvironmentWrench<$t>) -> $wrench {
+                $wrench {
+                    drag: w.drag.to_array(),
+                    added_mass: w.added_mass.to_array(),
+                    buoyancy: w.buoyancy.to_array(),
+                    gravity: w.gravity.to_array(),
+                    total: w.total().to_array(),
+                }
+            }
+        }
+    };
+}
+
+robot_precision!(
+    f64,
+    u64::from_be_bytes(*b"UWMLRF64"),
+    UwmlRobotF64,
+    UwmlTreeJointF64,
+    UwmlBodyF64,
+    UwmlRobotSegmentF64,
+    UwmlBaseMotionF64,
+    UwmlCurrentF64,
+    UwmlJointForcesF64,
+    UwmlBaseWrenchF64
+);
+robot_precision!(
+    f32,
+    u64::from_be_bytes(*b"UWMLRF32"),
+    UwmlRobotF32,
+    UwmlTreeJointF32,
+    UwmlBodyF32,
+    UwmlRobotSegmentF32,
+    UwmlBaseMotionF32,
+    UwmlCurrentF32,
+    UwmlJointForcesF32,
+    UwmlBaseWrenchF32
+);
+
+/// A core error at construction; the core names the base body's fields `link.*` without an
+/// index, the C API `base.*`.
+fn construction_failure(error: ModelError) -> Failure {
+    let field = match (error.field, error.index) {
+        ("link.mass", None) => "base.mass",
+        ("link.com", None) => "base.com",
+        ("link.volume", None) => "base.volume",
+        ("link.cob", None) => "base.cob",
+        (field, _) => field,
+    };
+    Failure::from(ModelError { field, ..error })
+}
+
+/// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).
+fn storage_mut<T: RobotPrecision>(robot: *mut T::Robot) -> *mut Block<T> {
+    robot.cast::<u64>().wrapping_add(1).cast()
+}
+
+/// The block behind a caller's pointer, if the pointer is not null and the robot was written by
+/// this library (its tag word is right).
+///
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// `'a`.
+unsafe fn block_mut<'a, T: RobotPrecision>(robot: *mut T::Robot) -> Result<&'a mut Block<T>, Failure> {
+    let robot = non_null(robot, "robot")?;
+    // SAFETY: `robot` is valid for reads (contract) and starts with its tag word, a plain `u64`
+    // at offset 0 of an 8-aligned `repr(C)` struct, for which every bit pattern is valid.
+    let tag = unsafe { robot.cast::<u64>().read() };
+    if tag != T::TAG {
+        return Err(Failure::new(UWML_ERR_UNINITIALIZED, "robot", None));
+    }
+    // SAFETY: the tag is only ever written by `finish`, right after a valid `Block<T>` was written
+    // at `storage_mut(robot)`, which is in bounds and aligned (compile-time assertions in the
+    // crate root); the caller grants exclusive access during `'a` (contract).
+    Ok(unsafe { &mut *storage_mut::<T>(robot) })
+}
+
+/// Validates a robot and writes it into the block's robot field if valid (nothing otherwise).
+/// Not inlined, so that the core's robot under construction and its `Result` (each as large as
+/// the robot) live in this frame, not in the caller's beside the converted inputs: on a
+/// Cortex-M this halves the stack that construction needs.
+///
+/// # Safety
+/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+#[inline(never)]
+unsafe fn write_robot<T: RobotPrecision>(
+    block: *mut Block<T>,
+    joints: &[TreeJoint<T>],
+    links: &[RigidBody<T>],
+    base: RigidBody<T>,
+    segments: &[RobotSegment<T>],
+) -> Result<(), ModelError> {
+    let result = Robot::new(joints, links, base, segments);
+    let robot = result.as_ref().map_err(|e| *e)?;
+    // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
+    // computed without reading the block.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    Ok(())
+}
+
+/// The paper's leg into the block's robot field; as [`write_robot`].
+///
+/// # Safety
+/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+#[inline(never)]
+unsafe fn write_paper<T: RobotPrecision>(block: *mut Block<T>) -> Result<(), ModelError> {
+    let result = Robot::from_chain(&Chain::<T, 3>::paper(), &Coefficients::default());
+    let robot = result.as_ref().map_err(|e| *e)?;
+    // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
+    // computed without reading the block.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    Ok(())
+}
+
+/// Completes a block whose robot field was just written: the water, a fresh workspace, and the
+/// tag, last, so that a block carries the tag only once its contents are valid. Not inlined: the
+/// workspace built here does not add to the caller's frame.
+///
+/// # Safety
+/// `out` is not null and valid for writes of a `T::Robot` whose robot field holds a valid robot.
+#[inline(never)]
+unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
+    let block = storage_mut::<T>(out);
+    // SAFETY: `block` is in bounds and aligned for `Block<T>` (compile-time assertions in the
+    // crate root) and `out` is valid for writes (contract); the field places are computed without
+    // reading or referencing the (possibly uninitialized) block.
+    unsafe {
+        (&raw mut (*block).water).write(water);
+        (&raw mut (*block).data).write(RobotData::new());
+        out.cast::<u64>().write(T::TAG);
+    }
+}
+
+/// The first `n` elements of a caller's array (an empty slice, without reading `p`, if `n` is 0).
+///
+/// # Safety
+/// `p` is null or valid for reads of `n` consecutive `P`s, not written during `'a`.
+unsafe fn read_slice<'a, P>(p: *const P, n: usize, name: &'static str) -> Result<&'a [P], Failure> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(Failure::null(name));
+    }
+    // SAFETY: not null, aligned (a C array of `P`) and valid for reads of `n` values (contract).
+    Ok(unsafe { core::slice::from_raw_parts(p, n) })
+}
+
+/// A count, if it is at most `capacity`.
+fn count(n: u32, capacity: usize, field: &'static str) -> Result<usize, Failure> {
+    usize::try_from(n).ok().filter(|&n| n <= capacity).ok_or(Failure::new(UWML_ERR_OUT_OF_RANGE, field, None))
+}
+
+/// # Safety
+/// `out` is null or valid for writes of a `T::Robot`.
+pub(crate) unsafe fn paper<T: RobotPrecision>(out: *mut T::Robot) -> Result<(), Failure> {
+    let out = non_null(out, "robot")?;
+    // SAFETY: not null, valid for writes (contract); in bounds and aligned (crate root).
+    unsafe { write_paper::<T>(storage_mut::<T>(out)) }?;
+    // SAFETY: as above, and the robot field was just written.
+    unsafe { finish::<T>(out, Water::default()) };
+    Ok(())
+}
+
+/// # Safety
+/// `out` is null or valid for writes of a `T::Robot`; the pointers of `params` are null or
+/// valid for reads of their counts of elements (`base`: one) and do not overlap `out`.
+pub(crate) unsafe fn new<T: RobotPrecision>(out: *mut T::Robot, params: &Params<T>) -> Result<(), Failure> {
+    let out = non_null(out, "robot")?;
+    let n_joints = count(params.n_joints, J, "n_joints (at most 16)")?;
+    let n_segments = count(params.n_segments, S, "n_segments (at most 32)")?;
+    // SAFETY: forwarded contract; the slices are read here and dropped before `out` is written.
+    let (joints, links, segments) = unsafe {
+        (
+            read_slice(params.joints, n_joints, "joints")?,
+            read_slice(params.links, n_joints, "links")?,
+            read_slice(params.segments, n_segments, "segments")?,
+        )
+    };
+    let base = if params.base.is_null() {
+        RigidBody::empty()
+    } else {
+        // SAFETY: not null, valid for reads (contract).
+        T::body(&unsafe { read_one(params.base, "base") }?)
+    };
+    let zero = Vector3::zeros();
+    let mut tree = [TreeJoint { parent: None, kind: JointKind::Revolute, origin: zero, axis: zero }; J];
+    for (index, (slot, joint)) in tree.iter_mut().zip(joints).enumerate() {
+        *slot = T::joint(joint, index)?;
+    }
+    let mut bodies = [RigidBody::empty(); J];
+    for (slot, link) in bodies.iter_mut().zip(links) {
+        *slot = T::body(link);
+    }
+    let mut pieces = [RobotSegment {
+        owner: Owner::Base,
+        start: zero,
+        axis: zero,
+        length: T::zero(),
+        area: T::zero(),
+        section: Section::Circular { diameter: T::zero() },
+        cd: [T::zero(); 2],
+        cm: [T::zero(); 2],
+    }; S];
+    for (index, (slot, segment)) in pieces.iter_mut().zip(segments).enumerate() {
+        *slot = T::segment(segment, index)?;
+    }
+    // The water first: once the robot is written, nothing may fail.
+    let water = Water::new(params.density, params.gravity)?;
+    let used = |n: usize| ..n;
+    // SAFETY: not null, valid for writes (contract); in bounds and aligned (crate root). On
+    // error nothing is written.
+    unsafe {
+        write_robot::<T>(
+            storage_mut::<T>(out),
+            tree.get(used(n_joints)).unwrap_or(&[]),
+            bodies.get(used(n_joints)).unwrap_or(&[]),
+            base,
+            pieces.get(used(n_segments)).unwrap_or(&[]),
+        )
+    }
+    .map_err(construction_failure)?;
+    // SAFETY: as above, and the robot field was just written.
+    unsafe { finish::<T>(out, water) };
+    Ok(())
+}
+
+/// A joint state of `n` values, zero beyond.
+///
+/// # Safety
+/// `p` is null or valid for reads of `n` values; `n` is at most `J`.
+unsafe fn read_state<T: RobotPrecision>(p: *const T, n: usize, name: &'static str) -> Result<[T; J], Failure> {
+    // SAFETY: forwarded contract.
+    let values = unsafe { read_slice(p, n, name) }?;
+    let mut state = [T::zero(); J];
+    for (slot, &value) in state.iter_mut().zip(values) {
+        *slot = value;
+    }
+    Ok(state)
+}
+
+/// `UWML_ERR_NON_FINITE` naming the first non-finite element of a state.
+fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Result<(), Failure> {
+    for (state, name) in states {
+        if let Some(i) = state.iter().position(|x| !x.is_finite()) {
+            return Err(Failure::new(UWML_ERR_NON_FINITE, name, Some(i)));
+        }
+    }
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call; the pointers of `io` are null or valid for their `n` elements (`motion`, `current`,
+/// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`.
+pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluation<T>) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let Block { robot, water, data } = unsafe { block_mut::<T>(robot) }?;
+    let n = robot.joint_count();
+    if usize::try_from(io.n).ok() != Some(n) {
+        return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n (the robot's joint count)", None));
+    }
+    // SAFETY: forwarded contract; n <= J (the robot's capacity).
+    let (q, qd, qdd) =
+        unsafe { (read_state(io.q, n, "q")?, read_state(io.qd, n, "qd")?, read_state(io.qdd, n, "qdd")?) };
+    let motion = if io.motion.is_null() {
+        BaseMotion::fixed()
+    } else {
+        // SAFETY: not null, valid for reads (contract).
+        T::motion(&unsafe { read_one(io.motion, "motion") }?)?
+    };
+    let current = if io.current.is_null() {
+        Current::still()
+    } else {
+        // SAFETY: not null, valid for reads (contract).
+        T::current(&unsafe { read_one(io.current, "current") }?)?
+    };
+    let joint_forces = if n == 0 { io.joint_forces } else { non_null(io.joint_forces, "joint_forces")? };
+    robot_hydro(robot, water, None, &motion, &current, &q, &qd, &qdd, data);
+    for (i, forces) in data.joint_forces().iter().enumerate() {
+        // SAFETY: `i < n` and `joint_forces` is valid for writes of `n` elements (contract; not
+        // null when n > 0).
+        unsafe { joint_forces.add(i).write(T::joint_forces(forces)) };
+    }
+    if !io.base_wrench.is_null() {
+        // SAFETY: not null, valid for writes (contract).
+        unsafe { io.base_wrench.write(T::base_wrench(data.base_wrench())) };
+    }
+    let used = ..n;
+    check_states([
+        (q.get(used).unwrap_or(&[]), "q"),
+        (qd.get(used).unwrap_or(&[]), "qd"),
+        (qdd.get(used).unwrap_or(&[]), "qdd"),
+    ])
+}

@@ -1,0 +1,688 @@
+//! The robot half of the C API (`uwml_robot_*`) against the core called directly (bit for bit),
+//! every error code and field, null pointers, capacity, blocks not written by the library.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
+
+use core::ffi::CStr;
+use core::ptr::{null, null_mut};
+
+use uwml_core::Water;
+use uwml_ffi::*;
+
+mod robots;
+use robots::{
+    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_motion, core_current,
+    core_hydro, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion, params32,
+    wrench32, wrench64,
+};
+
+fn blank_error() -> UwmlError {
+    UwmlError { code: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
+}
+
+/// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
+fn parts(e: &UwmlError) -> (i32, i32, String) {
+    let bytes = e.field.map(|c| c as u8);
+    let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
+    (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
+}
+
+fn expect_error(code: i32, e: &UwmlError, want: (i32, i32, &str)) {
+    assert_eq!(code, want.0, "returned code ({:?})", parts(e));
+    assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
+}
+
+fn zeroed64() -> Box<UwmlRobotF64> {
+    Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })
+}
+
+fn zeroed32() -> Box<UwmlRobotF32> {
+    Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
+}
+
+fn count(n: usize) -> u32 {
+    u32::try_from(n).unwrap()
+}
+
+fn new64(robot: &mut UwmlRobotF64, p: &Params, density: f64) -> (i32, UwmlError) {
+    let mut error = blank_error();
+    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF64);
+    // SAFETY: live locals; the arrays hold their counts of elements.
+    let code = unsafe {
+        uwml_robot_new_f64(
+            robot,
+            p.joints.as_ptr(),
+            count(p.joints.len()),
+            p.links.as_ptr(),
+            base,
+            p.segments.as_ptr(),
+            count(p.segments.len()),
+            density,
+            GRAVITY,
+            &mut error,
+        )
+    };
+    assert_eq!(error.code, code);
+    (code, error)
+}
+
+fn built64(p: &Params) -> Box<UwmlRobotF64> {
+    let mut robot = zeroed64();
+    let (code, error) = new64(&mut robot, p, DENSITY);
+    assert_eq!(parts(&error), (UWML_OK, -1, String::new()), "success is written too");
+    assert_eq!(code, UWML_OK);
+    robot
+}
+
+fn built32(p: &Params) -> Box<UwmlRobotF32> {
+    let p = params32(p);
+    let mut robot = zeroed32();
+    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF32);
+    // SAFETY: live locals; the arrays hold their counts of elements.
+    let code = unsafe {
+        uwml_robot_new_f32(
+            &mut *robot,
+            p.joints.as_ptr(),
+            count(p.joints.len()),
+            p.links.as_ptr(),
+            base,
+            p.segments.as_ptr(),
+            count(p.segments.len()),
+            DENSITY as f32,
+            GRAVITY as f32,
+            null_mut(),
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    robot
+}
+
+/// What an evaluation returned and wrote; the outputs start as a sentinel (-7).
+struct Out64 {
+    code: i32,
+    error: UwmlError,
+    forces: Vec<UwmlJointForcesF64>,
+    wrench: UwmlBaseWrenchF64,
+}
+
+const SENTINEL64: UwmlJointForcesF64 =
+    UwmlJointForcesF64 { drag: -7.0, added_mass: -7.0, buoyancy: -7.0, gravity: -7.0, total: -7.0 };
+const WRENCH_SENTINEL64: UwmlBaseWrenchF64 = UwmlBaseWrenchF64 {
+    drag: [-7.0; 6],
+    added_mass: [-7.0; 6],
+    buoyancy: [-7.0; 6],
+    gravity: [-7.0; 6],
+    total: [-7.0; 6],
+};
+
+fn hydro64(
+    robot: &mut UwmlRobotF64,
+    state: [&[f64]; 3],
+    motion: Option<&UwmlBaseMotionF64>,
+    current: Option<&UwmlCurrentF64>,
+) -> Out64 {
+    let n = state[0].len();
+    let mut forces = vec![SENTINEL64; n];
+    let mut wrench = WRENCH_SENTINEL64;
+    let mut error = blank_error();
+    // SAFETY: live locals; every state and `forces` hold n elements.
+    let code = unsafe {
+        uwml_robot_hydro_f64(
+            robot,
+            state[0].as_ptr(),
+            state[1].as_ptr(),
+            state[2].as_ptr(),
+            count(n),
+            motion.map_or(null(), |m| m as *const _),
+            current.map_or(null(), |c| c as *const _),
+            forces.as_mut_ptr(),
+            &mut wrench,
+            &mut error,
+        )
+    };
+    assert_eq!(error.code, code);
+    Out64 { code, error, forces, wrench }
+}
+
+fn hydro32(
+    robot: &mut UwmlRobotF32,
+    state: [&[f32]; 3],
+    motion: Option<&UwmlBaseMotionF32>,
+    current: Option<&UwmlCurrentF32>,
+) -> (i32, Vec<UwmlJointForcesF32>, UwmlBaseWrenchF32) {
+    let n = state[0].len();
+    let mut forces = vec![UwmlJointForcesF32::default(); n];
+    let mut wrench = UwmlBaseWrenchF32::default();
+    // SAFETY: live locals; every state and `forces` hold n elements.
+    let code = unsafe {
+        uwml_robot_hydro_f32(
+            robot,
+            state[0].as_ptr(),
+            state[1].as_ptr(),
+            state[2].as_ptr(),
+            count(n),
+            motion.map_or(null(), |m| m as *const _),
+            current.map_or(null(), |c| c as *const _),
+            forces.as_mut_ptr(),
+            &mut wrench,
+            null_mut(),
+        )
+    };
+    (code, forces, wrench)
+}
+
+/// Every number's bits, so that NaN equals NaN and 0.0 differs from -0.0.
+fn forces_bits64(f: &[UwmlJointForcesF64]) -> Vec<[u64; 5]> {
+    f.iter().map(|f| [f.drag, f.added_mass, f.buoyancy, f.gravity, f.total].map(f64::to_bits)).collect()
+}
+
+fn wrench_bits64(w: &UwmlBaseWrenchF64) -> [[u64; 6]; 5] {
+    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f64::to_bits))
+}
+
+fn forces_bits32(f: &[UwmlJointForcesF32]) -> Vec<[u32; 5]> {
+    f.iter().map(|f| [f.drag, f.added_mass, f.buoyancy, f.gravity, f.total].map(f32::to_bits)).collect()
+}
+
+fn wrench_bits32(w: &UwmlBaseWrenchF32) -> [[u32; 6]; 5] {
+    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f32::to_bits))
+}
+
+/// The C API's f64 evaluation of `params` equals the core's, bit for bit.
+fn assert_core64(
+    robot: &mut UwmlRobotF64,
+    params: &Params,
+    water: &Water<f64>,
+    state: [&[f64]; 3],
+    motion: Option<&UwmlBaseMotionF64>,
+    current: Option<&UwmlCurrentF64>,
+) -> Out64 {
+    let out = hydro64(robot, state, motion, current);
+    let data = core_hydro(&core_robot(params), water, &core_motion(motion), &core_current(current), state);
+    assert_eq!(forces_bits64(&out.forces), forces_bits64(&forces64(&data)), "joint forces");
+    assert_eq!(wrench_bits64(&out.wrench), wrench_bits64(&wrench64(&data)), "base wrench");
+    out
+}
+
+fn assert_core32(
+    robot: &mut UwmlRobotF32,
+    params: &Params,
+    water: &Water<f32>,
+    state: [&[f64]; 3],
+    motion: Option<&UwmlBaseMotionF64>,
+    current: Option<&UwmlCurrentF64>,
+) {
+    let state: Vec<Vec<f32>> = state.iter().map(|s| s.iter().map(|&x| f32::narrow(x)).collect()).collect();
+    let state = [&state[0][..], &state[1][..], &state[2][..]];
+    let (m, c) = (motion.map(motion32), current.map(current32));
+    let (code, forces, wrench) = hydro32(robot, state, m.as_ref(), c.as_ref());
+    assert_eq!(code, UWML_OK);
+    let data = core_hydro(&core_robot::<f32>(params), water, &core_motion(motion), &core_current(current), state);
+    assert_eq!(forces_bits32(&forces), forces_bits32(&forces32(&data)), "f32 joint forces");
+    assert_eq!(wrench_bits32(&wrench), wrench_bits32(&wrench32(&data)), "f32 base wrench");
+}
+
+fn arm_states() -> Vec<[Vec<f64>; 3]> {
+    let [q, qd, qdd] = ARM_STATE;
+    vec![
+        [q.to_vec(), qd.to_vec(), qdd.to_vec()],
+        [vec![0.0; 6], vec![0.0; 6], vec![0.0; 6]],
+        [
+            vec![-1.3, 0.4, -0.2, -0.05, 2.5, -1.0],
+            vec![-0.2, 1.1, -0.6, -0.3, 0.0, 2.0],
+            vec![0.0, 3.0, -1.0, 0.0, 0.5, -0.4],
+        ],
+    ]
+}
+
+#[test]
+fn the_arm_on_a_moving_vehicle_is_the_core_bit_for_bit() {
+    let params = arm();
+    let mut robot = built64(&params);
+    let mut robot32 = built32(&params);
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    let water32 = Water::new(DENSITY as f32, GRAVITY as f32).unwrap();
+    let motion = arm_motion();
+    for [q, qd, qdd] in arm_states() {
+        let state = [&q[..], &qd[..], &qdd[..]];
+        // Moving, still, with and without current: NULL is a fixed upright base, still water.
+        for (m, c) in
+            [(Some(&motion), Some(&ARM_CURRENT)), (None, None), (Some(&motion), None), (None, Some(&ARM_CURRENT))]
+        {
+            let out = assert_core64(&mut robot, &params, &water, state, m, c);
+            assert_eq!(out.code, UWML_OK);
+            assert_eq!(parts(&out.error), (UWML_OK, -1, String::new()));
+            assert_core32(&mut robot32, &params, &water32, state, m, c);
+        }
+    }
+    // The test can fail: the vehicle's motion and the current change every output.
+    let [q, qd, qdd] = ARM_STATE;
+    let moving = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), Some(&ARM_CURRENT));
+    let fixed = hydro64(&mut robot, [&q, &qd, &qdd], None, None);
+    for (a, b) in moving.forces.iter().zip(&fixed.forces) {
+        assert!(a.drag != b.drag && a.added_mass != b.added_mass && a.buoyancy != b.buoyancy);
+    }
+    assert!(moving.wrench.drag.iter().zip(fixed.wrench.drag).all(|(a, b)| *a != b));
+}
+
+#[test]
+fn a_base_wrench_pointer_may_be_null_and_a_copy_is_a_robot() {
+    let params = arm();
+    let mut robot = built64(&params);
+    let [q, qd, qdd] = ARM_STATE;
+    let with = hydro64(&mut robot, [&q, &qd, &qdd], Some(&arm_motion()), Some(&ARM_CURRENT));
+    let mut forces = [UwmlJointForcesF64::default(); 6];
+    // SAFETY: live locals of 6 elements.
+    let code = unsafe {
+        uwml_robot_hydro_f64(
+            &mut *robot,
+            q.as_ptr(),
+            qd.as_ptr(),
+            qdd.as_ptr(),
+            6,
+            &arm_motion(),
+            &ARM_CURRENT,
+            forces.as_mut_ptr(),
+            null_mut(),
+            null_mut(),
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    assert_eq!(forces_bits64(&forces), forces_bits64(&with.forces));
+    // memcpy.
+    let mut copy = Box::new(*robot);
+    let again = hydro64(&mut copy, [&q, &qd, &qdd], Some(&arm_motion()), Some(&ARM_CURRENT));
+    assert_eq!(forces_bits64(&again.forces), forces_bits64(&with.forces));
+}
+
+#[test]
+fn the_paper_robot_is_the_core_and_the_leg() {
+    let mut preset = zeroed64();
+    // SAFETY: a live local.
+    assert_eq!(unsafe { uwml_robot_paper_f64(&mut *preset) }, UWML_OK);
+    let mut preset32 = zeroed32();
+    // SAFETY: a live local.
+    assert_eq!(unsafe { uwml_robot_paper_f32(&mut *preset32) }, UWML_OK);
+    let params = paper();
+    let mut robot = zeroed64();
+    let (code, _) = new64(&mut robot, &params, 1000.0);
+    assert_eq!(code, UWML_OK);
+    let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
+    // SAFETY: a live local.
+    assert_eq!(unsafe { uwml_leg3_paper_f64(&mut leg) }, UWML_OK);
+
+    let water = Water::default();
+    let [q, qd, qdd] = PAPER_STATE;
+    let motion = paper_motion();
+    for (m, c) in [(None, None), (Some(&motion), Some(&PAPER_CURRENT))] {
+        let from_preset = assert_core64(&mut preset, &params, &water, [&q, &qd, &qdd], m, c);
+        assert_core32(&mut preset32, &params, &Water::default(), [&q, &qd, &qdd], m, c);
+        // The preset and the same leg from plain structs: the same robot, bit for bit.
+        let from_params = hydro64(&mut robot, [&q, &qd, &qdd], m, c);
+        assert_eq!(forces_bits64(&from_params.forces), forces_bits64(&from_preset.forces));
+        assert_eq!(wrench_bits64(&from_params.wrench), wrench_bits64(&from_preset.wrench));
+        if m.is_none() {
+            // On a fixed base in still water, the leg API's torques (the chain path) to 1e-14.
+            let mut hydro = UwmlHydro3F64::default();
+            // SAFETY: live locals of 3 values.
+            let code =
+                unsafe { uwml_leg3_hydro_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut hydro, null_mut()) };
+            assert_eq!(code, UWML_OK);
+            for (i, f) in from_preset.forces.iter().enumerate() {
+                for (a, b) in [
+                    (f.drag, hydro.drag[i]),
+                    (f.added_mass, hydro.added_mass[i]),
+                    (f.buoyancy, hydro.buoyancy[i]),
+                    (f.gravity, hydro.gravity[i]),
+                    (f.total, hydro.total[i]),
+                ] {
+                    assert!((a - b).abs() <= 1e-14 * b.abs().max(1.0), "joint {i}: robot {a} vs leg {b}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn a_robot_without_joints_is_its_base() {
+    let mut params = arm();
+    params.joints.clear();
+    params.links.clear();
+    params.segments.retain(|s| s.owner == UWML_BASE);
+    let mut robot = zeroed64();
+    let base = params.base.unwrap();
+    let mut error = blank_error();
+    // SAFETY: live locals; joints and links are NULL with a count of 0, never read.
+    let code = unsafe {
+        uwml_robot_new_f64(
+            &mut *robot,
+            null(),
+            0,
+            null(),
+            &base,
+            params.segments.as_ptr(),
+            count(params.segments.len()),
+            DENSITY,
+            GRAVITY,
+            &mut error,
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    let mut wrench = UwmlBaseWrenchF64::default();
+    // SAFETY: live locals; the joint arrays are NULL with n = 0, never read.
+    let code = unsafe {
+        uwml_robot_hydro_f64(
+            &mut *robot,
+            null(),
+            null(),
+            null(),
+            0,
+            &arm_motion(),
+            &ARM_CURRENT,
+            null_mut(),
+            &mut wrench,
+            &mut error,
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    let data = core_hydro(
+        &core_robot(&params),
+        &water,
+        &core_motion(Some(&arm_motion())),
+        &core_current(Some(&ARM_CURRENT)),
+        [&[], &[], &[]],
+    );
+    assert_eq!(wrench_bits64(&wrench), wrench_bits64(&wrench64(&data)));
+    // The hull and skid lie along x: no drag along x (strip theory), some across.
+    assert!(wrench.drag[0] == 0.0 && wrench.drag[1] != 0.0 && wrench.buoyancy[2] > 0.0);
+}
+
+/// A chain of 16 joints with two segments on every link: the capacity, exactly.
+#[test]
+fn a_robot_at_full_capacity() {
+    let axes = [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]];
+    let joints: Vec<_> = (0..UWML_ROBOT_MAX_JOINTS)
+        .map(|i| UwmlTreeJointF64 {
+            parent: i32::try_from(i).unwrap() - 1,
+            kind: if i % 5 == 3 { UWML_JOINT_PRISMATIC } else { UWML_JOINT_REVOLUTE },
+            origin: if i == 0 { [0.0; 3] } else { [0.1, 0.0, 0.0] },
+            axis: axes[i % 3],
+        })
+        .collect();
+    let links = vec![UwmlBodyF64 { mass: 1.0, com: [0.05, 0.0, 0.0], volume: 5e-4, cob: [0.05, 0.01, 0.0] }; 16];
+    let segment = |owner: usize, section: i32| UwmlRobotSegmentF64 {
+        owner: i32::try_from(owner).unwrap(),
+        section,
+        start: [0.0; 3],
+        axis: [1.0, 0.0, 0.0],
+        length: 0.1,
+        area: 1e-3,
+        normals: [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        widths: [0.03, 0.04],
+        diameter: 0.035,
+        cd: [1.2; 2],
+        cm: [1.0; 2],
+    };
+    let segments: Vec<_> =
+        (0..16).flat_map(|i| [segment(i, UWML_SECTION_RECTANGULAR), segment(i, UWML_SECTION_CIRCULAR)]).collect();
+    assert_eq!(segments.len(), UWML_ROBOT_MAX_SEGMENTS);
+    let params = Params { joints, links, base: None, segments };
+    let mut robot = built64(&params);
+    let q: Vec<f64> = (0..16).map(|i| 0.1 * f64::from(i) - 0.7).collect();
+    let qd: Vec<f64> = (0..16).map(|i| 0.3 * f64::from(i % 4) - 0.4).collect();
+    let qdd: Vec<f64> = (0..16).map(|i| f64::from(i % 3) - 1.0).collect();
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    let out = assert_core64(&mut robot, &params, &water, [&q, &qd, &qdd], Some(&arm_motion()), Some(&ARM_CURRENT));
+    assert_eq!(out.code, UWML_OK);
+    assert!(out.forces.iter().all(|f| f.total.is_finite() && f.drag != 0.0));
+}
+
+#[test]
+fn invalid_robots_name_the_field_and_index() {
+    type Edit = fn(&mut Params);
+    let cases: Vec<(Edit, (i32, i32, &str))> = vec![
+        (|p| p.joints[2].parent = 2, (UWML_ERR_OUT_OF_RANGE, 2, "joint.parent")),
+        (|p| p.joints[4].parent = 5, (UWML_ERR_OUT_OF_RANGE, 4, "joint.parent")),
+        (|p| p.joints[1].parent = -2, (UWML_ERR_OUT_OF_RANGE, 1, "joint.parent")),
+        (|p| p.joints[3].kind = 2, (UWML_ERR_OUT_OF_RANGE, 3, "joint.kind")),
+        (|p| p.joints[5].axis = [0.0, 0.0, 0.0], (UWML_ERR_NOT_UNIT, 5, "joint.axis")),
+        (|p| p.joints[0].origin[1] = f64::NAN, (UWML_ERR_NON_FINITE, 0, "joint.origin")),
+        (|p| p.links[4].volume = -1e-4, (UWML_ERR_NEGATIVE, 4, "link.volume")),
+        (|p| p.links[1].com[2] = f64::INFINITY, (UWML_ERR_NON_FINITE, 1, "link.com")),
+        (|p| p.base.as_mut().unwrap().mass = -1.0, (UWML_ERR_NEGATIVE, -1, "base.mass")),
+        (|p| p.base.as_mut().unwrap().cob[0] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.cob")),
+        (|p| p.base.as_mut().unwrap().volume = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.volume")),
+        (|p| p.segments[7].owner = 6, (UWML_ERR_OUT_OF_RANGE, 7, "segment.owner")),
+        (|p| p.segments[2].owner = -5, (UWML_ERR_OUT_OF_RANGE, 2, "segment.owner")),
+        (|p| p.segments[3].section = 2, (UWML_ERR_OUT_OF_RANGE, 3, "segment.section")),
+        (|p| p.segments[0].diameter = 0.0, (UWML_ERR_NON_POSITIVE, 0, "segment.diameter")),
+        (|p| p.segments[4].cd = [1.2, 1.0], (UWML_ERR_OUT_OF_RANGE, 4, "segment.cd")),
+        (|p| p.segments[5].cm[1] = 0.5, (UWML_ERR_OUT_OF_RANGE, 5, "segment.cm")),
+        (|p| p.segments[1].cd[1] = -0.1, (UWML_ERR_NEGATIVE, 1, "segment.cd")),
+        (|p| p.segments[6].normals[1] = [0.0, 1.0, 0.0], (UWML_ERR_NOT_PERPENDICULAR, 6, "segment.normals[1]")),
+        (|p| p.segments[3].widths[0] = 0.0, (UWML_ERR_NON_POSITIVE, 3, "segment.widths[0]")),
+        (|p| p.segments[2].length = -0.1, (UWML_ERR_NON_POSITIVE, 2, "segment.length")),
+        (|p| p.segments[2].area = f64::NAN, (UWML_ERR_NON_FINITE, 2, "segment.area")),
+        (|p| p.segments[4].axis = [0.0, 0.0, 2.0], (UWML_ERR_NOT_UNIT, 4, "segment.axis")),
+        (
+            |p| {
+                let joint = p.joints[5];
+                p.joints.resize(UWML_ROBOT_MAX_JOINTS + 1, joint);
+                let link = p.links[5];
+                p.links.resize(UWML_ROBOT_MAX_JOINTS + 1, link);
+            },
+            (UWML_ERR_OUT_OF_RANGE, -1, "n_joints (at most 16)"),
+        ),
+        (
+            |p| {
+                let segment = p.segments[2];
+                p.segments.resize(UWML_ROBOT_MAX_SEGMENTS + 1, segment);
+            },
+            (UWML_ERR_OUT_OF_RANGE, -1, "n_segments (at most 32)"),
+        ),
+    ];
+    for (edit, want) in cases {
+        let mut params = arm();
+        edit(&mut params);
+        let mut robot = zeroed64();
+        let (code, error) = new64(&mut robot, &params, DENSITY);
+        expect_error(code, &error, want);
+        assert_eq!(robot.opaque_tag, 0, "a failed construction writes nothing");
+    }
+    // Water.
+    let mut robot = zeroed64();
+    let (code, error) = new64(&mut robot, &arm(), 0.0);
+    expect_error(code, &error, (UWML_ERR_NON_POSITIVE, -1, "water.density"));
+    // Fields a section does not use are not read.
+    let mut params = arm();
+    params.segments[0].normals = [[f64::NAN; 3]; 2];
+    params.segments[0].widths = [-1.0; 2];
+    params.segments[1].diameter = f64::NAN;
+    let (code, _) = new64(&mut robot, &params, DENSITY);
+    assert_eq!(code, UWML_OK);
+
+    // A failed construction leaves a valid robot as it was.
+    let before = robot.clone();
+    let mut params = arm();
+    params.links[0].mass = -1.0;
+    let (code, _) = new64(&mut robot, &params, DENSITY);
+    assert_eq!(code, UWML_ERR_NEGATIVE);
+    assert!(robot.opaque_tag == before.opaque_tag && robot.opaque == before.opaque);
+
+    // f32: the same checks.
+    let mut p = params32(&arm());
+    p.joints[3].parent = 4;
+    let mut robot = zeroed32();
+    let mut error = blank_error();
+    // SAFETY: live locals; the arrays hold their counts of elements.
+    let code = unsafe {
+        uwml_robot_new_f32(
+            &mut *robot,
+            p.joints.as_ptr(),
+            6,
+            p.links.as_ptr(),
+            null(),
+            p.segments.as_ptr(),
+            count(p.segments.len()),
+            1025.0,
+            9.81,
+            &mut error,
+        )
+    };
+    expect_error(code, &error, (UWML_ERR_OUT_OF_RANGE, 3, "joint.parent"));
+}
+
+#[test]
+fn invalid_motions_and_currents_name_the_field_and_write_nothing() {
+    let mut robot = built64(&arm());
+    let [q, qd, qdd] = ARM_STATE;
+    type Edit = fn(&mut UwmlBaseMotionF64, &mut UwmlCurrentF64);
+    let cases: [(Edit, (i32, i32, &str)); 9] = [
+        (|m, _| m.orientation = [0.0; 4], (UWML_ERR_NOT_UNIT, -1, "base.orientation")),
+        (|m, _| m.orientation = [1.0, 0.1, 0.0, 0.0], (UWML_ERR_NOT_UNIT, -1, "base.orientation")),
+        (|m, _| m.orientation[2] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.orientation")),
+        (|m, _| m.velocity[0] = f64::INFINITY, (UWML_ERR_NON_FINITE, -1, "base.velocity")),
+        (|m, _| m.angular_velocity[1] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.angular_velocity")),
+        (|m, _| m.acceleration[2] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.acceleration")),
+        (|m, _| m.angular_acceleration[0] = f64::NEG_INFINITY, (UWML_ERR_NON_FINITE, -1, "base.angular_acceleration")),
+        (|_, c| c.velocity[1] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "current.velocity")),
+        (|_, c| c.acceleration[2] = f64::INFINITY, (UWML_ERR_NON_FINITE, -1, "current.acceleration")),
+    ];
+    for (edit, want) in cases {
+        let (mut motion, mut current) = (arm_motion(), ARM_CURRENT);
+        edit(&mut motion, &mut current);
+        let out = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), Some(&current));
+        expect_error(out.code, &out.error, want);
+        assert!(out.forces.iter().all(|f| *f == SENTINEL64) && out.wrench == WRENCH_SENTINEL64, "nothing written");
+    }
+    // A wrong joint count.
+    let out = hydro64(&mut robot, [&q[..5], &qd[..5], &qdd[..5]], None, None);
+    expect_error(out.code, &out.error, (UWML_ERR_OUT_OF_RANGE, -1, "n (the robot's joint count)"));
+    // f32 names the same fields.
+    let mut robot32 = built32(&arm());
+    let mut motion = motion32(&arm_motion());
+    motion.orientation[0] *= 1.01;
+    let q32 = q.map(f32::narrow);
+    let mut forces = [UwmlJointForcesF32::default(); 6];
+    let mut error = blank_error();
+    // SAFETY: live locals of 6 elements.
+    let code = unsafe {
+        uwml_robot_hydro_f32(
+            &mut *robot32,
+            q32.as_ptr(),
+            q32.as_ptr(),
+            q32.as_ptr(),
+            6,
+            &motion,
+            null(),
+            forces.as_mut_ptr(),
+            null_mut(),
+            &mut error,
+        )
+    };
+    expect_error(code, &error, (UWML_ERR_NOT_UNIT, -1, "base.orientation"));
+}
+
+#[test]
+fn non_finite_states_give_nan_and_name_the_element() {
+    let params = arm();
+    let mut robot = built64(&params);
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    for (which, name) in [(0, "q"), (1, "qd"), (2, "qdd")] {
+        let mut state = ARM_STATE;
+        state[which][3] = f64::NAN;
+        state[which][5] = f64::INFINITY;
+        let out = assert_core64(
+            &mut robot,
+            &params,
+            &water,
+            [&state[0], &state[1], &state[2]],
+            Some(&arm_motion()),
+            Some(&ARM_CURRENT),
+        );
+        expect_error(out.code, &out.error, (UWML_ERR_NON_FINITE, 3, name));
+        assert!(out.forces.iter().all(|f| f.total.is_nan()) && out.wrench.total.iter().all(|x| x.is_nan()));
+    }
+}
+
+#[test]
+fn null_pointers_are_reported_never_dereferenced() {
+    let p = arm();
+    let [q, qd, qdd] = ARM_STATE;
+    let (j, l, s) = (p.joints.as_ptr(), p.links.as_ptr(), p.segments.as_ptr());
+    let mut robot = built64(&p);
+    let r: *mut UwmlRobotF64 = &mut *robot;
+    let mut out = zeroed64();
+    let o: *mut UwmlRobotF64 = &mut *out;
+    let mut forces = [UwmlJointForcesF64::default(); 6];
+    let f = forces.as_mut_ptr();
+    let (m, c) = (&arm_motion() as *const _, &ARM_CURRENT as *const _);
+    let mut e = blank_error();
+    // SAFETY: every non-null pointer is a live local of the right size; null ones are checked.
+    unsafe {
+        assert_eq!(uwml_robot_paper_f64(null_mut()), UWML_ERR_NULL_POINTER);
+        assert_eq!(uwml_robot_paper_f32(null_mut()), UWML_ERR_NULL_POINTER);
+        let code = uwml_robot_new_f64(null_mut(), j, 6, l, null(), s, 8, 1025.0, 9.81, &mut e);
+        expect_error(code, &e, (1, -1, "robot"));
+        expect_error(uwml_robot_new_f64(o, null(), 6, l, null(), s, 8, 1025.0, 9.81, &mut e), &e, (1, -1, "joints"));
+        expect_error(uwml_robot_new_f64(o, j, 6, null(), null(), s, 8, 1025.0, 9.81, &mut e), &e, (1, -1, "links"));
+        expect_error(uwml_robot_new_f64(o, j, 6, l, null(), null(), 8, 1025.0, 9.81, &mut e), &e, (1, -1, "segments"));
+        assert_eq!(uwml_robot_new_f64(null_mut(), null(), 1, null(), null(), null(), 1, 0.0, 0.0, null_mut()), 1);
+        assert_eq!(uwml_robot_new_f32(null_mut(), null(), 0, null(), null(), null(), 0, 1.0, 1.0, null_mut()), 1);
+        assert_eq!(out.opaque_tag, 0);
+
+        let code =
+            uwml_robot_hydro_f64(null_mut(), q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), 6, m, c, f, null_mut(), &mut e);
+        expect_error(code, &e, (1, -1, "robot"));
+        let code = uwml_robot_hydro_f64(r, null(), qd.as_ptr(), qdd.as_ptr(), 6, m, c, f, null_mut(), &mut e);
+        expect_error(code, &e, (1, -1, "q"));
+        let code = uwml_robot_hydro_f64(r, q.as_ptr(), null(), qdd.as_ptr(), 6, m, c, f, null_mut(), &mut e);
+        expect_error(code, &e, (1, -1, "qd"));
+        let code = uwml_robot_hydro_f64(r, q.as_ptr(), qd.as_ptr(), null(), 6, m, c, f, null_mut(), &mut e);
+        expect_error(code, &e, (1, -1, "qdd"));
+        let code =
+            uwml_robot_hydro_f64(r, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), 6, m, c, null_mut(), null_mut(), &mut e);
+        expect_error(code, &e, (1, -1, "joint_forces"));
+        let z = [0.0f32; 6];
+        let code = uwml_robot_hydro_f32(
+            null_mut(),
+            z.as_ptr(),
+            z.as_ptr(),
+            z.as_ptr(),
+            6,
+            null(),
+            null(),
+            null_mut(),
+            null_mut(),
+            &mut e,
+        );
+        expect_error(code, &e, (1, -1, "robot"));
+    }
+    // A robot without a base body (base NULL) is one with an empty body.
+    let mut params = arm();
+    params.base = None;
+    let mut robot = built64(&params);
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    assert_core64(&mut robot, &params, &water, [&q, &qd, &qdd], Some(&arm_motion()), Some(&ARM_CURRENT));
+}
+
+#[test]
+fn robots_not_written_by_the_library_are_refused() {
+    let [q, qd, qdd] = ARM_STATE;
+    let mut robot = zeroed64();
+    let out = hydro64(&mut robot, [&q, &qd, &qdd], None, None);
+    expect_error(out.code, &out.error, (UWML_ERR_UNINITIALIZED, -1, "robot"));
+    assert!(out.forces.iter().all(|f| *f == SENTINEL64));
+    // A robot of the other precision, or a leg, has another tag.
+    let mut as64 = zeroed64();
+    as64.opaque_tag = built32(&arm()).opaque_tag;
+    assert_eq!(hydro64(&mut as64, [&q, &qd, &qdd], None, None).code, UWML_ERR_UNINITIALIZED);
+    let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
+    // SAFETY: a live local.
+    assert_eq!(unsafe { uwml_leg3_paper_f64(&mut leg) }, UWML_OK);
+    as64.opaque_tag = leg.opaque_tag;
+    assert_eq!(hydro64(&mut as64, [&q, &qd, &qdd], None, None).code, UWML_ERR_UNINITIALIZED);
+    // SAFETY: a static NUL-terminated string.
+    let message = unsafe { CStr::from_ptr(uwml_error_message(UWML_ERR_UNINITIALIZED)) };
+    assert_eq!(message.to_str().unwrap(), "not initialized");
+}

@@ -1,0 +1,453 @@
+//! The robots of the robot API's tests, as the core describes them and as C gives them: a 6-joint
+//! arm (a tree: five joints in a chain, one prismatic, and a camera on a side branch; circular
+//! and rectangular segments) on a vehicle with a body and a circular hull, moving in a current;
+//! and the paper's leg. Shared by `robot_api.rs` (the C API against the core, bit for bit) and
+//! `robot_expected.rs` (the core's values for `tests/c/robot.c`).
+#![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
+
+use uwml_core::nalgebra::{UnitQuaternion, Vector3};
+use uwml_core::{
+    BaseMotion, Chain, Coefficients, Current, JointKind, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
+    TreeJoint, Water, robot_hydro,
+};
+use uwml_ffi::{
+    UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR,
+    UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64,
+    UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64,
+    UwmlTreeJointF32, UwmlTreeJointF64,
+};
+
+pub const J: usize = 16;
+pub const S: usize = 32;
+
+/// Sea water.
+pub const DENSITY: f64 = 1025.0;
+pub const GRAVITY: f64 = 9.81;
+
+/// A robot as C gives it.
+#[derive(Clone, Debug)]
+pub struct Params {
+    pub joints: Vec<UwmlTreeJointF64>,
+    pub links: Vec<UwmlBodyF64>,
+    pub base: Option<UwmlBodyF64>,
+    pub segments: Vec<UwmlRobotSegmentF64>,
+}
+
+/// The direction of the forearm, in the elbow's frame: (0.8, 0, -0.6).
+const FORE: [f64; 3] = [0.8, 0.0, -0.6];
+
+fn along(axis: [f64; 3], s: f64) -> [f64; 3] {
+    axis.map(|x| x * s)
+}
+
+fn joint(parent: i32, kind: i32, origin: [f64; 3], axis: [f64; 3]) -> UwmlTreeJointF64 {
+    UwmlTreeJointF64 { parent, kind, origin, axis }
+}
+
+fn body(mass: f64, com: [f64; 3], volume: f64, cob: [f64; 3]) -> UwmlBodyF64 {
+    UwmlBodyF64 { mass, com, volume, cob }
+}
+
+fn circular(
+    owner: i32,
+    start: [f64; 3],
+    axis: [f64; 3],
+    length: f64,
+    diameter: f64,
+    cd: f64,
+    cm: f64,
+) -> UwmlRobotSegmentF64 {
+    UwmlRobotSegmentF64 {
+        owner,
+        section: UWML_SECTION_CIRCULAR,
+        start,
+        axis,
+        length,
+        area: core::f64::consts::PI * diameter * diameter / 4.0,
+        diameter,
+        cd: [cd; 2],
+        cm: [cm; 2],
+        ..Default::default()
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn rectangular(
+    owner: i32,
+    start: [f64; 3],
+    axis: [f64; 3],
+    length: f64,
+    normals: [[f64; 3]; 2],
+    widths: [f64; 2],
+    cd: [f64; 2],
+    cm: [f64; 2],
+) -> UwmlRobotSegmentF64 {
+    UwmlRobotSegmentF64 {
+        owner,
+        section: UWML_SECTION_RECTANGULAR,
+        start,
+        axis,
+        length,
+        area: widths[0] * widths[1],
+        normals,
+        widths,
+        cd,
+        cm,
+        ..Default::default()
+    }
+}
+
+/// The arm on its vehicle. Joints: 0 turret (yaw, on the vehicle's belly), 1 shoulder (pitch),
+/// 2 elbow (pitch), 3 telescope (prismatic along the forearm), 4 wrist roll, 5 a camera's tilt
+/// on the turret (a side branch).
+pub fn arm() -> Params {
+    let (r, p) = (UWML_JOINT_REVOLUTE, UWML_JOINT_PRISMATIC);
+    let joints = vec![
+        joint(UWML_BASE, r, [0.40, 0.0, -0.25], [0.0, 0.0, 1.0]),
+        joint(0, r, [0.0, 0.0, -0.10], [0.0, 1.0, 0.0]),
+        joint(1, r, [0.45, 0.0, 0.0], [0.0, 1.0, 0.0]),
+        joint(2, p, along(FORE, 0.35), FORE),
+        joint(3, r, along(FORE, 0.20), FORE),
+        joint(0, r, [0.05, 0.06, -0.04], [1.0, 0.0, 0.0]),
+    ];
+    let links = vec![
+        body(3.0, [0.0, 0.0, -0.05], 0.0012, [0.0, 0.0, -0.045]),
+        body(4.2, [0.22, 0.0, 0.0], 0.0030, [0.21, 0.0, 0.01]),
+        body(2.5, along(FORE, 0.17), 0.0014, along(FORE, 0.16)),
+        body(1.1, along(FORE, 0.10), 0.0004, along(FORE, 0.10)),
+        body(0.9, along(FORE, 0.04), 0.0005, along(FORE, 0.05)),
+        body(0.8, [0.0, 0.03, 0.0], 0.0006, [0.0, 0.035, 0.0]),
+    ];
+    let base = body(140.0, [0.02, 0.0, -0.06], 0.138, [0.0, 0.0, 0.05]);
+    let segments = vec![
+        // The hull, and a rectangular skid under it.
+        circular(UWML_BASE, [-0.7, 0.0, 0.0], [1.0, 0.0, 0.0], 1.4, 0.5, 0.9, 1.0),
+        rectangular(
+            UWML_BASE,
+            [-0.5, 0.0, -0.28],
+            [1.0, 0.0, 0.0],
+            1.0,
+            [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [0.06, 0.3],
+            [2.0, 1.8],
+            [0.8, 1.2],
+        ),
+        circular(0, [0.0, 0.0, 0.0], [0.0, 0.0, -1.0], 0.10, 0.12, 1.1, 1.0),
+        rectangular(
+            1,
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            0.45,
+            [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [0.08, 0.10],
+            [1.9, 2.1],
+            [0.9, 1.1],
+        ),
+        circular(2, [0.0, 0.0, 0.0], FORE, 0.35, 0.07, 1.2, 1.0),
+        circular(3, along(FORE, -0.05), FORE, 0.25, 0.05, 1.2, 1.0),
+        rectangular(
+            4,
+            [0.0, 0.0, 0.0],
+            FORE,
+            0.12,
+            [[0.0, 1.0, 0.0], [0.6, 0.0, 0.8]],
+            [0.06, 0.04],
+            [2.2, 1.6],
+            [1.0, 0.7],
+        ),
+        circular(5, [0.0, -0.02, 0.0], [0.0, 1.0, 0.0], 0.10, 0.06, 1.0, 1.0),
+    ];
+    Params { joints, links, base: Some(base), segments }
+}
+
+/// The arm's joint state: q [rad, m for joint 3], qd, qdd.
+pub const ARM_STATE: [[f64; 6]; 3] =
+    [[0.4, -0.7, 1.1, 0.12, -0.5, 0.3], [0.5, -0.3, 0.8, 0.1, 1.5, -0.6], [1.0, -0.5, 0.3, 0.2, -2.0, 0.7]];
+
+/// A rotation as a unit quaternion `(w, x, y, z)`.
+pub fn quaternion(scaled_axis: [f64; 3]) -> [f64; 4] {
+    let q = UnitQuaternion::from_scaled_axis(Vector3::from(scaled_axis));
+    [q.w, q.i, q.j, q.k]
+}
+
+/// The vehicle pitched, rolled and turned, surging forward while turning and heaving.
+pub fn arm_motion() -> UwmlBaseMotionF64 {
+    UwmlBaseMotionF64 {
+        orientation: quaternion([0.12, -0.25, 0.8]),
+        velocity: [0.6, -0.1, 0.05],
+        angular_velocity: [0.05, -0.1, 0.2],
+        acceleration: [0.2, 0.05, -0.1],
+        angular_acceleration: [-0.1, 0.3, 0.05],
+    }
+}
+
+/// A current across the vehicle's path, speeding up.
+pub const ARM_CURRENT: UwmlCurrentF64 = UwmlCurrentF64 { velocity: [0.3, -0.4, 0.05], acceleration: [0.02, 0.01, 0.0] };
+
+/// The paper's leg as C would give it (what `uwml_robot_paper_*` holds): 3 revolute joints in a chain, rectangular segments with
+/// Cd 2.2, Cm 0.5, no base body.
+pub fn paper() -> Params {
+    let chain = Chain::<f64, 3>::paper();
+    let coefficients = Coefficients::<f64, 3>::default();
+    let joints = chain
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(i, j)| UwmlTreeJointF64 {
+            parent: i32::try_from(i).unwrap() - 1,
+            kind: UWML_JOINT_REVOLUTE,
+            origin: j.origin.into(),
+            axis: j.axis.into(),
+        })
+        .collect();
+    let links = chain.links().iter().map(|l| UwmlBodyF64 {
+        mass: l.mass,
+        com: l.com.into(),
+        volume: l.volume,
+        cob: l.cob.into(),
+    });
+    let segments = chain
+        .links()
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| {
+            l.segment.map(|s| UwmlRobotSegmentF64 {
+                owner: i32::try_from(i).unwrap(),
+                section: UWML_SECTION_RECTANGULAR,
+                start: s.start.into(),
+                axis: s.axis.into(),
+                length: s.length,
+                area: s.area,
+                normals: s.normals.map(Into::into),
+                widths: s.widths,
+                cd: coefficients.cd()[i],
+                cm: coefficients.cm()[i],
+                ..Default::default()
+            })
+        })
+        .collect();
+    Params { joints, links: links.collect(), base: None, segments }
+}
+
+/// MODEL.md section 5's state of the paper's leg.
+pub const PAPER_STATE: [[f64; 3]; 3] = [[0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]];
+
+/// The leg on a body that heaves and rolls a little.
+pub fn paper_motion() -> UwmlBaseMotionF64 {
+    UwmlBaseMotionF64 {
+        orientation: quaternion([0.05, 0.1, 0.0]),
+        velocity: [0.1, 0.0, -0.2],
+        angular_velocity: [0.1, 0.05, 0.0],
+        acceleration: [0.0, 0.3, 0.1],
+        angular_acceleration: [0.2, 0.0, -0.1],
+    }
+}
+
+pub const PAPER_CURRENT: UwmlCurrentF64 = UwmlCurrentF64 { velocity: [0.2, 0.1, 0.0], acceleration: [0.0, 0.05, 0.0] };
+
+/// The core's description of a robot given as C gives it (every field copied, nothing checked).
+pub fn core_robot<T: Real>(params: &Params) -> Robot<T, J, S> {
+    let v = |x: [f64; 3]| Vector3::from(x.map(T::narrow));
+    let index = |i: i32| usize::try_from(i).ok();
+    let joints: Vec<_> = params
+        .joints
+        .iter()
+        .map(|j| TreeJoint {
+            parent: index(j.parent),
+            kind: if j.kind == UWML_JOINT_PRISMATIC { JointKind::Prismatic } else { JointKind::Revolute },
+            origin: v(j.origin),
+            axis: v(j.axis),
+        })
+        .collect();
+    let body = |b: &UwmlBodyF64| RigidBody {
+        mass: T::narrow(b.mass),
+        com: v(b.com),
+        volume: T::narrow(b.volume),
+        cob: v(b.cob),
+    };
+    let links: Vec<_> = params.links.iter().map(body).collect();
+    let segments: Vec<_> = params
+        .segments
+        .iter()
+        .map(|s| RobotSegment {
+            owner: index(s.owner).map_or(Owner::Base, Owner::Link),
+            start: v(s.start),
+            axis: v(s.axis),
+            length: T::narrow(s.length),
+            area: T::narrow(s.area),
+            section: if s.section == UWML_SECTION_CIRCULAR {
+                Section::Circular { diameter: T::narrow(s.diameter) }
+            } else {
+                Section::Rectangular { normals: s.normals.map(v), widths: s.widths.map(T::narrow) }
+            },
+            cd: s.cd.map(T::narrow),
+            cm: s.cm.map(T::narrow),
+        })
+        .collect();
+    let base = params.base.as_ref().map_or(RigidBody::empty(), body);
+    Robot::new(&joints, &links, base, &segments).expect("a valid robot")
+}
+
+pub fn core_motion<T: Real>(m: Option<&UwmlBaseMotionF64>) -> BaseMotion<T> {
+    let v = |x: [f64; 3]| Vector3::from(x.map(T::narrow));
+    m.map_or(BaseMotion::fixed(), |m| {
+        BaseMotion::new(
+            m.orientation.map(T::narrow),
+            v(m.velocity),
+            v(m.angular_velocity),
+            v(m.acceleration),
+            v(m.angular_acceleration),
+        )
+        .expect("a valid motion")
+    })
+}
+
+pub fn core_current<T: Real>(c: Option<&UwmlCurrentF64>) -> Current<T> {
+    let v = |x: [f64; 3]| Vector3::from(x.map(T::narrow));
+    c.map_or(Current::still(), |c| Current::new(v(c.velocity), v(c.acceleration)).expect("a valid current"))
+}
+
+/// The core's evaluation, on `q`, `qd`, `qdd` (the robot's joints only).
+pub fn core_hydro<T: Real>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    state: [&[T]; 3],
+) -> RobotData<T, J> {
+    let padded = |x: &[T]| {
+        let mut out = [T::narrow(0.0); J];
+        out[..x.len()].copy_from_slice(x);
+        out
+    };
+    let (q, qd, qdd) = (padded(state[0]), padded(state[1]), padded(state[2]));
+    let mut data = RobotData::new();
+    robot_hydro(robot, water, None, motion, current, &q, &qd, &qdd, &mut data);
+    data
+}
+
+/// f64 or f32, converted from the f64 parameters as C's `(float)x` does.
+pub trait Real: uwml_core::nalgebra::RealField + Copy {
+    fn narrow(x: f64) -> Self;
+}
+
+impl Real for f64 {
+    fn narrow(x: f64) -> Self {
+        x
+    }
+}
+
+impl Real for f32 {
+    #[allow(clippy::cast_possible_truncation)]
+    fn narrow(x: f64) -> Self {
+        x as f32
+    }
+}
+
+fn f3(x: [f64; 3]) -> [f32; 3] {
+    x.map(f32::narrow)
+}
+
+/// The f32 parameters, as C would convert them.
+pub struct Params32 {
+    pub joints: Vec<UwmlTreeJointF32>,
+    pub links: Vec<UwmlBodyF32>,
+    pub base: Option<UwmlBodyF32>,
+    pub segments: Vec<UwmlRobotSegmentF32>,
+}
+
+pub fn body32(b: &UwmlBodyF64) -> UwmlBodyF32 {
+    UwmlBodyF32 { mass: f32::narrow(b.mass), com: f3(b.com), volume: f32::narrow(b.volume), cob: f3(b.cob) }
+}
+
+pub fn params32(p: &Params) -> Params32 {
+    Params32 {
+        joints: p
+            .joints
+            .iter()
+            .map(|j| UwmlTreeJointF32 { parent: j.parent, kind: j.kind, origin: f3(j.origin), axis: f3(j.axis) })
+            .collect(),
+        links: p.links.iter().map(body32).collect(),
+        base: p.base.as_ref().map(body32),
+        segments: p
+            .segments
+            .iter()
+            .map(|s| UwmlRobotSegmentF32 {
+                owner: s.owner,
+                section: s.section,
+                start: f3(s.start),
+                axis: f3(s.axis),
+                length: f32::narrow(s.length),
+                area: f32::narrow(s.area),
+                normals: s.normals.map(f3),
+                widths: s.widths.map(f32::narrow),
+                diameter: f32::narrow(s.diameter),
+                cd: s.cd.map(f32::narrow),
+                cm: s.cm.map(f32::narrow),
+            })
+            .collect(),
+    }
+}
+
+pub fn motion32(m: &UwmlBaseMotionF64) -> UwmlBaseMotionF32 {
+    UwmlBaseMotionF32 {
+        orientation: m.orientation.map(f32::narrow),
+        velocity: f3(m.velocity),
+        angular_velocity: f3(m.angular_velocity),
+        acceleration: f3(m.acceleration),
+        angular_acceleration: f3(m.angular_acceleration),
+    }
+}
+
+pub fn current32(c: &UwmlCurrentF64) -> UwmlCurrentF32 {
+    UwmlCurrentF32 { velocity: f3(c.velocity), acceleration: f3(c.acceleration) }
+}
+
+/// The core's results in the C API's structs (`total` as the core sums it).
+pub fn forces64(data: &RobotData<f64, J>) -> Vec<UwmlJointForcesF64> {
+    data.joint_forces()
+        .iter()
+        .map(|f| UwmlJointForcesF64 {
+            drag: f.drag,
+            added_mass: f.added_mass,
+            buoyancy: f.buoyancy,
+            gravity: f.gravity,
+            total: f.total(),
+        })
+        .collect()
+}
+
+pub fn wrench64(data: &RobotData<f64, J>) -> UwmlBaseWrenchF64 {
+    let w = data.base_wrench();
+    UwmlBaseWrenchF64 {
+        drag: w.drag.to_array(),
+        added_mass: w.added_mass.to_array(),
+        buoyancy: w.buoyancy.to_array(),
+        gravity: w.gravity.to_array(),
+        total: w.total().to_array(),
+    }
+}
+
+pub fn forces32(data: &RobotData<f32, J>) -> Vec<UwmlJointForcesF32> {
+    data.joint_forces()
+        .iter()
+        .map(|f| UwmlJointForcesF32 {
+            drag: f.drag,
+            added_mass: f.added_mass,
+            buoyancy: f.buoyancy,
+            gravity: f.gravity,
+            total: f.total(),
+        })
+        .collect()
+}
+
+pub fn wrench32(data: &RobotData<f32, J>) -> UwmlBaseWrenchF32 {
+    let w = data.base_wrench();
+    UwmlBaseWrenchF32 {
+        drag: w.drag.to_array(),
+        added_mass: w.added_mass.to_array(),
+        buoyancy: w.buoyancy.to_array(),
+        gravity: w.gravity.to_array(),
+        total: w.total().to_array(),
+    }
+}
