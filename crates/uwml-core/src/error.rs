@@ -26,7 +26,9 @@ pub enum Problem {
 pub struct ModelError {
     /// The parameter, e.g. `"segment.length"` or `"water.density"`.
     pub field: &'static str,
-    /// The joint (fields `joint.*`) or link (all other fields) it belongs to, 0-based, if any.
+    /// The joint (fields `joint.*`), the robot segment (`segment.owner`, `.section`, `.cd`,
+    /// `.cm`, `.diameter`) or the link (all other fields; a chain's segment is its link's) it
+    /// belongs to, 0-based, if any.
     pub index: Option<usize>,
     /// What was wrong with it.
     pub problem: Problem,
@@ -41,7 +43,12 @@ impl ModelError {
 impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(i) = self.index {
-            let owner = if self.field.starts_with("joint") { "joint" } else { "link" };
+            // A robot's segments are numbered on their own (a chain's segment is its link's).
+            let owner = match self.field {
+                field if field.starts_with("joint") => "joint",
+                "segment.owner" | "segment.section" | "segment.cd" | "segment.cm" | "segment.diameter" => "segment",
+                _ => "link",
+            };
             write!(f, "{owner} {i}: ")?;
         }
         let allowed = match self.problem {

@@ -160,12 +160,17 @@ impl<T: RealField + Copy> TreeJoint<T> {
 }
 
 impl<T: RealField + Copy> RigidBody<T> {
+    /// Validated: link `index`'s body, or the base's (`None`, fields `base.*`).
     fn validated(self, index: Option<usize>) -> Result<Self, ModelError> {
+        let [mass, com, volume, cob] = match index {
+            Some(_) => ["link.mass", "link.com", "link.volume", "link.cob"],
+            None => ["base.mass", "base.com", "base.volume", "base.cob"],
+        };
         Ok(Self {
-            mass: check_non_negative(self.mass, "link.mass", index)?,
-            com: check_vector(self.com, "link.com", index)?,
-            volume: check_non_negative(self.volume, "link.volume", index)?,
-            cob: check_vector(self.cob, "link.cob", index)?,
+            mass: check_non_negative(self.mass, mass, index)?,
+            com: check_vector(self.com, com, index)?,
+            volume: check_non_negative(self.volume, volume, index)?,
+            cob: check_vector(self.cob, cob, index)?,
         })
     }
 
@@ -204,6 +209,12 @@ impl<T: RealField + Copy> RobotSegment<T> {
             Section::Circular { diameter } => {
                 let [cd0, cd1] = self.cd;
                 let [cm0, cm1] = self.cm;
+                for x in [cd0, cd1] {
+                    check_non_negative(x, "segment.cd", i)?;
+                }
+                for x in [cm0, cm1] {
+                    check_non_negative(x, "segment.cm", i)?;
+                }
                 if cd0 != cd1 {
                     return Err(ModelError::new("segment.cd", i, Problem::OutOfRange));
                 }

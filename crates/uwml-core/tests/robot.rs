@@ -526,6 +526,21 @@ fn bad_models_and_motions_are_errors_naming_the_field() {
     let error = Model::new(&[joint], &[body], body, &[RobotSegment { owner: Owner::Base, cd: [1.0, 2.0], ..segment }])
         .unwrap_err();
     assert_eq!(error.field, "segment.cd");
+    // NaN coefficients are non-finite, whatever the section; the base's fields are named `base.*`.
+    let error =
+        Model::new(&[joint], &[body], body, &[RobotSegment { owner: Owner::Base, cd: [f64::NAN; 2], ..segment }])
+            .unwrap_err();
+    assert_eq!((error.field, error.problem), ("segment.cd", Problem::NonFinite));
+    let error = Model::new(&[joint], &[body], RigidBody { mass: -1.0, ..body }, &[]).unwrap_err();
+    assert_eq!((error.field, error.index, error.problem), ("base.mass", None, Problem::Negative));
+    let error = Model::new(&[joint], &[RigidBody { volume: -1.0, ..body }], body, &[]).unwrap_err();
+    assert_eq!((error.field, error.index), ("link.volume", Some(0)));
+    assert_eq!(
+        Model::new(&[joint], &[body], body, &[RobotSegment { owner: Owner::Link(4), ..segment }])
+            .unwrap_err()
+            .to_string(),
+        "segment 0: segment.owner is outside its allowed range"
+    );
     // Zero, non-unit and non-finite orientations; non-finite motion and current.
     let zero = Vector3::zeros();
     for (orientation, problem) in [

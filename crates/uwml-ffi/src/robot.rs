@@ -222,17 +222,9 @@ robot_precision!(
     UwmlBaseWrenchF32
 );
 
-/// A core error at construction; the core names the base body's fields `link.*` without an
-/// index, the C API `base.*`.
+/// A core error at construction (the core names the base body's fields `base.*`, as the C API).
 fn construction_failure(error: ModelError) -> Failure {
-    let field = match (error.field, error.index) {
-        ("link.mass", None) => "base.mass",
-        ("link.com", None) => "base.com",
-        ("link.volume", None) => "base.volume",
-        ("link.cob", None) => "base.cob",
-        (field, _) => field,
-    };
-    Failure::from(ModelError { field, ..error })
+    Failure::from(error)
 }
 
 /// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).

@@ -10,7 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
-    BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData,
+    BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, Problem, RigidBody, Robot, RobotData,
     RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, loss_torques,
     robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
 };
@@ -60,7 +60,7 @@ fn index(x: f64, field: &'static str, i: usize) -> Result<Option<usize>, ModelEr
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         Ok(Some(x as usize))
     } else {
-        Err(ModelError { field, index: Some(i), problem: uwml_core::Problem::OutOfRange })
+        Err(ModelError { field, index: Some(i), problem: Problem::OutOfRange })
     }
 }
 
@@ -72,7 +72,11 @@ fn build(joints: &[f64], links: &[f64], base: &[f64], segments: &[f64]) -> Resul
             let tail = |k: usize| r.get(k..).unwrap_or(&[]);
             Ok(TreeJoint {
                 parent: index(r.first().copied().unwrap_or(f64::NAN), "joint.parent", i)?,
-                kind: if r.get(1) == Some(&1.0) { JointKind::Prismatic } else { JointKind::Revolute },
+                kind: match r.get(1) {
+                    Some(&0.0) => JointKind::Revolute,
+                    Some(&1.0) => JointKind::Prismatic,
+                    _ => return Err(ModelError { field: "joint.kind", index: Some(i), problem: Problem::OutOfRange }),
+                },
                 origin: v3(tail(2)),
                 axis: v3(tail(5)),
             })
@@ -85,10 +89,10 @@ fn build(joints: &[f64], links: &[f64], base: &[f64], segments: &[f64]) -> Resul
         .map(|(i, r)| {
             let at = |k: usize| r.get(k).copied().unwrap_or(f64::NAN);
             let tail = |k: usize| r.get(k..).unwrap_or(&[]);
-            let section = if at(1) == 1.0 {
-                Section::Circular { diameter: at(18) }
-            } else {
-                Section::Rectangular { normals: [v3(tail(10)), v3(tail(13))], widths: [at(16), at(17)] }
+            let section = match at(1) {
+                0.0 => Section::Rectangular { normals: [v3(tail(10)), v3(tail(13))], widths: [at(16), at(17)] },
+                1.0 => Section::Circular { diameter: at(18) },
+                _ => return Err(ModelError { field: "segment.section", index: Some(i), problem: Problem::OutOfRange }),
             };
             Ok(RobotSegment {
                 owner: index(at(0), "segment.owner", i)?.map_or(Owner::Base, Owner::Link),
