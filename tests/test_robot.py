@@ -89,7 +89,6 @@ def assert_close(actual: np.ndarray, expected: np.ndarray, scale: np.ndarray, rt
     assert error[worst] <= rtol, f"{what}: sample {worst} off by {error[worst]:.3g} relative\n{actual[worst]}\n{expected[worst]}"
 
 
-@EXAMPLES
 @given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 9))
 def test_core_matches_the_reference_on_random_trees_in_moving_water(seed: int, n: int) -> None:
     rng = np.random.default_rng(seed)
