@@ -99,7 +99,13 @@ def test_one_state_hydro_is_the_batch_row_bit_for_bit(seed: int) -> None:
             assert type(one) is HydroTorques
             assert_same_bits(one, batch, HYDRO_FIELDS, s, f"state {s} as {kind}")
         # A batch of that one state, 1-D (the general path), too.
-        assert_same_bits(leg.hydro(q[s], qd[s], qdd[s], cd=cd, cm=cm, water=water), general_only(leg).hydro(q[s], qd[s], qdd[s], cd=cd, cm=cm, water=water), HYDRO_FIELDS, None, f"state {s}")
+        assert_same_bits(
+            leg.hydro(q[s], qd[s], qdd[s], cd=cd, cm=cm, water=water),
+            general_only(leg).hydro(q[s], qd[s], qdd[s], cd=cd, cm=cm, water=water),
+            HYDRO_FIELDS,
+            None,
+            f"state {s}",
+        )
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -126,7 +132,19 @@ def test_one_state_environment_is_the_batch_row_bit_for_bit(seed: int) -> None:
             assert_same_bits(one, batch, ENVIRONMENT_FIELDS, s, f"state {s} as {kind}")
         packed = None if losses is None else leg._one_state_losses(losses)
         fast = leg._chain.environment_one(
-            EnvironmentTorques, q[s], qd[s], qdd[s], float(depth[s]), float(temperature[s]), packed, cd, cm, water.density, water.gravity, sea_density, 1
+            EnvironmentTorques,
+            q[s],
+            qd[s],
+            qdd[s],
+            float(depth[s]),
+            float(temperature[s]),
+            packed,
+            cd,
+            cm,
+            water.density,
+            water.gravity,
+            sea_density,
+            1,
         )
         assert fast is not None
 
@@ -193,7 +211,9 @@ def test_other_kinds_give_the_general_paths_numbers(override: dict, taken: bool)
     assert fast == outcome(lambda: general_only(PAPER).hydro(**arguments), HYDRO_FIELDS)
     assert not isinstance(fast[0], type) or override.get("q") is MISALIGNED
     state = [arguments[k] for k in ("q", "qd", "qdd")]
-    native = PAPER._chain.hydro_one(HydroTorques, *state, arguments.get("cd", 2.2), arguments.get("cm", 0.5), 1000.0, 9.81, arguments.get("threads", 1))
+    native = PAPER._chain.hydro_one(
+        HydroTorques, *state, arguments.get("cd", 2.2), arguments.get("cm", 0.5), 1000.0, 9.81, arguments.get("threads", 1)
+    )
     assert (native is not None) == taken
 
 
