@@ -1,7 +1,7 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
 from collections.abc import Sequence
-from typing import Self, final
+from typing import Self, TypeVar, final
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,6 +21,8 @@ __all__ = [
     "Robot",
     "joint_losses",
 ]
+
+_Result = TypeVar("_Result")
 
 MAX_JOINTS: int
 JOINT_WIDTH: int
@@ -54,6 +56,34 @@ class Chain:
         gravity: float,
         threads: int,
     ) -> list[NDArray[np.float64]]: ...
+    def hydro_one(
+        self,
+        result_type: type[_Result],
+        q: object,
+        qd: object,
+        qdd: object,
+        cd: object,
+        cm: object,
+        density: object,
+        gravity: object,
+        threads: object,
+    ) -> _Result | None: ...
+    def environment_one(
+        self,
+        result_type: type[_Result],
+        q: object,
+        qd: object,
+        qdd: object,
+        depth: object,
+        temperature: object,
+        losses: object,
+        cd: object,
+        cm: object,
+        density: object,
+        gravity: object,
+        sea_density: object,
+        threads: object,
+    ) -> _Result | None: ...
     def environment(
         self,
         q: NDArray[np.float64],

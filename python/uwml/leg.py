@@ -209,6 +209,9 @@ class Leg:
         rod.hydro(q=[0.0], qd=[1.0], qdd=[0.0], cd=1.2, cm=1.0).drag
     """
 
+    #: The last single JointLosses given to :meth:`environment` and its packed table.
+    _losses_cache: tuple[JointLosses, FloatArray] | None = None
+
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
         try:
             joints, links = tuple(joints), tuple(links)
@@ -289,8 +292,18 @@ class Leg:
             Threads to split a batch over (≥ 1; ``os.cpu_count()`` for every core): the same
             results, faster for large batches.
 
-        The whole batch is evaluated in one call into Rust, with the GIL released.
+        The whole batch is evaluated in one call into Rust, with the GIL released. One state
+        (``q``, ``qd``, ``qdd`` lists, tuples or 1-D float64 arrays, scalar ``cd`` and ``cm``),
+        as a controller or a simulator steps, is read, checked and evaluated in one shorter call
+        (about 2 µs; docs/performance.md), with the same checks and the same bits as that state's
+        row of a batch.
         """
+        if isinstance(water, Water):
+            # One state as plain floats: read, checked and evaluated in one native call (None if
+            # any argument is of another kind or fails a check: the general path then answers).
+            one: HydroTorques | None = self._chain.hydro_one(HydroTorques, q, qd, qdd, cd, cm, water.density, water.gravity, threads)
+            if one is not None:
+                return one
         threads = _threads(threads)
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
@@ -331,11 +344,47 @@ class Leg:
             joint, or None for none (the hydrodynamics alone).
         cd, cm, water, threads
             As for :meth:`hydro` (``water`` is the fluid the links move in).
+
+        One state with scalar ``depth``, ``temperature_c`` and ``sea_density`` and ``losses``
+        None or one :class:`uwml.JointLosses` takes the short path of :meth:`hydro`.
         """
+        if isinstance(water, Water):
+            # One state as plain floats, as in hydro.
+            one: EnvironmentTorques | None = self._chain.environment_one(
+                EnvironmentTorques,
+                q,
+                qd,
+                qdd,
+                depth,
+                temperature_c,
+                None if losses is None else self._one_state_losses(losses),
+                cd,
+                cm,
+                water.density,
+                water.gravity,
+                sea_density,
+                threads,
+            )
+            if one is not None:
+                return one
         threads = _threads(threads)
         shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
         columns = self._chain.environment(*arguments, threads)
         return EnvironmentTorques(*(c.reshape(shape) for c in columns))
+
+    def _one_state_losses(self, losses: object) -> FloatArray | bool:
+        """``losses`` (not None) for ``Chain.environment_one``: one :class:`JointLosses` packed for
+        every joint (kept for the next call with the same object: it is frozen), or ``False``
+        (which the native call does not take) for anything else, left to the general path."""
+        cached = self._losses_cache
+        if cached is not None and cached[0] is losses:
+            return cached[1]
+        if type(losses) is not JointLosses:
+            return False
+        packed = pack_leg_losses(losses, self.n_joints)
+        packed.flags.writeable = False
+        self._losses_cache = (losses, packed)
+        return packed
 
     def _environment_arguments(
         self,

@@ -2,9 +2,11 @@
 //! crate converts arrays, dispatches on the number of joints, and loops over samples with the
 //! GIL released. The friendly, validated API is the Python package `uwml`.
 
+use std::any::Any;
 use std::ops::Range;
 
 mod robot;
+mod single;
 
 use numpy::ndarray::{Array, Dimension, IntoDimension};
 use numpy::{
@@ -14,6 +16,7 @@ use numpy::{
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyType;
 use uwml_core::nalgebra::{SVector, SimdValue, Vector3};
 use uwml_core::{
     Chain, Coefficients, Drive, HydroRegressors, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
@@ -365,11 +368,22 @@ fn hydro_rows<const N: usize>(
     water: &Water<f64>,
     coefficients: &Coefficients<f64, N>,
     states: &States<'_>,
+    out: [&mut [f64]; 4],
+) {
+    hydro_lane_rows(&chain.splat(), water, coefficients, states, out);
+}
+
+/// [`hydro_rows`] with the chain already over lanes (`Chain::splat`).
+fn hydro_lane_rows<const N: usize>(
+    chain: &Chain<Lanes, N>,
+    water: &Water<f64>,
+    coefficients: &Coefficients<f64, N>,
+    states: &States<'_>,
     [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
 ) {
-    let (chain, water, coefficients) = (chain.splat::<Lanes>(), water.splat(), coefficients.splat());
+    let (water, coefficients) = (water.splat(), coefficients.splat());
     let torques = states
-        .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(&chain, &water, &coefficients, q, qd, qdd)));
+        .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(chain, &water, &coefficients, q, qd, qdd)));
     let rows = drag
         .chunks_exact_mut(N)
         .zip(added_mass.chunks_exact_mut(N))
@@ -413,9 +427,9 @@ fn loss_batch(
 }
 
 /// Hydrodynamic and loss torques of a batch: drag, added mass, buoyancy, gravity, visc, seal,
-/// current, each `n_samples × N`.
+/// current, each `n_samples × N` (`chain` over lanes: `Chain::splat`).
 fn environment_into<const N: usize>(
-    chain: &Chain<f64, N>,
+    chain: &Chain<Lanes, N>,
     water: &Water<f64>,
     coefficients: &Coefficients<f64, N>,
     losses: &[Option<JointLosses<f64>>],
@@ -434,7 +448,7 @@ fn environment_into<const N: usize>(
             }
         }
     }
-    hydro_rows(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity]);
+    hydro_lane_rows(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity]);
     let mut joint_losses = [None; N];
     for (slot, l) in joint_losses.iter_mut().zip(losses) {
         *slot = *l;
@@ -693,6 +707,23 @@ fn contiguous<'a>(array: &'a PyReadonlyArray2<'_, f64>, argument: &str) -> PyRes
 #[pyclass(frozen, module = "uwml._core", name = "Chain")]
 struct PyChain {
     chain: AnyChain,
+    /// The chain over SIMD lanes (`Chain<Lanes, N>`), made once for the one-state calls.
+    lanes: Box<dyn Any + Send + Sync>,
+}
+
+impl PyChain {
+    fn from_chain(chain: AnyChain) -> Self {
+        let lanes = dispatch!(&chain, c => Box::new(c.splat::<Lanes>()) as Box<dyn Any + Send + Sync>);
+        Self { chain, lanes }
+    }
+
+    /// `chain` (this chain) over SIMD lanes.
+    fn lanes<const N: usize>(&self, chain: &Chain<f64, N>) -> std::borrow::Cow<'_, Chain<Lanes, N>> {
+        match self.lanes.downcast_ref() {
+            Some(lanes) => std::borrow::Cow::Borrowed(lanes),
+            None => std::borrow::Cow::Owned(chain.splat()),
+        }
+    }
 }
 
 /// What every batch evaluation needs, checked and borrowed from the numpy arrays.
@@ -790,13 +821,13 @@ impl PyChain {
             7 => AnyChain::N7(build(j, l).map_err(model_error)?),
             _ => AnyChain::N8(build(j, l).map_err(model_error)?),
         };
-        Ok(Self { chain })
+        Ok(Self::from_chain(chain))
     }
 
     /// The paper's leg (Table II).
     #[staticmethod]
     fn paper() -> Self {
-        Self { chain: AnyChain::N3(Chain::paper()) }
+        Self::from_chain(AnyChain::N3(Chain::paper()))
     }
 
     /// Number of joints.
@@ -849,6 +880,64 @@ impl PyChain {
         Ok(arrays.into())
     }
 
+    /// One state's torques as a `result_type` (`uwml.HydroTorques`) of `(N,)` arrays, the same
+    /// bits as that state's row of `hydro`; or None when an argument is not of a plain kind or
+    /// fails a check (the caller's general path then takes the call): states as lists, tuples
+    /// or 1-D float64 arrays of N finite values, scalar `cd` and `cm`, `threads` an int ≥ 1.
+    /// Evaluated with the GIL held (one state costs less than releasing it).
+    #[allow(clippy::too_many_arguments)]
+    fn hydro_one<'py>(
+        &self,
+        result_type: &Bound<'py, PyType>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        cd: &Bound<'py, PyAny>,
+        cm: &Bound<'py, PyAny>,
+        density: &Bound<'py, PyAny>,
+        gravity: &Bound<'py, PyAny>,
+        threads: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if !single::threads_ok(threads) {
+            return Ok(None);
+        }
+        dispatch!(&self.chain, c => match single::Common::read([q, qd, qdd], [cd, cm], [density, gravity]) {
+            Some(common) => single::hydro(&self.lanes(c), result_type, &common).map(Some),
+            None => Ok(None),
+        })
+    }
+
+    /// One state's environment torques as a `result_type` (`uwml.EnvironmentTorques`) of `(N,)`
+    /// arrays, the same bits as that state's row of `environment` at pressure `sea_density ·
+    /// gravity · depth`; or None as for `hydro_one` (also for a depth, temperature or
+    /// sea_density that is not a finite Python float or int, a negative depth, a sea_density
+    /// ≤ 0, or `losses` neither None nor a valid packed `(N, LOSS_WIDTH)` float64 array).
+    #[allow(clippy::too_many_arguments)]
+    fn environment_one<'py>(
+        &self,
+        result_type: &Bound<'py, PyType>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        depth: &Bound<'py, PyAny>,
+        temperature: &Bound<'py, PyAny>,
+        losses: &Bound<'py, PyAny>,
+        cd: &Bound<'py, PyAny>,
+        cm: &Bound<'py, PyAny>,
+        density: &Bound<'py, PyAny>,
+        gravity: &Bound<'py, PyAny>,
+        sea_density: &Bound<'py, PyAny>,
+        threads: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if !single::threads_ok(threads) {
+            return Ok(None);
+        }
+        dispatch!(&self.chain, c => match single::Common::read([q, qd, qdd], [cd, cm], [density, gravity]) {
+            Some(common) => single::environment(&self.lanes(c), result_type, &common, [depth, temperature, sea_density], losses),
+            None => Ok(None),
+        })
+    }
+
     /// Environment torques with joint losses: `(drag, added_mass, buoyancy, gravity, visc,
     /// seal, current)`, each `(n_samples, N)`; `losses` packed `(N, LOSS_WIDTH)`, pressure [Pa]
     /// and temperature [°C] per sample.
@@ -878,10 +967,11 @@ impl PyChain {
         py.detach(|| -> Result<(), PyErrSend> {
             dispatch!(&chain, c => {
                 let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
+                let lanes = c.splat();
                 in_parallel(n_samples, [n; _], threads, out, |range, out| {
                     let conditions =
                         (pressure.get(range.clone()).unwrap_or(&[]), temperature.get(range.clone()).unwrap_or(&[]));
-                    environment_into(c, &water, &coefficients, &losses, &states.range(range, n), conditions, out)
+                    environment_into(&lanes, &water, &coefficients, &losses, &states.range(range, n), conditions, out)
                 }, NonFinite::shifted)
                 .map_err(PyErrSend::State)
             })
