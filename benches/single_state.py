@@ -1,6 +1,8 @@
 """Cost of one state per call from Python (a controller or a simulator stepping one state at a
 time): ``Leg.hydro`` and ``Leg.environment`` on the paper's leg with 1-D states, default
-coefficients and water, against the batch path's cost per state.
+coefficients and water, against the batch path's cost per state; and ``Robot.hydro`` (the paper's
+leg as a robot, fixed and on a moving base in a current; the 7-joint arm of
+:func:`uwml.examples.arm_on_rov` on a moving ROV in a current).
 
 Run: ``python benches/single_state.py [repeats]`` (default 7). Each figure is the best of
 ``repeats`` ``timeit`` runs of 20,000 calls (and the median, for the spread); the batch figures
@@ -13,6 +15,7 @@ import timeit
 
 import numpy as np
 import uwml
+from uwml.examples import arm_on_rov
 
 CALLS = 20_000
 BATCH = 100_000
@@ -47,6 +50,17 @@ def main() -> None:
             "environment(..., cd=[per link]) (general path)",
             lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0, cd=cd_per_link),
         ),
+    ]:
+        best, median = per_call(statement, repeats)
+        print(f"  {label:52s} {best * 1e6:6.2f} µs  ({median * 1e6:.2f})")
+
+    robot, arm = uwml.Robot.from_leg(leg), arm_on_rov()
+    motion = uwml.BaseMotion(velocity=(0.5, 0.0, 0.0), angular_velocity=(0.0, 0.02, 0.0))
+    q7 = [0.2, 0.4, -0.8, 0.0, 0.3, 0.0, 0.05]
+    for label, statement in [
+        ("Robot.hydro, paper leg, fixed base, lists", lambda: robot.hydro(q, qd, qdd)),
+        ("Robot.hydro, paper leg, moving base, current", lambda: robot.hydro(q, qd, qdd, base_motion=motion, current=(0.2, 0.0, 0.0))),
+        ("Robot.hydro, 7-joint arm, moving ROV, current", lambda: arm.hydro(q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0))),
     ]:
         best, median = per_call(statement, repeats)
         print(f"  {label:52s} {best * 1e6:6.2f} µs  ({median * 1e6:.2f})")

@@ -413,3 +413,34 @@ def test_the_readme_example_of_an_arm_on_a_moving_rov_runs() -> None:
     result = namespace["result"]
     assert result.total.shape == (7,) and result.base.total.shape == (6,)
     assert np.all(np.isfinite(result.base.total)) and abs(result.base.total[1]) > 0.0
+
+
+def test_one_state_is_the_batch_row_bit_for_bit_and_errors_are_the_general_paths() -> None:
+    rng = np.random.default_rng(40)
+    robot = random_robot(rng, 4)
+    states = rng.uniform(-1, 1, (3, 5, 4))
+    motions = motion_arguments(rng, 5)
+    current = rng.normal(size=(5, 3))
+    batch = robot.hydro(*states, base_motion=uwml.BaseMotion(**motions), current=current)
+    for i in range(5):
+        motion = uwml.BaseMotion(**{k: v[i] for k, v in motions.items()})
+        for convert in (list, tuple, np.asarray):
+            q, qd, qdd = (convert(s[i]) for s in states)
+            one = robot.hydro(q, qd, qdd, base_motion=motion, current=convert(current[i]))
+            assert type(one) is uwml.RobotTorques and type(one.base) is uwml.BaseWrench
+            for name in COMPONENTS:
+                np.testing.assert_array_equal(getattr(one, name), getattr(batch, name)[i])
+                np.testing.assert_array_equal(getattr(one.base, name), getattr(batch.base, name)[i])
+    fixed = robot.hydro(list(states[0, 0]), list(states[1, 0]), list(states[2, 0]), cd=1.1, cm=0.7)
+    general = robot.hydro(states[0, :1], states[1, :1], states[2, :1], cd=1.1, cm=0.7)
+    np.testing.assert_array_equal(fixed.total, general.total[0])
+    np.testing.assert_array_equal(fixed.base.total, general.base.total[0])
+    # The short path declines what it does not take; the general path raises as always.
+    with pytest.raises(ValueError, match=r"qd\[0, 1\] is NaN"):
+        robot.hydro([0.0] * 4, [0.0, np.nan, 0.0, 0.0], [0.0] * 4)
+    with pytest.raises(ValueError, match="current must be finite"):
+        robot.hydro([0.0] * 4, [0.0] * 4, [0.0] * 4, current=[0.0, np.inf, 0.0])
+    with pytest.raises(ValueError, match="cm must be finite and non-negative"):
+        robot.hydro([0.0] * 4, [0.0] * 4, [0.0] * 4, cm=-0.5)
+    with pytest.raises(ValueError, match=r"q must have shape \(4,\)"):
+        robot.hydro([0.0] * 3, [0.0] * 3, [0.0] * 3)

@@ -164,6 +164,22 @@ class Robot:
         pressure: NDArray[np.float64] | None = None,
         temperature: NDArray[np.float64] | None = None,
     ) -> list[NDArray[np.float64]]: ...
+    def hydro_one(
+        self,
+        result_type: type[_Result],
+        base_type: type,
+        q: object,
+        qd: object,
+        qdd: object,
+        cd: object,
+        cm: object,
+        density: object,
+        gravity: object,
+        motion: object,
+        current: object,
+        current_acceleration: object,
+        threads: object,
+    ) -> _Result | None: ...
     def regressors(
         self,
         q: NDArray[np.float64],

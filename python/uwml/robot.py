@@ -70,12 +70,23 @@ class BaseMotion:
                 raise ValueError(f"base_motion.{name} must have shape ({width},) or (n_samples, {width}), got {array.shape}")
             if not np.all(np.isfinite(array)):
                 raise ValueError(f"base_motion.{name} must be finite, got {array.tolist()}")
+        single = all(getattr(self, name).ndim == 1 for name in _MOTION_FIELDS)
+        object.__setattr__(self, "_one", tuple(getattr(self, name) for name in _MOTION_FIELDS) if single else None)
         norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
         bad = np.flatnonzero(np.abs(norms - 1.0) > 1e-6)
         if bad.size:
             raise ValueError(
                 f"base_motion.orientation must be a unit quaternion (w, x, y, z) (norm 1 within 1e-6); sample {bad[0]} has norm {norms[bad[0]]}"
             )
+
+
+    def _single(self) -> tuple[FloatArray, ...] | None:
+        """The five arrays, if this is one motion for every sample (else None)."""
+        one: tuple[FloatArray, ...] | None = self.__dict__["_one"]
+        return one
+
+
+_MOTION_FIELDS = ("orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration")
 
 
 @dataclass(frozen=True)
@@ -434,8 +445,19 @@ class Robot:
         threads
             Threads to split a batch over (≥ 1).
 
-        Any argument with a sample axis gives results with one; the others are broadcast.
+        Any argument with a sample axis gives results with one; the others are broadcast. One
+        state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
+        of single values) is read, checked and evaluated in one short native call, with the same
+        checks and the same bits as that state's row of a batch.
         """
+        if isinstance(water, Water) and (base_motion is None or isinstance(base_motion, BaseMotion)):
+            motion = None if base_motion is None else base_motion._single()
+            if base_motion is None or motion is not None:
+                one: RobotTorques | None = self._core.hydro_one(
+                    RobotTorques, BaseWrench, q, qd, qdd, cd, cm, water.density, water.gravity, motion, current, current_acceleration, threads
+                )
+                if one is not None:
+                    return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         out = self._core.hydro(*arguments, threads, False)

@@ -7,7 +7,9 @@ use std::sync::Mutex;
 
 use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
+use pyo3::intern;
 use pyo3::prelude::*;
+use pyo3::types::{PyString, PyType};
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
     BaseMotion, Current, JointKind, JointLosses, LossState, ModelError, Owner, Problem, RigidBody, Robot, RobotData,
@@ -15,6 +17,7 @@ use uwml_core::{
     robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
 };
 
+use crate::single::{fill_values, finite_number, instance, threads_ok};
 use crate::{Array2, contiguous, contiguous1, in_parallel, model_error, parse_losses, water, writable, zeroed};
 
 /// The joint losses of an environment evaluation: per joint, and the pressure [Pa] and
@@ -551,6 +554,115 @@ impl PyRobot {
         drop(guards);
         result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
         Ok(arrays.into())
+    }
+
+    /// One state, for a controller or a simulator stepping one state at a time: `q`, `qd`,
+    /// `qdd` lists, tuples or 1-D float64 arrays of N finite numbers; `cd`, `cm` None (the
+    /// segments' own) or finite non-negative numbers; `motion` None (a fixed, upright base) or
+    /// the five 1-D arrays of a `uwml.BaseMotion`; `current`, `current_acceleration` like the
+    /// states, of 3. Returns a `result_type` (`uwml.RobotTorques`) with a `base_type`
+    /// (`uwml.BaseWrench`), the same bits as the batch path; or `None` when any argument is of
+    /// another kind or fails a check (the general path then answers, with its errors).
+    #[allow(clippy::too_many_arguments)]
+    fn hydro_one<'py>(
+        &self,
+        result_type: &Bound<'py, PyType>,
+        base_type: &Bound<'py, PyType>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        cd: &Bound<'py, PyAny>,
+        cm: &Bound<'py, PyAny>,
+        density: &Bound<'py, PyAny>,
+        gravity: &Bound<'py, PyAny>,
+        motion: &Bound<'py, PyAny>,
+        current: &Bound<'py, PyAny>,
+        current_acceleration: &Bound<'py, PyAny>,
+        threads: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let robot = &*self.robot;
+        let n = robot.joint_count();
+        let mut row = StateRow::new();
+        let (Some(q_row), Some(qd_row), Some(qdd_row)) =
+            (row.q.get_mut(..n), row.qd.get_mut(..n), row.qdd.get_mut(..n))
+        else {
+            return Ok(None);
+        };
+        let read = fill_values(q, q_row).and(fill_values(qd, qd_row)).and(fill_values(qdd, qdd_row));
+        let (Some(()), true, Some(density), Some(gravity)) =
+            (read, threads_ok(threads), finite_number(density), finite_number(gravity))
+        else {
+            return Ok(None);
+        };
+        let Ok(water) = Water::new(density, gravity) else { return Ok(None) };
+        let coefficient = |c: &Bound<'py, PyAny>| -> Option<Option<f64>> {
+            if c.is_none() { Some(None) } else { finite_number(c).filter(|x| *x >= 0.0).map(Some) }
+        };
+        let coefficients = match (coefficient(cd), coefficient(cm)) {
+            (Some(None), Some(None)) => None,
+            (Some(Some(cd)), Some(Some(cm))) => match Coefficients::uniform(cd, cm) {
+                Ok(c) => Some(c),
+                Err(_) => return Ok(None),
+            },
+            _ => return Ok(None),
+        };
+        let vector = |value: &Bound<'py, PyAny>| {
+            let mut out = [0.0; 3];
+            fill_values(value, &mut out).map(|()| Vector3::from(out))
+        };
+        let base_motion = if motion.is_none() {
+            BaseMotion::fixed()
+        } else {
+            let Ok((orientation, velocity, angular_velocity, acceleration, angular_acceleration)) = motion.extract::<(
+                Bound<'py, PyAny>,
+                Bound<'py, PyAny>,
+                Bound<'py, PyAny>,
+                Bound<'py, PyAny>,
+                Bound<'py, PyAny>,
+            )>(
+            ) else {
+                return Ok(None);
+            };
+            let mut quaternion = [0.0; 4];
+            let parts = (
+                fill_values(&orientation, &mut quaternion),
+                vector(&velocity),
+                vector(&angular_velocity),
+                vector(&acceleration),
+                vector(&angular_acceleration),
+            );
+            let (Some(()), Some(v), Some(w), Some(a), Some(alpha)) = parts else { return Ok(None) };
+            match BaseMotion::new(quaternion, v, w, a, alpha) {
+                Ok(m) => m,
+                Err(_) => return Ok(None),
+            }
+        };
+        let (Some(c), Some(c_dot)) = (vector(current), vector(current_acceleration)) else { return Ok(None) };
+        let Ok(flow) = Current::new(c, c_dot) else { return Ok(None) };
+        let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        robot_hydro(robot, &water, coefficients.as_ref(), &base_motion, &flow, &row.q, &row.qd, &row.qdd, &mut data);
+        let py = result_type.py();
+        let forces = data.joint_forces();
+        let column = |value: fn(&uwml_core::JointForces<f64>) -> f64| {
+            numpy::PyArray1::from_iter(py, forces.iter().map(value)).into_any()
+        };
+        let base = data.base_wrench();
+        let wrench = |w: &uwml_core::Wrench<f64>| numpy::PyArray1::from_slice(py, &w.to_array()).into_any();
+        let names: [&Bound<'py, PyString>; 4] =
+            [intern!(py, "drag"), intern!(py, "added_mass"), intern!(py, "buoyancy"), intern!(py, "gravity")];
+        let base_object = instance(
+            base_type,
+            names.into_iter().zip([
+                wrench(&base.drag),
+                wrench(&base.added_mass),
+                wrench(&base.buoyancy),
+                wrench(&base.gravity),
+            ]),
+        )?;
+        let joint_columns =
+            [column(|f| f.drag), column(|f| f.added_mass), column(|f| f.buoyancy), column(|f| f.gravity)];
+        let fields = names.into_iter().zip(joint_columns).chain(core::iter::once((intern!(py, "base"), base_object)));
+        Ok(Some(instance(result_type, fields)?))
     }
 
     /// Regressors: buoyancy, gravity (`(n_samples, N)`), base buoyancy, base gravity

@@ -36,22 +36,29 @@ pub(crate) fn finite_number(value: &Bound<'_, PyAny>) -> Option<f64> {
 /// else. Any other kind or any other shape, including a batch, is the general path's.
 pub(crate) fn joint_values<const N: usize>(value: &Bound<'_, PyAny>) -> Option<[f64; N]> {
     let mut out = [0.0; N];
+    fill_values(value, &mut out)?;
+    Some(out)
+}
+
+/// [`joint_values`] for a length known at run time: fills all of `out`, or gives `None`.
+pub(crate) fn fill_values(value: &Bound<'_, PyAny>, out: &mut [f64]) -> Option<()> {
+    let n = out.len();
     if let Ok(list) = value.cast_exact::<PyList>() {
-        if list.len() != N {
+        if list.len() != n {
             return None;
         }
         for (slot, item) in out.iter_mut().zip(list.iter()) {
             *slot = finite_number(&item)?;
         }
     } else if let Ok(tuple) = value.cast_exact::<PyTuple>() {
-        if tuple.len() != N {
+        if tuple.len() != n {
             return None;
         }
         for (slot, item) in out.iter_mut().zip(tuple.iter_borrowed()) {
             *slot = finite_number(&item)?;
         }
     } else if let Ok(array) = value.cast::<PyArray1<f64>>() {
-        if array.len() != N || !array.is_aligned() || array.dtype().is_native_byteorder() == Some(false) {
+        if array.len() != n || !array.is_aligned() || array.dtype().is_native_byteorder() == Some(false) {
             return None;
         }
         for (index, slot) in out.iter_mut().enumerate() {
@@ -60,7 +67,7 @@ pub(crate) fn joint_values<const N: usize>(value: &Bound<'_, PyAny>) -> Option<[
     } else {
         return None;
     }
-    Some(out)
+    Some(())
 }
 
 /// `threads` as the general path takes it without conversion: an int ≥ 1 (not a bool).
