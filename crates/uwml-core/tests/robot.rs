@@ -811,3 +811,79 @@ fn jacobians_are_the_slopes_of_the_forces() {
         }
     }
 }
+
+/// Joint 0 frozen into the base motion: a robot whose every link hangs from link 0 (an empty
+/// base at rest), and the same robot with link 0 as its moving base, at the motion joint 0 gives
+/// it. The other joints' forces agree, and joint 0's is the new base wrench along its axis.
+#[test]
+fn a_joint_frozen_into_the_base_motion_leaves_the_other_joints_alone() {
+    let mut rng = Rng(81);
+    for trial in 0..60 {
+        let n = 2 + (rng.next().abs() * 6.0) as usize;
+        let drawn = random_robot(&mut rng, n);
+        let kind = if trial % 2 == 0 { JointKind::Revolute } else { JointKind::Prismatic };
+        let mut joints: Vec<TreeJoint<f64>> = drawn.joints().to_vec();
+        joints[0] = TreeJoint { parent: None, kind, ..joints[0] };
+        for (j, joint) in joints.iter_mut().enumerate().skip(1) {
+            if joint.parent.is_none() {
+                joint.parent = Some(((rng.next() + 1.0) / 2.0 * j as f64) as usize % j);
+            }
+        }
+        let segments: Vec<_> = drawn.segments().iter().filter(|s| s.owner != Owner::Base).copied().collect();
+        let whole = Model::new(&joints, drawn.links(), RigidBody::empty(), &segments).unwrap();
+        let s = states(&mut rng, n);
+        let current = Current::new(rng.vector::<3>(0.5), rng.vector::<3>(0.5)).unwrap();
+        let full = evaluate(&whole, None, &BaseMotion::fixed(), &current, &s);
+        // Link 0's frame: orientation, twist and twist derivative in its own components.
+        let (axis, (q0, qd0, qdd0)) = (joints[0].axis, (s[0][0], s[1][0], s[2][0]));
+        let (orientation, v, w, v_dot, w_dot) = match kind {
+            JointKind::Revolute => {
+                let turn = UnitQuaternion::from_scaled_axis(axis * q0);
+                (turn, Vector3::zeros(), axis * qd0, Vector3::zeros(), axis * qdd0)
+            }
+            JointKind::Prismatic => {
+                (UnitQuaternion::identity(), axis * qd0, Vector3::zeros(), axis * qdd0, Vector3::zeros())
+            }
+        };
+        let motion =
+            BaseMotion::new([orientation.w, orientation.i, orientation.j, orientation.k], v, w, v_dot, w_dot).unwrap();
+        let frozen_joints: Vec<TreeJoint<f64>> =
+            joints[1..].iter().map(|j| TreeJoint { parent: j.parent.and_then(|p| p.checked_sub(1)), ..*j }).collect();
+        let frozen_segments: Vec<_> = segments
+            .iter()
+            .map(|s| RobotSegment {
+                owner: match s.owner {
+                    Owner::Link(0) | Owner::Base => Owner::Base,
+                    Owner::Link(i) => Owner::Link(i - 1),
+                },
+                ..*s
+            })
+            .collect();
+        let frozen = Model::new(&frozen_joints, &whole.links()[1..], whole.links()[0], &frozen_segments).unwrap();
+        let mut shifted = [[0.0; J]; 3];
+        for k in 0..3 {
+            shifted[k][..n - 1].copy_from_slice(&s[k][1..n]);
+        }
+        let part = evaluate(&frozen, None, &motion, &current, &shifted);
+        let scale = full
+            .joint_forces()
+            .iter()
+            .fold(1e-300_f64, |m, f| m.max(f.drag.abs()).max(f.added_mass.abs()).max(f.buoyancy.abs()));
+        for (a, b) in full.joint_forces()[1..].iter().zip(part.joint_forces()) {
+            assert_close(b.drag, a.drag, scale, 1e-12, "frozen: drag");
+            assert_close(b.added_mass, a.added_mass, scale, 1e-12, "frozen: added mass");
+            assert_close(b.buoyancy, a.buoyancy, scale, 1e-12, "frozen: buoyancy");
+            assert_close(b.gravity, a.gravity, scale.max(a.gravity.abs()), 1e-12, "frozen: gravity");
+        }
+        // Joint 0's force is the frozen robot's base wrench along the axis (link 0's frame).
+        let base = part.base_wrench();
+        let along = |w: &uwml_core::Wrench<f64>| match kind {
+            JointKind::Revolute => axis.dot(&w.moment),
+            JointKind::Prismatic => axis.dot(&w.force),
+        };
+        let first = full.joint_forces()[0];
+        assert_close(along(&base.drag), first.drag, scale, 1e-12, "frozen: joint 0 drag");
+        assert_close(along(&base.added_mass), first.added_mass, scale, 1e-12, "frozen: joint 0 added mass");
+        assert_close(along(&base.buoyancy), first.buoyancy, scale, 1e-12, "frozen: joint 0 buoyancy");
+    }
+}
