@@ -444,3 +444,23 @@ def test_one_state_is_the_batch_row_bit_for_bit_and_errors_are_the_general_paths
         robot.hydro([0.0] * 4, [0.0] * 4, [0.0] * 4, cm=-0.5)
     with pytest.raises(ValueError, match=r"q must have shape \(4,\)"):
         robot.hydro([0.0] * 3, [0.0] * 3, [0.0] * 3)
+
+
+def test_one_state_environment_is_the_batch_row_bit_for_bit() -> None:
+    rng = np.random.default_rng(41)
+    robot = random_robot(rng, 3)
+    states = rng.uniform(-1, 1, (3, 4, 3))
+    motions = motion_arguments(rng, 4)
+    losses = uwml.JointLosses(epsilon=0.02)
+    kwargs = {"depth": 3000.0, "temperature_c": 4.0, "sea_density": 1030.0, "current": (0.2, 0.0, 0.1)}
+    for per_joint in (None, losses, [None, losses, losses]):
+        batch = robot.environment(*states, losses=per_joint, base_motion=uwml.BaseMotion(**motions), **kwargs)
+        for i in range(4):
+            motion = uwml.BaseMotion(**{k: v[i] for k, v in motions.items()})
+            one = robot.environment(*(list(s[i]) for s in states), losses=per_joint, base_motion=motion, **kwargs)
+            assert type(one) is uwml.RobotEnvironment
+            for name in (*COMPONENTS, "visc", "seal", "current"):
+                np.testing.assert_array_equal(getattr(one, name), getattr(batch, name)[i])
+            np.testing.assert_array_equal(one.base.total, batch.base.total[i])
+    with pytest.raises(ValueError, match="depth must be >= 0"):
+        robot.environment([0.0] * 3, [0.0] * 3, [0.0] * 3, depth=-5.0)

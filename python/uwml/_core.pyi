@@ -180,6 +180,26 @@ class Robot:
         current_acceleration: object,
         threads: object,
     ) -> _Result | None: ...
+    def environment_one(
+        self,
+        result_type: type[_Result],
+        base_type: type,
+        q: object,
+        qd: object,
+        qdd: object,
+        depth: object,
+        temperature: object,
+        losses: object,
+        cd: object,
+        cm: object,
+        density: object,
+        gravity: object,
+        sea_density: object,
+        motion: object,
+        current: object,
+        current_acceleration: object,
+        threads: object,
+    ) -> _Result | None: ...
     def regressors(
         self,
         q: NDArray[np.float64],

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -179,6 +180,22 @@ def loss_conditions(depth: ArrayLike, temperature_c: ArrayLike, sea_density: flo
     if np.any(depth_m < 0):
         raise ValueError("depth must be >= 0 (metres below the surface)")
     return np.ascontiguousarray(sea_density * gravity * depth_m), temperature
+
+
+def one_state_losses(owner: Any, losses: object, n_joints: int) -> FloatArray | bool:
+    """``losses`` (not None) for a one-state native call: one :class:`JointLosses` packed for
+    every joint, kept on ``owner`` (its ``_losses_cache``) for the next call with the same object
+    (it is frozen), or ``False`` (which the native calls do not take) for anything else, left to
+    the general path."""
+    cached = owner._losses_cache
+    if cached is not None and cached[0] is losses:
+        return cached[1]  # type: ignore[no-any-return]
+    if type(losses) is not JointLosses:
+        return False
+    packed = pack_leg_losses(losses, n_joints)
+    packed.flags.writeable = False
+    owner._losses_cache = (losses, packed)
+    return packed
 
 
 def pack_leg_losses(losses: JointLosses | Sequence[JointLosses | None] | None, n_joints: int) -> FloatArray:

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, pack_leg_losses
+from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
 from .model import Joint, Link, Segment, Water
 
 __all__ = ["MAX_JOINTS", "EnvironmentJacobians", "HydroRegressors", "HydroTorques", "Leg"]
@@ -373,18 +373,8 @@ class Leg:
         return EnvironmentTorques(*(c.reshape(shape) for c in columns))
 
     def _one_state_losses(self, losses: object) -> FloatArray | bool:
-        """``losses`` (not None) for ``Chain.environment_one``: one :class:`JointLosses` packed for
-        every joint (kept for the next call with the same object: it is frozen), or ``False``
-        (which the native call does not take) for anything else, left to the general path."""
-        cached = self._losses_cache
-        if cached is not None and cached[0] is losses:
-            return cached[1]
-        if type(losses) is not JointLosses:
-            return False
-        packed = pack_leg_losses(losses, self.n_joints)
-        packed.flags.writeable = False
-        self._losses_cache = (losses, packed)
-        return packed
+        """``losses`` (not None) for ``Chain.environment_one`` (see :func:`environment.one_state_losses`)."""
+        return one_state_losses(self, losses, self.n_joints)
 
     def _environment_arguments(
         self,

@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, pack_leg_losses
+from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
 from .leg import FRESH_WATER, HydroTorques, _threads, _water
 from .model import Joint, Link, Segment, Water
 
@@ -236,6 +236,9 @@ class Robot:
         result = arm.hydro([0.3, -0.5], [0.2, 0.1], [0, 0], base_motion=motion, current=(0.2, 0, 0))
         result.total, result.base.total   # joint torques; base force and moment
     """
+
+    #: The last ``JointLosses`` packed for a one-state call, and its packing.
+    _losses_cache: tuple[JointLosses, FloatArray] | None = None
 
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link], base: Link | None = None) -> None:
         try:
@@ -496,8 +499,34 @@ class Robot:
         ``depth`` [m] ≥ 0 and ``temperature_c`` [°C]: a scalar or one per sample (the pressure is
         the hydrostatic ``sea_density · g · depth``, as for :meth:`uwml.Leg.environment`).
         ``losses``: one :class:`uwml.JointLosses` for every joint, a sequence with one (or None)
-        per joint, or None. The other arguments as for :meth:`hydro`.
+        per joint, or None. The other arguments as for :meth:`hydro`; one state (with scalar
+        ``depth``, ``temperature_c``, ``sea_density`` and ``losses`` None or one
+        :class:`uwml.JointLosses`) takes the short path of :meth:`hydro`.
         """
+        if isinstance(water, Water) and (base_motion is None or isinstance(base_motion, BaseMotion)):
+            motion = None if base_motion is None else base_motion._single()
+            if base_motion is None or motion is not None:
+                one: RobotEnvironment | None = self._core.environment_one(
+                    RobotEnvironment,
+                    BaseWrench,
+                    q,
+                    qd,
+                    qdd,
+                    depth,
+                    temperature_c,
+                    None if losses is None else one_state_losses(self, losses, self.n_joints),
+                    cd,
+                    cm,
+                    water.density,
+                    water.gravity,
+                    sea_density,
+                    motion,
+                    current,
+                    current_acceleration,
+                    threads,
+                )
+                if one is not None:
+                    return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)

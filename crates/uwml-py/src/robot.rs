@@ -412,6 +412,105 @@ fn regressor_range(
     Ok(())
 }
 
+/// One state's arguments of `hydro_one`, read and checked.
+struct OneState {
+    row: StateRow,
+    water: Water<f64>,
+    coefficients: Option<Coefficients>,
+    motion: BaseMotion<f64>,
+    current: Current<f64>,
+}
+
+impl OneState {
+    /// `None` unless every argument (in the order of `hydro_one`'s) is of a kind taken there
+    /// and passes its check.
+    fn read(n: usize, arguments: [&Bound<'_, PyAny>; 11]) -> Option<Self> {
+        let [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads] = arguments;
+        let mut row = StateRow::new();
+        fill_values(q, row.q.get_mut(..n)?)?;
+        fill_values(qd, row.qd.get_mut(..n)?)?;
+        fill_values(qdd, row.qdd.get_mut(..n)?)?;
+        if !threads_ok(threads) {
+            return None;
+        }
+        let water = Water::new(finite_number(density)?, finite_number(gravity)?).ok()?;
+        let coefficient = |c: &Bound<'_, PyAny>| -> Option<Option<f64>> {
+            if c.is_none() { Some(None) } else { finite_number(c).filter(|x| *x >= 0.0).map(Some) }
+        };
+        let coefficients = match (coefficient(cd)?, coefficient(cm)?) {
+            (None, None) => None,
+            (Some(cd), Some(cm)) => Some(Coefficients::uniform(cd, cm).ok()?),
+            _ => return None,
+        };
+        let vector = |value: &Bound<'_, PyAny>| {
+            let mut out = [0.0; 3];
+            fill_values(value, &mut out).map(|()| Vector3::from(out))
+        };
+        let motion = if motion.is_none() {
+            BaseMotion::fixed()
+        } else {
+            let (orientation, velocity, angular_velocity, acceleration, angular_acceleration): (
+                Bound<'_, PyAny>,
+                Bound<'_, PyAny>,
+                Bound<'_, PyAny>,
+                Bound<'_, PyAny>,
+                Bound<'_, PyAny>,
+            ) = motion.extract().ok()?;
+            let mut quaternion = [0.0; 4];
+            fill_values(&orientation, &mut quaternion)?;
+            let twist = (vector(&velocity)?, vector(&angular_velocity)?);
+            let derivative = (vector(&acceleration)?, vector(&angular_acceleration)?);
+            BaseMotion::new(quaternion, twist.0, twist.1, derivative.0, derivative.1).ok()?
+        };
+        let current = Current::new(vector(current)?, vector(current_acceleration)?).ok()?;
+        Some(Self { row, water, coefficients, motion, current })
+    }
+
+    fn evaluate(&self, robot: &Model, data: &mut Data) {
+        let Self { row, water, coefficients, motion, current } = self;
+        robot_hydro(robot, water, coefficients.as_ref(), motion, current, &row.q, &row.qd, &row.qdd, data);
+    }
+}
+
+/// The `result_type` of one evaluation in `data` (with `losses`, `(visc, seal, current)`, when
+/// given), its `base` a `base_type`, built directly (no `__init__`).
+fn one_result<'py>(
+    result_type: &Bound<'py, PyType>,
+    base_type: &Bound<'py, PyType>,
+    data: &Data,
+    losses: Option<[&[f64]; 3]>,
+) -> PyResult<Bound<'py, PyAny>> {
+    let py = result_type.py();
+    let forces = data.joint_forces();
+    let n = forces.len();
+    let column = |value: fn(&uwml_core::JointForces<f64>) -> f64| {
+        numpy::PyArray1::from_iter(py, forces.iter().map(value)).into_any()
+    };
+    let base = data.base_wrench();
+    let wrench = |w: &uwml_core::Wrench<f64>| numpy::PyArray1::from_slice(py, &w.to_array()).into_any();
+    let names: [&Bound<'py, PyString>; 4] =
+        [intern!(py, "drag"), intern!(py, "added_mass"), intern!(py, "buoyancy"), intern!(py, "gravity")];
+    let base_object = instance(
+        base_type,
+        names.into_iter().zip([
+            wrench(&base.drag),
+            wrench(&base.added_mass),
+            wrench(&base.buoyancy),
+            wrench(&base.gravity),
+        ]),
+    )?;
+    let joint_columns = [column(|f| f.drag), column(|f| f.added_mass), column(|f| f.buoyancy), column(|f| f.gravity)];
+    let mut fields: Vec<(&Bound<'py, PyString>, Bound<'py, PyAny>)> = names.into_iter().zip(joint_columns).collect();
+    if let Some(losses) = losses {
+        let loss_names = [intern!(py, "visc"), intern!(py, "seal"), intern!(py, "current")];
+        for (name, values) in loss_names.into_iter().zip(losses) {
+            fields.push((name, numpy::PyArray1::from_slice(py, values.get(..n).unwrap_or(&[])).into_any()));
+        }
+    }
+    fields.push((intern!(py, "base"), base_object));
+    instance(result_type, fields)
+}
+
 #[pymethods]
 impl PyRobot {
     #[new]
@@ -580,89 +679,66 @@ impl PyRobot {
         current_acceleration: &Bound<'py, PyAny>,
         threads: &Bound<'py, PyAny>,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let robot = &*self.robot;
-        let n = robot.joint_count();
-        let mut row = StateRow::new();
-        let (Some(q_row), Some(qd_row), Some(qdd_row)) =
-            (row.q.get_mut(..n), row.qd.get_mut(..n), row.qdd.get_mut(..n))
-        else {
-            return Ok(None);
-        };
-        let read = fill_values(q, q_row).and(fill_values(qd, qd_row)).and(fill_values(qdd, qdd_row));
-        let (Some(()), true, Some(density), Some(gravity)) =
-            (read, threads_ok(threads), finite_number(density), finite_number(gravity))
-        else {
-            return Ok(None);
-        };
-        let Ok(water) = Water::new(density, gravity) else { return Ok(None) };
-        let coefficient = |c: &Bound<'py, PyAny>| -> Option<Option<f64>> {
-            if c.is_none() { Some(None) } else { finite_number(c).filter(|x| *x >= 0.0).map(Some) }
-        };
-        let coefficients = match (coefficient(cd), coefficient(cm)) {
-            (Some(None), Some(None)) => None,
-            (Some(Some(cd)), Some(Some(cm))) => match Coefficients::uniform(cd, cm) {
-                Ok(c) => Some(c),
-                Err(_) => return Ok(None),
-            },
-            _ => return Ok(None),
-        };
-        let vector = |value: &Bound<'py, PyAny>| {
-            let mut out = [0.0; 3];
-            fill_values(value, &mut out).map(|()| Vector3::from(out))
-        };
-        let base_motion = if motion.is_none() {
-            BaseMotion::fixed()
-        } else {
-            let Ok((orientation, velocity, angular_velocity, acceleration, angular_acceleration)) = motion.extract::<(
-                Bound<'py, PyAny>,
-                Bound<'py, PyAny>,
-                Bound<'py, PyAny>,
-                Bound<'py, PyAny>,
-                Bound<'py, PyAny>,
-            )>(
-            ) else {
-                return Ok(None);
-            };
-            let mut quaternion = [0.0; 4];
-            let parts = (
-                fill_values(&orientation, &mut quaternion),
-                vector(&velocity),
-                vector(&angular_velocity),
-                vector(&acceleration),
-                vector(&angular_acceleration),
-            );
-            let (Some(()), Some(v), Some(w), Some(a), Some(alpha)) = parts else { return Ok(None) };
-            match BaseMotion::new(quaternion, v, w, a, alpha) {
-                Ok(m) => m,
-                Err(_) => return Ok(None),
-            }
-        };
-        let (Some(c), Some(c_dot)) = (vector(current), vector(current_acceleration)) else { return Ok(None) };
-        let Ok(flow) = Current::new(c, c_dot) else { return Ok(None) };
+        let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
+        let Some(one) = OneState::read(self.robot.joint_count(), arguments) else { return Ok(None) };
         let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        robot_hydro(robot, &water, coefficients.as_ref(), &base_motion, &flow, &row.q, &row.qd, &row.qdd, &mut data);
-        let py = result_type.py();
-        let forces = data.joint_forces();
-        let column = |value: fn(&uwml_core::JointForces<f64>) -> f64| {
-            numpy::PyArray1::from_iter(py, forces.iter().map(value)).into_any()
+        one.evaluate(&self.robot, &mut data);
+        one_result(result_type, base_type, &data, None).map(Some)
+    }
+
+    /// [`PyRobot::hydro_one`] with the joint losses of `Robot.environment`: `depth` ≥ 0,
+    /// `temperature`, `sea_density` > 0 numbers, `losses` None or packed `(N, LOSS_WIDTH)`;
+    /// a `result_type` (`uwml.RobotEnvironment`) or `None`, as there.
+    #[allow(clippy::too_many_arguments)]
+    fn environment_one<'py>(
+        &self,
+        result_type: &Bound<'py, PyType>,
+        base_type: &Bound<'py, PyType>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        depth: &Bound<'py, PyAny>,
+        temperature: &Bound<'py, PyAny>,
+        losses: &Bound<'py, PyAny>,
+        cd: &Bound<'py, PyAny>,
+        cm: &Bound<'py, PyAny>,
+        density: &Bound<'py, PyAny>,
+        gravity: &Bound<'py, PyAny>,
+        sea_density: &Bound<'py, PyAny>,
+        motion: &Bound<'py, PyAny>,
+        current: &Bound<'py, PyAny>,
+        current_acceleration: &Bound<'py, PyAny>,
+        threads: &Bound<'py, PyAny>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let n = self.robot.joint_count();
+        let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
+        let (Some(one), Some(depth), Some(temperature), Some(sea_density)) = (
+            OneState::read(n, arguments),
+            finite_number(depth),
+            finite_number(temperature),
+            finite_number(sea_density),
+        ) else {
+            return Ok(None);
         };
-        let base = data.base_wrench();
-        let wrench = |w: &uwml_core::Wrench<f64>| numpy::PyArray1::from_slice(py, &w.to_array()).into_any();
-        let names: [&Bound<'py, PyString>; 4] =
-            [intern!(py, "drag"), intern!(py, "added_mass"), intern!(py, "buoyancy"), intern!(py, "gravity")];
-        let base_object = instance(
-            base_type,
-            names.into_iter().zip([
-                wrench(&base.drag),
-                wrench(&base.added_mass),
-                wrench(&base.buoyancy),
-                wrench(&base.gravity),
-            ]),
-        )?;
-        let joint_columns =
-            [column(|f| f.drag), column(|f| f.added_mass), column(|f| f.buoyancy), column(|f| f.gravity)];
-        let fields = names.into_iter().zip(joint_columns).chain(core::iter::once((intern!(py, "base"), base_object)));
-        Ok(Some(instance(result_type, fields)?))
+        if depth < 0.0 || sea_density <= 0.0 {
+            return Ok(None);
+        }
+        let mut joints = [None; MAX_ROBOT_JOINTS];
+        if !losses.is_none() {
+            let Ok(packed) = losses.cast::<numpy::PyArray2<f64>>() else { return Ok(None) };
+            let Ok(packed) = packed.try_readonly() else { return Ok(None) };
+            let Ok(parsed) = parse_losses(&packed, n) else { return Ok(None) };
+            for (slot, l) in joints.iter_mut().zip(parsed) {
+                *slot = l;
+            }
+        }
+        // The batch path's pressure and loss states, so that the bits are its.
+        let (pressure, temperature) = ([sea_density * one.water.gravity() * depth], [temperature]);
+        let conditions = Losses { joints, pressure: &pressure, temperature: &temperature };
+        let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        one.evaluate(&self.robot, &mut data);
+        let (visc, seal, loss_current) = loss_torques(LossStates::new().at(&conditions, 0), &one.row.qd.into());
+        one_result(result_type, base_type, &data, Some([&visc, &seal, &loss_current].map(|v| v.as_slice()))).map(Some)
     }
 
     /// Regressors: buoyancy, gravity (`(n_samples, N)`), base buoyancy, base gravity
