@@ -412,6 +412,10 @@ fn regressor_range(
     Ok(())
 }
 
+/// The five arrays of a `uwml.BaseMotion` of one state.
+type MotionArrays<'py> =
+    (Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyAny>);
+
 /// One state's arguments of `hydro_one`, read and checked.
 struct OneState {
     row: StateRow,
@@ -449,13 +453,8 @@ impl OneState {
         let motion = if motion.is_none() {
             BaseMotion::fixed()
         } else {
-            let (orientation, velocity, angular_velocity, acceleration, angular_acceleration): (
-                Bound<'_, PyAny>,
-                Bound<'_, PyAny>,
-                Bound<'_, PyAny>,
-                Bound<'_, PyAny>,
-                Bound<'_, PyAny>,
-            ) = motion.extract().ok()?;
+            let (orientation, velocity, angular_velocity, acceleration, angular_acceleration): MotionArrays<'_> =
+                motion.extract().ok()?;
             let mut quaternion = [0.0; 4];
             fill_values(&orientation, &mut quaternion)?;
             let twist = (vector(&velocity)?, vector(&angular_velocity)?);
