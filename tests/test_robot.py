@@ -464,3 +464,28 @@ def test_one_state_environment_is_the_batch_row_bit_for_bit() -> None:
             np.testing.assert_array_equal(one.base.total, batch.base.total[i])
     with pytest.raises(ValueError, match="depth must be >= 0"):
         robot.environment([0.0] * 3, [0.0] * 3, [0.0] * 3, depth=-5.0)
+
+
+def test_a_circular_section_does_not_depend_on_its_normals() -> None:
+    # The core's circular section has no normals at all; the reference is given two different
+    # orthonormal pairs for the same cylinder (turned about its axis) and must agree with both.
+    import copy
+
+    rng = np.random.default_rng(50)
+    axis = np.array([0.3, -0.5, 0.81])
+    axis /= np.linalg.norm(axis)
+    cylinder = uwml.Segment((0.1, 0, 0), axis, 0.7, section="circular", diameter=0.1, cd=1.1, cm=0.9)
+    robot = uwml.Robot([uwml.Joint((0, 0, 0), (0, 1, 0)), uwml.Joint((0.4, 0, 0), (0, 0, 1))], [uwml.Link(3.0, (0.2, 0, 0), 0.002), uwml.Link(2.0, (0.3, 0, 0), 0.001, segments=[cylinder])])
+    q, qd, qdd = rng.uniform(-1, 1, (3, 30, 2))
+    motion = motion_arguments(rng, 30)
+    core = robot.hydro(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=(0.2, -0.1, 0.0))
+    n0, n1 = (np.asarray(n) for n in cylinder.normals)
+    for angle in (0.0, 0.7, 2.0):
+        turned = copy.copy(cylinder)
+        object.__setattr__(turned, "normals", (tuple(np.cos(angle) * n0 + np.sin(angle) * n1), tuple(-np.sin(angle) * n0 + np.cos(angle) * n1)))
+        links = (robot.links[0], uwml.Link(2.0, (0.3, 0, 0), 0.001))
+        object.__setattr__(links[1], "segments", (turned,))
+        expected = ref.robot_hydro(robot.joints, links, None, q, qd, qdd, current=(0.2, -0.1, 0.0), **motion)
+        scale = np.max(np.abs(expected["drag"]), axis=1) + np.max(np.abs(expected["added_mass"]), axis=1) + 1e-300
+        assert_close(core.drag, expected["drag"], scale, RTOL_REFERENCE, f"drag, normals turned by {angle}")
+        assert_close(core.added_mass, expected["added_mass"], scale, RTOL_REFERENCE, f"added mass, normals turned by {angle}")
