@@ -16,6 +16,7 @@ from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
+from .modelfile import ModelFileError
 from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
 
 __all__ = [
@@ -41,6 +42,7 @@ __all__ = [
     "Log",
     "LossTorques",
     "ModelError",
+    "ModelFileError",
     "OilDrag",
     "Seal",
     "Segment",

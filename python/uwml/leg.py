@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import operator
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -263,6 +264,33 @@ class Leg:
 
     def __repr__(self) -> str:
         return f"Leg(n_joints={self.n_joints})"
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Leg):
+            return NotImplemented
+        return (self._joints, self._links) == (other._joints, other._links)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes the leg as a uwml model file (a serial chain on a fixed base; :mod:`uwml.modelfile`)."""
+        from .robot import Robot
+
+        Robot.from_leg(self).save(path)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Leg:
+        """The leg of a uwml model file of a serial chain of revolute joints, each link with at
+        most one rectangular segment (what :meth:`save` writes); other robots load with
+        :meth:`uwml.Robot.load`."""
+        from .modelfile import load
+
+        robot = load(path)
+        joints = [Joint(j.origin, j.axis, parent=None if j.parent == i - 1 else j.parent, kind=j.kind) for i, j in enumerate(robot.joints)]
+        links = [Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments) for link in robot.links]
+        if robot.base is not None:
+            raise ValueError(f"{path}: a uwml.Leg has no base body; load this file with uwml.Robot.load")
+        return cls(joints, links)
 
     def hydro(
         self,

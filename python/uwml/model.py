@@ -26,6 +26,9 @@ __all__ = ["CIRCULAR_DEFAULTS", "RECTANGULAR_DEFAULTS", "SECTIONS", "Joint", "Li
 #: Tolerance on unit length and orthogonality of the axes and normals given by users.
 AXIS_TOLERANCE = 1e-6
 
+#: How far from 1 the computed norm of a normalized vector can be (a few ulps).
+_UNIT_ROUNDING = 4.0 * 2.0**-52
+
 #: The section kinds of a :class:`Segment` (MODEL.md 9.3).
 SECTIONS = ("rectangular", "circular")
 #: The joint kinds of a :class:`Joint`.
@@ -80,6 +83,11 @@ def _pair(value: object, name: str) -> tuple:
     return items
 
 
+def _check_name(name: object, field_name: str) -> None:
+    if name is not None and (not isinstance(name, str) or not name):
+        raise TypeError(f"{field_name} must be a non-empty string or None, got {name!r}")
+
+
 def _dot(a: Vec3, b: Vec3) -> float:
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
@@ -89,6 +97,10 @@ def _unit(value: object, name: str) -> Vec3:
     norm = math.sqrt(_dot(v, v))
     if abs(norm - 1.0) > AXIS_TOLERANCE:
         raise ValueError(f"{name} must be a unit vector (|{name}| = 1 within {AXIS_TOLERANCE}), got norm {norm}")
+    if abs(norm - 1.0) <= _UNIT_ROUNDING:
+        # Unit to rounding already (a normalized vector, e.g. one read back from a model file):
+        # kept as it is, so that normalizing twice changes nothing.
+        return v
     return (v[0] / norm, v[1] / norm, v[2] / norm)
 
 
@@ -107,8 +119,11 @@ class Joint:
     axis: Vec3
     parent: int | None = None
     kind: str = "revolute"
+    #: A name (a URDF or MJCF joint's), or None.
+    name: str | None = None
 
     def __post_init__(self) -> None:
+        _check_name(self.name, "joint.name")
         object.__setattr__(self, "origin", _vec3(self.origin, "joint.origin"))
         object.__setattr__(self, "axis", _unit(self.axis, "joint.axis"))
         if self.parent is not None:
@@ -242,8 +257,11 @@ class Link:
     cob: Vec3 | None = None
     segment: Segment | None = None
     segments: tuple[Segment, ...] = field(default=())
+    #: A name (a URDF link's, an MJCF body's), or None.
+    name: str | None = None
 
     def __post_init__(self) -> None:
+        _check_name(self.name, "link.name")
         object.__setattr__(self, "mass", _scalar(self.mass, "link.mass", positive=False))
         object.__setattr__(self, "com", _vec3(self.com, "link.com"))
         object.__setattr__(self, "volume", _scalar(self.volume, "link.volume", positive=False))

@@ -8,6 +8,7 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -272,7 +273,12 @@ class Robot:
             np.array([_body_row(base_body)], dtype=np.float64),
             np.array([_segment_row(o, s) for o, s in owned], dtype=np.float64).reshape(-1, _core.SEGMENT_WIDTH),
         )
-        self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind) for p, j in zip(parents, joints))
+        self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind, name=j.name) for p, j in zip(parents, joints))
+        for what, items in (("joint", joints), ("link", links)):
+            names = [item.name for item in items if item.name is not None]
+            repeated = sorted({name for name in names if names.count(name) > 1})
+            if repeated:
+                raise ValueError(f"{what} names must be unique; {repeated[0]!r} is given more than once")
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
@@ -297,6 +303,37 @@ class Robot:
     def base(self) -> Link | None:
         """The base's own body, if any."""
         return self._base
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        """The joints' names in the order of ``q`` (``"joint{i}"`` where a joint has none)."""
+        return tuple(j.name if j.name is not None else f"joint{i}" for i, j in enumerate(self._joints))
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        """The links' names in order (``"link{i}"`` where a link has none)."""
+        return tuple(link.name if link.name is not None else f"link{i}" for i, link in enumerate(self._links))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Robot):
+            return NotImplemented
+        return (self._joints, self._links, self._base) == (other._joints, other._links, other._base)
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes the whole validated model to a uwml model file (TOML, :mod:`uwml.modelfile`),
+        which :meth:`load` reads back equal to this robot."""
+        from .modelfile import save
+
+        save(self, path)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Robot:
+        """The robot of a uwml model file (:meth:`save`); errors name the file, the table and the key."""
+        from .modelfile import load
+
+        return load(path)
 
     @property
     def segments(self) -> tuple[Segment, ...]:

@@ -1,0 +1,299 @@
+"""The uwml model file: a robot's whole validated model as readable TOML, read back exactly.
+
+``Robot.save(path)`` writes it, ``Robot.load(path)`` reads it (``dumps`` and ``loads`` do the same
+with strings). Every number is written as Python's shortest repr of the float, which reads back
+to the same float, so a saved model loads equal to itself. The file is read with the standard
+library's ``tomllib``; every error names the file, the table and the key.
+
+Layout (SI units; vectors as arrays of 3 numbers; every link frame parallel to the base frame
+at ``q = 0``, as in :mod:`uwml.model`)::
+
+    format = "uwml-robot"
+    version = 1
+
+    [base]                       # optional: the base's own body, in the base frame
+    mass = 300.0                 # kg
+    com = [0.0, 0.0, -0.05]      # m
+    volume = 0.29                # m³
+    cob = [0.0, 0.0, 0.05]       # m
+
+    [[base.segments]]            # any number, for the base and for every link
+    section = "circular"         # or "rectangular" (then normals, widths, area)
+    start = [-0.9, 0.0, 0.0]
+    axis = [1.0, 0.0, 0.0]
+    length = 1.8
+    diameter = 0.6
+    area = 0.283
+    cd = [0.9, 0.9]              # per normal direction (a circular section's two are equal)
+    cm = [1.0, 1.0]
+
+    [[joints]]                   # in the order of q, parents first
+    name = "shoulder_yaw"        # optional
+    parent = -1                  # an earlier link's index, or -1 for the base
+    kind = "revolute"            # or "prismatic"
+    origin = [0.9, 0.0, -0.3]
+    axis = [0.0, 0.0, 1.0]
+
+    [[links]]                    # link i is moved by joint i
+    name = "upper_arm"           # optional
+    mass = 12.0
+    com = [0.075, 0.0, 0.0]
+    volume = 0.004
+    cob = [0.075, 0.0, 0.01]
+
+    [[links.segments]]
+    section = "rectangular"
+    start = [0.0, 0.0, -0.05]
+    axis = [1.0, 0.0, 0.0]
+    length = 0.09
+    normals = [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    widths = [0.05, 0.08]
+    area = 0.004
+    cd = [2.0, 2.1]
+    cm = [1.2, 1.5]
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any, TypeVar
+
+from .model import Joint, Link, Segment
+from .robot import Robot
+
+__all__ = ["FORMAT", "VERSION", "ModelFileError", "dumps", "load", "loads", "save"]
+
+#: The ``format`` key of a uwml model file.
+FORMAT = "uwml-robot"
+#: The version this module writes and reads.
+VERSION = 1
+
+_T = TypeVar("_T")
+
+
+class ModelFileError(ValueError):
+    """A uwml model file that cannot be read: names the file, the table and the key."""
+
+
+def _number(x: float) -> str:
+    # repr is the shortest string that reads back to the same float; TOML wants a decimal
+    # point or an exponent, which repr of a float always has.
+    return repr(float(x))
+
+
+def _vector(v: Sequence[float]) -> str:
+    return "[" + ", ".join(_number(x) for x in v) + "]"
+
+
+def _string(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _body_lines(body: Link) -> list[str]:
+    lines = [] if body.name is None else [f"name = {_string(body.name)}"]
+    cob = body.cob if body.cob is not None else body.com
+    return [*lines, f"mass = {_number(body.mass)}", f"com = {_vector(body.com)}", f"volume = {_number(body.volume)}", f"cob = {_vector(cob)}"]
+
+
+def _segment_lines(segment: Segment) -> list[str]:
+    lines = [f"section = {_string(segment.section)}", f"start = {_vector(segment.start)}", f"axis = {_vector(segment.axis)}"]
+    lines.append(f"length = {_number(segment.length)}")
+    if segment.section == "circular":
+        lines.append(f"diameter = {_number(segment.diameter or 0.0)}")
+    else:
+        normals = segment.normals or ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        lines.append(f"normals = [{_vector(normals[0])}, {_vector(normals[1])}]")
+        lines.append(f"widths = {_vector(segment.widths or (0.0, 0.0))}")
+    lines.append(f"area = {_number(segment.area or 0.0)}")
+    lines.append(f"cd = {_vector(segment.cd)}")  # type: ignore[arg-type]
+    lines.append(f"cm = {_vector(segment.cm)}")  # type: ignore[arg-type]
+    return lines
+
+
+def dumps(robot: Robot) -> str:
+    """The uwml model file of ``robot``, as a string."""
+    out = [f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)", f"format = {_string(FORMAT)}", f"version = {VERSION}"]
+    if robot.base is not None:
+        out += ["", "[base]", *_body_lines(robot.base)]
+        for segment in robot.base.segments:
+            out += ["", "[[base.segments]]", *_segment_lines(segment)]
+    for joint in robot.joints:
+        out += ["", "[[joints]]"]
+        if joint.name is not None:
+            out.append(f"name = {_string(joint.name)}")
+        out += [f"parent = {joint.parent}", f"kind = {_string(joint.kind)}", f"origin = {_vector(joint.origin)}", f"axis = {_vector(joint.axis)}"]
+    for link in robot.links:
+        out += ["", "[[links]]", *_body_lines(link)]
+        for segment in link.segments:
+            out += ["", "[[links.segments]]", *_segment_lines(segment)]
+    return "\n".join(out) + "\n"
+
+
+def save(robot: Robot, path: str | os.PathLike[str]) -> None:
+    """Writes :func:`dumps` of ``robot`` to ``path`` (UTF-8)."""
+    Path(path).write_text(dumps(robot), encoding="utf-8")
+
+
+class _Reader:
+    """Typed access to one table of the file, with errors naming the file, table and key."""
+
+    def __init__(self, source: str, where: str, table: object) -> None:
+        self.source, self.where = source, where
+        if not isinstance(table, dict):
+            self.fail(None, f"must be a table, got {type(table).__name__}")
+        self.table: dict[str, Any] = table  # type: ignore[assignment]
+
+    def fail(self, key: str | None, message: str) -> None:
+        at = self.where if key is None else f"{self.where}, key '{key}'"
+        raise ModelFileError(f"{self.source}: {at}: {message}")
+
+    def check_keys(self, allowed: Sequence[str]) -> None:
+        for key in self.table:
+            if key not in allowed:
+                self.fail(key, f"is not a key of this table (allowed: {', '.join(allowed)})")
+
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: bool = True, default: _T | None = None) -> _T:
+        if key not in self.table:
+            if required:
+                self.fail(key, f"is missing ({what})")
+            return default  # type: ignore[return-value]
+        value = self.table[key]
+        try:
+            return convert(value)
+        except (TypeError, ValueError) as exc:
+            self.fail(key, f"must be {what}, got {value!r} ({exc})")
+            raise  # unreachable: fail raises
+
+    def build(self, make: Callable[[], _T]) -> _T:
+        """``make()``, its ValueError or TypeError (from the model's checks) named here."""
+        try:
+            return make()
+        except (TypeError, ValueError) as exc:
+            self.fail(None, str(exc))
+            raise  # unreachable
+
+
+def _float(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError("not a number")
+    return float(value)
+
+
+def _vec3(value: Any) -> tuple[float, float, float]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise TypeError("not an array of 3 numbers")
+    x, y, z = (_float(v) for v in value)
+    return (x, y, z)
+
+
+def _pair(value: Any) -> tuple[float, float]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise TypeError("not an array of 2 numbers")
+    a, b = (_float(v) for v in value)
+    return (a, b)
+
+
+def _normals(value: Any) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise TypeError("not an array of 2 vectors")
+    return (_vec3(value[0]), _vec3(value[1]))
+
+
+def _text(value: Any) -> str:
+    if not isinstance(value, str):
+        raise TypeError("not a string")
+    return value
+
+
+def _integer(value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError("not an integer")
+    return value
+
+
+_SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm")
+_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments")
+
+
+def _segment(source: str, where: str, table: object) -> Segment:
+    r = _Reader(source, where, table)
+    r.check_keys(_SEGMENT_KEYS)
+    section = r.get("section", _text, 'a string, "rectangular" or "circular"')
+    common = {
+        "start": r.get("start", _vec3, "an array of 3 numbers [m]"),
+        "axis": r.get("axis", _vec3, "a unit vector"),
+        "length": r.get("length", _float, "a length [m]"),
+        "cd": r.get("cd", _pair, "[Cd along normal 0, along normal 1]"),
+        "cm": r.get("cm", _pair, "[Cm along normal 0, along normal 1]"),
+    }
+    if section == "circular":
+        diameter = r.get("diameter", _float, "a diameter [m]")
+        area = r.get("area", _float, "a section area [m²]")
+        cd, cm = common.pop("cd"), common.pop("cm")
+        for key, pair in (("cd", cd), ("cm", cm)):
+            if pair[0] != pair[1]:  # type: ignore[index]
+                r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")  # type: ignore[arg-type]
+        return r.build(lambda: Segment(section="circular", diameter=diameter, area=area, cd=cd[0], cm=cm[0], **common))  # type: ignore[index, arg-type]
+    normals = r.get("normals", _normals, "two unit vectors [[...], [...]]")
+    widths = r.get("widths", _pair, "[width along normal 0, along normal 1] [m]")
+    area = r.get("area", _float, "a section area [m²]")
+    return r.build(lambda: Segment(section=section, normals=normals, widths=widths, area=area, **common))  # type: ignore[arg-type]
+
+
+def _body(source: str, where: str, table: object) -> Link:
+    r = _Reader(source, where, table)
+    r.check_keys(_BODY_KEYS)
+    raw_segments = r.get("segments", lambda v: v if isinstance(v, list) else _fail_type("an array of tables"), "[[...segments]]", required=False, default=[])
+    segments = tuple(_segment(source, f"{where}, segments[{i}]", s) for i, s in enumerate(raw_segments))
+    name = r.get("name", _text, "a string", required=False)
+    mass = r.get("mass", _float, "a mass [kg]")
+    com = r.get("com", _vec3, "an array of 3 numbers [m]")
+    volume = r.get("volume", _float, "a volume [m³]")
+    cob = r.get("cob", _vec3, "an array of 3 numbers [m]")
+    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name))
+
+
+def _fail_type(what: str) -> Any:
+    raise TypeError(f"not {what}")
+
+
+def loads(text: str, source: str = "<string>") -> Robot:
+    """The robot of a uwml model file given as text (``source`` names it in errors)."""
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ModelFileError(f"{source}: not valid TOML: {exc}") from None
+    top = _Reader(source, "top level", document)
+    top.check_keys(("format", "version", "base", "joints", "links"))
+    if top.get("format", _text, f'"{FORMAT}"') != FORMAT:
+        top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {document["format"]!r}')
+    if top.get("version", _integer, f"the integer {VERSION}") != VERSION:
+        top.fail("version", f"must be {VERSION} (this uwml reads version {VERSION}), got {document['version']!r}")
+    as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")  # noqa: E731
+    joint_tables = top.get("joints", as_list, "an array of tables [[joints]]")
+    link_tables = top.get("links", as_list, "an array of tables [[links]]")
+    joints = []
+    for i, table in enumerate(joint_tables):
+        r = _Reader(source, f"joints[{i}]", table)
+        r.check_keys(("name", "parent", "kind", "origin", "axis"))
+        name = r.get("name", _text, "a string", required=False)
+        parent = r.get("parent", _integer, "an integer: an earlier link's index, or -1 for the base")
+        kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
+        origin = r.get("origin", _vec3, "an array of 3 numbers [m]")
+        axis = r.get("axis", _vec3, "a unit vector")
+        joints.append(r.build(lambda: Joint(origin, axis, parent=parent, kind=kind, name=name)))
+    links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
+    base = _body(source, "base", document["base"]) if "base" in document else None
+    return top.build(lambda: Robot(joints, links, base=base))
+
+
+def load(path: str | os.PathLike[str]) -> Robot:
+    """The robot of the uwml model file at ``path``."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ModelFileError(f"{path}: cannot be read: {exc.strerror or exc}") from None
+    return loads(text, str(path))

@@ -1,0 +1,96 @@
+"""The uwml model file (``uwml.modelfile``): a saved robot loads equal to itself and gives the same
+forces bit for bit; every bad file is an error naming the file, the table and the key."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import uwml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_robot import motion_arguments, random_robot
+from uwml.examples import arm_on_rov
+from uwml.modelfile import dumps, loads
+
+
+def same_forces(a: uwml.Robot, b: uwml.Robot, rng: np.random.Generator) -> None:
+    n = a.n_joints
+    q, qd, qdd = rng.uniform(-2, 2, (3, 8, n))
+    motion = uwml.BaseMotion(**motion_arguments(rng, 8))
+    ra = a.hydro(q, qd, qdd, base_motion=motion, current=(0.2, 0.1, 0.0))
+    rb = b.hydro(q, qd, qdd, base_motion=motion, current=(0.2, 0.1, 0.0))
+    np.testing.assert_array_equal(ra.total, rb.total)
+    np.testing.assert_array_equal(ra.base.total, rb.base.total)
+    np.testing.assert_array_equal(ra.gravity, rb.gravity)
+
+
+def test_the_paper_leg_saved_and_loaded_is_itself(tmp_path: Path) -> None:
+    leg = uwml.Leg.paper()
+    path = tmp_path / "paper.toml"
+    leg.save(path)
+    assert uwml.Leg.load(path) == leg
+    robot = uwml.Robot.load(path)
+    assert robot == uwml.Robot.from_leg(leg)
+    np.testing.assert_array_equal(robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total, uwml.Robot.from_leg(leg).hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total)
+    text = path.read_text()
+    assert text.startswith("# uwml model file") and 'format = "uwml-robot"' in text and "mass = 19.261" in text
+
+
+def test_the_arm_on_an_rov_round_trips_with_names(tmp_path: Path) -> None:
+    arm = arm_on_rov()
+    named = uwml.Robot(
+        [uwml.Joint(j.origin, j.axis, parent=j.parent, kind=j.kind, name=f"j{i} \"quoted\"") for i, j in enumerate(arm.joints)],
+        [uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments, name=f"link-{i}") for i, link in enumerate(arm.links)],
+        base=arm.base,
+    )
+    path = tmp_path / "arm.toml"
+    named.save(path)
+    loaded = uwml.Robot.load(path)
+    assert loaded == named and loaded != arm
+    assert loaded.joint_names[3] == 'j3 "quoted"' and loaded.link_names[6] == "link-6" and arm.joint_names[0] == "joint0"
+    same_forces(loaded, named, np.random.default_rng(1))
+
+
+@settings(max_examples=max(5, int(settings.default.max_examples / 4)))
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 8))
+def test_random_robots_round_trip_exactly(seed: int, n: int) -> None:
+    rng = np.random.default_rng(seed)
+    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.7))
+    again = loads(dumps(robot))
+    assert again == robot
+    assert dumps(again) == dumps(robot)
+    same_forces(again, robot, rng)
+
+
+@pytest.mark.parametrize(
+    ("edit", "message"),
+    [
+        (lambda t: t.replace('format = "uwml-robot"', 'format = "urdf"'), r"top level, key 'format': must be \"uwml-robot\""),
+        (lambda t: t.replace("version = 1", "version = 2"), r"key 'version': must be 1"),
+        (lambda t: t.replace("mass = 19.261", "mass = -19.261"), r"links\[1\]: link.mass must be non-negative"),
+        (lambda t: t.replace("mass = 19.261", 'mass = "heavy"'), r"links\[1\], key 'mass': must be a mass \[kg\], got 'heavy'"),
+        (lambda t: t.replace("mass = 19.261\n", ""), r"links\[1\], key 'mass': is missing"),
+        (lambda t: t.replace("mass = 19.261", "mass = 19.261\nmas = 1.0"), r"links\[1\], key 'mas': is not a key of this table"),
+        (lambda t: t.replace('kind = "revolute"', 'kind = "ball"', 1), r"joints\[0\]: joint.kind must be one of"),
+        (lambda t: t.replace("parent = 1", "parent = 2"), r"top level: joints\[2\].parent must be -1 \(the base\) or an earlier link"),
+        (lambda t: t.replace("length = 0.66", "length = [0.66]"), r"links\[1\], segments\[0\], key 'length': must be a length"),
+        (lambda t: t.replace("widths = [0.131, 0.238]", "widths = [0.131]"), r"segments\[0\], key 'widths'"),
+        (lambda t: t + "[[oops", "not valid TOML"),
+    ],
+)
+def test_bad_files_name_the_file_table_and_key(tmp_path: Path, edit, message: str) -> None:
+    path = tmp_path / "leg.toml"
+    text = dumps(uwml.Robot.from_leg(uwml.Leg.paper()))
+    path.write_text(edit(text))
+    assert edit(text) != text
+    with pytest.raises(uwml.ModelFileError, match=f"{path.name}.*{message}"):
+        uwml.Robot.load(path)
+
+
+def test_a_missing_file_and_a_base_body_for_a_leg(tmp_path: Path) -> None:
+    with pytest.raises(uwml.ModelFileError, match="nowhere.toml: cannot be read"):
+        uwml.Robot.load(tmp_path / "nowhere.toml")
+    path = tmp_path / "arm.toml"
+    arm_on_rov().save(path)
+    with pytest.raises(ValueError, match="load this file with uwml.Robot.load"):
+        uwml.Leg.load(path)
