@@ -360,6 +360,28 @@ def _torques(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 
 
+def load_robot(path: str) -> Any:
+    """The robot of a description file given with ``--robot``: a uwml model file (``.toml``)."""
+    from .robot import Robot
+
+    suffix = Path(path).suffix.lower()
+    if suffix == ".toml":
+        return Robot.load(path)
+    raise ValueError(f"{path}: --robot takes a uwml model file (.toml, written by Robot.save); got a {suffix or 'suffix-less'} file")
+
+
+def _describe(args: argparse.Namespace) -> int:
+    from .describe import describe, draw
+    from .robot import Robot
+
+    robot = load_robot(args.robot) if args.robot else Robot.from_leg(Leg.paper())
+    print(describe(robot, Water(density=args.density)))
+    if args.plot:
+        draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0")
+        print(f"\nwrote {args.plot}")
+    return 0
+
+
 def _joint_list(text: str) -> list[int]:
     try:
         joints = [int(item) for item in text.split(",") if item.strip()]
@@ -545,6 +567,17 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         "--joints", type=_n_joints, default=None, metavar="N", help="number of joints the log must have (default 3, the paper leg's)"
     )
     torques.set_defaults(run=_torques)
+
+    describe = commands.add_parser(
+        "describe",
+        help="a robot's joints, links, segments, volumes, masses and net buoyancy, and a picture at q = 0",
+        description="Print what a robot is made of (joints, bodies with mass, volume and net buoyancy, segments with their "
+        "coefficients) and, with --plot, draw it at q = 0 with its segments. Without --robot: the paper's leg.",
+    )
+    describe.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save)")
+    describe.add_argument("--density", type=_positive, default=1000.0, help="water density for the net buoyancy [kg/m³] (default 1000)")
+    describe.add_argument("--plot", metavar="FILE", help="save a 3-D picture of the robot at q = 0 (format from the extension)")
+    describe.set_defaults(run=_describe)
 
     fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
     fits = fit_parser.add_subparsers(dest="fit_command", required=True)

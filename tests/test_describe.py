@@ -1,0 +1,45 @@
+"""``uwml describe`` and ``uwml.describe``: a robot's parts and net buoyancy in words, and its
+picture at q = 0; numbers checked against hand computations."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import uwml
+from uwml.cli import main
+from uwml.describe import describe, frame_origins
+from uwml.examples import arm_on_rov
+
+
+def test_frame_origins_add_along_the_tree() -> None:
+    robot = uwml.Robot(
+        [uwml.Joint((1, 0, 0), (0, 0, 1)), uwml.Joint((0, 2, 0), (0, 0, 1)), uwml.Joint((0, 0, 3), (1, 0, 0), parent=0), uwml.Joint((5, 0, 0), (0, 1, 0), parent=-1)],
+        [uwml.Link(1.0, (0, 0, 0), 0.0)] * 4,
+    )
+    np.testing.assert_array_equal(frame_origins(robot), [[1, 0, 0], [1, 2, 0], [1, 0, 3], [5, 0, 0]])
+
+
+def test_the_description_states_masses_volumes_and_net_buoyancy() -> None:
+    text = describe(arm_on_rov(), uwml.Water(density=1025.0, gravity=9.81))
+    # The hull: (1025 · 0.29 − 300) · 9.81 = −26.98 N; link 0: (1025 · 0.004 − 12) · 9.81 = −77.50 N.
+    assert "base             mass       300 kg  volume      0.29 m³  net buoyancy     -26.98 N" in text
+    assert "net buoyancy      -77.5 N" in text
+    assert "joint6           prismatic parent link5" in text
+    assert "circular, D 0.6 m" in text and "Cd (2, 2.1)" in text
+    assert "   14 link6" in text
+
+
+def test_uwml_describe_prints_and_draws(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "arm.toml"
+    arm_on_rov().save(path)
+    picture = tmp_path / "arm.png"
+    assert main(["describe", "--robot", str(path), "--plot", str(picture), "--density", "1025"]) == 0
+    out = capsys.readouterr().out
+    assert "7 joints, 15 segments" in out and "net buoyancy" in out
+    assert picture.stat().st_size > 10_000 and picture.read_bytes()[:4] == b"\x89PNG"
+    assert main(["describe"]) == 0
+    assert "3 joints, 2 segments" in capsys.readouterr().out
+    assert main(["describe", "--robot", str(tmp_path / "missing.toml")]) == 2
+    assert "missing.toml: cannot be read" in capsys.readouterr().err
+    assert main(["describe", "--robot", str(tmp_path / "arm.urdf")]) == 2
+    assert "--robot takes a uwml model file" in capsys.readouterr().err
