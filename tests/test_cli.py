@@ -176,6 +176,33 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
         np.testing.assert_allclose(table[:, 1 + 3 * i : 4 + 3 * i], getattr(expected, name), rtol=1e-10, atol=1e-10, err_msg=name)
 
 
+def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
+    from uwml.examples import arm_on_rov
+
+    arm = arm_on_rov()
+    model = tmp_path / "arm.toml"
+    arm.save(model)
+    rng = np.random.default_rng(3)
+    t = np.linspace(0.0, 2.0, 50)
+    q = np.sin(np.outer(t, rng.uniform(0.5, 2.0, 7)))
+    qd = np.cos(np.outer(t, rng.uniform(0.5, 2.0, 7)))
+    qdd = np.zeros_like(q)
+    path = tmp_path / "trajectory.csv"
+    write_log(Log(time=t, q=q, qd=qd, qdd=qdd), path)
+    out = tmp_path / "torques.csv"
+    result = _uwml("torques", path, "--robot", model, "--joints", "7", "--out", out)
+    assert result.returncode == 0, result.stderr
+    header, table = _read_csv(out)
+    assert header[-6:] == ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] and table.shape == (50, 1 + 21 + 6)
+    expected = arm.hydro(q, qd, qdd)  # the segments' own coefficients
+    np.testing.assert_allclose(table[:, 1:8], expected.drag, rtol=1e-10, atol=1e-10)
+    np.testing.assert_allclose(table[:, -6:], expected.base.total, rtol=1e-10, atol=1e-9)
+    # The robot's joint count is the log's by default; a file that is not a model file is refused.
+    assert _uwml("torques", path, "--robot", model).returncode == 0
+    result = _uwml("torques", path, "--robot", tmp_path / "arm.urdf")
+    assert result.returncode == 2 and "--robot takes a uwml model file" in result.stderr
+
+
 def test_torques_with_losses_and_estimated_derivatives(tmp_path: Path, experiment: Log) -> None:
     path = tmp_path / "positions.csv"
     write_log(Log(time=experiment.time, q=experiment.q), path)  # no qd, qdd: estimated

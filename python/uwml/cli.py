@@ -300,18 +300,24 @@ def _torques(args: argparse.Namespace) -> int:
             import pyarrow
         except ImportError:
             raise _UsageError(f"{out}: Parquet output needs pyarrow (pip install pyarrow); write CSV instead") from None
-    leg = Leg.paper()
+    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot)
+    what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
+    # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
+    cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
+    cm = args.cm if args.cm is not None else (0.5 if args.robot is None else None)
     log = read_log(args.log, leg.n_joints if args.joints is None else args.joints)
     if log.n_joints != leg.n_joints:
         raise ValueError(
             f"{log.source}: row 1 (header), column 'q{min(log.n_joints, leg.n_joints) + 1}': the log has {log.n_joints} joints, "
-            f"the leg (the paper's) {leg.n_joints}"
+            f"{what} {leg.n_joints}"
         )
     log = log.with_derivatives()
     assert log.qd is not None and log.qdd is not None
     n, n_joints = log.n_samples, log.n_joints
     families = ["drag", "added_mass", "buoyancy"] + (["visc", "seal", "current", "total"] if args.losses else [])
     names = ["time"] + [f"{family}{k}" for family in families for k in range(1, n_joints + 1)]
+    base_names = ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] if args.robot is not None else []
+    names += base_names
     losses = JointLosses() if args.losses else None
     progress = n > CHUNK_ROWS
     chunks = []
@@ -329,10 +335,11 @@ def _torques(args: argparse.Namespace) -> int:
                 depth=args.depth,
                 temperature_c=args.temperature,
                 losses=losses,
-                cd=args.cd,
-                cm=args.cm,
+                cd=cd,
+                cm=cm,
             )
-            table = np.column_stack([log.time[rows]] + [getattr(tau, family) for family in families])
+            columns = [log.time[rows]] + [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
+            table = np.column_stack(columns)
             if parquet:
                 chunks.append(table)
             else:
@@ -540,7 +547,7 @@ COD, loss current and share) is printed to the terminal.""",
         "torques",
         help="every torque component along a logged trajectory, as CSV (or Parquet)",
         formatter_class=formatter,
-        description=f"""Every torque component of the paper's leg along the trajectory of LOG.
+        description=f"""Every torque component of the paper's leg (or of --robot) along the trajectory of LOG.
 
 {_LOG_FORMAT}
 Torque columns are not needed.
@@ -548,7 +555,9 @@ Torque columns are not needed.
 Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet and pyarrow is
 installed): columns time, drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses
 visc1..N, seal1..N [N·m], current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy +
-visc + seal). Sign: the environment's torque on each joint, in the joint's positive direction.
+visc + seal). With --robot (a uwml model file), the robot on a fixed, upright base, and six more
+columns base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its
+origin). Sign: the environment's torque on each joint, in the joint's positive direction.
 Losses use the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()); the
 pressure is hydrostatic at --depth (sea water, 1025 kg/m³). Inputs of more than {CHUNK_ROWS} rows
 are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
@@ -560,8 +569,13 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         "--depth", type=_non_negative, default=0.0, metavar="M", help="depth [m] for the pressure of the losses (default 0)"
     )
     torques.add_argument("--temperature", type=_finite, default=20.0, metavar="C", help="oil temperature [°C] (default 20)")
-    torques.add_argument("--cd", type=_non_negative, default=2.2, metavar="X", help="drag coefficient (default 2.2, the paper's fit)")
-    torques.add_argument("--cm", type=_non_negative, default=0.5, metavar="X", help="added-mass coefficient (default 0.5)")
+    torques.add_argument(
+        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save); default the paper's leg"
+    )
+    torques.add_argument(
+        "--cd", type=_non_negative, default=None, metavar="X", help="drag coefficient for every segment (default: 2.2, the paper's fit; a robot's own)"
+    )
+    torques.add_argument("--cm", type=_non_negative, default=None, metavar="X", help="added-mass coefficient (default: 0.5; a robot's own)")
     torques.add_argument("--losses", action="store_true", help="add the oil-viscous and seal losses, loss current and total")
     torques.add_argument(
         "--joints", type=_n_joints, default=None, metavar="N", help="number of joints the log must have (default 3, the paper leg's)"
