@@ -377,6 +377,18 @@ def load_robot(path: str) -> Any:
     raise ValueError(f"{path}: --robot takes a uwml model file (.toml, written by Robot.save); got a {suffix or 'suffix-less'} file")
 
 
+def _export(args: argparse.Namespace) -> int:
+    from .export import to_c, to_rust
+    from .robot import Robot
+
+    robot = load_robot(args.robot) if args.robot else Robot.from_leg(Leg.paper())
+    source = args.robot or "the paper's leg"
+    precision = "f32" if args.f32 else "f64"
+    text = to_rust(robot, precision, source=source) if args.rust else to_c(robot, precision, prefix=args.name, source=source)
+    sys.stdout.write(text)
+    return 0
+
+
 def _describe(args: argparse.Namespace) -> int:
     from .describe import describe, draw
     from .robot import Robot
@@ -592,6 +604,21 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
     describe.add_argument("--density", type=_positive, default=1000.0, help="water density for the net buoyancy [kg/m³] (default 1000)")
     describe.add_argument("--plot", metavar="FILE", help="save a 3-D picture of the robot at q = 0 (format from the extension)")
     describe.set_defaults(run=_describe)
+
+    export = commands.add_parser(
+        "export",
+        help="a robot's model as Rust constants or C initializers, for firmware",
+        description="Print the robot's validated model as Rust constants of uwml-core's types (--rust) or as C initializers "
+        "of the C ABI's structs (--c), every number written so that it reads back to the same float. Without --robot: the "
+        "paper's leg.",
+    )
+    export.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save)")
+    language = export.add_mutually_exclusive_group(required=True)
+    language.add_argument("--rust", action="store_true", help="Rust: N_JOINTS, N_SEGMENTS, JOINTS, LINKS, BASE, SEGMENTS")
+    language.add_argument("--c", action="store_true", help="C: NAME_JOINTS, NAME_LINKS, NAME_BASE, NAME_SEGMENTS and their counts")
+    export.add_argument("--f32", action="store_true", help="single precision (default double)")
+    export.add_argument("--name", default="ROBOT", metavar="NAME", help="prefix of the C names (default ROBOT)")
+    export.set_defaults(run=_export)
 
     fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
     fits = fit_parser.add_subparsers(dest="fit_command", required=True)

@@ -216,3 +216,42 @@ fn firmware_doc_c_robot_example_is_tested() {
     let doc = std::fs::read_to_string(crate_dir.join("../../docs/firmware.md")).expect("docs/firmware.md");
     assert!(doc.contains(example), "docs/firmware.md does not show tests/c/robot.c's example verbatim:\n{example}");
 }
+
+#[path = "../../uwml-core/benches/common/arm.rs"]
+mod arm;
+
+/// The C initializers of `uwml export --c` (`tests/c/exported_arm.h`, kept equal to the
+/// exporter's output by `tests/test_export.py`) compile, build a robot through the C ABI, and
+/// give the forces of the same arm built in Rust by hand (`uwml-core/benches/common/arm.rs`).
+#[test]
+fn exported_c_initializers_build_the_arm() {
+    let stdout = compile_and_run("exported");
+    let (motion, current) = arm::rov_motion::<f64>();
+    let robot = arm::arm_on_rov::<f64, 7, 15>();
+    let q = [0.3, -0.4, 0.6, 0.2, -0.5, 0.1, 0.05];
+    let qd = [0.5, 0.3, -0.4, 0.8, 0.2, -0.6, 0.02];
+    let qdd = [1.0, -0.5, 0.3, 0.2, -1.0, 0.7, 0.1];
+    let mut data = uwml_core::RobotData::new();
+    uwml_core::robot_hydro(&robot, &uwml_core::Water::default(), None, &motion, &current, &q, &qd, &qdd, &mut data);
+    let mut seen = 0;
+    for line in stdout.lines() {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        let number = |i: usize| words[i].parse::<f64>().expect("a number");
+        let index = words[1].parse::<usize>().expect("an index");
+        let (actual, expected, scale) = match words[0] {
+            "joint" => {
+                let f = data.joint_forces()[index];
+                assert!((number(3) - f.gravity).abs() <= 1e-12 * f.gravity.abs().max(1.0), "{line}");
+                (number(2), f.total(), data.joint_forces().iter().fold(1.0_f64, |m, f| m.max(f.total().abs())))
+            }
+            "base" => {
+                let w = data.base_wrench().total().to_array();
+                (number(2), w[index], w.iter().fold(1.0_f64, |m, x| m.max(x.abs())))
+            }
+            other => panic!("unexpected line {other}: {line}"),
+        };
+        assert!((actual - expected).abs() <= 1e-12 * scale, "{line}: C {actual} vs Rust {expected}");
+        seen += 1;
+    }
+    assert_eq!(seen, 13, "7 joints and 6 base components:\n{stdout}");
+}
