@@ -94,3 +94,27 @@ def test_a_missing_file_and_a_base_body_for_a_leg(tmp_path: Path) -> None:
     arm_on_rov().save(path)
     with pytest.raises(ValueError, match="load this file with uwml.Robot.load"):
         uwml.Leg.load(path)
+
+
+def test_joint_losses_are_part_of_the_model(tmp_path: Path) -> None:
+    leg = uwml.Leg.paper()
+    losses = [None, uwml.JointLosses(epsilon=0.02), uwml.JointLosses(seal=None, drive=uwml.Drive(ratio=120.0))]
+    robot = uwml.Robot(leg.joints, leg.links, losses=losses)
+    path = tmp_path / "leg.toml"
+    robot.save(path)
+    text = path.read_text()
+    assert "[joints.losses.seal]" in text and "ratio = 120.0" in text
+    loaded = uwml.Robot.load(path)
+    assert loaded == robot and loaded.losses == tuple(losses) and loaded != uwml.Robot(leg.joints, leg.links)
+    # The joints' own losses are what environment uses, unless it is given others.
+    q, qd = [0.3, -0.4, 0.6], [0.5, -0.8, 1.1]
+    own = loaded.environment(q, qd, [0.0] * 3, depth=2000.0, temperature_c=4.0)
+    given = uwml.Robot(leg.joints, leg.links).environment(q, qd, [0.0] * 3, depth=2000.0, temperature_c=4.0, losses=losses)
+    np.testing.assert_array_equal(own.total, given.total)
+    assert own.seal[0] == 0.0 and own.seal[1] != 0.0 and own.seal[2] == 0.0
+    none = loaded.environment(q, qd, [0.0] * 3, depth=2000.0, temperature_c=4.0, losses=[None] * 3)
+    assert np.all(none.visc == 0.0) and np.all(none.seal == 0.0)
+    text = text.replace("ratio = 120.0", "ratio = -1.0", 1)
+    path.write_text(text)
+    with pytest.raises(uwml.ModelFileError, match=r"joints\[2\], losses, drive: drive.ratio must be > 0"):
+        uwml.Robot.load(path)

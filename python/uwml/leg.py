@@ -290,6 +290,8 @@ class Leg:
         links = [Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments) for link in robot.links]
         if robot.base is not None:
             raise ValueError(f"{path}: a uwml.Leg has no base body; load this file with uwml.Robot.load")
+        if any(losses is not None for losses in robot.losses):
+            raise ValueError(f"{path}: a uwml.Leg holds no joint losses (give them to Leg.environment); load this file with uwml.Robot.load")
         return cls(joints, links)
 
     def hydro(

@@ -34,6 +34,18 @@ at ``q = 0``, as in :mod:`uwml.model`)::
     origin = [0.9, 0.0, -0.3]
     axis = [0.0, 0.0, 1.0]
 
+    [joints.losses]              # optional: the joint's own losses (uwml.JointLosses)
+    epsilon = 0.001              # smooth-sign width [rad/s]
+    [joints.losses.drive]        # uwml.Drive's fields
+    torque_constant = 0.4
+    ratio = 160.0
+    efficiency = 0.8
+    rated_current = 10.4
+    [joints.losses.oil]          # uwml.OilDrag's fields; absent: no oil drag
+    k_oil = ...
+    [joints.losses.seal]         # uwml.Seal's fields; absent: no seal
+    c0 = 16.0
+
     [[links]]                    # link i is moved by joint i
     name = "upper_arm"           # optional
     mass = 12.0
@@ -55,12 +67,15 @@ at ``q = 0``, as in :mod:`uwml.model`)::
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import tomllib
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TypeVar
 
+from .environment import JointLosses
+from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment
 from .robot import Robot
 
@@ -113,6 +128,15 @@ def _segment_lines(segment: Segment) -> list[str]:
     return lines
 
 
+def _losses_lines(losses: JointLosses) -> list[str]:
+    lines = ["", "[joints.losses]", f"epsilon = {_number(losses.epsilon)}"]
+    for name, part in (("drive", losses.drive), ("oil", losses.oil), ("seal", losses.seal)):
+        if part is not None:
+            lines += ["", f"[joints.losses.{name}]"]
+            lines += [f"{f.name} = {_number(getattr(part, f.name))}" for f in dataclasses.fields(part)]
+    return lines
+
+
 def dumps(robot: Robot) -> str:
     """The uwml model file of ``robot``, as a string."""
     out = [f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)", f"format = {_string(FORMAT)}", f"version = {VERSION}"]
@@ -120,11 +144,13 @@ def dumps(robot: Robot) -> str:
         out += ["", "[base]", *_body_lines(robot.base)]
         for segment in robot.base.segments:
             out += ["", "[[base.segments]]", *_segment_lines(segment)]
-    for joint in robot.joints:
+    for joint, losses in zip(robot.joints, robot.losses):
         out += ["", "[[joints]]"]
         if joint.name is not None:
             out.append(f"name = {_string(joint.name)}")
         out += [f"parent = {joint.parent}", f"kind = {_string(joint.kind)}", f"origin = {_vector(joint.origin)}", f"axis = {_vector(joint.axis)}"]
+        if losses is not None:
+            out += _losses_lines(losses)
     for link in robot.links:
         out += ["", "[[links]]", *_body_lines(link)]
         for segment in link.segments:
@@ -256,6 +282,23 @@ def _body(source: str, where: str, table: object) -> Link:
     return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name))
 
 
+def _losses(source: str, where: str, table: object) -> JointLosses:
+    r = _Reader(source, where, table)
+    r.check_keys(("epsilon", "drive", "oil", "seal"))
+    parts: dict[str, Any] = {}
+    for name, kind in (("drive", Drive), ("oil", OilDrag), ("seal", Seal)):
+        if name not in r.table:
+            continue
+        part = _Reader(source, f"{where}, {name}", r.table[name])
+        keys = [f.name for f in dataclasses.fields(kind)]
+        part.check_keys(keys)
+        values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
+        parts[name] = part.build(lambda kind=kind, values=values: kind(**values))
+    epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]")
+    # A part the file does not give is absent (oil, seal), or the default drive.
+    return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
+
+
 def _fail_type(what: str) -> Any:
     raise TypeError(f"not {what}")
 
@@ -275,10 +318,11 @@ def loads(text: str, source: str = "<string>") -> Robot:
     as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")  # noqa: E731
     joint_tables = top.get("joints", as_list, "an array of tables [[joints]]")
     link_tables = top.get("links", as_list, "an array of tables [[links]]")
-    joints = []
+    joints, losses = [], []
     for i, table in enumerate(joint_tables):
         r = _Reader(source, f"joints[{i}]", table)
-        r.check_keys(("name", "parent", "kind", "origin", "axis"))
+        r.check_keys(("name", "parent", "kind", "origin", "axis", "losses"))
+        losses.append(_losses(source, f"joints[{i}], losses", table["losses"]) if "losses" in table else None)
         name = r.get("name", _text, "a string", required=False)
         parent = r.get("parent", _integer, "an integer: an earlier link's index, or -1 for the base")
         kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
@@ -287,7 +331,7 @@ def loads(text: str, source: str = "<string>") -> Robot:
         joints.append(r.build(lambda: Joint(origin, axis, parent=parent, kind=kind, name=name)))
     links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
     base = _body(source, "base", document["base"]) if "base" in document else None
-    return top.build(lambda: Robot(joints, links, base=base))
+    return top.build(lambda: Robot(joints, links, base=base, losses=losses))
 
 
 def load(path: str | os.PathLike[str]) -> Robot:

@@ -199,6 +199,23 @@ class RobotJacobians:
     added_mass_matrix: FloatArray
 
 
+def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None, ...]:
+    """``losses`` (None, one :class:`JointLosses` for every joint, or one or None per joint) as a
+    tuple with one entry per joint."""
+    if losses is None or isinstance(losses, JointLosses):
+        return (losses,) * n_joints  # type: ignore[return-value]
+    try:
+        items = tuple(losses)  # type: ignore[call-overload]
+    except TypeError:
+        raise TypeError(f"losses must be a uwml.JointLosses, a sequence of them (or None), or None; got {type(losses).__name__}") from None
+    if len(items) != n_joints:
+        raise ValueError(f"losses must have one entry per joint ({n_joints}), got {len(items)}")
+    for index, item in enumerate(items):
+        if item is not None and not isinstance(item, JointLosses):
+            raise TypeError(f"losses[{index}] must be a uwml.JointLosses or None, got {type(item).__name__}")
+    return items
+
+
 def _segment_row(owner: int, s: Segment) -> list[float]:
     section = 1.0 if s.section == "circular" else 0.0
     diameter = s.diameter if s.diameter is not None else 0.0
@@ -241,7 +258,13 @@ class Robot:
     #: The last ``JointLosses`` packed for a one-state call, and its packing.
     _losses_cache: tuple[JointLosses, FloatArray] | None = None
 
-    def __init__(self, joints: Sequence[Joint], links: Sequence[Link], base: Link | None = None) -> None:
+    def __init__(
+        self,
+        joints: Sequence[Joint],
+        links: Sequence[Link],
+        base: Link | None = None,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+    ) -> None:
         try:
             joints, links = tuple(joints), tuple(links)
         except TypeError:
@@ -282,6 +305,7 @@ class Robot:
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
+        self._losses = _per_joint_losses(losses, len(joints))
         self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
 
     @classmethod
@@ -314,10 +338,23 @@ class Robot:
         """The links' names in order (``"link{i}"`` where a link has none)."""
         return tuple(link.name if link.name is not None else f"link{i}" for i, link in enumerate(self._links))
 
+    @property
+    def losses(self) -> tuple[JointLosses | None, ...]:
+        """Each joint's own losses (None: none), used by :meth:`environment` and
+        :meth:`jacobians` unless they are given others."""
+        return self._losses
+
+    def _effective_losses(self, losses: JointLosses | Sequence[JointLosses | None] | None) -> JointLosses | Sequence[JointLosses | None] | None:
+        """``losses`` if given, else the joints' own: one object when they all share one."""
+        if losses is not None:
+            return losses
+        first = self._losses[0] if self._losses else None
+        return first if all(item is first for item in self._losses) else self._losses
+
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Robot):
             return NotImplemented
-        return (self._joints, self._links, self._base) == (other._joints, other._links, other._base)
+        return (self._joints, self._links, self._base, self._losses) == (other._joints, other._links, other._base, other._losses)
 
     __hash__ = None  # type: ignore[assignment]
 
@@ -536,10 +573,11 @@ class Robot:
         ``depth`` [m] ≥ 0 and ``temperature_c`` [°C]: a scalar or one per sample (the pressure is
         the hydrostatic ``sea_density · g · depth``, as for :meth:`uwml.Leg.environment`).
         ``losses``: one :class:`uwml.JointLosses` for every joint, a sequence with one (or None)
-        per joint, or None. The other arguments as for :meth:`hydro`; one state (with scalar
+        per joint, or None for the joints' own (:attr:`losses`; ``[None] * n_joints`` for none). The other arguments as for :meth:`hydro`; one state (with scalar
         ``depth``, ``temperature_c``, ``sea_density`` and ``losses`` None or one
         :class:`uwml.JointLosses`) takes the short path of :meth:`hydro`.
         """
+        losses = self._effective_losses(losses)
         if isinstance(water, Water) and (base_motion is None or isinstance(base_motion, BaseMotion)):
             motion = None if base_motion is None else base_motion._single()
             if base_motion is None or motion is not None:
@@ -594,6 +632,7 @@ class Robot:
     ) -> RobotJacobians:
         """The forces of :meth:`environment` on base and joints and their derivatives
         (:class:`RobotJacobians`); arguments as for :meth:`environment`."""
+        losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
         pressure, temperature = loss_conditions(depth, temperature_c, sea_density, _water(water).gravity, n_samples)
