@@ -83,3 +83,73 @@ def test_without_hydro_file_primitive_volumes() -> None:
     np.testing.assert_allclose(calf.cob, (0.0, 0.0, -0.357), atol=1e-15)
     assert robot.links[0].volume == 0.0
     assert thigh.segments[0].cd == uwml.model.RECTANGULAR_DEFAULTS[:1] * 2
+
+
+def rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF's fixed-axis roll, pitch, yaw: Rz(yaw) Ry(pitch) Rx(roll) (scipy's extrinsic xyz)."""
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.from_euler("xyz", [roll, pitch, yaw]).as_matrix()
+
+
+def t(v: np.ndarray) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+def hand_built_arm() -> uwml.Robot:
+    """arm.urdf with arm.hydro.toml, built by hand in uwml's base-parallel frames."""
+    x, y, z = np.eye(3)
+    hull = uwml.Link(
+        50.0, (0, 0, -0.05), 1.2 * 0.8 * 0.4, cob=(0, 0, 0),
+        segment=uwml.Segment((-0.6, 0, 0), (1, 0, 0), 1.2, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.8), area=0.32, cd=(2.0, 2.1)),
+    )
+    r1 = rpy(0, 0, math.pi / 2)
+    o1 = np.array([0.5, 0, -0.2])
+    upper = uwml.Link(
+        3.0, t(r1 @ (0.2 * x)), math.pi * 0.05**2 * 0.4,
+        segment=uwml.Segment(t(r1 @ (0.2 * x) - 0.2 * (r1 @ x)), t(r1 @ x), 0.4, section="circular", diameter=0.1, cd=1.1, cm=0.9),
+    )
+    r2 = r1 @ rpy(0.3, 0.2, -0.4)
+    o2 = o1 + r1 @ (0.4 * x)
+    r3 = r2 @ rpy(0, 0, 0.5)
+    p3 = o2 + r2 @ (0.3 * x)
+    fore_com, wrist_com = r2 @ (0.15 * x), p3 - o2
+    cylinder_volume = math.pi * 0.04**2 * 0.3
+    wrist_cob = p3 - o2 + r3 @ (0.01 * x)
+    fore = uwml.Link(
+        2.5, t((2.0 * fore_com + 0.5 * wrist_com) / 2.5), cylinder_volume + 0.0006,
+        cob=t((cylinder_volume * fore_com + 0.0006 * wrist_cob) / (cylinder_volume + 0.0006)),
+        segment=uwml.Segment(t(r2 @ (0.15 * x) - 0.15 * (r2 @ x)), t(r2 @ x), 0.3, section="circular", diameter=0.08),
+    )
+    o4 = p3 + r3 @ (0.05 * x)
+    fingers = [
+        uwml.Segment(t(r3 @ (side * 0.03 * y)), t(r3 @ x), 0.1, normals=(t(r3 @ z), t(r3 @ y)), widths=(0.02, 0.04), area=0.04 * 0.02)
+        for side in (1.0, -1.0)
+    ]
+    finger = uwml.Link(0.3, t(r3 @ (0.05 * x)), 2 * 0.1 * 0.02 * 0.04, segments=fingers)
+    joints = [
+        uwml.Joint(t(o1), (0, 0, 1), parent=-1),
+        uwml.Joint(t(o2 - o1), t(r2 @ y), parent=0),
+        uwml.Joint(t(o4 - o2), t(r3 @ y), parent=1, kind="prismatic"),
+    ]
+    return uwml.Robot(joints, [upper, fore, finger], base=hull)
+
+
+ARM_STATES = [([0.4, -0.7, 0.01], [0.6, -0.9, 0.05], [1.5, 0.4, -0.3]), ([-1.2, 2.0, -0.015], [-0.2, 0.3, -0.08], [0.2, -1.0, 0.6])]
+
+
+def test_arm_urdf_and_mjcf_are_the_same_robot_as_built_by_hand() -> None:
+    urdf = uwml.Robot.from_urdf(DATA / "arm.urdf", DATA / "arm.hydro.toml")
+    mjcf = uwml.Robot.from_mjcf(DATA / "arm.xml", DATA / "arm.hydro.toml")
+    by_hand = hand_built_arm()
+    for robot in (urdf, mjcf):
+        assert robot.joint_names == ("shoulder", "elbow", "gripper")
+        assert robot.link_names == ("upper_arm", "forearm", "finger")
+        assert robot.base is not None and robot.base.name == "hull"
+        assert [j.kind for j in robot.joints] == ["revolute", "revolute", "prismatic"]
+        assert len(robot.segments) == 5
+        for q, qd, qdd in ARM_STATES:
+            assert_same_forces(robot, by_hand, q, qd, qdd)
+            assert_same_forces(robot, by_hand, q, qd, qdd, base_motion=MOTION, **CURRENT)
+    for q, qd, qdd in ARM_STATES:
+        assert_same_forces(urdf, mjcf, q, qd, qdd, base_motion=MOTION, **CURRENT)
