@@ -153,3 +153,85 @@ def test_arm_urdf_and_mjcf_are_the_same_robot_as_built_by_hand() -> None:
             assert_same_forces(robot, by_hand, q, qd, qdd, base_motion=MOTION, **CURRENT)
     for q, qd, qdd in ARM_STATES:
         assert_same_forces(urdf, mjcf, q, qd, qdd, base_motion=MOTION, **CURRENT)
+
+
+def test_tree_through_both_formats() -> None:
+    urdf = uwml.Robot.from_urdf(DATA / "biped.urdf")
+    mjcf = uwml.Robot.from_mjcf(DATA / "biped.xml")
+    for robot in (urdf, mjcf):
+        assert robot.joint_names == ("left_hip", "left_knee", "right_hip", "right_knee")
+        assert [j.parent for j in robot.joints] == [-1, 0, -1, 2]
+        shin = robot.links[1]
+        assert shin.volume == pytest.approx(math.pi * 0.03**2 * 0.3 + 4 / 3 * math.pi * 0.04**3, rel=1e-14)
+        assert len(shin.segments) == 1 and shin.segments[0].section == "circular"
+    np.testing.assert_allclose(urdf.joints[0].axis, (0.0, math.cos(0.2), math.sin(0.2)), atol=1e-15)
+    q, qd, qdd = [0.3, -0.5, -0.2, 0.8], [0.5, -1.0, 0.7, 0.2], [1.0, 0.5, -0.4, 2.0]
+    assert_same_forces(urdf, mjcf, q, qd, qdd)
+    assert_same_forces(urdf, mjcf, q, qd, qdd, base_motion=MOTION, **CURRENT)
+
+
+MESH_URDF = """<robot name="m">
+  <link name="base"/>
+  <link name="hand"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="hand_absent.stl"/></geometry></collision></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="hand"/><axis xyz="0 0 1"/></joint>
+</robot>"""
+
+
+def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.urdf"
+    bad.write_text('<robot name="x"><link name="a"></robot>')
+    with pytest.raises(uwml.DescriptionError, match=r"bad\.urdf: not a readable URDF file: .*MISMATCHED_ELEMENT"):
+        uwml.Robot.from_urdf(bad)
+    with pytest.raises(uwml.DescriptionError, match=r"absent\.xml: the MJCF file cannot be read: no such file"):
+        uwml.Robot.from_mjcf(tmp_path / "absent.xml")
+    ball = tmp_path / "ball.xml"
+    ball.write_text('<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="shoulder_ball" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>')
+    with pytest.raises(uwml.DescriptionError, match=r"ball\.xml: joint 'shoulder_ball' is a ball joint"):
+        uwml.Robot.from_mjcf(ball)
+    mesh = tmp_path / "mesh.urdf"
+    mesh.write_text(MESH_URDF)
+    with pytest.raises(uwml.DescriptionError, match=r"mesh\.urdf: link 'hand' has a collision mesh .*\[links\.hand\]"):
+        uwml.Robot.from_urdf(mesh)
+    hydro = tmp_path / "hand.toml"
+    hydro.write_text('[links.hand]\nvolume = 0.001\ncob = [0.0, 0.0, 0.1]\n\n[[links.hand.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\ndiameter = 0.05\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\n')
+    robot = uwml.Robot.from_urdf(mesh, hydro)  # the mesh link described by the hydro file loads
+    assert robot.links[0].volume == 0.001 and robot.links[0].cob == (0.0, 0.0, 0.1) and len(robot.segments) == 1
+    dry = tmp_path / "dry.toml"
+    dry.write_text("[links.hand]\ndry = true\n")
+    assert uwml.Robot.from_urdf(mesh, dry).links[0].volume == 0.0
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("[links.calfx]\nvolume = 0.1\n", r"h\.toml: \[links\.calfx\]: .*paper_leg\.urdf has no link \(body\) named 'calfx'"),
+        ("[links.calf]\nvolum = 0.1\n", r"h\.toml: \[links\.calf\], key 'volum': is not a key of this table"),
+        ("[links.calf]\nvolume = \"big\"\n", r"h\.toml: \[links\.calf\], key 'volume': must be a volume"),
+        ("[links.calf]\ncob = [0.0, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], key 'cob': needs volume"),
+        ("[links.calf]\ndry = true\ncd = 1.0\n", r"h\.toml: \[links\.calf\], key 'cd': a dry link"),
+        ("[links.calf]\nsegment_cd = [1.0, 2.0]\n", r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2"),
+        ("[[links.calf.segments]]\nsection = \"circular\"\n", r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
+        ("[joints.knee]\nseal = 1\n", r"h\.toml: top level, key 'joints': \[joints\] is not supported yet"),
+        ("[water]\ndensity = 1025.0\n", r"h\.toml: top level, key 'water': \[water\] is not supported yet"),
+        ("[links.calf\n", r"h\.toml: not valid TOML"),
+    ],
+)
+def test_hydro_file_errors(tmp_path: Path, text: str, message: str) -> None:
+    hydro = tmp_path / "h.toml"
+    hydro.write_text(text)
+    with pytest.raises(uwml.DescriptionError, match=message):
+        uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
+
+
+def test_missing_hydro_file(tmp_path: Path) -> None:
+    with pytest.raises(uwml.DescriptionError, match=r"nothing\.toml: the hydro file cannot be read"):
+        uwml.Robot.from_urdf(DATA / "paper_leg.urdf", tmp_path / "nothing.toml")
+
+
+def test_hydro_segment_coefficients_per_segment(tmp_path: Path) -> None:
+    hydro = tmp_path / "h.toml"
+    hydro.write_text("[links.finger]\nsegment_cd = [[1.0, 1.5], 2.0]\nsegment_cm = [0.7, [0.8, 0.9]]\n")
+    finger = uwml.Robot.from_urdf(DATA / "arm.urdf", hydro).links[2]
+    assert [s.cd for s in finger.segments] == [(1.0, 1.5), (2.0, 2.0)]
+    assert [s.cm for s in finger.segments] == [(0.7, 0.7), (0.8, 0.9)]
