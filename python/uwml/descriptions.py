@@ -135,7 +135,7 @@ class DescriptionError(ValueError):
 
 def _mujoco() -> Any:
     try:
-        import mujoco
+        import mujoco  # type: ignore[import-untyped]
     except ImportError:
         raise ImportError('reading URDF and MJCF needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
     return mujoco
@@ -200,13 +200,13 @@ def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
         if key in document:
             top.fail(key, f"[{key}] is not supported yet (joint losses and the water come in a later version); remove it")
     top.check_keys(("links",))
-    links = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
+    links: dict[str, Any] = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
     out: dict[str, HydroLink] = {}
     for name, table in links.items():
         where = f"[links.{name}]"
         r = _Reader(source, where, table, DescriptionError)
         r.check_keys(_LINK_KEYS)
-        raw_segments = r.get("segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[])
+        raw_segments: list[Any] = r.get("segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[])
         segments = tuple(_segment(source, f"{where}, segments[{i}]", s, DescriptionError) for i, s in enumerate(raw_segments))
         entry = HydroLink(
             cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
@@ -288,7 +288,7 @@ def _with_coefficients(segment: Segment, cd: Any, cm: Any, where: str) -> Segmen
 
 
 def _segment_copy(segment: Segment, **changes: Any) -> Segment:
-    fields = {
+    fields: dict[str, Any] = {
         "start": segment.start,
         "axis": segment.axis,
         "length": segment.length,
