@@ -10,6 +10,7 @@ torque).
 """
 
 from ._core import ModelError
+from .descriptions import DescriptionError
 from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
 from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques, Leg
@@ -30,6 +31,7 @@ __all__ = [
     "RobotJacobians",
     "RobotRegressors",
     "RobotTorques",
+    "DescriptionError",
     "Drive",
     "EnvironmentJacobians",
     "EnvironmentTorques",

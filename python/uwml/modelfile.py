@@ -166,15 +166,15 @@ def save(robot: Robot, path: str | os.PathLike[str]) -> None:
 class _Reader:
     """Typed access to one table of the file, with errors naming the file, table and key."""
 
-    def __init__(self, source: str, where: str, table: object) -> None:
-        self.source, self.where = source, where
+    def __init__(self, source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> None:
+        self.source, self.where, self.error = source, where, error
         if not isinstance(table, dict):
             self.fail(None, f"must be a table, got {type(table).__name__}")
         self.table: dict[str, Any] = table  # type: ignore[assignment]
 
     def fail(self, key: str | None, message: str) -> None:
         at = self.where if key is None else f"{self.where}, key '{key}'"
-        raise ModelFileError(f"{self.source}: {at}: {message}")
+        raise self.error(f"{self.source}: {at}: {message}")
 
     def check_keys(self, allowed: Sequence[str]) -> None:
         for key in self.table:
@@ -244,8 +244,8 @@ _SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "w
 _BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments")
 
 
-def _segment(source: str, where: str, table: object) -> Segment:
-    r = _Reader(source, where, table)
+def _segment(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Segment:
+    r = _Reader(source, where, table, error)
     r.check_keys(_SEGMENT_KEYS)
     section = r.get("section", _text, 'a string, "rectangular" or "circular"')
     common = {

@@ -372,6 +372,30 @@ class Robot:
 
         return load(path)
 
+    @classmethod
+    def from_urdf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
+        """The robot of a URDF file, with an optional hydro file (:mod:`uwml.descriptions`;
+        needs ``uwml[mujoco]``)."""
+        from .descriptions import from_urdf
+
+        return from_urdf(path, hydro)
+
+    @classmethod
+    def from_mjcf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
+        """The robot of an MJCF file, with an optional hydro file (:mod:`uwml.descriptions`;
+        needs ``uwml[mujoco]``)."""
+        from .descriptions import from_mjcf
+
+        return from_mjcf(path, hydro)
+
+    @classmethod
+    def from_mujoco(cls, model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:
+        """The robot of a compiled ``mujoco.MjModel``, with an optional hydro file
+        (:mod:`uwml.descriptions`)."""
+        from .descriptions import from_mujoco
+
+        return from_mujoco(model, hydro)
+
     @property
     def segments(self) -> tuple[Segment, ...]:
         """Every segment, base first, then link by link: the order of per-segment coefficients."""

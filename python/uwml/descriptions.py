@@ -1,0 +1,574 @@
+"""Robot descriptions (URDF, MJCF, a MuJoCo model) to a :class:`uwml.Robot` (MODEL.md section 10).
+
+``from_urdf(path, hydro=None)``, ``from_mjcf(path, hydro=None)`` and ``from_mujoco(model,
+hydro=None)`` (also as the classmethods ``uwml.Robot.from_urdf`` and so on) read a description
+with MuJoCo (``pip install "uwml[mujoco]"``), which parses both formats into one model, and map it
+by the fixed rules of MODEL.md 10:
+
+- The root body is the base: its own mass, COM and collision geometry become the base body. A
+  free joint on the root makes it the moving base (no uwml joint; the motion is a
+  :class:`uwml.BaseMotion`). An MJCF root carrying hinge or slide joints hangs from the world: the
+  base is then the world, without a body of its own. The world body's own geoms (a floor) are
+  scenery and ignored; the world must hold exactly one root body.
+- Fixed joints (URDF ``fixed``; MJCF bodies without joints) are fused into their parent:
+  geometry, mass with the COM mass-weighted, volume with the COB volume-weighted.
+- URDF revolute and continuous, MJCF hinge: revolute; URDF prismatic, MJCF slide: prismatic;
+  anything else (ball, planar, a floating or free joint other than the root's, several joints in
+  one body, a joint with a nonzero ``ref``) is a :class:`DescriptionError` naming the joint.
+- Frames. uwml's link frames are parallel to the base frame at ``q = 0``; a description's body
+  frames may be rotated (URDF ``rpy``, MJCF ``quat``/``euler``/``axisangle``/...). With ``R_i``
+  the orientation of body ``i`` relative to the base at ``q = 0`` (the product of the fixed
+  rotations from the root down to it) and ``p_i`` its origin in the base frame, a point ``v`` of
+  the body's own frame is at ``p_i + R_i v`` in the base frame and a direction ``d`` is ``R_i d``.
+  The uwml link frame of a body moved by a joint has its origin at the joint's anchor,
+  ``o_i = p_i + R_i a_i`` (``a_i`` the anchor in the body frame: the origin for URDF, ``pos`` of
+  the MJCF joint), axes parallel to the base. So the uwml joint has ``axis = R_i axis_local``,
+  ``origin = o_i − o_parent`` (in the parent's base-parallel frame), and every point of the
+  body's (and its fused children's) geometry, COM and COB is ``p_b + R_b v − o_i``. At ``q`` the
+  description's body turns by the same rotation about the same line as uwml's frame, so the two
+  stay rigidly attached: the same robot.
+- Geometry from collision geoms only (MuJoCo's convention: a geom with ``contype`` or
+  ``conaffinity`` nonzero; URDF ``<collision>``); visuals are dropped before MuJoCo compiles, so
+  missing visual mesh files do not stop the load. Box: a rectangular segment along its longest
+  edge, centred, ``n0`` along the second-longest, ``n1`` along the shortest (ties: x, y, z),
+  ``widths = (extent along n1, extent along n0)``, area the product of the two shorter edges,
+  volume the product of all three. Cylinder: a circular segment along its axis, centred,
+  ``D = 2r``, volume ``πr²L``. Capsule: the cylinder part as a circular segment, volume
+  ``πr²L + 4/3 πr³``. Sphere, ellipsoid: volume only. Mesh (or any other kind): an error naming
+  the link, unless the hydro file describes the link (``volume`` or ``dry``; its mesh geoms are
+  then ignored). A link's volume is the sum of its primitives', its COB their volume-weighted
+  centroid; mass and COM come from the inertial description.
+- Names: URDF link and joint names, MJCF body and joint names, are kept (``Link.name``,
+  ``Joint.name``; an unnamed MJCF joint has none). Links are in MuJoCo's body order (depth first,
+  as written), so ``q`` is in the order of the description's moving joints.
+
+What MuJoCo loses, and how this module keeps it. ``mujoco.MjModel.from_xml_path`` on a URDF
+fuses every body without a joint into its parent (``fusestatic``, on by default for URDF): the
+root link is merged into the world body, whose mass MuJoCo does not keep (``body_mass[0]`` is 0),
+so the base body's mass, COM and geometry would be lost. So the description is read as an
+``mujoco.MjSpec``, with ``fusestatic`` turned off and the non-collision geoms (and the meshes only
+they use) deleted, then compiled: the root stays a body with its own inertial and geoms, fixed
+links stay bodies (fused here, by the rules above), and the compiled model supplies what the
+spec leaves implicit (MJCF default classes, ``fromto``, Euler sequences and degrees, inertia from
+geoms where MJCF has no ``<inertial>``). Nothing the rules need is then missing, so no second
+XML reader is used. A URDF link without ``<inertial>`` is massless by URDF's rules; MuJoCo
+refuses a massless link moved by a joint ("mass and inertia of moving bodies must be larger than
+mjMINVAL"), which is reported as a :class:`DescriptionError`. ``from_mujoco`` takes a model
+already compiled: if it was compiled from a URDF with ``fusestatic`` on, the root's mass is
+already gone (the base is then the world, without a body); load the file with
+:func:`from_urdf` instead.
+
+The hydro file (TOML, read with ``tomllib``): what the descriptions lack, per link by name (a
+URDF link's, an MJCF body's; a link fused into its parent may have its own entry). Every vector
+is in that link's own description frame, as in the URDF/MJCF (this module turns it into uwml's
+frames)::
+
+    # uwml hydro file: SI units
+    [links.thigh]
+    cd = 2.2                  # every segment of this link: one number, or [along n0, along n1]
+    cm = [0.5, 0.6]
+    volume = 0.00713          # m³, displaced volume (instead of the primitives' sum)
+    cob = [0.506, 0.0, 0.0]   # m, centre of buoyancy (default: the primitives' centroid, or the COM)
+
+    [links.camera]
+    dry = true                # no segments, no volume (a link out of the water, or to ignore)
+
+    [links.hull]              # a link drawn as a mesh: give its volume and segments
+    volume = 0.29
+    cob = [0.0, 0.0, 0.05]
+    segment_cd = [0.9, [1.1, 1.3]]   # per segment, in order (primitives, then the segments below)
+
+    [[links.hull.segments]]   # the keys of a uwml model file's segments (uwml.modelfile)
+    section = "circular"
+    start = [-0.9, 0.0, 0.0]
+    axis = [1.0, 0.0, 0.0]
+    length = 1.8
+    diameter = 0.6
+    area = 0.283
+    cd = [0.9, 0.9]
+    cm = [1.0, 1.0]
+
+    [[links.hull.segments]]
+    section = "rectangular"
+    start = [0.0, -0.3, 0.0]
+    axis = [0.0, 1.0, 0.0]
+    length = 0.6
+    normals = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+    widths = [0.2, 0.4]
+    area = 0.08
+    cd = [1.1, 1.3]
+    cm = [1.0, 1.0]
+
+A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, else the link's
+``cd``/``cm``, else its own (hydro segments), else the documented defaults per section
+(:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
+segment takes one number (a pair must have two equal entries). Unknown link names, unknown keys,
+missing values and wrong types are :class:`DescriptionError`\\ s naming the file, the table and
+the key. Joint losses (``[joints.NAME]``) and the water (``[water]``) belong in this file too but
+are not supported yet: a file that has them is an error, not silently ignored.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .model import Joint, Link, Segment
+from .modelfile import _float, _pair, _Reader, _segment, _vec3
+from .robot import Robot
+
+__all__ = ["DescriptionError", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro"]
+
+FloatArray = NDArray[np.float64]
+
+
+class DescriptionError(ValueError):
+    """A robot description or hydro file that cannot be mapped: names the file and the element."""
+
+
+def _mujoco() -> Any:
+    try:
+        import mujoco  # type: ignore[import-untyped]
+    except ImportError:
+        raise ImportError('reading URDF and MJCF needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
+    return mujoco
+
+
+# --- the hydro file ---------------------------------------------------------------------------
+
+_LINK_KEYS = ("cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments")
+
+
+@dataclass(frozen=True)
+class HydroLink:
+    """One link's entry of a hydro file (vectors in the link's description frame)."""
+
+    cd: float | tuple[float, float] | None = None
+    cm: float | tuple[float, float] | None = None
+    segment_cd: tuple[float | tuple[float, float], ...] | None = None
+    segment_cm: tuple[float | tuple[float, float], ...] | None = None
+    volume: float | None = None
+    cob: tuple[float, float, float] | None = None
+    dry: bool = False
+    segments: tuple[Segment, ...] = field(default=())
+
+    @property
+    def describes_geometry(self) -> bool:
+        """Whether the entry stands in for the link's geometry (a mesh link may then load)."""
+        return self.dry or self.volume is not None
+
+
+def _coefficient(value: Any) -> float | tuple[float, float]:
+    if isinstance(value, list):
+        return _pair(value)
+    return _float(value)
+
+
+def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:
+    if not isinstance(value, list):
+        raise TypeError("not an array")
+    return tuple(_coefficient(v) for v in value)
+
+
+def _boolean(value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise TypeError("not true or false")
+    return value
+
+
+def _nonnegative(value: Any) -> float:
+    x = _float(value)
+    if not (math.isfinite(x) and x >= 0.0):
+        raise ValueError("must be finite and >= 0")
+    return x
+
+
+def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
+    try:
+        document = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DescriptionError(f"{source}: not valid TOML: {exc}") from None
+    top = _Reader(source, "top level", document, DescriptionError)
+    for key in ("joints", "water"):
+        if key in document:
+            top.fail(key, f"[{key}] is not supported yet (joint losses and the water come in a later version); remove it")
+    top.check_keys(("links",))
+    links: dict[str, Any] = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
+    out: dict[str, HydroLink] = {}
+    for name, table in links.items():
+        where = f"[links.{name}]"
+        r = _Reader(source, where, table, DescriptionError)
+        r.check_keys(_LINK_KEYS)
+        raw_segments: list[Any] = r.get("segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[])
+        segments = tuple(_segment(source, f"{where}, segments[{i}]", s, DescriptionError) for i, s in enumerate(raw_segments))
+        entry = HydroLink(
+            cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
+            cm=r.get("cm", _coefficient, "a number or [along n0, along n1]", required=False),
+            segment_cd=r.get("segment_cd", _coefficients, "an array, one number or pair per segment", required=False),
+            segment_cm=r.get("segment_cm", _coefficients, "an array, one number or pair per segment", required=False),
+            volume=r.get("volume", _nonnegative, "a volume [m³], >= 0", required=False),
+            cob=r.get("cob", _vec3, "an array of 3 numbers [m]", required=False),
+            dry=r.get("dry", _boolean, "true or false", required=False, default=False),
+            segments=segments,
+        )
+        if entry.dry:
+            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm"):
+                if key in r.table:
+                    r.fail(key, "a dry link has no segments and no volume: remove this key or dry = true")
+        if entry.cob is not None and entry.volume is None:
+            r.fail("cob", "needs volume (give the displaced volume with its centre of buoyancy)")
+        out[name] = entry
+    return out
+
+
+def _not(what: str) -> Any:
+    raise TypeError(f"not {what}")
+
+
+def read_hydro(path: str | os.PathLike[str]) -> dict[str, HydroLink]:
+    """The entries of the hydro file at ``path``, by link name (see the module docstring)."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise DescriptionError(f"{path}: the hydro file cannot be read: {exc.strerror or exc}") from None
+    return _hydro_loads(text, str(path))
+
+
+# --- geometry ---------------------------------------------------------------------------------
+
+
+def _rotation(quat: FloatArray) -> FloatArray:
+    """The rotation matrix of a unit quaternion (w, x, y, z)."""
+    w, x, y, z = np.asarray(quat, dtype=np.float64) / np.linalg.norm(quat)
+    return np.array(
+        [
+            [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+            [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+            [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)],
+        ]
+    )
+
+
+def _t(v: FloatArray) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+@dataclass
+class _Body:
+    """What one description body contributes to its uwml link, in that link's frame."""
+
+    name: str
+    mass: float
+    com: FloatArray
+    volume: float = 0.0
+    cob_moment: FloatArray = field(default_factory=lambda: np.zeros(3))
+    segments: list[Segment] = field(default_factory=list)
+
+
+def _with_coefficients(segment: Segment, cd: Any, cm: Any, where: str) -> Segment:
+    def one(value: Any, name: str) -> Any:
+        if value is None or segment.section != "circular" or not isinstance(value, tuple):
+            return value
+        if value[0] != value[1]:
+            raise DescriptionError(f"{where}: {name} of a circular segment must be one number (or two equal), got {list(value)}")
+        return value[0]
+
+    changes = {key: one(value, key) for key, value in (("cd", cd), ("cm", cm)) if value is not None}
+    try:
+        return _segment_copy(segment, **changes)
+    except (TypeError, ValueError) as exc:
+        raise DescriptionError(f"{where}: {exc}") from None
+
+
+def _segment_copy(segment: Segment, **changes: Any) -> Segment:
+    fields: dict[str, Any] = {
+        "start": segment.start,
+        "axis": segment.axis,
+        "length": segment.length,
+        "section": segment.section,
+        "area": segment.area,
+        "cd": segment.cd if segment.section == "rectangular" else segment.cd[0],  # type: ignore[index]
+        "cm": segment.cm if segment.section == "rectangular" else segment.cm[0],  # type: ignore[index]
+    }
+    if segment.section == "circular":
+        fields["diameter"] = segment.diameter
+    else:
+        fields["normals"], fields["widths"] = segment.normals, segment.widths
+    fields.update(changes)
+    return Segment(**fields)
+
+
+def _moved(segment: Segment, rotation: FloatArray, offset: FloatArray) -> Segment:
+    """``segment`` (given in a body frame) in the uwml link frame: points ``R v + offset``."""
+    changes: dict[str, Any] = {
+        "start": _t(rotation @ np.asarray(segment.start) + offset),
+        "axis": _t(rotation @ np.asarray(segment.axis)),
+    }
+    if segment.section == "rectangular":
+        n0, n1 = segment.normals  # type: ignore[misc]
+        changes["normals"] = (_t(rotation @ np.asarray(n0)), _t(rotation @ np.asarray(n1)))
+    return _segment_copy(segment, **changes)
+
+
+def _primitive(mujoco: Any, kind: int, size: FloatArray) -> tuple[Segment | None, float]:
+    """The segment (in the geom's own frame) and volume of a box, cylinder, capsule, sphere or
+    ellipsoid, or ``(None, -1)`` for any other kind."""
+    g = mujoco.mjtGeom
+    if kind == g.mjGEOM_BOX:
+        edges = 2.0 * np.asarray(size[:3], dtype=np.float64)
+        order = sorted(range(3), key=lambda k: -edges[k])  # stable: ties x, y, z
+        e = np.eye(3)
+        along, n0, n1 = order
+        length = float(edges[along])
+        segment = Segment(
+            start=_t(-0.5 * length * e[along]),
+            axis=_t(e[along]),
+            length=length,
+            normals=(_t(e[n0]), _t(e[n1])),
+            widths=(float(edges[n1]), float(edges[n0])),
+            area=float(edges[n0] * edges[n1]),
+        )
+        return segment, float(edges[0] * edges[1] * edges[2])
+    if kind in (g.mjGEOM_CYLINDER, g.mjGEOM_CAPSULE):
+        r, length = float(size[0]), 2.0 * float(size[1])
+        segment = Segment(start=(0.0, 0.0, -0.5 * length), axis=(0.0, 0.0, 1.0), length=length, section="circular", diameter=2.0 * r, area=math.pi * r * r)
+        volume = math.pi * r * r * length + (4.0 / 3.0 * math.pi * r**3 if kind == g.mjGEOM_CAPSULE else 0.0)
+        return segment, volume
+    if kind == g.mjGEOM_SPHERE:
+        return None, 4.0 / 3.0 * math.pi * float(size[0]) ** 3
+    if kind == g.mjGEOM_ELLIPSOID:
+        return None, 4.0 / 3.0 * math.pi * float(size[0]) * float(size[1]) * float(size[2])
+    return None, -1.0
+
+
+# --- reading ----------------------------------------------------------------------------------
+
+
+def _is_collision(geom: Any) -> bool:
+    return bool(geom.contype) or bool(geom.conaffinity)
+
+
+def _unknown_link(hydro_source: str, name: str, source: str, names: set[str]) -> DescriptionError:
+    known = ", ".join(sorted(n for n in names if n and n != "world"))
+    return DescriptionError(f"{hydro_source}: [links.{name}]: {source} has no link (body) named '{name}' (its links: {known})")
+
+
+def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str) -> Any:
+    mujoco = _mujoco()
+    source = str(path)
+    if not Path(path).is_file():
+        raise DescriptionError(f"{source}: the {what} file cannot be read: no such file")
+    try:
+        spec = mujoco.MjSpec.from_file(source)
+    except ValueError as exc:
+        raise DescriptionError(f"{source}: not a readable {what} file: {' '.join(str(exc).split())}") from None
+    spec.compiler.fusestatic = False
+    names = {body.name for body in spec.bodies}
+    for name in hydro:
+        if name not in names:
+            raise _unknown_link(hydro_source, name, source, names)
+    kept_meshes: set[str] = set()
+    for geom in list(spec.geoms):
+        body = geom.parent
+        if not _is_collision(geom):
+            spec.delete(geom)
+            continue
+        if geom.type == mujoco.mjtGeom.mjGEOM_MESH:
+            entry = hydro.get(body.name)
+            if entry is None or not entry.describes_geometry:
+                raise DescriptionError(
+                    f"{source}: link '{body.name}' has a collision mesh ({geom.meshname or 'unnamed'}), which uwml cannot turn into segments: "
+                    f"describe the link in a hydro file ([links.{body.name}] with volume and segments, or dry = true)"
+                )
+            if body.explicitinertial:
+                spec.delete(geom)  # its geometry is the hydro file's; its mass is the inertial's
+                continue
+            kept_meshes.add(geom.meshname)
+    for mesh in list(spec.meshes):
+        if mesh.name not in kept_meshes:
+            spec.delete(mesh)
+    try:
+        return spec.compile()
+    except ValueError as exc:
+        raise DescriptionError(f"{source}: MuJoCo cannot compile this {what} file: {' '.join(str(exc).split())}") from None
+
+
+def from_urdf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
+    """The :class:`uwml.Robot` of the URDF file at ``path``, with the hydro file ``hydro``."""
+    entries = {} if hydro is None else read_hydro(hydro)
+    return _from_model(_spec(path, "URDF", entries, str(hydro)), entries, str(path), str(hydro))
+
+
+def from_mjcf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
+    """The :class:`uwml.Robot` of the MJCF file at ``path``, with the hydro file ``hydro``."""
+    entries = {} if hydro is None else read_hydro(hydro)
+    return _from_model(_spec(path, "MJCF", entries, str(hydro)), entries, str(path), str(hydro))
+
+
+def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:
+    """The :class:`uwml.Robot` of a compiled ``mujoco.MjModel`` (see the module docstring for
+    what a URDF compiled with ``fusestatic`` has already lost)."""
+    mujoco = _mujoco()
+    if not isinstance(model, mujoco.MjModel):
+        raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+    entries = {} if hydro is None else read_hydro(hydro)
+    names = {model.body(i).name for i in range(model.nbody)}
+    for name in entries:
+        if name not in names:
+            raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
+    return _from_model(model, entries, "<mujoco.MjModel>", str(hydro))
+
+
+def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: str) -> Robot:
+    mujoco = _mujoco()
+    jt = mujoco.mjtJoint
+    body_name = [model.body(i).name for i in range(model.nbody)]
+    joint_name = [model.joint(j).name for j in range(model.njnt)]
+    parent = [int(p) for p in model.body_parentid]
+    roots = [i for i in range(1, model.nbody) if parent[i] == 0]
+    if len(roots) != 1:
+        listed = ", ".join(f"'{body_name[i]}'" for i in roots) or "none"
+        raise DescriptionError(f"{source}: the world must hold exactly one root body (the robot's base), got {listed}")
+    root = roots[0]
+
+    def joint_label(j: int) -> str:
+        return f"joint '{joint_name[j]}'" if joint_name[j] else f"the unnamed joint of body '{body_name[int(model.jnt_bodyid[j])]}'"
+
+    moving: dict[int, int] = {}  # body -> its hinge/slide joint
+    free_root = False
+    for j in range(model.njnt):
+        b, kind = int(model.jnt_bodyid[j]), int(model.jnt_type[j])
+        if kind == jt.mjJNT_FREE:
+            if b != root or model.body_jntnum[b] != 1:
+                raise DescriptionError(f"{source}: {joint_label(j)} is a free (floating) joint; only the root body may be free (the moving base)")
+            free_root = True
+            continue
+        if kind not in (jt.mjJNT_HINGE, jt.mjJNT_SLIDE):
+            what = {int(jt.mjJNT_BALL): "ball"}.get(kind, str(kind))
+            raise DescriptionError(f"{source}: {joint_label(j)} is a {what} joint; uwml takes revolute/continuous/hinge and prismatic/slide joints (and a free root)")
+        if b in moving:
+            raise DescriptionError(f"{source}: body '{body_name[b]}' has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link")
+        if model.qpos0[model.jnt_qposadr[j]] != 0.0:
+            raise DescriptionError(f"{source}: {joint_label(j)} has a nonzero ref; uwml's q = 0 is the pose as written")
+        moving[b] = j
+    # The base: the root body, unless the root itself hangs from the world by a joint.
+    base_body = 0 if root in moving else root
+
+    rotation = {base_body: np.eye(3)}
+    position = {base_body: np.zeros(3)}
+    owner = {base_body: base_body}
+    origin = {base_body: np.zeros(3)}
+    order = [base_body]
+    for i in range(1, model.nbody):
+        if i == base_body:
+            continue
+        p = parent[i]
+        rotation[i] = rotation[p] @ _rotation(model.body_quat[i])
+        position[i] = position[p] + rotation[p] @ model.body_pos[i]
+        if i in moving:
+            owner[i] = i
+            origin[i] = position[i] + rotation[i] @ model.jnt_pos[moving[i]]
+            order.append(i)
+        else:
+            owner[i] = owner[p]
+
+    link_index = {b: k for k, b in enumerate(order[1:])}
+    joints = []
+    for b in order[1:]:
+        j = moving[b]
+        axis = rotation[b] @ model.jnt_axis[j]
+        axis = axis / np.linalg.norm(axis)
+        parent_owner = owner[parent[b]]
+        joints.append(
+            Joint(
+                _t(origin[b] - origin[parent_owner]),
+                _t(axis),
+                parent=link_index.get(parent_owner, -1),
+                kind="revolute" if model.jnt_type[j] == jt.mjJNT_HINGE else "prismatic",
+                name=joint_name[j] or None,
+            )
+        )
+
+    parts: dict[int, list[_Body]] = {b: [] for b in order}
+    for i in range(1, model.nbody):
+        k = owner[i]
+        parts[k].append(_body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source))
+
+    def link(b: int) -> Link:
+        bodies = parts[b]
+        mass = sum(x.mass for x in bodies)
+        com = sum((x.mass * x.com for x in bodies), np.zeros(3)) / mass if mass > 0.0 else np.zeros(3)
+        volume = sum(x.volume for x in bodies)
+        cob = _t(sum((x.cob_moment for x in bodies), np.zeros(3)) / volume) if volume > 0.0 else None
+        segments = tuple(s for x in bodies for s in x.segments)
+        try:
+            return Link(mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None)
+        except (TypeError, ValueError) as exc:
+            raise DescriptionError(f"{source}: link '{body_name[b]}': {exc}") from None
+
+    links = [link(b) for b in order[1:]]
+    base = link(base_body) if base_body != 0 else None
+    del free_root  # a free root and a fixed root give the same robot: the motion is an argument
+    try:
+        return Robot(joints, links, base=base)
+    except (TypeError, ValueError) as exc:
+        raise DescriptionError(f"{source}: {exc}") from None
+
+
+def _body(
+    mujoco: Any, model: Any, i: int, rotation: FloatArray, offset: FloatArray, name: str, entry: HydroLink | None, source: str, hydro_source: str
+) -> _Body:
+    """Body ``i``'s mass, volume and segments in its uwml link's frame (points ``R v + offset``)."""
+    body = _Body(name=name, mass=float(model.body_mass[i]), com=rotation @ model.body_ipos[i] + offset)
+    if entry is not None and entry.dry:
+        return body
+    segments: list[Segment] = []
+    volume, moment = 0.0, np.zeros(3)
+    for g in range(model.ngeom):
+        if model.geom_bodyid[g] != i or not (model.geom_contype[g] or model.geom_conaffinity[g]):
+            continue
+        kind = int(model.geom_type[g])
+        segment, v = _primitive(mujoco, kind, model.geom_size[g])
+        if v < 0.0:
+            if entry is not None and entry.describes_geometry:
+                continue
+            what = "mesh" if kind == mujoco.mjtGeom.mjGEOM_MESH else f"geom of type {mujoco.mjtGeom(kind).name}"
+            raise DescriptionError(f"{source}: link '{name}' has a collision {what}, which uwml cannot turn into segments: describe the link in a hydro file")
+        geom_rotation = rotation @ _rotation(model.geom_quat[g])
+        geom_offset = rotation @ model.geom_pos[g] + offset
+        volume += v
+        moment += v * geom_offset
+        if segment is not None:
+            segments.append(_moved(segment, geom_rotation, geom_offset))
+    if entry is not None:
+        segments += [_moved(s, rotation, offset) for s in entry.segments]
+        if entry.volume is not None:
+            if entry.cob is not None:
+                cob = rotation @ np.asarray(entry.cob) + offset
+            elif volume > 0.0:
+                cob = moment / volume
+            else:
+                cob = body.com
+            volume, moment = entry.volume, entry.volume * cob
+        where = f"{hydro_source}: [links.{name}]"
+        for key, per_segment in (("segment_cd", entry.segment_cd), ("segment_cm", entry.segment_cm)):
+            if per_segment is not None and len(per_segment) != len(segments):
+                raise DescriptionError(f"{where}, key '{key}': must have one entry per segment of the link ({len(segments)}), got {len(per_segment)}")
+        coefficients = []
+        for index, segment in enumerate(segments):
+            cd = entry.segment_cd[index] if entry.segment_cd is not None else entry.cd
+            cm = entry.segment_cm[index] if entry.segment_cm is not None else entry.cm
+            if cd is None and cm is None:
+                coefficients.append(segment)
+                continue
+            coefficients.append(_with_coefficients(segment, cd, cm, where))
+        segments = coefficients
+    body.volume, body.cob_moment, body.segments = volume, moment, segments
+    return body

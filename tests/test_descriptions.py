@@ -1,0 +1,237 @@
+"""URDF and MJCF descriptions to uwml.Robot (uwml.descriptions, MODEL.md section 10)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import uwml
+
+pytest.importorskip("mujoco")
+
+DATA = Path(__file__).parent / "data"
+STATES = [
+    ([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]),
+    ([-1.1, 0.7, -0.2], [-0.3, 1.2, 0.9], [0.4, 0.3, -1.5]),
+]
+MOTION = uwml.BaseMotion(
+    orientation=(math.cos(0.2), 0.3 * math.sin(0.2), -0.5 * math.sin(0.2), math.sqrt(0.66) * math.sin(0.2)),
+    velocity=(0.4, -0.2, 0.1),
+    angular_velocity=(0.05, 0.1, -0.2),
+    acceleration=(0.3, 0.1, -0.2),
+    angular_acceleration=(-0.1, 0.2, 0.05),
+)
+CURRENT = {"current": (0.3, -0.2, 0.05), "current_acceleration": (0.02, 0.01, -0.03)}
+
+
+def assert_same_forces(a: uwml.Robot, b: uwml.Robot, q: list[float], qd: list[float], qdd: list[float], **kwargs: object) -> None:
+    """Every joint force and the base wrench agree to 1e-12 of the largest."""
+    ta, tb = a.hydro(q, qd, qdd, **kwargs), b.hydro(q, qd, qdd, **kwargs)  # type: ignore[arg-type]
+    for name in ("drag", "added_mass", "buoyancy", "gravity"):
+        x = np.concatenate([getattr(ta, name), getattr(ta.base, name)])
+        y = np.concatenate([getattr(tb, name), getattr(tb.base, name)])
+        scale = max(1.0, float(np.max(np.abs(y))))
+        assert np.max(np.abs(x - y)) <= 1e-12 * scale, (name, x, y)
+
+
+@pytest.fixture(scope="module")
+def paper() -> uwml.Robot:
+    return uwml.Robot.from_leg(uwml.Leg.paper())
+
+
+@pytest.mark.parametrize("loader, file", [(uwml.Robot.from_urdf, "paper_leg.urdf"), (uwml.Robot.from_mjcf, "paper_leg.xml")])
+def test_paper_leg_from_descriptions(paper: uwml.Robot, loader, file: str) -> None:
+    robot = loader(DATA / file, DATA / "paper_leg.hydro.toml")
+    assert robot.joint_names == ("hip_yaw", "hip_roll", "knee")
+    assert robot.link_names == ("hip", "thigh", "calf")
+    assert [j.parent for j in robot.joints] == [-1, 0, 1]
+    for link, expected in zip(robot.links, paper.links):
+        assert link.mass == expected.mass and link.volume == expected.volume
+        np.testing.assert_allclose(link.com, expected.com, atol=1e-15)
+    for q, qd, qdd in STATES:
+        assert_same_forces(robot, paper, q, qd, qdd)
+        assert_same_forces(robot, paper, q, qd, qdd, base_motion=MOTION, **CURRENT)
+
+
+def test_paper_leg_reference_values(paper: uwml.Robot) -> None:
+    """MODEL.md section 5's table, through the URDF."""
+    robot = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", DATA / "paper_leg.hydro.toml")
+    t = robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
+    np.testing.assert_allclose(t.drag, [-24.24084, -5.060505, -0.7383118], rtol=1e-6)
+    np.testing.assert_allclose(t.added_mass, [-8.525438, 21.77596, 9.484545], rtol=1e-6)
+    np.testing.assert_allclose(t.buoyancy, [0.0, 59.72457, 4.193843], rtol=1e-6, atol=1e-12)
+
+
+def test_from_mujoco_model_in_memory(paper: uwml.Robot) -> None:
+    import mujoco
+
+    model = mujoco.MjModel.from_xml_string((DATA / "paper_leg.xml").read_text().replace('<asset><mesh name="thigh_visual" file="meshes/thigh_does_not_exist.stl"/></asset>', "").replace('<geom class="visual" type="mesh" mesh="thigh_visual"/>', ""))
+    robot = uwml.Robot.from_mujoco(model, DATA / "paper_leg.hydro.toml")
+    assert_same_forces(robot, paper, *STATES[0])
+    with pytest.raises(TypeError, match="mujoco.MjModel"):
+        uwml.Robot.from_mujoco("not a model")
+
+
+def test_without_hydro_file_primitive_volumes() -> None:
+    """No hydro file: volume = the boxes' volumes, COB their centroid, default coefficients."""
+    robot = uwml.Robot.from_urdf(DATA / "paper_leg.urdf")
+    thigh, calf = robot.links[1], robot.links[2]
+    assert thigh.volume == pytest.approx(0.66 * 0.238 * 0.131, rel=1e-15)
+    np.testing.assert_allclose(thigh.cob, (0.33, 0.0, 0.0), atol=1e-15)
+    np.testing.assert_allclose(calf.cob, (0.0, 0.0, -0.357), atol=1e-15)
+    assert robot.links[0].volume == 0.0
+    assert thigh.segments[0].cd == uwml.model.RECTANGULAR_DEFAULTS[:1] * 2
+
+
+def rpy(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF's fixed-axis roll, pitch, yaw: Rz(yaw) Ry(pitch) Rx(roll) (scipy's extrinsic xyz)."""
+    from scipy.spatial.transform import Rotation
+
+    return Rotation.from_euler("xyz", [roll, pitch, yaw]).as_matrix()
+
+
+def t(v: np.ndarray) -> tuple[float, float, float]:
+    return (float(v[0]), float(v[1]), float(v[2]))
+
+
+def hand_built_arm() -> uwml.Robot:
+    """arm.urdf with arm.hydro.toml, built by hand in uwml's base-parallel frames."""
+    x, y, z = np.eye(3)
+    hull = uwml.Link(
+        50.0, (0, 0, -0.05), 1.2 * 0.8 * 0.4, cob=(0, 0, 0),
+        segment=uwml.Segment((-0.6, 0, 0), (1, 0, 0), 1.2, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.8), area=0.32, cd=(2.0, 2.1)),
+    )
+    r1 = rpy(0, 0, math.pi / 2)
+    o1 = np.array([0.5, 0, -0.2])
+    upper = uwml.Link(
+        3.0, t(r1 @ (0.2 * x)), math.pi * 0.05**2 * 0.4,
+        segment=uwml.Segment(t(r1 @ (0.2 * x) - 0.2 * (r1 @ x)), t(r1 @ x), 0.4, section="circular", diameter=0.1, cd=1.1, cm=0.9),
+    )
+    r2 = r1 @ rpy(0.3, 0.2, -0.4)
+    o2 = o1 + r1 @ (0.4 * x)
+    r3 = r2 @ rpy(0, 0, 0.5)
+    p3 = o2 + r2 @ (0.3 * x)
+    fore_com, wrist_com = r2 @ (0.15 * x), p3 - o2
+    cylinder_volume = math.pi * 0.04**2 * 0.3
+    wrist_cob = p3 - o2 + r3 @ (0.01 * x)
+    fore = uwml.Link(
+        2.5, t((2.0 * fore_com + 0.5 * wrist_com) / 2.5), cylinder_volume + 0.0006,
+        cob=t((cylinder_volume * fore_com + 0.0006 * wrist_cob) / (cylinder_volume + 0.0006)),
+        segment=uwml.Segment(t(r2 @ (0.15 * x) - 0.15 * (r2 @ x)), t(r2 @ x), 0.3, section="circular", diameter=0.08),
+    )
+    o4 = p3 + r3 @ (0.05 * x)
+    fingers = [
+        uwml.Segment(t(r3 @ (side * 0.03 * y)), t(r3 @ x), 0.1, normals=(t(r3 @ z), t(r3 @ y)), widths=(0.02, 0.04), area=0.04 * 0.02)
+        for side in (1.0, -1.0)
+    ]
+    finger = uwml.Link(0.3, t(r3 @ (0.05 * x)), 2 * 0.1 * 0.02 * 0.04, segments=fingers)
+    joints = [
+        uwml.Joint(t(o1), (0, 0, 1), parent=-1),
+        uwml.Joint(t(o2 - o1), t(r2 @ y), parent=0),
+        uwml.Joint(t(o4 - o2), t(r3 @ y), parent=1, kind="prismatic"),
+    ]
+    return uwml.Robot(joints, [upper, fore, finger], base=hull)
+
+
+ARM_STATES = [([0.4, -0.7, 0.01], [0.6, -0.9, 0.05], [1.5, 0.4, -0.3]), ([-1.2, 2.0, -0.015], [-0.2, 0.3, -0.08], [0.2, -1.0, 0.6])]
+
+
+def test_arm_urdf_and_mjcf_are_the_same_robot_as_built_by_hand() -> None:
+    urdf = uwml.Robot.from_urdf(DATA / "arm.urdf", DATA / "arm.hydro.toml")
+    mjcf = uwml.Robot.from_mjcf(DATA / "arm.xml", DATA / "arm.hydro.toml")
+    by_hand = hand_built_arm()
+    for robot in (urdf, mjcf):
+        assert robot.joint_names == ("shoulder", "elbow", "gripper")
+        assert robot.link_names == ("upper_arm", "forearm", "finger")
+        assert robot.base is not None and robot.base.name == "hull"
+        assert [j.kind for j in robot.joints] == ["revolute", "revolute", "prismatic"]
+        assert len(robot.segments) == 5
+        for q, qd, qdd in ARM_STATES:
+            assert_same_forces(robot, by_hand, q, qd, qdd)
+            assert_same_forces(robot, by_hand, q, qd, qdd, base_motion=MOTION, **CURRENT)
+    for q, qd, qdd in ARM_STATES:
+        assert_same_forces(urdf, mjcf, q, qd, qdd, base_motion=MOTION, **CURRENT)
+
+
+def test_tree_through_both_formats() -> None:
+    urdf = uwml.Robot.from_urdf(DATA / "biped.urdf")
+    mjcf = uwml.Robot.from_mjcf(DATA / "biped.xml")
+    for robot in (urdf, mjcf):
+        assert robot.joint_names == ("left_hip", "left_knee", "right_hip", "right_knee")
+        assert [j.parent for j in robot.joints] == [-1, 0, -1, 2]
+        shin = robot.links[1]
+        assert shin.volume == pytest.approx(math.pi * 0.03**2 * 0.3 + 4 / 3 * math.pi * 0.04**3, rel=1e-14)
+        assert len(shin.segments) == 1 and shin.segments[0].section == "circular"
+    np.testing.assert_allclose(urdf.joints[0].axis, (0.0, math.cos(0.2), math.sin(0.2)), atol=1e-15)
+    q, qd, qdd = [0.3, -0.5, -0.2, 0.8], [0.5, -1.0, 0.7, 0.2], [1.0, 0.5, -0.4, 2.0]
+    assert_same_forces(urdf, mjcf, q, qd, qdd)
+    assert_same_forces(urdf, mjcf, q, qd, qdd, base_motion=MOTION, **CURRENT)
+
+
+MESH_URDF = """<robot name="m">
+  <link name="base"/>
+  <link name="hand"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><mesh filename="hand_absent.stl"/></geometry></collision></link>
+  <joint name="j" type="continuous"><parent link="base"/><child link="hand"/><axis xyz="0 0 1"/></joint>
+</robot>"""
+
+
+def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.urdf"
+    bad.write_text('<robot name="x"><link name="a"></robot>')
+    with pytest.raises(uwml.DescriptionError, match=r"bad\.urdf: not a readable URDF file: .*MISMATCHED_ELEMENT"):
+        uwml.Robot.from_urdf(bad)
+    with pytest.raises(uwml.DescriptionError, match=r"absent\.xml: the MJCF file cannot be read: no such file"):
+        uwml.Robot.from_mjcf(tmp_path / "absent.xml")
+    ball = tmp_path / "ball.xml"
+    ball.write_text('<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="shoulder_ball" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>')
+    with pytest.raises(uwml.DescriptionError, match=r"ball\.xml: joint 'shoulder_ball' is a ball joint"):
+        uwml.Robot.from_mjcf(ball)
+    mesh = tmp_path / "mesh.urdf"
+    mesh.write_text(MESH_URDF)
+    with pytest.raises(uwml.DescriptionError, match=r"mesh\.urdf: link 'hand' has a collision mesh .*\[links\.hand\]"):
+        uwml.Robot.from_urdf(mesh)
+    hydro = tmp_path / "hand.toml"
+    hydro.write_text('[links.hand]\nvolume = 0.001\ncob = [0.0, 0.0, 0.1]\n\n[[links.hand.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\ndiameter = 0.05\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\n')
+    robot = uwml.Robot.from_urdf(mesh, hydro)  # the mesh link described by the hydro file loads
+    assert robot.links[0].volume == 0.001 and robot.links[0].cob == (0.0, 0.0, 0.1) and len(robot.segments) == 1
+    dry = tmp_path / "dry.toml"
+    dry.write_text("[links.hand]\ndry = true\n")
+    assert uwml.Robot.from_urdf(mesh, dry).links[0].volume == 0.0
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("[links.calfx]\nvolume = 0.1\n", r"h\.toml: \[links\.calfx\]: .*paper_leg\.urdf has no link \(body\) named 'calfx'"),
+        ("[links.calf]\nvolum = 0.1\n", r"h\.toml: \[links\.calf\], key 'volum': is not a key of this table"),
+        ("[links.calf]\nvolume = \"big\"\n", r"h\.toml: \[links\.calf\], key 'volume': must be a volume"),
+        ("[links.calf]\ncob = [0.0, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], key 'cob': needs volume"),
+        ("[links.calf]\ndry = true\ncd = 1.0\n", r"h\.toml: \[links\.calf\], key 'cd': a dry link"),
+        ("[links.calf]\nsegment_cd = [1.0, 2.0]\n", r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2"),
+        ("[[links.calf.segments]]\nsection = \"circular\"\n", r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
+        ("[joints.knee]\nseal = 1\n", r"h\.toml: top level, key 'joints': \[joints\] is not supported yet"),
+        ("[water]\ndensity = 1025.0\n", r"h\.toml: top level, key 'water': \[water\] is not supported yet"),
+        ("[links.calf\n", r"h\.toml: not valid TOML"),
+    ],
+)
+def test_hydro_file_errors(tmp_path: Path, text: str, message: str) -> None:
+    hydro = tmp_path / "h.toml"
+    hydro.write_text(text)
+    with pytest.raises(uwml.DescriptionError, match=message):
+        uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
+
+
+def test_missing_hydro_file(tmp_path: Path) -> None:
+    with pytest.raises(uwml.DescriptionError, match=r"nothing\.toml: the hydro file cannot be read"):
+        uwml.Robot.from_urdf(DATA / "paper_leg.urdf", tmp_path / "nothing.toml")
+
+
+def test_hydro_segment_coefficients_per_segment(tmp_path: Path) -> None:
+    hydro = tmp_path / "h.toml"
+    hydro.write_text("[links.finger]\nsegment_cd = [[1.0, 1.5], 2.0]\nsegment_cm = [0.7, [0.8, 0.9]]\n")
+    finger = uwml.Robot.from_urdf(DATA / "arm.urdf", hydro).links[2]
+    assert [s.cd for s in finger.segments] == [(1.0, 1.5), (2.0, 2.0)]
+    assert [s.cm for s in finger.segments] == [(0.7, 0.7), (0.8, 0.9)]
