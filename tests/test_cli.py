@@ -199,8 +199,10 @@ def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
     np.testing.assert_allclose(table[:, -6:], expected.base.total, rtol=1e-10, atol=1e-9)
     # The robot's joint count is the log's by default; a file that is not a model file is refused.
     assert _uwml("torques", path, "--robot", model).returncode == 0
-    result = _uwml("torques", path, "--robot", tmp_path / "arm.urdf")
+    result = _uwml("torques", path, "--robot", tmp_path / "arm.stl")
     assert result.returncode == 2 and "--robot takes a uwml model file" in result.stderr
+    result = _uwml("torques", path, "--robot", model, "--hydro", tmp_path / "hydro.toml")
+    assert result.returncode == 2 and "--hydro goes with a URDF or MJCF" in result.stderr
 
 
 def test_torques_with_losses_and_estimated_derivatives(tmp_path: Path, experiment: Log) -> None:

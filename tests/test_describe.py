@@ -41,5 +41,17 @@ def test_uwml_describe_prints_and_draws(tmp_path: Path, capsys: pytest.CaptureFi
     assert "3 joints, 2 segments" in capsys.readouterr().out
     assert main(["describe", "--robot", str(tmp_path / "missing.toml")]) == 2
     assert "missing.toml: cannot be read" in capsys.readouterr().err
-    assert main(["describe", "--robot", str(tmp_path / "arm.urdf")]) == 2
-    assert "--robot takes a uwml model file" in capsys.readouterr().err
+    assert main(["describe", "--robot", str(tmp_path / "arm.stl")]) == 2
+    assert "--robot takes a uwml model file (.toml), a URDF" in capsys.readouterr().err
+
+
+def test_uwml_describe_reads_urdf_and_mjcf_with_their_hydro_files(capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("mujoco")
+    data = Path(__file__).parent / "data"
+    for description in ("paper_leg.urdf", "paper_leg.xml"):
+        assert main(["describe", "--robot", str(data / description), "--hydro", str(data / "paper_leg.hydro.toml")]) == 0
+        out = capsys.readouterr().out
+        # Table II: the thigh's 19.261 kg at 2700 kg/m³, net buoyancy (1000 V − m) g = −118.98 N.
+        assert "3 joints, 2 segments" in out and "mass     19.26 kg" in out and "-119 N" in out
+    assert main(["describe", "--robot", str(data / "paper_leg.urdf"), "--hydro", str(data / "missing.toml")]) == 2
+    assert "missing.toml" in capsys.readouterr().err

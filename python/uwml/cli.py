@@ -300,7 +300,7 @@ def _torques(args: argparse.Namespace) -> int:
             import pyarrow
         except ImportError:
             raise _UsageError(f"{out}: Parquet output needs pyarrow (pip install pyarrow); write CSV instead") from None
-    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot)
+    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
     cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
@@ -367,21 +367,28 @@ def _torques(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 
 
-def load_robot(path: str) -> Any:
-    """The robot of a description file given with ``--robot``: a uwml model file (``.toml``)."""
+def load_robot(path: str, hydro: str | None = None) -> Any:
+    """The robot of a description file given with ``--robot``: a uwml model file (``.toml``), a
+    URDF (``.urdf``) or an MJCF (``.xml``, ``.mjcf``), with ``--hydro`` for the last two."""
     from .robot import Robot
 
     suffix = Path(path).suffix.lower()
     if suffix == ".toml":
+        if hydro is not None:
+            raise _UsageError("--hydro goes with a URDF or MJCF --robot; a uwml model file holds its hydrodynamic parameters")
         return Robot.load(path)
-    raise ValueError(f"{path}: --robot takes a uwml model file (.toml, written by Robot.save); got a {suffix or 'suffix-less'} file")
+    if suffix == ".urdf":
+        return Robot.from_urdf(path, hydro=hydro)
+    if suffix in (".xml", ".mjcf"):
+        return Robot.from_mjcf(path, hydro=hydro)
+    raise ValueError(f"{path}: --robot takes a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml, .mjcf); got a {suffix or 'suffix-less'} file")
 
 
 def _export(args: argparse.Namespace) -> int:
     from .export import to_c, to_rust
     from .robot import Robot
 
-    robot = load_robot(args.robot) if args.robot else Robot.from_leg(Leg.paper())
+    robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
     source = args.robot or "the paper's leg"
     precision = "f32" if args.f32 else "f64"
     text = to_rust(robot, precision, source=source) if args.rust else to_c(robot, precision, prefix=args.name, source=source)
@@ -393,7 +400,7 @@ def _describe(args: argparse.Namespace) -> int:
     from .describe import describe, draw
     from .robot import Robot
 
-    robot = load_robot(args.robot) if args.robot else Robot.from_leg(Leg.paper())
+    robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
     print(describe(robot, Water(density=args.density)))
     if args.plot:
         draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0")
@@ -582,8 +589,9 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
     )
     torques.add_argument("--temperature", type=_finite, default=20.0, metavar="C", help="oil temperature [°C] (default 20)")
     torques.add_argument(
-        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save); default the paper's leg"
+        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml); default the paper's leg"
     )
+    torques.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     torques.add_argument(
         "--cd", type=_non_negative, default=None, metavar="X", help="drag coefficient for every segment (default: 2.2, the paper's fit; a robot's own)"
     )
@@ -600,7 +608,8 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         description="Print what a robot is made of (joints, bodies with mass, volume and net buoyancy, segments with their "
         "coefficients) and, with --plot, draw it at q = 0 with its segments. Without --robot: the paper's leg.",
     )
-    describe.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save)")
+    describe.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml)")
+    describe.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot (TOML; see examples/hydro.toml)")
     describe.add_argument("--density", type=_positive, default=1000.0, help="water density for the net buoyancy [kg/m³] (default 1000)")
     describe.add_argument("--plot", metavar="FILE", help="save a 3-D picture of the robot at q = 0 (format from the extension)")
     describe.set_defaults(run=_describe)
@@ -612,7 +621,8 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         "of the C ABI's structs (--c), every number written so that it reads back to the same float. Without --robot: the "
         "paper's leg.",
     )
-    export.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml, from Robot.save)")
+    export.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml)")
+    export.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     language = export.add_mutually_exclusive_group(required=True)
     language.add_argument("--rust", action="store_true", help="Rust: N_JOINTS, N_SEGMENTS, JOINTS, LINKS, BASE, SEGMENTS")
     language.add_argument("--c", action="store_true", help="C: NAME_JOINTS, NAME_LINKS, NAME_BASE, NAME_SEGMENTS and their counts")
