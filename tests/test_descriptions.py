@@ -212,7 +212,9 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
         ("[links.calf]\ndry = true\ncd = 1.0\n", r"h\.toml: \[links\.calf\], key 'cd': a dry link"),
         ("[links.calf]\nsegment_cd = [1.0, 2.0]\n", r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2"),
         ("[[links.calf.segments]]\nsection = \"circular\"\n", r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
-        ("[joints.knee]\nseal = 1\n", r"h\.toml: top level, key 'joints': \[joints\] is not supported yet"),
+        ("[joints.knee]\nseal = 1\n", r"h\.toml: \[joints\.knee\], seal: must be a table, got int"),
+        ("[joints.kne]\nepsilon = 0.01\n", r"h\.toml: \[joints\.kne\]: no joint of that name in the description \(its joints: hip_yaw, hip_roll, knee\)"),
+        ("[joints.knee]\nepsilon = 0.01\n[joints.knee.seal]\nc0 = 1.0\n", r"h\.toml: \[joints\.knee\], seal, key 'c1_per_mpa': is missing"),
         ("[water]\ndensity = 1025.0\n", r"h\.toml: top level, key 'water': \[water\] is not supported yet"),
         ("[links.calf\n", r"h\.toml: not valid TOML"),
     ],
@@ -235,3 +237,22 @@ def test_hydro_segment_coefficients_per_segment(tmp_path: Path) -> None:
     finger = uwml.Robot.from_urdf(DATA / "arm.urdf", hydro).links[2]
     assert [s.cd for s in finger.segments] == [(1.0, 1.5), (2.0, 2.0)]
     assert [s.cm for s in finger.segments] == [(0.7, 0.7), (0.8, 0.9)]
+
+
+def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
+    hydro = tmp_path / "h.toml"
+    seal = uwml.Seal()
+    seal_lines = "\n".join(f"{name} = {getattr(seal, name)!r}" for name in ("c0", "c1_per_mpa", "s0", "s1_per_mpa", "d0", "d1_per_mpa", "stribeck_speed"))
+    hydro.write_text((DATA / "paper_leg.hydro.toml").read_text() + f"\n[joints.knee]\nepsilon = 0.02\n\n[joints.knee.seal]\n{seal_lines}\n")
+    robot = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
+    knee = uwml.JointLosses(oil=None, seal=seal, epsilon=0.02)
+    assert robot.losses == (None, None, knee)
+    q, qd = [0.3, -0.4, 0.6], [0.5, -0.8, 1.1]
+    own = robot.environment(q, qd, [0.0] * 3, depth=3000.0, temperature_c=4.0)
+    given = uwml.Robot.from_leg(uwml.Leg.paper()).environment(q, qd, [0.0] * 3, depth=3000.0, temperature_c=4.0, losses=[None, None, knee])
+    np.testing.assert_allclose(own.seal, given.seal, rtol=1e-14)
+    assert own.seal[2] * qd[2] < 0.0 and own.seal[0] == 0.0
+    # The model file keeps them.
+    path = tmp_path / "leg.toml"
+    robot.save(path)
+    assert uwml.Robot.load(path).losses == robot.losses

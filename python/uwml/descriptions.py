@@ -104,8 +104,11 @@ A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, el
 (:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
 segment takes one number (a pair must have two equal entries). Unknown link names, unknown keys,
 missing values and wrong types are :class:`DescriptionError`\\ s naming the file, the table and
-the key. Joint losses (``[joints.NAME]``) and the water (``[water]``) belong in this file too but
-are not supported yet: a file that has them is an error, not silently ignored.
+the key. Per joint by name, ``[joints.NAME]`` gives that joint's losses (``uwml.JointLosses``: the
+same tables as the model file's ``[joints.losses]``: ``epsilon``, ``[joints.NAME.drive]``,
+``[joints.NAME.oil]``, ``[joints.NAME.seal]`` with their dataclasses' fields), kept as the
+robot's own (``Robot.losses``). The water (``[water]``) is not supported yet: a file that has it is
+an error, not silently ignored.
 """
 
 from __future__ import annotations
@@ -121,10 +124,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .model import Joint, Link, Segment
-from .modelfile import _float, _pair, _Reader, _segment, _vec3
+from .environment import JointLosses
+from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3
 from .robot import Robot
 
-__all__ = ["DescriptionError", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro"]
+__all__ = ["DescriptionError", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro", "read_hydro_losses"]
 
 FloatArray = NDArray[np.float64]
 
@@ -196,10 +200,9 @@ def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
     except tomllib.TOMLDecodeError as exc:
         raise DescriptionError(f"{source}: not valid TOML: {exc}") from None
     top = _Reader(source, "top level", document, DescriptionError)
-    for key in ("joints", "water"):
-        if key in document:
-            top.fail(key, f"[{key}] is not supported yet (joint losses and the water come in a later version); remove it")
-    top.check_keys(("links",))
+    if "water" in document:
+        top.fail("water", "[water] is not supported yet (the water comes in a later version; pass water= to the evaluation); remove it")
+    top.check_keys(("links", "joints"))
     links: dict[str, Any] = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
     out: dict[str, HydroLink] = {}
     for name, table in links.items():
@@ -230,6 +233,38 @@ def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
 
 def _not(what: str) -> Any:
     raise TypeError(f"not {what}")
+
+
+def _hydro_losses(text: str, source: str) -> dict[str, JointLosses]:
+    """The ``[joints.NAME]`` tables of a hydro file: each joint's losses, by joint name."""
+    document = tomllib.loads(text)
+    top = _Reader(source, "top level", document, DescriptionError)
+    joints: dict[str, Any] = top.get("joints", lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"), "a table of joints by name", required=False, default={})
+    return {name: _losses(source, f"[joints.{name}]", table, DescriptionError) for name, table in joints.items()}
+
+
+def read_hydro_losses(path: str | os.PathLike[str]) -> dict[str, JointLosses]:
+    """The joint losses of the hydro file at ``path``, by joint name."""
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise DescriptionError(f"{path}: the hydro file cannot be read: {exc.strerror or exc}") from None
+    return _hydro_losses(text, str(path))
+
+
+def _with_losses(robot: Robot, hydro: str | os.PathLike[str] | None) -> Robot:
+    """``robot`` with the joint losses of the hydro file ``hydro`` (by joint name)."""
+    if hydro is None:
+        return robot
+    by_name = read_hydro_losses(hydro)
+    names = robot.joint_names
+    for name in by_name:
+        if name not in names:
+            known = ", ".join(names) or "none"
+            raise DescriptionError(f"{hydro}: [joints.{name}]: no joint of that name in the description (its joints: {known})")
+    if not by_name:
+        return robot
+    return Robot(robot.joints, robot.links, base=robot.base, losses=[by_name.get(name) for name in names])
 
 
 def read_hydro(path: str | os.PathLike[str]) -> dict[str, HydroLink]:
@@ -403,13 +438,13 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
 def from_urdf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
     """The :class:`uwml.Robot` of the URDF file at ``path``, with the hydro file ``hydro``."""
     entries = {} if hydro is None else read_hydro(hydro)
-    return _from_model(_spec(path, "URDF", entries, str(hydro)), entries, str(path), str(hydro))
+    return _with_losses(_from_model(_spec(path, "URDF", entries, str(hydro)), entries, str(path), str(hydro)), hydro)
 
 
 def from_mjcf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
     """The :class:`uwml.Robot` of the MJCF file at ``path``, with the hydro file ``hydro``."""
     entries = {} if hydro is None else read_hydro(hydro)
-    return _from_model(_spec(path, "MJCF", entries, str(hydro)), entries, str(path), str(hydro))
+    return _with_losses(_from_model(_spec(path, "MJCF", entries, str(hydro)), entries, str(path), str(hydro)), hydro)
 
 
 def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:
@@ -423,7 +458,7 @@ def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robo
     for name in entries:
         if name not in names:
             raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
-    return _from_model(model, entries, "<mujoco.MjModel>", str(hydro))
+    return _with_losses(_from_model(model, entries, "<mujoco.MjModel>", str(hydro)), hydro)
 
 
 def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: str) -> Robot:

@@ -282,14 +282,17 @@ def _body(source: str, where: str, table: object) -> Link:
     return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name))
 
 
-def _losses(source: str, where: str, table: object) -> JointLosses:
-    r = _Reader(source, where, table)
+def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:
+    """A joint's losses from a table with ``epsilon`` and the tables ``drive``, ``oil``, ``seal``
+    (each with its dataclass's fields; an absent oil or seal is none, an absent drive the
+    default one)."""
+    r = _Reader(source, where, table, error)
     r.check_keys(("epsilon", "drive", "oil", "seal"))
     parts: dict[str, Any] = {}
     for name, kind in (("drive", Drive), ("oil", OilDrag), ("seal", Seal)):
         if name not in r.table:
             continue
-        part = _Reader(source, f"{where}, {name}", r.table[name])
+        part = _Reader(source, f"{where}, {name}", r.table[name], error)
         keys = [f.name for f in dataclasses.fields(kind)]
         part.check_keys(keys)
         values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
