@@ -216,6 +216,19 @@ def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None
     return items
 
 
+def _short_path(water: object, base_motion: object) -> tuple[bool, tuple[FloatArray, ...] | None]:
+    """Whether a call may try the one-state native path (a :class:`Water`, and no base motion or
+    one of single values), and the base motion's arrays for it (None: a fixed base)."""
+    if not isinstance(water, Water):
+        return False, None
+    if base_motion is None:
+        return True, None
+    if not isinstance(base_motion, BaseMotion):
+        return False, None
+    motion = base_motion._single()
+    return motion is not None, motion
+
+
 def _segment_row(owner: int, s: Segment) -> list[float]:
     section = 1.0 if s.section == "circular" else 0.0
     diameter = s.diameter if s.diameter is not None else 0.0
@@ -551,14 +564,13 @@ class Robot:
         of single values) is read, checked and evaluated in one short native call, with the same
         checks and the same bits as that state's row of a batch.
         """
-        if isinstance(water, Water) and (base_motion is None or isinstance(base_motion, BaseMotion)):
-            motion = None if base_motion is None else base_motion._single()
-            if base_motion is None or motion is not None:
-                one: RobotTorques | None = self._core.hydro_one(
-                    RobotTorques, BaseWrench, q, qd, qdd, cd, cm, water.density, water.gravity, motion, current, current_acceleration, threads
-                )
-                if one is not None:
-                    return one
+        short, motion = _short_path(water, base_motion)
+        if short:
+            one: RobotTorques | None = self._core.hydro_one(
+                RobotTorques, BaseWrench, q, qd, qdd, cd, cm, water.density, water.gravity, motion, current, current_acceleration, threads
+            )
+            if one is not None:
+                return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         out = self._core.hydro(*arguments, threads, False)
@@ -602,30 +614,29 @@ class Robot:
         :class:`uwml.JointLosses`) takes the short path of :meth:`hydro`.
         """
         losses = self._effective_losses(losses)
-        if isinstance(water, Water) and (base_motion is None or isinstance(base_motion, BaseMotion)):
-            motion = None if base_motion is None else base_motion._single()
-            if base_motion is None or motion is not None:
-                one: RobotEnvironment | None = self._core.environment_one(
-                    RobotEnvironment,
-                    BaseWrench,
-                    q,
-                    qd,
-                    qdd,
-                    depth,
-                    temperature_c,
-                    None if losses is None else one_state_losses(self, losses, self.n_joints),
-                    cd,
-                    cm,
-                    water.density,
-                    water.gravity,
-                    sea_density,
-                    motion,
-                    current,
-                    current_acceleration,
-                    threads,
-                )
-                if one is not None:
-                    return one
+        short, motion = _short_path(water, base_motion)
+        if short:
+            one: RobotEnvironment | None = self._core.environment_one(
+                RobotEnvironment,
+                BaseWrench,
+                q,
+                qd,
+                qdd,
+                depth,
+                temperature_c,
+                None if losses is None else one_state_losses(self, losses, self.n_joints),
+                cd,
+                cm,
+                water.density,
+                water.gravity,
+                sea_density,
+                motion,
+                current,
+                current_acceleration,
+                threads,
+            )
+            if one is not None:
+                return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)

@@ -5,23 +5,23 @@
 use std::any::Any;
 use std::ops::Range;
 
+mod arrays;
+mod losses;
 mod robot;
 mod single;
 
-use numpy::ndarray::{Array, Dimension, IntoDimension};
-use numpy::{
-    IntoPyArray, PyArray, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2,
-    PyUntypedArrayMethods,
-};
+pub(crate) use arrays::{NonFinite, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed};
+pub(crate) use losses::{joint_losses, loss_inputs, parse_losses, unpack_losses};
+
+use numpy::{PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::nalgebra::{SVector, SimdValue, Vector3};
 use uwml_core::{
-    Chain, Coefficients, Drive, HydroRegressors, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
-    OilDrag, Seal, Segment, Water, environment_jacobians, hydro_regressors, hydro_torques, loss_torques,
-    point_jacobian,
+    Chain, Coefficients, HydroRegressors, HydroTorques, Joint, JointLosses, Link, LossState, ModelError, Segment,
+    Water, environment_jacobians, hydro_regressors, hydro_torques, loss_torques, point_jacobian,
 };
 
 create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
@@ -39,26 +39,6 @@ const LINK_WIDTH: usize = 25;
 /// reference_temperature [°C], has_seal (0/1), c0, c1, s0, s1, d0, d1 (per Pa for c1, s1, d1),
 /// stribeck_speed, torque_constant, ratio, efficiency, rated_current, epsilon, has_losses (0/1).
 const LOSS_WIDTH: usize = 21;
-
-fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, ModelError> {
-    let mut values = row.iter().copied();
-    let mut next = || values.next().unwrap_or(f64::NAN);
-    let has_oil = next() != 0.0;
-    let oil = [next(), next(), next(), next(), next(), next()];
-    let has_seal = next() != 0.0;
-    let seal = [next(), next(), next(), next(), next(), next(), next()];
-    let drive = [next(), next(), next(), next()];
-    let epsilon = next();
-    if next() == 0.0 {
-        return Ok(None);
-    }
-    let [k, n, a_p, a_t, p_ref, t_ref] = oil;
-    let oil = if has_oil { Some(OilDrag::new(k, n, a_p, a_t, p_ref, t_ref)?) } else { None };
-    let [c0, c1, s0, s1, d0, d1, w_s] = seal;
-    let seal = if has_seal { Some(Seal::new([c0, c1], [s0, s1], [d0, d1], w_s)?) } else { None };
-    let [kt, ratio, efficiency, rated] = drive;
-    Ok(Some(JointLosses::new(Drive::new(kt, ratio, efficiency, rated)?, oil, seal, epsilon)?))
-}
 
 fn model_error(error: ModelError) -> PyErr {
     UwmlModelError::new_err(error.to_string())
@@ -156,34 +136,6 @@ macro_rules! dispatch {
     };
 }
 
-/// The first non-finite joint state found in a batch.
-struct NonFinite {
-    argument: &'static str,
-    sample: usize,
-    joint: usize,
-    value: f64,
-}
-
-impl NonFinite {
-    /// The same error with its sample counted from `start` earlier.
-    fn shifted(self, start: usize) -> Self {
-        Self { sample: self.sample + start, ..self }
-    }
-}
-
-impl From<NonFinite> for PyErr {
-    fn from(e: NonFinite) -> Self {
-        PyValueError::new_err(format!(
-            "{}[{}, {}] is {}: {} must be finite",
-            e.argument,
-            e.sample,
-            e.joint,
-            e.value,
-            if e.argument.starts_with('q') { "joint states" } else { "every value" }
-        ))
-    }
-}
-
 /// `values` (exactly N of them) as a vector.
 #[inline]
 fn vector<const N: usize>(values: &[f64]) -> Option<SVector<f64, N>> {
@@ -246,62 +198,6 @@ fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f
         slot.copy_from_slice(pair);
     }
     Coefficients::per_direction(cd_array, cm_array)
-}
-
-/// Runs `batch` on `threads` contiguous parts of the samples `0..n_samples` at once, on scoped
-/// threads (on this thread for `threads` ≤ 1), each part writing its rows of the `K` outputs
-/// (`n_samples × widths[k]` each). `batch` gets a part's sample range and reports errors with
-/// sample indices within the part; the first error in sample order is returned, with its index in
-/// the whole batch.
-fn in_parallel<const K: usize, E: Send>(
-    n_samples: usize,
-    widths: [usize; K],
-    threads: usize,
-    out: [&mut [f64]; K],
-    batch: impl Fn(&Range<usize>, [&mut [f64]; K]) -> Result<(), E> + Sync,
-    shift: impl Fn(E, usize) -> E + Sync,
-) -> Result<(), E> {
-    let threads = threads.clamp(1, n_samples.max(1));
-    if threads == 1 {
-        return batch(&(0..n_samples), out);
-    }
-    let size = n_samples.div_ceil(threads);
-    let mut parts = core::array::from_fn::<_, K, _>(|_| None);
-    for ((part, column), width) in parts.iter_mut().zip(out).zip(widths) {
-        *part = Some(column.chunks_mut((size * width).max(1)));
-    }
-    let errors: Vec<_> = std::thread::scope(|scope| {
-        let batch = &batch;
-        let handles: Vec<_> = (0..threads)
-            .map(|i| {
-                let range = i * size..((i + 1) * size).min(n_samples);
-                let part =
-                    parts.each_mut().map(|columns| columns.as_mut().and_then(Iterator::next).unwrap_or_default());
-                let shift = &shift;
-                scope.spawn(move || batch(&range, part).map_err(|e| shift(e, range.start)))
-            })
-            .collect();
-        handles
-            .into_iter()
-            .map(|handle| handle.join().unwrap_or_else(|payload| std::panic::resume_unwind(payload)))
-            .collect()
-    });
-    errors.into_iter().collect()
-}
-
-/// `K` zeroed float64 arrays `rows × columns`, allocated by numpy (which asks for huge pages:
-/// a fresh output then costs far fewer page faults than one from Rust's allocator).
-fn zeroed<'py, const K: usize>(py: Python<'py>, rows: usize, columns: usize) -> [Array2<'py>; K] {
-    core::array::from_fn(|_| PyArray2::zeros(py, (rows, columns), false))
-}
-
-/// Write access to `K` fresh arrays' data.
-fn writable<'a, 'py, const K: usize>(guards: &'a mut [PyReadwriteArray2<'py, f64>; K]) -> PyResult<[&'a mut [f64]; K]> {
-    let mut slices = guards.each_mut().map(|guard| guard.as_slice_mut().ok());
-    if slices.iter().any(Option::is_none) {
-        return Err(PyValueError::new_err("internal error: a fresh output array is not contiguous"));
-    }
-    Ok(slices.each_mut().map(|slice| slice.take().unwrap_or_default()))
 }
 
 /// Torque arrays of a batch, each `n_samples × N`, row-major.
@@ -394,36 +290,6 @@ fn hydro_lane_rows<const N: usize>(
         write_row(buoyancy, &tau.buoyancy);
         write_row(gravity, &tau.gravity);
     }
-}
-
-/// Joint losses of a batch of samples: visc, seal and current per sample. The
-/// pressure-dependent part is recomputed only when the pressure or temperature changes.
-fn loss_batch(
-    losses: &JointLosses<f64>,
-    speed: &[f64],
-    pressure: &[f64],
-    temperature: &[f64],
-) -> Result<[Vec<f64>; 3], NonFinite> {
-    let n = speed.len();
-    let (mut visc, mut seal, mut current) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
-    let mut conditions = (f64::NAN, f64::NAN);
-    let mut state = losses.at(0.0, 20.0);
-    for (sample, ((&w, &p), &t)) in speed.iter().zip(pressure).zip(temperature).enumerate() {
-        for (argument, value) in [("speed", w), ("pressure", p), ("temperature", t)] {
-            if !value.is_finite() {
-                return Err(NonFinite { argument, sample, joint: 0, value });
-            }
-        }
-        if conditions != (p, t) {
-            conditions = (p, t);
-            state = losses.at(p, t);
-        }
-        let loss = state.evaluate(w);
-        visc.push(loss.visc);
-        seal.push(loss.seal);
-        current.push(loss.current);
-    }
-    Ok([visc, seal, current])
 }
 
 /// Hydrodynamic and loss torques of a batch: drag, added mass, buoyancy, gravity, visc, seal,
@@ -687,19 +553,6 @@ fn design_batch<const N: usize>(
         }
     }
     Ok(design)
-}
-
-fn to_numpy<'py, D: Dimension>(
-    py: Python<'py>,
-    values: Vec<f64>,
-    shape: impl IntoDimension<Dim = D>,
-) -> PyResult<Bound<'py, PyArray<f64, D>>> {
-    let array = Array::from_shape_vec(shape, values).map_err(|e| PyValueError::new_err(e.to_string()))?;
-    Ok(array.into_pyarray(py))
-}
-
-fn contiguous<'a>(array: &'a PyReadonlyArray2<'_, f64>, argument: &str) -> PyResult<&'a [f64]> {
-    array.as_slice().map_err(|_| PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array")))
 }
 
 /// A serial chain of revolute joints (validated, immutable). Build it with `Chain(joints,
@@ -1117,74 +970,6 @@ impl PyChain {
         let (positions, jacobians) = py.detach(|| dispatch!(&chain, c => jacobian_batch(c, q, link, &point)))?;
         Ok((to_numpy(py, positions, (n_samples, 3))?, to_numpy(py, jacobians, (n_samples, 6, n))?))
     }
-}
-
-fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<Vec<Option<JointLosses<f64>>>> {
-    if losses.shape() != [n, LOSS_WIDTH] {
-        return Err(PyValueError::new_err(format!(
-            "packed losses must have shape ({n}, {LOSS_WIDTH}), got {:?}",
-            losses.shape()
-        )));
-    }
-    contiguous(losses, "losses")?
-        .chunks_exact(LOSS_WIDTH)
-        .enumerate()
-        .map(|(joint, row)| {
-            unpack_losses(row).map_err(|e| UwmlModelError::new_err(format!("losses of joint {joint}: {e}")))
-        })
-        .collect()
-}
-
-/// An environment batch's joint losses (packed `(N, LOSS_WIDTH)`) and its per-sample pressure and
-/// temperature, checked.
-type LossInputs<'a> = (Vec<Option<JointLosses<f64>>>, (&'a [f64], &'a [f64]));
-
-fn loss_inputs<'a>(
-    losses: &PyReadonlyArray2<'_, f64>,
-    [pressure, temperature]: [&'a PyReadonlyArray1<'_, f64>; 2],
-    n: usize,
-    n_samples: usize,
-) -> PyResult<LossInputs<'a>> {
-    let losses = parse_losses(losses, n)?;
-    let conditions =
-        (contiguous1(pressure, "pressure", n_samples)?, contiguous1(temperature, "temperature", n_samples)?);
-    Ok((losses, conditions))
-}
-
-fn contiguous1<'a>(array: &'a PyReadonlyArray1<'_, f64>, argument: &str, n: usize) -> PyResult<&'a [f64]> {
-    let values = array
-        .as_slice()
-        .map_err(|_| PyValueError::new_err(format!("{argument} must be a C-contiguous float64 array")))?;
-    if values.len() != n {
-        return Err(PyValueError::new_err(format!("{argument} must have {n} entries, got {}", values.len())));
-    }
-    Ok(values)
-}
-
-/// Oil, seal and current of one joint's losses over a batch (speed [rad/s], pressure [Pa],
-/// temperature [°C], all 1-D of one length). `losses`: packed (1, LOSS_WIDTH), or None for
-/// the core's defaults.
-#[pyfunction]
-#[pyo3(signature = (losses, speed, pressure, temperature))]
-fn joint_losses<'py>(
-    py: Python<'py>,
-    losses: Option<PyReadonlyArray2<'py, f64>>,
-    speed: PyReadonlyArray1<'py, f64>,
-    pressure: PyReadonlyArray1<'py, f64>,
-    temperature: PyReadonlyArray1<'py, f64>,
-) -> PyResult<Vec<Bound<'py, PyArray<f64, numpy::Ix1>>>> {
-    let model = match losses {
-        Some(packed) => parse_losses(&packed, 1)?.into_iter().next().flatten().unwrap_or_default(),
-        None => JointLosses::default(),
-    };
-    let n = speed.len();
-    let (w, p, t) = (
-        contiguous1(&speed, "speed", n)?,
-        contiguous1(&pressure, "pressure", n)?,
-        contiguous1(&temperature, "temperature", n)?,
-    );
-    let columns = py.detach(|| loss_batch(&model, w, p, t))?;
-    Ok(columns.into_iter().map(|c| c.into_pyarray(py)).collect())
 }
 
 /// Errors raised while detached from the interpreter, turned into Python exceptions after.

@@ -1,0 +1,117 @@
+//! The joint losses through the bindings: unpacking the packed layout `uwml.JointLosses` sends,
+//! and the batch of one joint's losses (`joint_losses`).
+
+use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use uwml_core::{Drive, JointLosses, ModelError, OilDrag, Seal};
+
+use crate::{LOSS_WIDTH, NonFinite, UwmlModelError, contiguous, contiguous1};
+
+pub(crate) fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, ModelError> {
+    let mut values = row.iter().copied();
+    let mut next = || values.next().unwrap_or(f64::NAN);
+    let has_oil = next() != 0.0;
+    let oil = [next(), next(), next(), next(), next(), next()];
+    let has_seal = next() != 0.0;
+    let seal = [next(), next(), next(), next(), next(), next(), next()];
+    let drive = [next(), next(), next(), next()];
+    let epsilon = next();
+    if next() == 0.0 {
+        return Ok(None);
+    }
+    let [k, n, a_p, a_t, p_ref, t_ref] = oil;
+    let oil = if has_oil { Some(OilDrag::new(k, n, a_p, a_t, p_ref, t_ref)?) } else { None };
+    let [c0, c1, s0, s1, d0, d1, w_s] = seal;
+    let seal = if has_seal { Some(Seal::new([c0, c1], [s0, s1], [d0, d1], w_s)?) } else { None };
+    let [kt, ratio, efficiency, rated] = drive;
+    Ok(Some(JointLosses::new(Drive::new(kt, ratio, efficiency, rated)?, oil, seal, epsilon)?))
+}
+
+/// Joint losses of a batch of samples: visc, seal and current per sample. The
+/// pressure-dependent part is recomputed only when the pressure or temperature changes.
+pub(crate) fn loss_batch(
+    losses: &JointLosses<f64>,
+    speed: &[f64],
+    pressure: &[f64],
+    temperature: &[f64],
+) -> Result<[Vec<f64>; 3], NonFinite> {
+    let n = speed.len();
+    let (mut visc, mut seal, mut current) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    let mut conditions = (f64::NAN, f64::NAN);
+    let mut state = losses.at(0.0, 20.0);
+    for (sample, ((&w, &p), &t)) in speed.iter().zip(pressure).zip(temperature).enumerate() {
+        for (argument, value) in [("speed", w), ("pressure", p), ("temperature", t)] {
+            if !value.is_finite() {
+                return Err(NonFinite { argument, sample, joint: 0, value });
+            }
+        }
+        if conditions != (p, t) {
+            conditions = (p, t);
+            state = losses.at(p, t);
+        }
+        let loss = state.evaluate(w);
+        visc.push(loss.visc);
+        seal.push(loss.seal);
+        current.push(loss.current);
+    }
+    Ok([visc, seal, current])
+}
+
+pub(crate) fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<Vec<Option<JointLosses<f64>>>> {
+    if losses.shape() != [n, LOSS_WIDTH] {
+        return Err(PyValueError::new_err(format!(
+            "packed losses must have shape ({n}, {LOSS_WIDTH}), got {:?}",
+            losses.shape()
+        )));
+    }
+    contiguous(losses, "losses")?
+        .chunks_exact(LOSS_WIDTH)
+        .enumerate()
+        .map(|(joint, row)| {
+            unpack_losses(row).map_err(|e| UwmlModelError::new_err(format!("losses of joint {joint}: {e}")))
+        })
+        .collect()
+}
+
+/// An environment batch's joint losses (packed `(N, LOSS_WIDTH)`) and its per-sample pressure and
+/// temperature, checked.
+pub(crate) type LossInputs<'a> = (Vec<Option<JointLosses<f64>>>, (&'a [f64], &'a [f64]));
+
+pub(crate) fn loss_inputs<'a>(
+    losses: &PyReadonlyArray2<'_, f64>,
+    [pressure, temperature]: [&'a PyReadonlyArray1<'_, f64>; 2],
+    n: usize,
+    n_samples: usize,
+) -> PyResult<LossInputs<'a>> {
+    let losses = parse_losses(losses, n)?;
+    let conditions =
+        (contiguous1(pressure, "pressure", n_samples)?, contiguous1(temperature, "temperature", n_samples)?);
+    Ok((losses, conditions))
+}
+
+/// Oil, seal and current of one joint's losses over a batch (speed [rad/s], pressure [Pa],
+/// temperature [°C], all 1-D of one length). `losses`: packed (1, LOSS_WIDTH), or None for
+/// the core's defaults.
+#[pyfunction]
+#[pyo3(signature = (losses, speed, pressure, temperature))]
+pub(crate) fn joint_losses<'py>(
+    py: Python<'py>,
+    losses: Option<PyReadonlyArray2<'py, f64>>,
+    speed: PyReadonlyArray1<'py, f64>,
+    pressure: PyReadonlyArray1<'py, f64>,
+    temperature: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Vec<Bound<'py, PyArray<f64, numpy::Ix1>>>> {
+    let model = match losses {
+        Some(packed) => parse_losses(&packed, 1)?.into_iter().next().flatten().unwrap_or_default(),
+        None => JointLosses::default(),
+    };
+    let n = speed.len();
+    let (w, p, t) = (
+        contiguous1(&speed, "speed", n)?,
+        contiguous1(&pressure, "pressure", n)?,
+        contiguous1(&temperature, "temperature", n)?,
+    );
+    let columns = py.detach(|| loss_batch(&model, w, p, t))?;
+    Ok(columns.into_iter().map(|c| c.into_pyarray(py)).collect())
+}
