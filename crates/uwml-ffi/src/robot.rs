@@ -222,11 +222,6 @@ robot_precision!(
     UwmlBaseWrenchF32
 );
 
-/// A core error at construction (the core names the base body's fields `base.*`, as the C API).
-fn construction_failure(error: ModelError) -> Failure {
-    Failure::from(error)
-}
-
 /// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).
 fn storage_mut<T: RobotPrecision>(robot: *mut T::Robot) -> *mut Block<T> {
     robot.cast::<u64>().wrapping_add(1).cast()
@@ -396,7 +391,7 @@ pub(crate) unsafe fn new<T: RobotPrecision>(out: *mut T::Robot, params: &Params<
             pieces.get(used(n_segments)).unwrap_or(&[]),
         )
     }
-    .map_err(construction_failure)?;
+    .map_err(Failure::from)?;
     // SAFETY: as above, and the robot field was just written.
     unsafe { finish::<T>(out, water) };
     Ok(())
