@@ -237,12 +237,13 @@ class Block(importlib.abc.MetaPathFinder):
         if name.split('.')[0] in ('uwml', 'scipy', 'uwml_pure'):
             raise ImportError('blocked: ' + name)
 sys.meta_path.insert(0, Block())
+before = set(sys.modules)  # whatever the interpreter's start-up (site, .pth files) loaded
 d = @DIRECTORY@
 spec = importlib.util.spec_from_file_location('ref_alone', d + '/__init__.py', submodule_search_locations=[d])
 m = importlib.util.module_from_spec(spec); sys.modules['ref_alone'] = m; spec.loader.exec_module(m)
 names = ('robot_hydro', 'robot_added_mass_matrix', 'robot_link_wrenches', 'hydro', 'paper_equations', 'smooth_sign')
 print(sorted(n for n in names if hasattr(m, n)))
-tops = {n.split('.')[0] for n in sys.modules if not n.startswith('_')}
+tops = {n.split('.')[0] for n in set(sys.modules) - before if not n.startswith('_')}
 print(sorted(tops - set(sys.stdlib_module_names) - {'ref_alone', 'numpy'}))
 """.replace("@DIRECTORY@", repr(str(REFERENCE_DIR)))
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, check=False)
