@@ -215,7 +215,10 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
         ("[joints.knee]\nseal = 1\n", r"h\.toml: \[joints\.knee\], seal: must be a table, got int"),
         ("[joints.kne]\nepsilon = 0.01\n", r"h\.toml: \[joints\.kne\]: no joint of that name in the description \(its joints: hip_yaw, hip_roll, knee\)"),
         ("[joints.knee]\nepsilon = 0.01\n[joints.knee.seal]\nc0 = 1.0\n", r"h\.toml: \[joints\.knee\], seal, key 'c1_per_mpa': is missing"),
-        ("[water]\ndensity = 1025.0\n", r"h\.toml: top level, key 'water': \[water\] is not supported yet"),
+        ("[water]\ndensity = 1.025\n", r"h\.toml: \[water\], key 'density': must be a density \[kg/m³\], 900 to 1300, got 1\.025 \(outside .*g/cm³"),
+        ("[water]\ngravity = 32.2\n", r"h\.toml: \[water\], key 'gravity': must be an acceleration \[m/s²\], 9\.7 to 9\.9, got 32\.2 \(.*ft/s²"),
+        ("[water]\nsalinity = 35.0\n", r"h\.toml: \[water\], key 'salinity': is not a key of this table \(allowed: density, gravity\)"),
+        ("water = 1025.0\n", r"h\.toml: \[water\]: must be a table, got float"),
         ("[links.calf\n", r"h\.toml: not valid TOML"),
     ],
 )
@@ -256,3 +259,38 @@ def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
     path = tmp_path / "leg.toml"
     robot.save(path)
     assert uwml.Robot.load(path).losses == robot.losses
+
+
+def test_water_from_the_hydro_file(tmp_path: Path) -> None:
+    """``[water]`` sets the robot's water: every evaluation uses it unless given another, and
+    the model file keeps it. Buoyancy is proportional to the density (MODEL.md 9.4), so the
+    sea-water robot's buoyancy is 1025/1000 of the fresh-water one's."""
+    hydro = tmp_path / "h.toml"
+    hydro.write_text((DATA / "paper_leg.hydro.toml").read_text() + "\n[water]\ndensity = 1025.0\ngravity = 9.80665\n")
+    sea = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
+    fresh = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", DATA / "paper_leg.hydro.toml")
+    assert sea.water == uwml.Water(density=1025.0, gravity=9.80665) and fresh.water == uwml.Water()
+    q, qd, qdd = STATES[0]
+    own, given = sea.hydro(q, qd, qdd), fresh.hydro(q, qd, qdd, water=uwml.Water(density=1025.0, gravity=9.80665))
+    for name in ("drag", "added_mass", "buoyancy", "gravity"):
+        np.testing.assert_array_equal(getattr(own, name), getattr(given, name))
+    np.testing.assert_array_equal(own.base.total, given.base.total)
+    plain = fresh.hydro(q, qd, qdd, water=uwml.Water(density=1000.0, gravity=9.80665))
+    np.testing.assert_allclose(own.buoyancy, 1.025 * plain.buoyancy, rtol=1e-14)
+    # Given water wins over the robot's own.
+    np.testing.assert_array_equal(sea.hydro(q, qd, qdd, water=uwml.Water()).buoyancy, fresh.hydro(q, qd, qdd).buoyancy)
+    path = tmp_path / "leg.toml"
+    sea.save(path)
+    loaded = uwml.Robot.load(path)
+    assert loaded == sea and loaded.water == sea.water and loaded != fresh
+
+
+def test_the_documented_example_hydro_file_reads() -> None:
+    """examples/hydro.toml, the format's documented example, is a valid hydro file."""
+    from uwml.descriptions import read_hydro
+
+    file = read_hydro(Path(__file__).resolve().parents[1] / "examples" / "hydro.toml")
+    assert set(file.links) == {"upper_arm", "wrist", "camera", "hull"} and file.links["camera"].dry
+    assert file.links["hull"].segments[0].diameter == 0.6 and file.links["wrist"].cob == (0.01, 0.0, 0.0)
+    assert file.joints["elbow"].seal is not None and file.joints["elbow"].seal.c0 == 16.0 and file.joints["elbow"].oil is None
+    assert file.water == uwml.Water(1025.0, 9.81)

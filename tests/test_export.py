@@ -21,8 +21,9 @@ def test_the_checked_in_exports_are_the_exporters_output() -> None:
     arm = arm_on_rov()
     rust = ROOT / "crates/uwml-core/tests/exported/arm_on_rov.rs"
     c = ROOT / "crates/uwml-ffi/tests/c/exported_arm.h"
-    regenerate = "the exporter's output changed: regenerate both files from uwml.export.to_rust / to_c(arm_on_rov(), prefix='ARM')"
+    regenerate = "the exporter's output changed: regenerate the files from uwml.export.to_rust(arm_on_rov(), 'f64' and 'f32') / to_c(arm_on_rov(), prefix='ARM')"
     assert rust.read_text() == to_rust(arm, source=SOURCE), regenerate
+    assert rust.with_name("arm_on_rov_f32.rs").read_text() == to_rust(arm, "f32", source=SOURCE), regenerate
     assert c.read_text() == to_c(arm, prefix="ARM", source=SOURCE), regenerate
 
 
@@ -37,6 +38,11 @@ def test_every_literal_reads_back_to_the_models_number() -> None:
         missing = [x for x in numbers if cast(x) not in literals]
         assert not missing, f"{precision}: {missing[:3]}"
     assert "TreeJoint<f32>" in to_rust(arm, "f32") and "Section::Circular { diameter: 0.6 }" in to_rust(arm)
+    # The robot's water goes with it.
+    leg = uwml.Leg.paper()
+    sea = uwml.Robot(leg.joints, leg.links, water=uwml.Water(1025.5, 9.80665))
+    assert "pub const WATER_DENSITY: f64 = 1025.5;\npub const GRAVITY: f64 = 9.80665;" in to_rust(sea)
+    assert "#define ROBOT_WATER_DENSITY 1025.5f\n#define ROBOT_GRAVITY 9.80665f" in to_c(sea, "f32")
     # A number that float32 cannot hold exactly is written as float32's shortest text.
     assert "mass: 0.1," in to_rust(uwml.Robot([uwml.Joint((0, 0, 0), (0, 0, 1))], [uwml.Link(0.1, (0, 0, 0), 0.0)]), "f32")
 

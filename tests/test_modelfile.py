@@ -56,6 +56,7 @@ def test_the_arm_on_an_rov_round_trips_with_names(tmp_path: Path) -> None:
 def test_random_robots_round_trip_exactly(seed: int, n: int) -> None:
     rng = np.random.default_rng(seed)
     robot = random_robot(rng, n, base_body=bool(rng.random() < 0.7))
+    robot = uwml.Robot(robot.joints, robot.links, base=robot.base, water=uwml.Water(rng.uniform(990.0, 1050.0), rng.uniform(9.7, 9.9)))
     again = loads(dumps(robot))
     assert again == robot
     assert dumps(again) == dumps(robot)
@@ -76,6 +77,8 @@ def test_random_robots_round_trip_exactly(seed: int, n: int) -> None:
         (lambda t: t.replace("length = 0.66", "length = [0.66]"), r"links\[1\], segments\[0\], key 'length': must be a length"),
         (lambda t: t.replace("widths = [0.131, 0.238]", "widths = [0.131]"), r"segments\[0\], key 'widths'"),
         (lambda t: t + "[[oops", "not valid TOML"),
+        (lambda t: t.replace("density = 1000.0", "density = -1000.0"), r"water: water.density must be positive"),
+        (lambda t: t.replace("density = 1000.0", "density = 1000.0\nsalinity = 35.0"), r"water, key 'salinity': is not a key of this table"),
     ],
 )
 def test_bad_files_name_the_file_table_and_key(tmp_path: Path, edit, message: str) -> None:
@@ -87,12 +90,22 @@ def test_bad_files_name_the_file_table_and_key(tmp_path: Path, edit, message: st
         uwml.Robot.load(path)
 
 
+def test_a_file_without_water_is_in_fresh_water() -> None:
+    text = dumps(uwml.Robot.from_leg(uwml.Leg.paper()))
+    assert "[water]\ndensity = 1000.0\ngravity = 9.81\n" in text
+    assert loads(text.replace("[water]\ndensity = 1000.0\ngravity = 9.81\n", "")).water == uwml.Water(1000.0, 9.81)
+
+
 def test_a_missing_file_and_a_base_body_for_a_leg(tmp_path: Path) -> None:
     with pytest.raises(uwml.ModelFileError, match="nowhere.toml: cannot be read"):
         uwml.Robot.load(tmp_path / "nowhere.toml")
     path = tmp_path / "arm.toml"
     arm_on_rov().save(path)
     with pytest.raises(ValueError, match="load this file with uwml.Robot.load"):
+        uwml.Leg.load(path)
+    leg = uwml.Leg.paper()
+    uwml.Robot(leg.joints, leg.links, water=uwml.Water(1025.0)).save(path)
+    with pytest.raises(ValueError, match="holds no water of its own.*load this file with uwml.Robot.load"):
         uwml.Leg.load(path)
 
 

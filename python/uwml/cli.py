@@ -401,7 +401,8 @@ def _describe(args: argparse.Namespace) -> int:
     from .robot import Robot
 
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
-    print(describe(robot, Water(density=args.density)))
+    water = robot.water if args.density is None else Water(density=args.density, gravity=robot.water.gravity)
+    print(describe(robot, water))
     if args.plot:
         draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0")
         print(f"\nwrote {args.plot}")
@@ -610,7 +611,9 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
     )
     describe.add_argument("--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml)")
     describe.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot (TOML; see examples/hydro.toml)")
-    describe.add_argument("--density", type=_positive, default=1000.0, help="water density for the net buoyancy [kg/m³] (default 1000)")
+    describe.add_argument(
+        "--density", type=_positive, default=None, help="water density for the net buoyancy [kg/m³] (default: the robot's water, else 1000)"
+    )
     describe.add_argument("--plot", metavar="FILE", help="save a 3-D picture of the robot at q = 0 (format from the extension)")
     describe.set_defaults(run=_describe)
 

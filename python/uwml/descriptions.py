@@ -107,8 +107,15 @@ missing values and wrong types are :class:`DescriptionError`\\ s naming the file
 the key. Per joint by name, ``[joints.NAME]`` gives that joint's losses (``uwml.JointLosses``: the
 same tables as the model file's ``[joints.losses]``: ``epsilon``, ``[joints.NAME.drive]``,
 ``[joints.NAME.oil]``, ``[joints.NAME.seal]`` with their dataclasses' fields), kept as the
-robot's own (``Robot.losses``). The water (``[water]``) is not supported yet: a file that has it is
-an error, not silently ignored.
+robot's own (``Robot.losses``). ``[water]`` gives the robot's water (``Robot.water``, which every
+evaluation uses unless given another)::
+
+    [water]
+    density = 1025.0   # kg/m³, 900 to 1300 (default 1000, fresh water)
+    gravity = 9.81     # m/s², 9.7 to 9.9 (default 9.81)
+
+A density or gravity outside those ranges is taken for a unit mistake (g/cm³, g, ft/s²) and is an
+error; another fluid or planet is a :class:`uwml.Water` given in code.
 """
 
 from __future__ import annotations
@@ -123,12 +130,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .model import Joint, Link, Segment
+from .model import Joint, Link, Segment, Water
 from .environment import JointLosses
 from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3
 from .robot import Robot
 
-__all__ = ["DescriptionError", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro", "read_hydro_losses"]
+__all__ = ["DescriptionError", "HydroFile", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro"]
 
 FloatArray = NDArray[np.float64]
 
@@ -194,15 +201,63 @@ def _nonnegative(value: Any) -> float:
     return x
 
 
-def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
+#: A hydro file's water must lie in these ranges (SI units; a value outside is taken for a unit
+#: mistake, such as a density in g/cm³ or a gravity in g or ft/s²). Other fluids or planets:
+#: construct :class:`uwml.Water` in code.
+WATER_DENSITY_RANGE = (900.0, 1300.0)
+WATER_GRAVITY_RANGE = (9.7, 9.9)
+
+
+@dataclass(frozen=True)
+class HydroFile:
+    """A hydro file: per link by name (:class:`HydroLink`), per joint by name (its
+    :class:`uwml.JointLosses`), and the water (None: not given)."""
+
+    links: dict[str, HydroLink] = field(default_factory=dict)
+    joints: dict[str, JointLosses] = field(default_factory=dict)
+    water: Water | None = None
+    source: str = "<string>"
+
+
+def _within(low: float, high: float, unit: str, hint: str) -> Any:
+    def check(value: Any) -> float:
+        x = _float(value)
+        if not (math.isfinite(x) and low <= x <= high):
+            raise ValueError(f"outside {low:g} to {high:g} {unit}; {hint}")
+        return x
+
+    return check
+
+
+def _hydro_water(source: str, table: object) -> Water:
+    r = _Reader(source, "[water]", table, DescriptionError)
+    r.check_keys(("density", "gravity"))
+    low, high = WATER_DENSITY_RANGE
+    density = r.get(
+        "density",
+        _within(low, high, "kg/m³", "fresh water is 1000, sea water about 1025 (a density in g/cm³ or t/m³ is 1000 times too small)"),
+        f"a density [kg/m³], {low:g} to {high:g}",
+        required=False,
+        default=Water.density,
+    )
+    low, high = WATER_GRAVITY_RANGE
+    gravity = r.get(
+        "gravity",
+        _within(low, high, "m/s²", "the Earth's is 9.78 to 9.83 (not in g, not in ft/s²)"),
+        f"an acceleration [m/s²], {low:g} to {high:g}",
+        required=False,
+        default=Water.gravity,
+    )
+    return Water(density=density, gravity=gravity)
+
+
+def _hydro_loads(text: str, source: str) -> HydroFile:
     try:
         document = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise DescriptionError(f"{source}: not valid TOML: {exc}") from None
     top = _Reader(source, "top level", document, DescriptionError)
-    if "water" in document:
-        top.fail("water", "[water] is not supported yet (the water comes in a later version; pass water= to the evaluation); remove it")
-    top.check_keys(("links", "joints"))
+    top.check_keys(("links", "joints", "water"))
     links: dict[str, Any] = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
     out: dict[str, HydroLink] = {}
     for name, table in links.items():
@@ -228,52 +283,36 @@ def _hydro_loads(text: str, source: str) -> dict[str, HydroLink]:
         if entry.cob is not None and entry.volume is None:
             r.fail("cob", "needs volume (give the displaced volume with its centre of buoyancy)")
         out[name] = entry
-    return out
+    joints: dict[str, Any] = top.get("joints", lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"), "a table of joints by name", required=False, default={})
+    losses = {name: _losses(source, f"[joints.{name}]", table, DescriptionError) for name, table in joints.items()}
+    water = _hydro_water(source, document["water"]) if "water" in document else None
+    return HydroFile(links=out, joints=losses, water=water, source=source)
 
 
 def _not(what: str) -> Any:
     raise TypeError(f"not {what}")
 
 
-def _hydro_losses(text: str, source: str) -> dict[str, JointLosses]:
-    """The ``[joints.NAME]`` tables of a hydro file: each joint's losses, by joint name."""
-    document = tomllib.loads(text)
-    top = _Reader(source, "top level", document, DescriptionError)
-    joints: dict[str, Any] = top.get("joints", lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"), "a table of joints by name", required=False, default={})
-    return {name: _losses(source, f"[joints.{name}]", table, DescriptionError) for name, table in joints.items()}
-
-
-def read_hydro_losses(path: str | os.PathLike[str]) -> dict[str, JointLosses]:
-    """The joint losses of the hydro file at ``path``, by joint name."""
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise DescriptionError(f"{path}: the hydro file cannot be read: {exc.strerror or exc}") from None
-    return _hydro_losses(text, str(path))
-
-
-def _with_losses(robot: Robot, hydro: str | os.PathLike[str] | None) -> Robot:
-    """``robot`` with the joint losses of the hydro file ``hydro`` (by joint name)."""
-    if hydro is None:
-        return robot
-    by_name = read_hydro_losses(hydro)
-    names = robot.joint_names
-    for name in by_name:
-        if name not in names:
-            known = ", ".join(names) or "none"
-            raise DescriptionError(f"{hydro}: [joints.{name}]: no joint of that name in the description (its joints: {known})")
-    if not by_name:
-        return robot
-    return Robot(robot.joints, robot.links, base=robot.base, losses=[by_name.get(name) for name in names])
-
-
-def read_hydro(path: str | os.PathLike[str]) -> dict[str, HydroLink]:
-    """The entries of the hydro file at ``path``, by link name (see the module docstring)."""
+def read_hydro(path: str | os.PathLike[str]) -> HydroFile:
+    """The hydro file at ``path`` (see the module docstring)."""
     try:
         text = Path(path).read_text(encoding="utf-8")
     except OSError as exc:
         raise DescriptionError(f"{path}: the hydro file cannot be read: {exc.strerror or exc}") from None
     return _hydro_loads(text, str(path))
+
+
+def _with_joints_and_water(robot: Robot, hydro: HydroFile) -> Robot:
+    """``robot`` with the joint losses (by joint name) and the water of the hydro file."""
+    names = robot.joint_names
+    for name in hydro.joints:
+        if name not in names:
+            known = ", ".join(names) or "none"
+            raise DescriptionError(f"{hydro.source}: [joints.{name}]: no joint of that name in the description (its joints: {known})")
+    if not hydro.joints and hydro.water is None:
+        return robot
+    losses = [hydro.joints.get(name) for name in names] if hydro.joints else robot.losses
+    return Robot(robot.joints, robot.links, base=robot.base, losses=losses, water=hydro.water)
 
 
 # --- geometry ---------------------------------------------------------------------------------
@@ -437,14 +476,14 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
 
 def from_urdf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
     """The :class:`uwml.Robot` of the URDF file at ``path``, with the hydro file ``hydro``."""
-    entries = {} if hydro is None else read_hydro(hydro)
-    return _with_losses(_from_model(_spec(path, "URDF", entries, str(hydro)), entries, str(path), str(hydro)), hydro)
+    file = HydroFile() if hydro is None else read_hydro(hydro)
+    return _with_joints_and_water(_from_model(_spec(path, "URDF", file.links, str(hydro)), file.links, str(path), str(hydro)), file)
 
 
 def from_mjcf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
     """The :class:`uwml.Robot` of the MJCF file at ``path``, with the hydro file ``hydro``."""
-    entries = {} if hydro is None else read_hydro(hydro)
-    return _with_losses(_from_model(_spec(path, "MJCF", entries, str(hydro)), entries, str(path), str(hydro)), hydro)
+    file = HydroFile() if hydro is None else read_hydro(hydro)
+    return _with_joints_and_water(_from_model(_spec(path, "MJCF", file.links, str(hydro)), file.links, str(path), str(hydro)), file)
 
 
 def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:
@@ -453,12 +492,13 @@ def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robo
     mujoco = _mujoco()
     if not isinstance(model, mujoco.MjModel):
         raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
-    entries = {} if hydro is None else read_hydro(hydro)
+    file = HydroFile() if hydro is None else read_hydro(hydro)
+    entries = file.links
     names = {model.body(i).name for i in range(model.nbody)}
     for name in entries:
         if name not in names:
             raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
-    return _with_losses(_from_model(model, entries, "<mujoco.MjModel>", str(hydro)), hydro)
+    return _with_joints_and_water(_from_model(model, entries, "<mujoco.MjModel>", str(hydro)), file)
 
 
 def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: str) -> Robot:

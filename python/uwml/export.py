@@ -69,7 +69,8 @@ def _rust_pair(values: Sequence[float], p: str) -> str:
 
 def to_rust(robot: Robot, precision: str = "f64", source: str | None = None) -> str:
     """Rust constants `N_JOINTS`, `N_SEGMENTS`, `JOINTS`, `LINKS`, `BASE`, `SEGMENTS` of
-    `uwml_core`'s plain types for ``robot`` (``precision`` "f64" or "f32")."""
+    `uwml_core`'s plain types for ``robot`` (``precision`` "f64" or "f32"), and its water,
+    `WATER_DENSITY` and `GRAVITY`."""
     _check(precision)
     p, t = precision, precision
     owned = _owned(robot)
@@ -109,6 +110,11 @@ def to_rust(robot: Robot, precision: str = "f64", source: str | None = None) -> 
             f"cd: {_rust_pair(s.cd, p)}, cm: {_rust_pair(s.cm, p)} }},"  # type: ignore[arg-type]
         )
     out.append("];")
+    out += [
+        "/// The robot's water: density [kg/m³] and gravity [m/s²], the evaluation's `density` and `gravity`.",
+        f"pub const WATER_DENSITY: {t} = {_literal(robot.water.density, p)};",
+        f"pub const GRAVITY: {t} = {_literal(robot.water.gravity, p)};",
+    ]
     return "\n".join(out) + "\n"
 
 
@@ -126,7 +132,8 @@ def _c_body(body: Link, p: str) -> str:
 def to_c(robot: Robot, precision: str = "f64", prefix: str = "ROBOT", source: str | None = None) -> str:
     """C initializers of the C ABI's structs for ``robot``: ``PREFIX_N_JOINTS``,
     ``PREFIX_N_SEGMENTS``, ``PREFIX_JOINTS``, ``PREFIX_LINKS``, ``PREFIX_BASE`` (a pointer, NULL
-    without a base body) and ``PREFIX_SEGMENTS``, for ``uwml_robot_new_f64`` (or ``_f32``)."""
+    without a base body) and ``PREFIX_SEGMENTS``, for ``uwml_robot_new_f64`` (or ``_f32``), and
+    the robot's water, ``PREFIX_WATER_DENSITY`` and ``PREFIX_GRAVITY``."""
     _check(precision)
     if not prefix.isidentifier() or not prefix.isupper():
         raise ValueError(f"prefix must be an upper-case C identifier, got {prefix!r}")
@@ -171,5 +178,12 @@ def to_c(robot: Robot, precision: str = "f64", prefix: str = "ROBOT", source: st
             f".normals = {{{_c_array(normals[0], p)}, {_c_array(normals[1], p)}}}, .widths = {_c_array(widths, p)}, "
             f".diameter = {_literal(s.diameter or 0.0, p, suffix)}, .cd = {_c_array(s.cd, p)}, .cm = {_c_array(s.cm, p)} }},"  # type: ignore[arg-type]
         )
-    out += ["};", "", f"#endif /* {guard} */"]
+    out += [
+        "};",
+        "/* the robot's water: density [kg/m^3] and gravity [m/s^2], for the evaluation's density and gravity */",
+        f"#define {prefix}_WATER_DENSITY {_literal(robot.water.density, p, suffix)}",
+        f"#define {prefix}_GRAVITY {_literal(robot.water.gravity, p, suffix)}",
+        "",
+        f"#endif /* {guard} */",
+    ]
     return "\n".join(out) + "\n"

@@ -292,6 +292,8 @@ class Leg:
             raise ValueError(f"{path}: a uwml.Leg has no base body; load this file with uwml.Robot.load")
         if any(losses is not None for losses in robot.losses):
             raise ValueError(f"{path}: a uwml.Leg holds no joint losses (give them to Leg.environment); load this file with uwml.Robot.load")
+        if robot.water != FRESH_WATER:
+            raise ValueError(f"{path}: a uwml.Leg holds no water of its own (give water= to its evaluations); load this file with uwml.Robot.load")
         return cls(joints, links)
 
     def hydro(

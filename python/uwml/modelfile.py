@@ -11,6 +11,10 @@ at ``q = 0``, as in :mod:`uwml.model`)::
     format = "uwml-robot"
     version = 1
 
+    [water]                      # optional: the robot's water (uwml.Water); default fresh water
+    density = 1025.0             # kg/m³
+    gravity = 9.81               # m/s²
+
     [base]                       # optional: the base's own body, in the base frame
     mass = 300.0                 # kg
     com = [0.0, 0.0, -0.05]      # m
@@ -76,7 +80,7 @@ from typing import Any, TypeVar
 
 from .environment import JointLosses
 from .losses import Drive, OilDrag, Seal
-from .model import Joint, Link, Segment
+from .model import Joint, Link, Segment, Water
 from .robot import Robot
 
 __all__ = ["FORMAT", "VERSION", "ModelFileError", "dumps", "load", "loads", "save"]
@@ -140,6 +144,7 @@ def _losses_lines(losses: JointLosses) -> list[str]:
 def dumps(robot: Robot) -> str:
     """The uwml model file of ``robot``, as a string."""
     out = [f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)", f"format = {_string(FORMAT)}", f"version = {VERSION}"]
+    out += ["", "[water]", f"density = {_number(robot.water.density)}", f"gravity = {_number(robot.water.gravity)}"]
     if robot.base is not None:
         out += ["", "[base]", *_body_lines(robot.base)]
         for segment in robot.base.segments:
@@ -302,6 +307,16 @@ def _losses(source: str, where: str, table: object, error: type[ValueError] = Mo
     return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
 
 
+def _water(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Water:
+    """The water of a ``[water]`` table: ``density`` [kg/m³] and ``gravity`` [m/s²], each
+    defaulting to :class:`uwml.Water`'s."""
+    r = _Reader(source, where, table, error)
+    r.check_keys(("density", "gravity"))
+    density = r.get("density", _float, "a density [kg/m³]", required=False, default=Water.density)
+    gravity = r.get("gravity", _float, "an acceleration [m/s²]", required=False, default=Water.gravity)
+    return r.build(lambda: Water(density=density, gravity=gravity))
+
+
 def _fail_type(what: str) -> Any:
     raise TypeError(f"not {what}")
 
@@ -313,7 +328,7 @@ def loads(text: str, source: str = "<string>") -> Robot:
     except tomllib.TOMLDecodeError as exc:
         raise ModelFileError(f"{source}: not valid TOML: {exc}") from None
     top = _Reader(source, "top level", document)
-    top.check_keys(("format", "version", "base", "joints", "links"))
+    top.check_keys(("format", "version", "water", "base", "joints", "links"))
     if top.get("format", _text, f'"{FORMAT}"') != FORMAT:
         top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {document["format"]!r}')
     if top.get("version", _integer, f"the integer {VERSION}") != VERSION:
@@ -334,7 +349,8 @@ def loads(text: str, source: str = "<string>") -> Robot:
         joints.append(r.build(lambda: Joint(origin, axis, parent=parent, kind=kind, name=name)))
     links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
     base = _body(source, "base", document["base"]) if "base" in document else None
-    return top.build(lambda: Robot(joints, links, base=base, losses=losses))
+    water = _water(source, "water", document["water"]) if "water" in document else None
+    return top.build(lambda: Robot(joints, links, base=base, losses=losses, water=water))
 
 
 def load(path: str | os.PathLike[str]) -> Robot:

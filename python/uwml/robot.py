@@ -249,7 +249,10 @@ class Robot:
     base (``None``, the default, means the previous link: a list of joints is a serial chain).
     Frames, kinds and segments are described in :mod:`uwml.model`. ``base`` is a
     :class:`uwml.Link` in the base frame (a vehicle's hull, a walking robot's body), or ``None``
-    for a base without volume, mass or segments of its own.
+    for a base without volume, mass or segments of its own. ``losses``: the joints' own losses
+    (one :class:`uwml.JointLosses` for all, or one or None per joint), used by
+    :meth:`environment` unless it is given others. ``water``: the robot's water
+    (:class:`uwml.Water`, default fresh), used by every evaluation unless it is given another.
 
     Segments are numbered base first, then link 0's, link 1's, ...: the order of per-segment
     coefficients and of :attr:`segments`.
@@ -277,6 +280,7 @@ class Robot:
         links: Sequence[Link],
         base: Link | None = None,
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        water: Water | None = None,
     ) -> None:
         try:
             joints, links = tuple(joints), tuple(links)
@@ -319,6 +323,7 @@ class Robot:
         self._base = base
         self._segments = tuple(s for _, s in owned)
         self._losses = _per_joint_losses(losses, len(joints))
+        self._water = FRESH_WATER if water is None else _water(water)
         self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
 
     @classmethod
@@ -357,6 +362,16 @@ class Robot:
         :meth:`jacobians` unless they are given others."""
         return self._losses
 
+    @property
+    def water(self) -> Water:
+        """The robot's water (density, gravity): what every evaluation uses unless given
+        ``water=``. Default fresh water (1000 kg/m³, 9.81 m/s²); a hydro file's or model file's
+        ``[water]`` sets it."""
+        return self._water
+
+    def _the_water(self, water: Water | None) -> Water:
+        return self._water if water is None else _water(water)
+
     def _effective_losses(self, losses: JointLosses | Sequence[JointLosses | None] | None) -> JointLosses | Sequence[JointLosses | None] | None:
         """``losses`` if given, else the joints' own: one object when they all share one."""
         if losses is not None:
@@ -367,7 +382,8 @@ class Robot:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Robot):
             return NotImplemented
-        return (self._joints, self._links, self._base, self._losses) == (other._joints, other._links, other._base, other._losses)
+        mine = (self._joints, self._links, self._base, self._losses, self._water)
+        return mine == (other._joints, other._links, other._base, other._losses, other._water)
 
     __hash__ = None  # type: ignore[assignment]
 
@@ -457,7 +473,7 @@ class Robot:
     ) -> tuple[tuple[Any, ...], bool, int]:
         """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
         sample axis, and the number of samples."""
-        water = _water(water)
+        water = self._the_water(water)
         motion = base_motion if base_motion is not None else BaseMotion()
         if not isinstance(motion, BaseMotion):
             raise TypeError(f"base_motion must be a uwml.BaseMotion or None, got {type(motion).__name__}")
@@ -530,7 +546,7 @@ class Robot:
         qdd: ArrayLike,
         cd: ArrayLike | None = None,
         cm: ArrayLike | None = None,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
@@ -548,7 +564,8 @@ class Robot:
             array ``(n_segments,)`` per segment or ``(n_segments, 2)`` per segment and normal
             direction (a circular segment takes one: its two entries must be equal).
         water
-            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
+            Density and gravity; default the robot's own (:attr:`water`: fresh water,
+            1000 kg/m³ and 9.81 m/s², unless its hydro or model file says otherwise).
         base_motion
             How the base moves (:class:`BaseMotion`); default a fixed, upright base.
         current, current_acceleration
@@ -564,6 +581,7 @@ class Robot:
         of single values) is read, checked and evaluated in one short native call, with the same
         checks and the same bits as that state's row of a batch.
         """
+        water = self._the_water(water)
         short, motion = _short_path(water, base_motion)
         if short:
             one: RobotTorques | None = self._core.hydro_one(
@@ -597,7 +615,7 @@ class Robot:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         cd: ArrayLike | None = None,
         cm: ArrayLike | None = None,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
@@ -614,6 +632,7 @@ class Robot:
         :class:`uwml.JointLosses`) takes the short path of :meth:`hydro`.
         """
         losses = self._effective_losses(losses)
+        water = self._the_water(water)
         short, motion = _short_path(water, base_motion)
         if short:
             one: RobotEnvironment | None = self._core.environment_one(
@@ -640,7 +659,7 @@ class Robot:
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
-        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, _water(water).gravity, n_samples)
+        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
         out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature)
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
@@ -659,7 +678,7 @@ class Robot:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         cd: ArrayLike | None = None,
         cm: ArrayLike | None = None,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
@@ -670,7 +689,7 @@ class Robot:
         losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
-        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, _water(water).gravity, n_samples)
+        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
         value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature)
         n = self.n_joints
         m = 6 + n
@@ -687,7 +706,7 @@ class Robot:
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
@@ -721,7 +740,7 @@ class Robot:
         qdd: ArrayLike,
         cd: ArrayLike | None = None,
         cm: ArrayLike | None = None,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
@@ -740,7 +759,7 @@ class Robot:
         shape = (n_samples, self.n_joints + 1, 6) if batched else (self.n_joints + 1, 6)
         return wrenches.reshape(shape)
 
-    def added_mass_matrix(self, q: ArrayLike, cm: ArrayLike | None = None, water: Water = FRESH_WATER) -> FloatArray:
+    def added_mass_matrix(self, q: ArrayLike, cm: ArrayLike | None = None, water: Water | None = None) -> FloatArray:
         """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)`` (MODEL.md 9.5).
 
         ``(6 + n_joints)²`` (or one per sample of ``q``), base first (linear, then angular, base
@@ -748,7 +767,7 @@ class Robot:
         orientation and motion. A simulator adds it to the rigid-body mass matrix; the added-mass
         forces are then ``−M_A (ν̇, q̈)`` plus terms in the velocities. ``cm`` as for :meth:`hydro`.
         """
-        water = _water(water)
+        water = self._the_water(water)
         n = self.n_joints
         array = _real_array(q, "q", "a rectangular array of real numbers")
         if array.ndim not in (1, 2) or array.shape[-1] != n:

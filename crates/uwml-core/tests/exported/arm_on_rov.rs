@@ -47,3 +47,6 @@ pub const SEGMENTS: [RobotSegment<f64>; N_SEGMENTS] = [
     RobotSegment { owner: Owner::Link(6), start: Vector3::new(0.0, 0.0, 0.0), axis: Vector3::new(1.0, 0.0, 0.0), length: 0.15, area: 0.0028274333882308137, section: Section::Circular { diameter: 0.06 }, cd: [1.2, 1.2], cm: [1.0, 1.0] },
     RobotSegment { owner: Owner::Link(6), start: Vector3::new(0.0, 0.0, -0.05), axis: Vector3::new(1.0, 0.0, 0.0), length: 0.09, area: 0.004, section: Section::Rectangular { normals: [Vector3::new(0.0, 1.0, 0.0), Vector3::new(0.0, 0.0, 1.0)], widths: [0.05, 0.08] }, cd: [2.0, 2.1], cm: [1.2, 1.5] },
 ];
+/// The robot's water: density [kg/m³] and gravity [m/s²], the evaluation's `density` and `gravity`.
+pub const WATER_DENSITY: f64 = 1000.0;
+pub const GRAVITY: f64 = 9.81;

@@ -8,8 +8,8 @@
 int main(void) {
     static UwmlRobotF64 robot;
     UwmlError err;
-    if (uwml_robot_new_f64(&robot, ARM_JOINTS, ARM_N_JOINTS, ARM_LINKS, ARM_BASE, ARM_SEGMENTS, ARM_N_SEGMENTS, 1000.0,
-                           9.81, &err) != UWML_OK) {
+    if (uwml_robot_new_f64(&robot, ARM_JOINTS, ARM_N_JOINTS, ARM_LINKS, ARM_BASE, ARM_SEGMENTS, ARM_N_SEGMENTS,
+                           ARM_WATER_DENSITY, ARM_GRAVITY, &err) != UWML_OK) {
         printf("construction failed: %s %d\n", err.field, err.index);
         return 1;
     }

@@ -47,5 +47,8 @@ static const UwmlRobotSegmentF64 ARM_SEGMENTS[15] = {
     { .owner = 6, .section = UWML_SECTION_CIRCULAR, .start = {0.0, 0.0, 0.0}, .axis = {1.0, 0.0, 0.0}, .length = 0.15, .area = 0.0028274333882308137, .normals = {{0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}, .widths = {0.06, 0.06}, .diameter = 0.06, .cd = {1.2, 1.2}, .cm = {1.0, 1.0} },
     { .owner = 6, .section = UWML_SECTION_RECTANGULAR, .start = {0.0, 0.0, -0.05}, .axis = {1.0, 0.0, 0.0}, .length = 0.09, .area = 0.004, .normals = {{0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}, .widths = {0.05, 0.08}, .diameter = 0.0, .cd = {2.0, 2.1}, .cm = {1.2, 1.5} },
 };
+/* the robot's water: density [kg/m^3] and gravity [m/s^2], for the evaluation's density and gravity */
+#define ARM_WATER_DENSITY 1000.0
+#define ARM_GRAVITY 9.81
 
 #endif /* UWML_EXPORT_ARM_H */
