@@ -39,9 +39,13 @@ JOINT_KINDS = ("revolute", "prismatic")
 #: :class:`uwml.Leg`).
 RECTANGULAR_DEFAULTS = (2.2, 0.5)
 #: Default ``(Cd, Cm)`` of a circular section: Cm = 1 is the potential-flow added-mass
-#: coefficient of a circular cylinder in cross-flow (exact); Cd = 1.2 is the usual
+#: coefficient of a circular cylinder in cross-flow (exact; DNV-RP-C205, appendix D, the
+#: added-mass table of two-dimensional bodies: circle, ``C_A = 1``); Cd = 1.2 is the steady
 #: cross-flow drag coefficient of a smooth circular cylinder at subcritical Reynolds numbers
-#: (DNV-RP-C205, section 6).
+#: (roughly 1e3 < Re < 2e5: a 0.1 m link at 0.1-2 m/s in cold water), the plateau of the
+#: drag-versus-Reynolds curve of DNV-RP-C205 section 6.7 and of Hoerner, *Fluid-Dynamic Drag*
+#: (1965), ch. 3. Past the drag crisis (Re above about 3e5) a smooth cylinder's Cd falls to
+#: about 0.65 (rough: about 1.05): give the segment's own ``cd`` there.
 CIRCULAR_DEFAULTS = (1.2, 1.0)
 
 
