@@ -1,0 +1,13 @@
+"""Type aliases of the identification modules."""
+
+from __future__ import annotations
+
+import os
+from typing import IO
+
+import numpy as np
+from numpy.typing import NDArray
+
+Array = NDArray[np.float64]
+Columns = dict[str, NDArray]
+PathOrFile = str | os.PathLike[str] | IO[str]
