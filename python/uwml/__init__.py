@@ -18,7 +18,17 @@ from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
 from .modelfile import ModelFileError
-from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS, BaseMotion, BaseWrench, Robot, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
+from .robot import (
+    MAX_ROBOT_JOINTS,
+    MAX_SEGMENTS,
+    BaseMotion,
+    BaseWrench,
+    Robot,
+    RobotEnvironment,
+    RobotJacobians,
+    RobotRegressors,
+    RobotTorques,
+)
 
 __all__ = [
     "MAX_JOINTS",
@@ -26,11 +36,6 @@ __all__ = [
     "MAX_SEGMENTS",
     "BaseMotion",
     "BaseWrench",
-    "Robot",
-    "RobotEnvironment",
-    "RobotJacobians",
-    "RobotRegressors",
-    "RobotTorques",
     "DescriptionError",
     "Drive",
     "EnvironmentJacobians",
@@ -46,6 +51,11 @@ __all__ = [
     "ModelError",
     "ModelFileError",
     "OilDrag",
+    "Robot",
+    "RobotEnvironment",
+    "RobotJacobians",
+    "RobotRegressors",
+    "RobotTorques",
     "Seal",
     "Segment",
     "WalkingGait",

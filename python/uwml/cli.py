@@ -381,7 +381,9 @@ def load_robot(path: str, hydro: str | None = None) -> Any:
         return Robot.from_urdf(path, hydro=hydro)
     if suffix in (".xml", ".mjcf"):
         return Robot.from_mjcf(path, hydro=hydro)
-    raise ValueError(f"{path}: --robot takes a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml, .mjcf); got a {suffix or 'suffix-less'} file")
+    raise ValueError(
+        f"{path}: --robot takes a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml, .mjcf); got a {suffix or 'suffix-less'} file"
+    )
 
 
 def _export(args: argparse.Namespace) -> int:
@@ -422,9 +424,10 @@ def _joint_list(text: str) -> list[int]:
 def _fit_hydro(args: argparse.Namespace) -> int:
     from . import fit
 
-    leg = Leg.paper()
+    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
+    what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     if any(j > leg.n_joints for j in args.joints):
-        raise _UsageError(f"--joints: the leg (the paper's) has joints 1 to {leg.n_joints}, got {','.join(map(str, args.joints))}")
+        raise _UsageError(f"--joints: {what} has joints 1 to {leg.n_joints}, got {','.join(map(str, args.joints))}")
     source: Any = args.log if args.log_water is None else (args.log, args.log_water)
     result = fit.hydro_coefficients(source, leg, joints=[j - 1 for j in args.joints], per=args.per, robust=args.robust)
     if args.plot is not None:
@@ -434,7 +437,8 @@ def _fit_hydro(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(result.summary()))
     else:
-        print(f"uwml fit hydro: {result.source}, joints {','.join(map(str, args.joints))} (1-based), per {args.per}")
+        model = "" if args.robot is None else f", --robot {args.robot}"
+        print(f"uwml fit hydro: {result.source}{model}, joints {','.join(map(str, args.joints))} (1-based), per {args.per}")
         print(result.fit_report())
         if args.plot is not None:
             print(f"figure: {args.plot}")
@@ -594,7 +598,11 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
     )
     torques.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     torques.add_argument(
-        "--cd", type=_non_negative, default=None, metavar="X", help="drag coefficient for every segment (default: 2.2, the paper's fit; a robot's own)"
+        "--cd",
+        type=_non_negative,
+        default=None,
+        metavar="X",
+        help="drag coefficient for every segment (default: 2.2, the paper's fit; a robot's own)",
     )
     torques.add_argument("--cm", type=_non_negative, default=None, metavar="X", help="added-mass coefficient (default: 0.5; a robot's own)")
     torques.add_argument("--losses", action="store_true", help="add the oil-viscous and seal losses, loss current and total")
@@ -639,9 +647,10 @@ are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         "hydro",
         help="Cd and Cm from a land/water experiment",
         formatter_class=formatter,
-        description=f"""Cd and Cm of the paper's leg from a land/water experiment (uwml.fit.hydro_coefficients):
-weighted linear least squares of -(tau_water - tau_land) - buoyancy against the drag and
-added-mass regressors (the paper's eqs. 23-24).
+        description=f"""Cd and Cm of the paper's leg (or of --robot, on a fixed base) from a land/water
+experiment (uwml.fit.hydro_coefficients): weighted linear least squares of
+-(tau_water - tau_land) - buoyancy against the drag and added-mass regressors (the paper's
+eqs. 23-24). With --robot, --per link gives one Cd and Cm per link named after it (cd_<link>).
 
 Input: one log of both runs (columns tau_land1..N and tau_water1..N), or two logs LOG (land)
 and LOG_WATER (water) of one run each (columns tau1..N), paired by time.
@@ -660,8 +669,15 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
         "--joints", type=_joint_list, default=[1], metavar="1,2,3", help="joints to fit, numbered from 1 (default 1, the paper's hip yaw)"
     )
     hydro.add_argument(
-        "--per", choices=("leg", "link", "direction"), default="leg", help="one Cd and Cm; one per link; one per link and direction"
+        "--per",
+        choices=("leg", "link", "direction"),
+        default="leg",
+        help="one Cd and Cm (for the whole leg or robot); one per link; one per link and direction",
     )
+    hydro.add_argument(
+        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml); default the paper's leg"
+    )
+    hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
     hydro.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
     hydro.add_argument("--plot", metavar="FILE", help="save the measured-vs-fitted figure (format from the extension, e.g. .png)")

@@ -122,16 +122,16 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+import tomllib
 from numpy.typing import NDArray
 
-from .model import Joint, Link, Segment, Water
 from .environment import JointLosses
+from .model import Joint, Link, Segment, Water
 from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3
 from .robot import Robot
 

@@ -73,10 +73,11 @@ from __future__ import annotations
 
 import dataclasses
 import os
-import tomllib
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TypeVar
+
+import tomllib
 
 from .environment import JointLosses
 from .losses import Drive, OilDrag, Seal
@@ -333,7 +334,7 @@ def loads(text: str, source: str = "<string>") -> Robot:
         top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {document["format"]!r}')
     if top.get("version", _integer, f"the integer {VERSION}") != VERSION:
         top.fail("version", f"must be {VERSION} (this uwml reads version {VERSION}), got {document['version']!r}")
-    as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")  # noqa: E731
+    as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")
     joint_tables = top.get("joints", as_list, "an array of tables [[joints]]")
     link_tables = top.get("links", as_list, "an array of tables [[links]]")
     joints, losses = [], []

@@ -29,7 +29,8 @@ Steady rows use the hard sign (ε = 0), as the fits do.
 :func:`land_water_experiment` reproduces the paper's hydrodynamic experiment (Section III): the
 leg follows one trajectory on land and in water, and the motor torques of both runs are logged
 (:mod:`uwml.logs`), so that :func:`uwml.fit.hydro_coefficients` can be checked against known
-Cd and Cm.
+Cd and Cm. With a :class:`uwml.Robot` (any tree) and a :class:`SineTrajectory` (or anything with
+``joint_states(t)``) it does the same for any robot on a fixed base.
 """
 
 from __future__ import annotations
@@ -48,6 +49,7 @@ from .model import Water
 if TYPE_CHECKING:
     from .gait import WalkingGait
     from .leg import Leg
+    from .robot import Robot
 
 __all__ = [
     "CONFIGURATIONS",
@@ -55,6 +57,7 @@ __all__ = [
     "LAND_INERTIA",
     "LAND_VISCOUS",
     "YAW_STEP_FOOT",
+    "SineTrajectory",
     "land_water_experiment",
     "three_configuration_experiment",
 ]
@@ -195,16 +198,63 @@ _COULOMB_SPEED = 0.05
 YAW_STEP_FOOT = (0.1, 0.7, -0.6)
 
 
+class SineTrajectory:
+    """Joint states ``q_j(t) = offset_j + amplitude_j sin(2π t / period · harmonic_j + phase_j)``,
+    with their exact derivatives: an exciting trajectory for any robot (every joint moves with
+    its own harmonic of ``period``, so the regressors of different joints are not proportional).
+
+    ``amplitudes`` [rad or m], ``offsets`` (default 0), ``harmonics`` (default 1, 2, 3, ... per
+    joint) and ``phases`` [rad] (default 0.7 j): one per joint; ``period`` [s] > 0.
+    """
+
+    def __init__(
+        self,
+        amplitudes: ArrayLike,
+        period: float = 2.0,
+        offsets: ArrayLike | None = None,
+        harmonics: ArrayLike | None = None,
+        phases: ArrayLike | None = None,
+    ) -> None:
+        amplitude = np.atleast_1d(np.asarray(amplitudes, dtype=np.float64))
+        n = amplitude.size
+        if amplitude.ndim != 1 or n == 0:
+            raise ValueError(f"amplitudes must be one number per joint, got shape {np.shape(amplitudes)}")
+
+        def per_joint(value: ArrayLike | None, default: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+            array = default if value is None else np.broadcast_to(np.asarray(value, dtype=np.float64), (n,)).copy()
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+            return array
+
+        self.amplitudes = per_joint(amplitude, amplitude, "amplitudes")
+        self.offsets = per_joint(offsets, np.zeros(n), "offsets")
+        self.harmonics = per_joint(harmonics, np.arange(1.0, n + 1.0), "harmonics")
+        self.phases = per_joint(phases, 0.7 * np.arange(n, dtype=np.float64), "phases")
+        if not (np.isfinite(period) and period > 0.0):
+            raise ValueError(f"period must be finite and > 0, got {period!r}")
+        self.period = float(period)
+
+    def joint_states(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """``(q, q̇, q̈)`` at times ``t`` [s], each ``(len(t), n_joints)``."""
+        time = np.asarray(t, dtype=np.float64).reshape(-1, 1)
+        omega = 2.0 * np.pi / self.period * self.harmonics
+        angle = omega * time + self.phases
+        q = self.offsets + self.amplitudes * np.sin(angle)
+        qd = self.amplitudes * omega * np.cos(angle)
+        qdd = -self.amplitudes * omega**2 * np.sin(angle)
+        return q, qd, qdd
+
+
 def land_water_experiment(
-    leg: Leg | None = None,
-    gait: WalkingGait | None = None,
+    leg: Leg | Robot | None = None,
+    gait: WalkingGait | SineTrajectory | None = None,
     cycles: float = 3,
     rate_hz: float = 200.0,
     cd: ArrayLike = 2.2,
     cm: ArrayLike = 0.5,
     torque_noise: float = 0.5,
     model_error: float = 0.0,
-    water: Water = Water(),  # noqa: B008 (immutable)
+    water: Water | None = None,
     seed: np.random.Generator | int | None = None,
     *,
     derivatives: bool = True,
@@ -229,20 +279,22 @@ def land_water_experiment(
 
     Parameters
     ----------
-    leg : Leg, optional
-        Default :meth:`uwml.Leg.paper`.
-    gait : WalkingGait, optional
-        Anything with ``joint_states(t)``; default ``WalkingGait(nominal_foot=YAW_STEP_FOOT)``.
+    leg : Leg or Robot, optional
+        Default :meth:`uwml.Leg.paper`. A robot is on a fixed, upright base in still water.
+    gait : WalkingGait or SineTrajectory, optional
+        Anything with ``joint_states(t)``; default ``WalkingGait(nominal_foot=YAW_STEP_FOOT)``
+        (the paper leg's: a robot needs its own).
     cycles : float
         Duration in gait periods (``gait.period``) (or in seconds, if the gait has no period).
     rate_hz : float
         Sample rate [Hz].
     cd, cm : array_like
-        True coefficients, in any layout :meth:`uwml.Leg.hydro` accepts.
+        True coefficients, in any layout :meth:`uwml.Leg.hydro` (or :meth:`uwml.Robot.hydro`:
+        None for the segments' own) accepts.
     torque_noise, model_error : float
         See above; ≥ 0.
-    water : Water
-        The fluid.
+    water : Water, optional
+        The fluid; default fresh water (a robot: its own).
     seed : numpy.random.Generator or int or None
         Random generator, or a seed for ``numpy.random.default_rng``.
     derivatives : bool
@@ -272,8 +324,8 @@ def land_water_experiment(
     t = float(start_time) + np.arange(round(duration * rate_hz)) / float(rate_hz)
     q, qd, qdd = (np.asarray(a, dtype=np.float64) for a in gait.joint_states(t))
     if q.shape[-1] != leg.n_joints:
-        raise ValueError(f"the gait gives {q.shape[-1]} joints, the leg has {leg.n_joints}")
-    hydro = leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=water)
+        raise ValueError(f"the gait gives {q.shape[-1]} joints, the {type(leg).__name__.lower()} has {leg.n_joints}")
+    hydro = leg.hydro(q, qd, qdd, cd=cd, cm=cm) if water is None else leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=water)
     tau_land = -hydro.gravity + LAND_INERTIA * qdd + LAND_VISCOUS * qd + LAND_COULOMB * np.tanh(qd / _COULOMB_SPEED)
     tau_water = tau_land - hydro.total + model_error * qd
     tau_land = tau_land + generator.normal(0.0, torque_noise, size=q.shape)

@@ -66,7 +66,10 @@ buoyancy do not act about). ``per="link"`` gives one Cd and one Cm per link (``c
 ``cm_link<l>``, ``l`` the 0-based link index), ``per="direction"`` one per link and normal
 direction (``cd_link<l>_n<k>``, ``k`` as in :meth:`uwml.Leg.hydro`); columns that are zero on
 every selected sample (a link without a segment, a direction that never moves) are dropped and
-named in ``message`` and ``dropped``.
+named in ``message`` and ``dropped``. Any :class:`uwml.Robot` (a tree, from a URDF, MJCF or
+model file) fits the same way on a fixed base, with the whole-robot core's regressors summed per
+body: ``cd_<link name>`` (``cd_link<i>`` if unnamed), ``cd_base`` for the base's own segments
+(dropped on a fixed base); a circular segment counts in ``n0``.
 
 Weights: each joint ``j`` gets ``1/σ_j²``. Given ``sigma`` (the standard error of ``−Δτ``, a
 scalar or one per selected joint [N·m]), those are used and the covariance is scaled by the

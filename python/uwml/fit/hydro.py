@@ -19,6 +19,7 @@ from .results import FitResult, _json_float
 
 if TYPE_CHECKING:
     from ..leg import Leg
+    from ..robot import Robot
 
 # --------------------------------------------------------------------------------------------
 # Hydrodynamic coefficients from the land/water experiment
@@ -64,7 +65,7 @@ class HydroFit(FitResult):
         return {"time": [_json_float(x) for x in self.time], "joint": [int(x) for x in self.joint]}
 
 
-def _hydro_log(log_or_path: Any, n_joints: int) -> Log:
+def _hydro_log(log_or_path: Any, n_joints: int, what: str = "the leg") -> Log:
     """A log of the whole experiment from a :class:`Log`, a file, or a (land, water) pair."""
     if isinstance(log_or_path, tuple | list):
         if len(log_or_path) != 2:
@@ -73,12 +74,12 @@ def _hydro_log(log_or_path: Any, n_joints: int) -> Log:
         for item in (land, water):
             if item.n_joints != n_joints:
                 raise ValueError(
-                    f"{item.source}: row 1 (header), column 'q{item.n_joints}': the log has {item.n_joints} joints, the leg {n_joints}"
+                    f"{item.source}: row 1 (header), column 'q{item.n_joints}': the log has {item.n_joints} joints, {what} {n_joints}"
                 )
         return align_logs(land, water)
     log = log_or_path if isinstance(log_or_path, Log) else read_log(log_or_path, n_joints)
     if log.n_joints != n_joints:
-        raise ValueError(f"{log.source}: row 1 (header), column 'q{log.n_joints}': the log has {log.n_joints} joints, the leg {n_joints}")
+        raise ValueError(f"{log.source}: row 1 (header), column 'q{log.n_joints}': the log has {log.n_joints} joints, {what} {n_joints}")
     if log.tau_land is None or log.tau_water is None:
         raise ValueError(
             f"{log.source}: row 1 (header), column 'tau_land1': need tau_land and tau_water columns "
@@ -157,6 +158,9 @@ class _HydroDesign:
         # estimate and the result's fitted values are of the same coefficients).
         self._last_fit: tuple[Array, tuple[Array, Array]] | None = None
 
+    def _chunk_samples(self) -> int:
+        return CHUNK_SAMPLES
+
     def keep(self, keep: NDArray[np.bool_]) -> None:
         """Leave out the design's columns where ``keep`` is False (coefficients then index the
         kept columns only)."""
@@ -184,9 +188,9 @@ class _HydroDesign:
         if self._cached and self._cache is not None:
             yield from self._cache
             return
-        n = self._log.n_samples
-        for start in range(0, n, CHUNK_SAMPLES):
-            chunk = self._compute(start, min(start + CHUNK_SAMPLES, n))
+        n, step = self._log.n_samples, self._chunk_samples()
+        for start in range(0, n, step):
+            chunk = self._compute(start, min(start + step, n))
             if self._cache is not None:
                 self._cache.append(chunk)
             yield chunk
@@ -281,6 +285,72 @@ class _HydroDesign:
         return x, passes, converged
 
 
+class _RobotHydroDesign(_HydroDesign):
+    """The design of a :class:`uwml.Robot` on a fixed, upright base in still water: the
+    regressors of the whole-robot core (one column per segment and normal direction) summed
+    into the columns of ``per``. Bodies are the base (if it has segments; named ``base``) and
+    every link (named by its name, else ``link<i>``); a circular segment's drag and added mass
+    are along its whole normal velocity, so they fall in ``n0``'s column."""
+
+    #: Bytes of regressors (all rows, segments and directions, drag and added mass) per chunk.
+    REGRESSOR_BYTES = 1 << 26
+
+    def __init__(self, robot: Robot, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
+        self._robot = robot
+        owners = [-1] * (len(robot.base.segments) if robot.base is not None else 0)
+        owners += [i for i, link in enumerate(robot.links) for _ in link.segments]
+        bodies = ([-1] if owners and owners[0] == -1 else []) + list(range(robot.n_joints))
+        labels = {b: "base" if b < 0 else (robot.links[b].name or f"link{b}") for b in bodies}
+        n_segments = len(owners)
+        if per == "leg":
+            columns = [(k, d, 0) for k in range(n_segments) for d in range(2)]
+            half = ["" for _ in range(1)]
+        elif per == "link":
+            columns = [(k, d, bodies.index(o)) for k, o in enumerate(owners) for d in range(2)]
+            half = [f"_{labels[b]}" for b in bodies]
+        else:
+            columns = [(k, d, 2 * bodies.index(o) + d) for k, o in enumerate(owners) for d in range(2)]
+            half = [f"_{labels[b]}_n{d}" for b in bodies for d in range(2)]
+        # (segment, direction) -> column of one half (the Cd half or the Cm half).
+        self._map = np.zeros((n_segments * 2, len(half)))
+        for k, d, column in columns:
+            self._map[2 * k + d, column] = 1.0
+        super().__init__(robot, log, water, per, joints, cache_bytes)  # type: ignore[arg-type]
+        self.names = [f"{prefix}{suffix}" for prefix in ("cd", "cm") for suffix in half]
+        self._rows = max(64, self.REGRESSOR_BYTES // (2 * (6 + robot.n_joints) * max(n_segments, 1) * 2 * 8))
+
+    def _chunk_samples(self) -> int:
+        return min(CHUNK_SAMPLES, self._rows)
+
+    def _compute(self, start: int, stop: int) -> Array:
+        log = self._log
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        rows = slice(start, stop)
+        regressors = self._robot.hydro_regressors(log.q[rows], log.qd[rows], log.qdd[rows], water=self._water)
+        joints = self._joints
+        n = stop - start
+
+        def columns(values: Array) -> Array:
+            return values[:, joints].reshape(n, len(joints), -1) @ self._map
+
+        target = -(log.tau_water[rows] - log.tau_land[rows]) - regressors.buoyancy
+        problem = np.concatenate([columns(regressors.drag), columns(regressors.added_mass), target[:, joints, None]], axis=2)
+        return np.ascontiguousarray(problem.transpose(1, 0, 2))
+
+    def fitted(self, x: Array) -> tuple[Array, Array]:
+        """``(Xx, y)``, sample-major, from the design's chunks."""
+        if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
+            return self._last_fit[1]
+        full = self._full(x)
+        fits, targets = [], []
+        for chunk in self.chunks():
+            fits.append((chunk[:, :, :-1] @ full).T.reshape(-1))
+            targets.append(chunk[:, :, -1].T.reshape(-1))
+        result = np.concatenate(fits), np.concatenate(targets)
+        self._last_fit = (np.array(x), result)
+        return result
+
+
 def _huber_covariance(gram: Array, residual: Array, scale: float) -> Array | None:
     """Huber's covariance estimate of a fit with whitened residuals ``residual`` whose whitened
     design has the Gram matrix ``gram`` (``XᵀX``)."""
@@ -297,10 +367,10 @@ def _huber_covariance(gram: Array, residual: Array, scale: float) -> Array | Non
 
 def hydro_coefficients(
     log_or_path: Log | PathOrFile | tuple[Log | PathOrFile, Log | PathOrFile],
-    leg: Leg | None = None,
+    leg: Leg | Robot | None = None,
     joints: ArrayLike = (0,),
     per: Literal["leg", "link", "direction"] = "leg",
-    water: Water = Water(),  # noqa: B008 (immutable)
+    water: Water | None = None,
     robust: bool = False,
     n_joints: int | None = None,
     *,
@@ -317,14 +387,19 @@ def hydro_coefficients(
         or a file (:func:`uwml.logs.read_log`); or a pair of logs of one environment each
         (``tau*``), aligned by time (:func:`uwml.logs.align_logs`). Missing velocities and
         accelerations are estimated (:meth:`uwml.logs.Log.with_derivatives`).
-    leg : Leg, optional
-        Default :meth:`uwml.Leg.paper`.
+    leg : Leg or Robot, optional
+        Default :meth:`uwml.Leg.paper`. A :class:`uwml.Robot` (any tree, from a URDF, MJCF or
+        model file) is on a fixed, upright base in still water, as the leg on its test stand;
+        its columns are per body: the base (``base``, if it has segments: on a fixed base they
+        are zero and dropped) and every link (``cd_<name>``, or ``cd_link<i>`` for an unnamed
+        link), a circular segment's in ``n0``'s column.
     joints : sequence of int
         The joints whose torques are fitted (0-based; default joint 0, the paper's joint 1).
     per : {"leg", "link", "direction"}
-        One Cd and one Cm; one per link; one per link and normal direction.
-    water : Water
-        The fluid of the water run.
+        One Cd and one Cm for the whole leg or robot; one per link; one per link and normal
+        direction.
+    water : Water, optional
+        The fluid of the water run; default fresh water (a robot: its own, :attr:`uwml.Robot.water`).
     robust : bool
         Huber's loss instead of squares (resists outliers).
     n_joints : int, optional
@@ -350,17 +425,23 @@ def hydro_coefficients(
         selected joints.
     """
     from ..leg import Leg
+    from ..robot import Robot
 
     leg = Leg.paper() if leg is None else leg
+    is_robot = isinstance(leg, Robot)
+    if not is_robot and not isinstance(leg, Leg):
+        raise TypeError(f"leg must be a uwml.Leg or a uwml.Robot, got {type(leg).__name__}")
+    what = "the robot" if is_robot else "the leg"
+    water = (leg.water if is_robot else Water()) if water is None else water  # type: ignore[union-attr]
     if per not in ("leg", "link", "direction"):
         raise ValueError(f"per must be 'leg', 'link' or 'direction', got {per!r}")
     expected = leg.n_joints if n_joints is None else int(n_joints)
     if expected != leg.n_joints:
-        raise ValueError(f"n_joints ({n_joints}) differs from the leg's {leg.n_joints} joints")
+        raise ValueError(f"n_joints ({n_joints}) differs from {what}'s {leg.n_joints} joints")
     selected = [int(j) for j in np.atleast_1d(np.asarray(joints))]
     if not selected or len(set(selected)) != len(selected) or any(not 0 <= j < leg.n_joints for j in selected):
         raise ValueError(f"joints must be distinct indices in 0..{leg.n_joints - 1}, got {joints!r}")
-    log = _hydro_log(log_or_path, expected).with_derivatives()
+    log = _hydro_log(log_or_path, expected, what).with_derivatives()
     assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
 
     n_samples, n_selected = log.n_samples, len(selected)
@@ -371,7 +452,8 @@ def hydro_coefficients(
         given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
         if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
             raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
-    design = _HydroDesign(leg, log, water, per, selected, cache_bytes)
+    design_type = _RobotHydroDesign if is_robot else _HydroDesign
+    design = design_type(leg, log, water, per, selected, cache_bytes)  # type: ignore[arg-type]
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0
     dropped = tuple(name for name, k in zip(design.names, keep, strict=True) if not k)
