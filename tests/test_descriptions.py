@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -335,3 +336,33 @@ def test_the_readme_own_robot_section_runs(tmp_path: Path, monkeypatch: pytest.M
         assert run.returncode == 0, (command, run.stderr)
     assert (tmp_path / "my_arm.png").stat().st_size > 1000 and (tmp_path / "torques.csv").read_text().startswith("time,drag1,drag2,")
     assert "#define MY_ARM_WATER_DENSITY 1025.0" in (tmp_path / "my_arm.h").read_text()
+
+
+@pytest.mark.parametrize(
+    ("files", "hydro", "message"),
+    [
+        ({"bad.urdf": '<robot name="x"><link name="a"></robot>'}, None, r"bad\.urdf: not a readable URDF file"),
+        ({}, None, r"absent\.xml: the MJCF file cannot be read"),
+        (
+            {"ball.xml": '<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="wrist" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>'},
+            None,
+            r"ball\.xml: joint 'wrist' is a ball joint",
+        ),
+        ({"mesh.urdf": MESH_URDF}, None, r"mesh\.urdf: link 'hand' has a collision mesh"),
+        ({"mesh.urdf": MESH_URDF, "h.toml": "[links.palm]\ndry = true\n"}, "h.toml", r"h\.toml: \[links\.palm\]: .*no link \(body\) named 'palm'"),
+        ({"mesh.urdf": MESH_URDF, "h.toml": "[links.hand]\ndry = true\n[joints.k]\nepsilon = 0.01\n"}, "h.toml", r"h\.toml: \[joints\.k\]: no joint of that name"),
+    ],
+)
+def test_the_command_line_names_the_file_and_element_and_exits_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], files: dict[str, str], hydro: str | None, message: str
+) -> None:
+    from uwml.cli import main
+
+    for name, text in files.items():
+        (tmp_path / name).write_text(text)
+    description = next((name for name in files if name.endswith((".urdf", ".xml"))), "absent.xml")
+    arguments = ["--robot", str(tmp_path / description)] + ([] if hydro is None else ["--hydro", str(tmp_path / hydro)])
+    for command in (["describe"], ["export", "--c"]):
+        assert main(command + arguments) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("uwml: error: ") and re.search(message, err), err
