@@ -135,7 +135,7 @@ from .model import Joint, Link, Segment, Water
 from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3
 from .robot import Robot
 
-__all__ = ["DescriptionError", "HydroFile", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "read_hydro"]
+__all__ = ["DescriptionError", "HydroFile", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "model_and_robot", "read_hydro"]
 
 FloatArray = NDArray[np.float64]
 
@@ -484,6 +484,17 @@ def from_mjcf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None
     """The :class:`uwml.Robot` of the MJCF file at ``path``, with the hydro file ``hydro``."""
     file = HydroFile() if hydro is None else read_hydro(hydro)
     return _with_joints_and_water(_from_model(_spec(path, "MJCF", file.links, str(hydro)), file.links, str(path), str(hydro)), file)
+
+
+def model_and_robot(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> tuple[Any, Robot]:
+    """The compiled ``mujoco.MjModel`` of a URDF (``.urdf``) or MJCF (any other suffix) file, as
+    this module reads it (visual geoms and their meshes removed, so absent visual mesh files do
+    not matter; fixed links kept as bodies; the root kept with its inertial), and its
+    :class:`uwml.Robot`: what a simulation of the description needs (:mod:`uwml.mujoco`)."""
+    what = "URDF" if Path(path).suffix.lower() == ".urdf" else "MJCF"
+    file = HydroFile() if hydro is None else read_hydro(hydro)
+    model = _spec(path, what, file.links, str(hydro))
+    return model, _with_joints_and_water(_from_model(model, file.links, str(path), str(hydro)), file)
 
 
 def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:

@@ -1,0 +1,327 @@
+"""uwml's environment forces inside a MuJoCo simulation, with the added mass in the mass matrix
+(MODEL.md section 11; ``pip install "uwml[mujoco]"``).
+
+:class:`Simulation` steps a MuJoCo model of a robot with the forces uwml computes for it: drag
+and added mass along every segment, buoyancy with Froude-Krylov, joint losses at a depth and
+temperature, in a current. MuJoCo's own fluid model is turned off (its lumped per-body model is
+what uwml replaces), MuJoCo keeps everything else: the rigid bodies, gravity, contacts (a foot
+on the seabed), joint limits, actuators.
+
+**Added mass in the mass matrix.** The added-mass force is linear in the accelerations, so the
+environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈`` (MODEL.md 11).
+Each step evaluates ``τ_env,0`` (uwml at zero joint and base acceleration: drag, buoyancy,
+Froude-Krylov, losses and the velocity part of the added mass) and ``M_A(q)``; ``M_A`` is added
+to MuJoCo's joint-space inertia between its assembly (``mj_makeM``) and its factorization
+(``mj_factorM``), so MuJoCo solves ``(M + M_A) q̈ = τ + τ_env,0`` with its constraints: no
+acceleration is fed back from the last step, and a link lighter than the water it drags along
+is as stable as any other. The position stage is MuJoCo's ``mj_fwdPosition`` run function by
+function with that one addition; the rest is ``mj_forwardSkip`` from the velocity stage.
+``scheme="lagged"`` instead applies ``−M_A q̈`` with the previous step's ``q̈`` as a force, as
+gz-sim and UUV Simulator do: for comparison only (it diverges once ``M_A`` exceeds ``M``).
+
+**Coordinates.** uwml's base twist is Fossen's ``ν`` (base frame); MuJoCo's free joint has the
+world-frame velocity of the body origin and the body-frame angular velocity. With ``R`` the
+base's orientation, ``ν = (Rᵀ v_world, ω_body)`` and ``ν̇ = (Rᵀ v̇_world − ω × v, ω̇)``: the
+``−ω × v`` term is passed to uwml as the base's acceleration in ``τ_env,0``, ``M_A`` and the
+forces are mapped to MuJoCo's degrees of freedom with the same ``Rᵀ``. Gravity is MuJoCo's
+(``opt.gravity`` must be ``(0, 0, −g)`` with ``g`` the water's): uwml's gravity component is
+not applied.
+
+**Integrators.** ``integrator="euler"``: MuJoCo's semi-implicit Euler (``mj_Euler``) after the
+forward pass above, contacts included. ``"rk4"``: the classical Runge-Kutta method on that
+forward pass (positions advanced with ``mj_integratePos``), for smooth motions without contacts,
+where its fourth order matters (the tests compare it with ``scipy.integrate.solve_ivp``).
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .environment import JointLosses
+from .model import Water
+from .robot import BaseMotion, Robot
+
+__all__ = ["SCHEMES", "Simulation"]
+
+FloatArray = NDArray[np.float64]
+
+#: How the added mass enters the equations of motion.
+SCHEMES = ("matrix", "lagged")
+INTEGRATORS = ("euler", "rk4")
+
+
+def _mujoco() -> Any:
+    try:
+        import mujoco  # type: ignore[import-untyped]
+    except ImportError:
+        raise ImportError('uwml.mujoco needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
+    return mujoco
+
+
+def _vector3(value: ArrayLike, name: str) -> FloatArray:
+    array = np.asarray(value, dtype=np.float64)
+    if array.shape != (3,) or not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be 3 finite numbers [world frame], got {value!r}")
+    return array
+
+
+class Simulation:
+    """A MuJoCo model stepped with uwml's environment forces (module docstring).
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+        The robot's MuJoCo model (copied: the caller's model is not changed). Its world holds
+        exactly one root body, the robot's base (a free joint: a floating base), as for
+        :func:`uwml.descriptions.from_mujoco`.
+    robot : uwml.Robot, optional
+        The same robot for uwml (default ``uwml.Robot.from_mujoco(model, hydro)``); its joints
+        must be the model's hinge and slide joints in model order.
+    hydro : path, optional
+        A hydro file, when ``robot`` is taken from the model.
+    depth, temperature_c
+        Where the joint losses are evaluated [m, °C] (``Robot.environment``).
+    losses
+        Joint losses (``Robot.environment``'s ``losses``): None for the robot's own.
+    current, current_acceleration
+        The water's velocity [m/s] and acceleration [m/s²], world frame.
+    water
+        Density and gravity; default the robot's. ``model.opt.gravity`` must be ``(0, 0, −g)``.
+    scheme : {"matrix", "lagged"}
+        ``"matrix"``: ``M_A`` in the mass matrix (the default; exact and stable). ``"lagged"``:
+        ``−M_A q̈_previous`` as a force, for comparison.
+    integrator : {"euler", "rk4"}
+        See the module docstring.
+
+    Attributes
+    ----------
+    model, data
+        The MuJoCo model (fluid model off) and data; set ``data.qpos``, ``data.qvel`` and
+        ``data.ctrl`` as usual.
+    robot
+        The uwml robot.
+    """
+
+    def __init__(
+        self,
+        model: Any,
+        robot: Robot | None = None,
+        hydro: Any = None,
+        *,
+        depth: float = 0.0,
+        temperature_c: float = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        water: Water | None = None,
+        scheme: str = "matrix",
+        integrator: str = "euler",
+    ) -> None:
+        mujoco = _mujoco()
+        if not isinstance(model, mujoco.MjModel):
+            raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+        if scheme not in SCHEMES:
+            raise ValueError(f"scheme must be one of {', '.join(SCHEMES)}, got {scheme!r}")
+        if integrator not in INTEGRATORS:
+            raise ValueError(f"integrator must be one of {', '.join(INTEGRATORS)}, got {integrator!r}")
+        if robot is None:
+            robot = Robot.from_mujoco(model, hydro)
+        elif not isinstance(robot, Robot):
+            raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
+        self._mj = mujoco
+        self.model = copy.deepcopy(model)
+        self.model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
+        self.model.opt.viscosity = 0.0
+        self.data = mujoco.MjData(self.model)
+        self.robot = robot
+        self.water = robot.water if water is None else water
+        gravity = np.asarray(self.model.opt.gravity, dtype=np.float64)
+        if not np.allclose(gravity, (0.0, 0.0, -self.water.gravity), rtol=1e-12, atol=0.0):
+            raise ValueError(
+                f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
+            )
+        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
+            if not np.isfinite(value):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+        if depth < 0.0:
+            raise ValueError(f"depth must be >= 0 m, got {depth!r}")
+        self.depth, self.temperature_c, self.losses = float(depth), float(temperature_c), losses
+        self.current = _vector3(current, "current")
+        self.current_acceleration = _vector3(current_acceleration, "current_acceleration")
+        self.scheme, self.integrator = scheme, integrator
+        self._map_degrees_of_freedom()
+        self._previous_acceleration = np.zeros(self._n_uwml)
+        # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
+        mujoco.mj_forward(self.model, self.data)
+        saved = self.data.M.copy()
+        self.data.M[:] = np.arange(1.0, self.model.nM + 1.0)
+        probe = np.zeros((self.model.nv, self.model.nv))
+        mujoco.mj_fullM(self.model, self.data, probe)
+        self.data.M[:] = saved
+        rows, columns = np.nonzero(np.tril(probe))
+        order = np.argsort(probe[rows, columns])
+        self._m_rows, self._m_columns = rows[order], columns[order]
+        if not np.array_equal(probe[self._m_rows, self._m_columns], np.arange(1.0, self.model.nM + 1.0)):
+            raise RuntimeError("unexpected layout of MuJoCo's sparse inertia (data.M)")
+        mujoco.mj_forward(self.model, self.data)
+
+    @classmethod
+    def from_file(cls, path: Any, hydro: Any = None, **options: Any) -> Simulation:
+        """The simulation of a URDF or MJCF file (with its hydro file), read as
+        :func:`uwml.descriptions.model_and_robot` reads it (absent visual meshes do not matter);
+        ``options`` as for the constructor."""
+        from .descriptions import model_and_robot
+
+        model, robot = model_and_robot(path, hydro)
+        return cls(model, robot, **options)
+
+    # --- the map between uwml's coordinates and MuJoCo's degrees of freedom -------------------
+
+    def _map_degrees_of_freedom(self) -> None:
+        m, mj = self.model, self._mj
+        roots = [i for i in range(1, m.nbody) if m.body_parentid[i] == 0]
+        if len(roots) != 1:
+            raise ValueError(f"the model's world must hold exactly one root body (the robot's base), got {len(roots)}")
+        self._root = roots[0]
+        free_kind, hinge, slide = (int(k) for k in (mj.mjtJoint.mjJNT_FREE, mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE))
+        free = [j for j in range(m.njnt) if int(m.jnt_type[j]) == free_kind]
+        if free and (len(free) > 1 or m.jnt_bodyid[free[0]] != self._root):
+            raise ValueError("only the root body may have a free joint (the floating base)")
+        self._free_dof = int(m.jnt_dofadr[free[0]]) if free else None
+        self._free_qpos = int(m.jnt_qposadr[free[0]]) if free else None
+        moving = [j for j in range(m.njnt) if int(m.jnt_type[j]) in (hinge, slide)]
+        robot = self.robot
+        if len(moving) != robot.n_joints:
+            raise ValueError(f"the model has {len(moving)} hinge and slide joints, the robot {robot.n_joints} joints: not the same robot")
+        for i, (j, joint) in enumerate(zip(moving, robot.joints, strict=True)):
+            kind = "revolute" if int(m.jnt_type[j]) == hinge else "prismatic"
+            name = m.joint(j).name
+            if kind != joint.kind or (joint.name is not None and name and name != joint.name):
+                raise ValueError(f"the model's joint {j} ('{name}', {kind}) is not the robot's joint {i} ({joint.name!r}, {joint.kind})")
+        self._joint_dofs = np.array([m.jnt_dofadr[j] for j in moving], dtype=np.int64)
+        self._joint_qpos = np.array([m.jnt_qposadr[j] for j in moving], dtype=np.int64)
+        # The base is the root body's frame unless the root hangs from the world by a joint.
+        self._base_is_world = self._free_dof is None and m.body_jntnum[self._root] > 0
+        self._floating = self._free_dof is not None
+        self._n_uwml = 6 + robot.n_joints
+
+    def _selection(self) -> FloatArray:
+        """``S`` with ``(ν, q̇)_uwml = S · qvel`` (ν only when the base floats)."""
+        m = self.model
+        selection = np.zeros((self._n_uwml, m.nv))
+        if self._floating:
+            assert self._free_dof is not None
+            rotation = self.data.xmat[self._root].reshape(3, 3)
+            selection[0:3, self._free_dof : self._free_dof + 3] = rotation.T
+            selection[3:6, self._free_dof + 3 : self._free_dof + 6] = np.eye(3)
+        selection[6 + np.arange(self.robot.n_joints), self._joint_dofs] = 1.0
+        return selection
+
+    def _base_motion(self) -> BaseMotion:
+        if self._base_is_world:
+            return BaseMotion()
+        orientation = np.array(self.data.xquat[self._root])
+        if not self._floating:
+            return BaseMotion(orientation=orientation)
+        assert self._free_dof is not None
+        rotation = self.data.xmat[self._root].reshape(3, 3)
+        velocity = rotation.T @ self.data.qvel[self._free_dof : self._free_dof + 3]
+        angular = np.array(self.data.qvel[self._free_dof + 3 : self._free_dof + 6])
+        # ν̇ = Rᵀ v̇_world − ω × v: the second term is what zero MuJoCo acceleration means to uwml.
+        return BaseMotion(orientation=orientation, velocity=velocity, angular_velocity=angular, acceleration=-np.cross(angular, velocity))
+
+    # --- one forward pass ------------------------------------------------------------------
+
+    def environment(self) -> tuple[FloatArray, FloatArray]:
+        """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
+        generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
+        added-mass matrix."""
+        q = np.array(self.data.qpos[self._joint_qpos])
+        qd = np.array(self.data.qvel[self._joint_dofs])
+        result = self.robot.environment(
+            q,
+            qd,
+            np.zeros_like(q),
+            depth=self.depth,
+            temperature_c=self.temperature_c,
+            losses=self.losses,
+            water=self.water,
+            base_motion=self._base_motion(),
+            current=self.current,
+            current_acceleration=self.current_acceleration,
+        )
+        # ``total`` is drag + added mass + buoyancy (+ losses on the joints): no gravity.
+        forces = np.concatenate([result.base.total, result.total])
+        return forces, self.robot.added_mass_matrix(q, water=self.water)
+
+    def forward(self, torque: ArrayLike | None = None) -> None:
+        """MuJoCo's forward dynamics at the data's state with uwml's forces: fills
+        ``data.qacc`` (and everything ``mj_forward`` fills). ``torque``: motor torques on the
+        robot's joints [N·m or N], added to ``data.qfrc_applied``'s uwml part. A state that is no
+        longer finite (a diverged simulation) raises ``FloatingPointError``."""
+        mj, m, d = self._mj, self.model, self.data
+        if not (np.all(np.isfinite(d.qpos)) and np.all(np.isfinite(d.qvel))):
+            raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
+        mj.mj_fwdKinematics(m, d)
+        selection = self._selection()
+        forces, added_mass = self.environment()
+        mj.mj_makeM(m, d)
+        if self.scheme == "matrix":
+            full = selection.T @ added_mass @ selection if self._floating else selection[6:].T @ added_mass[6:, 6:] @ selection[6:]
+            d.M[:] += full[self._m_rows, self._m_columns]
+        else:
+            forces = forces - added_mass @ self._previous_acceleration
+        mj.mj_factorM(m, d)
+        mj.mj_collision(m, d)
+        mj.mj_makeConstraint(m, d)
+        mj.mj_island(m, d)
+        mj.mj_transmission(m, d)
+        mj.mj_projectConstraint(m, d)
+        if torque is not None:
+            motor = np.asarray(torque, dtype=np.float64)
+            if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
+                raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
+            forces = forces + np.concatenate([np.zeros(6), motor])
+        rows = slice(0, None) if self._floating else slice(6, None)
+        d.qfrc_applied[:] = selection[rows].T @ forces[rows]
+        mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
+
+    def _uwml_acceleration(self) -> FloatArray:
+        """``(ν̇, q̈)`` of the data's ``qacc`` (for the lagged scheme)."""
+        acceleration = self._selection() @ self.data.qacc
+        base = self._base_motion()
+        if self._floating:
+            acceleration[0:3] += np.asarray(base.acceleration).reshape(3)
+        return acceleration
+
+    def step(self, torque: ArrayLike | None = None) -> None:
+        """One time step (``model.opt.timestep``) with motor ``torque`` on the joints."""
+        mj, m, d = self._mj, self.model, self.data
+        if self.integrator == "euler":
+            self.forward(torque)
+            if self.scheme == "lagged":
+                self._previous_acceleration = self._uwml_acceleration()
+            mj.mj_Euler(m, d)
+            return
+        h = m.opt.timestep
+        qpos0, qvel0, time0 = d.qpos.copy(), d.qvel.copy(), d.time
+        velocities, accelerations = [], []
+        for fraction, index in ((0.0, None), (0.5, 0), (0.5, 1), (1.0, 2)):
+            velocity = qvel0 if index is None else qvel0 + fraction * h * accelerations[index]
+            d.qpos[:] = qpos0
+            if index is not None:
+                mj.mj_integratePos(m, d.qpos, velocities[index], fraction * h)
+            d.qvel[:] = velocity
+            d.time = time0 + fraction * h
+            self.forward(torque)
+            velocities.append(velocity.copy())
+            accelerations.append(d.qacc.copy())
+        d.qpos[:] = qpos0
+        mj.mj_integratePos(m, d.qpos, (velocities[0] + 2.0 * velocities[1] + 2.0 * velocities[2] + velocities[3]) / 6.0, h)
+        d.qvel[:] = qvel0 + h * (accelerations[0] + 2.0 * accelerations[1] + 2.0 * accelerations[2] + accelerations[3]) / 6.0
+        d.time = time0 + h

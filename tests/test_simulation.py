@@ -1,0 +1,208 @@
+"""uwml inside MuJoCo (uwml.mujoco.Simulation): the added mass in the mass matrix, checked
+against closed forms, an independent integration with scipy, and the lagged scheme that
+simulators use (which diverges on a light link)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import uwml
+
+mujoco = pytest.importorskip("mujoco")
+from scipy.integrate import solve_ivp
+from uwml.mujoco import Simulation
+
+RHO, G = 1000.0, 9.81
+D, L = 0.1, 1.0  # the sinking log: a horizontal cylinder
+LOG_VOLUME = math.pi * D**2 / 4 * L
+TAG = 0.001  # the mass of the log's jointed tag (a robot needs one joint)
+
+
+def log_model(mass: float, floor: bool = False) -> object:
+    """A horizontal cylinder on a free joint (turned 0.3 rad about z), with a massless-looking
+    tag on a hinge through its centre (no geometry, COM on the axis: it never moves)."""
+    scenery = '<geom type="plane" size="5 5 0.1" pos="0 0 -0.5"/>' if floor else ""
+    return mujoco.MjModel.from_xml_string(
+        f"""<mujoco><compiler angle="radian"/><option timestep="0.002"/><worldbody>{scenery}
+        <body name="log" euler="0 0 0.3"><freejoint/>
+          <inertial pos="0 0 0" mass="{mass!r}" diaginertia="0.01 0.1 0.1"/>
+          <geom type="cylinder" size="{D / 2} {L / 2}" euler="0 1.5707963267948966 0"/>
+          <body name="tag"><joint name="spin" type="hinge" axis="1 0 0"/>
+            <inertial pos="0 0 0" mass="{TAG}" diaginertia="1e-6 1e-6 1e-6"/></body>
+        </body></worldbody></mujoco>"""
+    )
+
+
+@pytest.mark.parametrize("ratio", [2.0, 0.5])
+@pytest.mark.parametrize("integrator", ["euler", "rk4"])
+def test_a_released_log_sinks_or_rises_as_the_closed_form(ratio: float, integrator: str) -> None:
+    """(m + m_A) v̇ = −(m − ρV) g − ½ ρ Cd D L |v| v with m_A = ρ Cm V (Cm = 1, Cd = 1.2: the
+    circular defaults): v(t) = −v_t tanh(a t / v_t), v_t = √(2 (m − ρV) g / (ρ Cd D L)),
+    a = (m − ρV) g / (m + m_A) (for m < ρV, the same upwards)."""
+    mass = ratio * RHO * LOG_VOLUME
+    sim = Simulation(log_model(mass), integrator=integrator)
+    for _ in range(1000):
+        sim.step()
+    total = mass + TAG
+    net = (total - RHO * LOG_VOLUME) * G
+    terminal = math.sqrt(2.0 * abs(net) / (RHO * 1.2 * D * L))
+    expected = -math.copysign(terminal * math.tanh(abs(net) / (total + RHO * LOG_VOLUME) * sim.data.time / terminal), net)
+    tolerance = 1e-9 if integrator == "rk4" else 1e-3
+    assert sim.data.qvel[2] == pytest.approx(expected, rel=tolerance)
+    # No sideways motion and no turning: the forces are vertical and through the centre.
+    assert np.max(np.abs(sim.data.qvel[[0, 1, 3, 4, 5]])) < 1e-9
+    assert sim.data.time == pytest.approx(2.0, rel=1e-12)
+
+
+def pendulum(cm: float = 1.0) -> tuple[object, float]:
+    """A light hollow rod on a hinge (axis y) hanging along −z: 0.2 kg against the ~3.9 kg of
+    water its cylinder drags along (M_A/I ≈ 20 about the hinge). Returns the model and its
+    rigid inertia about the hinge."""
+    mass, length = 0.2, 0.5
+    inertia = mass * length**2 / 12.0
+    model = mujoco.MjModel.from_xml_string(
+        f"""<mujoco><option timestep="0.001"><flag contact="disable"/></option><worldbody>
+        <body name="stand"><geom type="box" size="0.05 0.05 0.05" pos="0 0 0.1"/>
+          <body name="rod"><joint name="hinge" type="hinge" axis="0 1 0"/>
+            <inertial pos="0 0 -0.25" mass="{mass}" diaginertia="{inertia} {inertia} 1e-5"/>
+            <geom type="cylinder" size="{D / 2} {length / 2}" pos="0 0 -0.25"/>
+          </body></body></worldbody></mujoco>"""
+    )
+    return model, inertia + mass * 0.25**2
+
+
+def test_a_light_link_is_stable_and_matches_solve_ivp() -> None:
+    """The same equations integrated by scipy (RK45, tight tolerances) from uwml's forces and
+    added-mass matrix and the rod's rigid inertia: (I + M_A(q)) q̈ = τ_env,0(q, q̇) + τ_gravity."""
+    model, rigid = pendulum()
+    sim = Simulation(model, integrator="rk4")
+    robot = sim.robot
+    added = robot.added_mass_matrix([0.0])[6, 6]
+    assert added > 5.0 * rigid  # lighter than the water it drags along
+    sim.data.qpos[0], sim.data.qvel[0] = 2.5, 0.0
+
+    def rate(_t: float, state: np.ndarray) -> list[float]:
+        q, qd = state[:1], state[1:]
+        env = robot.environment(q, qd, [0.0])
+        m_a = robot.added_mass_matrix(q)[6, 6]
+        return [qd[0], float(env.total[0] + env.gravity[0]) / (rigid + m_a)]
+
+    times = np.linspace(0.0, 3.0, 31)
+    reference = solve_ivp(rate, (0.0, 3.0), [2.5, 0.0], t_eval=times, rtol=1e-11, atol=1e-12, method="DOP853")
+    simulated = []
+    for k in range(3001):
+        if k % 100 == 0:
+            simulated.append((sim.data.qpos[0], sim.data.qvel[0]))
+        if k < 3000:
+            sim.step()
+    simulated_array = np.array(simulated)
+    np.testing.assert_allclose(simulated_array[:, 0], reference.y[0], atol=1e-6)
+    np.testing.assert_allclose(simulated_array[:, 1], reference.y[1], atol=1e-6)
+    # It moves: the buoyant rod swings up through the inverted position (π) and back.
+    assert np.ptp(simulated_array[:, 0]) > 0.5 and np.max(simulated_array[:, 0]) > math.pi and np.max(np.abs(simulated_array[:, 1])) < 20.0
+
+
+def test_the_lagged_added_mass_force_diverges_where_the_matrix_does_not() -> None:
+    model, _ = pendulum()
+    lagged, matrix = Simulation(model, scheme="lagged"), Simulation(model)
+    for sim in (lagged, matrix):
+        sim.data.qpos[0] = 0.5
+    peak = 0.0
+    with pytest.raises(FloatingPointError, match=r"the simulation diverged at t = 0\.\d+ s"), np.errstate(all="ignore"):
+        # The previous step's acceleration, fed back, grows about 20 times a step.
+        for _ in range(200):
+            lagged.step()
+            peak = max(peak, abs(lagged.data.qvel[0]))
+    assert peak > 1e6
+    for _ in range(2000):
+        matrix.step()
+        assert abs(matrix.data.qvel[0]) < 10.0
+
+
+def test_a_body_settles_on_the_seabed() -> None:
+    """Contacts work with the added mass in the mass matrix: a heavy log sinks onto the floor
+    (0.5 m below) and rests there, its centre one radius above it."""
+    sim = Simulation(log_model(3.0 * RHO * LOG_VOLUME, floor=True))
+    for _ in range(2500):
+        sim.step()
+    assert sim.data.qpos[2] == pytest.approx(-0.5 + D / 2, abs=2e-3)
+    assert np.max(np.abs(sim.data.qvel[:6])) < 1e-2
+
+
+def test_bad_inputs() -> None:
+    model = log_model(10.0)
+    with pytest.raises(ValueError, match=r"gravity .* must be \(0, 0, -9.81\)"):
+        bad = log_model(10.0)
+        bad.opt.gravity[:] = (0.0, 0.0, -9.7)  # type: ignore[attr-defined]
+        Simulation(bad)
+    with pytest.raises(ValueError, match="scheme must be one of matrix, lagged"):
+        Simulation(model, scheme="implicit")
+    with pytest.raises(ValueError, match="integrator must be one of euler, rk4"):
+        Simulation(model, integrator="rk45")
+    with pytest.raises(ValueError, match="depth must be >= 0"):
+        Simulation(model, depth=-1.0)
+    with pytest.raises(ValueError, match="current must be 3 finite numbers"):
+        Simulation(model, current=(0.0, math.nan, 0.0))
+    with pytest.raises(TypeError, match="model must be a mujoco.MjModel"):
+        Simulation("log.xml")
+    other, _ = pendulum()
+    with pytest.raises(ValueError, match="is not the robot's joint 0"):
+        Simulation(
+            other,
+            robot=Simulation(model).robot.__class__([uwml.Joint((0, 0, 0), (1, 0, 0), kind="prismatic")], [uwml.Link(1.0, (0, 0, 0), 0.0)]),
+        )
+    sim = Simulation(model)
+    with pytest.raises(ValueError, match="torque must be 1 finite numbers"):
+        sim.step(torque=[1.0, 2.0])
+    # The caller's model keeps its fluid settings; the simulation's has MuJoCo's fluid model off.
+    model.opt.density = 1000.0  # type: ignore[attr-defined]
+    assert Simulation(model).model.opt.density == 0.0 and model.opt.density == 1000.0  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("file, hydro", [("arm.xml", "arm.hydro.toml"), ("hexapod.xml", None)])
+def test_the_forward_pass_solves_rigid_plus_environment_on_a_floating_base(file: str, hydro: str | None) -> None:
+    """At a random state of a free-floating robot (base turned and moving, joints moving, in a
+    current), MuJoCo's accelerations with uwml inside satisfy M(q) q̈ + bias(q, q̇) = Sᵀ τ_env
+    with τ_env uwml's full environment (drag, added mass at those accelerations, buoyancy,
+    Froude-Krylov) evaluated directly, ν̇ = Rᵀ v̇_world − ω × v, and M, bias MuJoCo's rigid body
+    alone: the split τ_env,0 − M_A q̈ and the map between the coordinates are exact."""
+    from pathlib import Path
+
+    data = Path(__file__).parent / "data"
+    current = (0.3, -0.1, 0.05)
+    sim = Simulation.from_file(
+        data / file, None if hydro is None else data / hydro, current=current, current_acceleration=(0.02, 0.0, -0.01)
+    )
+    model = sim.model
+    model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)  # type: ignore[attr-defined]  # no contacts, no limits
+    rng = np.random.default_rng(3)
+    quaternion = rng.normal(size=4)
+    sim.data.qpos[3:7] = quaternion / np.linalg.norm(quaternion)
+    sim.data.qpos[7:] = rng.uniform(-0.3, 0.3, model.nq - 7) * np.where(model.jnt_type[1:] == 2, 0.05, 1.0)  # type: ignore[attr-defined]
+    sim.data.qvel[:] = rng.uniform(-0.5, 0.5, model.nv)
+    sim.forward()
+    qacc = sim.data.qacc.copy()
+    rigid = mujoco.MjData(sim.model)
+    rigid.qpos[:], rigid.qvel[:] = sim.data.qpos, sim.data.qvel
+    mujoco.mj_forward(sim.model, rigid)
+    mass = np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(sim.model, rigid, mass)
+    assert rigid.nefc == 0  # no constraint acts
+    rotation = rigid.xmat[1].reshape(3, 3)
+    velocity, angular = rotation.T @ rigid.qvel[0:3], rigid.qvel[3:6]
+    motion = uwml.BaseMotion(
+        orientation=rigid.xquat[1],
+        velocity=velocity,
+        angular_velocity=angular,
+        acceleration=rotation.T @ qacc[0:3] - np.cross(angular, velocity),
+        angular_acceleration=qacc[3:6],
+    )
+    env = sim.robot.environment(
+        rigid.qpos[7:], rigid.qvel[6:], qacc[6:], base_motion=motion, current=current, current_acceleration=(0.02, 0.0, -0.01)
+    )
+    generalized = np.concatenate([rotation @ env.base.total[:3], env.base.total[3:], env.total])
+    lhs = mass @ qacc + rigid.qfrc_bias
+    np.testing.assert_allclose(lhs, generalized, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(generalized))))
+    assert np.max(np.abs(env.added_mass)) > 1e-3 * np.max(np.abs(env.total))  # the added mass matters here
