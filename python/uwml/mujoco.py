@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .environment import JointLosses
 from .model import Water
-from .robot import BaseMotion, Robot
+from .robot import BaseMotion, Robot, _trusted_motion
 
 __all__ = ["SCHEMES", "Simulation"]
 
@@ -223,17 +223,19 @@ class Simulation:
         return selection
 
     def _base_motion(self) -> BaseMotion:
+        zero = np.zeros(3)
         if self._base_is_world:
-            return BaseMotion()
+            return _trusted_motion(np.array([1.0, 0.0, 0.0, 0.0]), zero, zero, zero, zero)
         orientation = np.array(self.data.xquat[self._root])
         if not self._floating:
-            return BaseMotion(orientation=orientation)
+            return _trusted_motion(orientation, zero, zero, zero, zero)
         assert self._free_dof is not None
         rotation = self.data.xmat[self._root].reshape(3, 3)
-        velocity = rotation.T @ self.data.qvel[self._free_dof : self._free_dof + 3]
-        angular = np.array(self.data.qvel[self._free_dof + 3 : self._free_dof + 6])
+        v = rotation.T @ self.data.qvel[self._free_dof : self._free_dof + 3]
+        w = np.array(self.data.qvel[self._free_dof + 3 : self._free_dof + 6])
         # ν̇ = Rᵀ v̇_world − ω × v: the second term is what zero MuJoCo acceleration means to uwml.
-        return BaseMotion(orientation=orientation, velocity=velocity, angular_velocity=angular, acceleration=-np.cross(angular, velocity))
+        minus_w_cross_v = np.array([w[2] * v[1] - w[1] * v[2], w[0] * v[2] - w[2] * v[0], w[1] * v[0] - w[0] * v[1]])
+        return _trusted_motion(orientation, v, w, minus_w_cross_v, zero)
 
     # --- one forward pass ------------------------------------------------------------------
 

@@ -90,6 +90,17 @@ class BaseMotion:
 _MOTION_FIELDS = ("orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration")
 
 
+def _trusted_motion(*arrays: FloatArray) -> BaseMotion:
+    """A :class:`BaseMotion` of one state from five float64 arrays already known to be finite,
+    of the right shapes, the quaternion a unit one (a simulator's state, :mod:`uwml.mujoco`):
+    without the checks, which cost more than the evaluation. The native call checks again."""
+    motion = object.__new__(BaseMotion)
+    for name, array in zip(_MOTION_FIELDS, arrays, strict=True):
+        object.__setattr__(motion, name, array)
+    object.__setattr__(motion, "_one", arrays)
+    return motion
+
+
 @dataclass(frozen=True)
 class BaseWrench:
     """The environment's wrench on the whole robot, per component, at the base (MODEL.md 9.5).

@@ -1,0 +1,81 @@
+"""The cost of a MuJoCo step with uwml inside (uwml.mujoco.Simulation) against a bare mj_step
+and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tests/data.
+
+    python benches/simulation.py [--steps N]
+
+Prints microseconds per step (median of 5 runs of N steps) and the ratios to a bare mj_step, for
+the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints). Timings on a
+shared machine are noisy: compare ratios from one run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+import mujoco
+import numpy as np
+from uwml.descriptions import model_and_robot
+from uwml.mujoco import Simulation
+
+DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
+ROBOTS = {"paper leg (fixed base)": ("paper_leg.xml", "paper_leg.hydro.toml"), "arm on a floating hull": ("arm.xml", "arm.hydro.toml")}
+
+
+def with_fluid(path: Path, ellipsoid: bool) -> mujoco.MjModel:
+    """The description with MuJoCo's fluid model on (water: 1000 kg/m³, 1e-3 Pa·s): the
+    inertia-box model, or the ellipsoid model on every collision geom; visual geoms removed."""
+    spec = mujoco.MjSpec.from_file(str(path))
+    spec.compiler.fusestatic = False
+    for geom in list(spec.geoms):
+        if not (geom.contype or geom.conaffinity):
+            spec.delete(geom)
+        elif ellipsoid:
+            geom.fluid_ellipsoid = 1.0
+    for mesh in list(spec.meshes):
+        spec.delete(mesh)
+    compiled = spec.compile()
+    compiled.opt.density, compiled.opt.viscosity = 1000.0, 1e-3
+    return compiled
+
+
+def per_step(step, steps: int) -> float:  # type: ignore[no-untyped-def]
+    runs = []
+    for _ in range(5):
+        start = time.perf_counter()
+        for _ in range(steps):
+            step()
+        runs.append((time.perf_counter() - start) / steps * 1e6)
+    return statistics.median(runs)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--steps", type=int, default=2000)
+    args = parser.parse_args()
+    print(f"microseconds per step (median of 5 × {args.steps} steps); ratio to a bare mj_step")
+    for name, (file, hydro) in ROBOTS.items():
+        model, _ = model_and_robot(DATA / file, DATA / hydro)
+        rng = np.random.default_rng(0)
+        rows = []
+        bare = mujoco.MjData(model)
+        bare.qvel[:] = rng.uniform(-0.5, 0.5, model.nv)
+        rows.append(("bare mj_step", per_step(lambda m=model, d=bare: mujoco.mj_step(m, d), args.steps)))
+        for label, ellipsoid in (("MuJoCo fluid, inertia box", False), ("MuJoCo fluid, ellipsoid", True)):
+            fluid = with_fluid(DATA / file, ellipsoid)
+            data = mujoco.MjData(fluid)
+            data.qvel[:] = rng.uniform(-0.5, 0.5, fluid.nv)
+            rows.append((label, per_step(lambda m=fluid, d=data: mujoco.mj_step(m, d), args.steps)))
+        for integrator in ("euler", "rk4"):
+            sim = Simulation.from_file(DATA / file, DATA / hydro, integrator=integrator)
+            sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
+            rows.append((f"uwml.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps)))
+        print(f"\n{name}")
+        for label, micro in rows:
+            print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")
+
+
+if __name__ == "__main__":
+    main()
