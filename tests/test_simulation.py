@@ -206,3 +206,18 @@ def test_the_forward_pass_solves_rigid_plus_environment_on_a_floating_base(file:
     lhs = mass @ qacc + rigid.qfrc_bias
     np.testing.assert_allclose(lhs, generalized, rtol=1e-9, atol=1e-9 * float(np.max(np.abs(generalized))))
     assert np.max(np.abs(env.added_mass)) > 1e-3 * np.max(np.abs(env.total))  # the added mass matters here
+
+
+def test_the_readme_simulation_example_runs(monkeypatch: pytest.MonkeyPatch) -> None:
+    """README "Simulating in water": run as written, beside the test arm (tests/data)."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    section = (root / "README.md").read_text(encoding="utf-8").split("## Simulating in water", 1)[1]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    monkeypatch.chdir(root / "tests" / "data")
+    namespace: dict = {}
+    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the README's own example
+    sim = namespace["sim"]
+    assert sim.data.time == pytest.approx(1000 * sim.model.opt.timestep) and sim.depth == 1000.0
+    assert np.all(np.isfinite(sim.data.qvel)) and abs(sim.data.qvel[0]) > 1e-3  # the current pushes the hull
