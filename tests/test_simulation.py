@@ -221,3 +221,114 @@ def test_the_readme_simulation_example_runs(monkeypatch: pytest.MonkeyPatch) -> 
     sim = namespace["sim"]
     assert sim.data.time == pytest.approx(1000 * sim.model.opt.timestep) and sim.depth == 1000.0
     assert np.all(np.isfinite(sim.data.qvel)) and abs(sim.data.qvel[0]) > 1e-3  # the current pushes the hull
+
+
+def without_drag(robot: uwml.Robot) -> uwml.Robot:
+    """The same robot with every segment's Cd zero (its Cm kept)."""
+    import dataclasses
+
+    def strip(link: uwml.Link) -> uwml.Link:
+        segments = [
+            dataclasses.replace(s, cd=0.0, cm=s.cm[0]) if s.section == "circular" else dataclasses.replace(s, cd=(0.0, 0.0))  # type: ignore[index]
+            for s in link.segments
+        ]
+        return uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=segments, name=link.name)
+
+    base = None if robot.base is None else strip(robot.base)
+    return uwml.Robot(robot.joints, [strip(link) for link in robot.links], base=base, water=robot.water)
+
+
+def weightless(model: object) -> object:
+    model.opt.gravity[:] = 0.0  # type: ignore[attr-defined]
+    return model
+
+
+def energy(sim: Simulation) -> float:
+    """``T_rigid + T_A`` (no gravity: no potential): ½ q̇ᵀ M q̇ from MuJoCo's rigid inertia, and
+    ½ xᵀ M_A x with x = (Rᵀ v_world, ω_body, q̇)."""
+    rigid = mujoco.MjData(sim.model)
+    rigid.qpos[:], rigid.qvel[:] = sim.data.qpos, sim.data.qvel
+    mujoco.mj_forward(sim.model, rigid)
+    mass = np.zeros((sim.model.nv, sim.model.nv))
+    mujoco.mj_fullM(sim.model, rigid, mass)
+    qvel = rigid.qvel
+    rotation = rigid.xmat[1].reshape(3, 3)
+    x = np.concatenate([rotation.T @ qvel[0:3], qvel[3:6], qvel[6:]])
+    added = sim.robot.added_mass_matrix(rigid.qpos[7:], water=sim.water)
+    return 0.5 * float(qvel @ mass @ qvel) + 0.5 * float(x @ added @ x)
+
+
+def test_kirchhoff_conserves_the_energy_and_drag_only_dissipates_it() -> None:
+    """Drag and losses off, still water, no gravity (so no potential), no motor torque: the arm
+    on its free hull, set spinning, keeps T_rigid + T_A to the RK4 integrator's accuracy with
+    Kirchhoff's added mass and not with Morison's; with its drag on, the energy only falls."""
+    from pathlib import Path
+
+    from uwml.descriptions import model_and_robot
+
+    data = Path(__file__).parent / "data"
+    model, robot = model_and_robot(data / "arm.xml", data / "arm.hydro.toml")
+    model = weightless(model)
+    water = uwml.Water(1000.0, 0.0)
+    rng = np.random.default_rng(4)
+    start = rng.uniform(-0.6, 0.6, model.nv)  # type: ignore[attr-defined]
+    model.opt.timestep = 1e-3  # type: ignore[attr-defined]
+
+    def drift(robot: uwml.Robot, step: float, **kwargs: str) -> float:
+        model.opt.timestep = step  # type: ignore[attr-defined]
+        sim = Simulation(model, robot, water=water, integrator="rk4", **kwargs)
+        sim.model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)  # type: ignore[attr-defined]
+        sim.data.qvel[:] = start
+        first, worst = energy(sim), 0.0
+        while sim.data.time < 1.5 - 1e-9:
+            sim.step()
+            worst = max(worst, abs(energy(sim) - first) / first)
+        return worst
+
+    coarse, fine = drift(without_drag(robot), 1e-3, added_mass="kirchhoff"), drift(without_drag(robot), 5e-4, added_mass="kirchhoff")
+    morison = drift(without_drag(robot), 1e-3)
+    # Conserved to the integrator's accuracy: the drift falls with the step (about 4× per halving:
+    # RK4 on body-frame angular velocities averaged through quaternions is second order).
+    assert coarse < 1e-7 and fine < coarse / 3.0, (coarse, fine)
+    assert morison > 1e-2, morison
+    model.opt.timestep = 1e-3  # type: ignore[attr-defined]
+    sim = Simulation(model, robot, water=water, integrator="rk4", added_mass="kirchhoff")
+    sim.model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)  # type: ignore[attr-defined]
+    sim.data.qvel[:] = start
+    values = [energy(sim)]
+    for _ in range(1500):
+        sim.step()
+        values.append(energy(sim))
+    assert np.all(np.diff(values) <= 1e-12 * values[0]) and values[-1] < 0.9 * values[0]
+
+
+def test_morison_energy_rate_is_model_md_11() -> None:
+    """With Morison's added mass (drag off, still water, no gravity) the energy of a spinning,
+    moving log changes at Σ_k ∫ ρ Cm A v_k (ṅ_k·v) ds (MODEL.md 11), computed here by
+    Gauss-Legendre quadrature from the log's state; dE/dt by central differences of the energy
+    along the RK4 trajectory."""
+    model = weightless(log_model(1.5 * RHO * LOG_VOLUME))
+    robot = without_drag(uwml.Robot.from_mujoco(model))
+    sim = Simulation(model, robot, water=uwml.Water(1000.0, 0.0), integrator="rk4")
+    sim.data.qvel[:6] = (0.3, -0.2, 0.4, 0.5, -0.7, 0.9)  # linear (world), angular (body)
+    h = sim.model.opt.timestep  # type: ignore[attr-defined]
+    energies, rates = [], []
+    nodes, weights = np.polynomial.legendre.leggauss(6)
+    area = math.pi * D**2 / 4
+    for _ in range(400):
+        mujoco.mj_forward(sim.model, sim.data)
+        rotation = sim.data.xmat[1].reshape(3, 3)
+        omega = rotation @ sim.data.qvel[3:6]
+        u = rotation @ np.array([1.0, 0.0, 0.0])
+        normals = [rotation @ np.array([0.0, 1.0, 0.0]), rotation @ np.array([0.0, 0.0, 1.0])]
+        rate = 0.0
+        for s, w in zip(nodes * L / 2, weights * L / 2, strict=True):
+            v = sim.data.qvel[0:3] + np.cross(omega, s * u)
+            rate += w * sum(RHO * area * (n @ v) * (np.cross(omega, n) @ v) for n in normals)
+        rates.append(rate)
+        energies.append(energy(sim))
+        sim.step()
+    measured = (np.array(energies[2:]) - np.array(energies[:-2])) / (2 * h)
+    expected = np.array(rates[1:-1])
+    assert np.max(np.abs(expected)) > 1e-2
+    np.testing.assert_allclose(measured, expected, atol=1e-5 * np.max(np.abs(expected)))

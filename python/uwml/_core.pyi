@@ -163,6 +163,7 @@ class Robot:
         losses: NDArray[np.float64] | None = None,
         pressure: NDArray[np.float64] | None = None,
         temperature: NDArray[np.float64] | None = None,
+        kirchhoff: bool = False,
     ) -> list[NDArray[np.float64]]: ...
     def hydro_one(
         self,
@@ -179,6 +180,7 @@ class Robot:
         current: object,
         current_acceleration: object,
         threads: object,
+        kirchhoff: bool = False,
     ) -> _Result | None: ...
     def environment_one(
         self,
@@ -199,6 +201,7 @@ class Robot:
         current: object,
         current_acceleration: object,
         threads: object,
+        kirchhoff: bool = False,
     ) -> _Result | None: ...
     def regressors(
         self,

@@ -30,7 +30,9 @@ not applied.
 **Integrators.** ``integrator="euler"``: MuJoCo's semi-implicit Euler (``mj_Euler``) after the
 forward pass above, contacts included. ``"rk4"``: the classical Runge-Kutta method on that
 forward pass (positions advanced with ``mj_integratePos``), for smooth motions without contacts,
-where its fourth order matters (the tests compare it with ``scipy.integrate.solve_ivp``).
+where its order matters (the tests compare it with ``scipy.integrate.solve_ivp``): fourth order
+for hinge and slide joints; a free joint's rotation, advanced with velocities averaged over the
+stages as MuJoCo's own RK4 does, is second order.
 """
 
 from __future__ import annotations
@@ -97,6 +99,9 @@ class Simulation:
         ``−M_A q̈_previous`` as a force, for comparison.
     integrator : {"euler", "rk4"}
         See the module docstring.
+    added_mass : {"morison", "kirchhoff"}
+        The added mass's velocity terms (``Robot.hydro``): the paper's Morison form, or
+        Kirchhoff's, which conserves the energy ``T_rigid + T_A + V`` without drag and losses.
 
     Attributes
     ----------
@@ -121,6 +126,7 @@ class Simulation:
         water: Water | None = None,
         scheme: str = "matrix",
         integrator: str = "euler",
+        added_mass: str = "morison",
     ) -> None:
         mujoco = _mujoco()
         if not isinstance(model, mujoco.MjModel):
@@ -153,7 +159,9 @@ class Simulation:
         self.depth, self.temperature_c, self.losses = float(depth), float(temperature_c), losses
         self.current = _vector3(current, "current")
         self.current_acceleration = _vector3(current_acceleration, "current_acceleration")
-        self.scheme, self.integrator = scheme, integrator
+        if added_mass not in ("morison", "kirchhoff"):
+            raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
+        self.scheme, self.integrator, self.added_mass = scheme, integrator, added_mass
         self._map_degrees_of_freedom()
         self._previous_acceleration = np.zeros(self._n_uwml)
         # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
@@ -256,6 +264,7 @@ class Simulation:
             base_motion=self._base_motion(),
             current=self.current,
             current_acceleration=self.current_acceleration,
+            added_mass=self.added_mass,
         )
         # ``total`` is drag + added mass + buoyancy (+ losses on the joints): no gravity.
         forces = np.concatenate([result.base.total, result.total])

@@ -22,7 +22,17 @@ from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, los
 from .leg import FRESH_WATER, HydroTorques, _threads, _water
 from .model import Joint, Link, Segment, Water
 
-__all__ = ["MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "Robot", "RobotEnvironment", "RobotJacobians", "RobotRegressors", "RobotTorques"]
+__all__ = [
+    "MAX_ROBOT_JOINTS",
+    "MAX_SEGMENTS",
+    "BaseMotion",
+    "BaseWrench",
+    "Robot",
+    "RobotEnvironment",
+    "RobotJacobians",
+    "RobotRegressors",
+    "RobotTorques",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -79,7 +89,6 @@ class BaseMotion:
             raise ValueError(
                 f"base_motion.orientation must be a unit quaternion (w, x, y, z) (norm 1 within 1e-6); sample {bad[0]} has norm {norms[bad[0]]}"
             )
-
 
     def _single(self) -> tuple[FloatArray, ...] | None:
         """The five arrays, if this is one motion for every sample (else None)."""
@@ -188,7 +197,11 @@ class RobotRegressors:
             gravity=self.base_gravity,
         )
         return RobotTorques(
-            drag=apply(self.drag, cd_table), added_mass=apply(self.added_mass, cm_table), buoyancy=self.buoyancy, gravity=self.gravity, base=base
+            drag=apply(self.drag, cd_table),
+            added_mass=apply(self.added_mass, cm_table),
+            buoyancy=self.buoyancy,
+            gravity=self.gravity,
+            base=base,
         )
 
 
@@ -225,6 +238,16 @@ def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None
         if item is not None and not isinstance(item, JointLosses):
             raise TypeError(f"losses[{index}] must be a uwml.JointLosses or None, got {type(item).__name__}")
     return items
+
+
+#: The forms of the added-mass forces (MODEL.md 11): the paper's Morison form, and Kirchhoff's.
+ADDED_MASS_FORMS = ("morison", "kirchhoff")
+
+
+def _kirchhoff(added_mass: object) -> bool:
+    if added_mass not in ADDED_MASS_FORMS:
+        raise ValueError(f"added_mass must be one of {', '.join(ADDED_MASS_FORMS)}, got {added_mass!r}")
+    return added_mass == "kirchhoff"
 
 
 def _short_path(water: object, base_motion: object) -> tuple[bool, tuple[FloatArray, ...] | None]:
@@ -306,7 +329,9 @@ class Robot:
         if base is not None and not isinstance(base, Link):
             raise TypeError(f"base must be a uwml.Link or None, got {type(base).__name__}")
         if len(joints) != len(links) or not 1 <= len(joints) <= MAX_ROBOT_JOINTS:
-            raise ValueError(f"a robot needs as many links as joints, 1 to {MAX_ROBOT_JOINTS}; got {len(joints)} joints and {len(links)} links")
+            raise ValueError(
+                f"a robot needs as many links as joints, 1 to {MAX_ROBOT_JOINTS}; got {len(joints)} joints and {len(links)} links"
+            )
         parents = []
         for index, joint in enumerate(joints):
             parent = index - 1 if joint.parent is None else joint.parent
@@ -383,7 +408,9 @@ class Robot:
     def _the_water(self, water: Water | None) -> Water:
         return self._water if water is None else _water(water)
 
-    def _effective_losses(self, losses: JointLosses | Sequence[JointLosses | None] | None) -> JointLosses | Sequence[JointLosses | None] | None:
+    def _effective_losses(
+        self, losses: JointLosses | Sequence[JointLosses | None] | None
+    ) -> JointLosses | Sequence[JointLosses | None] | None:
         """``losses`` if given, else the joints' own: one object when they all share one."""
         if losses is not None:
             return losses
@@ -462,7 +489,9 @@ class Robot:
         elif array.shape == (n, 2):
             table = np.array(array)
         else:
-            raise ValueError(f"{name} must be None, a scalar, shape ({n},) per segment, or ({n}, 2) per segment and direction; got shape {array.shape}")
+            raise ValueError(
+                f"{name} must be None, a scalar, shape ({n},) per segment, or ({n}, 2) per segment and direction; got shape {array.shape}"
+            )
         if not np.all(np.isfinite(table)) or np.any(table < 0.0):
             raise ValueError(f"{name} must be finite and non-negative, got {array.tolist()}")
         unequal = np.flatnonzero(self._circular & (table[:, 0] != table[:, 1]))
@@ -562,6 +591,7 @@ class Robot:
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> RobotTorques:
         """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the base.
 
@@ -586,6 +616,12 @@ class Robot:
             ``ρ V (current_acceleration − g)``.
         threads
             Threads to split a batch over (≥ 1).
+        added_mass
+            ``"morison"`` (default): the paper's form, added mass on the normal components of
+            each slice's acceleration. ``"kirchhoff"``: the form derived from the water's kinetic
+            energy (MODEL.md 11; the core's ``AddedMassForm``): the same added-mass matrix,
+            other velocity terms, energy-consistent. ``hydro_regressors`` and ``jacobians`` are
+            of the Morison form.
 
         Any argument with a sample axis gives results with one; the others are broadcast. One
         state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
@@ -593,16 +629,30 @@ class Robot:
         checks and the same bits as that state's row of a batch.
         """
         water = self._the_water(water)
+        kirchhoff = _kirchhoff(added_mass)
         short, motion = _short_path(water, base_motion)
         if short:
             one: RobotTorques | None = self._core.hydro_one(
-                RobotTorques, BaseWrench, q, qd, qdd, cd, cm, water.density, water.gravity, motion, current, current_acceleration, threads
+                RobotTorques,
+                BaseWrench,
+                q,
+                qd,
+                qdd,
+                cd,
+                cm,
+                water.density,
+                water.gravity,
+                motion,
+                current,
+                current_acceleration,
+                threads,
+                kirchhoff,
             )
             if one is not None:
                 return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        out = self._core.hydro(*arguments, threads, False)
+        out = self._core.hydro(*arguments, threads, False, kirchhoff=kirchhoff)
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
@@ -632,6 +682,7 @@ class Robot:
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         sea_density: float = SEA_WATER_DENSITY,
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> RobotEnvironment:
         """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call.
 
@@ -644,6 +695,7 @@ class Robot:
         """
         losses = self._effective_losses(losses)
         water = self._the_water(water)
+        kirchhoff = _kirchhoff(added_mass)
         short, motion = _short_path(water, base_motion)
         if short:
             one: RobotEnvironment | None = self._core.environment_one(
@@ -664,6 +716,7 @@ class Robot:
                 current,
                 current_acceleration,
                 threads,
+                kirchhoff,
             )
             if one is not None:
                 return one
@@ -671,7 +724,7 @@ class Robot:
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
         pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
-        out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature)
+        out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature, kirchhoff=kirchhoff)
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
@@ -756,6 +809,7 @@ class Robot:
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> FloatArray:
         """The environment's wrench on every body, for coupling to a simulator.
 
@@ -766,7 +820,7 @@ class Robot:
         """
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        wrenches = self._core.hydro(*arguments, threads, True)[8]
+        wrenches = self._core.hydro(*arguments, threads, True, kirchhoff=_kirchhoff(added_mass))[8]
         shape = (n_samples, self.n_joints + 1, 6) if batched else (self.n_joints + 1, 6)
         return wrenches.reshape(shape)
 

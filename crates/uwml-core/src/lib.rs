@@ -32,5 +32,6 @@ pub use nalgebra;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
 pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians};
 pub use tree::{
-    EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+    AddedMassForm, EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro,
+    robot_hydro_regressors, robot_hydro_with,
 };

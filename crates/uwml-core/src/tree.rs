@@ -304,6 +304,24 @@ impl<T: SimdRealField + Copy> Frame<T> {
     }
 }
 
+/// How the added-mass forces depend on the velocities (MODEL.md 11). Both share the added-mass
+/// matrix `M_A(q)`, the acceleration part; they differ in the velocity terms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AddedMassForm {
+    /// The paper's Morison form: each slice's added mass on the normal components of its
+    /// acceleration relative to the water, `−ρ Cm_k A (n_k·a) n_k`. Not derived from the water's
+    /// kinetic energy: with drag off it exchanges energy with the robot at the rate of MODEL.md 11.
+    #[default]
+    Morison,
+    /// Kirchhoff's form, derived from the water's kinetic energy `T_A = ½ Σ ∫ ρ Cm_k A v_k² ds`:
+    /// each slice, a body with the added-mass tensor `Σ_k ρ Cm_k A n_k n_kᵀ` and relative
+    /// velocity `v`, feels the force `−dp/dt` (`p` its added momentum, `n_k` turning with the
+    /// link) and the couple `−v × p` (Munk's). The generalized forces are then
+    /// `−M_A q̈ − C_A q̇` with `Ṁ_A − 2 C_A` skew-symmetric: in still water, without drag, the
+    /// energy `T_rigid + T_A + V` is conserved.
+    Kirchhoff,
+}
+
 /// The water around the robot in base components, and its constants.
 struct Surroundings<T: SimdRealField + Copy> {
     density: T,
@@ -334,6 +352,7 @@ fn segment_wrenches<T: SimdRealField + Copy>(
     [cd0, cd1]: [T; 2],
     [cm0, cm1]: [T; 2],
     water: &Surroundings<T>,
+    form: AddedMassForm,
 ) -> (Wrench<T>, Wrench<T>) {
     let r = rotate(&frame.rotation, &segment.start);
     let u = rotate(&frame.rotation, &segment.axis);
@@ -359,6 +378,18 @@ fn segment_wrenches<T: SimdRealField + Copy>(
                 let moment_direction = u.cross(&n);
                 drag += Wrench { force: n * (drag_scale * d0), moment: moment_direction * (drag_scale * d1) };
                 added_mass += Wrench { force: n * (mass_scale * m0), moment: moment_direction * (mass_scale * m1) };
+                if form == AddedMassForm::Kirchhoff {
+                    // ṅ = ω × n. Extra force density −m[(ṅ·v) n + (n·v) ṅ]; couple −v × p with
+                    // p = m (n·v) n: ∫ (n·v)(v × n) times −m, v = v0 + s v1.
+                    let n_dot = w.cross(&n);
+                    let (e0, e1) = added_mass_moments(dot(&n_dot, &v0), dot(&n_dot, &v1), length);
+                    let (c0, c1) = added_mass_moments(dot(&n, &v0), dot(&n, &v1), length);
+                    added_mass += Wrench {
+                        force: (n * e0 + n_dot * c0) * mass_scale,
+                        moment: (moment_direction * e1 + u.cross(&n_dot) * c1 + v0.cross(&n) * c0 + v1.cross(&n) * c1)
+                            * mass_scale,
+                    };
+                }
             }
             (drag, added_mass)
         }
@@ -375,10 +406,22 @@ fn segment_wrenches<T: SimdRealField + Copy>(
                 (added_mass_moments(T::one(), T::zero(), length), added_mass_moments(T::zero(), T::one(), length));
             // ∫ a⊥ = a0 L + a1 L²/2, ∫ s a⊥ = a0 L²/2 + a1 L³/3.
             let mass_scale = added_mass_scale * cm0;
-            let added_mass = Wrench {
+            let mut added_mass = Wrench {
                 force: (a0n * m_force.0 + a1n * m_moment.0) * mass_scale,
                 moment: u.cross(&(a0n * m_force.1 + a1n * m_moment.1)) * mass_scale,
             };
+            if form == AddedMassForm::Kirchhoff {
+                // p = m v⊥, v⊥ = p0 + s v1 (v1 = ω × u = u̇), c = u·v constant along the segment:
+                // dv⊥/dt = a⊥ − v1 c − u (v1·v). Extra force density −m[−v1 c − u (v1·v)], whose
+                // moment about the start is −m[−(u × v1) c s]; couple −v × p = −m c u × v⊥.
+                let c = dot(&u, &v0);
+                let (f0, _) = added_mass_moments(dot(&v1, &v0), dot(&v1, &v1), length);
+                let (l, l2) = m_force;
+                added_mass += Wrench {
+                    force: (v1 * (c * l) + u * f0) * -mass_scale,
+                    moment: (u.cross(&v1) * (c * l2) - u.cross(&(p0 * l + v1 * l2)) * c) * -mass_scale,
+                };
+            }
             (drag, added_mass)
         }
     };
@@ -415,6 +458,7 @@ fn finite_lanes<T: SimdRealField + Copy>(states: &[&[T]]) -> T::SimdBool {
 /// [`RobotData::base_wrench`]). `coefficients`: `None` for the segments' own.
 ///
 /// Never fails and never panics; a non-finite joint state gives NaN everywhere (in its lane).
+/// The added mass is the paper's Morison form; [`robot_hydro_with`] takes the form.
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
@@ -426,6 +470,39 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
     q: &[T; J],
     qd: &[T; J],
     qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+) {
+    hydro_in(robot, water, coefficients, AddedMassForm::Morison, motion, current, [q, qd, qdd], data);
+}
+
+/// [`robot_hydro`] with the added mass in the given [`AddedMassForm`].
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_hydro_with<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    form: AddedMassForm,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+) {
+    hydro_in(robot, water, coefficients, form, motion, current, [q, qd, qdd], data);
+}
+
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn hydro_in<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    form: AddedMassForm,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    [q, qd, qdd]: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
 ) {
     let n = robot.joint_count();
@@ -463,7 +540,7 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
                 _ => continue,
             },
         };
-        let (drag, added_mass) = segment_wrenches(frame, segment, cd, cm, &surroundings);
+        let (drag, added_mass) = segment_wrenches(frame, segment, cd, cm, &surroundings, form);
         body.drag += drag;
         body.added_mass += added_mass;
     }
@@ -615,7 +692,8 @@ pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: 
             },
         };
         for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
-            let (drag_wrench, mass_wrench) = segment_wrenches(frame, segment, unit, unit, &surroundings);
+            let (drag_wrench, mass_wrench) =
+                segment_wrenches(frame, segment, unit, unit, &surroundings, AddedMassForm::Morison);
             let column = 2 * k + d;
             for (out, wrench) in [(&mut *drag, &drag_wrench), (&mut *added_mass, &mass_wrench)] {
                 for (row, value) in wrench.to_array().into_iter().enumerate() {

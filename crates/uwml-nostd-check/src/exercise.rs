@@ -13,10 +13,11 @@ use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 use uwml_core::{
+    AddedMassForm,
     BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag, Owner,
     RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water,
     environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions,
-    loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+    loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_hydro_with,
     robot_jacobians, smooth_sign,
 };
 
@@ -253,6 +254,13 @@ fn evaluate_robot<T: RealField + Copy>(robot: &Robot<T, 6, 6>, tally: &mut Tally
         }
     }
     tally.expect(data.body_wrench(robot, Some(4)).is_none());
+    // Kirchhoff's added mass: the same forces but the added mass's velocity terms.
+    let morison = data.base_wrench().total().to_array();
+    let form = black_box(AddedMassForm::Kirchhoff);
+    robot_hydro_with(robot, &water, None, form, &motion, &current, &q, &qd, &qdd, &mut data);
+    let kirchhoff = data.base_wrench().total().to_array();
+    tally.all_finite(kirchhoff.iter());
+    tally.expect(kirchhoff != morison);
     // Regressors, the added-mass matrix and the derivatives (10 = 6 + 4 rows).
     let (mut drag, mut added_mass) = ([c::<T>(f64::NAN); 80], [c::<T>(f64::NAN); 80]);
     robot_hydro_regressors(robot, &water, &motion, &current, &q, &qd, &qdd, &mut data, &mut drag, &mut added_mass);

@@ -2,7 +2,7 @@
 
 use std::ops::Range;
 
-use uwml_core::{Water, loss_torques, robot_hydro, robot_hydro_regressors};
+use uwml_core::{AddedMassForm, Water, loss_torques, robot_hydro_regressors, robot_hydro_with};
 
 use super::inputs::{LossStates, Losses, SampleError, StateRow, Surroundings};
 use super::{Coefficients, Data, Model};
@@ -15,6 +15,7 @@ pub(super) fn hydro_range(
     robot: &Model,
     water: &Water<f64>,
     coefficients: Option<&Coefficients>,
+    form: AddedMassForm,
     surroundings: &Surroundings<'_>,
     [q, qd, qdd]: [&[f64]; 3],
     losses: Option<&Losses<'_>>,
@@ -47,7 +48,7 @@ pub(super) fn hydro_range(
             Some(both) => both,
             None => surroundings.at(sample)?,
         };
-        robot_hydro(robot, water, coefficients, &motion, &current, &row.q, &row.qd, &row.qdd, data);
+        robot_hydro_with(robot, water, coefficients, form, &motion, &current, &row.q, &row.qd, &row.qdd, data);
         let joint_row = |out: &mut [f64], value: &dyn Fn(&uwml_core::JointForces<f64>) -> f64| {
             if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
                 for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {

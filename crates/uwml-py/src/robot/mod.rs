@@ -9,8 +9,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::{
-    Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques, robot_added_mass_matrix,
-    robot_jacobians,
+    AddedMassForm, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques,
+    robot_added_mass_matrix, robot_jacobians,
 };
 
 mod batch;
@@ -24,6 +24,11 @@ use batch::{hydro_range, regressor_range};
 use inputs::{LossStates, Losses, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
 use one::{OneState, one_result};
 use packed::build;
+
+/// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
+fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
+    if kirchhoff { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison }
+}
 
 /// Largest number of joints of a robot built from Python.
 pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
@@ -96,7 +101,7 @@ impl PyRobot {
     /// base (each `(n_samples, 6)`). Base motion and current: `(1, k)` for all samples or
     /// `(n_samples, k)`. `cd`, `cm`: `(S, 2)`, or `(0, 2)` for the segments' own.
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches, losses=None, pressure=None, temperature=None))]
+    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches, losses=None, pressure=None, temperature=None, kirchhoff=false))]
     fn hydro<'py>(
         &self,
         py: Python<'py>,
@@ -119,7 +124,9 @@ impl PyRobot {
         losses: Option<PyReadonlyArray2<'py, f64>>,
         pressure: Option<PyReadonlyArray1<'py, f64>>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
+        kirchhoff: bool,
     ) -> PyResult<Vec<Array2<'py>>> {
+        let form = added_mass_form(kirchhoff);
         let n = self.robot.joint_count();
         let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
         let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
@@ -174,7 +181,18 @@ impl PyRobot {
         let result = py.detach(|| {
             if threads <= 1 {
                 let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                hydro_range(robot, &water, coefficients, &surroundings, states, losses, &(0..n_samples), &mut data, out)
+                hydro_range(
+                    robot,
+                    &water,
+                    coefficients,
+                    form,
+                    &surroundings,
+                    states,
+                    losses,
+                    &(0..n_samples),
+                    &mut data,
+                    out,
+                )
             } else {
                 // Samples are numbered in the whole batch already.
                 let shift = |e: SampleError, _start: usize| e;
@@ -186,7 +204,18 @@ impl PyRobot {
                     out,
                     |range, out| {
                         let mut data = Box::new(Data::new());
-                        hydro_range(robot, &water, coefficients, &surroundings, states, losses, range, &mut data, out)
+                        hydro_range(
+                            robot,
+                            &water,
+                            coefficients,
+                            form,
+                            &surroundings,
+                            states,
+                            losses,
+                            range,
+                            &mut data,
+                            out,
+                        )
                     },
                     shift,
                 )
@@ -205,6 +234,7 @@ impl PyRobot {
     /// (`uwml.BaseWrench`), the same bits as the batch path; or `None` when any argument is of
     /// another kind or fails a check (the general path then answers, with its errors).
     #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (result_type, base_type, q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads, kirchhoff=false))]
     fn hydro_one<'py>(
         &self,
         result_type: &Bound<'py, PyType>,
@@ -220,11 +250,12 @@ impl PyRobot {
         current: &Bound<'py, PyAny>,
         current_acceleration: &Bound<'py, PyAny>,
         threads: &Bound<'py, PyAny>,
+        kirchhoff: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
         let Some(one) = OneState::read(self.robot.joint_count(), arguments) else { return Ok(None) };
         let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        one.evaluate(&self.robot, &mut data);
+        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         one_result(result_type, base_type, &data, None).map(Some)
     }
 
@@ -232,6 +263,7 @@ impl PyRobot {
     /// `temperature`, `sea_density` > 0 numbers, `losses` None or packed `(N, LOSS_WIDTH)`;
     /// a `result_type` (`uwml.RobotEnvironment`) or `None`, as there.
     #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (result_type, base_type, q, qd, qdd, depth, temperature, losses, cd, cm, density, gravity, sea_density, motion, current, current_acceleration, threads, kirchhoff=false))]
     fn environment_one<'py>(
         &self,
         result_type: &Bound<'py, PyType>,
@@ -251,6 +283,7 @@ impl PyRobot {
         current: &Bound<'py, PyAny>,
         current_acceleration: &Bound<'py, PyAny>,
         threads: &Bound<'py, PyAny>,
+        kirchhoff: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let n = self.robot.joint_count();
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
@@ -278,7 +311,7 @@ impl PyRobot {
         let (pressure, temperature) = ([sea_density * one.water.gravity() * depth], [temperature]);
         let conditions = Losses { joints, pressure: &pressure, temperature: &temperature };
         let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        one.evaluate(&self.robot, &mut data);
+        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         let (visc, seal, loss_current) = loss_torques(LossStates::new().at(&conditions, 0), &one.row.qd.into());
         one_result(result_type, base_type, &data, Some([&visc, &seal, &loss_current].map(|v| v.as_slice()))).map(Some)
     }

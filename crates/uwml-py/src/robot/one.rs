@@ -5,7 +5,7 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyString, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{BaseMotion, Current, Water, robot_hydro};
+use uwml_core::{AddedMassForm, BaseMotion, Current, Water, robot_hydro_with};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -64,9 +64,9 @@ impl OneState {
         Some(Self { row, water, coefficients, motion, current })
     }
 
-    pub(super) fn evaluate(&self, robot: &Model, data: &mut Data) {
+    pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data) {
         let Self { row, water, coefficients, motion, current } = self;
-        robot_hydro(robot, water, coefficients.as_ref(), motion, current, &row.q, &row.qd, &row.qdd, data);
+        robot_hydro_with(robot, water, coefficients.as_ref(), form, motion, current, &row.q, &row.qd, &row.qdd, data);
     }
 }
 
