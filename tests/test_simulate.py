@@ -1,0 +1,73 @@
+"""``uwml simulate`` (uwml.simulate): the paper's leg walking in sea water under four controllers."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+import uwml
+
+mujoco = pytest.importorskip("mujoco")
+from uwml import simulate  # noqa: E402
+from uwml.cli import main  # noqa: E402
+
+
+def test_the_plant_is_table_ii_with_box_inertias() -> None:
+    model = mujoco.MjModel.from_xml_string(simulate.leg_model())
+    np.testing.assert_allclose(model.body_mass[2:5], [10.758, 19.261, 10.375], rtol=1e-15)
+    # The thigh: a uniform box 0.66 m along x, 0.238 m along y (n0), 0.131 m along z (n1).
+    a, b, c = 0.66, 0.238, 0.131
+    expected = 19.261 / 12 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])
+    np.testing.assert_allclose(model.body_inertia[3], expected, rtol=1e-12)
+    # The hip housing: a cube of its displaced volume.
+    side = (uwml.Leg.paper().links[0].volume) ** (1 / 3)
+    np.testing.assert_allclose(model.body_inertia[2], 10.758 * side**2 / 6 * np.ones(3), rtol=1e-12)
+    np.testing.assert_allclose(model.body_ipos[3], (0.506, 0.0, 0.0), atol=1e-15)
+    np.testing.assert_allclose(model.jnt_axis[1], (0.0, -1.0, 0.0), atol=1e-15)
+
+
+def test_exact_feedforward_tracks_and_a_land_controller_does_not() -> None:
+    """The plant is the model the feedforward comes from, so the full feedforward leaves only
+    the step's discretization (and the seal's smooth sign); PD tuned on land lags by degrees."""
+    land = simulate.run("land", 0.0, cycles=1.0)
+    full = simulate.run("hydro_losses", 0.0, cycles=1.0)
+    assert np.all(np.degrees(full.rms_error()) < 0.05), np.degrees(full.rms_error())
+    assert np.all(land.rms_error() > 10.0 * full.rms_error())
+    assert np.degrees(np.max(land.peak_error())) > 1.0
+    # Deeper, the seal's friction grows with pressure: the land controller lags more.
+    deep = simulate.run("land", 6000.0, cycles=1.0)
+    assert np.max(deep.rms_error()) > 2.0 * np.max(land.rms_error())
+    assert full.positive_work() > 0.0 and math.isfinite(full.positive_work())
+
+
+def test_bad_inputs() -> None:
+    with pytest.raises(ValueError, match="controller must be one of land, hydro, hydro_losses, wrong"):
+        simulate.run("pid", 0.0)
+    with pytest.raises(ValueError, match="depth must be between 0 and 11000 m"):
+        simulate.run("land", -1.0)
+    with pytest.raises(ValueError, match="cycles must be finite and > 0"):
+        simulate.run("land", 0.0, cycles=0.0)
+
+
+def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "sim"
+    assert main(["simulate", "--out", str(out), "--depths", "0,6000", "--cycles", "1", "--json"]) == 0
+    captured = capsys.readouterr()
+    runs = json.loads(captured.out)
+    assert [(r["depth_m"], r["controller"]) for r in runs] == [(d, c) for d in (0.0, 6000.0) for c in simulate.CONTROLLERS]
+    assert all(len(r["rms_error_rad"]) == 3 and r["positive_work_per_cycle_j"] > 0.0 for r in runs)
+    assert "8/8 runs" in captured.err
+    report = (out / "report.md").read_text()
+    assert report.count("| 6000 |") == 4 and "tracking.png" in report and "depth_sweep.png" in report
+    assert (out / "tracking.png").stat().st_size > 10_000 and (out / "depth_sweep.png").stat().st_size > 10_000
+    assert main(["simulate", "--out", str(out), "--depths", "0", "--cycles", "0.5"]) == 0
+    table = capsys.readouterr().out
+    assert re.search(r"^\s+0\s+hydro_losses\s", table, re.MULTILINE) and "report:" in table
+    with pytest.raises(SystemExit) as exit_info:
+        main(["simulate", "--depths", "12000"])
+    assert exit_info.value.code == 2
+    assert "must be depths from 0 to 11000 m" in capsys.readouterr().err
