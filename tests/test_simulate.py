@@ -12,8 +12,8 @@ import pytest
 import uwml
 
 mujoco = pytest.importorskip("mujoco")
-from uwml import simulate  # noqa: E402
-from uwml.cli import main  # noqa: E402
+from uwml import simulate
+from uwml.cli import main
 
 
 def test_the_plant_is_table_ii_with_box_inertias() -> None:
