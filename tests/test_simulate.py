@@ -57,12 +57,14 @@ def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureF
     out = tmp_path / "sim"
     assert main(["simulate", "--out", str(out), "--depths", "0,6000", "--cycles", "1", "--json"]) == 0
     captured = capsys.readouterr()
-    runs = json.loads(captured.out)
+    summary = json.loads(captured.out)
+    runs = summary["runs"]
+    assert set(summary["fluid_models_relative_rms_difference"]) == {"box", "ellipsoid"}
     assert [(r["depth_m"], r["controller"]) for r in runs] == [(d, c) for d in (0.0, 6000.0) for c in simulate.CONTROLLERS]
     assert all(len(r["rms_error_rad"]) == 3 and r["positive_work_per_cycle_j"] > 0.0 for r in runs)
     assert "8/8 runs" in captured.err
     report = (out / "report.md").read_text()
-    assert report.count("| 6000 |") == 4 and "tracking.png" in report and "depth_sweep.png" in report
+    assert report.count("| 6000 |") == 4 and "tracking.png" in report and "depth_sweep.png" in report and "fluid_models.png" in report
     assert (out / "tracking.png").stat().st_size > 10_000 and (out / "depth_sweep.png").stat().st_size > 10_000
     assert main(["simulate", "--out", str(out), "--depths", "0", "--cycles", "0.5"]) == 0
     table = capsys.readouterr().out
@@ -71,3 +73,15 @@ def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureF
         main(["simulate", "--depths", "12000"])
     assert exit_info.value.code == 2
     assert "must be depths from 0 to 11000 m" in capsys.readouterr().err
+
+
+def test_mujocos_fluid_models_beside_uwml() -> None:
+    """On one gait cycle, MuJoCo's lumped fluid models (no buoyancy, no added-mass acceleration
+    term) differ from uwml's drag + added mass by tens of percent or more on every joint."""
+    comparison = simulate.fluid_models(samples=100)
+    rms = comparison.rms()
+    assert np.all(rms["uwml"] > 1.0) and np.all(rms["box"] > 0.0) and np.all(rms["ellipsoid"] > 0.0)
+    for name in ("box", "ellipsoid"):
+        assert np.all(comparison.relative_difference(name) > 0.3), (name, comparison.relative_difference(name))
+    # uwml's buoyancy is kept apart: Table II's links are denser than water, the thigh's is large.
+    assert np.sqrt(np.mean(comparison.buoyancy[:, 1] ** 2)) > 10.0

@@ -42,7 +42,7 @@ from .leg import Leg
 from .model import Water
 from .robot import Robot
 
-__all__ = ["CONTROLLERS", "DEPTHS", "Run", "leg_model", "run", "study"]
+__all__ = ["CONTROLLERS", "DEPTHS", "FluidComparison", "Run", "fluid_models", "leg_model", "run", "study"]
 
 FloatArray = NDArray[np.float64]
 
@@ -53,14 +53,19 @@ DEPTHS = (0.0, 1000.0, 3000.0, 6000.0)
 #: Sea water of the study.
 SEA = Water(density=1025.0, gravity=9.81)
 TEMPERATURE_C = 4.0
+#: Sea water's dynamic viscosity at 4 °C [Pa·s] (for MuJoCo's fluid models only).
+SEA_VISCOSITY = 1.6e-3
 #: The PD loop's natural frequency [Hz] (critically damped).
 PD_HZ = 4.0
 TIMESTEP = 1e-3
 
 
-def leg_model(leg: Leg | None = None) -> str:
+def leg_model(leg: Leg | None = None, fluid: str | None = None) -> str:
     """The MJCF of the paper's leg on a fixed stand (module docstring, "The plant"), its frames
-    those of ``uwml.Robot.from_leg(leg)`` (parallel to the base at ``q = 0``)."""
+    those of ``uwml.Robot.from_leg(leg)`` (parallel to the base at ``q = 0``). Each link carries
+    its box as a geom without contacts. ``fluid``: None (no fluid: uwml is the water), or
+    ``"box"`` / ``"ellipsoid"`` for MuJoCo's own fluid models in the study's sea water (for the
+    comparison of :func:`fluid_models`)."""
     leg = Leg.paper() if leg is None else leg
     bodies = []
     for joint, link in zip(leg.joints, leg.links, strict=True):
@@ -75,21 +80,27 @@ def leg_model(leg: Leg | None = None) -> str:
             extents = sum((a * s for a, s in zip(axes, sizes, strict=True)), np.zeros(3))
         a, b, c = extents
         inertia = link.mass / 12.0 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])
-        bodies.append((joint, link, inertia))
+        centre = np.asarray(link.com) if segment is None else np.asarray(segment.start) + np.asarray(segment.axis) * (segment.length / 2.0)
+        bodies.append((joint, link, inertia, extents, centre))
+    water = "" if fluid is None else f' density="{SEA.density!r}" viscosity="{SEA_VISCOSITY!r}"'
+    shape = ' fluidshape="ellipsoid"' if fluid == "ellipsoid" else ""
     xml = [
         '<mujoco model="uwml_paper_leg">',
-        f'  <option timestep="{TIMESTEP}" gravity="0 0 -{SEA.gravity}"/>',
+        f'  <option timestep="{TIMESTEP}" gravity="0 0 -{SEA.gravity}"{water}/>',
         "  <worldbody>",
         '    <body name="stand">',
     ]
     depth = 3
-    for i, (joint, link, inertia) in enumerate(bodies):
+    for i, (joint, link, inertia, extents, centre) in enumerate(bodies):
         pad = "  " * depth
         xml.append(f'{pad}<body name="link{i}" pos="{" ".join(map(repr, joint.origin))}">')
         xml.append(f'{pad}  <joint name="joint{i + 1}" type="hinge" axis="{" ".join(map(repr, joint.axis))}"/>')
         xml.append(
             f'{pad}  <inertial pos="{" ".join(map(repr, link.com))}" mass="{link.mass!r}" diaginertia="{" ".join(repr(float(x)) for x in inertia)}"/>'
         )
+        half = " ".join(repr(float(x) / 2.0) for x in extents)
+        where = " ".join(repr(float(x)) for x in centre)
+        xml.append(f'{pad}  <geom type="box" size="{half}" pos="{where}" contype="0" conaffinity="0"{shape}/>')
         depth += 1
     for i in reversed(range(len(bodies))):
         xml.append("  " * (3 + i) + "</body>")
@@ -203,6 +214,53 @@ def study(
     return runs
 
 
+@dataclass(frozen=True)
+class FluidComparison:
+    """The paper leg's water torques along one gait cycle: uwml's drag plus added mass and MuJoCo's
+    fluid models' (``qfrc_fluid``, inertia box and ellipsoid), each ``(n, 3)`` [N·m], in the
+    study's sea water. MuJoCo's fluid models have no buoyancy (zero at rest), so uwml's buoyancy is
+    kept apart (``buoyancy``) and left out of the comparison."""
+
+    time: FloatArray
+    uwml: FloatArray
+    box: FloatArray
+    ellipsoid: FloatArray
+    buoyancy: FloatArray
+
+    def rms(self) -> dict[str, FloatArray]:
+        return {name: np.sqrt(np.mean(getattr(self, name) ** 2, axis=0)) for name in ("uwml", "box", "ellipsoid")}
+
+    def relative_difference(self, name: str) -> FloatArray:
+        """RMS of (model − uwml) per joint over uwml's RMS."""
+        difference = getattr(self, name) - self.uwml
+        return np.sqrt(np.mean(difference**2, axis=0)) / self.rms()["uwml"]
+
+
+def fluid_models(samples: int = 200) -> FluidComparison:
+    """uwml's torques and MuJoCo's fluid models' on the same motion: one cycle of our gait."""
+    import mujoco
+
+    from . import synthetic
+    from .gait import WalkingGait
+
+    gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
+    time = np.linspace(0.0, gait.period, samples, endpoint=False)
+    q, qd, qdd = gait.joint_states(time)
+    leg = Leg.paper()
+    hydro = Robot(leg.joints, leg.links, water=SEA).hydro(q, qd, qdd)
+    theirs = {}
+    for fluid in ("box", "ellipsoid"):
+        model = mujoco.MjModel.from_xml_string(leg_model(leg, fluid))
+        data = mujoco.MjData(model)
+        torques = np.zeros_like(q)
+        for k in range(samples):
+            data.qpos[:], data.qvel[:] = q[k], qd[k]
+            mujoco.mj_forward(model, data)
+            torques[k] = data.qfrc_fluid
+        theirs[fluid] = torques
+    return FluidComparison(time, hydro.drag + hydro.added_mass, theirs["box"], theirs["ellipsoid"], hydro.buoyancy)
+
+
 def progress_bar(done: int, total: int) -> None:
     """A one-line progress bar on standard error."""
     width = 30
@@ -211,8 +269,9 @@ def progress_bar(done: int, total: int) -> None:
     print(f"\ruwml simulate: [{'#' * filled}{'.' * (width - filled)}] {done}/{total} runs", end=end, file=sys.stderr, flush=True)
 
 
-def write_report(runs: list[Run], out: Path) -> Path:
-    """The Markdown report and its figures (tracking, torques, depth sweep) in ``out``."""
+def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = None) -> Path:
+    """The Markdown report and its figures (tracking, torques, depth sweep, and with ``fluid``
+    MuJoCo's fluid models against uwml) in ``out``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -273,6 +332,35 @@ def write_report(runs: list[Run], out: Path) -> Path:
         "![worst joint RMS error against depth](depth_sweep.png)",
         "",
     ]
+    if fluid is not None:
+        figure, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
+        for joint in range(3):
+            for name, style in (("uwml", "-"), ("box", "--"), ("ellipsoid", ":")):
+                axes[joint].plot(fluid.time, getattr(fluid, name)[:, joint], style, label=name)
+            axes[joint].set_ylabel(f"joint {joint + 1} [N·m]")
+        axes[0].legend(fontsize=8)
+        axes[2].set_xlabel("time [s]")
+        figure.suptitle("Drag + added-mass torque on one gait cycle: uwml and MuJoCo's fluid models")
+        figure.tight_layout()
+        figure.savefig(out / "fluid_models.png", dpi=110)
+        plt.close(figure)
+        rms = fluid.rms()
+        lines += [
+            "## MuJoCo's fluid models on the same motion",
+            "",
+            "One cycle of the gait, prescribed; uwml's drag + added mass against MuJoCo's `qfrc_fluid`",
+            "(inertia-box and ellipsoid models, same sea water, the links' boxes). MuJoCo's fluid models",
+            "have no buoyancy, which here is "
+            + ", ".join(f"{x:.1f}" for x in np.sqrt(np.mean(fluid.buoyancy**2, axis=0)))
+            + " N·m RMS per joint, left out.",
+            "",
+            "| model | RMS torque per joint [N·m] | RMS difference from uwml / uwml's RMS |",
+            "|---|---|---|",
+        ]
+        for name in ("uwml", "box", "ellipsoid"):
+            difference = "—" if name == "uwml" else ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
+            lines.append(f"| {name} | {', '.join(f'{x:.2f}' for x in rms[name])} | {difference} |")
+        lines += ["", "![uwml and MuJoCo's fluid models](fluid_models.png)", ""]
     path = out / "report.md"
     path.write_text("\n".join(lines), encoding="utf-8")
     return path
@@ -287,9 +375,11 @@ def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> 
     except ImportError:
         raise ImportError('uwml simulate needs MuJoCo: pip install "uwml[mujoco]"') from None
     runs = study(depths, CONTROLLERS, cycles, progress_bar)
-    report = write_report(runs, Path(out))
+    fluid = fluid_models()
+    report = write_report(runs, Path(out), fluid)
     if as_json:
-        print(json.dumps([r.summary() for r in runs]))
+        comparison = {name: fluid.relative_difference(name).tolist() for name in ("box", "ellipsoid")}
+        print(json.dumps({"runs": [r.summary() for r in runs], "fluid_models_relative_rms_difference": comparison}))
         return 0
     print(f"uwml simulate: the paper's leg on our gait, sea water at {TEMPERATURE_C:g} °C; last of {cycles:g} cycles")
     print(f"{'depth':>7} {'controller':>13} {'RMS error per joint [°]':>26} {'peak [°]':>24} {'work/cycle':>11}")
@@ -297,5 +387,8 @@ def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> 
         rms = " ".join(f"{x:7.3f}" for x in np.degrees(r.rms_error()))
         peak = " ".join(f"{x:7.3f}" for x in np.degrees(r.peak_error()))
         print(f"{r.depth:7g} {r.controller:>13} {rms:>26} {peak:>24} {r.positive_work():9.1f} J")
+    for name in ("box", "ellipsoid"):
+        difference = ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
+        print(f"MuJoCo's {name} fluid model against uwml on one gait cycle, RMS difference per joint: {difference}")
     print(f"report: {report}")
     return 0
