@@ -332,3 +332,38 @@ def test_morison_energy_rate_is_model_md_11() -> None:
     expected = np.array(rates[1:-1])
     assert np.max(np.abs(expected)) > 1e-2
     np.testing.assert_allclose(measured, expected, atol=1e-5 * np.max(np.abs(expected)))
+
+
+def test_mjcf_of_a_robot() -> None:
+    """uwml.mujoco.mjcf_of: bodies, joints and masses of the robot; a link's inertia that of its
+    mass spread over its segments' solids (here by hand: one box, one cylinder)."""
+    from uwml.examples import arm_on_rov
+    from uwml.mujoco import mjcf_of
+
+    box = uwml.Segment((0, 0, 0), (1, 0, 0), 0.6, normals=((0, 1, 0), (0, 0, 1)), widths=(0.1, 0.2), area=0.02)
+    tube = uwml.Segment((0, 0, 0), (0, 0, -1), 0.4, section="circular", diameter=0.1)
+    robot = uwml.Robot(
+        [uwml.Joint((0, 0, 0), (0, 0, 1), name="yaw"), uwml.Joint((0.6, 0, 0), (0, 1, 0), name="pitch")],
+        [uwml.Link(3.0, (0.3, 0, 0), 0.0, segments=[box], name="upper"), uwml.Link(2.0, (0, 0, -0.2), 0.0, segments=[tube], name="lower")],
+    )
+    model = mujoco.MjModel.from_xml_string(mjcf_of(robot))
+    np.testing.assert_allclose(model.body_mass[2:], [3.0, 2.0], rtol=1e-15)
+    # The box 0.6 (x) × 0.2 (y: along n0 the extent is widths[1]) × 0.1 (z).
+    a, b, c = 0.6, 0.2, 0.1
+    np.testing.assert_allclose(
+        np.sort(model.body_inertia[2]), np.sort(3.0 / 12 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])), rtol=1e-12
+    )
+    r, length = 0.05, 0.4
+    np.testing.assert_allclose(
+        np.sort(model.body_inertia[3]),
+        np.sort([2.0 * r * r / 2, 2.0 * (3 * r * r + length**2) / 12, 2.0 * (3 * r * r + length**2) / 12]),
+        rtol=1e-12,
+    )
+    assert [model.joint(j).name for j in range(model.njnt)] == ["yaw", "pitch"]
+    floating = mujoco.MjModel.from_xml_string(mjcf_of(arm_on_rov(), floating=True))
+    assert floating.nv == 6 + 7 and floating.body_mass[1] == 300.0
+    with pytest.raises(ValueError, match="a floating base needs a base body with a mass"):
+        mjcf_of(robot, floating=True)
+    sim = Simulation(floating, arm_on_rov())
+    with pytest.raises(ValueError, match="qfrc must be 13 finite numbers"):
+        sim.step(qfrc=np.zeros(6))

@@ -38,6 +38,7 @@ stages as MuJoCo's own RK4 does, is second order.
 from __future__ import annotations
 
 import copy
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -48,7 +49,7 @@ from .environment import JointLosses
 from .model import Water
 from .robot import BaseMotion, Robot, _trusted_motion
 
-__all__ = ["SCHEMES", "Simulation"]
+__all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -70,6 +71,110 @@ def _vector3(value: ArrayLike, name: str) -> FloatArray:
     if array.shape != (3,) or not np.all(np.isfinite(array)):
         raise ValueError(f"{name} must be 3 finite numbers [world frame], got {value!r}")
     return array
+
+
+def _segment_solid(segment: Any) -> tuple[float, FloatArray, FloatArray]:
+    """A segment as a uniform solid: its volume, centre and unit-mass inertia about the centre."""
+    u = np.asarray(segment.axis, dtype=np.float64)
+    centre = np.asarray(segment.start, dtype=np.float64) + u * (segment.length / 2.0)
+    length = segment.length
+    if segment.section == "circular":
+        radius = segment.diameter / 2.0
+        axial, across = radius**2 / 2.0, (3.0 * radius**2 + length**2) / 12.0
+        inertia = across * (np.eye(3) - np.outer(u, u)) + axial * np.outer(u, u)
+        return math.pi * radius**2 * length, centre, inertia
+    n0, n1 = (np.asarray(n, dtype=np.float64) for n in segment.normals)
+    # Drag along n_k uses the extent along the other normal: widths = (along n1, along n0).
+    a, b, c = length, segment.widths[1], segment.widths[0]
+    frame = np.column_stack([u, n0, n1])
+    inertia = frame @ np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) @ frame.T / 12.0
+    return a * b * c, centre, inertia
+
+
+def _body_inertia(body: Any) -> FloatArray:
+    """A body's inertia about its centre of mass [kg·m²], its mass spread uniformly over its
+    segments' solids (a sphere of its volume, or of 0.05 m radius, without segments)."""
+    com = np.asarray(body.com, dtype=np.float64)
+    solids = [_segment_solid(s) for s in body.segments]
+    total = sum(volume for volume, _, _ in solids)
+    if not solids or total <= 0.0:
+        radius = (3.0 * body.volume / (4.0 * math.pi)) ** (1.0 / 3.0) if body.volume > 0.0 else 0.05
+        return np.eye(3) * (0.4 * body.mass * radius**2)
+    inertia = np.zeros((3, 3))
+    for volume, centre, unit in solids:
+        mass = body.mass * volume / total
+        d = centre - com
+        inertia += mass * unit + mass * (d @ d * np.eye(3) - np.outer(d, d))
+    return inertia
+
+
+def mjcf_of(robot: Robot, *, floating: bool = False, timestep: float = 1e-3, gravity: float | None = None) -> str:
+    """An MJCF model of ``robot`` for :class:`Simulation`: one body per link in uwml's frames
+    (parallel to the base at ``q = 0``), hinge and slide joints, each body's mass and centre of
+    mass, its inertia that of its mass spread uniformly over its segments' solids (boxes and
+    cylinders; without segments, a sphere of its volume), and its segments as geoms without
+    contacts. ``floating``: the base on a free joint (it then needs a mass). Gravity: the
+    robot's water's."""
+    g = robot.water.gravity if gravity is None else gravity
+    base = robot.base
+    lines = [
+        '<mujoco model="uwml_robot">',
+        f'  <option timestep="{timestep!r}" gravity="0 0 {-g!r}"/>',
+        "  <worldbody>",
+        '    <body name="base">',
+    ]
+    if floating:
+        if base is None or base.mass <= 0.0:
+            raise ValueError("a floating base needs a base body with a mass")
+        lines.append('      <freejoint name="base_free"/>')
+
+    def number(values: Any) -> str:
+        return " ".join(repr(float(x)) for x in values)
+
+    def body_lines(body: Any, indent: str) -> list[str]:
+        out = []
+        if body.mass > 0.0:
+            inertia = _body_inertia(body)
+            full = [inertia[0, 0], inertia[1, 1], inertia[2, 2], inertia[0, 1], inertia[0, 2], inertia[1, 2]]
+            out.append(f'{indent}<inertial pos="{number(body.com)}" mass="{body.mass!r}" fullinertia="{number(full)}"/>')
+        for segment in body.segments:
+            _, centre, _ = _segment_solid(segment)
+            u = np.asarray(segment.axis, dtype=np.float64)
+            if segment.section == "circular":
+                ends = np.concatenate([centre - u * segment.length / 2.0, centre + u * segment.length / 2.0])
+                out.append(
+                    f'{indent}<geom type="cylinder" fromto="{number(ends)}" size="{segment.diameter / 2.0!r}" contype="0" conaffinity="0"/>'
+                )
+            else:
+                n0 = np.asarray(segment.normals[0], dtype=np.float64)
+                size = [segment.length / 2.0, segment.widths[1] / 2.0, segment.widths[0] / 2.0]
+                axes = number(np.concatenate([u, n0]))
+                out.append(
+                    f'{indent}<geom type="box" pos="{number(centre)}" xyaxes="{axes}" size="{number(size)}" contype="0" conaffinity="0"/>'
+                )
+        return out
+
+    if base is not None:
+        lines += body_lines(base, "      ")
+    children: dict[int, list[int]] = {}
+    for i, joint in enumerate(robot.joints):
+        children.setdefault(-1 if joint.parent is None else joint.parent, []).append(i)
+
+    def emit(parent: int, depth: int) -> None:
+        for i in children.get(parent, []):
+            joint, link, pad = robot.joints[i], robot.links[i], "  " * depth
+            lines.append(f'{pad}<body name="{link.name or f"link{i}"}" pos="{number(joint.origin)}">')
+            kind = "slide" if joint.kind == "prismatic" else "hinge"
+            lines.append(f'{pad}  <joint name="{joint.name or f"joint{i}"}" type="{kind}" axis="{number(joint.axis)}"/>')
+            if link.mass <= 0.0:
+                raise ValueError(f"link {i} needs a mass > 0 to move in a simulation")
+            lines.extend(body_lines(link, pad + "  "))
+            emit(i, depth + 1)
+            lines.append(f"{pad}</body>")
+
+    emit(-1, 3)
+    lines += ["    </body>", "  </worldbody>", "</mujoco>"]
+    return "\n".join(lines)
 
 
 class Simulation:
@@ -270,11 +375,13 @@ class Simulation:
         forces = np.concatenate([result.base.total, result.total])
         return forces, self.robot.added_mass_matrix(q, water=self.water)
 
-    def forward(self, torque: ArrayLike | None = None) -> None:
+    def forward(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
         """MuJoCo's forward dynamics at the data's state with uwml's forces: fills
         ``data.qacc`` (and everything ``mj_forward`` fills). ``torque``: motor torques on the
-        robot's joints [N·m or N], added to ``data.qfrc_applied``'s uwml part. A state that is no
-        longer finite (a diverged simulation) raises ``FloatingPointError``."""
+        robot's joints [N·m or N], added to ``data.qfrc_applied``'s uwml part; ``qfrc``: any
+        generalized forces in MuJoCo's coordinates (``(nv,)``, as ``qvel``), added too (thrusters
+        on a free joint: the force in world components, the moment in the body's). A state that
+        is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
         mj, m, d = self._mj, self.model, self.data
         if not (np.all(np.isfinite(d.qpos)) and np.all(np.isfinite(d.qvel))):
             raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
@@ -300,6 +407,11 @@ class Simulation:
             forces = forces + np.concatenate([np.zeros(6), motor])
         rows = slice(0, None) if self._floating else slice(6, None)
         d.qfrc_applied[:] = selection[rows].T @ forces[rows]
+        if qfrc is not None:
+            extra = np.asarray(qfrc, dtype=np.float64)
+            if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
+                raise ValueError(f"qfrc must be {m.nv} finite numbers (one per degree of freedom), got shape {extra.shape}")
+            d.qfrc_applied[:] += extra
         mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
 
     def _uwml_acceleration(self) -> FloatArray:
@@ -310,11 +422,12 @@ class Simulation:
             acceleration[0:3] += np.asarray(base.acceleration).reshape(3)
         return acceleration
 
-    def step(self, torque: ArrayLike | None = None) -> None:
-        """One time step (``model.opt.timestep``) with motor ``torque`` on the joints."""
+    def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
+        """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
+        generalized forces ``qfrc`` (as :meth:`forward`)."""
         mj, m, d = self._mj, self.model, self.data
         if self.integrator == "euler":
-            self.forward(torque)
+            self.forward(torque, qfrc)
             if self.scheme == "lagged":
                 self._previous_acceleration = self._uwml_acceleration()
             mj.mj_Euler(m, d)
@@ -329,7 +442,7 @@ class Simulation:
                 mj.mj_integratePos(m, d.qpos, velocities[index], fraction * h)
             d.qvel[:] = velocity
             d.time = time0 + fraction * h
-            self.forward(torque)
+            self.forward(torque, qfrc)
             velocities.append(velocity.copy())
             accelerations.append(d.qacc.copy())
         d.qpos[:] = qpos0

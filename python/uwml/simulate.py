@@ -42,7 +42,7 @@ from .leg import Leg
 from .model import Water
 from .robot import Robot
 
-__all__ = ["CONTROLLERS", "DEPTHS", "FluidComparison", "Run", "fluid_models", "leg_model", "run", "study"]
+__all__ = ["CONTROLLERS", "DEPTHS", "Drift", "FluidComparison", "Run", "fluid_models", "leg_model", "rov_drift", "run", "study"]
 
 FloatArray = NDArray[np.float64]
 
@@ -261,6 +261,100 @@ def fluid_models(samples: int = 200) -> FluidComparison:
     return FluidComparison(time, hydro.drag + hydro.added_mass, theirs["box"], theirs["ellipsoid"], hydro.buoyancy)
 
 
+@dataclass(frozen=True)
+class Drift:
+    """An ROV holding station while its arm moves, in a current: the vehicle's position [m]
+    (world) and attitude error [rad] over time, with or without uwml's base wrench."""
+
+    station_keeping: str
+    time: FloatArray
+    position: FloatArray
+    attitude: FloatArray
+
+    def summary(self) -> dict[str, Any]:
+        distance = np.linalg.norm(self.position - self.position[0], axis=1)
+        return {
+            "station_keeping": self.station_keeping,
+            "rms_drift_m": float(np.sqrt(np.mean(distance**2))),
+            "max_drift_m": float(np.max(distance)),
+            "rms_attitude_deg": float(np.degrees(np.sqrt(np.mean(self.attitude**2)))),
+        }
+
+
+#: The current of the vehicle study [m/s], along the world x axis.
+ROV_CURRENT = 0.5
+
+
+def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -> Drift:
+    """The arm of :func:`uwml.examples.arm_on_rov` on its free-floating hull (trimmed neutrally
+    buoyant in the study's sea water) moves its joints along sines in a 0.5 m/s current while a
+    station-keeping PD (0.3 Hz, critically damped, on the vehicle's total rigid mass and inertia,
+    ideal thrusters) holds the vehicle, ``with_uwml``: plus the feedforward of uwml's predicted
+    wrench on the vehicle (hydrodynamics, buoyancy and the robot's weight, at the measured state)."""
+    import mujoco
+
+    from .examples import arm_on_rov
+    from .model import Link
+    from .mujoco import Simulation, mjcf_of
+    from .synthetic import SineTrajectory
+
+    arm = arm_on_rov()
+    hull = arm.base
+    assert hull is not None
+    arm_mass = sum(link.mass for link in arm.links)
+    volume = hull.volume + sum(link.volume for link in arm.links)
+    trimmed = Link(SEA.density * volume - arm_mass, hull.com, hull.volume, cob=hull.cob, segments=hull.segments, name="hull")
+    robot = Robot(arm.joints, arm.links, base=trimmed, water=SEA)
+    model = mujoco.MjModel.from_xml_string(mjcf_of(robot, floating=True, timestep=timestep))
+    sim = Simulation(model, robot, current=(ROV_CURRENT, 0.0, 0.0), depth=1000.0, temperature_c=TEMPERATURE_C)
+    mujoco.mj_forward(sim.model, sim.data)
+    inertia = np.zeros((sim.model.nv, sim.model.nv))
+    mujoco.mj_fullM(sim.model, sim.data, inertia)
+    rigid = np.diag(inertia)
+    omega = 2.0 * math.pi * 0.3
+    kp_base, kd_base = rigid[:6] * omega**2, rigid[:6] * 2.0 * omega
+    arm_omega = 2.0 * math.pi * 3.0
+    kp_arm, kd_arm = rigid[6:] * arm_omega**2, rigid[6:] * 2.0 * arm_omega
+    trajectory = SineTrajectory([0.4, 0.3, 0.5, 0.6, 0.4, 0.6, 0.0], period=4.0)
+    steps = round(duration / timestep)
+    time = np.arange(steps + 1) * timestep
+    q_d, qd_d, _ = trajectory.joint_states(time)
+    sim.data.qpos[7:], sim.data.qvel[6:] = q_d[0], qd_d[0]
+    start = np.array(sim.data.qpos[:3])
+    position, attitude = np.zeros((steps + 1, 3)), np.zeros(steps + 1)
+    for k in range(steps + 1):
+        d = sim.data
+        position[k] = d.qpos[:3]
+        w, x, y, z = d.qpos[3:7]
+        angle = 2.0 * math.atan2(math.sqrt(x * x + y * y + z * z), abs(w))
+        attitude[k] = angle
+        if k == steps:
+            break
+        axis_angle = np.array([x, y, z]) * (angle / max(math.sqrt(x * x + y * y + z * z), 1e-300)) * (1.0 if w >= 0.0 else -1.0)
+        thrust = np.zeros(sim.model.nv)
+        thrust[:3] = -kp_base[:3] * (d.qpos[:3] - start) - kd_base[:3] * d.qvel[:3]
+        thrust[3:6] = -kp_base[3:6] * axis_angle - kd_base[3:6] * d.qvel[3:6]
+        if with_uwml:
+            mujoco.mj_kinematics(sim.model, d)
+            rotation = d.xmat[1].reshape(3, 3)
+            q, qd = d.qpos[7:].copy(), d.qvel[6:].copy()
+            v_body, w_body = rotation.T @ d.qvel[:3], d.qvel[3:6].copy()
+            motion = uwml_motion(d.qpos[3:7], v_body, w_body)
+            wrench = robot.hydro(q, qd, np.zeros_like(q), base_motion=motion, current=(ROV_CURRENT, 0.0, 0.0)).base
+            predicted = wrench.total + wrench.gravity
+            thrust[:3] -= rotation @ predicted[:3]
+            thrust[3:6] -= predicted[3:6]
+        torque = kp_arm * (q_d[k] - d.qpos[7:]) + kd_arm * (qd_d[k] - d.qvel[6:])
+        sim.step(torque=torque, qfrc=thrust)
+    return Drift("PD + uwml base wrench" if with_uwml else "PD", time, position, attitude)
+
+
+def uwml_motion(quaternion: Any, velocity: FloatArray, angular_velocity: FloatArray) -> Any:
+    from .robot import BaseMotion
+
+    return BaseMotion(orientation=np.array(quaternion), velocity=velocity, angular_velocity=angular_velocity)
+
+
 def progress_bar(done: int, total: int) -> None:
     """A one-line progress bar on standard error."""
     width = 30
@@ -269,7 +363,7 @@ def progress_bar(done: int, total: int) -> None:
     print(f"\ruwml simulate: [{'#' * filled}{'.' * (width - filled)}] {done}/{total} runs", end=end, file=sys.stderr, flush=True)
 
 
-def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = None) -> Path:
+def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = None, drifts: Sequence[Drift] = ()) -> Path:
     """The Markdown report and its figures (tracking, torques, depth sweep, and with ``fluid``
     MuJoCo's fluid models against uwml) in ``out``."""
     import matplotlib
@@ -361,6 +455,23 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
             difference = "—" if name == "uwml" else ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
             lines.append(f"| {name} | {', '.join(f'{x:.2f}' for x in rms[name])} | {difference} |")
         lines += ["", "![uwml and MuJoCo's fluid models](fluid_models.png)", ""]
+    if drifts:
+        lines += [
+            "## An arm on a free-floating ROV in a current",
+            "",
+            "The arm of `uwml.examples.arm_on_rov` (hull trimmed neutrally buoyant) moves its joints along sines",
+            f"for {drifts[0].time[-1]:g} s in a {ROV_CURRENT:g} m/s current while a station-keeping PD (0.3 Hz) holds",
+            "the vehicle, with and without the feedforward of uwml's predicted wrench on it.",
+            "",
+            "| station keeping | RMS drift [m] | max drift [m] | RMS attitude error [°] |",
+            "|---|---|---|---|",
+        ]
+        for drift in drifts:
+            row = drift.summary()
+            lines.append(
+                f"| {row['station_keeping']} | {row['rms_drift_m']:.4f} | {row['max_drift_m']:.4f} | {row['rms_attitude_deg']:.2f} |"
+            )
+        lines.append("")
     path = out / "report.md"
     path.write_text("\n".join(lines), encoding="utf-8")
     return path
@@ -376,10 +487,12 @@ def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> 
         raise ImportError('uwml simulate needs MuJoCo: pip install "uwml[mujoco]"') from None
     runs = study(depths, CONTROLLERS, cycles, progress_bar)
     fluid = fluid_models()
-    report = write_report(runs, Path(out), fluid)
+    drifts = [rov_drift(False), rov_drift(True)]
+    report = write_report(runs, Path(out), fluid, drifts)
     if as_json:
         comparison = {name: fluid.relative_difference(name).tolist() for name in ("box", "ellipsoid")}
-        print(json.dumps({"runs": [r.summary() for r in runs], "fluid_models_relative_rms_difference": comparison}))
+        vehicle = [drift.summary() for drift in drifts]
+        print(json.dumps({"runs": [r.summary() for r in runs], "fluid_models_relative_rms_difference": comparison, "rov": vehicle}))
         return 0
     print(f"uwml simulate: the paper's leg on our gait, sea water at {TEMPERATURE_C:g} °C; last of {cycles:g} cycles")
     print(f"{'depth':>7} {'controller':>13} {'RMS error per joint [°]':>26} {'peak [°]':>24} {'work/cycle':>11}")
@@ -390,5 +503,11 @@ def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> 
     for name in ("box", "ellipsoid"):
         difference = ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
         print(f"MuJoCo's {name} fluid model against uwml on one gait cycle, RMS difference per joint: {difference}")
+    for drift in drifts:
+        row = drift.summary()
+        print(
+            f"ROV in a {ROV_CURRENT:g} m/s current, station keeping {row['station_keeping']}: drift {row['rms_drift_m']:.3f} m RMS, "
+            f"{row['max_drift_m']:.3f} m max; attitude {row['rms_attitude_deg']:.1f}° RMS"
+        )
     print(f"report: {report}")
     return 0
