@@ -45,7 +45,7 @@ def test_exact_feedforward_tracks_and_a_land_controller_does_not() -> None:
 
 
 def test_bad_inputs() -> None:
-    with pytest.raises(ValueError, match="controller must be one of land, hydro, hydro_losses, wrong"):
+    with pytest.raises(ValueError, match="controller must be one of land, hydro, hydro_losses, hydro_wrong, hydro_losses_wrong"):
         simulate.run("pid", 0.0)
     with pytest.raises(ValueError, match="depth must be between 0 and 11000 m"):
         simulate.run("land", -1.0)
@@ -63,9 +63,9 @@ def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureF
     assert [row["station_keeping"] for row in summary["rov"]] == ["PD", "PD + uwml base wrench"]
     assert [(r["depth_m"], r["controller"]) for r in runs] == [(d, c) for d in (0.0, 6000.0) for c in simulate.CONTROLLERS]
     assert all(len(r["rms_error_rad"]) == 3 and r["positive_work_per_cycle_j"] > 0.0 for r in runs)
-    assert "8/8 runs" in captured.err
+    assert "10/10 runs" in captured.err
     report = (out / "report.md").read_text()
-    assert report.count("| 6000 |") == 4 and "tracking.png" in report and "depth_sweep.png" in report and "fluid_models.png" in report
+    assert report.count("| 6000 |") == 5 and "tracking.png" in report and "depth_sweep.png" in report and "fluid_models.png" in report
     assert (out / "tracking.png").stat().st_size > 10_000 and (out / "depth_sweep.png").stat().st_size > 10_000
     assert main(["simulate", "--out", str(out), "--depths", "0", "--cycles", "0.5"]) == 0
     table = capsys.readouterr().out

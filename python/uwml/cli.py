@@ -710,8 +710,8 @@ Output: both fit reports on standard output; with --json only {"oil_drag": summa
         description="""The paper's control question, simulated (uwml.simulate; MuJoCo with uwml's forces and the
 added mass in the mass matrix): the paper's leg on a fixed stand follows our walking gait in sea
 water at 4 °C at each depth, under PD + the land model's feedforward (land), + uwml's hydrodynamic
-feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last with Cd and Cm
-30 % too high (wrong). The plant's inertias are assumed (uniform boxes; see uwml.simulate).
+feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last two with Cd and
+Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.simulate).
 
 Output: a table of RMS and peak tracking error per joint and the motor's positive work per cycle
 (last cycle), or with --json the runs' summaries as JSON; report.md, tracking.png and
