@@ -118,7 +118,6 @@ _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(_CIRCULAR_NODES)
 _OFFSETS = np.concatenate([[0.0], 4.0 ** -np.arange(_GRADING_LEVELS + 1), -(4.0 ** -np.arange(_GRADING_LEVELS + 1))])
 
 
-
 # --------------------------------------------------------------------------------------------
 # Kinematics: explicit poses and joint-screw sums
 # --------------------------------------------------------------------------------------------
@@ -375,6 +374,47 @@ def _body_wrenches(
     return out
 
 
+#: 3-point Gauss-Legendre on [0, 1]: exact for the Kirchhoff terms' polynomials (degree ≤ 3 in s).
+_GL3_NODES = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
+_GL3_WEIGHTS = np.array([5.0, 8.0, 5.0]) / 18.0
+
+
+def _kirchhoff_extra(robot: _Robot, motion: _Motion, kin: _Kinematics, cm: Array, density: float) -> tuple[Array, Array]:
+    """What Kirchhoff's added mass adds to Morison's (MODEL.md 11), per body, world components,
+    moment about the base origin: each slice, with added-mass tensor ``A`` (per unit length
+    ``ρ Cm_k a Σ n_k n_kᵀ``, or ``ρ Cm a (I − u uᵀ)`` for a circular section) turning with its
+    body (``Ȧ = Ω A − A Ω``) and relative velocity ``v``, feels ``−Ȧ v`` beyond Morison's
+    ``−A v̇``, and the couple ``−v × A v``; integrated by 3-point Gauss-Legendre (exact)."""
+    n, n_bodies = motion.q.shape[0], robot.n_bodies
+    count = len(robot.seg_body)
+    rot = kin.rotations[:, robot.seg_body]
+    p0 = kin.positions[:, robot.seg_body] + np.einsum("nsab,sb->nsa", rot, robot.seg_start)
+    u = np.einsum("nsab,sb->nsa", rot, robot.seg_axis)
+    normals = np.einsum("nsab,skb->nska", rot, robot.seg_normals)
+    per_length = density * robot.seg_area  # (S,)
+    rect = np.einsum("sk,nska,nskb->nsab", np.where(robot.seg_circular[:, None], 0.0, cm), normals, normals)
+    circ = np.where(robot.seg_circular, cm[:, 0], 0.0)[None, :, None, None] * (np.eye(3) - np.einsum("nsa,nsb->nsab", u, u))
+    tensor = per_length[None, :, None, None] * (rect + circ)  # (n, S, 3, 3)
+    # Each body's angular velocity (world).
+    omega = np.repeat(kin.w0[:, None, :], n_bodies, axis=1)
+    for j in range(robot.n_joints):
+        if not robot.prismatic[j]:
+            omega = omega + robot.moves[None, :, j, None] * motion.qd[:, j, None, None] * kin.axes[:, j, None, :]
+    w = omega[:, robot.seg_body]  # (n, S, 3)
+    force, moment = np.zeros((n, count, 3)), np.zeros((n, count, 3))
+    for node, weight in zip(_GL3_NODES, _GL3_WEIGHTS, strict=True):
+        point = p0 + (node * robot.seg_length)[None, :, None] * u
+        v = kin.velocity(point, robot.seg_body) - motion.current[:, None, :]
+        av = np.einsum("nsab,nsb->nsa", tensor, v)
+        a_dot_v = np.cross(w, av) - np.einsum("nsab,nsb->nsa", tensor, np.cross(w, v))
+        f = -a_dot_v * (weight * robot.seg_length)[None, :, None]
+        couple = -np.cross(v, av) * (weight * robot.seg_length)[None, :, None]
+        force += f
+        moment += np.cross(point, f) + couple
+    one_hot = np.eye(n_bodies)[robot.seg_body] if count else np.zeros((0, n_bodies))
+    return np.einsum("nsc,sb->nbc", force, one_hot), np.einsum("nsc,sb->nbc", moment, one_hot)
+
+
 def _generalized(robot: _Robot, motion: _Motion, kin: _Kinematics, wrench: tuple[Array, Array]) -> tuple[Array, Array]:
     """Joint generalized forces (n, N) and base wrench (n, 6) in base components, by virtual work."""
     force, moment = wrench
@@ -430,6 +470,7 @@ def robot_hydro(
     angular_acceleration: ArrayLike = (0.0, 0.0, 0.0),
     current: ArrayLike = (0.0, 0.0, 0.0),
     current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+    added_mass: str = "morison",
 ) -> dict[str, Array]:
     """Environment forces on a whole robot: joint generalized forces and the base wrench (MODEL.md 9).
 
@@ -461,6 +502,8 @@ def robot_hydro(
         acceleration is ``v̇ + ω × v``): ``(3,)`` or ``(n, 3)``.
     current, current_acceleration : array_like
         Uniform water velocity ``c`` and acceleration ``ċ``, world components: ``(3,)`` or ``(n, 3)``.
+    added_mass : {"morison", "kirchhoff"}
+        The paper's Morison form, or Kirchhoff's (MODEL.md 11; :func:`_kirchhoff_extra`).
 
     Returns
     -------
@@ -499,6 +542,12 @@ def robot_hydro(
     cd_ = _coefficients(cd, "cd", robot.seg_cd, robot.seg_circular)
     cm_ = _coefficients(cm, "cm", robot.seg_cm, robot.seg_circular)
     wrenches = _body_wrenches(robot, motion, kin, cd_, cm_, density, gravity)
+    if added_mass not in ("morison", "kirchhoff"):
+        raise ValueError(f"added_mass must be 'morison' or 'kirchhoff', got {added_mass!r}")
+    if added_mass == "kirchhoff":
+        extra = _kirchhoff_extra(robot, motion, kin, cm_, density)
+        morison = wrenches["added_mass"]
+        wrenches["added_mass"] = (morison[0] + extra[0], morison[1] + extra[1])
     out: dict[str, Array] = {}
     for part in _PARTS:
         tau, base_wrench = _generalized(robot, motion, kin, wrenches[part])
