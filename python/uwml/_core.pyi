@@ -218,6 +218,7 @@ class Robot:
         current: NDArray[np.float64],
         current_acceleration: NDArray[np.float64],
         threads: int,
+        kirchhoff: bool = False,
     ) -> list[NDArray[np.float64]]: ...
     def jacobians(
         self,
@@ -238,6 +239,7 @@ class Robot:
         losses: NDArray[np.float64],
         pressure: NDArray[np.float64],
         temperature: NDArray[np.float64],
+        kirchhoff: bool = False,
     ) -> list[NDArray[np.float64]]: ...
     def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
 

@@ -6,7 +6,7 @@ import operator
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -102,6 +102,12 @@ class EnvironmentJacobians:
     d_q: FloatArray
     d_qd: FloatArray
     added_mass_matrix: FloatArray
+
+
+def _is_kirchhoff(added_mass: object) -> bool:
+    if added_mass not in ("morison", "kirchhoff"):
+        raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
+    return added_mass == "kirchhoff"
 
 
 def _coefficients(value: ArrayLike, name: str, n_links: int) -> FloatArray:
@@ -212,6 +218,8 @@ class Leg:
 
     #: The last single JointLosses given to :meth:`environment` and its packed table.
     _losses_cache: tuple[JointLosses, FloatArray] | None = None
+    #: The leg as a ``uwml.Robot``, built on first use (Kirchhoff's added mass takes that path).
+    _as_robot: Any = None
 
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
         try:
@@ -291,9 +299,13 @@ class Leg:
         if robot.base is not None:
             raise ValueError(f"{path}: a uwml.Leg has no base body; load this file with uwml.Robot.load")
         if any(losses is not None for losses in robot.losses):
-            raise ValueError(f"{path}: a uwml.Leg holds no joint losses (give them to Leg.environment); load this file with uwml.Robot.load")
+            raise ValueError(
+                f"{path}: a uwml.Leg holds no joint losses (give them to Leg.environment); load this file with uwml.Robot.load"
+            )
         if robot.water != FRESH_WATER:
-            raise ValueError(f"{path}: a uwml.Leg holds no water of its own (give water= to its evaluations); load this file with uwml.Robot.load")
+            raise ValueError(
+                f"{path}: a uwml.Leg holds no water of its own (give water= to its evaluations); load this file with uwml.Robot.load"
+            )
         return cls(joints, links)
 
     def hydro(
@@ -305,6 +317,7 @@ class Leg:
         cm: ArrayLike = 0.5,
         water: Water = FRESH_WATER,
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> HydroTorques:
         """Drag, added-mass, buoyancy (and gravity) torques on every joint.
 
@@ -329,7 +342,16 @@ class Leg:
         as a controller or a simulator steps, is read, checked and evaluated in one shorter call
         (about 2 µs; docs/performance.md), with the same checks and the same bits as that state's
         row of a batch.
+
+        ``added_mass="kirchhoff"``: Kirchhoff's energy-consistent added mass instead of the
+        paper's Morison form (MODEL.md 11; :meth:`uwml.Robot.hydro`), evaluated on the
+        whole-robot path (``Robot.from_leg``); also taken by :meth:`environment`,
+        :meth:`jacobians` and :meth:`hydro_regressors`.
         """
+        if _is_kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            r = robot.hydro(q, qd, qdd, cd=cd_rows, cm=cm_rows, water=_water(water), threads=threads, added_mass="kirchhoff")
+            return HydroTorques(drag=r.drag, added_mass=r.added_mass, buoyancy=r.buoyancy, gravity=r.gravity)
         if isinstance(water, Water):
             # One state as plain floats: read, checked and evaluated in one native call (None if
             # any argument is of another kind or fails a check: the general path then answers).
@@ -359,6 +381,7 @@ class Leg:
         water: Water = FRESH_WATER,
         sea_density: float = SEA_WATER_DENSITY,
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> EnvironmentTorques:
         """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call.
 
@@ -379,7 +402,16 @@ class Leg:
 
         One state with scalar ``depth``, ``temperature_c`` and ``sea_density`` and ``losses``
         None or one :class:`uwml.JointLosses` takes the short path of :meth:`hydro`.
+        ``added_mass``: as for :meth:`hydro`.
         """
+        if _is_kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            losses_given = [None] * self.n_joints if losses is None else losses
+            r = robot.environment(
+                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
+                water=_water(water), sea_density=sea_density, threads=threads, added_mass="kirchhoff",
+            )  # fmt: skip
+            return EnvironmentTorques(r.drag, r.added_mass, r.buoyancy, r.gravity, r.visc, r.seal, r.current)
         if isinstance(water, Water):
             # One state as plain floats, as in hydro.
             one: EnvironmentTorques | None = self._chain.environment_one(
@@ -443,6 +475,7 @@ class Leg:
         cm: ArrayLike = 0.5,
         water: Water = FRESH_WATER,
         sea_density: float = SEA_WATER_DENSITY,
+        added_mass: str = "morison",
     ) -> EnvironmentJacobians:
         """The environment torque of :meth:`environment` and its derivatives, for control.
 
@@ -454,7 +487,21 @@ class Leg:
         zero with a hard sign (``epsilon=0``) the losses jump and their slope is not meaningful.
 
         The whole batch is evaluated in one call into Rust, with the GIL released.
+        ``added_mass``: as for :meth:`hydro`.
         """
+        if _is_kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            losses_given = [None] * self.n_joints if losses is None else losses
+            r = robot.jacobians(
+                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
+                water=_water(water), sea_density=sea_density, added_mass="kirchhoff",
+            )  # fmt: skip
+            return EnvironmentJacobians(
+                value=r.value[..., 6:],
+                d_q=r.d_q[..., 6:, :],
+                d_qd=r.d_velocity[..., 6:, 6:],
+                added_mass_matrix=r.added_mass_matrix[..., 6:, 6:],
+            )
         shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
         value, d_q, d_qd, added_mass_matrix = self._chain.jacobians(*arguments)
         matrix = shape + shape[-1:]
@@ -472,6 +519,7 @@ class Leg:
         qdd: ArrayLike,
         water: Water = FRESH_WATER,
         per: Literal["leg", "direction"] = "leg",
+        added_mass: str = "morison",
     ) -> HydroRegressors:
         """Regressors such that ``total = buoyancy + cd * drag + cm * added_mass``.
 
@@ -480,6 +528,19 @@ class Leg:
         """
         if per not in ("leg", "direction"):
             raise ValueError(f"per must be 'leg' or 'direction', got {per!r}")
+        if _is_kirchhoff(added_mass):
+            robot, _, _ = self._kirchhoff_arguments(0.0, 0.0)
+            r = robot.hydro_regressors(q, qd, qdd, water=_water(water), added_mass="kirchhoff")
+            if per == "leg":
+                drag, mass = r.drag.sum(axis=(-2, -1)), r.added_mass.sum(axis=(-2, -1))
+            else:
+                # Segments back to the links that carry them: (..., joints, links, 2).
+                owners = [i for i, link in enumerate(self._links) if link.segment is not None]
+                drag = np.zeros(r.drag.shape[:-2] + (self.n_joints, 2))
+                mass = np.zeros_like(drag)
+                drag[..., owners, :] = r.drag
+                mass[..., owners, :] = r.added_mass
+            return HydroRegressors(buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass)
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
         buoyancy, gravity, drag, added_mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
@@ -490,6 +551,15 @@ class Leg:
             drag=drag.reshape(shape + extra),
             added_mass=added_mass.reshape(shape + extra),
         )
+
+    def _kirchhoff_arguments(self, cd: ArrayLike, cm: ArrayLike) -> tuple[Any, FloatArray, FloatArray]:
+        """The leg as a robot, and ``cd``, ``cm`` (:meth:`hydro`'s layouts) per segment."""
+        from .robot import Robot
+
+        if self._as_robot is None:
+            self._as_robot = Robot.from_leg(self)
+        owners = [i for i, link in enumerate(self._links) if link.segment is not None]
+        return self._as_robot, _coefficients(cd, "cd", self.n_joints)[owners], _coefficients(cm, "cm", self.n_joints)[owners]
 
     def _link_index(self, link: object) -> int:
         """``link`` as an index in ``0..n_joints`` (negative counts from the end)."""

@@ -620,8 +620,8 @@ class Robot:
             ``"morison"`` (default): the paper's form, added mass on the normal components of
             each slice's acceleration. ``"kirchhoff"``: the form derived from the water's kinetic
             energy (MODEL.md 11; the core's ``AddedMassForm``): the same added-mass matrix,
-            other velocity terms, energy-consistent. ``hydro_regressors`` and ``jacobians`` are
-            of the Morison form.
+            other velocity terms, energy-consistent. Also taken by :meth:`environment`,
+            :meth:`link_wrenches`, :meth:`hydro_regressors` and :meth:`jacobians`.
 
         Any argument with a sample axis gives results with one; the others are broadcast. One
         state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
@@ -747,14 +747,16 @@ class Robot:
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         sea_density: float = SEA_WATER_DENSITY,
+        added_mass: str = "morison",
     ) -> RobotJacobians:
         """The forces of :meth:`environment` on base and joints and their derivatives
         (:class:`RobotJacobians`); arguments as for :meth:`environment`."""
+        kirchhoff = _kirchhoff(added_mass)
         losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
         pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
-        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature)
+        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature, kirchhoff=kirchhoff)
         n = self.n_joints
         m = 6 + n
         lead = (n_samples,) if batched else ()
@@ -775,14 +777,16 @@ class Robot:
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         threads: int = 1,
+        added_mass: str = "morison",
     ) -> RobotRegressors:
         """Regressors of the drag and added-mass forces, one column per segment and normal
         direction, on the joints and on the base (:class:`RobotRegressors`). Arguments as for
         :meth:`hydro`."""
+        kirchhoff = _kirchhoff(added_mass)
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)
         states, (density, gravity), motion = arguments[:3], arguments[5:7], arguments[7:]
-        out = self._core.regressors(*states, density, gravity, *motion, threads)
+        out = self._core.regressors(*states, density, gravity, *motion, threads, kirchhoff=kirchhoff)
         n, s = self.n_joints, len(self._segments)
         lead = (n_samples,) if batched else ()
         columns = out[4].reshape(*lead, 6 + n, s, 2), out[5].reshape(*lead, 6 + n, s, 2)

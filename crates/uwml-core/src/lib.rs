@@ -30,8 +30,8 @@ pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water
 pub use motion::{BaseMotion, Current};
 pub use nalgebra;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
-pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians};
+pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians, robot_jacobians_with};
 pub use tree::{
     AddedMassForm, EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro,
-    robot_hydro_regressors, robot_hydro_with,
+    robot_hydro_regressors, robot_hydro_regressors_with, robot_hydro_with,
 };

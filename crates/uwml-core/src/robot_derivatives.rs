@@ -17,7 +17,7 @@ use crate::losses::{LossState, loss_torques};
 use crate::model::Water;
 use crate::motion::{BaseMotion, Current};
 use crate::robot::{Robot, SegmentCoefficients};
-use crate::tree::{RobotData, robot_added_mass_matrix, robot_hydro};
+use crate::tree::{AddedMassForm, RobotData, robot_added_mass_matrix, robot_hydro_with};
 
 /// Derivative directions per dual pass.
 pub const DUAL_WIDTH: usize = 8;
@@ -76,6 +76,28 @@ pub fn robot_jacobians<T: RealField + Copy, const J: usize, const S: usize>(
     work: &mut RobotJacobianData<T, J, S>,
     out: RobotJacobians<'_, T>,
 ) {
+    let form = AddedMassForm::Morison;
+    robot_jacobians_with(robot, water, coefficients, form, losses, motion, current, q, qd, qdd, work, out);
+}
+
+/// [`robot_jacobians`] with the added mass in the given [`AddedMassForm`] (the added-mass matrix
+/// is the same for both).
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_jacobians_with<T: RealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    form: AddedMassForm,
+    losses: &[Option<LossState<T>>; J],
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    work: &mut RobotJacobianData<T, J, S>,
+    out: RobotJacobians<'_, T>,
+) {
     let n = robot.joint_count();
     let m = 6 + n;
     let constant = D::<T>::constant;
@@ -100,10 +122,11 @@ pub fn robot_jacobians<T: RealField + Copy, const J: usize, const S: usize>(
         {
             *slot = seed(n + i, slot.re);
         }
-        robot_hydro(
+        robot_hydro_with(
             &work.robot,
             &water_d,
             coefficients_d.as_ref(),
+            form,
             &motion_seeded,
             &current_d,
             &q_d,

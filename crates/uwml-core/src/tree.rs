@@ -673,6 +673,38 @@ pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: 
     drag: &mut [T],
     added_mass: &mut [T],
 ) {
+    robot_hydro_regressors_with(
+        robot,
+        water,
+        AddedMassForm::Morison,
+        motion,
+        current,
+        q,
+        qd,
+        qdd,
+        data,
+        drag,
+        added_mass,
+    );
+}
+
+/// [`robot_hydro_regressors`] with the added mass in the given [`AddedMassForm`] (Kirchhoff's
+/// forces are linear in the coefficients too).
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_hydro_regressors_with<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    form: AddedMassForm,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+    drag: &mut [T],
+    added_mass: &mut [T],
+) {
     let zero = [[T::zero(); 2]; S];
     let none = SegmentCoefficients { cd: zero, cm: zero };
     robot_hydro(robot, water, Some(&none), motion, current, q, qd, qdd, data);
@@ -692,8 +724,7 @@ pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: 
             },
         };
         for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
-            let (drag_wrench, mass_wrench) =
-                segment_wrenches(frame, segment, unit, unit, &surroundings, AddedMassForm::Morison);
+            let (drag_wrench, mass_wrench) = segment_wrenches(frame, segment, unit, unit, &surroundings, form);
             let column = 2 * k + d;
             for (out, wrench) in [(&mut *drag, &drag_wrench), (&mut *added_mass, &mass_wrench)] {
                 for (row, value) in wrench.to_array().into_iter().enumerate() {

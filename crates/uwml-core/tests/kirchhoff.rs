@@ -119,3 +119,66 @@ fn kirchhoff_power_is_minus_the_rate_of_the_waters_kinetic_energy_and_morison_is
     };
     assert_eq!(rest(AddedMassForm::Kirchhoff), rest(AddedMassForm::Morison));
 }
+
+#[test]
+fn kirchhoff_regressors_and_jacobians_are_its_forces() {
+    use uwml_core::{
+        RobotJacobianData, RobotJacobians, robot_hydro_regressors_with, robot_jacobians, robot_jacobians_with,
+    };
+    let robot = arm::arm_on_rov::<f64, N, 15>();
+    let (motion, current) = arm::rov_motion::<f64>();
+    let q = [0.3, -0.4, 0.6, 0.2, -0.5, 0.1, 0.05];
+    let qd = [0.5, 0.3, -0.4, 0.8, 0.2, -0.6, 0.02];
+    let qdd = [1.0, -0.5, 0.3, 0.2, -1.0, 0.7, 0.1];
+    let water = Water::default();
+    let mut data = RobotData::new();
+    robot_hydro_with(&robot, &water, None, AddedMassForm::Kirchhoff, &motion, &current, &q, &qd, &qdd, &mut data);
+    let mut forces = data.base_wrench().added_mass.to_array().to_vec();
+    forces.extend(data.joint_forces().iter().map(|f| f.added_mass));
+    let mut totals = data.base_wrench().total().to_array().to_vec();
+    totals.extend(data.joint_forces().iter().map(|f| f.total()));
+    // Regressors: Σ columns × each segment's own Cm is the added-mass force.
+    let columns = 2 * robot.segments().len();
+    let (mut drag, mut added) = (vec![0.0; M * columns], vec![0.0; M * columns]);
+    let form = AddedMassForm::Kirchhoff;
+    robot_hydro_regressors_with(
+        &robot, &water, form, &motion, &current, &q, &qd, &qdd, &mut data, &mut drag, &mut added,
+    );
+    let scale = forces.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (row, expected) in forces.iter().enumerate() {
+        let value: f64 = robot
+            .segments()
+            .iter()
+            .enumerate()
+            .map(|(k, s)| added[row * columns + 2 * k] * s.cm[0] + added[row * columns + 2 * k + 1] * s.cm[1])
+            .sum();
+        assert!((value - expected).abs() <= 1e-12 * scale, "row {row}: {value} vs {expected}");
+    }
+    // Jacobians: the value is the Kirchhoff total; M_A the same as Morison's; d_velocity differs.
+    let run = |kirchhoff: bool| {
+        let (mut value, mut d_q, mut d_velocity, mut m_a) =
+            (vec![0.0; M], vec![0.0; M * N], vec![0.0; M * M], vec![0.0; M * M]);
+        let mut work = RobotJacobianData::new(&robot);
+        let out = RobotJacobians {
+            value: &mut value,
+            d_q: &mut d_q,
+            d_velocity: &mut d_velocity,
+            added_mass_matrix: &mut m_a,
+        };
+        let none = [None; N];
+        if kirchhoff {
+            robot_jacobians_with(&robot, &water, None, form, &none, &motion, &current, &q, &qd, &qdd, &mut work, out);
+        } else {
+            robot_jacobians(&robot, &water, None, &none, &motion, &current, &q, &qd, &qdd, &mut work, out);
+        }
+        (value, d_velocity, m_a)
+    };
+    let (value, d_velocity, m_a) = run(true);
+    let (_, morison_velocity, morison_m_a) = run(false);
+    let total_scale = totals.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
+    for (a, b) in value.iter().zip(&totals) {
+        assert!((a - b).abs() <= 1e-12 * total_scale, "{a} vs {b}");
+    }
+    assert_eq!(m_a, morison_m_a);
+    assert!(d_velocity.iter().zip(&morison_velocity).any(|(a, b)| (a - b).abs() > 1e-6));
+}

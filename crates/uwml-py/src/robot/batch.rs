@@ -2,7 +2,7 @@
 
 use std::ops::Range;
 
-use uwml_core::{AddedMassForm, Water, loss_torques, robot_hydro_regressors, robot_hydro_with};
+use uwml_core::{AddedMassForm, Water, loss_torques, robot_hydro_regressors_with, robot_hydro_with};
 
 use super::inputs::{LossStates, Losses, SampleError, StateRow, Surroundings};
 use super::{Coefficients, Data, Model};
@@ -98,6 +98,7 @@ pub(super) fn hydro_range(
 pub(super) fn regressor_range(
     robot: &Model,
     water: &Water<f64>,
+    form: AddedMassForm,
     surroundings: &Surroundings<'_>,
     [q, qd, qdd]: [&[f64]; 3],
     range: &Range<usize>,
@@ -115,7 +116,9 @@ pub(super) fn regressor_range(
         else {
             continue;
         };
-        robot_hydro_regressors(robot, water, &motion, &current, &row.q, &row.qd, &row.qdd, data, drag, added_mass);
+        robot_hydro_regressors_with(
+            robot, water, form, &motion, &current, &row.q, &row.qd, &row.qdd, data, drag, added_mass,
+        );
         for (out, value) in [
             (
                 &mut *buoyancy,

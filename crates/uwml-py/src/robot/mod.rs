@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::{
     AddedMassForm, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques,
-    robot_added_mass_matrix, robot_jacobians,
+    robot_added_mass_matrix, robot_jacobians_with,
 };
 
 mod batch;
@@ -320,6 +320,7 @@ impl PyRobot {
     /// (`(n_samples, 6)`), drag and added mass (`(n_samples, (6 + N)·2S)`: rows base then joints,
     /// columns segment and direction).
     #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (q, qd, qdd, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, kirchhoff=false))]
     fn regressors<'py>(
         &self,
         py: Python<'py>,
@@ -336,7 +337,9 @@ impl PyRobot {
         current: PyReadonlyArray2<'py, f64>,
         current_acceleration: PyReadonlyArray2<'py, f64>,
         threads: usize,
+        kirchhoff: bool,
     ) -> PyResult<Vec<Array2<'py>>> {
+        let form = added_mass_form(kirchhoff);
         let n = self.robot.joint_count();
         let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
         let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
@@ -371,7 +374,7 @@ impl PyRobot {
                 out,
                 |range, out| {
                     let mut data = Box::new(Data::new());
-                    regressor_range(robot, &water, &surroundings, states, range, &mut data, out)
+                    regressor_range(robot, &water, form, &surroundings, states, range, &mut data, out)
                 },
                 shift,
             )
@@ -384,6 +387,7 @@ impl PyRobot {
     /// `(value (m), d_q (m·N), d_velocity (m²), added_mass_matrix (m²))` per sample, `m = 6 + N`,
     /// rows base then joints, velocity columns `(ν, q̇)`; arguments as for `hydro` with losses.
     #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, losses, pressure, temperature, kirchhoff=false))]
     fn jacobians<'py>(
         &self,
         py: Python<'py>,
@@ -404,7 +408,9 @@ impl PyRobot {
         losses: PyReadonlyArray2<'py, f64>,
         pressure: PyReadonlyArray1<'py, f64>,
         temperature: PyReadonlyArray1<'py, f64>,
+        kirchhoff: bool,
     ) -> PyResult<Vec<Array2<'py>>> {
+        let form = added_mass_form(kirchhoff);
         let n = self.robot.joint_count();
         let m = 6 + n;
         let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
@@ -445,10 +451,11 @@ impl PyRobot {
                 row.load(states, sample, n);
                 let (motion, current) = surroundings.at(sample)?;
                 let out = RobotJacobians { value, d_q, d_velocity, added_mass_matrix };
-                robot_jacobians(
+                robot_jacobians_with(
                     robot,
                     &water,
                     coefficients.as_ref(),
+                    form,
                     loss_states.at(&losses, sample),
                     &motion,
                     &current,
