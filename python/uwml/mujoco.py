@@ -47,7 +47,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .environment import JointLosses
 from .model import Water
-from .robot import BaseMotion, Robot, _trusted_motion
+from .robot import BaseMotion, Robot
+from .robot_types import _trusted_motion
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -18,9 +17,17 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
-from .leg import FRESH_WATER, HydroTorques, _threads, _water
+from .environment import SEA_WATER_DENSITY, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
+from .leg import FRESH_WATER, _threads, _water
 from .model import Joint, Link, Segment, Water
+from .robot_types import (
+    BaseMotion,
+    BaseWrench,
+    RobotEnvironment,
+    RobotJacobians,
+    RobotRegressors,
+    RobotTorques,
+)
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
@@ -40,187 +47,6 @@ FloatArray = NDArray[np.float64]
 MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 #: Largest number of segments (all bodies together) of a :class:`Robot`.
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
-
-
-def _quaternion(value: Any) -> FloatArray:
-    """A scalar-first quaternion array from numbers or a ``scipy.spatial.transform.Rotation``."""
-    as_quat = getattr(value, "as_quat", None)
-    if callable(as_quat):
-        return np.asarray(as_quat(scalar_first=True), dtype=np.float64)
-    return _real_array(value, "orientation", "a quaternion (w, x, y, z), an (n, 4) array of them, or a scipy Rotation")
-
-
-@dataclass(frozen=True)
-class BaseMotion:
-    """How the base moves at each sample (MODEL.md 9.2).
-
-    ``orientation``: world from base, a unit quaternion ``(w, x, y, z)`` scalar first (MuJoCo's
-    order), or a ``scipy.spatial.transform.Rotation``. ``velocity`` and ``angular_velocity``:
-    the base origin's velocity [m/s] and the angular velocity [rad/s], in BASE-frame components
-    (Fossen's ν; Pinocchio's free-flyer ``v`` in the LOCAL frame). ``acceleration`` and
-    ``angular_acceleration``: the time derivatives of those components (Fossen's ν̇), so the base
-    origin's classical acceleration is ``acceleration + angular_velocity × velocity``.
-
-    Each is one value for every sample, or one per sample: ``(n, 4)`` and ``(n, 3)``.
-    The default is a fixed, upright base.
-    """
-
-    orientation: Any = (1.0, 0.0, 0.0, 0.0)
-    velocity: ArrayLike = (0.0, 0.0, 0.0)
-    angular_velocity: ArrayLike = (0.0, 0.0, 0.0)
-    acceleration: ArrayLike = (0.0, 0.0, 0.0)
-    angular_acceleration: ArrayLike = (0.0, 0.0, 0.0)
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "orientation", _quaternion(self.orientation))
-        for name in ("velocity", "angular_velocity", "acceleration", "angular_acceleration"):
-            object.__setattr__(self, name, _real_array(getattr(self, name), name, "a 3-vector or an (n, 3) array"))
-        for name, width in (("orientation", 4), ("velocity", 3), ("angular_velocity", 3), ("acceleration", 3), ("angular_acceleration", 3)):
-            array = getattr(self, name)
-            if array.ndim not in (1, 2) or array.shape[-1] != width:
-                raise ValueError(f"base_motion.{name} must have shape ({width},) or (n_samples, {width}), got {array.shape}")
-            if not np.all(np.isfinite(array)):
-                raise ValueError(f"base_motion.{name} must be finite, got {array.tolist()}")
-        single = all(getattr(self, name).ndim == 1 for name in _MOTION_FIELDS)
-        object.__setattr__(self, "_one", tuple(getattr(self, name) for name in _MOTION_FIELDS) if single else None)
-        norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
-        bad = np.flatnonzero(np.abs(norms - 1.0) > 1e-6)
-        if bad.size:
-            raise ValueError(
-                f"base_motion.orientation must be a unit quaternion (w, x, y, z) (norm 1 within 1e-6); sample {bad[0]} has norm {norms[bad[0]]}"
-            )
-
-    def _single(self) -> tuple[FloatArray, ...] | None:
-        """The five arrays, if this is one motion for every sample (else None)."""
-        one: tuple[FloatArray, ...] | None = self.__dict__["_one"]
-        return one
-
-
-_MOTION_FIELDS = ("orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration")
-
-
-def _trusted_motion(*arrays: FloatArray) -> BaseMotion:
-    """A :class:`BaseMotion` of one state from five float64 arrays already known to be finite,
-    of the right shapes, the quaternion a unit one (a simulator's state, :mod:`uwml.mujoco`):
-    without the checks, which cost more than the evaluation. The native call checks again."""
-    motion = object.__new__(BaseMotion)
-    for name, array in zip(_MOTION_FIELDS, arrays, strict=True):
-        object.__setattr__(motion, name, array)
-    object.__setattr__(motion, "_one", arrays)
-    return motion
-
-
-@dataclass(frozen=True)
-class BaseWrench:
-    """The environment's wrench on the whole robot, per component, at the base (MODEL.md 9.5).
-
-    Each array is ``(..., 6)``: force ``[0:3]`` [N] and moment ``[3:6]`` [N·m] about the base
-    origin, in base-frame components: the generalized force of the base's six degrees of freedom.
-    """
-
-    drag: FloatArray
-    added_mass: FloatArray
-    buoyancy: FloatArray
-    #: Weight of all bodies; not part of ``total``.
-    gravity: FloatArray
-
-    @property
-    def total(self) -> FloatArray:
-        """``drag + added_mass + buoyancy``."""
-        return self.drag + self.added_mass + self.buoyancy
-
-
-@dataclass(frozen=True)
-class RobotTorques(HydroTorques):
-    """Generalized forces on every joint (shaped like ``q``; N·m, or N for prismatic joints),
-    and ``base``, the wrench on the base (:class:`BaseWrench`)."""
-
-    base: BaseWrench
-
-
-@dataclass(frozen=True)
-class RobotEnvironment(EnvironmentTorques):
-    """Everything the environment does to every joint (hydrodynamics and joint losses, shaped
-    like ``q``), and ``base``, the hydrodynamic wrench on the base (:class:`BaseWrench`). Joint
-    losses act between a link and its parent, inside the robot: they add nothing to the base
-    wrench."""
-
-    base: BaseWrench
-
-
-@dataclass(frozen=True)
-class RobotRegressors:
-    """Regressors of a robot's hydrodynamic forces (MODEL.md section 4, for whole robots).
-
-    ``drag[..., j, k, d]`` is the generalized force on joint ``j`` of segment ``k``'s drag along
-    its normal direction ``d`` at unit coefficient (a circular segment: all in ``d = 0``), shape
-    ``(..., n_joints, n_segments, 2)``; ``base_drag[..., i, k, d]`` the same for the base wrench's
-    component ``i`` (force xyz, moment xyz), ``(..., 6, n_segments, 2)``; likewise
-    ``added_mass`` and ``base_added_mass``. So for coefficients ``cd``, ``cm`` per segment and
-    direction, ``total = buoyancy + einsum("...jkd,kd->...j", drag, cd) + (same for added
-    mass)``: linear least squares for an arm on a moving vehicle. Segments are ordered as
-    :attr:`Robot.segments`.
-    """
-
-    buoyancy: FloatArray
-    gravity: FloatArray
-    drag: FloatArray
-    added_mass: FloatArray
-    base_buoyancy: FloatArray
-    base_gravity: FloatArray
-    base_drag: FloatArray
-    base_added_mass: FloatArray
-
-    def torques(self, cd: ArrayLike, cm: ArrayLike) -> RobotTorques:
-        """The forces at coefficients ``cd``, ``cm``: scalars, ``(n_segments,)`` or ``(n_segments, 2)``."""
-        n_segments = self.drag.shape[-2]
-
-        def table(value: ArrayLike, name: str) -> FloatArray:
-            array = _real_array(value, name, "a scalar or an array per segment")
-            if array.ndim == 0:
-                return np.full((n_segments, 2), float(array))
-            if array.shape == (n_segments,):
-                return np.repeat(array[:, None], 2, axis=1)
-            if array.shape == (n_segments, 2):
-                return array
-            raise ValueError(f"{name} must be a scalar, ({n_segments},) or ({n_segments}, 2); got shape {array.shape}")
-
-        cd_table, cm_table = table(cd, "cd"), table(cm, "cm")
-
-        def apply(columns: FloatArray, coefficients: FloatArray) -> FloatArray:
-            return np.einsum("...jkd,kd->...j", columns, coefficients)
-
-        base = BaseWrench(
-            drag=apply(self.base_drag, cd_table),
-            added_mass=apply(self.base_added_mass, cm_table),
-            buoyancy=self.base_buoyancy,
-            gravity=self.base_gravity,
-        )
-        return RobotTorques(
-            drag=apply(self.drag, cd_table),
-            added_mass=apply(self.added_mass, cm_table),
-            buoyancy=self.buoyancy,
-            gravity=self.gravity,
-            base=base,
-        )
-
-
-@dataclass(frozen=True)
-class RobotJacobians:
-    """The environment's forces on base and joints and their derivatives, for control.
-
-    With ``m = 6 + n_joints`` (rows: the base wrench's force and moment, base frame, then the
-    joints): ``value`` ``(..., m)`` is ``(base.total, total)`` of :meth:`Robot.environment`;
-    ``d_q`` ``(..., m, n_joints)`` is ``∂value/∂q``; ``d_velocity`` ``(..., m, m)`` is
-    ``∂value/∂(ν, q̇)``, columns the base twist (``v``, ``ω``, base components) then the joint
-    rates; ``added_mass_matrix`` ``(..., m, m)`` is ``M_A`` (:meth:`Robot.added_mass_matrix`), so
-    ``∂value/∂(ν̇, q̈) = −M_A``. Exact derivatives (dual numbers through the same Rust code).
-    """
-
-    value: FloatArray
-    d_q: FloatArray
-    d_velocity: FloatArray
-    added_mass_matrix: FloatArray
 
 
 def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None, ...]:
