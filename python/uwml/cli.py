@@ -20,9 +20,7 @@ import json
 import math
 import os
 import sys
-import time
 from collections.abc import Sequence
-from dataclasses import fields, replace
 from pathlib import Path
 from typing import IO, Any
 
@@ -30,6 +28,7 @@ import numpy as np
 
 from .leg import Leg
 from .model import Water
+from .paper_analysis import _component_table, _rms, gait_like_motion
 
 __all__ = ["build_parser", "gait_like_motion", "main"]
 
@@ -39,42 +38,6 @@ CHUNK_ROWS = 100_000
 
 class _UsageError(ValueError):
     """A bad combination of options (exit code 2)."""
-
-
-def gait_like_motion(n_samples: int = 9, period: float = 2.0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """A smooth, gait-like periodic motion of the paper's leg over one cycle (illustrative).
-
-    Each joint follows ``q = mean + amplitude * sin(2π t / period + phase)``: the hip yaw swings
-    the leg forward and back, the hip roll lifts it during the swing half, the knee folds and
-    unfolds. Returns ``(t, q, qd, qdd)`` with exact derivatives.
-    """
-    mean = np.array([0.0, -0.25, 0.45])
-    amplitude = np.array([0.35, 0.15, 0.25])
-    phase = np.array([0.0, np.pi / 2, np.pi])
-    omega = 2.0 * np.pi / period
-    t = np.linspace(0.0, period, n_samples)
-    angle = omega * t[:, None] + phase
-    q = mean + amplitude * np.sin(angle)
-    qd = amplitude * omega * np.cos(angle)
-    qdd = -amplitude * omega**2 * np.sin(angle)
-    return t, q, qd, qdd
-
-
-def _rms(x: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.mean(x**2, axis=0))
-
-
-def _component_table(t: np.ndarray, q: np.ndarray, qd: np.ndarray, tau: Any) -> list[str]:
-    """The torque components on every joint at each sample time, as table lines."""
-    header = f"{'t [s]':>6} {'joint':>5} {'q [rad]':>8} {'qd [rad/s]':>10} {'drag':>9} {'added mass':>10} {'buoyancy':>9} {'total':>9}"
-    lines = [header, "-" * len(header)]
-    for i in range(len(t)):
-        for j in range(q.shape[1]):
-            lines.append(
-                f"{t[i]:6.2f} {j + 1:5d} {q[i, j]:8.3f} {qd[i, j]:10.3f} "
-                f"{tau.drag[i, j]:9.3f} {tau.added_mass[i, j]:10.3f} {tau.buoyancy[i, j]:9.3f} {tau.total[i, j]:9.3f}"
-            )
-    return lines
 
 
 def _demo(args: argparse.Namespace) -> int:
@@ -92,197 +55,10 @@ def _demo(args: argparse.Namespace) -> int:
     return 0
 
 
-# --------------------------------------------------------------------------------------------
-# uwml paper
-# --------------------------------------------------------------------------------------------
-
-#: Samples of the torque figure over one gait cycle, and the stride of the printed table.
-_PAPER_SAMPLES = 400
-_PAPER_TABLE_STEP = 50
-#: The paper's operating point of the loss budget: 10 r/min output speed, 10 MPa, oil at 20 °C.
-_PAPER_SPEED_RPM, _PAPER_PRESSURE_MPA, _PAPER_TEMPERATURE_C = 10.0, 10.0, 20.0
-_COMPONENTS = (("total", "total"), ("drag", "drag"), ("added_mass", "added mass"), ("buoyancy", "buoyancy"))
-
-
-def _every(tau: Any, step: int) -> Any:
-    """Every ``step``-th sample of a torque result."""
-    return replace(tau, **{f.name: getattr(tau, f.name)[::step] for f in fields(tau)})
-
-
-def _torque_figure(t: np.ndarray, tau: Any, path: Path) -> None:
-    """The component torques over one cycle, one panel per joint (the paper's Fig. 8)."""
-    from matplotlib.figure import Figure
-
-    n_joints = tau.drag.shape[1]
-    figure = Figure(figsize=(8.0, 2.4 * n_joints), layout="constrained")
-    axes = figure.subplots(n_joints, 1, sharex=True, squeeze=False)[:, 0]
-    styles = {"total": ("k", "-", 1.8), "drag": ("C0", "--", 1.2), "added_mass": ("C1", "-.", 1.2), "buoyancy": ("C2", ":", 1.5)}
-    for j, ax in enumerate(axes):
-        for name, label in _COMPONENTS:
-            color, style, width = styles[name]
-            ax.plot(t, getattr(tau, name)[:, j], color=color, ls=style, lw=width, label=label)
-        ax.set_ylabel(f"joint {j + 1} [N·m]")
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize="small", ncol=4, loc="lower left")
-    axes[0].set_title("Hydrodynamic torque components over one gait cycle (Cd = 2.2, Cm = 0.5; cf. paper Fig. 8)", fontsize="medium")
-    axes[-1].set_xlabel("time [s]")
-    figure.savefig(path, dpi=120)
-
-
 def _paper(args: argparse.Namespace) -> int:
-    import matplotlib
+    from .paper_analysis import run
 
-    matplotlib.use("Agg")
-    from . import fit, plot, synthetic
-    from .environment import JointLosses
-    from .gait import WalkingGait
-    from .losses import RPM, Drive, OilDrag, Seal
-
-    start = time.perf_counter()
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    leg = Leg.paper()
-    cd_true, cm_true = 2.2, 0.5
-
-    # Component torques over one cycle of our gait (Fig. 8).
-    gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
-    t = np.linspace(0.0, gait.period, _PAPER_SAMPLES, endpoint=False)
-    q, qd, qdd = gait.joint_states(t)
-    tau = leg.hydro(q, qd, qdd, cd=cd_true, cm=cm_true)
-    _torque_figure(t, tau, out / "fig8_torques.png")
-    rms = {name: _rms(getattr(tau, name)) for name, _ in _COMPONENTS}
-
-    # Synthetic land/water experiment and its fit on joint 1 (Fig. 7).
-    log = synthetic.land_water_experiment(leg, gait, cd=cd_true, cm=cm_true, seed=args.seed)
-    from .logs import write_log
-
-    write_log(log, out / "land_water.csv")
-    result = fit.hydro_coefficients(log, leg)
-    plot.hydro_fit_plot(result, out / "fig7_fit.png")
-
-    # Joint losses (Figs. 13-14) and the current budget.
-    oil, seal, drive = OilDrag(), Seal(), Drive()
-    losses = JointLosses(drive=drive, oil=oil, seal=seal)
-    plot.loss_maps(oil, seal, drive, path=out / "fig13_14_loss_maps.png")
-    plot.efficiency_map(oil, seal, drive, path=out / "efficiency_map.png")
-    current = float(np.abs(losses.torques(_PAPER_SPEED_RPM * RPM, _PAPER_PRESSURE_MPA, _PAPER_TEMPERATURE_C).current))
-    share = 100.0 * current / losses.drive.rated_current
-
-    cd, cm = result.params["cd"], result.params["cm"]
-    cd_err, cm_err = result.stderr["cd"], result.stderr["cm"]
-    summary = {
-        "rms": {name: rms[name].tolist() for name, _ in _COMPONENTS},
-        "fit": {
-            "cd": cd,
-            "cd_stderr": cd_err,
-            "cm": cm,
-            "cm_stderr": cm_err,
-            "redchi": result.redchi,
-            "rsquared": result.rsquared,
-            "ndata": result.ndata,
-        },
-        "loss": {
-            "speed_rpm": _PAPER_SPEED_RPM,
-            "pressure_mpa": _PAPER_PRESSURE_MPA,
-            "temperature_c": _PAPER_TEMPERATURE_C,
-            "current_a": current,
-            "rated_current_a": losses.drive.rated_current,
-            "share_percent": share,
-        },
-    }
-    _write_paper_report(out / "report.md", summary, args.seed, gait, result)
-    elapsed = time.perf_counter() - start
-
-    n = leg.n_joints
-    lines = [
-        f"uwml paper: the paper's leg (Table II), our walking gait (period {gait.period:g} s), written to {out}/ in {elapsed:.1f} s",
-        "",
-        f"Torque components along the gait [N·m] (every {_PAPER_TABLE_STEP}th of {_PAPER_SAMPLES} samples; all in {out}/fig8_torques.png):",
-        *_component_table(t[::_PAPER_TABLE_STEP], q[::_PAPER_TABLE_STEP], qd[::_PAPER_TABLE_STEP], _every(tau, _PAPER_TABLE_STEP)),
-        "",
-        "RMS torque over one cycle [N·m]   " + "  ".join(f"{'joint ' + str(j + 1):>8}" for j in range(n)),
-    ]
-    lines += [f"  {label:<31} " + "  ".join(f"{v:8.3f}" for v in rms[name]) for name, label in _COMPONENTS]
-    lines += [
-        "",
-        f"Fit on joint 1 of a synthetic land/water experiment (true Cd = {cd_true:g}, Cm = {cm_true:g}; seed {args.seed}):",
-        f"  Cd = {_pm(cd, cd_err)}",
-        f"  Cm = {_pm(cm, cm_err)}",
-        f"  reduced chi-square = {result.redchi:.4g}, COD = {result.rsquared:.4f}, {result.ndata} points",
-        "",
-        f"Joint losses at {_PAPER_SPEED_RPM:g} r/min, {_PAPER_PRESSURE_MPA:g} MPa, {_PAPER_TEMPERATURE_C:g} °C (illustrative defaults):",
-        f"  loss current = {current:.3f} A = {share:.1f} % of the {losses.drive.rated_current:g} A rated current",
-        "",
-        f"Report: {out / 'report.md'}",
-    ]
-    print("\n".join(lines))
-    return 0
-
-
-def _pm(value: float, error: float | None) -> str:
-    return f"{value:.5f}" + (" ± n/a" if error is None else f" ± {error:.5f}")
-
-
-def _write_paper_report(path: Path, s: dict[str, Any], seed: int, gait: Any, result: Any) -> None:
-    rms, f, loss = s["rms"], s["fit"], s["loss"]
-    n = len(rms["total"])
-    table = [
-        "| component | " + " | ".join(f"joint {j + 1}" for j in range(n)) + " |",
-        "|---|" + "---:|" * n,
-    ]
-    table += [f"| {label} | " + " | ".join(f"{v:.3f}" for v in rms[name]) + " |" for name, label in _COMPONENTS]
-    text = f"""# uwml paper: the paper's analysis on built-in defaults
-
-Generated by `uwml paper --seed {seed}`. The leg is the paper's (Table II); the gait is
-**ours** (`WalkingGait(nominal_foot={tuple(gait.nominal_foot.tolist())})`, period {gait.period:g} s;
-the paper's own trajectory is not published). The land/water experiment is **synthetic** and
-the joint-loss parameters are **illustrative** defaults (calibrated to the paper's 27.4 %), not
-measurements.
-
-## Hydrodynamic torque components over one gait cycle
-
-Cd = 2.2, Cm = 0.5 (the paper's fit), fresh water. RMS over the cycle [N·m]:
-
-{chr(10).join(table)}
-
-![component torques](fig8_torques.png)
-
-## Identification of Cd and Cm (synthetic experiment)
-
-`synthetic.land_water_experiment(seed={seed})` (**synthetic**: true Cd = 2.2, Cm = 0.5, 0.5 N·m of
-noise on each torque), fitted on joint 1 as in the paper with `fit.hydro_coefficients`; the log is
-`land_water.csv` (`uwml fit hydro land_water.csv` repeats the fit).
-
-| quantity | value |
-|---|---|
-| Cd | {_pm(f["cd"], f["cd_stderr"])} |
-| Cm | {_pm(f["cm"], f["cm_stderr"])} |
-| reduced χ² | {f["redchi"]:.4g} |
-| COD | {f["rsquared"]:.4f} |
-| data points | {f["ndata"]} |
-
-The paper reports Cd = 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344, reduced χ² 2.425, COD 0.826 on
-its measurements. Here σ is estimated from the residuals, so the reduced χ² is 1 by construction.
-
-![measured and fitted torque](fig7_fit.png)
-
-```
-{result.fit_report()}
-```
-
-## Joint losses (illustrative defaults)
-
-At {loss["speed_rpm"]:g} r/min output, {loss["pressure_mpa"]:g} MPa, oil at {loss["temperature_c"]:g} °C, the oil-viscous
-and seal losses cost **{loss["current_a"]:.3f} A = {loss["share_percent"]:.1f} %** of the {loss["rated_current_a"]:g} A
-rated current (the paper: 27.4 %).
-
-![loss maps](fig13_14_loss_maps.png)
-
-Rated current left after the losses over speed and depth (oil at 2 °C, TEOS-10 pressure):
-
-![efficiency map](efficiency_map.png)
-"""
-    path.write_text(text, encoding="utf-8")
+    return run(args.out, args.seed)
 
 
 # --------------------------------------------------------------------------------------------
