@@ -45,10 +45,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .environment import JointLosses
+from .environment import SEA_WATER_DENSITY, JointLosses, pack_leg_losses
 from .model import Water
 from .robot import BaseMotion, Robot
-from .robot_types import _trusted_motion
+from .robot_types import BaseWrench, RobotEnvironment, _trusted_motion
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 
@@ -268,6 +268,10 @@ class Simulation:
         if added_mass not in ("morison", "kirchhoff"):
             raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
         self.scheme, self.integrator, self.added_mass = scheme, integrator, added_mass
+        # The joint losses, packed once for the one-state native path.
+        self._losses = robot._effective_losses(losses)
+        self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
+        self._no_coefficients = np.zeros((0, 2))
         self._map_degrees_of_freedom()
         self._previous_acceleration = np.zeros(self._n_uwml)
         # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
@@ -356,25 +360,42 @@ class Simulation:
     def environment(self) -> tuple[FloatArray, FloatArray]:
         """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
         generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
-        added-mass matrix."""
+        added-mass matrix. Two native calls (the one-state path of ``Robot.environment`` with
+        the losses packed once, and the added-mass matrix), the same numbers as the public API."""
         q = np.array(self.data.qpos[self._joint_qpos])
         qd = np.array(self.data.qvel[self._joint_dofs])
-        result = self.robot.environment(
+        motion = self._base_motion()
+        core = self.robot._core
+        result = core.environment_one(
+            RobotEnvironment,
+            BaseWrench,
             q,
             qd,
             np.zeros_like(q),
-            depth=self.depth,
-            temperature_c=self.temperature_c,
-            losses=self.losses,
-            water=self.water,
-            base_motion=self._base_motion(),
-            current=self.current,
-            current_acceleration=self.current_acceleration,
-            added_mass=self.added_mass,
+            self.depth,
+            self.temperature_c,
+            self._packed_losses,
+            None,
+            None,
+            self.water.density,
+            self.water.gravity,
+            SEA_WATER_DENSITY,
+            motion._single(),
+            self.current,
+            self.current_acceleration,
+            1,
+            self.added_mass == "kirchhoff",
         )
+        if result is None:  # a state the short path does not take: the general path answers
+            result = self.robot.environment(
+                q, qd, np.zeros_like(q), depth=self.depth, temperature_c=self.temperature_c, losses=self._losses,
+                water=self.water, base_motion=motion, current=self.current, current_acceleration=self.current_acceleration,
+                added_mass=self.added_mass,
+            )  # fmt: skip
         # ``total`` is drag + added mass + buoyancy (+ losses on the joints): no gravity.
         forces = np.concatenate([result.base.total, result.total])
-        return forces, self.robot.added_mass_matrix(q, water=self.water)
+        size = 6 + self.robot.n_joints
+        return forces, core.added_mass_matrix(q.reshape(1, -1), self._no_coefficients, self.water.density).reshape(size, size)
 
     def forward(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
         """MuJoCo's forward dynamics at the data's state with uwml's forces: fills
