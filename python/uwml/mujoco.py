@@ -283,9 +283,10 @@ class Simulation:
         self.data.M[:] = saved
         rows, columns = np.nonzero(np.tril(probe))
         order = np.argsort(probe[rows, columns])
-        self._m_rows, self._m_columns = rows[order], columns[order]
-        if not np.array_equal(probe[self._m_rows, self._m_columns], np.arange(1.0, self.model.nM + 1.0)):
+        rows, columns = rows[order], columns[order]
+        if not np.array_equal(probe[rows, columns], np.arange(1.0, self.model.nM + 1.0)):
             raise RuntimeError("unexpected layout of MuJoCo's sparse inertia (data.M)")
+        self._m_flat = rows * self.model.nv + columns
         mujoco.mj_forward(self.model, self.data)
 
     @classmethod
@@ -327,6 +328,14 @@ class Simulation:
         self._base_is_world = self._free_dof is None and m.body_jntnum[self._root] > 0
         self._floating = self._free_dof is not None
         self._n_uwml = 6 + robot.n_joints
+        # MuJoCo's degrees of freedom exactly uwml's order (the free joint's first): the map is
+        # then a rotation of the linear block, without the general selection matrix.
+        first = 6 if self._floating else 0
+        self._standard = (
+            m.nv == first + robot.n_joints
+            and (not self._floating or self._free_dof == 0)
+            and np.array_equal(self._joint_dofs, np.arange(first, first + robot.n_joints))
+        )
 
     def _selection(self) -> FloatArray:
         """``S`` with ``(ν, q̇)_uwml = S · qvel`` (ν only when the base floats)."""
@@ -339,6 +348,32 @@ class Simulation:
             selection[3:6, self._free_dof + 3 : self._free_dof + 6] = np.eye(3)
         selection[6 + np.arange(self.robot.n_joints), self._joint_dofs] = 1.0
         return selection
+
+    def _to_mujoco_matrix(self, added_mass: FloatArray) -> FloatArray:
+        """``Sᵀ M_A S``: the added-mass matrix in MuJoCo's degrees of freedom (``nv × nv``)."""
+        if not self._standard:
+            selection = self._selection()
+            rows = slice(0, None) if self._floating else slice(6, None)
+            return selection[rows].T @ added_mass[rows, rows] @ selection[rows]  # type: ignore[no-any-return]
+        if not self._floating:
+            return added_mass[6:, 6:]
+        # S = diag(Rᵀ, I, I): only the linear rows and columns turn.
+        rotation = self.data.xmat[self._root].reshape(3, 3)
+        full = np.array(added_mass)
+        full[:3] = rotation @ full[:3]
+        full[:, :3] = full[:, :3] @ rotation.T
+        return full
+
+    def _to_mujoco_forces(self, forces: FloatArray) -> FloatArray:
+        """``Sᵀ f``: uwml's generalized forces (base wrench, joints) as MuJoCo's ``(nv,)``."""
+        if not self._standard:
+            rows = slice(0, None) if self._floating else slice(6, None)
+            return self._selection()[rows].T @ forces[rows]  # type: ignore[no-any-return]
+        if not self._floating:
+            return forces[6:]
+        out = np.array(forces)
+        out[:3] = self.data.xmat[self._root].reshape(3, 3) @ forces[:3]
+        return out
 
     def _base_motion(self) -> BaseMotion:
         zero = np.zeros(3)
@@ -408,12 +443,10 @@ class Simulation:
         if not (np.all(np.isfinite(d.qpos)) and np.all(np.isfinite(d.qvel))):
             raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
         mj.mj_fwdKinematics(m, d)
-        selection = self._selection()
         forces, added_mass = self.environment()
         mj.mj_makeM(m, d)
         if self.scheme == "matrix":
-            full = selection.T @ added_mass @ selection if self._floating else selection[6:].T @ added_mass[6:, 6:] @ selection[6:]
-            d.M[:] += full[self._m_rows, self._m_columns]
+            d.M[:] += self._to_mujoco_matrix(added_mass).ravel()[self._m_flat]
         else:
             forces = forces - added_mass @ self._previous_acceleration
         mj.mj_factorM(m, d)
@@ -427,8 +460,7 @@ class Simulation:
             if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
                 raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
             forces = forces + np.concatenate([np.zeros(6), motor])
-        rows = slice(0, None) if self._floating else slice(6, None)
-        d.qfrc_applied[:] = selection[rows].T @ forces[rows]
+        d.qfrc_applied[:] = self._to_mujoco_forces(forces)
         if qfrc is not None:
             extra = np.asarray(qfrc, dtype=np.float64)
             if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
