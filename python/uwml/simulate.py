@@ -41,7 +41,7 @@ from numpy.typing import NDArray
 from .environment import JointLosses
 from .leg import Leg
 from .model import Water
-from .robot import Robot
+from .robot import BaseMotion, Robot
 
 __all__ = ["CONTROLLERS", "DEPTHS", "Drift", "FluidComparison", "Run", "fluid_models", "leg_model", "rov_drift", "run", "study"]
 
@@ -340,7 +340,7 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
             rotation = d.xmat[1].reshape(3, 3)
             q, qd = d.qpos[7:].copy(), d.qvel[6:].copy()
             v_body, w_body = rotation.T @ d.qvel[:3], d.qvel[3:6].copy()
-            motion = uwml_motion(d.qpos[3:7], v_body, w_body)
+            motion = BaseMotion(orientation=np.array(d.qpos[3:7]), velocity=v_body, angular_velocity=w_body)
             wrench = robot.hydro(q, qd, np.zeros_like(q), base_motion=motion, current=(ROV_CURRENT, 0.0, 0.0)).base
             predicted = wrench.total + wrench.gravity
             thrust[:3] -= rotation @ predicted[:3]
@@ -348,12 +348,6 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
         torque = kp_arm * (q_d[k] - d.qpos[7:]) + kd_arm * (qd_d[k] - d.qvel[6:])
         sim.step(torque=torque, qfrc=thrust)
     return Drift("PD + uwml base wrench" if with_uwml else "PD", time, position, attitude)
-
-
-def uwml_motion(quaternion: Any, velocity: FloatArray, angular_velocity: FloatArray) -> Any:
-    from .robot import BaseMotion
-
-    return BaseMotion(orientation=np.array(quaternion), velocity=velocity, angular_velocity=angular_velocity)
 
 
 def progress_bar(done: int, total: int) -> None:
