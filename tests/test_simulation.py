@@ -153,12 +153,73 @@ def test_bad_inputs() -> None:
             other,
             robot=Simulation(model).robot.__class__([uwml.Joint((0, 0, 0), (1, 0, 0), kind="prismatic")], [uwml.Link(1.0, (0, 0, 0), 0.0)]),
         )
+    ball = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><body name="a"><geom type="sphere" size="0.1"/>
+        <body name="b"><joint type="ball"/><geom type="sphere" size="0.1" pos="0 0 -0.3"/></body>
+        <body name="c"><joint type="hinge"/><geom type="sphere" size="0.1" pos="0 0 -0.3"/></body></body></worldbody></mujoco>"""
+    )
+    with pytest.raises(ValueError, match="ball joint"):
+        Simulation(ball, robot=Simulation(pendulum()[0]).robot)
     sim = Simulation(model)
     with pytest.raises(ValueError, match="torque must be 1 finite numbers"):
         sim.step(torque=[1.0, 2.0])
+    with pytest.raises(ValueError, match="torque must be 1 finite numbers"):
+        sim.step(torque=np.array([np.nan], dtype=np.float32))
+    with pytest.raises(AttributeError):
+        sim.data = mujoco.MjData(sim.model)  # type: ignore[misc]  # the simulation keeps views of its data
     # The caller's model keeps its fluid settings; the simulation's has MuJoCo's fluid model off.
     model.opt.density = 1000.0  # type: ignore[attr-defined]
     assert Simulation(model).model.opt.density == 0.0 and model.opt.density == 1000.0  # type: ignore[attr-defined]
+
+
+@pytest.mark.parametrize("scheme", ["matrix", "lagged"])
+def test_each_step_applies_the_public_apis_forces_and_added_mass(scheme: str) -> None:
+    """The per-step arithmetic is native (``MujocoCoupling``); what it writes into MuJoCo is
+    held here against the public path (``Simulation.environment``: ``Robot.environment`` and
+    ``Robot.added_mass_matrix``) mapped by hand: on the floating arm at depth with joint losses
+    in a current, ``qfrc_applied = T (τ_env,0 + [0, τ_motor])`` and MuJoCo's inertia grows by
+    ``T M_A Tᵀ``, ``T = diag(R, I, I)``; lagged: no growth, and ``− M_A a_previous`` in the forces,
+    ``a_previous`` the last step's ``(Rᵀ v̇_world − ω × v, ω̇, q̈)``."""
+    from pathlib import Path
+
+    data = Path(__file__).parent / "data"
+    current = (0.3, -0.1, 0.05)
+    sim = Simulation.from_file(
+        data / "arm.xml", data / "arm.hydro.toml", depth=3000.0, temperature_c=4.0, losses=uwml.JointLosses(),
+        current=current, scheme=scheme, added_mass="kirchhoff",
+    )  # fmt: skip
+    model, d = sim.model, sim.data
+    model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)  # type: ignore[attr-defined]
+    rng = np.random.default_rng(11)
+    quaternion = rng.normal(size=4)
+    d.qpos[3:7] = quaternion / np.linalg.norm(quaternion)
+    d.qvel[:] = rng.uniform(-0.5, 0.5, model.nv)
+    n = sim.robot.n_joints
+    motor = rng.uniform(-2.0, 2.0, n)
+    before = d.qvel.copy()
+    sim.step(torque=motor)  # a step first: the lagged scheme then has an acceleration to lag
+    rotation = d.xmat[1].reshape(3, 3)  # the step's forward pass (mj_Euler moves qpos and qvel only)
+    w, v = before[3:6], rotation.T @ before[0:3]
+    previous = np.concatenate([rotation.T @ d.qacc[0:3] - np.cross(w, v), d.qacc[3:]])
+    mujoco.mj_step1(model, d)  # kinematics of the new state (d.xmat), as forward's first stage
+    rotation = d.xmat[1].reshape(3, 3)
+    forces, added_mass = sim.environment()
+    sim.forward(torque=np.float32(1.0) * motor.astype(np.float32))  # any float array is taken
+    turn = np.eye(6 + n)
+    turn[:3, :3] = rotation
+    expected = forces + np.concatenate([np.zeros(6), motor.astype(np.float32)])
+    if scheme == "lagged":
+        expected = expected - added_mass @ previous
+    np.testing.assert_allclose(d.qfrc_applied, turn @ expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(expected)))
+    with_added, rigid = np.zeros((model.nv, model.nv)), np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(model, d, with_added)
+    bare = mujoco.MjData(model)
+    bare.qpos[:] = d.qpos
+    mujoco.mj_forward(model, bare)
+    mujoco.mj_fullM(model, bare, rigid)
+    grown = turn @ added_mass @ turn.T if scheme == "matrix" else np.zeros_like(rigid)
+    np.testing.assert_allclose(with_added - rigid, grown, rtol=0, atol=1e-12 * np.max(np.abs(added_mass)))
+    assert np.max(np.abs(added_mass)) > 1.0 and np.max(np.abs(forces[6:])) > 1e-2
 
 
 @pytest.mark.parametrize("file, hydro", [("arm.xml", "arm.hydro.toml"), ("hexapod.xml", None)])

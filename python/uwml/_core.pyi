@@ -18,6 +18,7 @@ __all__ = [
     "TREE_JOINT_WIDTH",
     "Chain",
     "ModelError",
+    "MujocoCoupling",
     "Robot",
     "joint_losses",
 ]
@@ -242,6 +243,37 @@ class Robot:
         kirchhoff: bool = False,
     ) -> list[NDArray[np.float64]]: ...
     def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
+
+@final
+class MujocoCoupling:
+    def __new__(
+        cls,
+        robot: Robot,
+        qpos: NDArray[np.float64],
+        qvel: NDArray[np.float64],
+        qacc: NDArray[np.float64],
+        xquat: NDArray[np.float64],
+        xmat: NDArray[np.float64],
+        mass_matrix: NDArray[np.float64],
+        qfrc_applied: NDArray[np.float64],
+        root: int | None,
+        joint_qpos: Sequence[int],
+        joint_dofs: Sequence[int],
+        free_dof: int | None,
+        mass_pairs: NDArray[np.int64],
+        losses: NDArray[np.float64] | None,
+        depth: float,
+        temperature: float,
+        density: float,
+        gravity: float,
+        sea_density: float,
+        current: tuple[float, float, float],
+        current_acceleration: tuple[float, float, float],
+        kirchhoff: bool,
+        lagged: bool,
+    ) -> Self: ...
+    def apply(self, torque: object = None) -> int: ...
+    def remember_acceleration(self) -> None: ...
 
 def joint_losses(
     losses: NDArray[np.float64] | None,

@@ -27,6 +27,12 @@ forces are mapped to MuJoCo's degrees of freedom with the same ``Rᵀ``. Gravity
 (``opt.gravity`` must be ``(0, 0, −g)`` with ``g`` the water's): uwml's gravity component is
 not applied.
 
+**One native call per step.** The arithmetic between ``mj_makeM`` and ``mj_factorM`` (reading
+the state from the data's arrays, the evaluation of ``τ_env,0`` and ``M_A``, the map, the writes
+into ``data.M`` and ``data.qfrc_applied``) is done by ``uwml._core.MujocoCoupling``, which keeps
+views of the data's arrays: a step costs MuJoCo's stages plus about one uwml evaluation and
+``M_A`` (``benches/simulation.py``; docs/simulation.md).
+
 **Integrators.** ``integrator="euler"``: MuJoCo's semi-implicit Euler (``mj_Euler``) after the
 forward pass above, contacts included. ``"rk4"``: the classical Runge-Kutta method on that
 forward pass (positions advanced with ``mj_integratePos``), for smooth motions without contacts,
@@ -45,6 +51,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import _core
 from .environment import SEA_WATER_DENSITY, JointLosses, pack_leg_losses
 from .model import Water
 from .robot import BaseMotion, Robot
@@ -213,7 +220,8 @@ class Simulation:
     ----------
     model, data
         The MuJoCo model (fluid model off) and data; set ``data.qpos``, ``data.qvel`` and
-        ``data.ctrl`` as usual.
+        ``data.ctrl`` as usual (in place: the simulation keeps views of this data's arrays, so
+        both attributes are read-only).
     robot
         The uwml robot.
     """
@@ -246,10 +254,10 @@ class Simulation:
         elif not isinstance(robot, Robot):
             raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
         self._mj = mujoco
-        self.model = copy.deepcopy(model)
-        self.model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
-        self.model.opt.viscosity = 0.0
-        self.data = mujoco.MjData(self.model)
+        self._model = copy.deepcopy(model)
+        self._model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
+        self._model.opt.viscosity = 0.0
+        self._data = mujoco.MjData(self._model)
         self.robot = robot
         self.water = robot.water if water is None else water
         gravity = np.asarray(self.model.opt.gravity, dtype=np.float64)
@@ -273,7 +281,6 @@ class Simulation:
         self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
         self._no_coefficients = np.zeros((0, 2))
         self._map_degrees_of_freedom()
-        self._previous_acceleration = np.zeros(self._n_uwml)
         # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
         mujoco.mj_forward(self.model, self.data)
         saved = self.data.M.copy()
@@ -286,8 +293,26 @@ class Simulation:
         rows, columns = rows[order], columns[order]
         if not np.array_equal(probe[rows, columns], np.arange(1.0, self.model.nM + 1.0)):
             raise RuntimeError("unexpected layout of MuJoCo's sparse inertia (data.M)")
-        self._m_flat = rows * self.model.nv + columns
+        # The per-step arithmetic, native: it keeps views of the data's arrays (module docstring).
+        d = self.data
+        self._coupling = _core.MujocoCoupling(
+            robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
+            None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
+            self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._packed_losses,
+            self.depth, self.temperature_c, self.water.density, self.water.gravity, SEA_WATER_DENSITY,
+            tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
+        )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
+
+    @property
+    def model(self) -> Any:
+        """The MuJoCo model stepped (a copy of the one given, its fluid model off)."""
+        return self._model
+
+    @property
+    def data(self) -> Any:
+        """The MuJoCo data stepped."""
+        return self._data
 
     @classmethod
     def from_file(cls, path: Any, hydro: Any = None, **options: Any) -> Simulation:
@@ -311,6 +336,9 @@ class Simulation:
         free = [j for j in range(m.njnt) if int(m.jnt_type[j]) == free_kind]
         if free and (len(free) > 1 or m.jnt_bodyid[free[0]] != self._root):
             raise ValueError("only the root body may have a free joint (the floating base)")
+        ball = int(mj.mjtJoint.mjJNT_BALL)
+        if any(int(kind) == ball for kind in m.jnt_type):
+            raise ValueError("the model has a ball joint: uwml's joints are revolute and prismatic (hinge and slide)")
         self._free_dof = int(m.jnt_dofadr[free[0]]) if free else None
         self._free_qpos = int(m.jnt_qposadr[free[0]]) if free else None
         moving = [j for j in range(m.njnt) if int(m.jnt_type[j]) in (hinge, slide)]
@@ -327,53 +355,6 @@ class Simulation:
         # The base is the root body's frame unless the root hangs from the world by a joint.
         self._base_is_world = self._free_dof is None and m.body_jntnum[self._root] > 0
         self._floating = self._free_dof is not None
-        self._n_uwml = 6 + robot.n_joints
-        # MuJoCo's degrees of freedom exactly uwml's order (the free joint's first): the map is
-        # then a rotation of the linear block, without the general selection matrix.
-        first = 6 if self._floating else 0
-        self._standard = (
-            m.nv == first + robot.n_joints
-            and (not self._floating or self._free_dof == 0)
-            and np.array_equal(self._joint_dofs, np.arange(first, first + robot.n_joints))
-        )
-
-    def _selection(self) -> FloatArray:
-        """``S`` with ``(ν, q̇)_uwml = S · qvel`` (ν only when the base floats)."""
-        m = self.model
-        selection = np.zeros((self._n_uwml, m.nv))
-        if self._floating:
-            assert self._free_dof is not None
-            rotation = self.data.xmat[self._root].reshape(3, 3)
-            selection[0:3, self._free_dof : self._free_dof + 3] = rotation.T
-            selection[3:6, self._free_dof + 3 : self._free_dof + 6] = np.eye(3)
-        selection[6 + np.arange(self.robot.n_joints), self._joint_dofs] = 1.0
-        return selection
-
-    def _to_mujoco_matrix(self, added_mass: FloatArray) -> FloatArray:
-        """``Sᵀ M_A S``: the added-mass matrix in MuJoCo's degrees of freedom (``nv × nv``)."""
-        if not self._standard:
-            selection = self._selection()
-            rows = slice(0, None) if self._floating else slice(6, None)
-            return selection[rows].T @ added_mass[rows, rows] @ selection[rows]  # type: ignore[no-any-return]
-        if not self._floating:
-            return added_mass[6:, 6:]
-        # S = diag(Rᵀ, I, I): only the linear rows and columns turn.
-        rotation = self.data.xmat[self._root].reshape(3, 3)
-        full = np.array(added_mass)
-        full[:3] = rotation @ full[:3]
-        full[:, :3] = full[:, :3] @ rotation.T
-        return full
-
-    def _to_mujoco_forces(self, forces: FloatArray) -> FloatArray:
-        """``Sᵀ f``: uwml's generalized forces (base wrench, joints) as MuJoCo's ``(nv,)``."""
-        if not self._standard:
-            rows = slice(0, None) if self._floating else slice(6, None)
-            return self._selection()[rows].T @ forces[rows]  # type: ignore[no-any-return]
-        if not self._floating:
-            return forces[6:]
-        out = np.array(forces)
-        out[:3] = self.data.xmat[self._root].reshape(3, 3) @ forces[:3]
-        return out
 
     def _base_motion(self) -> BaseMotion:
         zero = np.zeros(3)
@@ -440,41 +421,28 @@ class Simulation:
         on a free joint: the force in world components, the moment in the body's). A state that
         is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
         mj, m, d = self._mj, self.model, self.data
-        if not (np.all(np.isfinite(d.qpos)) and np.all(np.isfinite(d.qvel))):
-            raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
         mj.mj_fwdKinematics(m, d)
-        forces, added_mass = self.environment()
         mj.mj_makeM(m, d)
-        if self.scheme == "matrix":
-            d.M[:] += self._to_mujoco_matrix(added_mass).ravel()[self._m_flat]
-        else:
-            forces = forces - added_mass @ self._previous_acceleration
+        status = self._coupling.apply(torque)
+        if status == 2:  # a torque the native reader does not take as it is: convert, or refuse
+            motor = np.asarray(torque, dtype=np.float64)
+            if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
+                raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
+            status = self._coupling.apply(np.ascontiguousarray(motor))
+        if status == 1:
+            raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
+        if qfrc is not None:
+            extra = np.asarray(qfrc, dtype=np.float64)
+            if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
+                raise ValueError(f"qfrc must be {m.nv} finite numbers (one per degree of freedom), got shape {extra.shape}")
+            d.qfrc_applied[:] += extra
         mj.mj_factorM(m, d)
         mj.mj_collision(m, d)
         mj.mj_makeConstraint(m, d)
         mj.mj_island(m, d)
         mj.mj_transmission(m, d)
         mj.mj_projectConstraint(m, d)
-        if torque is not None:
-            motor = np.asarray(torque, dtype=np.float64)
-            if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
-                raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
-            forces = forces + np.concatenate([np.zeros(6), motor])
-        d.qfrc_applied[:] = self._to_mujoco_forces(forces)
-        if qfrc is not None:
-            extra = np.asarray(qfrc, dtype=np.float64)
-            if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
-                raise ValueError(f"qfrc must be {m.nv} finite numbers (one per degree of freedom), got shape {extra.shape}")
-            d.qfrc_applied[:] += extra
         mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
-
-    def _uwml_acceleration(self) -> FloatArray:
-        """``(ν̇, q̈)`` of the data's ``qacc`` (for the lagged scheme)."""
-        acceleration = self._selection() @ self.data.qacc
-        base = self._base_motion()
-        if self._floating:
-            acceleration[0:3] += np.asarray(base.acceleration).reshape(3)
-        return acceleration
 
     def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
         """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
@@ -483,7 +451,7 @@ class Simulation:
         if self.integrator == "euler":
             self.forward(torque, qfrc)
             if self.scheme == "lagged":
-                self._previous_acceleration = self._uwml_acceleration()
+                self._coupling.remember_acceleration()
             mj.mj_Euler(m, d)
             return
         h = m.opt.timestep

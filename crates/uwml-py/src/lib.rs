@@ -991,6 +991,7 @@ impl From<PyErrSend> for PyErr {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
     m.add_class::<robot::PyRobot>()?;
+    m.add_class::<robot::MujocoCoupling>()?;
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
     m.add("TREE_JOINT_WIDTH", robot::TREE_JOINT_WIDTH)?;

@@ -14,6 +14,7 @@ use uwml_core::{
 };
 
 mod batch;
+mod coupling;
 mod inputs;
 mod one;
 mod packed;
@@ -21,6 +22,7 @@ mod packed;
 use crate::single::finite_number;
 use crate::{Array2, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
+pub(crate) use coupling::MujocoCoupling;
 use inputs::{LossStates, Losses, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
 use one::{OneState, one_result};
 use packed::build;
