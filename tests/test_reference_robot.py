@@ -916,10 +916,10 @@ def test_linear_in_each_coefficient_and_own_coefficients(seed):
                 if circular[s]:
                     single[s, 1] = 1.0
                 out = hydro(joints, links, base, motion, **{name: single})
-                for key in acc:
-                    acc[key] = acc[key] + coefficients[s, k] * out[key]
-        for key in acc:
-            assert_close(total[key], acc[key] if count else np.zeros_like(total[key]), 1e-12, f"{name} {key}", atol=1e-12)
+                for key, value in acc.items():
+                    acc[key] = value + coefficients[s, k] * out[key]
+        for key, value in acc.items():
+            assert_close(total[key], value if count else np.zeros_like(total[key]), 1e-12, f"{name} {key}", atol=1e-12)
         # A scalar is every segment and direction; (S,) is per segment.
         scalar = hydro(joints, links, base, motion, **{name: 1.3})
         per_segment = hydro(joints, links, base, motion, **{name: np.full(count, 1.3)})

@@ -72,6 +72,7 @@ at ``q = 0``, as in :mod:`uwml.model`)::
 from __future__ import annotations
 
 import dataclasses
+import functools
 import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -115,7 +116,13 @@ def _string(text: str) -> str:
 def _body_lines(body: Link) -> list[str]:
     lines = [] if body.name is None else [f"name = {_string(body.name)}"]
     cob = body.cob if body.cob is not None else body.com
-    return [*lines, f"mass = {_number(body.mass)}", f"com = {_vector(body.com)}", f"volume = {_number(body.volume)}", f"cob = {_vector(cob)}"]
+    return [
+        *lines,
+        f"mass = {_number(body.mass)}",
+        f"com = {_vector(body.com)}",
+        f"volume = {_number(body.volume)}",
+        f"cob = {_vector(cob)}",
+    ]
 
 
 def _segment_lines(segment: Segment) -> list[str]:
@@ -144,7 +151,11 @@ def _losses_lines(losses: JointLosses) -> list[str]:
 
 def dumps(robot: Robot) -> str:
     """The uwml model file of ``robot``, as a string."""
-    out = [f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)", f"format = {_string(FORMAT)}", f"version = {VERSION}"]
+    out = [
+        f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)",
+        f"format = {_string(FORMAT)}",
+        f"version = {VERSION}",
+    ]
     out += ["", "[water]", f"density = {_number(robot.water.density)}", f"gravity = {_number(robot.water.gravity)}"]
     if robot.base is not None:
         out += ["", "[base]", *_body_lines(robot.base)]
@@ -154,7 +165,12 @@ def dumps(robot: Robot) -> str:
         out += ["", "[[joints]]"]
         if joint.name is not None:
             out.append(f"name = {_string(joint.name)}")
-        out += [f"parent = {joint.parent}", f"kind = {_string(joint.kind)}", f"origin = {_vector(joint.origin)}", f"axis = {_vector(joint.axis)}"]
+        out += [
+            f"parent = {joint.parent}",
+            f"kind = {_string(joint.kind)}",
+            f"origin = {_vector(joint.origin)}",
+            f"axis = {_vector(joint.axis)}",
+        ]
         if losses is not None:
             out += _losses_lines(losses)
     for link in robot.links:
@@ -278,7 +294,9 @@ def _segment(source: str, where: str, table: object, error: type[ValueError] = M
 def _body(source: str, where: str, table: object) -> Link:
     r = _Reader(source, where, table)
     r.check_keys(_BODY_KEYS)
-    raw_segments = r.get("segments", lambda v: v if isinstance(v, list) else _fail_type("an array of tables"), "[[...segments]]", required=False, default=[])
+    raw_segments = r.get(
+        "segments", lambda v: v if isinstance(v, list) else _fail_type("an array of tables"), "[[...segments]]", required=False, default=[]
+    )
     segments = tuple(_segment(source, f"{where}, segments[{i}]", s) for i, s in enumerate(raw_segments))
     name = r.get("name", _text, "a string", required=False)
     mass = r.get("mass", _float, "a mass [kg]")
@@ -347,7 +365,7 @@ def loads(text: str, source: str = "<string>") -> Robot:
         kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
         origin = r.get("origin", _vec3, "an array of 3 numbers [m]")
         axis = r.get("axis", _vec3, "a unit vector")
-        joints.append(r.build(lambda: Joint(origin, axis, parent=parent, kind=kind, name=name)))
+        joints.append(r.build(functools.partial(Joint, origin, axis, parent=parent, kind=kind, name=name)))
     links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
     base = _body(source, "base", document["base"]) if "base" in document else None
     water = _water(source, "water", document["water"]) if "water" in document else None
