@@ -212,7 +212,7 @@ class Segment:
         for name, a, b in (("normals[0]·axis", n1, axis), ("normals[1]·axis", n2, axis), ("normals[0]·normals[1]", n1, n2)):
             if abs(_dot(a, b)) > AXIS_TOLERANCE:
                 raise ValueError(f"segment.{name} must be 0 (orthonormal normals perpendicular to the axis), got {_dot(a, b)}")
-        object.__setattr__(self, "normals", (n1, n2))
+        object.__setattr__(self, "normals", _exact_frame(axis, n1, n2))
         widths = _pair(self.widths, "segment.widths")
         object.__setattr__(
             self,
@@ -232,6 +232,22 @@ class Segment:
             raise ValueError(f"segment.widths of a circular segment are (diameter, diameter); got {self.widths!r}")
         object.__setattr__(self, "widths", (diameter, diameter))
         object.__setattr__(self, "normals", _normals_of(axis))
+
+
+def _exact_frame(axis: Vec3, n1: Vec3, n2: Vec3) -> tuple[Vec3, Vec3]:
+    """The normals made an exact orthonormal frame with the unit ``axis`` (Gram-Schmidt, as the
+    core does): ``n1`` without its component along the axis, renormalized; ``n2 = ±axis × n1`` on
+    the side it was given. The strip integrals' identities assume an exact frame; normals within
+    :data:`AXIS_TOLERANCE` of one would otherwise be used as given. A frame exact to rounding
+    already (one read back from a model file) is kept as it is, so that this is idempotent."""
+    along = _dot(n1, axis)
+    if abs(along) > _UNIT_ROUNDING:
+        n1 = _unit(tuple(n - along * a for n, a in zip(n1, axis, strict=True)), "segment.normals[0]")
+    cross = (axis[1] * n1[2] - axis[2] * n1[1], axis[2] * n1[0] - axis[0] * n1[2], axis[0] * n1[1] - axis[1] * n1[0])
+    if max(abs(c - n) for c, n in zip(cross, n2, strict=True)) <= _UNIT_ROUNDING:
+        return n1, n2
+    sign = 1.0 if _dot(cross, n2) >= 0.0 else -1.0
+    return n1, (sign * cross[0], sign * cross[1], sign * cross[2])
 
 
 def _normals_of(axis: Vec3) -> tuple[Vec3, Vec3]:

@@ -162,6 +162,21 @@ pub(crate) fn check_unit<T: RealField + Copy>(
     }
 }
 
+/// `v` made exactly perpendicular to the unit `axis` and normalized, if it was within
+/// [`AXIS_TOLERANCE`] of perpendicular and of unit length.
+pub(crate) fn check_normal<T: RealField + Copy>(
+    v: Vector3<T>,
+    axis: &Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    let v = check_unit(v, field, index)?;
+    if v.dot(axis).abs() > constant(AXIS_TOLERANCE) {
+        return Err(ModelError::new(field, index, Problem::NotPerpendicular));
+    }
+    Ok((v - axis * v.dot(axis)).normalize())
+}
+
 fn check_perpendicular<T: RealField + Copy>(
     a: &Vector3<T>,
     b: &Vector3<T>,
@@ -190,11 +205,12 @@ impl<T: RealField + Copy> Segment<T> {
         let i = Some(index);
         let axis = check_unit(self.axis, "segment.axis", i)?;
         let [n1, n2] = self.normals;
-        let n1 = check_unit(n1, "segment.normals[0]", i)?;
-        let n2 = check_unit(n2, "segment.normals[1]", i)?;
-        check_perpendicular(&n1, &axis, "segment.normals[0]", i)?;
-        check_perpendicular(&n2, &axis, "segment.normals[1]", i)?;
+        let n1 = check_normal(n1, &axis, "segment.normals[0]", i)?;
+        let n2 = check_normal(n2, &axis, "segment.normals[1]", i)?;
         check_perpendicular(&n1, &n2, "segment.normals[1]", i)?;
+        // An exact frame (the strip integrals' identities assume one): the second normal
+        // exactly perpendicular to the axis and the first, on the side it was given.
+        let n2 = axis.cross(&n1) * axis.cross(&n1).dot(&n2).signum();
         let [w1, w2] = self.widths;
         Ok(Self {
             start: check_vector(self.start, "segment.start", i)?,
@@ -224,7 +240,9 @@ impl<T: RealField + Copy> Link<T> {
 }
 
 impl<T: RealField + Copy, const N: usize> Chain<T, N> {
-    /// Validates and builds a chain. Axes and normals are re-normalized exactly.
+    /// Validates and builds a chain. Axes are re-normalized exactly; each segment's normals are
+    /// made an exact orthonormal frame with its axis (Gram-Schmidt, the second normal on the side
+    /// it was given).
     ///
     /// # Errors
     /// The first non-finite, non-positive (lengths, widths, area), negative (mass, volume),

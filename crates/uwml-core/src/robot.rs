@@ -15,8 +15,8 @@ use nalgebra::{RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
 use crate::model::{
-    AXIS_TOLERANCE, Chain, check_coefficient_table, check_non_negative, check_positive, check_unit, check_vector,
-    constant,
+    AXIS_TOLERANCE, Chain, check_coefficient_table, check_non_negative, check_normal, check_positive, check_unit,
+    check_vector, constant,
 };
 
 /// How a joint moves its link.
@@ -128,21 +128,6 @@ pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
 pub struct SegmentCoefficients<T: SimdRealField + Copy, const S: usize> {
     pub(crate) cd: [[T; 2]; S],
     pub(crate) cm: [[T; 2]; S],
-}
-
-/// `v` made exactly perpendicular to the unit `axis` and normalized, if it was within
-/// [`AXIS_TOLERANCE`] of perpendicular and of unit length.
-fn check_normal<T: RealField + Copy>(
-    v: Vector3<T>,
-    axis: &Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    let v = check_unit(v, field, index)?;
-    if v.dot(axis).abs() > constant(AXIS_TOLERANCE) {
-        return Err(ModelError::new(field, index, Problem::NotPerpendicular));
-    }
-    Ok((v - axis * v.dot(axis)).normalize())
 }
 
 impl<T: RealField + Copy> TreeJoint<T> {

@@ -99,3 +99,28 @@ fn water_and_coefficients_are_validated() {
     assert_eq!((e.field, e.index, e.problem), ("cm", Some(1), Problem::NonFinite));
     assert_eq!(Coefficients::<f64, 3>::default(), Coefficients::uniform(2.2, 0.5).unwrap());
 }
+
+#[test]
+fn normals_within_the_tolerance_become_an_exact_frame() {
+    // The strip integrals' identities assume an exact frame: normals accepted within
+    // AXIS_TOLERANCE are made exactly orthonormal and perpendicular to the axis (Gram-Schmidt,
+    // the second on the side it was given), not only renormalized.
+    let (joints, mut links) = paper_parts();
+    let mut segment = links[1].segment.unwrap();
+    let [n0, n1] = segment.normals;
+    let exact = (n0, n1, segment.axis);
+    segment.normals = [(n0 + segment.axis * 5e-7).normalize(), (n1 + n0 * 5e-7 + segment.axis * 3e-7).normalize()];
+    links[1].segment = Some(segment);
+    let chain = Chain::new(joints, links).unwrap();
+    let stored = chain.links()[1].segment.unwrap();
+    let [m0, m1] = stored.normals;
+    assert!(m0.dot(&exact.2).abs() < 1e-16 && m1.dot(&exact.2).abs() < 1e-16 && m0.dot(&m1).abs() < 1e-16);
+    assert!((m0 - exact.0).norm() < 1e-15 && (m1 - exact.1).norm() < 1e-15);
+    // The second normal keeps the side it was given.
+    let (joints, mut links) = paper_parts();
+    let mut flipped = links[1].segment.unwrap();
+    flipped.normals[1] = -flipped.normals[1];
+    links[1].segment = Some(flipped);
+    let chain = Chain::new(joints, links).unwrap();
+    assert!((chain.links()[1].segment.unwrap().normals[1] + exact.1).norm() < 1e-15);
+}
