@@ -809,3 +809,24 @@ def test_normals_within_the_tolerance_become_an_exact_frame() -> None:
     for out, path in ((uwml.Leg(joints, links).hydro(q, qd, qdd), "chain"), (uwml.Robot(joints, links).hydro(q, qd, qdd), "robot")):
         for key in ("drag", "added_mass", "buoyancy"):
             assert_batch_close(getattr(out, key), expected[key], 1e-12, f"{path} {key}", natural[key])
+
+
+@pytest.mark.parametrize("size", [1e5, 1e8, 1e10, 1e15, 1e300])
+def test_huge_joint_angles_keep_their_accuracy(size: float) -> None:
+    """The batch path's SIMD sine and cosine reduce their argument in double precision only
+    (exact to about 1e8 rad, 4e-7 relative off at 1e10 and 0.02 at 1e15); angles beyond 1e6 rad
+    are reduced exactly first. So at any finite angle the batch, the one-state path, the scalar
+    jacobians and the reference agree to rounding (the jacobians' docstring: 1e-13)."""
+    leg = uwml.Leg.paper()
+    q = np.array([[size, -0.3 * size + 0.1, size / 7.0], [0.2, size, -size]])
+    qd, qdd = np.full_like(q, 0.5), np.full_like(q, -0.8)
+    out = leg.hydro(q, qd, qdd)
+    expected = ref.hydro(leg.joints, leg.links, q, qd, qdd)
+    for key in ("drag", "added_mass", "buoyancy", "gravity"):
+        scale = float(np.max(np.abs(expected[key])))
+        np.testing.assert_allclose(getattr(out, key), expected[key], rtol=0, atol=1e-13 * scale, err_msg=key)
+    one = leg.hydro(q[0], qd[0], qdd[0])
+    np.testing.assert_array_equal(one.total, out.total[0])
+    environment = leg.environment(q, qd, qdd).total
+    value = leg.jacobians(q, qd, qdd).value
+    np.testing.assert_allclose(value, environment, rtol=0, atol=1e-13 * float(np.max(np.abs(environment))))

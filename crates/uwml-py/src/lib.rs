@@ -218,6 +218,29 @@ fn lanes<const N: usize>(rows: &[f64]) -> SVector<Lanes, N> {
     SVector::from_fn(|j, _| Lanes::from([0, 1, 2, 3].map(|l| rows.get(l * N + j).copied().unwrap_or(0.0))))
 }
 
+/// Joint angles larger than this [rad] in magnitude are reduced to `[−π, π]` before they reach
+/// the SIMD lanes: the lanes' sine and cosine (simba's `WideF64x4`) reduce the argument in double
+/// precision only, so they are exact to rounding up to about 1e8 rad but lose accuracy beyond
+/// (4e-7 relative at 1e10 rad, 0.02 at 1e15), while the scalar ones (libm's, with exact argument
+/// reduction) do not. Well below that limit, so that no angle a robot reaches in practice pays
+/// for the reduction.
+const LARGE_ANGLE: f64 = 1e6;
+
+/// `q` itself, or for `|q| > LARGE_ANGLE` the angle in `[−π, π]` with the same sine and cosine
+/// (to one rounding: `atan2(sin q, cos q)` with libm's exactly reduced sine and cosine).
+#[inline(always)]
+fn reduced_angle(q: f64) -> f64 {
+    if q.abs() <= LARGE_ANGLE { q } else { q.sin().atan2(q.cos()) }
+}
+
+/// [`lanes`] of joint angles, each reduced by [`reduced_angle`].
+#[inline(always)]
+fn angle_lanes<const N: usize>(rows: &[f64]) -> SVector<Lanes, N> {
+    SVector::from_fn(|j, _| {
+        Lanes::from([0, 1, 2, 3].map(|l| reduced_angle(rows.get(l * N + j).copied().unwrap_or(0.0))))
+    })
+}
+
 /// The four samples' torques.
 #[inline(always)]
 fn unpack_torques<const N: usize>(t: &HydroTorques<Lanes, N>) -> [HydroTorques<f64, N>; 4] {
@@ -239,8 +262,9 @@ impl<'a> States<'a> {
     ) -> impl Iterator<Item = R> + 's {
         let group = 4 * N;
         let groups = self.q.chunks(group).zip(self.qd.chunks(group)).zip(self.qdd.chunks(group));
-        groups
-            .flat_map(move |((q, qd), qdd)| evaluate(&lanes(q), &lanes(qd), &lanes(qdd)).into_iter().take(q.len() / N))
+        groups.flat_map(move |((q, qd), qdd)| {
+            evaluate(&angle_lanes(q), &lanes(qd), &lanes(qdd)).into_iter().take(q.len() / N)
+        })
     }
 }
 
