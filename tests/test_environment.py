@@ -2,6 +2,7 @@
 reference (``uwml.reference``) and the paper's findings."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -126,11 +127,88 @@ def test_losses_grow_with_depth():
 
 
 def test_core_hydrostatic_formula():
-    depth = np.array([0.0, 10.0, 1000.0])
-    assert_close(uwml.pressure_at_depth_mpa(depth), 1025.0 * 9.81 * depth / 1e6, rel=1e-15)
-    assert_close(uwml.pressure_at_depth_mpa(depth), reference.hydrostatic_pressure_mpa(depth), rel=1e-15)
-    with pytest.raises(ValueError, match="depth_m"):
-        uwml.pressure_at_depth_mpa(-1.0)
+    depth = np.array([0.0, 10.0, 1000.0, 11000.0])
+    assert_close(uwml.hydrostatic_pressure_mpa(depth), 1025.0 * 9.81 * depth / 1e6, rel=1e-15)
+    assert_close(uwml.hydrostatic_pressure_mpa(depth), reference.hydrostatic_pressure_mpa(depth), rel=1e-15)
+    assert_close(uwml.hydrostatic_pressure_mpa(1000.0, sea_density=1000.0, gravity=9.8), 9.8, rel=1e-15)
+    for bad, match in ((-1.0, "depth_m is -1.0 m"), (11000.5, "from 0 to 11000 m"), ([5.0, math.nan], r"depth_m\[1\] is nan")):
+        with pytest.raises(ValueError, match=match):
+            uwml.hydrostatic_pressure_mpa(bad)
+    for kwargs in ({"sea_density": -1025.0}, {"sea_density": math.nan}, {"gravity": 0.0}):
+        with pytest.raises(ValueError, match=f"{next(iter(kwargs))} must be finite and positive"):
+            uwml.hydrostatic_pressure_mpa(100.0, **kwargs)
+    # The density is keyword-only: a second positional number (a latitude for uwml.seawater's
+    # TEOS-10 pressure_at_depth_mpa) is refused rather than read as a density.
+    with pytest.raises(TypeError):
+        uwml.hydrostatic_pressure_mpa(1000.0, 45.0)  # type: ignore[misc]
+
+
+STATE = ([0.2, -0.3, 0.5], [0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("one_state", [True, False])
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"depth": 1e9}, r"depth is 1000000000.0 m: depth must be finite and from 0 to 11000 m"),
+        ({"depth": 11000.5}, "from 0 to 11000 m"),
+        ({"depth": -3.0}, "depth is -3.0 m"),
+        ({"temperature_c": -300.0}, r"temperature_c is -300.0 °C: temperature_c must be finite and above absolute zero"),
+        ({"temperature_c": -273.15}, "above absolute zero"),
+        ({"sea_density": -1025.0}, "sea_density must be finite and positive"),
+        ({"sea_density": math.nan}, "sea_density must be finite and positive"),
+    ],
+)
+def test_conditions_outside_the_physics_are_refused(kwargs: dict, match: str, one_state: bool) -> None:
+    """Depth from 0 to the deepest ocean (11 km), temperature above absolute zero, a positive
+    sea density: outside, a ValueError naming the argument (it was inf, 1e11 N·m or 1.5e10 N·m),
+    on the one-state path and the batch path, for the leg and the robot."""
+    state = STATE if one_state else tuple(np.array([x, x]) for x in STATE)
+    for model in (uwml.Leg.paper(), uwml.Robot.from_leg(uwml.Leg.paper())):
+        with pytest.raises(ValueError, match=match):
+            model.environment(*state, losses=uwml.JointLosses(), **kwargs)
+        with pytest.raises(ValueError, match=match):
+            model.jacobians(*state, losses=uwml.JointLosses(), **kwargs)
+
+
+def test_per_sample_conditions_name_the_sample() -> None:
+    q = np.zeros((3, 3))
+    with pytest.raises(ValueError, match=r"depth\[2\] is 20000.0 m"):
+        uwml.Leg.paper().environment(q, q, q, depth=[10.0, 20.0, 20000.0])
+    with pytest.raises(ValueError, match=r"temperature_c\[1\] is -280.0"):
+        uwml.Robot.from_leg(uwml.Leg.paper()).environment(q, q, q, temperature_c=[4.0, -280.0, 4.0])
+
+
+@pytest.mark.parametrize("temperature", [-5.0, 60.0])
+def test_oil_temperatures_outside_the_sea_warn_and_still_evaluate(temperature: float) -> None:
+    """Inside the physics but outside the oil model's range (−2 to 40 °C): the losses are
+    evaluated (the exponential law extrapolates) with an ExtrapolationWarning naming the value;
+    inside the range, no warning. The one-state path gives the batch path's numbers."""
+    leg = uwml.Leg.paper()
+    with pytest.warns(uwml.ExtrapolationWarning, match=f"temperature_c is {temperature} °C, outside the oil model's range"):
+        one = leg.environment(*STATE, temperature_c=temperature, losses=uwml.JointLosses())
+    with pytest.warns(uwml.ExtrapolationWarning):
+        batch = leg.environment(*(np.array([x]) for x in STATE), temperature_c=temperature, losses=uwml.JointLosses())
+    np.testing.assert_array_equal(one.total, batch.total[0])
+    colder = 4.0 if temperature < 0 else 40.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        inside = leg.environment(*STATE, temperature_c=colder, losses=uwml.JointLosses())
+    # Colder oil is thicker: more oil drag at −5 °C than at 4 °C, less at 60 °C than at 40 °C.
+    assert (np.abs(one.visc[1]) > np.abs(inside.visc[1])) == (temperature < 0)
+    with pytest.warns(uwml.ExtrapolationWarning):
+        uwml.JointLosses().torques(0.5, 10.0, temperature)
+
+
+def test_joint_losses_refuse_pressures_beyond_the_ocean() -> None:
+    losses = uwml.JointLosses()
+    for pressure, match in ((-1.0, r"pressure_mpa\[0\] is -1.0"), (121.0, "at most 120 MPa"), (math.inf, "finite")):
+        with pytest.raises(ValueError, match=match):
+            losses.torques(0.5, pressure, 4.0)
+    with pytest.raises(ValueError, match="above absolute zero"):
+        losses.torques(0.5, 10.0, -274.0)
+    with pytest.raises(ValueError, match=r"speed\[1\] is nan"):
+        losses.torques([0.5, math.nan], 10.0, 4.0)
 
 
 @pytest.mark.parametrize(

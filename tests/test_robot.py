@@ -301,7 +301,7 @@ def test_environment_is_hydro_plus_the_legs_losses() -> None:
     np.testing.assert_array_equal(env.hydro, hydro.total)
     np.testing.assert_array_equal(env.base.total, hydro.base.total)
     np.testing.assert_array_equal(env.total, hydro.total + env.visc + env.seal)
-    with pytest.raises(ValueError, match="depth must be >= 0"):
+    with pytest.raises(ValueError, match="depth must be finite and from 0 to 11000 m"):
         robot.environment(q[0], qd[0], qdd[0], depth=-1.0)
     with pytest.raises(ValueError, match="losses must have one entry per joint"):
         robot.environment(q[0], qd[0], qdd[0], losses=[None])
@@ -465,7 +465,7 @@ def test_one_state_environment_is_the_batch_row_bit_for_bit() -> None:
             for name in (*COMPONENTS, "visc", "seal", "current"):
                 np.testing.assert_array_equal(getattr(one, name), getattr(batch, name)[i])
             np.testing.assert_array_equal(one.base.total, batch.base.total[i])
-    with pytest.raises(ValueError, match="depth must be >= 0"):
+    with pytest.raises(ValueError, match="depth must be finite and from 0 to 11000 m"):
         robot.environment([0.0] * 3, [0.0] * 3, [0.0] * 3, depth=-5.0)
 
 

@@ -112,7 +112,7 @@ def test_threads_report_the_first_bad_sample_of_the_whole_batch():
         leg.hydro(q, qd, qdd, threads=4)
     depth = np.zeros(len(q))
     depth[600] = np.nan
-    with pytest.raises(ValueError, match=r"depth\[600\] is nan: depth must be finite"):
+    with pytest.raises(ValueError, match=r"depth\[600\] is nan m: depth must be finite"):
         leg.environment(q, np.zeros_like(qd), np.zeros_like(qdd), depth=depth, threads=4)
 
 

@@ -11,7 +11,7 @@ torque).
 
 from ._core import ModelError
 from .descriptions import DescriptionError
-from .environment import EnvironmentTorques, JointLosses, LossTorques, pressure_at_depth_mpa
+from .environment import EnvironmentTorques, ExtrapolationWarning, JointLosses, LossTorques, hydrostatic_pressure_mpa
 from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques, Leg
 from .logs import Log, read_log, write_log
@@ -40,6 +40,7 @@ __all__ = [
     "Drive",
     "EnvironmentJacobians",
     "EnvironmentTorques",
+    "ExtrapolationWarning",
     "HydroRegressors",
     "HydroTorques",
     "Joint",
@@ -60,9 +61,9 @@ __all__ = [
     "Segment",
     "WalkingGait",
     "Water",
+    "hydrostatic_pressure_mpa",
     "paper_leg_foot",
     "paper_leg_ik",
-    "pressure_at_depth_mpa",
     "read_log",
     "write_log",
 ]

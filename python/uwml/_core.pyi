@@ -7,13 +7,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = [
+    "ABSOLUTE_ZERO_C",
     "BODY_WIDTH",
     "JOINT_WIDTH",
     "LINK_WIDTH",
     "LOSS_WIDTH",
+    "MAX_DEPTH",
     "MAX_JOINTS",
+    "MAX_PRESSURE",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
+    "OIL_TEMPERATURE_RANGE_C",
     "SEGMENT_WIDTH",
     "TREE_JOINT_WIDTH",
     "Chain",
@@ -26,6 +30,10 @@ __all__ = [
 _Result = TypeVar("_Result")
 
 MAX_JOINTS: int
+MAX_DEPTH: float
+MAX_PRESSURE: float
+ABSOLUTE_ZERO_C: float
+OIL_TEMPERATURE_RANGE_C: tuple[float, float]
 JOINT_WIDTH: int
 LINK_WIDTH: int
 LOSS_WIDTH: int

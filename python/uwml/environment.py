@@ -7,6 +7,8 @@ adds the losses of every joint to the hydrodynamic torques at a depth and temper
 
 from __future__ import annotations
 
+import math
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -18,7 +20,17 @@ from . import _core
 from ._checks import real_array as _real_array
 from .losses import Drive, OilDrag, Seal
 
-__all__ = ["SEA_WATER_DENSITY", "EnvironmentTorques", "JointLosses", "LossTorques", "pressure_at_depth_mpa"]
+__all__ = [
+    "ABSOLUTE_ZERO_C",
+    "MAX_DEPTH",
+    "OIL_TEMPERATURE_RANGE_C",
+    "SEA_WATER_DENSITY",
+    "EnvironmentTorques",
+    "ExtrapolationWarning",
+    "JointLosses",
+    "LossTorques",
+    "hydrostatic_pressure_mpa",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -27,16 +39,75 @@ SEA_WATER_DENSITY = 1025.0
 _MPA = 1e6
 
 
-def pressure_at_depth_mpa(depth_m: ArrayLike, sea_density: float = SEA_WATER_DENSITY, gravity: float = 9.81) -> FloatArray:
-    """Gauge pressure ``ρ g z`` [MPa] at depth [m], the formula the core uses.
+#: The deepest ocean [m]: depths are taken from 0 to this (the Challenger Deep is about 10,935 m).
+MAX_DEPTH: float = _core.MAX_DEPTH
+#: The largest ambient (gauge) pressure taken [MPa]: the deepest ocean's 110 MPa, with margin.
+MAX_PRESSURE_MPA: float = _core.MAX_PRESSURE / _MPA
+#: Absolute zero [°C]: temperatures must be above it.
+ABSOLUTE_ZERO_C: float = _core.ABSOLUTE_ZERO_C
+#: The oil temperatures [°C] the oil model is meant for: the sea's, from where sea water freezes
+#: (about −2 °C) to the 40 °C of the oil's viscosity grade. Outside, the losses are still
+#: evaluated (the exponential temperature law extrapolates), with an :class:`ExtrapolationWarning`.
+OIL_TEMPERATURE_RANGE_C: tuple[float, float] = _core.OIL_TEMPERATURE_RANGE_C
 
-    :mod:`uwml.seawater` gives the oceanographers' TEOS-10 value; the two agree within the bound
-    documented in docs/losses.md.
+
+class ExtrapolationWarning(UserWarning):
+    """An input outside the range a model is meant for, though inside the physics' domain: the
+    result is the model's extrapolation (e.g. an oil temperature outside
+    :data:`OIL_TEMPERATURE_RANGE_C`)."""
+
+
+def _positive_number(value: object, name: str) -> float:
+    try:
+        x = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real number, got {value!r}") from None
+    if not (math.isfinite(x) and x > 0.0):
+        raise ValueError(f"{name} must be finite and positive, got {value!r}")
+    return x
+
+
+def check_depths(depth: FloatArray, name: str = "depth") -> None:
+    """Every depth finite and from 0 to :data:`MAX_DEPTH`; else a ValueError naming the first."""
+    flat = np.ravel(depth)
+    bad = np.flatnonzero(~np.isfinite(flat) | (flat < 0.0) | (flat > MAX_DEPTH))
+    if bad.size:
+        where = f"{name}[{bad[0]}]" if np.ndim(depth) else name
+        raise ValueError(f"{where} is {float(flat[bad[0]])!r} m: {name} must be finite and from 0 to {MAX_DEPTH:g} m (the deepest ocean)")
+
+
+def check_temperatures(temperature: FloatArray, name: str = "temperature_c", stacklevel: int = 3) -> None:
+    """Every temperature finite and above absolute zero (else a ValueError naming the first); an
+    :class:`ExtrapolationWarning` when one is outside :data:`OIL_TEMPERATURE_RANGE_C`."""
+    flat = np.ravel(temperature)
+    bad = np.flatnonzero(~np.isfinite(flat) | (flat <= ABSOLUTE_ZERO_C))
+    if bad.size:
+        where = f"{name}[{bad[0]}]" if np.ndim(temperature) else name
+        raise ValueError(f"{where} is {float(flat[bad[0]])!r} °C: {name} must be finite and above absolute zero ({ABSOLUTE_ZERO_C} °C)")
+    low, high = OIL_TEMPERATURE_RANGE_C
+    outside = np.flatnonzero((flat < low) | (flat > high))
+    if outside.size:
+        where = f"{name}[{outside[0]}]" if np.ndim(temperature) else name
+        warnings.warn(
+            f"{where} is {float(flat[outside[0]])!r} °C, outside the oil model's range ({low:g} to {high:g} °C, the sea's): "
+            "its temperature law extrapolates there",
+            ExtrapolationWarning,
+            stacklevel=stacklevel,
+        )
+
+
+def hydrostatic_pressure_mpa(depth_m: ArrayLike, *, sea_density: float = SEA_WATER_DENSITY, gravity: float = 9.81) -> FloatArray:
+    """Gauge pressure ``ρ g z`` [MPa] at depth [m] (0 to :data:`MAX_DEPTH`), the formula the core
+    uses; ``sea_density`` [kg/m³] and ``gravity`` [m/s²] finite and positive, keyword-only.
+
+    :func:`uwml.seawater.pressure_at_depth_mpa` gives the oceanographers' TEOS-10 value (its second
+    argument is a latitude); the two agree within the bound documented in docs/losses.md.
     """
-    depth = np.asarray(depth_m, dtype=np.float64)
-    if not np.all(np.isfinite(depth)) or np.any(depth < 0):
-        raise ValueError(f"depth_m must be finite and >= 0, got {depth_m!r}")
-    return sea_density * gravity * depth / _MPA
+    depth = _real_array(depth_m, "depth_m", "a real number or array")
+    check_depths(depth, "depth_m")
+    density = _positive_number(sea_density, "sea_density")
+    g = _positive_number(gravity, "gravity")
+    return density * g * depth / _MPA
 
 
 @dataclass(frozen=True)
@@ -123,8 +194,17 @@ class JointLosses:
             speed_b, pressure_b, temperature_b = np.broadcast_arrays(*arrays)
         except ValueError:
             raise ValueError(f"speed, pressure_mpa and temperature_c must broadcast, got shapes {[a.shape for a in arrays]}") from None
-        if np.any(pressure_b < 0):
-            raise ValueError("pressure_mpa must be >= 0 (gauge pressure)")
+        bad = np.flatnonzero(~np.isfinite(np.ravel(speed_b)))
+        if bad.size:
+            raise ValueError(f"speed[{bad[0]}] is {float(np.ravel(speed_b)[bad[0]])!r}: speed must be finite")
+        pressures = np.ravel(pressure_b)
+        bad = np.flatnonzero(~np.isfinite(pressures) | (pressures < 0.0) | (pressures > MAX_PRESSURE_MPA))
+        if bad.size:
+            raise ValueError(
+                f"pressure_mpa[{bad[0]}] is {float(pressures[bad[0]])!r}: pressure_mpa must be finite, >= 0 (gauge pressure) "
+                f"and at most {MAX_PRESSURE_MPA:g} MPa (the deepest ocean's, with margin)"
+            )
+        check_temperatures(temperature_b)
         shape = speed_b.shape
         flat = [np.ascontiguousarray(a.ravel()) for a in (speed_b, pressure_b * _MPA, temperature_b)]
         packed = np.array([self.packed()], dtype=np.float64)
@@ -159,26 +239,23 @@ class EnvironmentTorques:
         return self.hydro + self.visc + self.seal
 
 
-def loss_conditions(depth: ArrayLike, temperature_c: ArrayLike, sea_density: float, gravity: float, n_samples: int) -> tuple[FloatArray, FloatArray]:
+def loss_conditions(
+    depth: ArrayLike, temperature_c: ArrayLike, sea_density: float, gravity: float, n_samples: int
+) -> tuple[FloatArray, FloatArray]:
     """The hydrostatic pressure [Pa] (``sea_density · gravity · depth``) and the temperature
     [°C] of every sample, checked: depth and temperature a scalar or one per sample, finite,
     depth ≥ 0, ``sea_density`` positive."""
-    conditions = []
+    conditions, given = [], []
     for name, value in (("depth", depth), ("temperature_c", temperature_c)):
         array = _real_array(value, name, "a real number or one per sample")
         if array.ndim > 1 or (array.ndim == 1 and array.shape[0] != n_samples):
             raise ValueError(f"{name} must be a scalar or have one entry per sample ({n_samples}), got shape {array.shape}")
+        given.append(array)
         conditions.append(np.ascontiguousarray(np.broadcast_to(array, (n_samples,))))
     depth_m, temperature = conditions
-    sea_density = float(sea_density)
-    if not np.isfinite(sea_density) or sea_density <= 0:
-        raise ValueError(f"sea_density must be positive, got {sea_density}")
-    for name, values in (("depth", depth_m), ("temperature_c", temperature)):
-        bad = np.flatnonzero(~np.isfinite(values))
-        if bad.size:
-            raise ValueError(f"{name}[{bad[0]}] is {values[bad[0]]}: {name} must be finite")
-    if np.any(depth_m < 0):
-        raise ValueError("depth must be >= 0 (metres below the surface)")
+    sea_density = _positive_number(sea_density, "sea_density")
+    check_depths(given[0])
+    check_temperatures(given[1], stacklevel=4)
     return np.ascontiguousarray(sea_density * gravity * depth_m), temperature
 
 

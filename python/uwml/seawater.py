@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._checks import finite_array
+from .environment import MAX_DEPTH
 
 __all__ = ["density_at_depth", "pressure_at_depth_mpa"]
 
@@ -32,6 +33,8 @@ def _depth_and_latitude(depth_m: ArrayLike, latitude_deg: ArrayLike) -> tuple[Ar
     depth = finite_array(depth_m, "depth_m")
     if np.any(depth < 0.0):
         raise ValueError(f"depth_m must be >= 0 (metres below the surface), got minimum {depth.min()}")
+    if np.any(depth > MAX_DEPTH):
+        raise ValueError(f"depth_m must be at most {MAX_DEPTH:g} m (the deepest ocean), got maximum {depth.max()}")
     latitude = finite_array(latitude_deg, "latitude_deg")
     if np.any(np.abs(latitude) > 90.0):
         raise ValueError(f"latitude_deg must lie in [-90, 90], got {latitude[np.abs(latitude) > 90.0].flat[0]}")

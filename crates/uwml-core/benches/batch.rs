@@ -2,7 +2,7 @@
 //! offline tool runs them: hydrodynamics alone and with the default losses on all three joints,
 //! f64 and f32. Criterion prints the time per batch and the states per second.
 //! Run: `cargo bench -p uwml-core --features std --bench batch`.
-#![allow(missing_docs)]
+#![allow(missing_docs, clippy::unwrap_used)]
 
 use std::hint::black_box;
 
@@ -30,8 +30,8 @@ fn states<T: RealField + Copy>() -> Vec<[Vector3<T>; 3]> {
 fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let leg = Chain::<T, 3>::paper();
     let (water, coefficients) = (Water::<T>::default(), Coefficients::<T, 3>::default());
-    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
-    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0))); 3];
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
+    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
     let states = states::<T>();
     let mut group = c.benchmark_group(format!("batch{BATCH}/{name}"));
     group.throughput(Throughput::Elements(BATCH as u64));

@@ -1,7 +1,7 @@
 //! Cost of the derivatives for control: `environment_jacobians` on the paper leg with losses on
 //! all three joints, f64 and f32, next to one `environment_torques` for scale.
 //! Run: `cargo bench -p uwml-core --features std --bench derivatives`.
-#![allow(missing_docs)]
+#![allow(missing_docs, clippy::unwrap_used)]
 
 use std::hint::black_box;
 
@@ -18,8 +18,8 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let coefficients = Coefficients::<T, 3>::default();
     let v = |a: f64, b: f64, c: f64| Vector3::new(convert(a), convert(b), convert(c));
     let (q, qd, qdd) = (v(0.3, -0.4, 0.6), v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
-    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
-    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0))); 3];
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
+    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
     c.bench_function(&format!("environment_torques/paper+losses/{name}"), |b| {
         b.iter(|| {
             environment_torques(black_box(&leg), &water, &coefficients, &losses, black_box(&q), black_box(&qd), &qdd)

@@ -1,6 +1,6 @@
 //! Cost of the joint losses on top of the hydrodynamics: the paper leg with losses on all
 //! three joints, f64 and f32. Run: `cargo bench -p uwml-core --features std --bench environment`.
-#![allow(missing_docs)]
+#![allow(missing_docs, clippy::unwrap_used)]
 
 use std::hint::black_box;
 
@@ -16,8 +16,8 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let coefficients = Coefficients::<T, 3>::default();
     let v = |a: f64, b: f64, c: f64| Vector3::new(convert(a), convert(b), convert(c));
     let (q, qd, qdd) = (v(0.3, -0.4, 0.6), v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
-    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
-    let state = Some(JointLosses::<T>::default().at(pressure, convert(4.0)));
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
+    let state = Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap());
     let losses = [state; 3];
     c.bench_function(&format!("hydro_torques/paper/{name}"), |b| {
         b.iter(|| hydro_torques(black_box(&leg), &water, &coefficients, black_box(&q), black_box(&qd), &qdd))
@@ -41,7 +41,7 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     let fitted_oil =
         OilDrag::new(convert(1.1933e-3), convert(1.2), convert(0.02e-6), convert(0.06), T::zero(), convert(20.0)).ok();
     let fitted = JointLosses::new(defaults.drive, fitted_oil, defaults.seal, defaults.epsilon())
-        .map(|l| Some(l.at(pressure, convert(4.0))))
+        .map(|l| Some(l.at(pressure, convert(4.0)).unwrap()))
         .unwrap_or(state);
     let fitted = [fitted; 3];
     c.bench_function(&format!("environment_torques/paper+losses-n1.2/{name}"), |b| {
@@ -59,7 +59,7 @@ fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
     });
     let joint = JointLosses::<T>::default();
     c.bench_function(&format!("losses_at/pressure_change/{name}"), |b| {
-        b.iter(|| joint.at(black_box(pressure), black_box(convert(4.0))))
+        b.iter(|| joint.at(black_box(pressure), black_box(convert(4.0))).unwrap())
     });
 }
 

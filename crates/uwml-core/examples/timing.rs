@@ -4,7 +4,7 @@
 //! `... [n_calls] robot-leg|robot-leg-moving|robot-arm [f64|f32]`: `robot_hydro` on the paper leg
 //! (fixed base in still water, or on a moving base in a current) and on a 7-joint arm of 14
 //! segments on a moving ROV in a current (`benches/common/arm.rs`).
-#![allow(missing_docs)]
+#![allow(missing_docs, clippy::unwrap_used)]
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -53,8 +53,8 @@ fn environment<T: RealField + Copy>(
 
 /// Sum of one output per call (so nothing is optimized away); q changes every call.
 fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
-    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81));
-    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0))); 3];
+    let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
+    let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
     let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default(), losses);
     let v = |a: f64, b: f64, c: f64| Vector3::<T>::new(convert(a), convert(b), convert(c));
     let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));

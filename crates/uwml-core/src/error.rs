@@ -19,6 +19,11 @@ pub enum Problem {
     OutOfOrder,
     /// Outside a documented range (named in the field).
     OutOfRange,
+    /// At or below absolute zero (a temperature, −273.15 °C).
+    BelowAbsoluteZero,
+    /// Deeper than the deepest ocean: a depth beyond [`MAX_DEPTH`](crate::MAX_DEPTH), or a
+    /// pressure beyond [`MAX_PRESSURE`](crate::MAX_PRESSURE).
+    BeyondDeepestOcean,
 }
 
 /// A non-physical or malformed model parameter, found at construction.
@@ -61,6 +66,11 @@ impl fmt::Display for ModelError {
             }
             Problem::OutOfOrder => "must be at least its running counterpart (breakaway s0 >= c0, s1 >= c1)",
             Problem::OutOfRange => "is outside its allowed range",
+            Problem::BelowAbsoluteZero => "must be above absolute zero (-273.15 degC)",
+            Problem::BeyondDeepestOcean if self.field == "pressure" => {
+                "must be at most 1.2e8 Pa (the deepest ocean's 110 MPa, with margin)"
+            }
+            Problem::BeyondDeepestOcean => "must be at most 11000 m (the deepest ocean)",
         };
         write!(f, "{} {allowed}", self.field)
     }

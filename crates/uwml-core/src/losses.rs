@@ -311,9 +311,22 @@ impl<T: RealField + Copy> JointLosses<T> {
     }
 
     /// Fixes the ambient pressure `p` [Pa] and oil temperature `θ` [°C].
-    #[must_use]
+    ///
+    /// # Errors
+    /// Outside the physics' domain: a pressure that is not finite, negative (it is the gauge
+    /// pressure of the water around the joint) or above [`MAX_PRESSURE`] (the deepest ocean's,
+    /// with margin: `pressure`); a temperature that is not finite or not above absolute zero,
+    /// [`ABSOLUTE_ZERO_C`] (`temperature`). The oil model is meant for the sea's temperatures,
+    /// [`OIL_TEMPERATURE_RANGE_C`] (Python warns outside); beyond them it extrapolates, which is
+    /// allowed.
     #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn at(&self, pressure: T, temperature: T) -> LossState<T> {
+    pub fn at(&self, pressure: T, temperature: T) -> Result<LossState<T>, ModelError> {
+        check_conditions(pressure, temperature)?;
+        Ok(self.at_unchecked(pressure, temperature))
+    }
+
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+    fn at_unchecked(&self, pressure: T, temperature: T) -> LossState<T> {
         let zero = T::zero();
         let (oil_scale, exponent) = match &self.oil {
             Some(oil) => (oil.scale(pressure, temperature), oil.exponent),
@@ -432,12 +445,70 @@ impl<T: RealField + Copy> Default for JointLosses<T> {
     }
 }
 
+/// The deepest ocean [m]: depths are taken from 0 to this (the Challenger Deep is about
+/// 10,935 m).
+pub const MAX_DEPTH: f64 = 11_000.0;
+
+/// The largest ambient (gauge) pressure taken [Pa]: the deepest ocean's, about 110 MPa, with
+/// margin for denser water.
+pub const MAX_PRESSURE: f64 = 1.2e8;
+
+/// Absolute zero [°C]: temperatures must be above it.
+pub const ABSOLUTE_ZERO_C: f64 = -273.15;
+
+/// The oil temperatures [°C] the oil model is meant for: the sea's, from where sea water freezes
+/// (about −2 °C) to the 40 °C of the oil's viscosity grade. Outside, [`JointLosses::at`] still
+/// evaluates (the exponential temperature law extrapolates); the Python package warns.
+pub const OIL_TEMPERATURE_RANGE_C: [f64; 2] = [-2.0, 40.0];
+
+/// `pressure` [Pa] finite and within `0..=MAX_PRESSURE`.
+fn check_pressure<T: RealField + Copy>(pressure: T) -> Result<T, ModelError> {
+    let pressure = check_at_least(pressure, T::zero(), "pressure", Problem::Negative)?;
+    if pressure <= constant(MAX_PRESSURE) {
+        Ok(pressure)
+    } else {
+        Err(ModelError::new("pressure", None, Problem::BeyondDeepestOcean))
+    }
+}
+
+/// `temperature` [°C] finite and above absolute zero.
+fn check_temperature<T: RealField + Copy>(temperature: T) -> Result<T, ModelError> {
+    let temperature = check_finite(temperature, "temperature", None)?;
+    if temperature > constant(ABSOLUTE_ZERO_C) {
+        Ok(temperature)
+    } else {
+        Err(ModelError::new("temperature", None, Problem::BelowAbsoluteZero))
+    }
+}
+
+/// The domain of the loss conditions, as [`JointLosses::at`] checks it: `pressure` [Pa] finite
+/// and from 0 to [`MAX_PRESSURE`], `temperature` [°C] finite and above [`ABSOLUTE_ZERO_C`].
+///
+/// # Errors
+/// The first condition outside its domain, as a `ModelError` with field `pressure` or
+/// `temperature`.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), ModelError> {
+    check_pressure(pressure)?;
+    check_temperature(temperature)?;
+    Ok(())
+}
+
 /// Gauge pressure [Pa] at `depth` [m] below the surface: `ρ g z` (no compressibility; within
 /// the bound documented in docs/losses.md of TEOS-10).
-#[must_use]
+///
+/// # Errors
+/// A `depth` that is not finite, negative or beyond [`MAX_DEPTH`]; a `sea_density` or `gravity`
+/// that is not finite and positive.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity: T) -> T {
-    sea_density * gravity * depth
+pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity: T) -> Result<T, ModelError> {
+    let depth = check_at_least(depth, T::zero(), "depth", Problem::Negative)?;
+    if depth > constant(MAX_DEPTH) {
+        return Err(ModelError::new("depth", None, Problem::BeyondDeepestOcean));
+    }
+    let sea_density = check_positive(sea_density, "sea_density", None)?;
+    let gravity = check_positive(gravity, "gravity", None)?;
+    Ok(sea_density * gravity * depth)
 }
 
 /// Default sea-water density for [`pressure_at_depth`] [kg/m³].

@@ -214,8 +214,8 @@ fn cholesky_succeeds<const N: usize>(m: &SMatrix<f64, N, N>) -> bool {
 }
 
 fn paper(losses: bool) -> Model<3> {
-    let pressure = pressure_at_depth(1000.0, 1025.0, 9.81);
-    let state = losses.then(|| JointLosses::default().at(pressure, 4.0));
+    let pressure = pressure_at_depth(1000.0, 1025.0, 9.81).unwrap();
+    let state = losses.then(|| JointLosses::default().at(pressure, 4.0).unwrap());
     Model {
         chain: Chain::paper(),
         water: Water::new(1025.0, 9.81).unwrap(),
@@ -269,7 +269,8 @@ fn random_chains_match_finite_differences() {
     let seal_only = JointLosses::new(Drive::default(), None, JointLosses::default().seal, 0.02).unwrap();
     for k in 0..100 {
         let coefficients = random_coefficients(&mut rng);
-        let losses = [None, Some(JointLosses::default().at(5e6, 10.0)), None, Some(seal_only.at(2e7, 2.0))];
+        let losses =
+            [None, Some(JointLosses::default().at(5e6, 10.0).unwrap()), None, Some(seal_only.at(2e7, 2.0).unwrap())];
         let model = Model {
             chain: random_chain(&mut rng),
             water: Water::new(1025.0, 9.80665).unwrap(),
@@ -344,8 +345,8 @@ fn the_dual_pass_computes_the_real_values_and_minus_the_added_mass_matrix_in_qdd
     let leg = Chain::<D3, 3>::paper();
     let water = Water::new(D3::constant(1025.0), D3::constant(9.81)).unwrap();
     let coefficients = Coefficients::<D3, 3>::default();
-    let pressure = pressure_at_depth(D3::constant(1000.0), D3::constant(1025.0), D3::constant(9.81));
-    let losses = [Some(JointLosses::<D3>::default().at(pressure, D3::constant(4.0))); 3];
+    let pressure = pressure_at_depth(D3::constant(1000.0), D3::constant(1025.0), D3::constant(9.81)).unwrap();
+    let losses = [Some(JointLosses::<D3>::default().at(pressure, D3::constant(4.0)).unwrap()); 3];
     let model = paper(true);
     let mut rng = Rng(16);
     for _ in 0..100 {
@@ -377,7 +378,8 @@ fn single_precision_agrees_with_double() {
     let model = paper(true);
     let leg = Chain::<f32, 3>::paper();
     let (water, coefficients) = (Water::new(1025.0f32, 9.81).unwrap(), Coefficients::<f32, 3>::default());
-    let losses = [Some(JointLosses::<f32>::default().at(pressure_at_depth(1000.0, 1025.0, 9.81), 4.0)); 3];
+    let losses =
+        [Some(JointLosses::<f32>::default().at(pressure_at_depth(1000.0, 1025.0, 9.81).unwrap(), 4.0).unwrap()); 3];
     let mut rng = Rng(17);
     for _ in 0..200 {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), speeds::<3>(&mut rng, 2.0), rng.vector::<3>(5.0));
@@ -402,7 +404,7 @@ fn laminar_and_quadratic_oil_and_a_generic_exponent_give_finite_slopes_at_rest()
     let model = paper(false);
     for exponent in [1.0, 1.2, 1.5, 2.0] {
         let oil = OilDrag::new(1.2e-3, exponent, 2e-8, 0.06, 0.0, 20.0).unwrap();
-        let losses = JointLosses::new(Drive::default(), Some(oil), None, 1e-3).unwrap().at(1e7, 4.0);
+        let losses = JointLosses::new(Drive::default(), Some(oil), None, 1e-3).unwrap().at(1e7, 4.0).unwrap();
         let zero = SVector::<f64, 3>::zeros();
         let j = environment_jacobians(
             &model.chain,

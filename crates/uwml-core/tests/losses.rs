@@ -47,7 +47,7 @@ fn stribeck_curve_at_zero_at_the_stribeck_speed_and_far_above() {
     let seal = Seal::new([10.0, 2.0 / MPA], [15.0, 5.0 / MPA], [1.0, 0.5 / MPA], 0.1).unwrap();
     let p = 4.0 * MPA;
     let (c, s, d) = (10.0 + 8.0, 15.0 + 20.0, 1.0 + 2.0);
-    let state = seal_only(seal, 0.0).at(p, 20.0);
+    let state = seal_only(seal, 0.0).at(p, 20.0).unwrap();
     // Just above zero speed: the breakaway level S(p).
     assert!(close(-state.evaluate(1e-12).seal, s, 1e-9));
     // At ω_s: C + (S − C)/e + D ω_s.
@@ -67,14 +67,14 @@ fn oil_drag_law() {
     let losses = JointLosses::new(drive, Some(oil), None, 0.0).unwrap();
     let (p, theta, w) = (6.0 * MPA, 5.0, 0.4f64);
     let t_oil = 2e-3 * f64::exp(0.03 * 5.0) * f64::exp(-0.05 * (5.0 - 25.0)) * (100.0 * w).powf(1.5);
-    let loss = losses.at(p, theta).evaluate(w);
+    let loss = losses.at(p, theta).unwrap().evaluate(w);
     assert!(close(loss.visc, -100.0 * 0.9 * t_oil, 1e-13));
     assert!(close(loss.current, t_oil / 0.5, 1e-13));
     assert_eq!(loss.seal, 0.0);
     // The exact exponents 1 and 2 skip the power function and agree with it.
     for n in [1.0, 2.0] {
         let oil = OilDrag::new(2e-3, n, 0.0, 0.0, 0.0, 20.0).unwrap();
-        let loss = JointLosses::new(drive, Some(oil), None, 0.0).unwrap().at(0.0, 20.0).evaluate(-w);
+        let loss = JointLosses::new(drive, Some(oil), None, 0.0).unwrap().at(0.0, 20.0).unwrap().evaluate(-w);
         assert!(close(loss.visc, 100.0 * 0.9 * 2e-3 * (100.0 * w).powf(n), 1e-14));
     }
 }
@@ -94,10 +94,10 @@ fn losses_oppose_motion_and_grow_with_pressure() {
     for _ in 0..5000 {
         let speed = 4.0 * (uniform(&mut seed) - 0.5) * 10f64.powf(-4.0 * uniform(&mut seed));
         let (p, theta) = (20.0 * MPA * uniform(&mut seed), 2.0 + 25.0 * uniform(&mut seed));
-        let low = losses.at(p, theta).evaluate(speed);
+        let low = losses.at(p, theta).unwrap().evaluate(speed);
         assert!(speed * low.visc <= 0.0 && speed * low.seal <= 0.0, "{speed}: {low:?}");
         assert!(speed * low.current >= 0.0);
-        let high = losses.at(p + 1.0 * MPA, theta).evaluate(speed);
+        let high = losses.at(p + 1.0 * MPA, theta).unwrap().evaluate(speed);
         assert!(high.visc.abs() >= low.visc.abs() && high.seal.abs() >= low.seal.abs());
     }
 }
@@ -106,7 +106,7 @@ fn losses_oppose_motion_and_grow_with_pressure() {
 fn defaults_reproduce_the_papers_findings() {
     let losses = JointLosses::<f64>::default();
     let (w, p, theta) = (10.0 * RPM, 10.0 * MPA, 20.0);
-    let loss = losses.at(p, theta).evaluate(w);
+    let loss = losses.at(p, theta).unwrap().evaluate(w);
     // 2.85 A total, 27.4 % of the 10.4 A rated current (paper, Section IV).
     assert!((loss.current - 2.85).abs() < 1e-3, "{}", loss.current);
     assert!((loss.current / 10.4 - 0.274).abs() < 5e-4);
@@ -116,10 +116,10 @@ fn defaults_reproduce_the_papers_findings() {
         let h = 1e-4;
         (f(x * (1.0 + h)).abs().ln() - f(x * (1.0 - h)).abs().ln()) / ((1.0 + h).ln() - (1.0 - h).ln())
     };
-    let oil_speed = elasticity(&|s| losses.at(p, theta).evaluate(s).visc, w);
-    let seal_speed = elasticity(&|s| losses.at(p, theta).evaluate(s).seal, w);
-    let oil_pressure = elasticity(&|x| losses.at(x, theta).evaluate(w).visc, p);
-    let seal_pressure = elasticity(&|x| losses.at(x, theta).evaluate(w).seal, p);
+    let oil_speed = elasticity(&|s| losses.at(p, theta).unwrap().evaluate(s).visc, w);
+    let seal_speed = elasticity(&|s| losses.at(p, theta).unwrap().evaluate(s).seal, w);
+    let oil_pressure = elasticity(&|x| losses.at(x, theta).unwrap().evaluate(w).visc, p);
+    let seal_pressure = elasticity(&|x| losses.at(x, theta).unwrap().evaluate(w).seal, p);
     assert!(
         oil_speed > seal_speed && seal_pressure > oil_pressure,
         "{oil_speed} {seal_speed} {oil_pressure} {seal_pressure}"
@@ -127,7 +127,7 @@ fn defaults_reproduce_the_papers_findings() {
     assert!(oil_pressure > 0.0 && seal_pressure > 0.0);
     // Breakaway well above running friction at high pressure: at start-up (0.01 rad/s, ten
     // times the smooth sign's width) against running at 10 r/min.
-    let state = losses.at(p, theta);
+    let state = losses.at(p, theta).unwrap();
     assert!(state.evaluate(0.01).seal.abs() > 1.3 * state.evaluate(w).seal.abs());
 }
 
@@ -153,9 +153,9 @@ fn environment_torque_adds_losses_to_hydrodynamics() {
     let leg = Chain::<f64, 3>::paper();
     let (water, coefficients) = (Water::default(), Coefficients::default());
     let (q, qd, qdd) = (Vector3::new(0.3, -0.4, 0.6), Vector3::new(0.8, 0.5, -0.7), Vector3::new(1.0, -2.0, 0.5));
-    let p = pressure_at_depth(1000.0, 1025.0, 9.81);
+    let p = pressure_at_depth(1000.0, 1025.0, 9.81).unwrap();
     assert!(close(p, 10.055_25 * MPA, 1e-12));
-    let joint = JointLosses::default().at(p, 4.0);
+    let joint = JointLosses::default().at(p, 4.0).unwrap();
     let losses = [None, Some(joint), Some(joint)];
     let env = environment_torques(&leg, &water, &coefficients, &losses, &q, &qd, &qdd);
     let hydro = hydro_torques(&leg, &water, &coefficients, &q, &qd, &qdd);
@@ -174,9 +174,49 @@ fn f32_losses_track_f64() {
     let mut seed = 5;
     for _ in 0..2000 {
         let (w, p) = (3.0 * (uniform(&mut seed) - 0.5), 15.0 * MPA * uniform(&mut seed));
-        let (a, b) = (l64.at(p, 4.0).evaluate(w), l32.at(p as f32, 4.0).evaluate(w as f32));
+        let (a, b) = (l64.at(p, 4.0).unwrap().evaluate(w), l32.at(p as f32, 4.0).unwrap().evaluate(w as f32));
         for (x, y) in [(a.visc, b.visc), (a.seal, b.seal), (a.current, b.current)] {
             assert!((x - f64::from(y)).abs() <= 2e-5 * (x.abs() + 1e-3), "{x} {y}");
         }
     }
+}
+
+#[test]
+fn conditions_outside_the_physics_are_refused() {
+    use uwml_core::{ABSOLUTE_ZERO_C, MAX_DEPTH, MAX_PRESSURE};
+    let joint = JointLosses::<f64>::default();
+    for (pressure, temperature, field, problem) in [
+        (-1.0, 20.0, "pressure", Problem::Negative),
+        (f64::NAN, 20.0, "pressure", Problem::NonFinite),
+        (f64::INFINITY, 20.0, "pressure", Problem::NonFinite),
+        (MAX_PRESSURE * 1.000_001, 20.0, "pressure", Problem::BeyondDeepestOcean),
+        (1e7, ABSOLUTE_ZERO_C, "temperature", Problem::BelowAbsoluteZero),
+        (1e7, -300.0, "temperature", Problem::BelowAbsoluteZero),
+        (1e7, f64::NAN, "temperature", Problem::NonFinite),
+    ] {
+        let e = joint.at(pressure, temperature).unwrap_err();
+        assert_eq!((e.field, e.problem), (field, problem), "{pressure} Pa, {temperature} degC");
+    }
+    // The edges are inside: no pressure, the deepest ocean, just above absolute zero.
+    for (pressure, temperature) in [(0.0, 20.0), (MAX_PRESSURE, 2.0), (1e7, ABSOLUTE_ZERO_C + 1.0)] {
+        assert!(joint.at(pressure, temperature).is_ok());
+    }
+    for (depth, density, gravity, field, problem) in [
+        (-1.0, 1025.0, 9.81, "depth", Problem::Negative),
+        (MAX_DEPTH + 1.0, 1025.0, 9.81, "depth", Problem::BeyondDeepestOcean),
+        (f64::NAN, 1025.0, 9.81, "depth", Problem::NonFinite),
+        (1000.0, -1025.0, 9.81, "sea_density", Problem::NonPositive),
+        (1000.0, f64::NAN, 9.81, "sea_density", Problem::NonFinite),
+        (1000.0, 1025.0, 0.0, "gravity", Problem::NonPositive),
+    ] {
+        let e = pressure_at_depth(depth, density, gravity).unwrap_err();
+        assert_eq!((e.field, e.problem), (field, problem), "{depth} m, {density} kg/m3, {gravity} m/s2");
+    }
+    assert_eq!(pressure_at_depth(MAX_DEPTH, 1025.0, 9.81), Ok(1025.0 * 9.81 * MAX_DEPTH));
+    // The deepest ocean's pressure is within the pressures taken, even in dense water.
+    assert!(pressure_at_depth(MAX_DEPTH, 1060.0, 9.83).unwrap() <= MAX_PRESSURE);
+    let message = pressure_at_depth(12_000.0, 1025.0, 9.81).unwrap_err().to_string();
+    assert!(message.contains("depth") && message.contains("11000 m"), "{message}");
+    let message = joint.at(1e7, -300.0).unwrap_err().to_string();
+    assert!(message.contains("temperature") && message.contains("absolute zero"), "{message}");
 }

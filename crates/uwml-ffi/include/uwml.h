@@ -110,6 +110,16 @@
 #define UWML_ERR_UNINITIALIZED 10
 
 /**
+ * A temperature at or below absolute zero (-273.15 °C).
+ */
+#define UWML_ERR_BELOW_ABSOLUTE_ZERO 11
+
+/**
+ * Deeper than the deepest ocean: a depth beyond 11000 m, or a pressure beyond 1.2e8 Pa.
+ */
+#define UWML_ERR_BEYOND_DEEPEST_OCEAN 12
+
+/**
  * The number of joints (and links) of the leg of this API.
  */
 #define UWML_LEG3_JOINTS 3
@@ -175,6 +185,32 @@
  * (`diameter`, `cd[0]`, `cm[0]`).
  */
 #define UWML_SECTION_CIRCULAR 1
+
+/**
+ * What went wrong, for the optional last argument of most functions (NULL to skip it).
+ * Written on every call that takes it, success included (`code` 0, `index` -1, `field` "").
+ * It has no padding bytes (`reserved` is written 0), so its bytes are all determinate.
+ */
+typedef struct UwmlError {
+    /**
+     * The returned code, `UWML_OK` or one of `UWML_ERR_*`.
+     */
+    int32_t code;
+    /**
+     * Always 0 (keeps `index` aligned without padding).
+     */
+    int32_t reserved;
+    /**
+     * The joint, link or segment (0-based) the field belongs to, or the offending element of a
+     * joint state, or `joint_index` itself (any `uint32_t`); -1 if none.
+     */
+    int64_t index;
+    /**
+     * The offending field or parameter, e.g. "link.volume", "q" or "out"; NUL-terminated,
+     * truncated to 47 bytes.
+     */
+    char field[UWML_ERROR_FIELD_LEN];
+} UwmlError;
 
 /**
  * A leg (chain, water, coefficients, joint losses) in f64, for C to allocate (statically:
@@ -266,27 +302,6 @@ typedef struct UwmlLinkParamsF64 {
      */
     int32_t has_segment;
 } UwmlLinkParamsF64;
-
-/**
- * What went wrong, for the optional last argument of most functions (NULL to skip it).
- * Written on every call that takes it, success included (`code` 0, `index` -1, `field` "").
- */
-typedef struct UwmlError {
-    /**
-     * The returned code, `UWML_OK` or one of `UWML_ERR_*`.
-     */
-    int32_t code;
-    /**
-     * The joint, link or segment (0-based) the field belongs to, or the offending element of a
-     * joint state or `joint_index` itself; -1 if none.
-     */
-    int32_t index;
-    /**
-     * The offending field or parameter, e.g. "link.volume", "q" or "out"; NUL-terminated,
-     * truncated to 47 bytes.
-     */
-    char field[UWML_ERROR_FIELD_LEN];
-} UwmlError;
 
 /**
  * Motor and reducer of a joint.
@@ -1138,9 +1153,20 @@ extern "C" {
 const char *uwml_error_message(int32_t code);
 
 /**
- * Gauge pressure [Pa] at `depth` [m] below the surface: `sea_density · gravity · depth`.
+ * Gauge pressure [Pa] at `depth` [m] below the surface, `sea_density · gravity · depth`, into
+ * `*out`. The depth must be finite and from 0 to 11000 m (the deepest ocean:
+ * `UWML_ERR_NEGATIVE`, `UWML_ERR_BEYOND_DEEPEST_OCEAN`, `UWML_ERR_NON_FINITE`, field "depth"),
+ * `sea_density` and `gravity` finite and positive; on an error `*out` is left unwritten.
+ *
+ * # Safety
+ * `out` is NULL or valid for one write of a `double`; `error` is NULL or valid for one write of
+ * a `UwmlError`.
  */
-double uwml_pressure_at_depth_f64(double depth, double sea_density, double gravity);
+int32_t uwml_pressure_at_depth_f64(double depth,
+                                   double sea_density,
+                                   double gravity,
+                                   double *out,
+                                   struct UwmlError *error);
 
 /**
  * Writes the paper's leg (Table II) to `*out`, with fresh water (1000 kg/m³, g = 9.81),
@@ -1280,8 +1306,15 @@ int32_t uwml_leg3_environment_f64(const struct UwmlLeg3F64 *leg,
 
 /**
  * `uwml_pressure_at_depth_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_pressure_at_depth_f64`, with `out` valid for one write of a `float`.
  */
-float uwml_pressure_at_depth_f32(float depth, float sea_density, float gravity);
+int32_t uwml_pressure_at_depth_f32(float depth,
+                                   float sea_density,
+                                   float gravity,
+                                   float *out,
+                                   struct UwmlError *error);
 
 /**
  * `uwml_leg3_paper_f64` in f32.

@@ -6,19 +6,20 @@
 
 use core::ffi::c_char;
 
-use uwml_core::nalgebra::{self, RealField, Vector3};
+use uwml_core::nalgebra::{RealField, Vector3};
 use uwml_core::{
     Chain, Coefficients, Drive, EnvironmentTorques, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
     OilDrag, Problem, Seal, Segment, Water, environment_torques, hydro_torques,
 };
 
 use crate::{
-    UWML_ERR_INDEX_OUT_OF_RANGE, UWML_ERR_NEGATIVE, UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE,
-    UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER, UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE,
-    UWML_ERR_UNINITIALIZED, UWML_ERROR_FIELD_LEN, UWML_OK, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlEnvironment3F32,
-    UwmlEnvironment3F64, UwmlError, UwmlHydro3F32, UwmlHydro3F64, UwmlJointLossParamsF32, UwmlJointLossParamsF64,
-    UwmlJointParamsF32, UwmlJointParamsF64, UwmlLeg3F32, UwmlLeg3F64, UwmlLinkParamsF32, UwmlLinkParamsF64,
-    UwmlOilParamsF32, UwmlOilParamsF64, UwmlSealParamsF32, UwmlSealParamsF64,
+    UWML_ERR_BELOW_ABSOLUTE_ZERO, UWML_ERR_BEYOND_DEEPEST_OCEAN, UWML_ERR_INDEX_OUT_OF_RANGE, UWML_ERR_NEGATIVE,
+    UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE, UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER,
+    UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE, UWML_ERR_UNINITIALIZED, UWML_ERROR_FIELD_LEN, UWML_OK,
+    UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlEnvironment3F32, UwmlEnvironment3F64, UwmlError, UwmlHydro3F32,
+    UwmlHydro3F64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlJointParamsF32, UwmlJointParamsF64, UwmlLeg3F32,
+    UwmlLeg3F64, UwmlLinkParamsF32, UwmlLinkParamsF64, UwmlOilParamsF32, UwmlOilParamsF64, UwmlSealParamsF32,
+    UwmlSealParamsF64,
 };
 
 /// The joints of the C API's leg.
@@ -76,6 +77,8 @@ impl Failure {
             Problem::NotPerpendicular => UWML_ERR_NOT_PERPENDICULAR,
             Problem::OutOfOrder => UWML_ERR_OUT_OF_ORDER,
             Problem::OutOfRange => UWML_ERR_OUT_OF_RANGE,
+            Problem::BelowAbsoluteZero => UWML_ERR_BELOW_ABSOLUTE_ZERO,
+            Problem::BeyondDeepestOcean => UWML_ERR_BEYOND_DEEPEST_OCEAN,
         };
         Self::new(code, error.field, error.index.or(joint))
     }
@@ -107,9 +110,9 @@ pub(crate) unsafe fn report(error: *mut UwmlError, result: Result<(), Failure>) 
         for (slot, &byte) in field.iter_mut().zip(bytes) {
             *slot = byte as c_char;
         }
-        let index = failure.index.map_or(-1, |i| i32::try_from(i).unwrap_or(i32::MAX));
+        let index = failure.index.map_or(-1, |i| i64::try_from(i).unwrap_or(i64::MAX));
         // SAFETY: `error` is not null and, by this function's contract, valid for one write.
-        unsafe { error.write(UwmlError { code: failure.code, index, field }) };
+        unsafe { error.write(UwmlError { code: failure.code, reserved: 0, index, field }) };
     }
     failure.code
 }
@@ -372,19 +375,29 @@ fn check_state<T: RealField + Copy>(states: [(&Vector3<T>, &'static str); 3]) ->
 }
 
 /// Pressure [Pa] finite and not negative; temperature [°C] finite and above absolute zero.
+/// The core's domain of the loss conditions (`JointLosses::at`), with the C names of the
+/// arguments: pressure from 0 to 1.2e8 Pa, temperature above absolute zero.
 fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), Failure> {
-    if !pressure.is_finite() {
-        return Err(Failure::new(UWML_ERR_NON_FINITE, "pressure_pa", None));
+    uwml_core::check_conditions(pressure, temperature).map_err(|e| {
+        let field = if e.field == "pressure" { "pressure_pa" } else { "temperature_c" };
+        Failure { field, ..Failure::from(e) }
+    })
+}
+
+/// # Safety
+/// `out` is null or valid for one write of a `T`.
+pub(crate) unsafe fn pressure_at_depth<T: RealField + Copy>(
+    depth: T,
+    sea_density: T,
+    gravity: T,
+    out: *mut T,
+) -> Result<(), Failure> {
+    if out.is_null() {
+        return Err(Failure::null("out"));
     }
-    if pressure < T::zero() {
-        return Err(Failure::new(UWML_ERR_NEGATIVE, "pressure_pa", None));
-    }
-    if !temperature.is_finite() {
-        return Err(Failure::new(UWML_ERR_NON_FINITE, "temperature_c", None));
-    }
-    if temperature <= nalgebra::convert(-273.15) {
-        return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "temperature_c (above -273.15)", None));
-    }
+    let pressure = uwml_core::pressure_at_depth(depth, sea_density, gravity)?;
+    // SAFETY: not null, and by this function's contract valid for one write.
+    unsafe { out.write(pressure) };
     Ok(())
 }
 
@@ -492,7 +505,7 @@ pub(crate) unsafe fn set_losses<T: Precision>(
     let leg = unsafe { leg_mut::<T>(leg) }?;
     if let (Some(model), Some(state)) = (leg.losses.get_mut(slot), leg.states.get_mut(slot)) {
         *model = Some(losses);
-        *state = Some(losses.at(pressure, temperature));
+        *state = losses.at(pressure, temperature).ok();
     }
     Ok(())
 }
@@ -520,7 +533,7 @@ pub(crate) unsafe fn set_conditions<T: Precision>(
     let leg = unsafe { leg_mut::<T>(leg) }?;
     check_conditions(pressure, temperature)?;
     for (model, state) in leg.losses.iter().zip(leg.states.iter_mut()) {
-        *state = model.map(|m| m.at(pressure, temperature));
+        *state = model.and_then(|m| m.at(pressure, temperature).ok());
     }
     Ok(())
 }

@@ -62,6 +62,10 @@ pub const UWML_ERR_INDEX_OUT_OF_RANGE: i32 = 9;
 /// The leg or robot was not written by `uwml_leg3_paper_*`/`uwml_leg3_new_*` or
 /// `uwml_robot_paper_*`/`uwml_robot_new_*` (e.g. a zeroed static).
 pub const UWML_ERR_UNINITIALIZED: i32 = 10;
+/// A temperature at or below absolute zero (-273.15 °C).
+pub const UWML_ERR_BELOW_ABSOLUTE_ZERO: i32 = 11;
+/// Deeper than the deepest ocean: a depth beyond 11000 m, or a pressure beyond 1.2e8 Pa.
+pub const UWML_ERR_BEYOND_DEEPEST_OCEAN: i32 = 12;
 
 /// The number of joints (and links) of the leg of this API.
 pub const UWML_LEG3_JOINTS: usize = 3;
@@ -115,14 +119,17 @@ const _: () = {
 
 /// What went wrong, for the optional last argument of most functions (NULL to skip it).
 /// Written on every call that takes it, success included (`code` 0, `index` -1, `field` "").
+/// It has no padding bytes (`reserved` is written 0), so its bytes are all determinate.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct UwmlError {
     /// The returned code, `UWML_OK` or one of `UWML_ERR_*`.
     pub code: i32,
+    /// Always 0 (keeps `index` aligned without padding).
+    pub reserved: i32,
     /// The joint, link or segment (0-based) the field belongs to, or the offending element of a
-    /// joint state or `joint_index` itself; -1 if none.
-    pub index: i32,
+    /// joint state, or `joint_index` itself (any `uint32_t`); -1 if none.
+    pub index: i64,
     /// The offending field or parameter, e.g. "link.volume", "q" or "out"; NUL-terminated,
     /// truncated to 47 bytes.
     pub field: [c_char; UWML_ERROR_FIELD_LEN],
@@ -464,15 +471,31 @@ pub extern "C" fn uwml_error_message(code: i32) -> *const c_char {
         UWML_ERR_OUT_OF_RANGE => c"out of range",
         UWML_ERR_INDEX_OUT_OF_RANGE => c"index out of range",
         UWML_ERR_UNINITIALIZED => c"not initialized",
+        UWML_ERR_BELOW_ABSOLUTE_ZERO => c"at or below absolute zero",
+        UWML_ERR_BEYOND_DEEPEST_OCEAN => c"beyond the deepest ocean",
         _ => c"unknown error",
     };
     message.as_ptr()
 }
 
-/// Gauge pressure [Pa] at `depth` [m] below the surface: `sea_density · gravity · depth`.
+/// Gauge pressure [Pa] at `depth` [m] below the surface, `sea_density · gravity · depth`, into
+/// `*out`. The depth must be finite and from 0 to 11000 m (the deepest ocean:
+/// `UWML_ERR_NEGATIVE`, `UWML_ERR_BEYOND_DEEPEST_OCEAN`, `UWML_ERR_NON_FINITE`, field "depth"),
+/// `sea_density` and `gravity` finite and positive; on an error `*out` is left unwritten.
+///
+/// # Safety
+/// `out` is NULL or valid for one write of a `double`; `error` is NULL or valid for one write of
+/// a `UwmlError`.
 #[unsafe(no_mangle)]
-pub extern "C" fn uwml_pressure_at_depth_f64(depth: f64, sea_density: f64, gravity: f64) -> f64 {
-    uwml_core::pressure_at_depth(depth, sea_density, gravity)
+pub unsafe extern "C" fn uwml_pressure_at_depth_f64(
+    depth: f64,
+    sea_density: f64,
+    gravity: f64,
+    out: *mut f64,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `imp::pressure_at_depth`'s and `imp::report`'s.
+    unsafe { imp::report(error, imp::pressure_at_depth(depth, sea_density, gravity, out)) }
 }
 
 /// Writes the paper's leg (Table II) to `*out`, with fresh water (1000 kg/m³, g = 9.81),
@@ -652,9 +675,19 @@ pub unsafe extern "C" fn uwml_leg3_environment_f64(
 }
 
 /// `uwml_pressure_at_depth_f64` in f32.
+///
+/// # Safety
+/// As `uwml_pressure_at_depth_f64`, with `out` valid for one write of a `float`.
 #[unsafe(no_mangle)]
-pub extern "C" fn uwml_pressure_at_depth_f32(depth: f32, sea_density: f32, gravity: f32) -> f32 {
-    uwml_core::pressure_at_depth(depth, sea_density, gravity)
+pub unsafe extern "C" fn uwml_pressure_at_depth_f32(
+    depth: f32,
+    sea_density: f32,
+    gravity: f32,
+    out: *mut f32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `imp::pressure_at_depth`'s and `imp::report`'s.
+    unsafe { imp::report(error, imp::pressure_at_depth(depth, sea_density, gravity, out)) }
 }
 
 /// `uwml_leg3_paper_f64` in f32.

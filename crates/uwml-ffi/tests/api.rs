@@ -16,17 +16,18 @@ const QD: [f64; 3] = [0.8, 0.5, -0.7];
 const QDD: [f64; 3] = [1.0, -2.0, 0.5];
 
 fn blank_error() -> UwmlError {
-    UwmlError { code: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
+    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
 }
 
 /// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
-fn parts(e: &UwmlError) -> (i32, i32, String) {
+fn parts(e: &UwmlError) -> (i32, i64, String) {
     let bytes = e.field.map(|c| c as u8);
     let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
+    assert_eq!(e.reserved, 0, "reserved is written 0");
     (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
 }
 
-fn expect_error(code: i32, e: &UwmlError, want: (i32, i32, &str)) {
+fn expect_error(code: i32, e: &UwmlError, want: (i32, i64, &str)) {
     assert_eq!(code, want.0, "returned code");
     assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
 }
@@ -354,7 +355,7 @@ fn settings_are_the_core_bit_for_bit() {
         );
     }
     let mut p = default_params64();
-    let (pressure, temperature) = (pressure_at_depth(1000.0, 1025.0, 9.81), 4.0);
+    let (pressure, temperature) = (pressure_at_depth(1000.0, 1025.0, 9.81).unwrap(), 4.0);
     assert_eq!(set_losses64(&mut leg, 1, &p, pressure, temperature).0, UWML_OK);
     p.has_oil = 0;
     assert_eq!(set_losses64(&mut leg, 2, &p, 2e6, 10.0).0, UWML_OK);
@@ -365,7 +366,7 @@ fn settings_are_the_core_bit_for_bit() {
     let joint = JointLosses::<f64>::default();
     let mut seal_only = joint;
     seal_only.oil = None;
-    let losses = [None, Some(joint.at(pressure, temperature)), Some(seal_only.at(2e6, 10.0))];
+    let losses = [None, Some(joint.at(pressure, temperature).unwrap()), Some(seal_only.at(2e6, 10.0).unwrap())];
     for state in states() {
         let (code, out) = environment64(&leg, state.0, state.1, state.2);
         assert_eq!(code, UWML_OK);
@@ -379,7 +380,7 @@ fn settings_are_the_core_bit_for_bit() {
         assert_eq!(uwml_leg3_clear_losses_f64(&mut leg, 2, &mut error), UWML_OK);
         assert_eq!(uwml_leg3_set_coefficients_f64(&mut leg, 2.0, 0.7, &mut error), UWML_OK);
     }
-    let losses = [None, Some(joint.at(5e6, 2.0)), None];
+    let losses = [None, Some(joint.at(5e6, 2.0).unwrap()), None];
     let coefficients = Coefficients::uniform(2.0, 0.7).unwrap();
     let (_, out) = environment64(&leg, Q, QD, QDD);
     assert_same64(&out, &core_environment(&chain, &water, &coefficients, &losses, (Q, QD, QDD)));
@@ -403,7 +404,7 @@ fn settings_are_the_core_bit_for_bit() {
         &Chain::paper(),
         &Water::new(1025.0, 9.81).unwrap(),
         &Coefficients::uniform(2.0, 0.7).unwrap(),
-        &[None, None, Some(joint.at(3e6, 8.0))],
+        &[None, None, Some(joint.at(3e6, 8.0).unwrap())],
         (q, qd, qdd),
     );
     assert_same32(&out, &core);
@@ -445,7 +446,7 @@ fn non_finite_states_give_nan_and_name_the_element() {
 #[test]
 fn invalid_parameters_name_the_field_and_index() {
     type Edit = fn(&mut [UwmlJointParamsF64; 3], &mut [UwmlLinkParamsF64; 3]);
-    let cases: [(Edit, (i32, i32, &str)); 9] = [
+    let cases: [(Edit, (i32, i64, &str)); 9] = [
         (|j, _| j[2].origin[0] = f64::NAN, (UWML_ERR_NON_FINITE, 2, "joint.origin")),
         (|j, _| j[0].axis = [0.0, 0.0, 1.1], (UWML_ERR_NOT_UNIT, 0, "joint.axis")),
         (|_, l| l[1].volume = -1e-3, (UWML_ERR_NEGATIVE, 1, "link.volume")),
@@ -505,7 +506,7 @@ fn invalid_settings_name_the_field_and_leave_the_leg_unchanged() {
     }
 
     type Edit = fn(&mut UwmlJointLossParamsF64);
-    let cases: [(Edit, (i32, i32, &str)); 8] = [
+    let cases: [(Edit, (i32, i64, &str)); 8] = [
         (|p| p.drive.ratio = 0.0, (UWML_ERR_NON_POSITIVE, 1, "drive.ratio")),
         (|p| p.drive.efficiency = 1.5, (UWML_ERR_OUT_OF_RANGE, 1, "drive.efficiency (0 to 1)")),
         (|p| p.oil.exponent = 2.5, (UWML_ERR_OUT_OF_RANGE, 1, "oil.exponent (1 to 2)")),
@@ -535,15 +536,16 @@ fn invalid_settings_name_the_field_and_leave_the_leg_unchanged() {
         (f64::NAN, 20.0, (UWML_ERR_NON_FINITE, -1, "pressure_pa")),
         (-1.0, 20.0, (UWML_ERR_NEGATIVE, -1, "pressure_pa")),
         (0.0, f64::INFINITY, (UWML_ERR_NON_FINITE, -1, "temperature_c")),
-        (0.0, -280.0, (UWML_ERR_OUT_OF_RANGE, -1, "temperature_c (above -273.15)")),
+        (0.0, -280.0, (UWML_ERR_BELOW_ABSOLUTE_ZERO, -1, "temperature_c")),
+        (0.0, -273.15, (UWML_ERR_BELOW_ABSOLUTE_ZERO, -1, "temperature_c")),
+        (1.3e8, 4.0, (UWML_ERR_BEYOND_DEEPEST_OCEAN, -1, "pressure_pa")),
     ] {
         let (code, error) = set_losses64(&mut leg, 0, &p, pressure, temperature);
         expect_error(code, &error, want);
     }
     for index in [3, u32::MAX] {
         let (code, error) = set_losses64(&mut leg, index, &p, 0.0, 20.0);
-        let want_index = i32::try_from(index).unwrap_or(i32::MAX);
-        expect_error(code, &error, (UWML_ERR_INDEX_OUT_OF_RANGE, want_index, "joint_index"));
+        expect_error(code, &error, (UWML_ERR_INDEX_OUT_OF_RANGE, i64::from(index), "joint_index"));
     }
     let mut error = blank_error();
     // SAFETY: a live local.
@@ -650,8 +652,10 @@ fn error_messages_and_helpers() {
         UWML_ERR_OUT_OF_RANGE,
         UWML_ERR_INDEX_OUT_OF_RANGE,
         UWML_ERR_UNINITIALIZED,
+        UWML_ERR_BELOW_ABSOLUTE_ZERO,
+        UWML_ERR_BEYOND_DEEPEST_OCEAN,
     ];
-    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10]);
+    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]);
     let mut messages: Vec<String> = codes
         .iter()
         .map(|&code| {
@@ -665,8 +669,35 @@ fn error_messages_and_helpers() {
     assert_eq!(messages.len(), codes.len(), "one message per code");
     // SAFETY: as above.
     assert_eq!(unsafe { CStr::from_ptr(uwml_error_message(-3)) }.to_str().unwrap(), "unknown error");
-    assert_eq!(uwml_pressure_at_depth_f64(1000.0, 1025.0, 9.81), pressure_at_depth(1000.0, 1025.0, 9.81));
-    assert_eq!(uwml_pressure_at_depth_f32(1000.0, 1025.0, 9.81), pressure_at_depth(1000.0f32, 1025.0, 9.81));
+}
+
+#[test]
+fn pressure_at_depth_is_checked() {
+    let (mut p64, mut p32, mut error) = (-1.0f64, -1.0f32, blank_error());
+    // SAFETY: live locals.
+    let code = unsafe { uwml_pressure_at_depth_f64(1000.0, 1025.0, 9.81, &mut p64, &mut error) };
+    expect_error(code, &error, (UWML_OK, -1, ""));
+    assert_eq!(p64, 1025.0 * 9.81 * 1000.0);
+    // SAFETY: live locals.
+    let code = unsafe { uwml_pressure_at_depth_f32(11000.0, 1025.0, 9.81, &mut p32, core::ptr::null_mut()) };
+    assert_eq!((code, p32), (UWML_OK, pressure_at_depth(11000.0f32, 1025.0, 9.81).unwrap()));
+    for (depth, density, gravity, want) in [
+        (-1.0, 1025.0, 9.81, (UWML_ERR_NEGATIVE, -1, "depth")),
+        (11000.5, 1025.0, 9.81, (UWML_ERR_BEYOND_DEEPEST_OCEAN, -1, "depth")),
+        (f64::NAN, 1025.0, 9.81, (UWML_ERR_NON_FINITE, -1, "depth")),
+        (1000.0, -1025.0, 9.81, (UWML_ERR_NON_POSITIVE, -1, "sea_density")),
+        (1000.0, 1025.0, f64::INFINITY, (UWML_ERR_NON_FINITE, -1, "gravity")),
+    ] {
+        let (mut out, mut error) = (-7.0, blank_error());
+        // SAFETY: live locals.
+        let code = unsafe { uwml_pressure_at_depth_f64(depth, density, gravity, &mut out, &mut error) };
+        expect_error(code, &error, want);
+        assert_eq!(out, -7.0, "nothing written on an error");
+    }
+    let mut error = blank_error();
+    // SAFETY: a null `out` is refused, not written.
+    let code = unsafe { uwml_pressure_at_depth_f64(1000.0, 1025.0, 9.81, core::ptr::null_mut(), &mut error) };
+    expect_error(code, &error, (UWML_ERR_NULL_POINTER, -1, "out"));
 }
 
 /// The Rust example of docs/firmware.md (the same code, between the markers).
@@ -679,7 +710,7 @@ fn firmware_doc_rust_example() -> Result<(), uwml_core::ModelError> {
     let leg = Chain::<f32, 3>::paper(); // or Chain::new(joints, links)?
     let water = Water::new(1025.0, 9.81)?;
     let coefficients = Coefficients::<f32, 3>::default(); // Cd 2.2, Cm 0.5
-    let joint = JointLosses::<f32>::default().at(pressure_at_depth(1000.0, 1025.0, 9.81), 4.0);
+    let joint = JointLosses::<f32>::default().at(pressure_at_depth(1000.0, 1025.0, 9.81)?, 4.0)?;
     let losses = [None, Some(joint), Some(joint)]; // recompute when depth or θ change
 
     // every control period:

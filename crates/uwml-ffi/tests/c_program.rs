@@ -255,3 +255,25 @@ fn exported_c_initializers_build_the_arm() {
     }
     assert_eq!(seen, 13, "7 joints and 6 base components:\n{stdout}");
 }
+
+/// Every C block of docs/firmware.md compiles as written (`-std=c11 -Wall -Wextra -Werror
+/// -pedantic`, compile only: the blocks are fragments of a firmware, without `main`).
+#[test]
+fn firmware_doc_c_examples_compile() {
+    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(crate_dir.join("../../docs/firmware.md")).expect("docs/firmware.md is readable");
+    let blocks: Vec<&str> =
+        doc.split("```c\n").skip(1).map(|rest| rest.split("```").next().expect("a closed block")).collect();
+    assert!(blocks.len() >= 2, "docs/firmware.md has its C examples");
+    let compiler = std::env::var_os("CC").unwrap_or_else(|| "cc".into());
+    for (k, block) in blocks.iter().enumerate() {
+        let source = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("firmware_doc_{k}.c"));
+        std::fs::write(&source, block).expect("the temporary directory is writable");
+        run(Command::new(&compiler)
+            .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Wno-unused-function", "-c", "-I"])
+            .arg(crate_dir.join("include"))
+            .arg(&source)
+            .arg("-o")
+            .arg(source.with_extension("o")));
+    }
+}

@@ -16,17 +16,17 @@ use robots::{
 };
 
 fn blank_error() -> UwmlError {
-    UwmlError { code: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
+    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
 }
 
 /// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
-fn parts(e: &UwmlError) -> (i32, i32, String) {
+fn parts(e: &UwmlError) -> (i32, i64, String) {
     let bytes = e.field.map(|c| c as u8);
     let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
     (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
 }
 
-fn expect_error(code: i32, e: &UwmlError, want: (i32, i32, &str)) {
+fn expect_error(code: i32, e: &UwmlError, want: (i32, i64, &str)) {
     assert_eq!(code, want.0, "returned code ({:?})", parts(e));
     assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
 }
@@ -440,7 +440,7 @@ fn a_robot_at_full_capacity() {
 #[test]
 fn invalid_robots_name_the_field_and_index() {
     type Edit = fn(&mut Params);
-    let cases: Vec<(Edit, (i32, i32, &str))> = vec![
+    let cases: Vec<(Edit, (i32, i64, &str))> = vec![
         (|p| p.joints[2].parent = 2, (UWML_ERR_OUT_OF_RANGE, 2, "joint.parent")),
         (|p| p.joints[4].parent = 5, (UWML_ERR_OUT_OF_RANGE, 4, "joint.parent")),
         (|p| p.joints[1].parent = -2, (UWML_ERR_OUT_OF_RANGE, 1, "joint.parent")),
@@ -537,7 +537,7 @@ fn invalid_motions_and_currents_name_the_field_and_write_nothing() {
     let mut robot = built64(&arm());
     let [q, qd, qdd] = ARM_STATE;
     type Edit = fn(&mut UwmlBaseMotionF64, &mut UwmlCurrentF64);
-    let cases: [(Edit, (i32, i32, &str)); 9] = [
+    let cases: [(Edit, (i32, i64, &str)); 9] = [
         (|m, _| m.orientation = [0.0; 4], (UWML_ERR_NOT_UNIT, -1, "base.orientation")),
         (|m, _| m.orientation = [1.0, 0.1, 0.0, 0.0], (UWML_ERR_NOT_UNIT, -1, "base.orientation")),
         (|m, _| m.orientation[2] = f64::NAN, (UWML_ERR_NON_FINITE, -1, "base.orientation")),

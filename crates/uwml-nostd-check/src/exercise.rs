@@ -13,12 +13,11 @@ use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 use uwml_core::{
-    AddedMassForm,
-    BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag, Owner,
-    RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water,
-    environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions,
-    loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_hydro_with,
-    robot_jacobians, smooth_sign,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag,
+    Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint,
+    Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors,
+    hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro,
+    robot_hydro_regressors, robot_hydro_with, robot_jacobians, smooth_sign,
 };
 
 /// Counts unexpected results.
@@ -124,7 +123,7 @@ fn losses<T: RealField + Copy, const N: usize>(pressure: T, temperature: T) -> [
             3 => joint.oil = oil(1.5),
             _ => joint.oil = oil(2.0),
         }
-        Some(joint.at(pressure, temperature))
+        joint.at(pressure, temperature).ok()
     })
 }
 
@@ -142,8 +141,11 @@ fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mu
     tally.all_finite(applied.total().iter().chain(applied.gravity.iter()));
     tally.all_finite(regressors.drag_uniform().iter().chain(regressors.added_mass_uniform().iter()));
 
-    let pressure = pressure_at_depth(c(1000.0), c(1025.0), c(9.81));
+    // Outside the domain the constructors refuse (a refusal counts as a failure here).
+    let pressure = pressure_at_depth(c(1000.0), c(1025.0), c(9.81)).unwrap_or(c(f64::NAN));
     tally.finite(pressure);
+    tally.finite(pressure_at_depth::<T>(black_box(c(-1.0)), c(1025.0), c(9.81)).map_or(c(0.0), |_| c(f64::NAN)));
+    tally.finite(check_conditions::<T>(black_box(pressure), black_box(c(-300.0))).map_or(c(0.0), |()| c(f64::NAN)));
     let losses = black_box(losses::<T, N>(pressure, c(4.0)));
     let env = environment_torques(chain, &water, &coefficients, &losses, &q, &qd, &qdd);
     tally.all_finite(env.total().iter().chain(env.current.iter()));

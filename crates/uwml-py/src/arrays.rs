@@ -18,6 +18,32 @@ pub(crate) struct NonFinite {
     pub(crate) value: f64,
 }
 
+/// A loss condition (pressure [Pa] or temperature [°C]) of one sample outside the core's domain
+/// (`uwml_core::check_conditions`), raised as a ValueError naming the argument and the sample.
+pub(crate) struct BadCondition {
+    pub(crate) sample: usize,
+    pub(crate) error: uwml_core::ModelError,
+    pub(crate) value: f64,
+}
+
+impl From<BadCondition> for PyErr {
+    fn from(e: BadCondition) -> Self {
+        PyValueError::new_err(format!("{}[{}] is {}: {}", e.error.field, e.sample, e.value, e.error))
+    }
+}
+
+/// Every sample's loss conditions within the core's domain: pressure [Pa] finite and from 0 to
+/// `uwml_core::MAX_PRESSURE`, temperature [°C] finite and above absolute zero.
+pub(crate) fn check_conditions(pressure: &[f64], temperature: &[f64]) -> Result<(), BadCondition> {
+    for (sample, (&p, &t)) in pressure.iter().zip(temperature).enumerate() {
+        uwml_core::check_conditions(p, t).map_err(|error| {
+            let value = if error.field == "pressure" { p } else { t };
+            BadCondition { sample, error, value }
+        })?;
+    }
+    Ok(())
+}
+
 impl NonFinite {
     /// The same error with its sample counted from `start` earlier.
     pub(crate) fn shifted(self, start: usize) -> Self {

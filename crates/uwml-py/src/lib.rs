@@ -10,7 +10,9 @@ mod losses;
 mod robot;
 mod single;
 
-pub(crate) use arrays::{NonFinite, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed};
+pub(crate) use arrays::{
+    NonFinite, check_conditions, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed,
+};
 pub(crate) use losses::{joint_losses, loss_inputs, parse_losses, unpack_losses};
 
 use numpy::{PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -350,7 +352,7 @@ fn environment_into<const N: usize>(
     for ((qd, (&p, &t)), ((visc, seal), current)) in per_sample.zip(rows) {
         if current_conditions != (p, t) {
             current_conditions = (p, t);
-            loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));
+            loss_states = joint_losses.map(|l| l.and_then(|l| l.at(p, t).ok()));
         }
         let (v, s, c) = loss_torques(&loss_states, &qd);
         for (row, values) in [(visc, v), (seal, s), (current, c)] {
@@ -394,7 +396,7 @@ fn environment_jacobian_batch<const N: usize>(
         }
         if current_conditions != (p, t) {
             current_conditions = (p, t);
-            loss_states = joint_losses.map(|l| l.map(|l| l.at(p, t)));
+            loss_states = joint_losses.map(|l| l.and_then(|l| l.at(p, t).ok()));
         }
         let j = environment_jacobians(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
         let [value, d_q, d_qd, added_mass_matrix] = &mut out;
@@ -666,6 +668,17 @@ fn check_coefficient_shapes(cd: &PyReadonlyArray2<'_, f64>, cm: &PyReadonlyArray
         }
     }
     Ok(())
+}
+
+/// Loss conditions the one-state paths take: depth from 0 to the deepest ocean, a positive sea
+/// density, the pressure in the core's domain and the temperature within the oil model's range.
+/// Anything else goes to the general path, which refuses it or warns, naming the argument.
+fn usual_conditions(depth: f64, temperature: f64, sea_density: f64, pressure: f64) -> bool {
+    let [low, high] = uwml_core::OIL_TEMPERATURE_RANGE_C;
+    (0.0..=uwml_core::MAX_DEPTH).contains(&depth)
+        && sea_density > 0.0
+        && (low..=high).contains(&temperature)
+        && uwml_core::check_conditions(pressure, temperature).is_ok()
 }
 
 fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
@@ -1017,6 +1030,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::PyRobot>()?;
     m.add_class::<robot::MujocoCoupling>()?;
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
+    m.add("MAX_DEPTH", uwml_core::MAX_DEPTH)?;
+    m.add("MAX_PRESSURE", uwml_core::MAX_PRESSURE)?;
+    m.add("ABSOLUTE_ZERO_C", uwml_core::ABSOLUTE_ZERO_C)?;
+    m.add("OIL_TEMPERATURE_RANGE_C", (uwml_core::OIL_TEMPERATURE_RANGE_C[0], uwml_core::OIL_TEMPERATURE_RANGE_C[1]))?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
     m.add("TREE_JOINT_WIDTH", robot::TREE_JOINT_WIDTH)?;
     m.add("BODY_WIDTH", robot::BODY_WIDTH)?;

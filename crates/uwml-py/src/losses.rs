@@ -4,9 +4,9 @@
 use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use uwml_core::{Drive, JointLosses, ModelError, OilDrag, Seal};
+use uwml_core::{Drive, JointLoss, JointLosses, ModelError, OilDrag, Seal};
 
-use crate::{LOSS_WIDTH, NonFinite, UwmlModelError, contiguous, contiguous1};
+use crate::{LOSS_WIDTH, NonFinite, UwmlModelError, check_conditions, contiguous, contiguous1};
 
 pub(crate) fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, ModelError> {
     let mut values = row.iter().copied();
@@ -28,34 +28,31 @@ pub(crate) fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, Mod
     Ok(Some(JointLosses::new(Drive::new(kt, ratio, efficiency, rated)?, oil, seal, epsilon)?))
 }
 
-/// Joint losses of a batch of samples: visc, seal and current per sample. The
-/// pressure-dependent part is recomputed only when the pressure or temperature changes.
+/// Joint losses of a batch of samples: visc, seal and current per sample, every input checked
+/// already (finite speeds, conditions in the core's domain). The pressure-dependent part is
+/// recomputed only when the pressure or temperature changes.
 pub(crate) fn loss_batch(
     losses: &JointLosses<f64>,
     speed: &[f64],
     pressure: &[f64],
     temperature: &[f64],
-) -> Result<[Vec<f64>; 3], NonFinite> {
+) -> [Vec<f64>; 3] {
     let n = speed.len();
     let (mut visc, mut seal, mut current) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
     let mut conditions = (f64::NAN, f64::NAN);
-    let mut state = losses.at(0.0, 20.0);
-    for (sample, ((&w, &p), &t)) in speed.iter().zip(pressure).zip(temperature).enumerate() {
-        for (argument, value) in [("speed", w), ("pressure", p), ("temperature", t)] {
-            if !value.is_finite() {
-                return Err(NonFinite { argument, sample, joint: 0, value });
-            }
-        }
+    let mut state = None;
+    for ((&w, &p), &t) in speed.iter().zip(pressure).zip(temperature) {
         if conditions != (p, t) {
             conditions = (p, t);
-            state = losses.at(p, t);
+            state = losses.at(p, t).ok();
         }
-        let loss = state.evaluate(w);
+        // Conditions outside the domain were refused before: `state` is always there.
+        let loss = state.map_or(JointLoss { visc: f64::NAN, seal: f64::NAN, current: f64::NAN }, |s| s.evaluate(w));
         visc.push(loss.visc);
         seal.push(loss.seal);
         current.push(loss.current);
     }
-    Ok([visc, seal, current])
+    [visc, seal, current]
 }
 
 pub(crate) fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<Vec<Option<JointLosses<f64>>>> {
@@ -87,6 +84,7 @@ pub(crate) fn loss_inputs<'a>(
     let losses = parse_losses(losses, n)?;
     let conditions =
         (contiguous1(pressure, "pressure", n_samples)?, contiguous1(temperature, "temperature", n_samples)?);
+    check_conditions(conditions.0, conditions.1)?;
     Ok((losses, conditions))
 }
 
@@ -112,6 +110,12 @@ pub(crate) fn joint_losses<'py>(
         contiguous1(&pressure, "pressure", n)?,
         contiguous1(&temperature, "temperature", n)?,
     );
-    let columns = py.detach(|| loss_batch(&model, w, p, t))?;
+    for (sample, value) in w.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(NonFinite { argument: "speed", sample, joint: 0, value: *value }.into());
+        }
+    }
+    check_conditions(p, t)?;
+    let columns = py.detach(|| loss_batch(&model, w, p, t));
     Ok(columns.into_iter().map(|c| c.into_pyarray(py)).collect())
 }

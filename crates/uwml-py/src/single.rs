@@ -191,10 +191,10 @@ pub(crate) fn environment<'py, const N: usize>(
     else {
         return Ok(None);
     };
-    if depth < 0.0 || sea_density <= 0.0 {
+    let pressure = sea_density * common.water.gravity() * depth;
+    if !crate::usual_conditions(depth, temperature, sea_density, pressure) {
         return Ok(None);
     }
-    let pressure = sea_density * common.water.gravity() * depth;
     let mut out = [[0.0; N]; 7];
     let [drag, added_mass, buoyancy, gravity, visc, seal, current] = &mut out;
     let evaluated = environment_into(

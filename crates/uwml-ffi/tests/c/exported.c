@@ -10,7 +10,7 @@ int main(void) {
     UwmlError err;
     if (uwml_robot_new_f64(&robot, ARM_JOINTS, ARM_N_JOINTS, ARM_LINKS, ARM_BASE, ARM_SEGMENTS, ARM_N_SEGMENTS,
                            ARM_WATER_DENSITY, ARM_GRAVITY, &err) != UWML_OK) {
-        printf("construction failed: %s %d\n", err.field, err.index);
+        printf("construction failed: %s %lld\n", err.field, (long long)err.index);
         return 1;
     }
     const double q[7] = {0.3, -0.4, 0.6, 0.2, -0.5, 0.1, 0.05};
@@ -29,7 +29,7 @@ int main(void) {
     UwmlJointForcesF64 forces[7];
     UwmlBaseWrenchF64 wrench;
     if (uwml_robot_hydro_f64(&robot, q, qd, qdd, ARM_N_JOINTS, &motion, &current, forces, &wrench, &err) != UWML_OK) {
-        printf("evaluation failed: %s %d\n", err.field, err.index);
+        printf("evaluation failed: %s %lld\n", err.field, (long long)err.index);
         return 1;
     }
     for (int i = 0; i < 7; ++i) {

@@ -34,11 +34,12 @@ static void check_close(const char *what, int joint, double got, double want, do
     }
 }
 
-static void check_error(const char *what, int32_t code, const UwmlError *e, int32_t want_code, int32_t want_index,
+static void check_error(const char *what, int32_t code, const UwmlError *e, int32_t want_code, int64_t want_index,
                         const char *want_field) {
     int ok = code == want_code && e->code == want_code && e->index == want_index && strcmp(e->field, want_field) == 0;
-    printf("%s %s: code %d (%s), index %d, field \"%s\" (expected %d, %d, \"%s\")\n", ok ? "ok  " : "FAIL", what,
-           (int)code, uwml_error_message(code), (int)e->index, e->field, (int)want_code, (int)want_index, want_field);
+    printf("%s %s: code %d (%s), index %lld, field \"%s\" (expected %d, %lld, \"%s\")\n", ok ? "ok  " : "FAIL", what,
+           (int)code, uwml_error_message(code), (long long)e->index, e->field, (int)want_code, (long long)want_index,
+           want_field);
     if (!ok) {
         failures++;
     }
@@ -258,9 +259,10 @@ static void losses(void) {
 
     /* Deeper: more seal friction. */
     double shallow_seal = env.seal[1];
-    check(uwml_leg3_set_conditions_f64(&leg64, uwml_pressure_at_depth_f64(2000.0, 1025.0, 9.81), 4.0, &err) ==
-              UWML_OK,
-          "uwml_leg3_set_conditions_f64 (2 km, 4 degC)");
+    double deep = -1.0;
+    check(uwml_pressure_at_depth_f64(2000.0, 1025.0, 9.81, &deep, &err) == UWML_OK && deep == 1025.0 * 9.81 * 2000.0,
+          "uwml_pressure_at_depth_f64 (2 km)");
+    check(uwml_leg3_set_conditions_f64(&leg64, deep, 4.0, &err) == UWML_OK, "uwml_leg3_set_conditions_f64 (2 km, 4 degC)");
     check(uwml_leg3_environment_f64(&leg64, Q, qd, zeros, &env, NULL) == UWML_OK && env.seal[1] < shallow_seal,
           "more seal friction at 2 km than at 10 MPa");
     check(uwml_leg3_clear_losses_f64(&leg64, 1, &err) == UWML_OK, "uwml_leg3_clear_losses_f64");
@@ -331,6 +333,16 @@ static void errors(void) {
     uwml_leg3_default_losses_f64(&params);
     code = uwml_leg3_set_losses_f64(&leg64, 3, &params, 0.0, 20.0, &err);
     check_error("joint index 3", code, &err, UWML_ERR_INDEX_OUT_OF_RANGE, 3, "joint_index");
+    code = uwml_leg3_set_losses_f64(&leg64, UINT32_MAX, &params, 0.0, 20.0, &err);
+    check_error("joint index UINT32_MAX", code, &err, UWML_ERR_INDEX_OUT_OF_RANGE, (int64_t)UINT32_MAX, "joint_index");
+    code = uwml_leg3_set_conditions_f64(&leg64, 1e7, -300.0, &err);
+    check_error("below absolute zero", code, &err, UWML_ERR_BELOW_ABSOLUTE_ZERO, -1, "temperature_c");
+    double pressure = -1.0;
+    code = uwml_pressure_at_depth_f64(12000.0, 1025.0, 9.81, &pressure, &err);
+    check_error("deeper than the ocean", code, &err, UWML_ERR_BEYOND_DEEPEST_OCEAN, -1, "depth");
+    code = uwml_pressure_at_depth_f64(-5.0, 1025.0, 9.81, &pressure, &err);
+    check_error("above the surface", code, &err, UWML_ERR_NEGATIVE, -1, "depth");
+    check(pressure == -1.0, "a refused depth writes no pressure");
     params.seal.s[0] = params.seal.c[0] - 1.0;
     code = uwml_leg3_set_losses_f64(&leg64, 2, &params, 0.0, 20.0, &err);
     check_error("seal breakaway below running", code, &err, UWML_ERR_OUT_OF_ORDER, 2, "seal.s0");

@@ -28,11 +28,12 @@ static void check(int ok, const char *what) {
     }
 }
 
-static void check_error(const char *what, int32_t code, const UwmlError *e, int32_t want_code, int32_t want_index,
+static void check_error(const char *what, int32_t code, const UwmlError *e, int32_t want_code, int64_t want_index,
                         const char *want_field) {
     int ok = code == want_code && e->code == want_code && e->index == want_index && strcmp(e->field, want_field) == 0;
-    printf("%s %s: code %d (%s), index %d, field \"%s\" (expected %d, %d, \"%s\")\n", ok ? "ok  " : "FAIL", what,
-           (int)code, uwml_error_message(code), (int)e->index, e->field, (int)want_code, (int)want_index, want_field);
+    printf("%s %s: code %d (%s), index %lld, field \"%s\" (expected %d, %lld, \"%s\")\n", ok ? "ok  " : "FAIL", what,
+           (int)code, uwml_error_message(code), (long long)e->index, e->field, (int)want_code, (long long)want_index,
+           want_field);
     if (!ok) {
         failures++;
     }

@@ -156,7 +156,7 @@ impl MujocoCoupling {
         if let Some(packed) = &losses {
             let pressure = sea_density * water.gravity() * depth;
             for (slot, joint) in states.iter_mut().zip(parse_losses(packed, n)?) {
-                *slot = joint.map(|l| l.at(pressure, temperature));
+                *slot = joint.map(|l| l.at(pressure, temperature)).transpose().map_err(crate::model_error)?;
             }
         }
         let size = 6 + n;

@@ -100,7 +100,7 @@ impl LossStates {
         let here = (at(losses.pressure), at(losses.temperature));
         if here != self.conditions {
             self.conditions = here;
-            self.states = losses.joints.map(|l| l.map(|l| l.at(here.0, here.1)));
+            self.states = losses.joints.map(|l| l.and_then(|l| l.at(here.0, here.1).ok()));
         }
         &self.states
     }
@@ -195,11 +195,7 @@ pub(super) fn check_losses<'a>(
     }
     let pressure = contiguous1(pressure, "pressure", n_samples)?;
     let temperature = contiguous1(temperature, "temperature", n_samples)?;
-    for (name, values) in [("pressure", pressure), ("temperature", temperature)] {
-        if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-            return Err(PyValueError::new_err(format!("{name}[{i}] must be finite")));
-        }
-    }
+    crate::arrays::check_conditions(pressure, temperature)?;
     Ok(Losses { joints, pressure, temperature })
 }
 

@@ -297,7 +297,7 @@ impl PyRobot {
         ) else {
             return Ok(None);
         };
-        if depth < 0.0 || sea_density <= 0.0 {
+        if !crate::usual_conditions(depth, temperature, sea_density, sea_density * one.water.gravity() * depth) {
             return Ok(None);
         }
         let mut joints = [None; MAX_ROBOT_JOINTS];
