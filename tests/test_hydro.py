@@ -830,3 +830,23 @@ def test_huge_joint_angles_keep_their_accuracy(size: float) -> None:
     environment = leg.environment(q, qd, qdd).total
     value = leg.jacobians(q, qd, qdd).value
     np.testing.assert_allclose(value, environment, rtol=0, atol=1e-13 * float(np.max(np.abs(environment))))
+
+
+def test_per_leg_regressors_take_what_hydro_takes() -> None:
+    """``per="leg"`` regressors sum over links, so they take per-link coefficients that are one
+    value over the links carrying a segment, as :meth:`Leg.hydro` does (the paper's first link
+    has none: ``cd=[0, 2.2, 2.2]`` is ``cd=2.2``); coefficients that differ between segment links
+    still need ``per="direction"``."""
+    leg = uwml.Leg.paper()
+    rng = np.random.default_rng(2)
+    q, qd, qdd = (rng.uniform(-1, 1, (20, 3)) for _ in range(3))
+    assert leg.links[0].segment is None and all(link.segment is not None for link in leg.links[1:])
+    regressors = leg.hydro_regressors(q, qd, qdd)
+    for cd, cm in (([0.0, 2.2, 2.2], [7.0, 0.5, 0.5]), ([[9.0, 1.0], [2.2, 2.2], [2.2, 2.2]], 0.5)):
+        expected = leg.hydro(q, qd, qdd, cd=cd, cm=cm)
+        got = regressors.torques(cd=cd, cm=cm)
+        np.testing.assert_allclose(got.total, expected.total, rtol=1e-12, atol=1e-12)
+    with pytest.raises(ValueError, match="differs between links that carry a segment"):
+        regressors.torques(cd=[2.2, 2.0, 2.2])
+    with pytest.raises(ValueError, match="differs between links that carry a segment"):
+        regressors.torques(cm=[[0.5, 0.5], [0.5, 0.6], [0.5, 0.5]])

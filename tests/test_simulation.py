@@ -141,8 +141,12 @@ def test_bad_inputs() -> None:
         Simulation(model, scheme="implicit")
     with pytest.raises(ValueError, match="integrator must be one of euler, rk4"):
         Simulation(model, integrator="rk45")
-    with pytest.raises(ValueError, match="depth must be >= 0"):
+    with pytest.raises(ValueError, match="depth must be finite and from 0 to 11000 m"):
         Simulation(model, depth=-1.0)
+    with pytest.raises(ValueError, match="depth is 12000.0 m"):
+        Simulation(model, depth=12000.0)
+    with pytest.raises(ValueError, match="above absolute zero"):
+        Simulation(model, temperature_c=-300.0)
     with pytest.raises(ValueError, match="current must be 3 finite numbers"):
         Simulation(model, current=(0.0, math.nan, 0.0))
     with pytest.raises(TypeError, match="model must be a mujoco.MjModel"):

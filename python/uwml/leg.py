@@ -5,7 +5,7 @@ from __future__ import annotations
 import operator
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -66,9 +66,14 @@ class HydroRegressors:
     gravity: FloatArray
     drag: FloatArray
     added_mass: FloatArray
+    #: The links that carry a segment (None: all), whose coefficients the torques use: a link
+    #: without one ignores its ``cd`` and ``cm``, as in :meth:`Leg.hydro`.
+    links_with_segments: tuple[int, ...] | None = field(default=None, repr=False, compare=False)
 
     def torques(self, cd: ArrayLike = 2.2, cm: ArrayLike = 0.5) -> HydroTorques:
-        """The torques for the given coefficients (same layout rules as :meth:`Leg.hydro`)."""
+        """The torques for the given coefficients (same layout rules as :meth:`Leg.hydro`; with
+        ``per="leg"`` regressors, per-link or per-direction coefficients must be one value over
+        the links that carry a segment, since the regressors sum over links)."""
         n_joints = self.buoyancy.shape[-1]
         per_direction = self.drag.ndim == self.buoyancy.ndim + 2
         n_links = self.drag.shape[-2] if per_direction else n_joints
@@ -78,11 +83,18 @@ class HydroRegressors:
             drag = np.einsum("...jlk,lk->...j", self.drag, cd_table)
             added_mass = np.einsum("...jlk,lk->...j", self.added_mass, cm_table)
         else:
+            used = slice(None) if self.links_with_segments is None else list(self.links_with_segments)
+            values = []
             for name, table in (("cd", cd_table), ("cm", cm_table)):
-                if not np.all(table == table.flat[0]):
-                    raise ValueError(f"{name} is given per link or per direction; that needs regressors computed with per='direction'")
-            drag = cd_table.flat[0] * self.drag
-            added_mass = cm_table.flat[0] * self.added_mass
+                rows = table[used]
+                if rows.size and not np.all(rows == rows.flat[0]):
+                    raise ValueError(
+                        f"{name} differs between links that carry a segment (or between directions); "
+                        "that needs regressors computed with per='direction'"
+                    )
+                values.append(rows.flat[0] if rows.size else 0.0)
+            drag = values[0] * self.drag
+            added_mass = values[1] * self.added_mass
         return HydroTorques(drag=drag, added_mass=added_mass, buoyancy=self.buoyancy, gravity=self.gravity)
 
 
@@ -479,7 +491,8 @@ class Leg:
     ) -> EnvironmentJacobians:
         """The environment torque of :meth:`environment` and its derivatives, for control.
 
-        Arguments exactly as for :meth:`environment`. Returns an :class:`EnvironmentJacobians`:
+        Arguments as for :meth:`environment`, but without ``threads`` (the batch runs on one
+        thread). Returns an :class:`EnvironmentJacobians`:
         ``value`` (``τ_env``: ``environment(...).total`` to 1e-13 of the largest torque, which evaluates four states at a time with a SIMD sine and cosine), ``d_q = ∂τ_env/∂q``,
         ``d_qd = ∂τ_env/∂q̇`` and ``added_mass_matrix = M_A(q)``, with
         ``added_mass(q, 0, q̈) = −M_A(q) q̈``. The derivatives are exact (forward-mode dual
@@ -540,7 +553,9 @@ class Leg:
                 mass = np.zeros_like(drag)
                 drag[..., owners, :] = r.drag
                 mass[..., owners, :] = r.added_mass
-            return HydroRegressors(buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass)
+            return HydroRegressors(
+                buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass, links_with_segments=self._segment_links()
+            )
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
         buoyancy, gravity, drag, added_mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
@@ -550,7 +565,12 @@ class Leg:
             gravity=gravity.reshape(shape),
             drag=drag.reshape(shape + extra),
             added_mass=added_mass.reshape(shape + extra),
+            links_with_segments=self._segment_links(),
         )
+
+    def _segment_links(self) -> tuple[int, ...]:
+        """The links that carry a segment."""
+        return tuple(i for i, link in enumerate(self._links) if link.segment is not None)
 
     def _kirchhoff_arguments(self, cd: ArrayLike, cm: ArrayLike) -> tuple[Any, FloatArray, FloatArray]:
         """The leg as a robot, and ``cd``, ``cm`` (:meth:`hydro`'s layouts) per segment."""

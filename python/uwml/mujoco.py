@@ -52,7 +52,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from .environment import SEA_WATER_DENSITY, JointLosses, pack_leg_losses
+from .environment import SEA_WATER_DENSITY, JointLosses, check_depths, check_temperatures, pack_leg_losses
 from .model import Water
 from .robot import BaseMotion, Robot
 from .robot_types import BaseWrench, RobotEnvironment, _trusted_motion
@@ -265,11 +265,8 @@ class Simulation:
             raise ValueError(
                 f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
             )
-        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
-            if not np.isfinite(value):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-        if depth < 0.0:
-            raise ValueError(f"depth must be >= 0 m, got {depth!r}")
+        check_depths(np.asarray(depth, dtype=np.float64))
+        check_temperatures(np.asarray(temperature_c, dtype=np.float64))
         self.depth, self.temperature_c, self.losses = float(depth), float(temperature_c), losses
         self.current = _vector3(current, "current")
         self.current_acceleration = _vector3(current_acceleration, "current_acceleration")
