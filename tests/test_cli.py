@@ -170,7 +170,7 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
     header, table = _read_csv(out)
     assert header == ["time"] + [f"{f}{k}" for f in ("drag", "added_mass", "buoyancy") for k in (1, 2, 3)]
     assert table.shape == (experiment.n_samples, 10)
-    expected = LEG.hydro(experiment.q, experiment.qd, experiment.qdd, cd=1.8, cm=0.7)
+    expected = LEG.hydro(experiment.q, experiment.qd, experiment.qdd, cd=1.8, cm=0.7, water=uwml.Water(density=1025.0))  # sea water
     np.testing.assert_allclose(table[:, 0], experiment.time, rtol=1e-11)
     for i, name in enumerate(("drag", "added_mass", "buoyancy")):
         np.testing.assert_allclose(table[:, 1 + 3 * i : 4 + 3 * i], getattr(expected, name), rtol=1e-10, atol=1e-10, err_msg=name)

@@ -81,7 +81,7 @@ def test_added_mass_matrix_is_the_references_symmetric_psd_and_gives_the_added_m
     n = 100
     q = rng.uniform(-3, 3, (n, 3))
     cm = rng.uniform(0.1, 1.5, (3, 2))
-    m = leg.jacobians(q, rng.uniform(-2, 2, (n, 3)), rng.uniform(-5, 5, (n, 3)), cm=cm).added_mass_matrix
+    m = leg.jacobians(q, rng.uniform(-2, 2, (n, 3)), rng.uniform(-5, 5, (n, 3)), cm=cm, water=uwml.Water()).added_mass_matrix
     np.testing.assert_array_equal(m, np.swapaxes(m, 1, 2))
     eigenvalues = np.linalg.eigvalsh(m)
     assert eigenvalues.min() >= -1e-12 * np.abs(m).max()

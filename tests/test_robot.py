@@ -294,7 +294,7 @@ def test_environment_is_hydro_plus_the_legs_losses() -> None:
     motion = uwml.BaseMotion(velocity=(0.3, 0.0, 0.1))
     env = robot.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=losses, base_motion=motion, threads=2)
     hydro = robot.hydro(q, qd, qdd, base_motion=motion)
-    reference = leg.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=losses)
+    reference = leg.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=losses, water=robot.water)
     for name in ("visc", "seal", "current"):
         np.testing.assert_array_equal(getattr(env, name), getattr(reference, name))
     assert np.all(env.seal[:, 0] == 0.0) and np.all(env.seal[:, 1:] * qd[:, 1:] <= 0.0)
@@ -377,7 +377,7 @@ def test_jacobians_of_a_robot_are_the_slopes_and_the_legs_for_a_chain() -> None:
     chain = uwml.Robot.from_leg(leg)
     Q = rng.uniform(-2, 2, (4, 3))
     a = chain.jacobians(Q, Q, Q, depth=1000.0, losses=uwml.JointLosses(epsilon=0.01))
-    b = leg.jacobians(Q, Q, Q, depth=1000.0, losses=uwml.JointLosses(epsilon=0.01))
+    b = leg.jacobians(Q, Q, Q, depth=1000.0, losses=uwml.JointLosses(epsilon=0.01), water=chain.water)
     tol = 1e-12 * np.abs(b.d_q).max()
     np.testing.assert_allclose(a.d_q[:, 6:, :], b.d_q, atol=tol)
     np.testing.assert_allclose(a.d_velocity[:, 6:, 6:], b.d_qd, atol=tol)
@@ -547,12 +547,17 @@ def test_the_leg_takes_kirchhoffs_added_mass_too() -> None:
     np.testing.assert_allclose(at_rest.added_mass, leg.hydro(q, 0 * qd, qdd, cd=cd, cm=cm).added_mass, rtol=1e-12, atol=1e-12)
     assert np.max(np.abs(k.added_mass - leg.hydro(q, qd, qdd, cd=cd, cm=cm).added_mass)) > 1e-3
     losses = uwml.JointLosses()
-    env = leg.environment(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm, added_mass="kirchhoff")
+    fresh = uwml.Water()
+    env = leg.environment(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm, water=fresh, added_mass="kirchhoff")
     np.testing.assert_array_equal(env.added_mass, k.added_mass)
-    np.testing.assert_array_equal(env.seal, leg.environment(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm).seal)
-    jac = leg.jacobians(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm, added_mass="kirchhoff")
+    np.testing.assert_array_equal(
+        env.seal, leg.environment(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm, water=fresh).seal
+    )
+    jac = leg.jacobians(q, qd, qdd, depth=2000.0, temperature_c=4.0, losses=losses, cd=cd, cm=cm, water=fresh, added_mass="kirchhoff")
     np.testing.assert_allclose(jac.value, env.total, rtol=1e-12, atol=1e-10)
-    np.testing.assert_allclose(jac.added_mass_matrix, leg.jacobians(q, qd, qdd, cd=cd, cm=cm).added_mass_matrix, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        jac.added_mass_matrix, leg.jacobians(q, qd, qdd, cd=cd, cm=cm, water=fresh).added_mass_matrix, rtol=1e-12, atol=1e-12
+    )
     regressors = leg.hydro_regressors(q, qd, qdd, per="direction", added_mass="kirchhoff")
     np.testing.assert_allclose(regressors.torques(cd, cm).added_mass, k.added_mass, rtol=1e-12, atol=1e-12)
     one = leg.hydro_regressors(q, qd, qdd, added_mass="kirchhoff").torques(2.2, 0.5)

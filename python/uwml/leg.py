@@ -25,6 +25,9 @@ _EnvironmentArguments = tuple[FloatArray, FloatArray, FloatArray, FloatArray, Fl
 
 #: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).
 FRESH_WATER = Water()
+#: The water of :meth:`Leg.environment` and :meth:`Leg.jacobians` by default: sea water, for
+#: the hydrodynamics and the pressure at depth alike.
+SEA_WATER = Water(density=SEA_WATER_DENSITY)
 
 #: Largest number of joints a chain may have.
 MAX_JOINTS: int = _core.MAX_JOINTS
@@ -390,8 +393,8 @@ class Leg:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         cd: ArrayLike = 2.2,
         cm: ArrayLike = 0.5,
-        water: Water = FRESH_WATER,
-        sea_density: float = SEA_WATER_DENSITY,
+        water: Water = SEA_WATER,
+        sea_density: float | None = None,
         threads: int = 1,
         added_mass: str = "morison",
     ) -> EnvironmentTorques:
@@ -402,15 +405,21 @@ class Leg:
         q, qd, qdd
             Joint states, as for :meth:`hydro`.
         depth
-            Depth [m] ≥ 0, a scalar or one per sample; the ambient pressure is the hydrostatic
-            ``sea_density · g · depth`` (the core's formula; see :mod:`uwml.seawater` for TEOS-10).
+            Depth [m], 0 to 11000 (the deepest ocean), a scalar or one per sample; the ambient
+            pressure is the hydrostatic ``sea_density · g · depth`` (the core's formula; see
+            :mod:`uwml.seawater` for TEOS-10).
         temperature_c
             Oil temperature [°C], a scalar or one per sample.
         losses
             One :class:`uwml.JointLosses` for every joint, a sequence with one (or None) per
             joint, or None for none (the hydrodynamics alone).
         cd, cm, water, threads
-            As for :meth:`hydro` (``water`` is the fluid the links move in).
+            As for :meth:`hydro` (``water`` is the fluid the links move in), but ``water``
+            defaults to sea water (1025 kg/m³, g = 9.81 m/s²): the deep sea, where the losses at
+            depth are wanted. Pass ``water=uwml.Water()`` for the paper's fresh-water tank.
+        sea_density
+            The density of the water column above [kg/m³] for the pressure: default ``water``'s,
+            so that one water is used for both.
 
         One state with scalar ``depth``, ``temperature_c`` and ``sea_density`` and ``losses``
         None or one :class:`uwml.JointLosses` takes the short path of :meth:`hydro`.
@@ -438,7 +447,7 @@ class Leg:
                 cm,
                 water.density,
                 water.gravity,
-                sea_density,
+                water.density if sea_density is None else sea_density,
                 threads,
             )
             if one is not None:
@@ -463,7 +472,7 @@ class Leg:
         cd: ArrayLike,
         cm: ArrayLike,
         water: Water,
-        sea_density: float,
+        sea_density: float | None,
     ) -> tuple[tuple[int, ...], _EnvironmentArguments]:
         """The arguments of :meth:`environment` (and :meth:`jacobians`), validated: the shape of ``q``
         and the native call's arguments ``(q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature)``."""
@@ -472,7 +481,8 @@ class Leg:
         cd_table = _coefficients(cd, "cd", self.n_joints)
         cm_table = _coefficients(cm, "cm", self.n_joints)
         packed = pack_leg_losses(losses, self.n_joints)
-        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, water.gravity, q2.shape[0])
+        column = water.density if sea_density is None else sea_density
+        pressure, temperature = loss_conditions(depth, temperature_c, column, water.gravity, q2.shape[0])
         return shape, (q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
 
     def jacobians(
@@ -485,8 +495,8 @@ class Leg:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         cd: ArrayLike = 2.2,
         cm: ArrayLike = 0.5,
-        water: Water = FRESH_WATER,
-        sea_density: float = SEA_WATER_DENSITY,
+        water: Water = SEA_WATER,
+        sea_density: float | None = None,
         added_mass: str = "morison",
     ) -> EnvironmentJacobians:
         """The environment torque of :meth:`environment` and its derivatives, for control.

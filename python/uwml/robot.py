@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import SEA_WATER_DENSITY, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
+from .environment import JointLosses, loss_conditions, one_state_losses, pack_leg_losses
 from .leg import FRESH_WATER, _threads, _water
 from .model import Joint, Link, Segment, Water
 from .robot_types import (
@@ -506,14 +506,16 @@ class Robot:
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        sea_density: float = SEA_WATER_DENSITY,
+        sea_density: float | None = None,
         threads: int = 1,
         added_mass: str = "morison",
     ) -> RobotEnvironment:
         """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call.
 
-        ``depth`` [m] ≥ 0 and ``temperature_c`` [°C]: a scalar or one per sample (the pressure is
-        the hydrostatic ``sea_density · g · depth``, as for :meth:`uwml.Leg.environment`).
+        ``depth`` [m], 0 to 11000, and ``temperature_c`` [°C]: a scalar or one per sample (the
+        pressure is the hydrostatic ``sea_density · g · depth``, as for
+        :meth:`uwml.Leg.environment`; ``sea_density`` defaults to the water's, the robot's own
+        unless ``water`` is given, so that one water is used for both).
         ``losses``: one :class:`uwml.JointLosses` for every joint, a sequence with one (or None)
         per joint, or None for the joints' own (:attr:`losses`; ``[None] * n_joints`` for none). The other arguments as for :meth:`hydro`; one state (with scalar
         ``depth``, ``temperature_c``, ``sea_density`` and ``losses`` None or one
@@ -537,7 +539,7 @@ class Robot:
                 cm,
                 water.density,
                 water.gravity,
-                sea_density,
+                water.density if sea_density is None else sea_density,
                 motion,
                 current,
                 current_acceleration,
@@ -549,7 +551,9 @@ class Robot:
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
-        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
+        the_water = self._the_water(water)
+        column = the_water.density if sea_density is None else sea_density
+        pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
         out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature, kirchhoff=kirchhoff)
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
@@ -572,7 +576,7 @@ class Robot:
         base_motion: BaseMotion | None = None,
         current: ArrayLike = (0.0, 0.0, 0.0),
         current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        sea_density: float = SEA_WATER_DENSITY,
+        sea_density: float | None = None,
         added_mass: str = "morison",
     ) -> RobotJacobians:
         """The forces of :meth:`environment` on base and joints and their derivatives
@@ -581,7 +585,9 @@ class Robot:
         losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         packed = pack_leg_losses(losses, self.n_joints)
-        pressure, temperature = loss_conditions(depth, temperature_c, sea_density, self._the_water(water).gravity, n_samples)
+        the_water = self._the_water(water)
+        column = the_water.density if sea_density is None else sea_density
+        pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
         value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature, kirchhoff=kirchhoff)
         n = self.n_joints
         m = 6 + n
