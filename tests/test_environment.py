@@ -278,3 +278,22 @@ def test_environment_bad_inputs(kwargs, error, match):
 def test_loss_bad_inputs(make, error, match):
     with pytest.raises(error, match=match):
         make()
+
+
+@pytest.mark.parametrize("one_state", [True, False])
+def test_forces_that_overflow_raise_naming_the_sample(one_state: bool) -> None:
+    """A finite state whose forces exceed float64 (a joint speed of 1e300 rad/s: the drag goes
+    as its square) is outside the physics' domain: a ValueError naming the sample, not inf or NaN
+    returned silently; a large but representable one evaluates."""
+    leg, robot = uwml.Leg.paper(), uwml.Robot.from_leg(uwml.Leg.paper())
+    q, qd, qdd = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
+    qd[2, 1] = 1e300
+    if one_state:
+        q, qd, qdd = q[2], qd[2], qdd[2]
+    where = "the state" if one_state else "sample 2"
+    for evaluate in (leg.hydro, leg.environment, leg.jacobians, robot.hydro, robot.environment, robot.jacobians):
+        with pytest.raises(ValueError, match=f"the forces of {where} overflow float64 .speeds up to 1e\\+300"):
+            evaluate(q, qd, qdd)
+    qd = np.where(qd == 1e300, 1e100, qd)
+    for evaluate in (leg.hydro, robot.environment):
+        assert np.all(np.isfinite(evaluate(q, qd, qdd).total))

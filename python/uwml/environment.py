@@ -96,6 +96,27 @@ def check_temperatures(temperature: FloatArray, name: str = "temperature_c", sta
         )
 
 
+def check_overflow(outputs: Sequence[FloatArray], n_samples: int, velocities: FloatArray, accelerations: FloatArray) -> None:
+    """A ValueError naming the first sample whose outputs are not finite although its state is
+    (the states are checked before): forces beyond float64's range, from speeds or accelerations
+    far beyond any robot's. Cheap when nothing overflows (one sum per output array)."""
+    if all(math.isfinite(float(np.sum(a))) for a in outputs):
+        return
+    bad = np.zeros(n_samples, dtype=bool)
+    for a in outputs:
+        bad |= ~np.all(np.isfinite(np.reshape(a, (n_samples, -1))), axis=1)
+    if not bad.any():
+        return  # only the sums overflowed
+    i = int(np.flatnonzero(bad)[0])
+    speed = float(np.max(np.abs(np.reshape(velocities, (n_samples, -1))[i])))
+    acceleration = float(np.max(np.abs(np.reshape(accelerations, (n_samples, -1))[i])))
+    where = f"sample {i}" if n_samples > 1 else "the state"
+    raise ValueError(
+        f"the forces of {where} overflow float64 (speeds up to {speed:.3g}, accelerations up to {acceleration:.3g}): "
+        "the state is outside the physics' domain"
+    )
+
+
 def hydrostatic_pressure_mpa(depth_m: ArrayLike, *, sea_density: float = SEA_WATER_DENSITY, gravity: float = 9.81) -> FloatArray:
     """Gauge pressure ``ρ g z`` [MPa] at depth [m] (0 to :data:`MAX_DEPTH`), the formula the core
     uses; ``sea_density`` [kg/m³] and ``gravity`` [m/s²] finite and positive, keyword-only.

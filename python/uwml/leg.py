@@ -13,7 +13,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import SEA_WATER_DENSITY, EnvironmentTorques, JointLosses, loss_conditions, one_state_losses, pack_leg_losses
+from .environment import (
+    SEA_WATER_DENSITY,
+    EnvironmentTorques,
+    JointLosses,
+    check_overflow,
+    loss_conditions,
+    one_state_losses,
+    pack_leg_losses,
+)
 from .model import Joint, Link, Segment, Water
 
 __all__ = ["MAX_JOINTS", "EnvironmentJacobians", "HydroRegressors", "HydroTorques", "Leg"]
@@ -379,6 +387,7 @@ class Leg:
         cd_table = _coefficients(cd, "cd", self.n_joints)
         cm_table = _coefficients(cm, "cm", self.n_joints)
         drag, added_mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, threads)
+        check_overflow((drag, added_mass), q2.shape[0], qd2, qdd2)
         return HydroTorques(
             drag=drag.reshape(shape), added_mass=added_mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
         )
@@ -455,6 +464,7 @@ class Leg:
         threads = _threads(threads)
         shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
         columns = self._chain.environment(*arguments, threads)
+        check_overflow(columns[:2] + columns[4:], arguments[0].shape[0], arguments[1], arguments[2])
         return EnvironmentTorques(*(c.reshape(shape) for c in columns))
 
     def _one_state_losses(self, losses: object) -> FloatArray | bool:
@@ -527,6 +537,7 @@ class Leg:
             )
         shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
         value, d_q, d_qd, added_mass_matrix = self._chain.jacobians(*arguments)
+        check_overflow((value, d_q, d_qd), arguments[0].shape[0], arguments[1], arguments[2])
         matrix = shape + shape[-1:]
         return EnvironmentJacobians(
             value=value.reshape(shape),

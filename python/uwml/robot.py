@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
-from .environment import JointLosses, loss_conditions, one_state_losses, pack_leg_losses
+from .environment import JointLosses, check_overflow, loss_conditions, one_state_losses, pack_leg_losses
 from .leg import FRESH_WATER, _threads, _water
 from .model import Joint, Link, Segment, Water
 from .robot_types import (
@@ -479,6 +479,7 @@ class Robot:
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         out = self._core.hydro(*arguments, threads, False, kirchhoff=kirchhoff)
+        check_overflow((out[0], out[1], out[4], out[5]), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
@@ -555,6 +556,7 @@ class Robot:
         column = the_water.density if sea_density is None else sea_density
         pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
         out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature, kirchhoff=kirchhoff)
+        check_overflow((out[0], out[1], out[4], out[5], out[9], out[10], out[11]), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
@@ -589,6 +591,7 @@ class Robot:
         column = the_water.density if sea_density is None else sea_density
         pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
         value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature, kirchhoff=kirchhoff)
+        check_overflow((value, d_q, d_velocity), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         m = 6 + n
         lead = (n_samples,) if batched else ()

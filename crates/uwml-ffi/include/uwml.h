@@ -120,6 +120,13 @@
 #define UWML_ERR_BEYOND_DEEPEST_OCEAN 12
 
 /**
+ * A finite state whose forces exceed the floating-point range (a speed or acceleration far
+ * beyond any robot's): the outputs are written and hold infinities or NaN; the field names the
+ * output ("total", "current" or "base_wrench") and the index the first joint (or -1).
+ */
+#define UWML_ERR_OVERFLOW 13
+
+/**
  * The number of joints (and links) of the leg of this API.
  */
 #define UWML_LEG3_JOINTS 3

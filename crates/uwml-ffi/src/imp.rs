@@ -15,11 +15,11 @@ use uwml_core::{
 use crate::{
     UWML_ERR_BELOW_ABSOLUTE_ZERO, UWML_ERR_BEYOND_DEEPEST_OCEAN, UWML_ERR_INDEX_OUT_OF_RANGE, UWML_ERR_NEGATIVE,
     UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE, UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER,
-    UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE, UWML_ERR_UNINITIALIZED, UWML_ERROR_FIELD_LEN, UWML_OK,
-    UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlEnvironment3F32, UwmlEnvironment3F64, UwmlError, UwmlHydro3F32,
-    UwmlHydro3F64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlJointParamsF32, UwmlJointParamsF64, UwmlLeg3F32,
-    UwmlLeg3F64, UwmlLinkParamsF32, UwmlLinkParamsF64, UwmlOilParamsF32, UwmlOilParamsF64, UwmlSealParamsF32,
-    UwmlSealParamsF64,
+    UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE, UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED, UWML_ERROR_FIELD_LEN,
+    UWML_OK, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlEnvironment3F32, UwmlEnvironment3F64, UwmlError,
+    UwmlHydro3F32, UwmlHydro3F64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlJointParamsF32,
+    UwmlJointParamsF64, UwmlLeg3F32, UwmlLeg3F64, UwmlLinkParamsF32, UwmlLinkParamsF64, UwmlOilParamsF32,
+    UwmlOilParamsF64, UwmlSealParamsF32, UwmlSealParamsF64,
 };
 
 /// The joints of the C API's leg.
@@ -365,6 +365,19 @@ pub(crate) fn non_null<P>(p: *mut P, name: &'static str) -> Result<*mut P, Failu
 }
 
 /// `UWML_ERR_NON_FINITE` naming the first non-finite element of a state.
+/// `UWML_ERR_OVERFLOW` naming `field` and the first of `values` (per joint) that is not finite;
+/// for outputs of a finite state (the inputs are checked first).
+pub(crate) fn check_overflow<T: RealField + Copy>(
+    values: impl Iterator<Item = T>,
+    field: &'static str,
+) -> Result<(), Failure> {
+    let mut values = values;
+    match values.position(|x| !x.is_finite()) {
+        Some(i) => Err(Failure::new(UWML_ERR_OVERFLOW, field, Some(i))),
+        None => Ok(()),
+    }
+}
+
 fn check_state<T: RealField + Copy>(states: [(&Vector3<T>, &'static str); 3]) -> Result<(), Failure> {
     for (state, name) in states {
         if let Some(i) = state.iter().position(|x| !x.is_finite()) {
@@ -374,7 +387,6 @@ fn check_state<T: RealField + Copy>(states: [(&Vector3<T>, &'static str); 3]) ->
     Ok(())
 }
 
-/// Pressure [Pa] finite and not negative; temperature [°C] finite and above absolute zero.
 /// The core's domain of the loss conditions (`JointLosses::at`), with the C names of the
 /// arguments: pressure from 0 to 1.2e8 Pa, temperature above absolute zero.
 fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), Failure> {
@@ -570,10 +582,13 @@ pub(crate) unsafe fn hydro<T: Precision>(
     // SAFETY: forwarded contract.
     let (q, qd, qdd) = unsafe { read_states(q, qd, qdd) }?;
     let out = non_null(out, "out")?;
-    let torques = T::hydro(&hydro_torques(&leg.chain, &leg.water, &leg.coefficients, &q, &qd, &qdd));
+    let computed = hydro_torques(&leg.chain, &leg.water, &leg.coefficients, &q, &qd, &qdd);
+    let total = computed.total();
+    let torques = T::hydro(&computed);
     // SAFETY: not null, valid for writes (contract).
     unsafe { out.write(torques) };
-    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])
+    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])?;
+    check_overflow(total.iter().copied(), "total")
 }
 
 /// # Safety
@@ -594,5 +609,7 @@ pub(crate) unsafe fn environment<T: Precision>(
     let torques = environment_torques(&leg.chain, &leg.water, &leg.coefficients, &leg.states, &q, &qd, &qdd);
     // SAFETY: not null, valid for writes (contract).
     unsafe { out.write(T::environment(&torques)) };
-    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])
+    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])?;
+    check_overflow(torques.total().iter().copied(), "total")?;
+    check_overflow(torques.current.iter().copied(), "current")
 }

@@ -66,6 +66,10 @@ pub const UWML_ERR_UNINITIALIZED: i32 = 10;
 pub const UWML_ERR_BELOW_ABSOLUTE_ZERO: i32 = 11;
 /// Deeper than the deepest ocean: a depth beyond 11000 m, or a pressure beyond 1.2e8 Pa.
 pub const UWML_ERR_BEYOND_DEEPEST_OCEAN: i32 = 12;
+/// A finite state whose forces exceed the floating-point range (a speed or acceleration far
+/// beyond any robot's): the outputs are written and hold infinities or NaN; the field names the
+/// output ("total", "current" or "base_wrench") and the index the first joint (or -1).
+pub const UWML_ERR_OVERFLOW: i32 = 13;
 
 /// The number of joints (and links) of the leg of this API.
 pub const UWML_LEG3_JOINTS: usize = 3;
@@ -473,6 +477,7 @@ pub extern "C" fn uwml_error_message(code: i32) -> *const c_char {
         UWML_ERR_UNINITIALIZED => c"not initialized",
         UWML_ERR_BELOW_ABSOLUTE_ZERO => c"at or below absolute zero",
         UWML_ERR_BEYOND_DEEPEST_OCEAN => c"beyond the deepest ocean",
+        UWML_ERR_OVERFLOW => c"forces overflow",
         _ => c"unknown error",
     };
     message.as_ptr()

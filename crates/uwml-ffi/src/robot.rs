@@ -12,13 +12,13 @@ use uwml_core::{
     Robot, RobotData, RobotSegment, Section, TreeJoint, Water, robot_hydro,
 };
 
-use crate::imp::{Failure, non_null, read_one};
+use crate::imp::{Failure, check_overflow, non_null, read_one};
 use crate::{
-    UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC,
-    UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64,
-    UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32,
-    UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32,
-    UwmlTreeJointF64,
+    UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE, UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED,
+    UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32,
+    UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64,
+    UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64,
+    UwmlTreeJointF32, UwmlTreeJointF64,
 };
 
 /// The joint capacity of the C API's robot.
@@ -463,5 +463,11 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluat
         (q.get(used).unwrap_or(&[]), "q"),
         (qd.get(used).unwrap_or(&[]), "qd"),
         (qdd.get(used).unwrap_or(&[]), "qdd"),
-    ])
+    ])?;
+    check_overflow(data.joint_forces().iter().map(uwml_core::JointForces::total), "total")?;
+    let wrench = data.base_wrench().total().to_array();
+    if wrench.iter().any(|x| !x.is_finite()) {
+        return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
+    }
+    Ok(())
 }

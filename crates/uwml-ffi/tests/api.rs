@@ -654,8 +654,9 @@ fn error_messages_and_helpers() {
         UWML_ERR_UNINITIALIZED,
         UWML_ERR_BELOW_ABSOLUTE_ZERO,
         UWML_ERR_BEYOND_DEEPEST_OCEAN,
+        UWML_ERR_OVERFLOW,
     ];
-    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12]);
+    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13]);
     let mut messages: Vec<String> = codes
         .iter()
         .map(|&code| {
@@ -721,4 +722,23 @@ fn firmware_doc_rust_example() -> Result<(), uwml_core::ModelError> {
     assert!(feedforward.iter().all(|x| x.is_finite()));
     assert!(env.seal[1] * qd[1] < 0.0);
     Ok(())
+}
+
+#[test]
+fn forces_that_overflow_are_an_error_not_a_silent_infinity() {
+    let leg = paper64();
+    // A finite speed no robot reaches: the drag (∝ q̇²) exceeds f64's range.
+    let (code, out) = environment64(&leg, Q, [0.0, 1e200, 0.0], QDD);
+    assert_eq!(code, UWML_ERR_OVERFLOW);
+    assert!(out.total.iter().any(|x| !x.is_finite()), "the outputs are written, and show it");
+    let mut error = blank_error();
+    let mut hydro = UwmlHydro3F64::default();
+    let (q, qd, qdd) = (Q, [0.0, 0.0, 1e200], QDD);
+    // SAFETY: live locals.
+    let code = unsafe { uwml_leg3_hydro_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut hydro, &mut error) };
+    expect_error(code, &error, (UWML_ERR_OVERFLOW, 0, "total"));
+    // Large but representable: no error.
+    let (code, out) = environment64(&leg, Q, [0.0, 1e100, 0.0], QDD);
+    assert_eq!(code, UWML_OK);
+    assert!(out.total.iter().all(|x| x.is_finite()));
 }

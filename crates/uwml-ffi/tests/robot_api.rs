@@ -686,3 +686,16 @@ fn robots_not_written_by_the_library_are_refused() {
     let message = unsafe { CStr::from_ptr(uwml_error_message(UWML_ERR_UNINITIALIZED)) };
     assert_eq!(message.to_str().unwrap(), "not initialized");
 }
+
+#[test]
+fn robot_forces_that_overflow_are_an_error() {
+    let mut robot = zeroed64();
+    // SAFETY: a live local.
+    assert_eq!(unsafe { uwml_robot_paper_f64(&mut *robot) }, UWML_OK);
+    let out = hydro64(&mut robot, [&[0.1, 0.2, 0.3], &[0.0, 1e200, 0.0], &[0.0; 3]], None, None);
+    // Joint 1's speed drags on joint 0 too (it carries the links beyond): the first joint named.
+    expect_error(out.code, &out.error, (UWML_ERR_OVERFLOW, 0, "total"));
+    assert!(!out.forces[0].total.is_finite() && !out.forces[1].total.is_finite());
+    let out = hydro64(&mut robot, [&[0.1, 0.2, 0.3], &[0.0, 1e100, 0.0], &[0.0; 3]], None, None);
+    assert_eq!(out.code, UWML_OK);
+}

@@ -792,7 +792,7 @@ impl PyChain {
             return Ok(None);
         }
         dispatch!(&self.chain, c => match single::Common::read([q, qd, qdd], [cd, cm], [density, gravity]) {
-            Some(common) => single::hydro(&self.lanes(c), result_type, &common).map(Some),
+            Some(common) => single::hydro(&self.lanes(c), result_type, &common),
             None => Ok(None),
         })
     }

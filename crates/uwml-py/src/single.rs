@@ -144,7 +144,7 @@ pub(crate) fn hydro<'py, const N: usize>(
     chain: &Chain<Lanes, N>,
     result_type: &Bound<'py, PyType>,
     common: &Common<N>,
-) -> PyResult<Bound<'py, PyAny>> {
+) -> PyResult<Option<Bound<'py, PyAny>>> {
     let mut out = [[0.0; N]; 4];
     let [drag, added_mass, buoyancy, gravity] = &mut out;
     hydro_lane_rows(
@@ -154,7 +154,10 @@ pub(crate) fn hydro<'py, const N: usize>(
         &common.states(),
         [drag, added_mass, buoyancy, gravity],
     );
-    result(result_type, hydro_fields(result_type.py()), &out)
+    if !all_finite(&out) {
+        return Ok(None); // forces that overflow: the general path names the sample
+    }
+    result(result_type, hydro_fields(result_type.py()), &out).map(Some)
 }
 
 /// The joint losses: `None` for none, or packed `(N, LOSS_WIDTH)` in a C-contiguous float64
@@ -206,10 +209,15 @@ pub(crate) fn environment<'py, const N: usize>(
         (&[pressure], &[temperature]),
         [drag, added_mass, buoyancy, gravity, visc, seal, current],
     );
-    if evaluated.is_err() {
+    if evaluated.is_err() || !all_finite(&out) {
         return Ok(None);
     }
     result(result_type, environment_fields(result_type.py()), &out).map(Some)
+}
+
+/// Every output finite (else the general path answers, naming the sample whose forces overflow).
+fn all_finite<const N: usize, const K: usize>(out: &[[f64; N]; K]) -> bool {
+    out.iter().flatten().all(|x| x.is_finite())
 }
 
 /// A `result_type` with `rows` as 1-D float64 arrays under the names `fields`.

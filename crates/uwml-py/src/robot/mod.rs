@@ -258,6 +258,9 @@ impl PyRobot {
         let Some(one) = OneState::read(self.robot.joint_count(), arguments) else { return Ok(None) };
         let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
+        if !one::finite(&data, &[]) {
+            return Ok(None); // forces that overflow: the general path names the sample
+        }
         one_result(result_type, base_type, &data, None).map(Some)
     }
 
@@ -315,6 +318,9 @@ impl PyRobot {
         let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         let (visc, seal, loss_current) = loss_torques(LossStates::new().at(&conditions, 0), &one.row.qd.into());
+        if !one::finite(&data, &[visc.as_slice(), seal.as_slice(), loss_current.as_slice()]) {
+            return Ok(None);
+        }
         one_result(result_type, base_type, &data, Some([&visc, &seal, &loss_current].map(|v| v.as_slice()))).map(Some)
     }
 

@@ -108,3 +108,11 @@ pub(super) fn one_result<'py>(
     fields.push((intern!(py, "base"), base_object));
     instance(result_type, fields)
 }
+
+/// Every force of one evaluation in `data`, and every value of `more`, finite (else the general
+/// path answers, naming the sample whose forces overflow).
+pub(super) fn finite(data: &Data, more: &[&[f64]]) -> bool {
+    let joints = data.joint_forces().iter().all(|f| f.total().is_finite());
+    let base = data.base_wrench().total().to_array().iter().all(|x| x.is_finite());
+    joints && base && more.iter().all(|values| values.iter().all(|x| x.is_finite()))
+}
