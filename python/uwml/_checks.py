@@ -22,7 +22,10 @@ def real_array(value: ArrayLike, name: str, what: str) -> NDArray[np.float64]:
 def finite_array(value: ArrayLike, name: str) -> NDArray[np.float64]:
     """``value`` as a float64 array of finite numbers, or a ValueError naming ``name``."""
     try:
-        a = np.asarray(value, dtype=np.float64)
+        a = np.asarray(value)
+        if np.iscomplexobj(a) or a.dtype.kind not in "biuf":
+            raise TypeError("not real numbers")
+        a = a.astype(np.float64, copy=False)
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{name} must be a number or an array of numbers, got {value!r}") from exc
     if not np.all(np.isfinite(a)):

@@ -8,6 +8,7 @@ adds the losses of every joint to the hydrodynamic torques at a depth and temper
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -58,10 +59,10 @@ class ExtrapolationWarning(UserWarning):
 
 
 def _positive_number(value: object, name: str) -> float:
-    try:
-        x = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a real number, got {value!r}") from None
+    real = isinstance(value, numbers.Real) or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu")
+    if not real or isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a real number, got {value!r}")
+    x = float(value)  # type: ignore[arg-type]
     if not (math.isfinite(x) and x > 0.0):
         raise ValueError(f"{name} must be finite and positive, got {value!r}")
     return x
@@ -100,8 +101,9 @@ def check_overflow(outputs: Sequence[FloatArray], n_samples: int, velocities: Fl
     """A ValueError naming the first sample whose outputs are not finite although its state is
     (the states are checked before): forces beyond float64's range, from speeds or accelerations
     far beyond any robot's. Cheap when nothing overflows (one sum per output array)."""
-    if all(math.isfinite(float(np.sum(a))) for a in outputs):
-        return
+    with np.errstate(over="ignore", invalid="ignore"):
+        if all(math.isfinite(float(np.sum(a))) for a in outputs):
+            return
     bad = np.zeros(n_samples, dtype=bool)
     for a in outputs:
         bad |= ~np.all(np.isfinite(np.reshape(a, (n_samples, -1))), axis=1)
@@ -112,8 +114,8 @@ def check_overflow(outputs: Sequence[FloatArray], n_samples: int, velocities: Fl
     acceleration = float(np.max(np.abs(np.reshape(accelerations, (n_samples, -1))[i])))
     where = f"sample {i}" if n_samples > 1 else "the state"
     raise ValueError(
-        f"the forces of {where} overflow float64 (speeds up to {speed:.3g}, accelerations up to {acceleration:.3g}): "
-        "the state is outside the physics' domain"
+        f"the forces of {where} overflow float64 (joint speeds up to {speed:.3g}, accelerations up to {acceleration:.3g}; "
+        "or the base's motion, the current or the coefficients): the inputs are outside the physics' domain"
     )
 
 
@@ -128,7 +130,14 @@ def hydrostatic_pressure_mpa(depth_m: ArrayLike, *, sea_density: float = SEA_WAT
     check_depths(depth, "depth_m")
     density = _positive_number(sea_density, "sea_density")
     g = _positive_number(gravity, "gravity")
-    return density * g * depth / _MPA
+    with np.errstate(over="ignore", invalid="ignore"):
+        pressure = density * g * depth / _MPA
+    if not np.all(pressure <= MAX_PRESSURE_MPA):
+        raise ValueError(
+            f"the pressure of sea_density {density:g} kg/m³ and gravity {g:g} m/s² reaches {float(np.max(pressure)):g} MPa, "
+            f"beyond the deepest ocean's ({MAX_PRESSURE_MPA:g} MPa): a water far from the sea's"
+        )
+    return pressure
 
 
 @dataclass(frozen=True)
@@ -205,12 +214,10 @@ class JointLosses:
 
         The three arguments broadcast against each other; the results have their common shape.
         """
-        arrays = []
-        for name, value in (("speed", speed), ("pressure_mpa", pressure_mpa), ("temperature_c", temperature_c)):
-            try:
-                arrays.append(np.asarray(value, dtype=np.float64))
-            except (TypeError, ValueError) as exc:
-                raise TypeError(f"{name} must be a real number or array: {exc}") from None
+        arrays = [
+            _real_array(value, name, "a real number or array")
+            for name, value in (("speed", speed), ("pressure_mpa", pressure_mpa), ("temperature_c", temperature_c))
+        ]
         try:
             speed_b, pressure_b, temperature_b = np.broadcast_arrays(*arrays)
         except ValueError:
@@ -230,6 +237,7 @@ class JointLosses:
         flat = [np.ascontiguousarray(a.ravel()) for a in (speed_b, pressure_b * _MPA, temperature_b)]
         packed = np.array([self.packed()], dtype=np.float64)
         visc, seal, current = _core.joint_losses(packed, *flat)
+        check_overflow((visc, seal, current), len(flat[0]), flat[0], np.zeros_like(flat[0]))
         return LossTorques(visc=visc.reshape(shape), seal=seal.reshape(shape), current=current.reshape(shape))
 
 

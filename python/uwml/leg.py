@@ -580,6 +580,7 @@ class Leg:
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
         buoyancy, gravity, drag, added_mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
+        check_overflow((drag, added_mass), q2.shape[0], qd2, qdd2)
         extra = drag.shape[2:]
         return HydroRegressors(
             buoyancy=buoyancy.reshape(shape),

@@ -622,6 +622,7 @@ class Robot:
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)
         states, (density, gravity), motion = arguments[:3], arguments[5:7], arguments[7:]
         out = self._core.regressors(*states, density, gravity, *motion, threads, kirchhoff=kirchhoff)
+        check_overflow((out[4], out[5]), n_samples, arguments[1], arguments[2])
         n, s = self.n_joints, len(self._segments)
         lead = (n_samples,) if batched else ()
         columns = out[4].reshape(*lead, 6 + n, s, 2), out[5].reshape(*lead, 6 + n, s, 2)
@@ -660,6 +661,7 @@ class Robot:
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         wrenches = self._core.hydro(*arguments, threads, True, kirchhoff=_kirchhoff(added_mass))[8]
+        check_overflow((wrenches,), n_samples, arguments[1], arguments[2])
         shape = (n_samples, self.n_joints + 1, 6) if batched else (self.n_joints + 1, 6)
         return wrenches.reshape(shape)
 
@@ -678,5 +680,6 @@ class Robot:
             raise ValueError(f"q must have shape ({n},) or (n_samples, {n}), got {array.shape}")
         rows = np.ascontiguousarray(array.reshape(-1, n), dtype=np.float64)
         matrices = self._core.added_mass_matrix(rows, self._coefficients(cm, "cm"), water.density)
+        check_overflow((matrices,), len(rows), np.zeros_like(rows), np.zeros_like(rows))
         size = 6 + n
         return matrices.reshape((len(rows), size, size) if array.ndim == 2 else (size, size))

@@ -61,7 +61,8 @@ class BaseMotion:
                 raise ValueError(f"base_motion.{name} must be finite, got {array.tolist()}")
         single = all(getattr(self, name).ndim == 1 for name in _MOTION_FIELDS)
         object.__setattr__(self, "_one", tuple(getattr(self, name) for name in _MOTION_FIELDS) if single else None)
-        norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
+        with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
+            norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
         bad = np.flatnonzero(np.abs(norms - 1.0) > 1e-6)
         if bad.size:
             raise ValueError(

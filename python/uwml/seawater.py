@@ -60,7 +60,8 @@ def pressure_at_depth_mpa(depth_m: ArrayLike, latitude_deg: ArrayLike = 0.0) -> 
     Raises
     ------
     ValueError
-        If a depth is negative, a latitude outside [−90, 90], or an input not finite.
+        If a depth is negative or beyond 11000 m, a latitude outside [−90, 90], or an input not
+        finite.
     """
     depth, latitude = _depth_and_latitude(depth_m, latitude_deg)
     return np.asarray(gsw.p_from_z(-depth, latitude), dtype=np.float64) * _MPA_PER_DBAR
@@ -97,13 +98,17 @@ def density_at_depth(
     Raises
     ------
     ValueError
-        If a depth is negative, a latitude outside [−90, 90], a salinity negative, or an input
-        not finite.
+        If a depth is negative or beyond 11000 m, a latitude outside [−90, 90], a salinity
+        outside 0 to 120 g/kg, a temperature outside −5 to 95 °C, or an input not finite.
     """
     depth, latitude = _depth_and_latitude(depth_m, latitude_deg)
     salinity = finite_array(absolute_salinity, "absolute_salinity")
-    if np.any(salinity < 0.0):
-        raise ValueError(f"absolute_salinity must be >= 0 g/kg, got minimum {salinity.min()}")
+    if np.any(salinity < 0.0) or np.any(salinity > 120.0):
+        raise ValueError(f"absolute_salinity must be from 0 to 120 g/kg (TEOS-10's range), got {salinity.min()} to {salinity.max()}")
     temperature = finite_array(conservative_temperature, "conservative_temperature")
+    if np.any(temperature < -5.0) or np.any(temperature > 95.0):
+        raise ValueError(
+            f"conservative_temperature must be from -5 to 95 °C (liquid sea water, TEOS-10's range), got {temperature.min()} to {temperature.max()}"
+        )
     pressure_dbar = pressure_at_depth_mpa(depth, latitude) / _MPA_PER_DBAR
     return np.asarray(gsw.rho(salinity, temperature, pressure_dbar), dtype=np.float64)

@@ -499,7 +499,8 @@ pub fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Res
 ///
 /// # Errors
 /// A `depth` that is not finite, negative or beyond [`MAX_DEPTH`]; a `sea_density` or `gravity`
-/// that is not finite and positive.
+/// that is not finite and positive; a pressure beyond [`MAX_PRESSURE`] (a density or gravity far
+/// from the sea's, field `pressure`).
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity: T) -> Result<T, ModelError> {
     let depth = check_at_least(depth, T::zero(), "depth", Problem::Negative)?;
@@ -508,7 +509,12 @@ pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity:
     }
     let sea_density = check_positive(sea_density, "sea_density", None)?;
     let gravity = check_positive(gravity, "gravity", None)?;
-    Ok(sea_density * gravity * depth)
+    let pressure = sea_density * gravity * depth;
+    if !pressure.is_finite() {
+        // Finite, positive factors whose product overflows: a water far from the sea's.
+        return Err(ModelError::new("pressure", None, Problem::BeyondDeepestOcean));
+    }
+    check_pressure(pressure)
 }
 
 /// Default sea-water density for [`pressure_at_depth`] [kg/m³].

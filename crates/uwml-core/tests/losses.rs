@@ -220,3 +220,15 @@ fn conditions_outside_the_physics_are_refused() {
     let message = joint.at(1e7, -300.0).unwrap_err().to_string();
     assert!(message.contains("temperature") && message.contains("absolute zero"), "{message}");
 }
+
+#[test]
+fn an_absurd_water_gives_no_absurd_pressure() {
+    // Found by fuzzing the C ABI: a density and gravity that are finite and positive but far from
+    // the sea's overflowed to an infinite pressure, returned as a success.
+    use uwml_core::MAX_PRESSURE;
+    let e = pressure_at_depth(2.2e-308, 1e200, f64::MAX).unwrap_err();
+    assert_eq!((e.field, e.problem), ("pressure", Problem::BeyondDeepestOcean));
+    let e = pressure_at_depth(1000.0, 1e7, 9.81).unwrap_err();
+    assert_eq!((e.field, e.problem), ("pressure", Problem::BeyondDeepestOcean));
+    assert!(pressure_at_depth(11_000.0, 1025.0, 9.81).unwrap() < MAX_PRESSURE);
+}

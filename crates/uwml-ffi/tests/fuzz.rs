@@ -1,0 +1,300 @@
+//! Fuzzing the C ABI (proptest): constructors, setters and evaluations of the leg and robot APIs,
+//! f64 and f32, from valid parameters with arbitrary words written over them (NaN, ±inf, huge,
+//! tiny, subnormal, negative zero, random bit patterns; any i32 in the enum and flag fields) and
+//! from arbitrary joint states, base motions and currents. Every parameter struct is plain old
+//! data (floats and i32), so any bytes are a valid value. What must hold: nothing panics (a
+//! panic across `extern "C"` aborts the test process), every return is one of the documented
+//! codes and the same as the `UwmlError` written, a failed constructor writes no leg or robot,
+//! and an evaluation that returns `UWML_OK` gives finite outputs.
+//!
+//! CI runs the default number of cases (`FUZZ_CASES` below); the long run:
+//! `PROPTEST_CASES=200000 cargo test --release -p uwml-ffi --test fuzz` (docs/domains.md).
+#![allow(missing_docs, clippy::unwrap_used, clippy::expect_used, clippy::indexing_slicing)]
+
+use std::mem::size_of;
+use std::ptr::{null, null_mut};
+
+use proptest::prelude::*;
+use uwml_ffi::*;
+
+/// Cases per property in the default (CI) run; `PROPTEST_CASES` overrides it.
+const FUZZ_CASES: u32 = 600;
+
+/// Float bit patterns an adversary would try, and some arbitrary ones.
+fn float() -> impl Strategy<Value = f64> {
+    prop_oneof![
+        Just(f64::NAN),
+        Just(f64::INFINITY),
+        Just(f64::NEG_INFINITY),
+        Just(0.0),
+        Just(-0.0),
+        Just(f64::MAX),
+        Just(-f64::MAX),
+        Just(f64::MIN_POSITIVE),
+        Just(5e-324),
+        Just(1e200),
+        Just(-1e200),
+        Just(1.0),
+        -20.0..20.0f64,
+        any::<u64>().prop_map(f64::from_bits),
+    ]
+}
+
+/// One edit of a struct's bytes: at a word offset (8-byte words for floats, 4-byte for i32),
+/// a float, an f32, or an i32.
+#[derive(Clone, Copy, Debug)]
+enum Edit {
+    F64(usize, f64),
+    F32(usize, f32),
+    I32(usize, i32),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    prop_oneof![
+        (any::<usize>(), float()).prop_map(|(at, x)| Edit::F64(at, x)),
+        #[allow(clippy::cast_possible_truncation)]
+        (any::<usize>(), float()).prop_map(|(at, x)| Edit::F32(at, x as f32)),
+        (any::<usize>(), prop_oneof![-3..20i32, Just(i32::MIN), Just(i32::MAX), any::<i32>()])
+            .prop_map(|(at, x)| Edit::I32(at, x)),
+    ]
+}
+
+/// `value` with `edits` written over its bytes (each at its offset modulo the size).
+fn edited<T: Copy>(value: T, edits: &[Edit]) -> T {
+    let mut value = value;
+    let size = size_of::<T>();
+    // SAFETY: `value` is a live local of `size` bytes; every `T` here is plain old data (floats
+    // and i32 in a repr(C) struct or array), so any bytes written leave a valid `T`.
+    let bytes = unsafe { std::slice::from_raw_parts_mut((&raw mut value).cast::<u8>(), size) };
+    for edit in edits {
+        let (at, word): (usize, Vec<u8>) = match *edit {
+            Edit::F64(at, x) => (at % (size / 8).max(1) * 8, x.to_ne_bytes().to_vec()),
+            Edit::F32(at, x) => (at % (size / 4).max(1) * 4, x.to_ne_bytes().to_vec()),
+            Edit::I32(at, x) => (at % (size / 4).max(1) * 4, x.to_ne_bytes().to_vec()),
+        };
+        for (k, byte) in word.into_iter().enumerate() {
+            if let Some(slot) = bytes.get_mut(at + k) {
+                *slot = byte;
+            }
+        }
+    }
+    value
+}
+
+const CODES: std::ops::RangeInclusive<i32> = UWML_OK..=UWML_ERR_OVERFLOW;
+
+fn blank() -> UwmlError {
+    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
+}
+
+/// The return is a documented code, the error record says the same, with a NUL-terminated field.
+fn check(code: i32, error: &UwmlError) {
+    assert!(CODES.contains(&code), "undocumented code {code}");
+    assert_eq!(error.code, code);
+    assert_eq!(error.reserved, 0);
+    assert!(error.field.contains(&0), "the field is NUL-terminated");
+}
+
+fn leg_params() -> ([UwmlJointParamsF64; 3], [UwmlLinkParamsF64; 3]) {
+    let joint = |axis: [f64; 3]| UwmlJointParamsF64 { origin: [0.0, 0.0, 0.1], axis };
+    let segment = UwmlSegmentParamsF64 {
+        start: [0.0; 3],
+        axis: [1.0, 0.0, 0.0],
+        normals: [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        length: 0.4,
+        widths: [0.1, 0.05],
+        area: 0.004,
+    };
+    let link = UwmlLinkParamsF64 {
+        mass: 2.0,
+        com: [0.2, 0.0, 0.0],
+        volume: 1e-3,
+        cob: [0.2, 0.0, 0.0],
+        has_segment: 1,
+        segment,
+    };
+    ([joint([0.0, 0.0, 1.0]), joint([0.0, 1.0, 0.0]), joint([0.0, 1.0, 0.0])], [link; 3])
+}
+
+fn robot_params() -> (Vec<UwmlTreeJointF64>, Vec<UwmlBodyF64>, UwmlBodyF64, Vec<UwmlRobotSegmentF64>) {
+    let joint =
+        |parent: i32, kind: i32, axis: [f64; 3]| UwmlTreeJointF64 { parent, kind, origin: [0.3, 0.0, 0.0], axis };
+    let joints = vec![
+        joint(UWML_BASE, UWML_JOINT_REVOLUTE, [0.0, 0.0, 1.0]),
+        joint(0, UWML_JOINT_REVOLUTE, [0.0, 1.0, 0.0]),
+        joint(1, UWML_JOINT_PRISMATIC, [1.0, 0.0, 0.0]),
+        joint(UWML_BASE, UWML_JOINT_REVOLUTE, [0.0, 1.0, 0.0]),
+    ];
+    let body = UwmlBodyF64 { mass: 1.5, com: [0.1, 0.0, 0.0], volume: 8e-4, cob: [0.1, 0.0, 0.0] };
+    let segment = |owner: i32, section: i32| UwmlRobotSegmentF64 {
+        owner,
+        section,
+        start: [0.0; 3],
+        axis: [1.0, 0.0, 0.0],
+        length: 0.3,
+        area: 0.003,
+        normals: [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        widths: [0.08, 0.04],
+        diameter: 0.06,
+        cd: [1.2, 1.2],
+        cm: [1.0, 1.0],
+    };
+    let segments = vec![
+        segment(UWML_BASE, UWML_SECTION_RECTANGULAR),
+        segment(0, UWML_SECTION_CIRCULAR),
+        segment(1, UWML_SECTION_RECTANGULAR),
+        segment(2, UWML_SECTION_CIRCULAR),
+        segment(3, UWML_SECTION_RECTANGULAR),
+    ];
+    let base = UwmlBodyF64 { mass: 40.0, com: [0.0; 3], volume: 0.04, cob: [0.0, 0.0, 0.05] };
+    (joints, vec![body; 4], base, segments)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: FUZZ_CASES, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// The leg API in f64: build, set water, coefficients, losses and conditions, evaluate.
+    #[test]
+    fn leg_api_takes_any_input(
+        joint_edits in prop::collection::vec(edit(), 0..3),
+        link_edits in prop::collection::vec(edit(), 0..3),
+        loss_edits in prop::collection::vec(edit(), 0..3),
+        water in (float(), float()),
+        coefficients in (float(), float()),
+        conditions in (float(), float()),
+        joint_index in prop_oneof![0..4u32, Just(u32::MAX), any::<u32>()],
+        state in prop::array::uniform9(float()),
+        depth in (float(), float(), float()),
+    ) {
+        let (joints, links) = leg_params();
+        let joints = edited(joints, &joint_edits);
+        let links = edited(links, &link_edits);
+        let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
+        let mut error = blank();
+        // SAFETY: live locals of the right types.
+        let code = unsafe { uwml_leg3_new_f64(joints.as_ptr(), links.as_ptr(), &mut leg, &mut error) };
+        check(code, &error);
+        if code != UWML_OK {
+            prop_assert_eq!(leg.opaque_tag, 0, "a failed construction writes no leg");
+            // SAFETY: a paper leg instead, to go on with the setters and evaluations.
+            prop_assert_eq!(unsafe { uwml_leg3_paper_f64(&mut leg) }, UWML_OK);
+        }
+        let mut losses = UwmlJointLossParamsF64::default();
+        // SAFETY: live locals.
+        unsafe {
+            prop_assert_eq!(uwml_leg3_default_losses_f64(&mut losses), UWML_OK);
+            let losses = edited(losses, &loss_edits);
+            for code in [
+                uwml_leg3_set_water_f64(&mut leg, water.0, water.1, &mut error),
+                uwml_leg3_set_coefficients_f64(&mut leg, coefficients.0, coefficients.1, &mut error),
+                uwml_leg3_set_losses_f64(&mut leg, joint_index, &losses, conditions.0, conditions.1, &mut error),
+                uwml_leg3_set_conditions_f64(&mut leg, conditions.0, conditions.1, &mut error),
+            ] {
+                prop_assert!(CODES.contains(&code));
+            }
+            let mut pressure = 0.0;
+            let code = uwml_pressure_at_depth_f64(depth.0, depth.1, depth.2, &mut pressure, &mut error);
+            check(code, &error);
+            prop_assert!(code != UWML_OK || (pressure.is_finite() && pressure >= 0.0));
+            let (q, qd, qdd) = (&state[0..3], &state[3..6], &state[6..9]);
+            let mut out = UwmlEnvironment3F64::default();
+            let code = uwml_leg3_environment_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut out, &mut error);
+            check(code, &error);
+            if code == UWML_OK {
+                prop_assert!(out.total.iter().chain(&out.current).all(|x| x.is_finite()));
+            }
+            let mut hydro = UwmlHydro3F64::default();
+            let code = uwml_leg3_hydro_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut hydro, &mut error);
+            check(code, &error);
+            if code == UWML_OK {
+                prop_assert!(hydro.total.iter().all(|x| x.is_finite()));
+            }
+        }
+    }
+
+    /// The robot API in f64: build from edited joints, links, base and segments (and counts),
+    /// evaluate with arbitrary states, base motion and current.
+    #[test]
+    fn robot_api_takes_any_input(
+        joint_edits in prop::collection::vec(edit(), 0..3),
+        link_edits in prop::collection::vec(edit(), 0..2),
+        segment_edits in prop::collection::vec(edit(), 0..3),
+        counts in (0..6u32, 0..7u32),
+        water in (float(), float()),
+        state in prop::array::uniform12(float()),
+        motion_edits in prop::collection::vec(edit(), 0..4),
+        current in prop::array::uniform6(float()),
+        with_motion in any::<bool>(),
+    ) {
+        let (joints, links, base, segments) = robot_params();
+        let joints: Vec<_> = joints.into_iter().map(|j| edited(j, &joint_edits)).collect();
+        let links: Vec<_> = links.into_iter().enumerate().map(|(i, l)| if i == 1 { edited(l, &link_edits) } else { l }).collect();
+        let segments: Vec<_> = segments.into_iter().map(|s| edited(s, &segment_edits)).collect();
+        // Counts up to one beyond the arrays' lengths would read past them: the arrays here are
+        // the ones given, so the counts stay within them (the API cannot know a C array's size).
+        let (n_joints, n_segments) = (counts.0.min(4), counts.1.min(5));
+        let mut robot = Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] });
+        let mut error = blank();
+        let density = if water.0.is_finite() && water.0 > 0.0 { 1025.0 } else { water.0 };
+        // SAFETY: live locals; the counts are within the arrays.
+        let code = unsafe {
+            uwml_robot_new_f64(&mut *robot, joints.as_ptr(), n_joints, links.as_ptr(), &base, segments.as_ptr(),
+                n_segments, density, water.1, &mut error)
+        };
+        check(code, &error);
+        if code != UWML_OK {
+            prop_assert_eq!(robot.opaque_tag, 0, "a failed construction writes no robot");
+            return Ok(());
+        }
+        let n = n_joints as usize;
+        let motion = edited(UwmlBaseMotionF64 { orientation: [1.0, 0.0, 0.0, 0.0], ..Default::default() }, &motion_edits);
+        let current = UwmlCurrentF64 { velocity: [current[0], current[1], current[2]], acceleration: [current[3], current[4], current[5]] };
+        let mut forces = vec![UwmlJointForcesF64::default(); n.max(1)];
+        let mut wrench = UwmlBaseWrenchF64::default();
+        let (q, qd, qdd) = (&state[0..4], &state[4..8], &state[8..12]);
+        // SAFETY: live locals; q, qd, qdd and forces hold at least n elements.
+        let code = unsafe {
+            uwml_robot_hydro_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
+                if with_motion { &motion } else { null() }, &current, forces.as_mut_ptr(), &mut wrench, &mut error)
+        };
+        check(code, &error);
+        if code == UWML_OK {
+            prop_assert!(forces.iter().take(n).all(|f| f.total.is_finite()));
+            prop_assert!(wrench.total.iter().all(|x| x.is_finite()));
+        }
+        // A joint count not the robot's is refused, not read past.
+        // SAFETY: as above, with n + 1 <= 5 elements in every array.
+        let code = unsafe {
+            uwml_robot_hydro_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints + 1, null(), null(),
+                forces.as_mut_ptr(), null_mut(), &mut error)
+        };
+        prop_assert_eq!(code, UWML_ERR_OUT_OF_RANGE);
+    }
+
+    /// The f32 leg: the same setters and evaluation in single precision.
+    #[test]
+    fn f32_leg_takes_any_input(
+        conditions in (float(), float()),
+        state in prop::array::uniform9(float()),
+    ) {
+        #[allow(clippy::cast_possible_truncation)]
+        let narrow = |x: f64| x as f32;
+        let mut leg = UwmlLeg3F32 { opaque_tag: 0, opaque: [0; UWML_LEG3_F32_WORDS] };
+        let mut error = blank();
+        let mut losses = UwmlJointLossParamsF32::default();
+        // SAFETY: live locals.
+        unsafe {
+            prop_assert_eq!(uwml_leg3_paper_f32(&mut leg), UWML_OK);
+            prop_assert_eq!(uwml_leg3_default_losses_f32(&mut losses), UWML_OK);
+            let code = uwml_leg3_set_losses_f32(&mut leg, 1, &losses, narrow(conditions.0), narrow(conditions.1), &mut error);
+            check(code, &error);
+            let s = state.map(narrow);
+            let mut out = UwmlEnvironment3F32::default();
+            let code = uwml_leg3_environment_f32(&leg, s[0..3].as_ptr(), s[3..6].as_ptr(), s[6..9].as_ptr(), &mut out, &mut error);
+            check(code, &error);
+            if code == UWML_OK {
+                prop_assert!(out.total.iter().chain(&out.current).all(|x| x.is_finite()));
+            }
+        }
+    }
+}

@@ -1,0 +1,159 @@
+"""Adversarial inputs at every public entry point (hypothesis): NaN, ±inf, huge, tiny and
+subnormal numbers, empty and 0-d arrays, arrays of the wrong shape, non-contiguous and
+byte-swapped arrays, the wrong dtype (bool, int, complex, object, strings), ragged lists, None.
+
+One argument at a time is replaced (the others valid). What must hold (docs/domains.md): no
+crash and no other exception than a ``ValueError`` or ``TypeError`` whose message names the
+argument (or the entry point's input), or a result whose numbers are all finite; never a
+silent NaN or inf from finite input. ``ExtrapolationWarning`` is allowed (a documented
+result); any other warning fails the test (pytest turns warnings into errors).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pytest
+import uwml
+from hypothesis import given
+from hypothesis import strategies as st
+from uwml import seawater
+
+SPECIAL = [math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, -0.0, 0.0, 1e200, 1e-300]
+
+
+def _values(shape: tuple[int, ...], draw: Any) -> np.ndarray:
+    size = int(np.prod(shape)) if shape else 1
+    values = draw(st.lists(st.one_of(st.sampled_from(SPECIAL), st.floats(-10, 10)), min_size=size, max_size=size))
+    return np.array(values, dtype=np.float64).reshape(shape)
+
+
+@st.composite
+def adversarial(draw: Any, width: int) -> Any:
+    """Something passed where an array of ``width`` numbers per sample (or a scalar, width 0) is
+    expected."""
+    kind = draw(st.sampled_from(["special scalar", "odd scalar", "shape", "dtype", "non-contiguous", "byte-swapped", "ragged", "empty"]))
+    if kind == "special scalar":
+        return draw(st.sampled_from(SPECIAL))
+    if kind == "odd scalar":
+        return draw(st.sampled_from([None, "1.0", True, 1 + 2j, object(), [], {}, b"\x00"]))
+    if kind == "shape":
+        shape = draw(st.sampled_from([(), (0,), (1,), (width + 1,), (2, width + 2), (2, 1, max(width, 1)), (0, max(width, 1))]))
+        return _values(shape, draw)
+    if kind == "dtype":
+        base = _values((2, max(width, 1)), draw) if width else _values((), draw)
+        dtype = draw(st.sampled_from([np.float32, np.int64, np.bool_, np.complex128, object, "U8"]))
+        with np.errstate(invalid="ignore", over="ignore"):
+            return np.nan_to_num(base, nan=1.0, posinf=2.0, neginf=-2.0).astype(dtype)
+    if kind == "non-contiguous":
+        wide = _values((3, 2 * max(width, 1)), draw)
+        return wide[:, ::2] if width else wide[0, ::2][:1].reshape(())
+    if kind == "byte-swapped":
+        values = _values((2, max(width, 1)), draw) if width else _values((), draw)
+        return values.astype(values.dtype.newbyteorder())
+    if kind == "ragged":
+        return [[0.1] * max(width, 1), [0.2] * (max(width, 1) + 1)]
+    return np.zeros((0,) if not width else (0, width))
+
+
+def _finite(result: Any) -> bool:
+    """Every number of a result (dataclass of arrays, nested) finite."""
+    if isinstance(result, np.ndarray):
+        return result.dtype.kind != "f" or bool(np.all(np.isfinite(result)))
+    if isinstance(result, (float, np.floating)):
+        return math.isfinite(float(result))
+    if hasattr(result, "__dataclass_fields__"):
+        return all(_finite(getattr(result, name)) for name in result.__dataclass_fields__)
+    if isinstance(result, (tuple, list)):
+        return all(_finite(x) for x in result)
+    return True
+
+
+def _call(function: Callable[..., Any], argument: str, kwargs: dict[str, Any]) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", uwml.ExtrapolationWarning)
+        try:
+            result = function(**kwargs)
+        except (ValueError, TypeError) as exc:
+            message = str(exc)
+            assert message, f"{function.__qualname__}({argument}=...): an empty message"
+            return
+    assert _finite(result), f"{function.__qualname__}({argument}={kwargs[argument]!r}) returned a non-finite number"
+
+
+LEG = uwml.Leg.paper()
+ROBOT = uwml.Robot.from_leg(LEG)
+STATE = {"q": [0.1, 0.2, 0.3], "qd": [0.4, -0.2, 0.1], "qdd": [0.0, 1.0, -1.0]}
+
+# Each entry point, its valid keyword arguments, and the width of each argument fuzzed.
+ENTRY_POINTS: list[tuple[str, Callable[..., Any], dict[str, Any], dict[str, int]]] = [
+    ("Leg.hydro", LEG.hydro, STATE | {"cd": 2.2, "cm": 0.5}, {"q": 3, "qd": 3, "qdd": 3, "cd": 0, "cm": 0}),
+    (
+        "Leg.environment",
+        LEG.environment,
+        STATE | {"depth": 100.0, "temperature_c": 4.0, "losses": uwml.JointLosses()},
+        {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0, "sea_density": 0},
+    ),
+    ("Leg.jacobians", LEG.jacobians, STATE | {"depth": 100.0}, {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0}),
+    ("Leg.hydro_regressors", LEG.hydro_regressors, dict(STATE), {"q": 3, "qd": 3, "qdd": 3}),
+    (
+        "Robot.hydro",
+        ROBOT.hydro,
+        STATE | {"current": (0.1, 0.0, 0.0)},
+        {"q": 3, "qd": 3, "qdd": 3, "cd": 0, "cm": 0, "current": 3, "current_acceleration": 3},
+    ),
+    (
+        "Robot.environment",
+        ROBOT.environment,
+        STATE | {"depth": 100.0, "temperature_c": 4.0},
+        {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0, "current": 3},
+    ),
+    ("Robot.jacobians", ROBOT.jacobians, dict(STATE), {"q": 3, "qd": 3, "qdd": 3, "current": 3}),
+    ("Robot.hydro_regressors", ROBOT.hydro_regressors, dict(STATE), {"q": 3, "qd": 3, "qdd": 3, "current": 3}),
+    ("Robot.link_wrenches", ROBOT.link_wrenches, dict(STATE), {"q": 3, "qd": 3, "qdd": 3}),
+    ("Robot.added_mass_matrix", ROBOT.added_mass_matrix, {"q": [0.1, 0.2, 0.3]}, {"q": 3, "cm": 0}),
+    (
+        "JointLosses.torques",
+        uwml.JointLosses().torques,
+        {"speed": 0.5, "pressure_mpa": 10.0, "temperature_c": 4.0},
+        {"speed": 0, "pressure_mpa": 0, "temperature_c": 0},
+    ),
+    ("hydrostatic_pressure_mpa", uwml.hydrostatic_pressure_mpa, {"depth_m": 100.0}, {"depth_m": 0, "sea_density": 0, "gravity": 0}),
+    ("seawater.pressure_at_depth_mpa", seawater.pressure_at_depth_mpa, {"depth_m": 100.0}, {"depth_m": 0, "latitude_deg": 0}),
+    ("seawater.density_at_depth", seawater.density_at_depth, {"depth_m": 100.0}, {"depth_m": 0, "conservative_temperature": 0}),
+    (
+        "BaseMotion",
+        uwml.BaseMotion,
+        {},
+        {"orientation": 4, "velocity": 3, "angular_velocity": 3, "acceleration": 3, "angular_acceleration": 3},
+    ),
+]
+
+CASES = [(name, argument, width) for name, _, _, widths in ENTRY_POINTS for argument, width in widths.items()]
+
+
+@pytest.mark.parametrize(("name", "argument", "width"), CASES, ids=[f"{n}-{a}" for n, a, _ in CASES])
+@given(data=st.data())
+def test_adversarial_arguments_give_an_error_or_a_finite_result(name: str, argument: str, width: int, data: st.DataObject) -> None:
+    function, valid = next((f, v) for n, f, v, _ in ENTRY_POINTS if n == name)
+    value = data.draw(adversarial(width), label=argument)
+    _call(function, argument, valid | {argument: value})
+
+
+@given(data=st.data())
+def test_adversarial_base_motions_in_an_evaluation(data: st.DataObject) -> None:
+    """A base motion built from adversarial numbers (if its constructor takes them) in an
+    evaluation: an error naming it, or a finite result."""
+    field = data.draw(st.sampled_from(["orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration"]))
+    width = 4 if field == "orientation" else 3
+    value = data.draw(adversarial(width))
+    try:
+        motion = uwml.BaseMotion(**{field: value})
+    except (ValueError, TypeError) as exc:
+        assert str(exc)
+        return
+    _call(ROBOT.hydro, "base_motion", STATE | {"base_motion": motion})
