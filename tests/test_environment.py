@@ -297,3 +297,14 @@ def test_forces_that_overflow_raise_naming_the_sample(one_state: bool) -> None:
     qd = np.where(qd == 1e300, 1e100, qd)
     for evaluate in (leg.hydro, robot.environment):
         assert np.all(np.isfinite(evaluate(q, qd, qdd).total))
+
+
+def test_the_domains_are_the_cores() -> None:
+    """uwml.domains (pure Python, for the modules that need no compiled core) and the Rust core
+    hold the same numbers."""
+    from uwml import domains
+
+    assert domains.MAX_DEPTH == _core.MAX_DEPTH
+    assert domains.MAX_PRESSURE == _core.MAX_PRESSURE
+    assert domains.ABSOLUTE_ZERO_C == _core.ABSOLUTE_ZERO_C
+    assert domains.OIL_TEMPERATURE_RANGE_C == _core.OIL_TEMPERATURE_RANGE_C

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
+from .domains import ABSOLUTE_ZERO_C, MAX_DEPTH, MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C
 from .losses import Drive, OilDrag, Seal
 
 __all__ = [
@@ -40,16 +41,11 @@ SEA_WATER_DENSITY = 1025.0
 _MPA = 1e6
 
 
-#: The deepest ocean [m]: depths are taken from 0 to this (the Challenger Deep is about 10,935 m).
-MAX_DEPTH: float = _core.MAX_DEPTH
 #: The largest ambient (gauge) pressure taken [MPa]: the deepest ocean's 110 MPa, with margin.
-MAX_PRESSURE_MPA: float = _core.MAX_PRESSURE / _MPA
-#: Absolute zero [°C]: temperatures must be above it.
-ABSOLUTE_ZERO_C: float = _core.ABSOLUTE_ZERO_C
-#: The oil temperatures [°C] the oil model is meant for: the sea's, from where sea water freezes
-#: (about −2 °C) to the 40 °C of the oil's viscosity grade. Outside, the losses are still
-#: evaluated (the exponential temperature law extrapolates), with an :class:`ExtrapolationWarning`.
-OIL_TEMPERATURE_RANGE_C: tuple[float, float] = _core.OIL_TEMPERATURE_RANGE_C
+MAX_PRESSURE_MPA: float = MAX_PRESSURE / _MPA
+# MAX_DEPTH, ABSOLUTE_ZERO_C and OIL_TEMPERATURE_RANGE_C (outside which the losses are still
+# evaluated, the exponential temperature law extrapolating, with an ExtrapolationWarning) come
+# from uwml.domains.
 
 
 class ExtrapolationWarning(UserWarning):

@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._checks import finite_array
-from .environment import MAX_DEPTH
+from .domains import MAX_DEPTH
 
 __all__ = ["density_at_depth", "pressure_at_depth_mpa"]
 
