@@ -455,3 +455,35 @@ def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
     problem = leg._chain.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, joints, per)
     np.testing.assert_allclose(values, (problem[..., :-1] @ x).T.reshape(-1), rtol=1e-10, atol=1e-10)
     np.testing.assert_array_equal(targets, problem[..., -1].T.reshape(-1))
+
+
+def test_unweighted_statistics_are_ordinary_least_squares_in_the_datas_units() -> None:
+    """Beside the weighted statistics, the fit reports the unweighted ones as Origin prints a fit
+    without error bars (the paper's reduced χ² 2.425 N·m² and COD 0.826): the residual sum of
+    squares, ``RSS / (N − p)``, ``1 − RSS / TSS`` and the adjusted COD. Held against an
+    ordinary least-squares solve with numpy of the same regression built here from the log and
+    ``Leg.hydro_regressors`` (joint 1: −(τ_water − τ_land) − buoyancy = Cd·drag + Cm·added mass)."""
+    log = synthetic.land_water_experiment(seed=5, torque_noise=2.0)
+    result = fit.hydro_coefficients(log)
+    leg = uwml.Leg.paper()
+    regressors = leg.hydro_regressors(log.q, log.qd, log.qdd)
+    y = -(log.tau_water[:, 0] - log.tau_land[:, 0]) - regressors.buoyancy[:, 0]
+    x = np.column_stack([regressors.drag[:, 0], regressors.added_mass[:, 0]])
+    coefficients, *_ = np.linalg.lstsq(x, y, rcond=None)
+    rss = float(np.sum((y - x @ coefficients) ** 2))
+    n, p = len(y), 2
+    cod = 1.0 - rss / float(np.sum((y - y.mean()) ** 2))
+    assert result.rss == pytest.approx(rss, rel=1e-9)
+    assert result.redchi_unweighted == pytest.approx(rss / (n - p), rel=1e-9)
+    assert result.cod == pytest.approx(cod, rel=1e-12)
+    assert result.adjusted_cod == pytest.approx(1.0 - (1.0 - cod) * (n - 1) / (n - p), rel=1e-12)
+    # The weighted reduced χ² is 1 by construction here (σ from the residuals) and says so; the
+    # unweighted one is the noise variance of the difference of two torques, 2·(2 N·m)².
+    assert result.redchi == pytest.approx(1.0, abs=1e-9) and not result.sigma_given
+    assert result.redchi_unweighted == pytest.approx(8.0, rel=0.15)
+    report = result.fit_report()
+    assert "1 by construction" in report and "reduced chi-square, unweighted" in report and "N·m²" in report
+    summary = result.summary()
+    assert summary["cod"] == result.cod and summary["sigma_given"] is False
+    # With σ given, no such note.
+    assert "by construction" not in fit.hydro_coefficients(log, sigma=2.0).fit_report()

@@ -136,6 +136,8 @@ def run(out_dir: str, seed: int) -> int:
             "cm_stderr": cm_err,
             "redchi": result.redchi,
             "rsquared": result.rsquared,
+            "redchi_unweighted": result.redchi_unweighted,
+            "cod": result.cod,
             "ndata": result.ndata,
         },
         "loss": {
@@ -165,7 +167,11 @@ def run(out_dir: str, seed: int) -> int:
         f"Fit on joint 1 of a synthetic land/water experiment (true Cd = {cd_true:g}, Cm = {cm_true:g}; seed {seed}):",
         f"  Cd = {_pm(cd, cd_err)}",
         f"  Cm = {_pm(cm, cm_err)}",
-        f"  reduced chi-square = {result.redchi:.4g}, COD = {result.rsquared:.4f}, {result.ndata} points",
+        f"  reduced chi-square = {result.redchi:.4g}, COD = {result.rsquared:.4f}, {result.ndata} points (weighted, σ from the residuals)",
+        (
+            f"  unweighted, as the paper's Origin fit: reduced chi-square = {result.redchi_unweighted:.4g} N·m² (paper: 2.425),"
+            f" COD = {result.cod:.4f} (paper: 0.826)"
+        ),
         "",
         f"Joint losses at {_PAPER_SPEED_RPM:g} r/min, {_PAPER_PRESSURE_MPA:g} MPa, {_PAPER_TEMPERATURE_C:g} °C (illustrative defaults):",
         f"  loss current = {current:.3f} A = {share:.1f} % of the {losses.drive.rated_current:g} A rated current",
@@ -214,12 +220,17 @@ noise on each torque), fitted on joint 1 as in the paper with `fit.hydro_coeffic
 |---|---|
 | Cd | {_pm(f["cd"], f["cd_stderr"])} |
 | Cm | {_pm(f["cm"], f["cm_stderr"])} |
-| reduced χ² | {f["redchi"]:.4g} |
-| COD | {f["rsquared"]:.4f} |
+| reduced χ², weighted (σ from the residuals: 1 by construction) | {f["redchi"]:.4g} |
+| COD, weighted | {f["rsquared"]:.4f} |
+| reduced χ², unweighted [N·m²] (the paper's, by Origin: 2.425) | {f["redchi_unweighted"]:.4g} |
+| COD, unweighted (the paper's: 0.826) | {f["cod"]:.4f} |
 | data points | {f["ndata"]} |
 
-The paper reports Cd = 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344, reduced χ² 2.425, COD 0.826 on
-its measurements. Here σ is estimated from the residuals, so the reduced χ² is 1 by construction.
+The paper reports Cd = 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344, "Reduced Chi-Sqr" 2.425 and
+COD 0.82605 (its Fig. 7 table), which Origin computes without weights, in the data's units (N·m²):
+compare those with the unweighted rows. The weighted reduced χ² here is 1 by construction, since
+σ is estimated from the residuals. The synthetic experiment has only 0.5 N·m of Gaussian noise and
+no model error, so its unweighted COD is far above the paper's measured 0.826.
 
 ![measured and fitted torque](fig7_fit.png)
 

@@ -52,6 +52,9 @@ class HydroFit(FitResult):
     #: Where the log came from.
     source: str
 
+    #: Without σ, the hydrodynamic fit estimates each joint's from the residuals.
+    _unknown_sigma_note = " (weighted by σ estimated from the residuals: ≈ N − p and 1 by construction)"
+
     def _report_statistics(self) -> list[str]:
         lines = [f"    joints (0-based)   = {', '.join(str(j) for j in self.joints)}", f"    coefficients per   = {self.per}"]
         if self.dropped:

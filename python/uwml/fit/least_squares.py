@@ -139,6 +139,7 @@ def _fit_statistics(
         "chisqr": chisqr,
         "redchi": redchi,
         "rsquared": 1.0 - chisqr / total if total > 0.0 else math.nan,
+        "sigma_given": known,
         "aic": neg2_log_likelihood + 2.0 * nvarys,
         "bic": neg2_log_likelihood + math.log(ndata) * nvarys,
         "residual": solution.residual,

@@ -79,6 +79,35 @@ class FitResult:
     #: Unit of ``data`` and ``best_fit``.
     unit: str = "N·m"
     method: str = "least_squares"
+    #: Whether the points' σ was given (else estimated from the residuals, which makes the
+    #: weighted χ² about ``N − p`` and the reduced χ² 1 by construction).
+    sigma_given: bool = True
+
+    # --- unweighted statistics, in the data's units (Origin's and lmfit's without weights) ---
+
+    @property
+    def rss(self) -> float:
+        """Residual sum of squares, unweighted: ``Σ (data − best_fit)²`` [``unit``²]."""
+        return float(np.sum((np.asarray(self.data) - np.asarray(self.best_fit)) ** 2))
+
+    @property
+    def redchi_unweighted(self) -> float:
+        """Reduced χ² without weights, ``RSS / (N − p)`` [``unit``²]: Origin's "Reduced Chi-Sqr"
+        of a fit without error bars (the paper's 2.425 N·m²)."""
+        return self.rss / self.nfree if self.nfree > 0 else math.nan
+
+    @property
+    def cod(self) -> float:
+        """Coefficient of determination without weights, ``1 − RSS / Σ (data − mean)²`` (the
+        paper's COD, 0.826)."""
+        data = np.asarray(self.data)
+        total = float(np.sum((data - data.mean()) ** 2))
+        return 1.0 - self.rss / total if total > 0.0 else math.nan
+
+    @property
+    def adjusted_cod(self) -> float:
+        """Adjusted R² without weights, ``1 − (1 − COD)(N − 1)/(N − p)`` (Origin's "Adj. R-Square")."""
+        return 1.0 - (1.0 - self.cod) * (self.ndata - 1) / self.nfree if self.nfree > 0 else math.nan
 
     def conf_int(self, level: float = 0.95) -> dict[str, tuple[float, float]]:
         """Confidence intervals ``value ± t(level, nfree) · stderr`` of the fitted parameters.
@@ -95,24 +124,38 @@ class FitResult:
         t = float(scipy.stats.t.ppf(0.5 + 0.5 * level, self.nfree))
         return {name: (self.params[name] - t * self.stderr[name], self.params[name] + t * self.stderr[name]) for name in self.var_names}  # type: ignore[operator]
 
+    #: What the weighted χ² means when σ was not given (the loss fits weigh every point 1).
+    _unknown_sigma_note = " (σ not given: unit weights, as the unweighted value below)"
+
     def _report_statistics(self) -> list[str]:
         """Extra lines for the ``[[Fit Statistics]]`` block."""
         return []
 
     def fit_report(self, min_correl: float = _MIN_CORRELATION) -> str:
-        """A readable report, as lmfit's: statistics, ``value +/- stderr (pct)``, correlations."""
+        """A readable report, as lmfit's: statistics, ``value +/- stderr (pct)``, correlations.
+
+        The weighted statistics (χ², reduced χ², R²) come first, as lmfit prints them; when σ was
+        not given it is estimated from the residuals and the report says that χ² and reduced χ²
+        are then ≈ N − p and 1 by construction. The unweighted ones follow, in the data's units,
+        as Origin prints a fit without error bars (the paper's reduced χ² and COD)."""
+        weighted = "" if self.sigma_given else self._unknown_sigma_note
+        squared = f"{self.unit.split()[0]}²" if self.unit else ""
         lines = [
             "[[Fit Statistics]]",
             f"    # fitting method   = {self.method}",
             f"    # function evals   = {self.nfev}",
             f"    # data points      = {self.ndata}",
             f"    # variables        = {self.nvarys}",
-            f"    chi-square         = {self.chisqr:.7g}",
-            f"    reduced chi-square = {self.redchi:.7g}",
+            f"    chi-square         = {self.chisqr:.7g}{weighted}",
+            f"    reduced chi-square = {self.redchi:.7g}{weighted}",
             f"    Akaike info crit   = {self.aic:.7g}",
             f"    Bayesian info crit = {self.bic:.7g}",
-            f"    R-squared (COD)    = {self.rsquared:.7g}",
+            f"    R-squared (COD)    = {self.rsquared:.7g} (weighted)",
             f"    data unit          = {self.unit}",
+            f"    residual sum of squares, unweighted = {self.rss:.7g} {squared}",
+            f"    reduced chi-square, unweighted      = {self.redchi_unweighted:.7g} {squared}",
+            f"    COD, unweighted                     = {self.cod:.7g}",
+            f"    adjusted COD, unweighted            = {self.adjusted_cod:.7g}",
             *self._report_statistics(),
         ]
         if not self.success:
@@ -186,6 +229,11 @@ class FitResult:
             "chisqr": _json_float(self.chisqr),
             "redchi": _json_float(self.redchi),
             "rsquared": _json_float(self.rsquared),
+            "sigma_given": bool(self.sigma_given),
+            "rss": _json_float(self.rss),
+            "redchi_unweighted": _json_float(self.redchi_unweighted),
+            "cod": _json_float(self.cod),
+            "adjusted_cod": _json_float(self.adjusted_cod),
             "aic": _json_float(self.aic),
             "bic": _json_float(self.bic),
             **self._summary_tail(),
