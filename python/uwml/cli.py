@@ -360,7 +360,7 @@ visc + seal). With --robot (a uwml model file), the robot on a fixed, upright ba
 columns base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its
 origin). Sign: the environment's torque on each joint, in the joint's positive direction.
 Losses use the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()); the
-pressure is hydrostatic at --depth (sea water, 1025 kg/m³). Inputs of more than {CHUNK_ROWS} rows
+links move in sea water (1025 kg/m³), whose column gives the hydrostatic pressure at --depth. Inputs of more than {CHUNK_ROWS} rows
 are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
         epilog=_EXIT,
     )
