@@ -1,0 +1,404 @@
+//! The robot API of the C ABI (`uwml_robot_*`): its plain structs and functions, any tree of up
+//! to `UWML_ROBOT_MAX_JOINTS` joints and `UWML_ROBOT_MAX_SEGMENTS` segments on a base that may
+//! move, in a current (the implementation is `crate::robot`). The leg API, the error codes and
+//! the constants are in the crate root.
+
+use crate::{UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS, UwmlError, imp, robot};
+
+/// A robot (tree, bodies, segments, water) and its evaluation workspace, in f64, for C to
+/// allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
+/// `uwml_robot_paper_f64` or `uwml_robot_new_f64`; `uwml_robot_hydro_f64` uses its workspace.
+/// It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
+/// did not write (`UWML_ERR_UNINITIALIZED`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct UwmlRobotF64 {
+    /// A tag saying that the library wrote this robot. Do not touch.
+    pub opaque_tag: u64,
+    /// The robot. Do not touch.
+    pub opaque: [u64; UWML_ROBOT_F64_WORDS],
+}
+
+/// A robot in f32; as `UwmlRobotF64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct UwmlRobotF32 {
+    /// A tag saying that the library wrote this robot. Do not touch.
+    pub opaque_tag: u64,
+    /// The robot. Do not touch.
+    pub opaque: [u64; UWML_ROBOT_F32_WORDS],
+}
+
+/// A joint of a robot: joint `i` moves link `i`. Every frame is parallel to the base frame when
+/// all joint positions are zero (URDF without fixed rotations).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlTreeJointF64 {
+    /// The parent: an earlier link (0 to i - 1), or `UWML_BASE` (-1).
+    pub parent: i32,
+    /// `UWML_JOINT_REVOLUTE` (0) or `UWML_JOINT_PRISMATIC` (1).
+    pub kind: i32,
+    /// Position of the joint in the parent's frame (the parent link's joint, or the base
+    /// origin) [m].
+    pub origin: [f64; 3],
+    /// Unit axis in the parent's frame (norm 1 within 1e-6; re-normalized).
+    pub axis: [f64; 3],
+}
+
+/// The bulk of a body (a link or the base), in its own frame (whose origin is its joint, or the
+/// base origin).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBodyF64 {
+    /// Mass [kg], zero or positive.
+    pub mass: f64,
+    /// Centre of mass [m].
+    pub com: [f64; 3],
+    /// Displaced volume [m³], zero or positive.
+    pub volume: f64,
+    /// Centre of buoyancy [m].
+    pub cob: [f64; 3],
+}
+
+/// A straight piece of a body that meets the water (strip theory), in its body's frame: the
+/// slice at arc length s in [0, length] lies at `start + s axis`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlRobotSegmentF64 {
+    /// The body: a link (0 to n_joints - 1), or `UWML_BASE` (-1).
+    pub owner: i32,
+    /// `UWML_SECTION_RECTANGULAR` (0) or `UWML_SECTION_CIRCULAR` (1).
+    pub section: i32,
+    /// Start point [m].
+    pub start: [f64; 3],
+    /// Unit direction.
+    pub axis: [f64; 3],
+    /// Length [m], positive.
+    pub length: f64,
+    /// Cross-section area for added mass [m²], positive.
+    pub area: f64,
+    /// Rectangular only: the two principal normal directions, unit, perpendicular to `axis`
+    /// and to each other (within 1e-6; made exact).
+    pub normals: [[f64; 3]; 2],
+    /// Rectangular only: frontal width for flow along each normal [m], positive.
+    pub widths: [f64; 2],
+    /// Circular only: diameter [m], positive.
+    pub diameter: f64,
+    /// Drag coefficients per normal, zero or positive; circular: one, `cd[0] == cd[1]`.
+    pub cd: [f64; 2],
+    /// Added-mass coefficients per normal, zero or positive; circular: `cm[0] == cm[1]`.
+    pub cm: [f64; 2],
+}
+
+/// The base's orientation and motion at one instant (MODEL.md 9.2).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBaseMotionF64 {
+    /// World from base, a unit quaternion `(w, x, y, z)`, scalar first (norm 1 within 1e-6;
+    /// re-normalized). The world's z axis points up.
+    pub orientation: [f64; 4],
+    /// Velocity of the base origin v [m/s], base components.
+    pub velocity: [f64; 3],
+    /// Angular velocity ω [rad/s], base components.
+    pub angular_velocity: [f64; 3],
+    /// dv/dt of the base components [m/s²] (Fossen's ν̇: the classical acceleration of the base
+    /// origin is `acceleration + angular_velocity × velocity`).
+    pub acceleration: [f64; 3],
+    /// dω/dt [rad/s²], base components.
+    pub angular_acceleration: [f64; 3],
+}
+
+/// The water's uniform velocity and acceleration, world components.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlCurrentF64 {
+    /// Velocity [m/s].
+    pub velocity: [f64; 3],
+    /// Acceleration [m/s²].
+    pub acceleration: [f64; 3],
+}
+
+/// The environment's generalized force on one joint, in the joint's positive direction
+/// [N·m for a revolute joint, N for a prismatic one].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlJointForcesF64 {
+    /// Drag (relative to the current).
+    pub drag: f64,
+    /// Added mass (relative to the current's acceleration).
+    pub added_mass: f64,
+    /// Buoyancy, with the Froude-Krylov force of an accelerating current.
+    pub buoyancy: f64,
+    /// Gravity of the links (not part of `total`).
+    pub gravity: f64,
+    /// `drag + added_mass + buoyancy`.
+    pub total: f64,
+}
+
+/// The wrench of everything the environment exerts on the whole robot (base body included):
+/// each component `{Fx, Fy, Fz, Mx, My, Mz}`, force [N] and moment about the base origin [N·m],
+/// in base components.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBaseWrenchF64 {
+    /// Drag.
+    pub drag: [f64; 6],
+    /// Added mass.
+    pub added_mass: [f64; 6],
+    /// Buoyancy and Froude-Krylov.
+    pub buoyancy: [f64; 6],
+    /// Gravity (not part of `total`).
+    pub gravity: [f64; 6],
+    /// `drag + added_mass + buoyancy`.
+    pub total: [f64; 6],
+}
+
+/// `UwmlTreeJointF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlTreeJointF32 {
+    /// The parent: an earlier link, or `UWML_BASE` (-1).
+    pub parent: i32,
+    /// `UWML_JOINT_REVOLUTE` (0) or `UWML_JOINT_PRISMATIC` (1).
+    pub kind: i32,
+    /// Position of the joint in the parent's frame [m].
+    pub origin: [f32; 3],
+    /// Unit axis in the parent's frame.
+    pub axis: [f32; 3],
+}
+
+/// `UwmlBodyF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBodyF32 {
+    /// Mass [kg], zero or positive.
+    pub mass: f32,
+    /// Centre of mass [m].
+    pub com: [f32; 3],
+    /// Displaced volume [m³], zero or positive.
+    pub volume: f32,
+    /// Centre of buoyancy [m].
+    pub cob: [f32; 3],
+}
+
+/// `UwmlRobotSegmentF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlRobotSegmentF32 {
+    /// The body: a link, or `UWML_BASE` (-1).
+    pub owner: i32,
+    /// `UWML_SECTION_RECTANGULAR` (0) or `UWML_SECTION_CIRCULAR` (1).
+    pub section: i32,
+    /// Start point [m].
+    pub start: [f32; 3],
+    /// Unit direction.
+    pub axis: [f32; 3],
+    /// Length [m], positive.
+    pub length: f32,
+    /// Cross-section area for added mass [m²], positive.
+    pub area: f32,
+    /// Rectangular only: the two principal normal directions.
+    pub normals: [[f32; 3]; 2],
+    /// Rectangular only: frontal width for flow along each normal [m], positive.
+    pub widths: [f32; 2],
+    /// Circular only: diameter [m], positive.
+    pub diameter: f32,
+    /// Drag coefficients per normal; circular: `cd[0] == cd[1]`.
+    pub cd: [f32; 2],
+    /// Added-mass coefficients per normal; circular: `cm[0] == cm[1]`.
+    pub cm: [f32; 2],
+}
+
+/// `UwmlBaseMotionF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBaseMotionF32 {
+    /// World from base, a unit quaternion `(w, x, y, z)`.
+    pub orientation: [f32; 4],
+    /// Velocity of the base origin [m/s], base components.
+    pub velocity: [f32; 3],
+    /// Angular velocity [rad/s], base components.
+    pub angular_velocity: [f32; 3],
+    /// dv/dt of the base components [m/s²].
+    pub acceleration: [f32; 3],
+    /// dω/dt [rad/s²], base components.
+    pub angular_acceleration: [f32; 3],
+}
+
+/// `UwmlCurrentF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlCurrentF32 {
+    /// Velocity [m/s], world components.
+    pub velocity: [f32; 3],
+    /// Acceleration [m/s²], world components.
+    pub acceleration: [f32; 3],
+}
+
+/// `UwmlJointForcesF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlJointForcesF32 {
+    /// Drag.
+    pub drag: f32,
+    /// Added mass.
+    pub added_mass: f32,
+    /// Buoyancy and Froude-Krylov.
+    pub buoyancy: f32,
+    /// Gravity (not part of `total`).
+    pub gravity: f32,
+    /// `drag + added_mass + buoyancy`.
+    pub total: f32,
+}
+
+/// `UwmlBaseWrenchF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlBaseWrenchF32 {
+    /// Drag.
+    pub drag: [f32; 6],
+    /// Added mass.
+    pub added_mass: [f32; 6],
+    /// Buoyancy and Froude-Krylov.
+    pub buoyancy: [f32; 6],
+    /// Gravity (not part of `total`).
+    pub gravity: [f32; 6],
+    /// `drag + added_mass + buoyancy`.
+    pub total: [f32; 6],
+}
+
+/// Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
+/// fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
+/// water (1000 kg/m³, g = 9.81).
+///
+/// # Safety
+/// `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_paper_f64(robot: *mut UwmlRobotF64) -> i32 {
+    // SAFETY: this function's contract is `robot::paper`'s.
+    unsafe { imp::report(core::ptr::null_mut(), robot::paper::<f64>(robot)) }
+}
+
+/// Validates a robot and writes it to `*robot`: `n_joints` joints (at most
+/// `UWML_ROBOT_MAX_JOINTS`) and as many links (joint `i` moves link `i`), the base's own body
+/// (`base`, NULL for none), `n_segments` segments of all bodies (at most
+/// `UWML_ROBOT_MAX_SEGMENTS`), in water of `density` [kg/m³] (positive) under `gravity` [m/s²]
+/// (zero or positive). Errors name the field and the joint, link or segment index: e.g.
+/// "joint.parent", "link.volume", "base.mass" (index -1), "segment.diameter",
+/// "n_joints (at most 16)". On error `*robot` is left as it was.
+///
+/// # Safety
+/// `robot` is NULL or valid for writes of a `UwmlRobotF64`; `joints` and `links` are NULL or
+/// point to `n_joints` elements each (NULL allowed, and not read, when `n_joints` is 0);
+/// `segments` likewise with `n_segments`; `base` is NULL or valid for reads of a `UwmlBodyF64`;
+/// `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_new_f64(
+    robot: *mut UwmlRobotF64,
+    joints: *const UwmlTreeJointF64,
+    n_joints: u32,
+    links: *const UwmlBodyF64,
+    base: *const UwmlBodyF64,
+    segments: *const UwmlRobotSegmentF64,
+    n_segments: u32,
+    density: f64,
+    gravity: f64,
+    error: *mut UwmlError,
+) -> i32 {
+    let params = robot::Params { joints, n_joints, links, base, segments, n_segments, density, gravity };
+    // SAFETY: this function's contract is `robot::new`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::new::<f64>(robot, &params)) }
+}
+
+/// Generalized forces on every joint and the wrench on the base of `robot` at joint state `q`,
+/// `qd`, `qdd` (`n` values each, `n` the robot's joint count; [rad] or [m] and their
+/// derivatives), base motion `*motion` (NULL: a fixed, upright base) and current `*current`
+/// (NULL: still water). Writes `n` `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench`
+/// is not NULL, the base wrench.
+///
+/// The motion and the current are validated on every call: an error ("base.orientation" not a
+/// unit quaternion, "current.velocity" not finite, ...) writes nothing. A non-finite joint state
+/// writes NaN forces and returns `UWML_ERR_NON_FINITE` (field "q", "qd" or "qdd", index the
+/// element).
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call (it holds the evaluation's workspace); `q`, `qd`, `qdd` are NULL or point to
+/// `n` values; `joint_forces` is NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and
+/// these allowed when `n` is 0); `motion`, `current` and `base_wrench` are NULL or valid for one
+/// element; `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_hydro_f64(
+    robot: *mut UwmlRobotF64,
+    q: *const f64,
+    qd: *const f64,
+    qdd: *const f64,
+    n: u32,
+    motion: *const UwmlBaseMotionF64,
+    current: *const UwmlCurrentF64,
+    joint_forces: *mut UwmlJointForcesF64,
+    base_wrench: *mut UwmlBaseWrenchF64,
+    error: *mut UwmlError,
+) -> i32 {
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joint_forces, base_wrench };
+    // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::hydro::<f64>(robot, &io)) }
+}
+
+/// `uwml_robot_paper_f64` in f32.
+///
+/// # Safety
+/// `robot` is NULL or valid for writes of a `UwmlRobotF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_paper_f32(robot: *mut UwmlRobotF32) -> i32 {
+    // SAFETY: this function's contract is `robot::paper`'s.
+    unsafe { imp::report(core::ptr::null_mut(), robot::paper::<f32>(robot)) }
+}
+
+/// `uwml_robot_new_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_new_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_new_f32(
+    robot: *mut UwmlRobotF32,
+    joints: *const UwmlTreeJointF32,
+    n_joints: u32,
+    links: *const UwmlBodyF32,
+    base: *const UwmlBodyF32,
+    segments: *const UwmlRobotSegmentF32,
+    n_segments: u32,
+    density: f32,
+    gravity: f32,
+    error: *mut UwmlError,
+) -> i32 {
+    let params = robot::Params { joints, n_joints, links, base, segments, n_segments, density, gravity };
+    // SAFETY: this function's contract is `robot::new`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::new::<f32>(robot, &params)) }
+}
+
+/// `uwml_robot_hydro_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_hydro_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_hydro_f32(
+    robot: *mut UwmlRobotF32,
+    q: *const f32,
+    qd: *const f32,
+    qdd: *const f32,
+    n: u32,
+    motion: *const UwmlBaseMotionF32,
+    current: *const UwmlCurrentF32,
+    joint_forces: *mut UwmlJointForcesF32,
+    base_wrench: *mut UwmlBaseWrenchF32,
+    error: *mut UwmlError,
+) -> i32 {
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joint_forces, base_wrench };
+    // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::hydro::<f32>(robot, &io)) }
+}
