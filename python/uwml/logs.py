@@ -36,7 +36,10 @@ A column family must be complete: ``q1`` … ``qN`` all present and no ``q(N+1)`
 each optional family present. With ``n_joints`` given, a log with another number of joints
 is an error.
 
-Parquet (``.parquet`` files) holds the same columns; it needs ``pyarrow``, which is optional.
+Parquet (``.parquet`` files) holds the same columns. Both formats are read and written with
+``pyarrow`` (a dependency): CSV columns are parsed straight into float64 and written in the
+shortest form that reads back to the same float64 (``uwml._arrow_csv``); a file that does not
+parse is scanned again, slowly, only to name the row and column of its first bad cell.
 
 Derivatives
 -----------
@@ -56,18 +59,16 @@ Errors (``ValueError``) name the file (or ``<stream>``), the row and the column.
 
 from __future__ import annotations
 
-import csv
+import io
 import math
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import IO, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-
-from ._checks import read_csv_columns
 
 __all__ = [
     "POLYORDER",
@@ -262,21 +263,19 @@ def _is_parquet(path_or_file: Any) -> bool:
     return isinstance(path_or_file, str | os.PathLike) and os.fspath(path_or_file).lower().endswith(".parquet")
 
 
-def _pyarrow() -> Any:
-    try:
-        import pyarrow  # noqa: F401
-        import pyarrow.parquet as pq
-    except ImportError:
-        raise ImportError("Parquet logs need pyarrow (pip install pyarrow); CSV needs nothing more") from None
+def _parquet() -> Any:
+    import pyarrow.parquet as pq
+
     return pq
 
 
-def _from_columns(columns: Mapping[str, list[Any]], n_joints: int | None, source: str) -> Log:
-    """Check the columns (cells as text or numbers) and build a :class:`Log`."""
-    if "time" not in columns:
+def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[int, list[str], list[str]]:
+    """Check a log's header: the number of joints, the column families present (in ``_FAMILIES``
+    order) and the names of the columns to read."""
+    if "time" not in header:
         raise ValueError(f"{source}: row 1 (header), column 'time': missing column")
     present: dict[str, set[int]] = {family: set() for family in _FAMILIES}
-    for name in columns:
+    for name in header:
         match = _COLUMN.match(name)
         if match:
             present[match.group(1)].add(int(match.group(2)))
@@ -303,46 +302,55 @@ def _from_columns(columns: Mapping[str, list[Any]], n_joints: int | None, source
             f"{source}: row 1 (header), column {name!r}: a log carries either tau_land and tau_water (both environments) "
             "or tau (one environment)"
         )
-    names = ["time"] + [f"{family}{k}" for family in _FAMILIES if present[family] for k in range(1, n + 1)]
-    n_rows = len(columns["time"])
-    if n_rows == 0:
-        raise ValueError(f"{source}: row 2, column 'time': no data rows")
-    values: dict[str, Array] = {}
-    for name in names:
-        cells = columns[name]
-        out = np.empty(n_rows)
-        for i, cell in enumerate(cells):
-            try:
-                x = float(cell.strip() if isinstance(cell, str) else cell)
-            except (TypeError, ValueError):
-                raise ValueError(f"{source}: row {i + 2}, column {name!r}: expected a number, got {cell!r}") from None
-            if not math.isfinite(x):
-                raise ValueError(f"{source}: row {i + 2}, column {name!r}: expected a finite number, got {cell!r}")
-            out[i] = x
-        values[name] = out
-    time = values["time"]
+    families = [family for family in _FAMILIES if present[family]]
+    names = ["time"] + [f"{family}{k}" for family in families for k in range(1, n + 1)]
+    return n, families, names
+
+
+def _check_time(time: Array, source: str, first_row: int = 2) -> None:
+    """Time strictly increasing, or a ValueError naming the row (``first_row`` for ``time[0]``)."""
     bad = np.flatnonzero(np.diff(time) <= 0.0)
     if bad.size:
         i = int(bad[0]) + 1
-        raise ValueError(f"{source}: row {i + 2}, column 'time': time must increase strictly ({time[i - 1]!r} then {time[i]!r})")
+        raise ValueError(
+            f"{source}: row {i + first_row}, column 'time': time must increase strictly ({float(time[i - 1])!r} then {float(time[i])!r})"
+        )
 
-    def family(name: str) -> Array | None:
-        if not present[name]:
-            return None
-        return np.column_stack([values[f"{name}{k}"] for k in range(1, n + 1)])
 
-    q = family("q")
-    assert q is not None
-    return Log(
-        time=time,
-        q=q,
-        qd=family("qd"),
-        qdd=family("qdd"),
-        tau_land=family("tau_land"),
-        tau_water=family("tau_water"),
-        tau=family("tau"),
-        source=source,
-    )
+def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], source: str) -> Log:
+    """A :class:`Log` from checked float64 columns (array-likes, e.g. Arrow columns): the family
+    arrays are filled column by column, so that one copy of the data exists at a time besides
+    the source columns."""
+    time = np.asarray(columns["time"], dtype=np.float64)
+    if time.size == 0:
+        raise ValueError(f"{source}: row 2, column 'time': no data rows")
+    _check_time(time, source)
+    arrays: dict[str, Array] = {}
+    for family in families:
+        out = np.empty((time.size, n))
+        for k in range(n):
+            out[:, k] = np.asarray(columns[f"{family}{k + 1}"], dtype=np.float64)
+        arrays[family] = out
+    return Log(time=time, source=source, **arrays)
+
+
+def _parquet_columns(table: Any, names: Sequence[str], source: str) -> dict[str, Any]:
+    """The columns of a Parquet table as float64, checked column by column by the cell rule."""
+    import pyarrow
+
+    from ._arrow_csv import finite_float64, float_cells
+
+    columns: dict[str, Any] = {}
+    for name in names:
+        column = table.column(name)
+        try:
+            values = column.cast(pyarrow.float64())
+        except (pyarrow.ArrowInvalid, pyarrow.ArrowNotImplementedError):
+            values = None
+        if values is None or not finite_float64(values):
+            values = float_cells(column.to_pylist(), name, f"{source}: ", 2)
+        columns[name] = values
+    return columns
 
 
 def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
@@ -351,7 +359,7 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
     Parameters
     ----------
     path_or_file : str, path or text file
-        A CSV file (or ``.parquet``, with pyarrow), or an open text stream of CSV.
+        A CSV file (or ``.parquet``), or an open text stream of CSV.
     n_joints : int, optional
         The number of joints the log must have; None: as many as its ``q`` columns.
 
@@ -364,34 +372,42 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
     """
     source = _source(path_or_file)
     if _is_parquet(path_or_file):
-        table = _pyarrow().read_table(path_or_file)
-        return _from_columns(table.to_pydict(), n_joints, source)
-    return _from_columns(read_csv_columns(path_or_file, f"{source}: ", "time"), n_joints, source)
+        table = _parquet().read_table(path_or_file)
+        n, families, names = _layout(table.column_names, n_joints, source)
+        return _from_columns(_parquet_columns(table, names, source), n, families, source)
+    from ._arrow_csv import CsvTable
+
+    csv_table = CsvTable(path_or_file, f"{source}: ", "time")
+    n, families, names = _layout(csv_table.header, n_joints, source)
+    return _from_columns(csv_table.read(names), n, families, source)
 
 
 def write_log(log: Log, path_or_file: PathOrFile) -> None:
     """Write a log (format in the module docstring): CSV, or Parquet for a ``.parquet`` path.
 
-    Numbers are written in their shortest round-trip form, so :func:`read_log` gives the same
-    values back.
+    Numbers are written in their shortest round-trip form (pyarrow's CSV writer), so
+    :func:`read_log` gives the same float64 values back, bit for bit. The header is one line of
+    the column names, unquoted.
     """
     names = ["time"]
-    arrays = [log.time[:, None]]
+    columns = [log.time]
     for family in _FAMILIES:
         value = getattr(log, family)
         if value is not None:
             names += [f"{family}{k}" for k in range(1, log.n_joints + 1)]
-            arrays.append(value)
-    table = np.concatenate(arrays, axis=1)
+            columns += [value[:, k] for k in range(log.n_joints)]
     if _is_parquet(path_or_file):
         import pyarrow
 
-        _pyarrow().write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}), path_or_file)
+        table = pyarrow.table({name: np.ascontiguousarray(column) for name, column in zip(names, columns, strict=True)})
+        _parquet().write_table(table, path_or_file)
         return
+    from ._arrow_csv import write_table
+
     if isinstance(path_or_file, str | os.PathLike):
-        with open(path_or_file, "w", newline="", encoding="utf-8") as handle:
-            write_log(log, handle)
+        with open(path_or_file, "wb") as handle:
+            write_table(handle, names, columns)
         return
-    writer = csv.writer(path_or_file, lineterminator="\n")
-    writer.writerow(names)
-    writer.writerows([repr(float(x)) for x in row] for row in table.tolist())
+    buffer = io.BytesIO()
+    write_table(buffer, names, columns)
+    path_or_file.write(buffer.getvalue().decode("utf-8"))
