@@ -257,6 +257,62 @@ def test_torques_parquet(tmp_path: Path, experiment: Log) -> None:
     assert table.num_rows == experiment.n_samples and table.column_names[:2] == ["time", "drag1"]
 
 
+@pytest.mark.parametrize(
+    ("derivatives", "rows", "suffix"),
+    [(True, 50, ".csv"), (False, 7, ".csv"), (False, 50, ".csv"), (False, 60, ".parquet")],
+    ids=["given", "estimated-7", "estimated-50", "estimated-parquet"],
+)
+def test_torques_in_chunks_equal_one_chunk(
+    tmp_path: Path,
+    experiment: Log,
+    monkeypatch: pytest.MonkeyPatch,
+    capsys: pytest.CaptureFixture[str],
+    derivatives: bool,
+    rows: int,
+    suffix: str,
+) -> None:
+    """The log read, evaluated and written in chunks (and pyarrow blocks of 4 kB) gives the
+    output of one chunk, byte for byte; derivatives estimated across chunk boundaries too (7 rows
+    is less than the Savitzky-Golay window of 21)."""
+    from uwml import _arrow_csv
+
+    path = tmp_path / "trajectory.csv"
+    extra = {"qd": experiment.qd, "qdd": experiment.qdd} if derivatives else {}
+    write_log(Log(time=experiment.time, q=experiment.q, **extra), path)
+    one, chunked = tmp_path / f"one{suffix}", tmp_path / f"chunked{suffix}"
+    status, _, err = _in_process(["torques", str(path), "--out", str(one), "--losses", "--depth", "300"], capsys)
+    assert status == 0 and "rows (" not in err, err  # one chunk: no progress
+    monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", rows)
+    monkeypatch.setattr(_arrow_csv, "BLOCK_BYTES", 4096)
+    status, _, err = _in_process(["torques", str(path), "--out", str(chunked), "--losses", "--depth", "300"], capsys)
+    n = experiment.n_samples
+    assert status == 0 and err.count(" rows (") == -(-n // rows) > 2 and f"{n}/{n} rows (100 %)" in err, err
+    if suffix == ".csv":
+        assert chunked.read_bytes() == one.read_bytes()
+    else:
+        import pyarrow.parquet
+
+        assert pyarrow.parquet.read_table(chunked).equals(pyarrow.parquet.read_table(one))
+
+
+def test_torques_bad_cell_half_way_writes_no_file(
+    tmp_path: Path, experiment: Log, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    good = tmp_path / "good.csv"
+    write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), good)
+    bad = tmp_path / "bad.csv"
+    _replace_cell(good, bad, 350, "qdd2", "")
+    from uwml import _arrow_csv
+
+    monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", 50)
+    monkeypatch.setattr(_arrow_csv, "BLOCK_BYTES", 4096)
+    out = tmp_path / "torques.csv"
+    status, _, err = _in_process(["torques", str(bad), "--out", str(out)], capsys)
+    assert status == 2 and f"{bad}: row 350, column 'qdd2': expected a number, got ''" in err, err
+    assert "300/400 rows" in err  # chunks before the bad cell were evaluated
+    assert sorted(tmp_path.iterdir()) == sorted([good, bad])  # no output, no partial file
+
+
 def test_torques_bad_files(tmp_path: Path, experiment: Log, capsys: pytest.CaptureFixture[str]) -> None:
     good = tmp_path / "good.csv"
     write_log(Log(time=experiment.time, q=experiment.q), good)

@@ -32,7 +32,8 @@ from .paper_analysis import _component_table, _rms, gait_like_motion
 
 __all__ = ["build_parser", "gait_like_motion", "main"]
 
-#: Rows per chunk of ``uwml torques``; longer inputs report progress on stderr.
+#: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
+#: longer inputs report progress on stderr.
 CHUNK_ROWS = 100_000
 
 
@@ -67,8 +68,8 @@ def _paper(args: argparse.Namespace) -> int:
 
 
 def _torques(args: argparse.Namespace) -> int:
+    from ._log_stream import log_chunks
     from .environment import JointLosses
-    from .logs import read_log
 
     out = args.out
     parquet = out is not None and out.lower().endswith(".parquet")
@@ -82,58 +83,62 @@ def _torques(args: argparse.Namespace) -> int:
     # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
     cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
     cm = args.cm if args.cm is not None else (0.5 if args.robot is None else None)
-    log = read_log(args.log, leg.n_joints if args.joints is None else args.joints)
-    if log.n_joints != leg.n_joints:
+    # The log is checked (header, time column) here, and read chunk by chunk below.
+    n, n_joints, chunks = log_chunks(args.log, leg.n_joints if args.joints is None else args.joints, rows=CHUNK_ROWS)
+    if n_joints != leg.n_joints:
         raise ValueError(
-            f"{log.source}: row 1 (header), column 'q{min(log.n_joints, leg.n_joints) + 1}': the log has {log.n_joints} joints, "
-            f"{what} {leg.n_joints}"
+            f"{args.log}: row 1 (header), column 'q{min(n_joints, leg.n_joints) + 1}': the log has {n_joints} joints, {what} {leg.n_joints}"
         )
-    log = log.with_derivatives()
-    assert log.qd is not None and log.qdd is not None
-    n, n_joints = log.n_samples, log.n_joints
     families = ["drag", "added_mass", "buoyancy"] + (["visc", "seal", "current", "total"] if args.losses else [])
     names = ["time"] + [f"{family}{k}" for family in families for k in range(1, n_joints + 1)]
     base_names = ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] if args.robot is not None else []
     names += base_names
     losses = JointLosses() if args.losses else None
     progress = n > CHUNK_ROWS
-    chunks = []
+    # A file is written under a temporary name and renamed when complete: a bad cell found
+    # half-way leaves no partial output behind (standard output gets the rows before it).
+    partial = None if out is None else f"{out}.partial-{os.getpid()}"
     handle: IO[str] | None = None
+    writer: Any = None
+    done = 0
     try:
-        if not parquet:
-            handle = sys.stdout if out is None else open(out, "w", encoding="utf-8", newline="")  # noqa: SIM115
+        if parquet:
+            import pyarrow
+            import pyarrow.parquet
+
+            writer = pyarrow.parquet.ParquetWriter(partial, pyarrow.schema([(name, pyarrow.float64()) for name in names]))
+        else:
+            handle = sys.stdout if partial is None else open(partial, "w", encoding="utf-8", newline="")  # noqa: SIM115
             handle.write(",".join(names) + "\n")
-        for first in range(0, n, CHUNK_ROWS):
-            rows = slice(first, min(first + CHUNK_ROWS, n))
-            tau = leg.environment(
-                log.q[rows],
-                log.qd[rows],
-                log.qdd[rows],
-                depth=args.depth,
-                temperature_c=args.temperature,
-                losses=losses,
-                cd=cd,
-                cm=cm,
-            )
-            columns = [log.time[rows]] + [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
+        for log in chunks:
+            assert log.qd is not None and log.qdd is not None
+            tau = leg.environment(log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm)
+            columns = [log.time] + [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
             table = np.column_stack(columns)
-            if parquet:
-                chunks.append(table)
+            if writer is not None:
+                writer.write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}))
             else:
                 assert handle is not None
                 np.savetxt(handle, table, fmt="%.12g", delimiter=",")
+            done += log.n_samples
             if progress:
-                done = rows.stop
                 print(f"uwml torques: {done}/{n} rows ({100.0 * done / n:.0f} %)", file=sys.stderr, flush=True)
-    finally:
+        if writer is not None:
+            writer.close()
+            writer = None
         if handle is not None and handle is not sys.stdout:
             handle.close()
-    if parquet:
-        import pyarrow
-        import pyarrow.parquet
-
-        table = np.concatenate(chunks, axis=0)
-        pyarrow.parquet.write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}), out)
+            handle = None
+        if partial is not None:
+            os.replace(partial, out)
+            partial = None
+    finally:
+        if writer is not None:
+            writer.close()
+        if handle is not None and handle is not sys.stdout:
+            handle.close()
+        if partial is not None and os.path.exists(partial):
+            os.remove(partial)
     if out is not None:
         print(f"uwml torques: {n} rows, {len(names)} columns written to {out}", file=sys.stderr)
     return 0
@@ -299,7 +304,7 @@ def _n_joints(text: str) -> int:
 _LOG_FORMAT = """Log format (uwml.logs, docs/identification.md): CSV with a header row; columns
 time [s] (strictly increasing), q1..qN [rad], optionally qd1..qdN [rad/s] and qdd1..qddN
 [rad/s²] (else estimated by a Savitzky-Golay filter, which needs uniform sampling); extra
-columns are ignored. Parquet (.parquet) needs pyarrow."""
+columns are ignored. Parquet (.parquet) holds the same columns."""
 _EXIT = "Exit status: 0 on success, 2 for usage errors and bad input files (the message names file, row and column), 1 otherwise."
 
 
@@ -353,19 +358,23 @@ COD, loss current and share) is printed to the terminal.""",
 {_LOG_FORMAT}
 Torque columns are not needed.
 
-Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet and pyarrow is
-installed): columns time, drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses
-visc1..N, seal1..N [N·m], current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy +
-visc + seal). With --robot (a uwml model file), the robot on a fixed, upright base, and six more
-columns base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its
-origin). Sign: the environment's torque on each joint, in the joint's positive direction.
-Losses use the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()); the
-links move in sea water (1025 kg/m³), whose column gives the hydrostatic pressure at --depth. Inputs of more than {CHUNK_ROWS} rows
-are processed in chunks of {CHUNK_ROWS}, with progress on standard error.""",
+Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet): columns time,
+drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses visc1..N, seal1..N [N·m],
+current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + seal). With
+--robot (a uwml model file), the robot on a fixed, upright base, and six more columns
+base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its origin).
+Sign: the environment's torque on each joint, in the joint's positive direction. Losses use
+the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()); the links move
+in sea water (1025 kg/m³), whose column gives the hydrostatic pressure at --depth.
+
+The log is read, evaluated and written {CHUNK_ROWS} rows at a time, in bounded memory
+whatever its length (estimated derivatives add 8 bytes a row); longer inputs report progress
+on standard error. A bad cell met half-way stops the command with exit status 2: FILE is then
+not written (standard output has the rows before it).""",
         epilog=_EXIT,
     )
-    torques.add_argument("log", metavar="LOG", help="trajectory log (CSV, or .parquet with pyarrow)")
-    torques.add_argument("--out", metavar="FILE", help="output file (.csv, or .parquet with pyarrow); default: standard output")
+    torques.add_argument("log", metavar="LOG", help="trajectory log (CSV, or .parquet)")
+    torques.add_argument("--out", metavar="FILE", help="output file (.csv, or .parquet); default: standard output")
     torques.add_argument(
         "--depth", type=_non_negative, default=0.0, metavar="M", help="depth [m] for the pressure of the losses (default 0)"
     )

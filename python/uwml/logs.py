@@ -181,7 +181,13 @@ def estimate_derivatives(
         ``UNIFORM_TOLERANCE`` of the median step, or when the log is shorter than the window.
     """
     t = np.asarray(time, dtype=np.float64)
-    positions = np.asarray(q, dtype=np.float64)
+    dt, window = _sampling(t, window_s, polyorder, source)
+    return _savgol(np.asarray(q, dtype=np.float64), window, polyorder, dt)
+
+
+def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[float, int]:
+    """The time step [s] and the Savitzky-Golay window [samples] of a log's time column, checked
+    as :func:`estimate_derivatives` says."""
     if t.size < 2:
         raise ValueError(f"{source}: row 2, column 'time': need at least 2 samples to estimate derivatives")
     step = np.diff(t)
@@ -199,6 +205,10 @@ def estimate_derivatives(
         raise ValueError(
             f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({window} samples)"
         )
+    return dt, window
+
+
+def _savgol(positions: Array, window: int, polyorder: int, dt: float) -> tuple[Array, Array]:
     # Imported here: scipy.signal takes most of a second to import, and `import uwml` should not.
     from scipy.signal import savgol_filter
 
@@ -334,8 +344,9 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
     return Log(time=time, source=source, **arrays)
 
 
-def _parquet_columns(table: Any, names: Sequence[str], source: str) -> dict[str, Any]:
-    """The columns of a Parquet table as float64, checked column by column by the cell rule."""
+def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: int = 2) -> dict[str, Any]:
+    """The columns of a Parquet table (its first row is ``first_row`` of the file) as float64,
+    checked column by column by the cell rule."""
     import pyarrow
 
     from ._arrow_csv import finite_float64, float_cells
@@ -348,7 +359,7 @@ def _parquet_columns(table: Any, names: Sequence[str], source: str) -> dict[str,
         except (pyarrow.ArrowInvalid, pyarrow.ArrowNotImplementedError):
             values = None
         if values is None or not finite_float64(values):
-            values = float_cells(column.to_pylist(), name, f"{source}: ", 2)
+            values = float_cells(column.to_pylist(), name, f"{source}: ", first_row)
         columns[name] = values
     return columns
 

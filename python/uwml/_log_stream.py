@@ -1,0 +1,160 @@
+"""A log read in chunks of rows, in bounded memory, for ``uwml torques``.
+
+:func:`log_chunks` checks the log as :func:`uwml.logs.read_log` does and yields it as
+:class:`~uwml.logs.Log` chunks of ``rows`` rows (the last one shorter) with ``qd`` and ``qdd``,
+the same values :meth:`~uwml.logs.Log.with_derivatives` gives the whole log:
+
+* A first pass reads the time column alone: the number of rows, time strictly increasing, and,
+  when ``qd`` or ``qdd`` are absent, the sampling checks and the median step of
+  :func:`~uwml.logs.estimate_derivatives`. Errors in the header or the time column are raised
+  by the call, before any chunk.
+* A second pass reads the columns block by block (pyarrow's streaming CSV reader, or the row
+  groups of a Parquet file). A bad cell raises when its block is reached, naming its row and
+  column, after the chunks before it.
+* Estimated derivatives: each chunk is filtered together with the ``window`` rows before and
+  after it, and only its own rows are kept. Rows farther than half a window from a segment's
+  ends see the same samples and coefficients as in the whole log; the log's first and last
+  ``window`` rows are in the segments that start and end with the log, so the end fits
+  (``mode="interp"``) are the whole log's too.
+
+Memory: a few chunks and pyarrow's blocks, whatever the length of the log; when derivatives are
+estimated, also the time column (8 bytes a row), for the median step.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator, Sequence
+
+import numpy as np
+
+from .logs import (
+    POLYORDER,
+    WINDOW_S,
+    Array,
+    Log,
+    _check_time,
+    _is_parquet,
+    _layout,
+    _parquet,
+    _parquet_columns,
+    _sampling,
+    _savgol,
+    _source,
+)
+
+
+def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> Iterator[dict[str, Array]]:
+    """The checked columns ``names`` of a log file, block by block."""
+    if _is_parquet(path):
+        import pyarrow
+
+        row = 2
+        for batch in _parquet().ParquetFile(path).iter_batches(columns=list(names)):
+            table = pyarrow.Table.from_batches([batch])
+            yield {name: np.asarray(column, dtype=np.float64) for name, column in _parquet_columns(table, names, source, row).items()}
+            row += batch.num_rows
+        return
+    from . import _arrow_csv
+
+    yield from _arrow_csv.CsvTable(path, f"{source}: ", "time").batches(names, _arrow_csv.BLOCK_BYTES)
+
+
+def _header(path: str | os.PathLike[str], source: str) -> list[str]:
+    if _is_parquet(path):
+        return list(_parquet().ParquetFile(path).schema_arrow.names)
+    from ._arrow_csv import CsvTable
+
+    return CsvTable(path, f"{source}: ", "time").header
+
+
+def _rechunk(blocks: Iterator[dict[str, Array]], rows: int) -> Iterator[dict[str, Array]]:
+    """Blocks of any length as chunks of exactly ``rows`` rows (the last one shorter)."""
+    pending: list[dict[str, Array]] = []
+    count = 0
+    for block in blocks:
+        pending.append(block)
+        count += len(block["time"])
+        while count >= rows:
+            joined = {name: np.concatenate([b[name] for b in pending]) for name in block}
+            yield {name: values[:rows] for name, values in joined.items()}
+            rest = {name: values[rows:] for name, values in joined.items()}
+            count -= rows
+            pending = [rest] if count else []
+    if count:
+        yield {name: np.concatenate([b[name] for b in pending]) for name in pending[0]}
+
+
+def log_chunks(
+    path: str | os.PathLike[str], n_joints: int | None = None, rows: int = 100_000, window_s: float = WINDOW_S, polyorder: int = POLYORDER
+) -> tuple[int, int, Iterator[Log]]:
+    """A log file checked and cut into chunks (module docstring): ``(n_samples, n_joints, chunks)``."""
+    if rows < 1:
+        raise ValueError(f"rows must be >= 1, got {rows!r}")
+    source = _source(path)
+    n, families, names = _layout(_header(path, source), n_joints, source)
+    estimate = "qd" not in families or "qdd" not in families
+    count, last = 0, np.empty(0)
+    times: list[Array] = []
+    for block in _blocks(path, ["time"], source):
+        time = block["time"]
+        _check_time(np.concatenate([last, time]), source, first_row=count + 2 - last.size)
+        if estimate:
+            times.append(time)
+        count += time.size
+        last = time[-1:] if time.size else last
+    if count == 0:
+        raise ValueError(f"{source}: row 2, column 'time': no data rows")
+    sampling = _sampling(np.concatenate(times), window_s, polyorder, source) if estimate else None
+    del times
+
+    def logs() -> Iterator[Log]:
+        chunks = _rechunk(_blocks(path, names, source), rows)
+        if sampling is None:
+            for chunk in chunks:
+                yield _log(chunk, n, families, source)
+        else:
+            yield from _with_derivatives(chunks, n, families, source, sampling, polyorder)
+
+    return count, n, logs()
+
+
+def _log(chunk: dict[str, Array], n: int, families: Sequence[str], source: str) -> Log:
+    arrays = {family: np.column_stack([chunk[f"{family}{k}"] for k in range(1, n + 1)]) for family in families}
+    return Log(time=chunk["time"], source=source, **arrays)
+
+
+def _with_derivatives(
+    chunks: Iterator[dict[str, Array]], n: int, families: Sequence[str], source: str, sampling: tuple[float, int], polyorder: int
+) -> Iterator[Log]:
+    """Chunks with qd and qdd estimated over overlapping segments (module docstring)."""
+    dt, window = sampling
+    before = np.empty((0, n))  # the last `window` positions yielded (all of them while fewer)
+    pending: list[Log] = []
+
+    def emit(log: Log, after: list[Log]) -> Log:
+        nonlocal before
+        ahead = np.concatenate([a.q for a in after], axis=0)[:window] if after else np.empty((0, n))
+        segment = np.concatenate([before, log.q, ahead], axis=0)
+        qd, qdd = _savgol(segment, window, polyorder, dt)
+        rows = slice(before.shape[0], before.shape[0] + log.n_samples)
+        before = np.concatenate([before, log.q], axis=0)[-window:]
+        return Log(
+            time=log.time,
+            q=log.q,
+            qd=log.qd if log.qd is not None else qd[rows],
+            qdd=log.qdd if log.qdd is not None else qdd[rows],
+            tau_land=log.tau_land,
+            tau_water=log.tau_water,
+            tau=log.tau,
+            source=source,
+        )
+
+    for chunk in chunks:
+        pending.append(_log(chunk, n, families, source))
+        while len(pending) > 1 and sum(p.n_samples for p in pending[1:]) >= window:
+            yield emit(pending[0], pending[1:])
+            pending.pop(0)
+    while pending:
+        yield emit(pending[0], pending[1:])
+        pending.pop(0)
