@@ -283,7 +283,7 @@ def test_torques_in_chunks_equal_one_chunk(
     status, _, err = _in_process(["torques", str(path), "--out", str(one), "--losses", "--depth", "300"], capsys)
     assert status == 0 and "rows (" not in err, err  # one chunk: no progress
     monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", rows)
-    monkeypatch.setattr(_arrow_csv, "BLOCK_BYTES", 4096)
+    monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
     status, _, err = _in_process(["torques", str(path), "--out", str(chunked), "--losses", "--depth", "300"], capsys)
     n = experiment.n_samples
     assert status == 0 and err.count(" rows (") == -(-n // rows) > 2 and f"{n}/{n} rows (100 %)" in err, err
@@ -305,7 +305,7 @@ def test_torques_bad_cell_half_way_writes_no_file(
     from uwml import _arrow_csv
 
     monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", 50)
-    monkeypatch.setattr(_arrow_csv, "BLOCK_BYTES", 4096)
+    monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
     out = tmp_path / "torques.csv"
     status, _, err = _in_process(["torques", str(bad), "--out", str(out)], capsys)
     assert status == 2 and f"{bad}: row 350, column 'qdd2': expected a number, got ''" in err, err

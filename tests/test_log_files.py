@@ -93,6 +93,7 @@ def _long_file(tmp_path: Path, n: int, bad: dict[tuple[int, int], str] | None = 
 def small_blocks(monkeypatch: pytest.MonkeyPatch) -> None:
     """pyarrow's blocks of 4 kB: a few thousand rows make many blocks."""
     monkeypatch.setattr(_arrow_csv, "BLOCK_BYTES", 4096)
+    monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
 
 
 @pytest.mark.parametrize(
