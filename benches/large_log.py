@@ -1,20 +1,41 @@
-"""Identification of Cd and Cm on a large log: time and peak memory of ``uwml.fit.hydro_coefficients``.
+"""Large logs: write, read, ``uwml fit hydro`` and ``uwml torques`` on files of 1e6 and 1e7 rows.
 
-Run: ``python benches/large_log.py [n_rows]`` (default 1e7). The log is synthetic
-(:func:`uwml.synthetic.land_water_experiment` with the default gait at 1 kHz, true Cd = 2.2 and
-Cm = 0.5, 0.5 N·m torque noise) and built in memory first; then each fit setting is timed once,
-with the growth of the process's peak resident memory it causes (``ru_maxrss``), and compared
-with a dense solve of the same problem by ``numpy.linalg.lstsq`` on the materialized design
-(what the fit did before it streamed; run only where that design fits in 2 GB).
+Run: ``python benches/large_log.py [--rows 1e6 1e7] [--formats csv parquet] [--torques] [--dir DIR]``.
+
+The log is synthetic (:func:`uwml.synthetic.land_water_experiment` with the default gait at
+1 kHz, true Cd = 2.2 and Cm = 0.5; columns time, q, qd, qdd, tau_land, tau_water: 16 columns
+for the paper's 3-joint leg). Every measurement runs in a subprocess of its own, so that the
+peak resident memory (``ru_maxrss`` of that child, from ``os.wait4``) is its alone:
+
+* write: ``uwml.write_log`` of the log; the time is the call's, the peak includes building the
+  log in memory first (about 16 × 8 bytes a row);
+* read: ``uwml.read_log``; the time is the call's;
+* fit: the command ``uwml fit hydro FILE`` (joint 1, one Cd and Cm; the report on standard
+  output), wall time of the whole process (Python start-up and imports included);
+* torques (with ``--torques``): ``uwml torques FILE --out OUT.parquet`` (derivatives given),
+  wall time of the process; its peak shows the streaming's bounded memory.
+
+The files are written in a temporary directory (or ``--dir``) and deleted afterwards; 1e7 rows
+take about 3 GB of CSV and 1.3 GB of Parquet.
+
+``python benches/large_log.py --fit-settings 1e7``: instead, the fit alone on a log built in
+memory, each setting of :func:`uwml.fit.hydro_coefficients` timed once with the growth of the
+process's peak resident memory it causes, and compared with a dense solve of the same problem by
+``numpy.linalg.lstsq`` on the materialized design (run only where that design fits in 2 GB).
 """
 
-import resource
-import sys
-import time
+from __future__ import annotations
 
-import numpy as np
-import uwml
-from uwml import fit, synthetic
+import argparse
+import json
+import os
+import re
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
 
 
 def peak_mb() -> float:
@@ -40,8 +61,12 @@ def reset_peak() -> None:
         clear.write("5")
 
 
-def main() -> None:
-    n = int(float(sys.argv[1])) if len(sys.argv) > 1 else 10_000_000
+def fit_settings(n: int) -> None:
+    """The fit settings on a log in memory (no file): time and growth of peak memory each."""
+    import numpy as np
+    import uwml
+    from uwml import fit, synthetic
+
     leg = uwml.Leg.paper()
     start = time.perf_counter()
     rate = 1000.0
@@ -78,6 +103,87 @@ def main() -> None:
         gram, rhs = x.T @ x, x.T @ y
         np.linalg.solve(gram, rhs)
         print(f"{'normal equations on the same design':38s} {time.perf_counter() - start:6.2f} s")
+
+
+def _child(kind: str, n: int, path: str) -> None:
+    """One measurement in this (child) process; prints its time [s] as JSON."""
+    import uwml
+
+    if kind == "write":
+        from uwml import synthetic
+
+        leg = uwml.Leg.paper()
+        rate = 1000.0
+        log = synthetic.land_water_experiment(leg, cycles=n / rate / uwml.WalkingGait().period + 1.0, rate_hz=rate, seed=1)
+        log = uwml.Log(
+            time=log.time[:n], q=log.q[:n], qd=log.qd[:n], qdd=log.qdd[:n], tau_land=log.tau_land[:n], tau_water=log.tau_water[:n]
+        )
+        start = time.perf_counter()
+        uwml.write_log(log, path)
+    else:
+        start = time.perf_counter()
+        log = uwml.read_log(path)
+        assert log.n_samples == n
+    print(json.dumps({"seconds": time.perf_counter() - start}))
+
+
+def _run(command: list[str], quiet: bool = False) -> tuple[float, float, str]:
+    """(wall time [s], peak resident memory of the child [MB], its standard output)."""
+    start = time.perf_counter()
+    with subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL if quiet else None, text=True) as process:
+        out = process.stdout.read() if process.stdout else ""
+        _, status, usage = os.wait4(process.pid, 0)
+        process.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.perf_counter() - start
+    if process.returncode != 0:
+        raise SystemExit(f"failed ({process.returncode}): {' '.join(command)}")
+    return wall, usage.ru_maxrss / 1024.0, out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--rows", type=float, nargs="+", default=[1e6, 1e7], help="log lengths (default 1e6 1e7)")
+    parser.add_argument("--formats", nargs="+", choices=("csv", "parquet"), default=["csv", "parquet"])
+    parser.add_argument("--torques", action="store_true", help="also time uwml torques (to Parquet)")
+    parser.add_argument("--dir", help="directory for the files (default: a temporary one)")
+    parser.add_argument("--fit-settings", type=float, metavar="N", help="instead: the fit settings on an in-memory log of N rows")
+    parser.add_argument("--child", nargs=3, metavar=("KIND", "N", "PATH"), help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.fit_settings:
+        fit_settings(int(args.fit_settings))
+        return
+    if args.child:
+        _child(args.child[0], int(args.child[1]), args.child[2])
+        return
+    directory = tempfile.mkdtemp(prefix="uwml-large-log-", dir=args.dir)
+    header = f"{'rows':>12} {'format':>8} {'file MB':>8} | {'write s':>8} {'peak MB':>8} | {'read s':>7} {'peak MB':>8} | "
+    header += f"{'fit s':>6} {'peak MB':>8}" + (f" | {'torques s':>9} {'peak MB':>8}" if args.torques else "")
+    print(header)
+    print("-" * len(header))
+    try:
+        for rows in args.rows:
+            n = int(rows)
+            for fmt in args.formats:
+                path = os.path.join(directory, f"log-{n}.{fmt}")
+                me = [sys.executable, os.path.abspath(__file__), "--child"]
+                _, write_peak, out = _run([*me, "write", str(n), path])
+                write_s = json.loads(out)["seconds"]
+                size = os.path.getsize(path) / 1e6
+                _, read_peak, out = _run([*me, "read", str(n), path])
+                read_s = json.loads(out)["seconds"]
+                fit_s, fit_peak, out = _run([sys.executable, "-m", "uwml", "fit", "hydro", path])
+                params = dict(re.findall(r"^\s+(cd|cm):\s+(\S+) \+/-", out, re.MULTILINE))
+                line = f"{n:>12,} {fmt:>8} {size:>8,.0f} | {write_s:>8.1f} {write_peak:>8,.0f} | {read_s:>7.1f} {read_peak:>8,.0f} | "
+                line += f"{fit_s:>6.1f} {fit_peak:>8,.0f}"
+                if args.torques:
+                    out_path = os.path.join(directory, "torques.parquet")
+                    torques_s, torques_peak, _ = _run([sys.executable, "-m", "uwml", "torques", path, "--out", out_path], quiet=True)
+                    os.remove(out_path)
+                    line += f" | {torques_s:>9.1f} {torques_peak:>8,.0f}"
+                print(line + f"   (cd = {params.get('cd')}, cm = {params.get('cm')})", flush=True)
+                os.remove(path)
+    finally:
+        shutil.rmtree(directory, ignore_errors=True)
 
 
 if __name__ == "__main__":

@@ -92,7 +92,7 @@ The normal equations are solved with their columns scaled to unit norm; fitted v
 from the torques at the fitted coefficients (linearity), at a third of the regressors' cost.
 The result's per-point arrays (data, fit, residuals, σ, time, joint) are what grows with the
 log: about 6 floats per fitted point. Measured on 10 million samples:
-``python benches/large_log.py`` (docs/identification.md).
+``python benches/large_log.py --fit-settings 1e7`` (docs/identification.md).
 
 With estimated σ_j the reduced χ² is 1 by construction (for ``robust=False``); it says
 something about the model only with a known ``sigma`` (the paper's 2.425 is of that kind).
