@@ -334,15 +334,17 @@ def build_parser() -> argparse.ArgumentParser:
 
   * the component torques (total, drag, added mass, buoyancy) of the paper's leg over one cycle
     of our walking gait, which swings the hip yaw (cf. Fig. 8)            -> fig8_torques.png
-  * a SYNTHETIC land/water experiment (true Cd = 2.2, Cm = 0.5) and its
-    fit on joint 1 (cf. Fig. 7)                            -> land_water.csv, fig7_fit.png
+  * a SYNTHETIC land/water experiment (true Cd = 2.2, Cm = 0.5) sized and spoiled like the
+    paper's (noise and a documented model error), its fit on joint 1 (cf. Fig. 7), and what
+    each part of the model error does to Cd and Cm      -> land_water.csv, fig7_fit.png
   * the joint-loss maps of the ILLUSTRATIVE loss defaults (Figs. 13-14)  -> fig13_14_loss_maps.png
   * the rated current left after the losses over speed and depth        -> efficiency_map.png
   * the loss current at 10 r/min, 10 MPa, 20 °C (the paper's 27.4 %)
   * report.md with the numbers and figure links.
 
-A summary table (RMS torques per joint, fitted Cd and Cm with standard errors, reduced chi-square,
-COD, loss current and share) is printed to the terminal.""",
+A summary table (RMS torques per joint, fitted Cd and Cm with standard errors, reduced chi-square
+and COD weighted and unweighted beside the paper's, loss current and share) is printed to the
+terminal.""",
         epilog=_EXIT,
     )
     paper.add_argument("--out", default="uwml-paper", metavar="DIR", help="output directory, created if needed (default uwml-paper)")

@@ -255,5 +255,8 @@ def hydro_fit_plot(result: HydroFit, path: str | os.PathLike[str] | None = None)
         ax_residual.grid(alpha=0.3)
         if row == 0:
             ax.set_title(f"hydrodynamic torque −Δτ − τ_buoy: {values}", fontsize="small")
-            ax_residual.set_title(f"residuals; reduced χ² = {result.redchi:.4g}, COD = {result.rsquared:.4f}", fontsize="small")
+            ax_residual.set_title(
+                f"residuals; unweighted: reduced χ² = {result.redchi_unweighted:.4g} {result.squared_unit}, COD = {result.cod:.4f}",
+                fontsize="small",
+            )
     return _save(figure, path)

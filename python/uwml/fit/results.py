@@ -91,6 +91,11 @@ class FitResult:
         return float(np.sum((np.asarray(self.data) - np.asarray(self.best_fit)) ** 2))
 
     @property
+    def squared_unit(self) -> str:
+        """The unit of the unweighted χ² and RSS: the data's unit squared (``"N·m²"``)."""
+        return f"{self.unit.split()[0]}²" if self.unit.strip() else ""
+
+    @property
     def redchi_unweighted(self) -> float:
         """Reduced χ² without weights, ``RSS / (N − p)`` [``unit``²]: Origin's "Reduced Chi-Sqr"
         of a fit without error bars (the paper's 2.425 N·m²)."""
@@ -139,7 +144,7 @@ class FitResult:
         are then ≈ N − p and 1 by construction. The unweighted ones follow, in the data's units,
         as Origin prints a fit without error bars (the paper's reduced χ² and COD)."""
         weighted = "" if self.sigma_given else self._unknown_sigma_note
-        squared = f"{self.unit.split()[0]}²" if self.unit else ""
+        squared = self.squared_unit
         lines = [
             "[[Fit Statistics]]",
             f"    # fitting method   = {self.method}",
