@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 import os
 from collections.abc import Iterator, Sequence
 from typing import IO, Any
@@ -29,7 +28,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 from numpy.typing import NDArray
 
-from ._checks import read_csv_columns
+from ._checks import cell_number, read_csv_columns
 
 Array = NDArray[np.float64]
 
@@ -43,16 +42,7 @@ STREAM_BLOCK_BYTES = 1 << 20
 def float_cells(cells: Sequence[Any], name: str, prefix: str, first_row: int) -> Array:
     """Cells (text, numbers or None) as float64, or a ValueError naming the row (``first_row``
     for the first cell) and column ``name`` of the first cell that is not a finite number."""
-    out = np.empty(len(cells))
-    for i, cell in enumerate(cells):
-        try:
-            x = float(cell.strip() if isinstance(cell, str) else cell)
-        except (TypeError, ValueError):
-            raise ValueError(f"{prefix}row {first_row + i}, column {name!r}: expected a number, got {cell!r}") from None
-        if not math.isfinite(x):
-            raise ValueError(f"{prefix}row {first_row + i}, column {name!r}: expected a finite number, got {cell!r}")
-        out[i] = x
-    return out
+    return np.array([cell_number(cell, f"{prefix}row {first_row + i}, column {name!r}") for i, cell in enumerate(cells)], dtype=np.float64)
 
 
 def finite_float64(values: pa.Array | pa.ChunkedArray) -> bool:

@@ -1,6 +1,7 @@
 """Input checks and the CSV reader shared by the pure-Python modules."""
 
 import csv
+import math
 import os
 from typing import IO, Any
 
@@ -31,6 +32,18 @@ def finite_array(value: ArrayLike, name: str) -> NDArray[np.float64]:
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite")
     return a
+
+
+def cell_number(cell: Any, where: str) -> float:
+    """One cell of a table (text, a number or None) as a finite float, or a ValueError that
+    says ``where`` it is (``"row 7, column 'q1'"``) and what it holds."""
+    try:
+        x = float(cell.strip() if isinstance(cell, str) else cell)
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}: expected a number, got {cell!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{where}: expected a finite number, got {cell!r}")
+    return x
 
 
 def read_csv_columns(path_or_file: "str | os.PathLike[str] | IO[str]", prefix: str, first_column: str) -> dict[str, list[str]]:

@@ -5,7 +5,6 @@ means with pooled standard errors.
 from __future__ import annotations
 
 import csv
-import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -14,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._checks import read_csv_columns
+from .._checks import cell_number, read_csv_columns
 from ._types import Array, Columns, PathOrFile
 
 #: Valid values of the ``configuration`` column.
@@ -31,13 +30,7 @@ _DEFAULT_TEMPERATURE_C = 20.0
 
 
 def _cell_number(value: Any, row: int, column: str) -> float:
-    try:
-        x = float(value.strip() if isinstance(value, str) else value)
-    except (TypeError, ValueError):
-        raise ValueError(f"row {row}, column {column!r}: expected a number, got {value!r}") from None
-    if not math.isfinite(x):
-        raise ValueError(f"row {row}, column {column!r}: expected a finite number, got {value!r}")
-    return x
+    return cell_number(value, f"row {row}, column {column!r}")
 
 
 def _key_text(speed_rpm: float | None, pressure_mpa: float | None, temperature_c: float | None) -> str:
