@@ -331,6 +331,11 @@ def test_report_and_json_summary() -> None:
     assert summary["params"]["cd_link2"] == result.params["cd_link2"]
     assert len(summary["points"]["data"]) == result.ndata == 3 * 1200
     assert set(summary["points"]["joint"]) == {0, 1, 2}
+    for name in ("time", "data", "sigma", "best_fit", "residual"):
+        values = result.time if name == "time" else getattr(result, name)
+        assert summary["points"][name] == [float(x) for x in values], name
+    # Non-finite numbers become null (JSON has no NaN); the rest stay as they are.
+    assert replace(result, residual=np.array([1.5, np.nan, -np.inf, 2.0])).summary()["points"]["residual"] == [1.5, None, None, 2.0]
     low, high = result.conf_int()["cd_link2"]
     assert low < result.params["cd_link2"] < high
 

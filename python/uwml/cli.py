@@ -366,8 +366,9 @@ current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + se
 --robot (a uwml model file), the robot on a fixed, upright base, and six more columns
 base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its origin).
 Sign: the environment's torque on each joint, in the joint's positive direction. Losses use
-the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()); the links move
-in sea water (1025 kg/m³), whose column gives the hydrostatic pressure at --depth.
+the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()). The paper's leg
+moves in sea water (1025 kg/m³), a --robot in its own water (its description's); that water's
+column gives the hydrostatic pressure at --depth.
 
 The log is read, evaluated and written {CHUNK_ROWS} rows at a time, in bounded memory
 whatever its length (estimated derivatives add 8 bytes a row); longer inputs report progress

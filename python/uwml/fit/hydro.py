@@ -15,7 +15,7 @@ from ..logs import Log, align_logs, read_log
 from ..model import Water
 from ._types import Array, PathOrFile
 from .least_squares import _fit_statistics, _Solution, _uncertainties
-from .results import FitResult, _json_float
+from .results import FitResult, _json_floats
 
 if TYPE_CHECKING:
     from ..leg import Leg
@@ -65,7 +65,7 @@ class HydroFit(FitResult):
         return {"model": "hydro", "per": self.per, "joints": list(self.joints), "dropped": list(self.dropped), "source": self.source}
 
     def _point_coordinates(self) -> dict[str, list[Any]]:
-        return {"time": [_json_float(x) for x in self.time], "joint": [int(x) for x in self.joint]}
+        return {"time": _json_floats(self.time), "joint": np.asarray(self.joint, dtype=np.int64).tolist()}
 
 
 def _hydro_log(log_or_path: Any, n_joints: int, what: str = "the leg") -> Log:

@@ -32,6 +32,16 @@ def _json_float(x: float | None) -> float | None:
     return None if x is None or not math.isfinite(x) else float(x)
 
 
+def _json_floats(values: ArrayLike) -> list[float | None]:
+    """An array as a JSON-safe list: non-finite entries as None. (Whole arrays at once: a fit
+    of a long log has millions of points.)"""
+    array = np.asarray(values, dtype=np.float64).ravel()
+    finite = np.isfinite(array)
+    if finite.all():
+        return array.tolist()
+    return [x if ok else None for x, ok in zip(array.tolist(), finite.tolist(), strict=True)]
+
+
 @dataclass(frozen=True, eq=False, kw_only=True)
 class FitResult:
     """A fit's result, in the style of lmfit's ``MinimizerResult`` / ``ModelResult``: the part
@@ -204,10 +214,10 @@ class FitResult:
         return {
             "points": {
                 **self._point_coordinates(),
-                "data": [_json_float(x) for x in self.data],
-                "sigma": [_json_float(x) for x in self.sigma],
-                "best_fit": [_json_float(x) for x in self.best_fit],
-                "residual": [_json_float(x) for x in self.residual],
+                "data": _json_floats(self.data),
+                "sigma": _json_floats(self.sigma),
+                "best_fit": _json_floats(self.best_fit),
+                "residual": _json_floats(self.residual),
             },
         }
 
