@@ -34,5 +34,5 @@ pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, Segme
 pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians, robot_jacobians_with};
 pub use tree::{
     AddedMassForm, EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro,
-    robot_hydro_regressors, robot_hydro_regressors_with, robot_hydro_with,
+    robot_hydro_regressors, robot_hydro_regressors_with, robot_hydro_with, robot_joint_added_mass_matrix,
 };

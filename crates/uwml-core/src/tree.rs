@@ -611,13 +611,44 @@ pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S:
     data: &mut RobotData<T, J>,
     out: &mut [T],
 ) {
+    added_mass_block(robot, water, coefficients, q, data, out, 0);
+}
+
+/// The joints' block of [`robot_added_mass_matrix`], `M_A[6.., 6..]`: the added mass the
+/// joints of a robot on a fixed base feel, `n²` entries row-major into `out`, at a sixth and
+/// less of the cost when the robot has few joints (the base's six columns are not evaluated).
+/// The same numbers as the full matrix's block; never fails, never panics.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_joint_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+) {
+    added_mass_block(robot, water, coefficients, q, data, out, 6);
+}
+
+/// Rows and columns `first..6 + n` of the added-mass matrix (see [`robot_added_mass_matrix`]),
+/// row-major and symmetrized, into `out`.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+fn added_mass_block<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+    first: usize,
+) {
     let n = robot.joint_count();
-    let size = 6 + n;
+    let width = (6 + n).saturating_sub(first);
     let zero = Vector3::zeros();
     let still = Current { velocity: zero, acceleration: zero };
     let rest = [T::zero(); J];
-    for k in 0..size {
-        let unit = |i: usize| if i == k { T::one() } else { T::zero() };
+    for k in 0..width {
+        let unit = |i: usize| if i == first + k { T::one() } else { T::zero() };
         let motion = BaseMotion {
             rotation: Matrix3::identity(),
             velocity: zero,
@@ -629,18 +660,18 @@ pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S:
         robot_hydro(robot, water, coefficients, &motion, &still, q, &rest, &qdd, data);
         let base = data.base.added_mass.to_array();
         let column = base.iter().copied().chain(data.joint_forces().iter().map(|f| f.added_mass));
-        for (row, value) in column.enumerate() {
-            if let Some(slot) = out.get_mut(row * size + k) {
+        for (row, value) in column.skip(first).enumerate() {
+            if let Some(slot) = out.get_mut(row * width + k) {
                 *slot = -value;
             }
         }
     }
     let half = constant::<T>(0.5);
-    for row in 0..size {
-        for column in row + 1..size {
-            if let (Some(&a), Some(&b)) = (out.get(row * size + column), out.get(column * size + row)) {
+    for row in 0..width {
+        for column in row + 1..width {
+            if let (Some(&a), Some(&b)) = (out.get(row * width + column), out.get(column * width + row)) {
                 let mean = (a + b) * half;
-                for index in [row * size + column, column * size + row] {
+                for index in [row * width + column, column * width + row] {
                     if let Some(slot) = out.get_mut(index) {
                         *slot = mean;
                     }

@@ -8,6 +8,7 @@ use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, Problem, RigidBody, Robot,
     RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water,
     hydro_jacobians, hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
+    robot_joint_added_mass_matrix,
 };
 
 mod common;
@@ -629,6 +630,31 @@ fn the_added_mass_matrix_is_symmetric_positive_semi_definite_and_the_chains() {
         for j in 0..4 {
             assert_close(m[(6 + i) * 10 + 6 + j], expected[(i, j)], scale, 1e-14, "chain M_A");
         }
+    }
+}
+
+#[test]
+fn the_joints_block_alone_is_the_full_matrixs_block() {
+    let mut rng = Rng(53);
+    for _ in 0..50 {
+        let n = 1 + (rng.next().abs() * 8.0) as usize;
+        let robot = random_robot(&mut rng, n);
+        let q = states(&mut rng, n)[0];
+        let full = added_mass_matrix(&robot, &q);
+        let mut block = vec![f64::NAN; n * n + 3];
+        let mut data = RobotData::new();
+        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut data, &mut block);
+        for i in 0..n {
+            for j in 0..n {
+                assert_eq!(block[i * n + j].to_bits(), full[(6 + i) * (6 + n) + 6 + j].to_bits(), "({i}, {j})");
+            }
+        }
+        assert!(block[n * n..].iter().all(|x| x.is_nan()), "wrote past n²");
+        // A short output gets what fits (unsymmetrized where the mirror entry does not fit), and
+        // nothing panics.
+        let mut short = vec![f64::NAN; n * n / 2];
+        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut data, &mut short);
+        assert!(short.iter().all(|x| x.is_finite()));
     }
 }
 

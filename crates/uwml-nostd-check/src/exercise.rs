@@ -17,6 +17,7 @@ use uwml_core::{
     Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint,
     Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors,
     hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro,
+    robot_joint_added_mass_matrix,
     robot_hydro_regressors, robot_hydro_with, robot_jacobians, smooth_sign,
 };
 
@@ -270,6 +271,10 @@ fn evaluate_robot<T: RealField + Copy>(robot: &Robot<T, 6, 6>, tally: &mut Tally
     let mut matrix = [c::<T>(f64::NAN); 100];
     robot_added_mass_matrix(robot, &water, None, &q, &mut data, &mut matrix);
     tally.all_finite(matrix.iter());
+    let mut block = [c::<T>(f64::NAN); 16];
+    robot_joint_added_mass_matrix(robot, &water, None, &q, &mut data, &mut block);
+    tally.all_finite(block.iter());
+    tally.expect(block[0] == matrix[66]);
     let (mut value, mut d_q, mut d_velocity, mut m_a) =
         ([c::<T>(f64::NAN); 10], [c::<T>(f64::NAN); 40], [c::<T>(f64::NAN); 100], [c::<T>(f64::NAN); 100]);
     let mut work = RobotJacobianData::new(robot);

@@ -10,7 +10,10 @@ use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods}
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{Matrix3, Vector3};
-use uwml_core::{BaseMotion, Current, LossState, Water, loss_torques, robot_added_mass_matrix, robot_hydro_with};
+use uwml_core::{
+    BaseMotion, Current, LossState, Water, loss_torques, robot_added_mass_matrix, robot_hydro_with,
+    robot_joint_added_mass_matrix,
+};
 
 use super::inputs::StateRow;
 use super::{Data, MAX_ROBOT_JOINTS, PyRobot, added_mass_form};
@@ -57,7 +60,10 @@ pub(crate) struct MujocoCoupling {
     kirchhoff: bool,
     /// `(ν̇, q̈)` of the previous step, subtracted through `M_A` (the lagged scheme), if any.
     lagged: Option<Vec<f64>>,
+    /// `M_A` over uwml's coordinates, `(6 + n)²`; on a fixed base only its joint block is
+    /// evaluated (into `joint_added_mass`, `n²`) and the base's rows and columns stay zero.
     added_mass: Vec<f64>,
+    joint_added_mass: Vec<f64>,
 }
 
 /// `array`'s values, C-contiguous, with at least `n` of them.
@@ -179,6 +185,7 @@ impl MujocoCoupling {
             kirchhoff,
             lagged: lagged.then(|| vec![0.0; size]),
             added_mass: vec![0.0; size * size],
+            joint_added_mass: vec![0.0; n * n],
         })
     }
 
@@ -215,7 +222,26 @@ impl MujocoCoupling {
             }
             (row, self.base_motion(py, qvel)?)
         };
-        robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.data, &mut self.added_mass);
+        if self.map.free_dof.is_some() {
+            robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.data, &mut self.added_mass);
+        } else {
+            // A fixed base: ν̇ = 0 and the base has no degree of freedom in MuJoCo, so only the
+            // joints' block of M_A acts.
+            robot_joint_added_mass_matrix(
+                &robot.robot,
+                &self.water,
+                None,
+                &row.q,
+                &mut self.data,
+                &mut self.joint_added_mass,
+            );
+            for (i, block_row) in self.joint_added_mass.chunks(n.max(1)).enumerate().take(n) {
+                let start = (6 + i) * size + 6;
+                if let Some(slots) = self.added_mass.get_mut(start..start + n) {
+                    slots.copy_from_slice(block_row);
+                }
+            }
+        }
         let form = added_mass_form(self.kirchhoff);
         robot_hydro_with(
             &robot.robot,
