@@ -217,15 +217,35 @@ class CsvTable:
             raise ValueError(f"{self.prefix}row {row}, column {column!r}: {what} ({cells} cells, header has {len(self.header)})") from None
 
 
+class CsvColumnsWriter:
+    """Float64 columns written as CSV block after block: the header once, unquoted, then each
+    number in its shortest round-trip form (pyarrow's writer). ``sink`` is a binary file (or
+    ``sys.stdout.buffer``); :meth:`close` finishes the CSV and leaves the sink open."""
+
+    def __init__(self, sink: Any, names: Sequence[str]) -> None:
+        sink.write((",".join(names) + "\n").encode("utf-8"))
+        self._schema = pa.schema([(name, pa.float64()) for name in names])
+        options = pacsv.WriteOptions(include_header=False, quoting_style="none")
+        self._writer = pacsv.CSVWriter(sink, self._schema, write_options=options)
+
+    def write(self, columns: Sequence[NDArray[np.float64]]) -> None:
+        """Append rows: one array per column, all of one length."""
+        self._writer.write_batch(
+            pa.record_batch([pa.array(np.ascontiguousarray(c, dtype=np.float64)) for c in columns], schema=self._schema)
+        )
+
+    def close(self) -> None:
+        self._writer.close()
+
+
 def write_table(sink: Any, names: Sequence[str], columns: Sequence[NDArray[np.float64]], batch_rows: int = 1 << 20) -> None:
-    """Write float64 columns as CSV: the header unquoted, then each number in its shortest
-    round-trip form (pyarrow's writer), ``batch_rows`` rows at a time (bounded extra memory)."""
-    header = ",".join(names) + "\n"
-    sink.write(header.encode("utf-8"))
+    """Write float64 columns as CSV (see :class:`CsvColumnsWriter`), ``batch_rows`` rows at a
+    time (bounded extra memory)."""
     n = len(columns[0]) if columns else 0
-    schema = pa.schema([(name, pa.float64()) for name in names])
-    options = pacsv.WriteOptions(include_header=False, quoting_style="none")
-    with pacsv.CSVWriter(sink, schema, write_options=options) as writer:
+    writer = CsvColumnsWriter(sink, names)
+    try:
         for first in range(0, n, batch_rows):
             rows = slice(first, min(first + batch_rows, n))
-            writer.write_batch(pa.record_batch([pa.array(np.ascontiguousarray(c[rows])) for c in columns], schema=schema))
+            writer.write([c[rows] for c in columns])
+    finally:
+        writer.close()

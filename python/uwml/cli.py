@@ -98,7 +98,7 @@ def _torques(args: argparse.Namespace) -> int:
     # A file is written under a temporary name and renamed when complete: a bad cell found
     # half-way leaves no partial output behind (standard output gets the rows before it).
     partial = None if out is None else f"{out}.partial-{os.getpid()}"
-    handle: IO[str] | None = None
+    handle: IO[bytes] | None = None
     writer: Any = None
     done = 0
     try:
@@ -106,28 +106,33 @@ def _torques(args: argparse.Namespace) -> int:
             import pyarrow
             import pyarrow.parquet
 
-            writer = pyarrow.parquet.ParquetWriter(partial, pyarrow.schema([(name, pyarrow.float64()) for name in names]))
+            schema = pyarrow.schema([(name, pyarrow.float64()) for name in names])
+            writer = pyarrow.parquet.ParquetWriter(partial, schema)
         else:
-            handle = sys.stdout if partial is None else open(partial, "w", encoding="utf-8", newline="")  # noqa: SIM115
-            handle.write(",".join(names) + "\n")
+            from ._arrow_csv import CsvColumnsWriter
+
+            sys.stdout.flush()
+            handle = sys.stdout.buffer if partial is None else open(partial, "wb")  # noqa: SIM115
+            writer = CsvColumnsWriter(handle, names)
         for log in chunks:
             assert log.qd is not None and log.qdd is not None
             tau = leg.environment(log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm)
             columns = [log.time] + [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
             table = np.column_stack(columns)
-            if writer is not None:
+            if parquet:
                 writer.write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}))
             else:
-                assert handle is not None
-                np.savetxt(handle, table, fmt="%.12g", delimiter=",")
+                writer.write(list(table.T))
             done += log.n_samples
             if progress:
                 print(f"uwml torques: {done}/{n} rows ({100.0 * done / n:.0f} %)", file=sys.stderr, flush=True)
-        if writer is not None:
-            writer.close()
-            writer = None
-        if handle is not None and handle is not sys.stdout:
-            handle.close()
+        writer.close()
+        writer = None
+        if handle is not None:
+            if handle is sys.stdout.buffer:
+                handle.flush()
+            else:
+                handle.close()
             handle = None
         if partial is not None:
             os.replace(partial, out)
@@ -135,7 +140,7 @@ def _torques(args: argparse.Namespace) -> int:
     finally:
         if writer is not None:
             writer.close()
-        if handle is not None and handle is not sys.stdout:
+        if handle is not None and handle is not sys.stdout.buffer:
             handle.close()
         if partial is not None and os.path.exists(partial):
             os.remove(partial)
