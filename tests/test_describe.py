@@ -13,7 +13,12 @@ from uwml.examples import arm_on_rov
 
 def test_frame_origins_add_along_the_tree() -> None:
     robot = uwml.Robot(
-        [uwml.Joint((1, 0, 0), (0, 0, 1)), uwml.Joint((0, 2, 0), (0, 0, 1)), uwml.Joint((0, 0, 3), (1, 0, 0), parent=0), uwml.Joint((5, 0, 0), (0, 1, 0), parent=-1)],
+        [
+            uwml.Joint((1, 0, 0), (0, 0, 1)),
+            uwml.Joint((0, 2, 0), (0, 0, 1)),
+            uwml.Joint((0, 0, 3), (1, 0, 0), parent=0),
+            uwml.Joint((5, 0, 0), (0, 1, 0), parent=-1),
+        ],
         [uwml.Link(1.0, (0, 0, 0), 0.0)] * 4,
     )
     np.testing.assert_array_equal(frame_origins(robot), [[1, 0, 0], [1, 2, 0], [1, 0, 3], [5, 0, 0]])

@@ -68,7 +68,12 @@ def test_paper_leg_reference_values(paper: uwml.Robot) -> None:
 def test_from_mujoco_model_in_memory(paper: uwml.Robot) -> None:
     import mujoco
 
-    model = mujoco.MjModel.from_xml_string((DATA / "paper_leg.xml").read_text().replace('<asset><mesh name="thigh_visual" file="meshes/thigh_does_not_exist.stl"/></asset>', "").replace('<geom class="visual" type="mesh" mesh="thigh_visual"/>', ""))
+    model = mujoco.MjModel.from_xml_string(
+        (DATA / "paper_leg.xml")
+        .read_text()
+        .replace('<asset><mesh name="thigh_visual" file="meshes/thigh_does_not_exist.stl"/></asset>', "")
+        .replace('<geom class="visual" type="mesh" mesh="thigh_visual"/>', "")
+    )
     robot = uwml.Robot.from_mujoco(model, DATA / "paper_leg.hydro.toml")
     assert_same_forces(robot, paper, *STATES[0])
     with pytest.raises(TypeError, match="mujoco.MjModel"):
@@ -101,13 +106,18 @@ def hand_built_arm() -> uwml.Robot:
     """arm.urdf with arm.hydro.toml, built by hand in uwml's base-parallel frames."""
     x, y, z = np.eye(3)
     hull = uwml.Link(
-        50.0, (0, 0, -0.05), 1.2 * 0.8 * 0.4, cob=(0, 0, 0),
+        50.0,
+        (0, 0, -0.05),
+        1.2 * 0.8 * 0.4,
+        cob=(0, 0, 0),
         segment=uwml.Segment((-0.6, 0, 0), (1, 0, 0), 1.2, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.8), area=0.32, cd=(2.0, 2.1)),
     )
     r1 = rpy(0, 0, math.pi / 2)
     o1 = np.array([0.5, 0, -0.2])
     upper = uwml.Link(
-        3.0, t(r1 @ (0.2 * x)), math.pi * 0.05**2 * 0.4,
+        3.0,
+        t(r1 @ (0.2 * x)),
+        math.pi * 0.05**2 * 0.4,
         segment=uwml.Segment(t(r1 @ (0.2 * x) - 0.2 * (r1 @ x)), t(r1 @ x), 0.4, section="circular", diameter=0.1, cd=1.1, cm=0.9),
     )
     r2 = r1 @ rpy(0.3, 0.2, -0.4)
@@ -118,7 +128,9 @@ def hand_built_arm() -> uwml.Robot:
     cylinder_volume = math.pi * 0.04**2 * 0.3
     wrist_cob = p3 - o2 + r3 @ (0.01 * x)
     fore = uwml.Link(
-        2.5, t((2.0 * fore_com + 0.5 * wrist_com) / 2.5), cylinder_volume + 0.0006,
+        2.5,
+        t((2.0 * fore_com + 0.5 * wrist_com) / 2.5),
+        cylinder_volume + 0.0006,
         cob=t((cylinder_volume * fore_com + 0.0006 * wrist_cob) / (cylinder_volume + 0.0006)),
         segment=uwml.Segment(t(r2 @ (0.15 * x) - 0.15 * (r2 @ x)), t(r2 @ x), 0.3, section="circular", diameter=0.08),
     )
@@ -187,7 +199,9 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
     with pytest.raises(uwml.DescriptionError, match=r"absent\.xml: the MJCF file cannot be read: no such file"):
         uwml.Robot.from_mjcf(tmp_path / "absent.xml")
     ball = tmp_path / "ball.xml"
-    ball.write_text('<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="shoulder_ball" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>')
+    ball.write_text(
+        '<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="shoulder_ball" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>'
+    )
     with pytest.raises(uwml.DescriptionError, match=r"ball\.xml: joint 'shoulder_ball' is a ball joint"):
         uwml.Robot.from_mjcf(ball)
     mesh = tmp_path / "mesh.urdf"
@@ -195,7 +209,9 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
     with pytest.raises(uwml.DescriptionError, match=r"mesh\.urdf: link 'hand' has a collision mesh .*\[links\.hand\]"):
         uwml.Robot.from_urdf(mesh)
     hydro = tmp_path / "hand.toml"
-    hydro.write_text('[links.hand]\nvolume = 0.001\ncob = [0.0, 0.0, 0.1]\n\n[[links.hand.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\ndiameter = 0.05\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\n')
+    hydro.write_text(
+        '[links.hand]\nvolume = 0.001\ncob = [0.0, 0.0, 0.1]\n\n[[links.hand.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\ndiameter = 0.05\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\n'
+    )
     robot = uwml.Robot.from_urdf(mesh, hydro)  # the mesh link described by the hydro file loads
     assert robot.links[0].volume == 0.001 and robot.links[0].cob == (0.0, 0.0, 0.1) and len(robot.segments) == 1
     dry = tmp_path / "dry.toml"
@@ -208,16 +224,28 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
     [
         ("[links.calfx]\nvolume = 0.1\n", r"h\.toml: \[links\.calfx\]: .*paper_leg\.urdf has no link \(body\) named 'calfx'"),
         ("[links.calf]\nvolum = 0.1\n", r"h\.toml: \[links\.calf\], key 'volum': is not a key of this table"),
-        ("[links.calf]\nvolume = \"big\"\n", r"h\.toml: \[links\.calf\], key 'volume': must be a volume"),
+        ('[links.calf]\nvolume = "big"\n', r"h\.toml: \[links\.calf\], key 'volume': must be a volume"),
         ("[links.calf]\ncob = [0.0, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], key 'cob': needs volume"),
         ("[links.calf]\ndry = true\ncd = 1.0\n", r"h\.toml: \[links\.calf\], key 'cd': a dry link"),
-        ("[links.calf]\nsegment_cd = [1.0, 2.0]\n", r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2"),
-        ("[[links.calf.segments]]\nsection = \"circular\"\n", r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
+        (
+            "[links.calf]\nsegment_cd = [1.0, 2.0]\n",
+            r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2",
+        ),
+        ('[[links.calf.segments]]\nsection = "circular"\n', r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
         ("[joints.knee]\nseal = 1\n", r"h\.toml: \[joints\.knee\], seal: must be a table, got int"),
-        ("[joints.kne]\nepsilon = 0.01\n", r"h\.toml: \[joints\.kne\]: no joint of that name in the description \(its joints: hip_yaw, hip_roll, knee\)"),
+        (
+            "[joints.kne]\nepsilon = 0.01\n",
+            r"h\.toml: \[joints\.kne\]: no joint of that name in the description \(its joints: hip_yaw, hip_roll, knee\)",
+        ),
         ("[joints.knee]\nepsilon = 0.01\n[joints.knee.seal]\nc0 = 1.0\n", r"h\.toml: \[joints\.knee\], seal, key 'c1_per_mpa': is missing"),
-        ("[water]\ndensity = 1.025\n", r"h\.toml: \[water\], key 'density': must be a density \[kg/m³\], 900 to 1300, got 1\.025 \(outside .*g/cm³"),
-        ("[water]\ngravity = 32.2\n", r"h\.toml: \[water\], key 'gravity': must be an acceleration \[m/s²\], 9\.7 to 9\.9, got 32\.2 \(.*ft/s²"),
+        (
+            "[water]\ndensity = 1.025\n",
+            r"h\.toml: \[water\], key 'density': must be a density \[kg/m³\], 900 to 1300, got 1\.025 \(outside .*g/cm³",
+        ),
+        (
+            "[water]\ngravity = 32.2\n",
+            r"h\.toml: \[water\], key 'gravity': must be an acceleration \[m/s²\], 9\.7 to 9\.9, got 32\.2 \(.*ft/s²",
+        ),
         ("[water]\nsalinity = 35.0\n", r"h\.toml: \[water\], key 'salinity': is not a key of this table \(allowed: density, gravity\)"),
         ("water = 1025.0\n", r"h\.toml: \[water\]: must be a table, got float"),
         ("[links.calf\n", r"h\.toml: not valid TOML"),
@@ -246,7 +274,9 @@ def test_hydro_segment_coefficients_per_segment(tmp_path: Path) -> None:
 def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
     hydro = tmp_path / "h.toml"
     seal = uwml.Seal()
-    seal_lines = "\n".join(f"{name} = {getattr(seal, name)!r}" for name in ("c0", "c1_per_mpa", "s0", "s1_per_mpa", "d0", "d1_per_mpa", "stribeck_speed"))
+    seal_lines = "\n".join(
+        f"{name} = {getattr(seal, name)!r}" for name in ("c0", "c1_per_mpa", "s0", "s1_per_mpa", "d0", "d1_per_mpa", "stribeck_speed")
+    )
     hydro.write_text((DATA / "paper_leg.hydro.toml").read_text() + f"\n[joints.knee]\nepsilon = 0.02\n\n[joints.knee.seal]\n{seal_lines}\n")
     robot = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
     knee = uwml.JointLosses(oil=None, seal=seal, epsilon=0.02)
@@ -344,13 +374,23 @@ def test_the_readme_own_robot_section_runs(tmp_path: Path, monkeypatch: pytest.M
         ({"bad.urdf": '<robot name="x"><link name="a"></robot>'}, None, r"bad\.urdf: not a readable URDF file"),
         ({}, None, r"absent\.xml: the MJCF file cannot be read"),
         (
-            {"ball.xml": '<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="wrist" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>'},
+            {
+                "ball.xml": '<mujoco><worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="wrist" type="ball"/><geom size="0.1"/></body></body></worldbody></mujoco>'
+            },
             None,
             r"ball\.xml: joint 'wrist' is a ball joint",
         ),
         ({"mesh.urdf": MESH_URDF}, None, r"mesh\.urdf: link 'hand' has a collision mesh"),
-        ({"mesh.urdf": MESH_URDF, "h.toml": "[links.palm]\ndry = true\n"}, "h.toml", r"h\.toml: \[links\.palm\]: .*no link \(body\) named 'palm'"),
-        ({"mesh.urdf": MESH_URDF, "h.toml": "[links.hand]\ndry = true\n[joints.k]\nepsilon = 0.01\n"}, "h.toml", r"h\.toml: \[joints\.k\]: no joint of that name"),
+        (
+            {"mesh.urdf": MESH_URDF, "h.toml": "[links.palm]\ndry = true\n"},
+            "h.toml",
+            r"h\.toml: \[links\.palm\]: .*no link \(body\) named 'palm'",
+        ),
+        (
+            {"mesh.urdf": MESH_URDF, "h.toml": "[links.hand]\ndry = true\n[joints.k]\nepsilon = 0.01\n"},
+            "h.toml",
+            r"h\.toml: \[joints\.k\]: no joint of that name",
+        ),
     ],
 )
 def test_the_command_line_names_the_file_and_element_and_exits_2(

@@ -29,7 +29,9 @@ def test_the_checked_in_exports_are_the_exporters_output() -> None:
 
 def test_every_literal_reads_back_to_the_models_number() -> None:
     arm = arm_on_rov()
-    numbers = [arm.base.mass, *arm.base.com, arm.base.volume] + [x for link in arm.links for x in (link.mass, *link.com, link.volume, *link.cob)]
+    numbers = [arm.base.mass, *arm.base.com, arm.base.volume] + [
+        x for link in arm.links for x in (link.mass, *link.com, link.volume, *link.cob)
+    ]
     numbers += [x for s in arm.segments for x in (*s.start, *s.axis, s.length, s.area)]
     for precision, suffix in (("f64", ""), ("f32", "f")):
         text = to_c(arm, precision)

@@ -31,7 +31,10 @@ def test_the_paper_leg_saved_and_loaded_is_itself(tmp_path: Path) -> None:
     assert uwml.Leg.load(path) == leg
     robot = uwml.Robot.load(path)
     assert robot == uwml.Robot.from_leg(leg)
-    np.testing.assert_array_equal(robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total, uwml.Robot.from_leg(leg).hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total)
+    np.testing.assert_array_equal(
+        robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total,
+        uwml.Robot.from_leg(leg).hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]).total,
+    )
     text = path.read_text()
     assert text.startswith("# uwml model file") and 'format = "uwml-robot"' in text and "mass = 19.261" in text
 
@@ -39,8 +42,11 @@ def test_the_paper_leg_saved_and_loaded_is_itself(tmp_path: Path) -> None:
 def test_the_arm_on_an_rov_round_trips_with_names(tmp_path: Path) -> None:
     arm = arm_on_rov()
     named = uwml.Robot(
-        [uwml.Joint(j.origin, j.axis, parent=j.parent, kind=j.kind, name=f"j{i} \"quoted\"") for i, j in enumerate(arm.joints)],
-        [uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments, name=f"link-{i}") for i, link in enumerate(arm.links)],
+        [uwml.Joint(j.origin, j.axis, parent=j.parent, kind=j.kind, name=f'j{i} "quoted"') for i, j in enumerate(arm.joints)],
+        [
+            uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments, name=f"link-{i}")
+            for i, link in enumerate(arm.links)
+        ],
         base=arm.base,
     )
     path = tmp_path / "arm.toml"
@@ -78,7 +84,10 @@ def test_random_robots_round_trip_exactly(seed: int, n: int) -> None:
         (lambda t: t.replace("widths = [0.131, 0.238]", "widths = [0.131]"), r"segments\[0\], key 'widths'"),
         (lambda t: t + "[[oops", "not valid TOML"),
         (lambda t: t.replace("density = 1000.0", "density = -1000.0"), r"water: water.density must be positive"),
-        (lambda t: t.replace("density = 1000.0", "density = 1000.0\nsalinity = 35.0"), r"water, key 'salinity': is not a key of this table"),
+        (
+            lambda t: t.replace("density = 1000.0", "density = 1000.0\nsalinity = 35.0"),
+            r"water, key 'salinity': is not a key of this table",
+        ),
     ],
 )
 def test_bad_files_name_the_file_table_and_key(tmp_path: Path, edit, message: str) -> None:

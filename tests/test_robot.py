@@ -36,7 +36,17 @@ def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True) ->
             n0 /= np.linalg.norm(n0)
             start, length = rng.uniform(-0.2, 0.2, 3), rng.uniform(0.1, 1.0)
             if rng.random() < 0.5:
-                out.append(uwml.Segment(start, axis, length, section="circular", diameter=rng.uniform(0.03, 0.2), cd=rng.uniform(0.5, 2), cm=rng.uniform(0.2, 1.5)))
+                out.append(
+                    uwml.Segment(
+                        start,
+                        axis,
+                        length,
+                        section="circular",
+                        diameter=rng.uniform(0.03, 0.2),
+                        cd=rng.uniform(0.5, 2),
+                        cm=rng.uniform(0.2, 1.5),
+                    )
+                )
             else:
                 out.append(
                     uwml.Segment(
@@ -53,7 +63,9 @@ def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True) ->
         return out
 
     def body() -> uwml.Link:
-        return uwml.Link(rng.uniform(1, 20), rng.uniform(-0.4, 0.4, 3), rng.uniform(0.0005, 0.02), cob=rng.uniform(-0.4, 0.4, 3), segments=segments())
+        return uwml.Link(
+            rng.uniform(1, 20), rng.uniform(-0.4, 0.4, 3), rng.uniform(0.0005, 0.02), cob=rng.uniform(-0.4, 0.4, 3), segments=segments()
+        )
 
     joints = [
         uwml.Joint(
@@ -141,7 +153,9 @@ def test_a_cylinder_dragged_broadside_by_its_base() -> None:
     # A horizontal cylinder (length L, diameter D) on a base moving at U across it: the base
     # feels −½ρ Cd D L U|U|; at rest in a current c, +½ρ Cd D L c|c|; along its axis, nothing.
     length, diameter, cd, rho = 0.8, 0.1, 1.1, 1025.0
-    rod = uwml.Link(0.0, (0, 0, 0), 0.0, segments=[uwml.Segment((-0.4, 0, 0), (1, 0, 0), length, section="circular", diameter=diameter, cd=cd, cm=0.0)])
+    rod = uwml.Link(
+        0.0, (0, 0, 0), 0.0, segments=[uwml.Segment((-0.4, 0, 0), (1, 0, 0), length, section="circular", diameter=diameter, cd=cd, cm=0.0)]
+    )
     robot = uwml.Robot([uwml.Joint((0, 0, 0), (0, 0, 1))], [uwml.Link(0.0, (0, 0, 0), 0.0)], base=rod)
     water = uwml.Water(rho, 9.81)
     expected = -0.5 * rho * cd * diameter * length * 0.7 * 0.7
@@ -276,7 +290,12 @@ def test_link_wrenches_and_added_mass_matrix_match_the_reference(seed: int, n: i
     np.testing.assert_array_equal(matrices, np.swapaxes(matrices, 1, 2))
     assert np.all(np.linalg.eigvalsh(matrices) >= -1e-12 * scale[:, None])
     # −M_A times the accelerations is the added-mass part at zero velocity.
-    still = robot.hydro(q, np.zeros_like(q), qdd, base_motion=uwml.BaseMotion(acceleration=motion["acceleration"], angular_acceleration=motion["angular_acceleration"]))
+    still = robot.hydro(
+        q,
+        np.zeros_like(q),
+        qdd,
+        base_motion=uwml.BaseMotion(acceleration=motion["acceleration"], angular_acceleration=motion["angular_acceleration"]),
+    )
     accelerations = np.concatenate([motion["acceleration"], motion["angular_acceleration"], qdd], axis=1)
     forces = np.concatenate([still.base.added_mass, still.added_mass], axis=1)
     assert_close(-np.einsum("sij,sj->si", matrices, accelerations), forces, np.max(np.abs(forces), axis=1) + scale, 1e-12, "M_A a")
@@ -478,14 +497,19 @@ def test_a_circular_section_does_not_depend_on_its_normals() -> None:
     axis = np.array([0.3, -0.5, 0.81])
     axis /= np.linalg.norm(axis)
     cylinder = uwml.Segment((0.1, 0, 0), axis, 0.7, section="circular", diameter=0.1, cd=1.1, cm=0.9)
-    robot = uwml.Robot([uwml.Joint((0, 0, 0), (0, 1, 0)), uwml.Joint((0.4, 0, 0), (0, 0, 1))], [uwml.Link(3.0, (0.2, 0, 0), 0.002), uwml.Link(2.0, (0.3, 0, 0), 0.001, segments=[cylinder])])
+    robot = uwml.Robot(
+        [uwml.Joint((0, 0, 0), (0, 1, 0)), uwml.Joint((0.4, 0, 0), (0, 0, 1))],
+        [uwml.Link(3.0, (0.2, 0, 0), 0.002), uwml.Link(2.0, (0.3, 0, 0), 0.001, segments=[cylinder])],
+    )
     q, qd, qdd = rng.uniform(-1, 1, (3, 30, 2))
     motion = motion_arguments(rng, 30)
     core = robot.hydro(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=(0.2, -0.1, 0.0))
     n0, n1 = (np.asarray(n) for n in cylinder.normals)
     for angle in (0.0, 0.7, 2.0):
         turned = copy.copy(cylinder)
-        object.__setattr__(turned, "normals", (tuple(np.cos(angle) * n0 + np.sin(angle) * n1), tuple(-np.sin(angle) * n0 + np.cos(angle) * n1)))
+        object.__setattr__(
+            turned, "normals", (tuple(np.cos(angle) * n0 + np.sin(angle) * n1), tuple(-np.sin(angle) * n0 + np.cos(angle) * n1))
+        )
         links = (robot.links[0], uwml.Link(2.0, (0.3, 0, 0), 0.001))
         object.__setattr__(links[1], "segments", (turned,))
         expected = ref.robot_hydro(robot.joints, links, None, q, qd, qdd, current=(0.2, -0.1, 0.0), **motion)
@@ -514,11 +538,18 @@ def test_kirchhoff_regressors_and_jacobians_are_its_forces() -> None:
     for name in COMPONENTS:
         np.testing.assert_allclose(getattr(columns, name), getattr(forces, name), rtol=1e-12, atol=1e-12)
         np.testing.assert_allclose(getattr(columns.base, name), getattr(forces.base, name), rtol=1e-12, atol=1e-12)
-    one = uwml.BaseMotion(**{k: np.asarray(getattr(motion, k))[0] for k in ("orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration")})
+    one = uwml.BaseMotion(
+        **{
+            k: np.asarray(getattr(motion, k))[0]
+            for k in ("orientation", "velocity", "angular_velocity", "acceleration", "angular_acceleration")
+        }
+    )
     jac = robot.jacobians(q[0], qd[0], qdd[0], base_motion=one, current=current[0], added_mass="kirchhoff")
     env = robot.environment(q[0], qd[0], qdd[0], base_motion=one, current=current[0], added_mass="kirchhoff")
     np.testing.assert_allclose(jac.value, np.concatenate([env.base.total, env.total]), rtol=1e-12, atol=1e-12)
-    np.testing.assert_array_equal(jac.added_mass_matrix, robot.jacobians(q[0], qd[0], qdd[0], base_motion=one, current=current[0]).added_mass_matrix)
+    np.testing.assert_array_equal(
+        jac.added_mass_matrix, robot.jacobians(q[0], qd[0], qdd[0], base_motion=one, current=current[0]).added_mass_matrix
+    )
     h = 1e-6
     for j in range(7):
         step = np.zeros(7)

@@ -44,7 +44,11 @@ def describe(robot: Robot, water: Water | None = None) -> str:
     """A plain-text account of ``robot``: joints, bodies (mass, volume, net buoyancy in
     ``water``, fresh water by default), and segments with their coefficients."""
     water = water if water is not None else Water()
-    lines = [f"{robot.n_joints} joints, {len(robot.segments)} segments; water {water.density:g} kg/m³, g = {water.gravity:g} m/s²", "", "joints"]
+    lines = [
+        f"{robot.n_joints} joints, {len(robot.segments)} segments; water {water.density:g} kg/m³, g = {water.gravity:g} m/s²",
+        "",
+        "joints",
+    ]
     parent_names = ("base", *robot.link_names)
     for name, joint in zip(robot.joint_names, robot.joints):
         parent = parent_names[0 if joint.parent is None or joint.parent < 0 else joint.parent + 1]
@@ -121,7 +125,10 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
-    ax.set_title(title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0 (blue circular, orange rectangular; x COM, o COB)", fontsize=9)
+    ax.set_title(
+        title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0 (blue circular, orange rectangular; x COM, o COB)",
+        fontsize=9,
+    )
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -258,13 +258,21 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
         raise DescriptionError(f"{source}: not valid TOML: {exc}") from None
     top = _Reader(source, "top level", document, DescriptionError)
     top.check_keys(("links", "joints", "water"))
-    links: dict[str, Any] = top.get("links", lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"), "a table of links by name", required=False, default={})
+    links: dict[str, Any] = top.get(
+        "links",
+        lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"),
+        "a table of links by name",
+        required=False,
+        default={},
+    )
     out: dict[str, HydroLink] = {}
     for name, table in links.items():
         where = f"[links.{name}]"
         r = _Reader(source, where, table, DescriptionError)
         r.check_keys(_LINK_KEYS)
-        raw_segments: list[Any] = r.get("segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[])
+        raw_segments: list[Any] = r.get(
+            "segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[]
+        )
         segments = tuple(_segment(source, f"{where}, segments[{i}]", s, DescriptionError) for i, s in enumerate(raw_segments))
         entry = HydroLink(
             cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
@@ -283,7 +291,13 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
         if entry.cob is not None and entry.volume is None:
             r.fail("cob", "needs volume (give the displaced volume with its centre of buoyancy)")
         out[name] = entry
-    joints: dict[str, Any] = top.get("joints", lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"), "a table of joints by name", required=False, default={})
+    joints: dict[str, Any] = top.get(
+        "joints",
+        lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"),
+        "a table of joints by name",
+        required=False,
+        default={},
+    )
     losses = {name: _losses(source, f"[joints.{name}]", table, DescriptionError) for name, table in joints.items()}
     water = _hydro_water(source, document["water"]) if "water" in document else None
     return HydroFile(links=out, joints=losses, water=water, source=source)
@@ -412,7 +426,9 @@ def _primitive(mujoco: Any, kind: int, size: FloatArray) -> tuple[Segment | None
         return segment, float(edges[0] * edges[1] * edges[2])
     if kind in (g.mjGEOM_CYLINDER, g.mjGEOM_CAPSULE):
         r, length = float(size[0]), 2.0 * float(size[1])
-        segment = Segment(start=(0.0, 0.0, -0.5 * length), axis=(0.0, 0.0, 1.0), length=length, section="circular", diameter=2.0 * r, area=math.pi * r * r)
+        segment = Segment(
+            start=(0.0, 0.0, -0.5 * length), axis=(0.0, 0.0, 1.0), length=length, section="circular", diameter=2.0 * r, area=math.pi * r * r
+        )
         volume = math.pi * r * r * length + (4.0 / 3.0 * math.pi * r**3 if kind == g.mjGEOM_CAPSULE else 0.0)
         return segment, volume
     if kind == g.mjGEOM_SPHERE:
@@ -533,14 +549,20 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
         b, kind = int(model.jnt_bodyid[j]), int(model.jnt_type[j])
         if kind == jt.mjJNT_FREE:
             if b != root or model.body_jntnum[b] != 1:
-                raise DescriptionError(f"{source}: {joint_label(j)} is a free (floating) joint; only the root body may be free (the moving base)")
+                raise DescriptionError(
+                    f"{source}: {joint_label(j)} is a free (floating) joint; only the root body may be free (the moving base)"
+                )
             free_root = True
             continue
         if kind not in (jt.mjJNT_HINGE, jt.mjJNT_SLIDE):
             what = {int(jt.mjJNT_BALL): "ball"}.get(kind, str(kind))
-            raise DescriptionError(f"{source}: {joint_label(j)} is a {what} joint; uwml takes revolute/continuous/hinge and prismatic/slide joints (and a free root)")
+            raise DescriptionError(
+                f"{source}: {joint_label(j)} is a {what} joint; uwml takes revolute/continuous/hinge and prismatic/slide joints (and a free root)"
+            )
         if b in moving:
-            raise DescriptionError(f"{source}: body '{body_name[b]}' has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link")
+            raise DescriptionError(
+                f"{source}: body '{body_name[b]}' has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link"
+            )
         if model.qpos0[model.jnt_qposadr[j]] != 0.0:
             raise DescriptionError(f"{source}: {joint_label(j)} has a nonzero ref; uwml's q = 0 is the pose as written")
         moving[b] = j
@@ -585,7 +607,9 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
     parts: dict[int, list[_Body]] = {b: [] for b in order}
     for i in range(1, model.nbody):
         k = owner[i]
-        parts[k].append(_body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source))
+        parts[k].append(
+            _body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source)
+        )
 
     def link(b: int) -> Link:
         bodies = parts[b]
@@ -609,7 +633,15 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
 
 
 def _body(
-    mujoco: Any, model: Any, i: int, rotation: FloatArray, offset: FloatArray, name: str, entry: HydroLink | None, source: str, hydro_source: str
+    mujoco: Any,
+    model: Any,
+    i: int,
+    rotation: FloatArray,
+    offset: FloatArray,
+    name: str,
+    entry: HydroLink | None,
+    source: str,
+    hydro_source: str,
 ) -> _Body:
     """Body ``i``'s mass, volume and segments in its uwml link's frame (points ``R v + offset``)."""
     body = _Body(name=name, mass=float(model.body_mass[i]), com=rotation @ model.body_ipos[i] + offset)
@@ -626,7 +658,9 @@ def _body(
             if entry is not None and entry.describes_geometry:
                 continue
             what = "mesh" if kind == mujoco.mjtGeom.mjGEOM_MESH else f"geom of type {mujoco.mjtGeom(kind).name}"
-            raise DescriptionError(f"{source}: link '{name}' has a collision {what}, which uwml cannot turn into segments: describe the link in a hydro file")
+            raise DescriptionError(
+                f"{source}: link '{name}' has a collision {what}, which uwml cannot turn into segments: describe the link in a hydro file"
+            )
         geom_rotation = rotation @ _rotation(model.geom_quat[g])
         geom_offset = rotation @ model.geom_pos[g] + offset
         volume += v
@@ -646,7 +680,9 @@ def _body(
         where = f"{hydro_source}: [links.{name}]"
         for key, per_segment in (("segment_cd", entry.segment_cd), ("segment_cm", entry.segment_cm)):
             if per_segment is not None and len(per_segment) != len(segments):
-                raise DescriptionError(f"{where}, key '{key}': must have one entry per segment of the link ({len(segments)}), got {len(per_segment)}")
+                raise DescriptionError(
+                    f"{where}, key '{key}': must have one entry per segment of the link ({len(segments)}), got {len(per_segment)}"
+                )
         coefficients = []
         for index, segment in enumerate(segments):
             cd = entry.segment_cd[index] if entry.segment_cd is not None else entry.cd

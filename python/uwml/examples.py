@@ -29,10 +29,21 @@ def arm_on_rov() -> Robot:
         mass, diameter = 12.0 - 1.5 * i, 0.12 - 0.01 * i
         tube = Segment((0, 0, 0), (1, 0, 0), length, section="circular", diameter=diameter, area=math.pi * diameter**2 / 4, cd=1.2, cm=1.0)
         housing = Segment(
-            (0, 0, -0.05), (1, 0, 0), 0.6 * length, normals=((0, 1, 0), (0, 0, 1)), widths=(0.05, 0.08), area=0.004, cd=(2.0, 2.1), cm=(1.2, 1.5)
+            (0, 0, -0.05),
+            (1, 0, 0),
+            0.6 * length,
+            normals=((0, 1, 0), (0, 0, 1)),
+            widths=(0.05, 0.08),
+            area=0.004,
+            cd=(2.0, 2.1),
+            cm=(1.2, 1.5),
         )
         links.append(Link(mass, (length / 2, 0, 0), mass / 3000.0, cob=(length / 2, 0, 0.01), segments=(tube, housing)))
     hull = Link(
-        300.0, (0, 0, -0.05), 0.29, cob=(0, 0, 0.05), segments=(Segment((-0.9, 0, 0), (1, 0, 0), 1.8, section="circular", diameter=0.6, area=0.283, cd=0.9, cm=1.0),)
+        300.0,
+        (0, 0, -0.05),
+        0.29,
+        cob=(0, 0, 0.05),
+        segments=(Segment((-0.9, 0, 0), (1, 0, 0), 1.8, section="circular", diameter=0.6, area=0.283, cd=0.9, cm=1.0),),
     )
     return Robot(joints, links, base=hull)

@@ -90,7 +90,9 @@ def to_rust(robot: Robot, precision: str = "f64", source: str | None = None) -> 
     for joint in robot.joints:
         parent = "None" if joint.parent is None or joint.parent < 0 else f"Some({joint.parent})"
         kind = "JointKind::Prismatic" if joint.kind == "prismatic" else "JointKind::Revolute"
-        out.append(f"    TreeJoint {{ parent: {parent}, kind: {kind}, origin: {_rust_vector(joint.origin, p)}, axis: {_rust_vector(joint.axis, p)} }},")
+        out.append(
+            f"    TreeJoint {{ parent: {parent}, kind: {kind}, origin: {_rust_vector(joint.origin, p)}, axis: {_rust_vector(joint.axis, p)} }},"
+        )
     out += ["];", f"/// The links: {', '.join(robot.link_names)}.", f"pub const LINKS: [RigidBody<{t}>; N_JOINTS] = ["]
     out += [f"    {_rust_body(link, p)}," for link in robot.links]
     base = robot.base if robot.base is not None else Link(0.0, (0.0, 0.0, 0.0), 0.0)
@@ -158,7 +160,9 @@ def to_c(robot: Robot, precision: str = "f64", prefix: str = "ROBOT", source: st
     for joint in robot.joints:
         parent = "UWML_BASE" if joint.parent is None or joint.parent < 0 else str(joint.parent)
         kind = "UWML_JOINT_PRISMATIC" if joint.kind == "prismatic" else "UWML_JOINT_REVOLUTE"
-        out.append(f"    {{ .parent = {parent}, .kind = {kind}, .origin = {_c_array(joint.origin, p)}, .axis = {_c_array(joint.axis, p)} }},")
+        out.append(
+            f"    {{ .parent = {parent}, .kind = {kind}, .origin = {_c_array(joint.origin, p)}, .axis = {_c_array(joint.axis, p)} }},"
+        )
     out += ["};", f"/* links: {', '.join(robot.link_names)} */", f"static const UwmlBody{t} {prefix}_LINKS[{max(robot.n_joints, 1)}] = {{"]
     out += [f"    {_c_body(link, p)}," for link in robot.links]
     out.append("};")
@@ -166,7 +170,10 @@ def to_c(robot: Robot, precision: str = "f64", prefix: str = "ROBOT", source: st
         out += [f"static const UwmlBody{t} {prefix}_BASE_BODY = {_c_body(robot.base, p)};", f"#define {prefix}_BASE (&{prefix}_BASE_BODY)"]
     else:
         out.append(f"#define {prefix}_BASE NULL")
-    out += ["/* segments, base first, then link by link */", f"static const UwmlRobotSegment{t} {prefix}_SEGMENTS[{max(len(owned), 1)}] = {{"]
+    out += [
+        "/* segments, base first, then link by link */",
+        f"static const UwmlRobotSegment{t} {prefix}_SEGMENTS[{max(len(owned), 1)}] = {{",
+    ]
     for owner, s in owned:
         owner_text = "UWML_BASE" if owner < 0 else str(owner)
         section = "UWML_SECTION_CIRCULAR" if s.section == "circular" else "UWML_SECTION_RECTANGULAR"

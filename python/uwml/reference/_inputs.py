@@ -53,4 +53,3 @@ def _states(q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, n: int) -> tuple[tuple[
     shape = arrays[0].shape
     q2, qd2, qdd2 = (a.reshape(-1, n) for a in arrays)
     return shape, q2, qd2, qdd2
-

@@ -142,6 +142,7 @@ def paper_leg() -> tuple[tuple[RefJoint, RefJoint, RefJoint], tuple[RefLink, Ref
 # Input checking
 # --------------------------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class _Segment:
     start: Array

@@ -301,5 +301,3 @@ def _motion(n_joints: int, **values: ArrayLike) -> _Motion:
         current_acceleration=full["current_acceleration"],
         batched=bool(counts),
     )
-
-
