@@ -194,6 +194,19 @@
 #define UWML_SECTION_CIRCULAR 1
 
 /**
+ * `uwml_robot_set_added_mass_form_*`: the paper's Morison form, each slice's added mass on its
+ * normal acceleration relative to the water (the default).
+ */
+#define UWML_ADDED_MASS_MORISON 0
+
+/**
+ * `uwml_robot_set_added_mass_form_*`: Kirchhoff's form, from the water's kinetic energy (also
+ * the Munk couple and the velocity terms that make added mass conserve energy in a simulation,
+ * MODEL.md 11). The same added-mass matrix; other forces at non-zero velocity.
+ */
+#define UWML_ADDED_MASS_KIRCHHOFF 1
+
+/**
  * What went wrong, for the optional last argument of most functions (NULL to skip it).
  * Written on every call that takes it, success included (`code` 0, `index` -1, `field` "").
  * It has no padding bytes (`reserved` is written 0), so its bytes are all determinate.
@@ -1508,6 +1521,33 @@ int32_t uwml_robot_hydro_f64(struct UwmlRobotF64 *robot,
                              struct UwmlJointForcesF64 *joint_forces,
                              struct UwmlBaseWrenchF64 *base_wrench,
                              struct UwmlError *error);
+
+/**
+ * Chooses how the added-mass forces of `robot` depend on the velocities, for every later
+ * `uwml_robot_hydro_f64`: `UWML_ADDED_MASS_MORISON` (the paper's, what a new robot uses) or
+ * `UWML_ADDED_MASS_KIRCHHOFF` (from the water's kinetic energy: the form that conserves energy
+ * in a simulation, MODEL.md 11; a controller designed in `uwml.mujoco.Simulation(...,
+ * added_mass="kirchhoff")` gets the same forces). Both share the added-mass matrix; they differ
+ * where the links move. Another value is `UWML_ERR_OUT_OF_RANGE` (field "form ...") and changes
+ * nothing.
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `error` is NULL or valid for writes of a `UwmlError`.
+ */
+int32_t uwml_robot_set_added_mass_form_f64(struct UwmlRobotF64 *robot,
+                                           int32_t form,
+                                           struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_added_mass_form_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_set_added_mass_form_f64`, with `UwmlRobotF32`.
+ */
+int32_t uwml_robot_set_added_mass_form_f32(struct UwmlRobotF32 *robot,
+                                           int32_t form,
+                                           struct UwmlError *error);
 
 /**
  * `uwml_robot_paper_f64` in f32.

@@ -113,6 +113,13 @@ pub const UWML_SECTION_RECTANGULAR: i32 = 0;
 /// `UwmlRobotSegment*.section`: cross-flow drag and added mass on the whole normal motion
 /// (`diameter`, `cd[0]`, `cm[0]`).
 pub const UWML_SECTION_CIRCULAR: i32 = 1;
+/// `uwml_robot_set_added_mass_form_*`: the paper's Morison form, each slice's added mass on its
+/// normal acceleration relative to the water (the default).
+pub const UWML_ADDED_MASS_MORISON: i32 = 0;
+/// `uwml_robot_set_added_mass_form_*`: Kirchhoff's form, from the water's kinetic energy (also
+/// the Munk couple and the velocity terms that make added mass conserve energy in a simulation,
+/// MODEL.md 11). The same added-mass matrix; other forces at non-zero velocity.
+pub const UWML_ADDED_MASS_KIRCHHOFF: i32 = 1;
 
 const _: () = {
     assert!(offset_of!(UwmlRobotF64, opaque) == size_of::<u64>());

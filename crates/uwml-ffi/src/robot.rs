@@ -8,17 +8,17 @@
 
 use uwml_core::nalgebra::{RealField, Vector3};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, ModelError, Owner, RigidBody,
-    Robot, RobotData, RobotSegment, Section, TreeJoint, Water, robot_hydro,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, ModelError,
+    Owner, RigidBody, Robot, RobotData, RobotSegment, Section, TreeJoint, Water, robot_hydro_with,
 };
 
 use crate::imp::{Failure, check_overflow, non_null, read_one};
 use crate::{
-    UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE, UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED,
-    UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32,
-    UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64,
-    UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64,
-    UwmlTreeJointF32, UwmlTreeJointF64,
+    UWML_ADDED_MASS_KIRCHHOFF, UWML_ADDED_MASS_MORISON, UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE,
+    UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR,
+    UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32,
+    UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64,
+    UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64,
 };
 
 /// The joint capacity of the C API's robot.
@@ -30,6 +30,10 @@ pub(crate) const S: usize = 32;
 pub(crate) struct Block<T: RealField + Copy> {
     robot: Robot<T, J, S>,
     water: Water<T>,
+    /// How the added-mass forces depend on the velocities (`uwml_robot_set_added_mass_form_*`):
+    /// `UWML_ADDED_MASS_KIRCHHOFF` or else Morison's, kept as the C constant so that every bit
+    /// pattern of a copied block is a valid value.
+    form: i32,
     /// The workspace and results of the last evaluation.
     data: RobotData<T, J>,
 }
@@ -298,6 +302,7 @@ unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
     // reading or referencing the (possibly uninitialized) block.
     unsafe {
         (&raw mut (*block).water).write(water);
+        (&raw mut (*block).form).write(UWML_ADDED_MASS_MORISON);
         (&raw mut (*block).data).write(RobotData::new());
         out.cast::<u64>().write(T::TAG);
     }
@@ -427,7 +432,7 @@ fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Resul
 /// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`.
 pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluation<T>) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let Block { robot, water, data } = unsafe { block_mut::<T>(robot) }?;
+    let Block { robot, water, form, data } = unsafe { block_mut::<T>(robot) }?;
     let n = robot.joint_count();
     if usize::try_from(io.n).ok() != Some(n) {
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n (the robot's joint count)", None));
@@ -448,7 +453,8 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluat
         T::current(&unsafe { read_one(io.current, "current") }?)?
     };
     let joint_forces = if n == 0 { io.joint_forces } else { non_null(io.joint_forces, "joint_forces")? };
-    robot_hydro(robot, water, None, &motion, &current, &q, &qd, &qdd, data);
+    let form = if *form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
+    robot_hydro_with(robot, water, None, form, &motion, &current, &q, &qd, &qdd, data);
     for (i, forces) in data.joint_forces().iter().enumerate() {
         // SAFETY: `i < n` and `joint_forces` is valid for writes of `n` elements (contract; not
         // null when n > 0).
@@ -469,5 +475,18 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluat
     if wrench.iter().any(|x| !x.is_finite()) {
         return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
     }
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call.
+pub(crate) unsafe fn set_added_mass_form<T: RobotPrecision>(robot: *mut T::Robot, form: i32) -> Result<(), Failure> {
+    if form != UWML_ADDED_MASS_MORISON && form != UWML_ADDED_MASS_KIRCHHOFF {
+        return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "form (UWML_ADDED_MASS_MORISON or _KIRCHHOFF)", None));
+    }
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let block = unsafe { block_mut::<T>(robot) }?;
+    block.form = form;
     Ok(())
 }

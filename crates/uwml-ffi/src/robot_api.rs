@@ -347,6 +347,41 @@ pub unsafe extern "C" fn uwml_robot_hydro_f64(
     unsafe { imp::report(error, robot::hydro::<f64>(robot, &io)) }
 }
 
+/// Chooses how the added-mass forces of `robot` depend on the velocities, for every later
+/// `uwml_robot_hydro_f64`: `UWML_ADDED_MASS_MORISON` (the paper's, what a new robot uses) or
+/// `UWML_ADDED_MASS_KIRCHHOFF` (from the water's kinetic energy: the form that conserves energy
+/// in a simulation, MODEL.md 11; a controller designed in `uwml.mujoco.Simulation(...,
+/// added_mass="kirchhoff")` gets the same forces). Both share the added-mass matrix; they differ
+/// where the links move. Another value is `UWML_ERR_OUT_OF_RANGE` (field "form ...") and changes
+/// nothing.
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `error` is NULL or valid for writes of a `UwmlError`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_added_mass_form_f64(
+    robot: *mut UwmlRobotF64,
+    form: i32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_added_mass_form`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_added_mass_form::<f64>(robot, form)) }
+}
+
+/// `uwml_robot_set_added_mass_form_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_set_added_mass_form_f64`, with `UwmlRobotF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_added_mass_form_f32(
+    robot: *mut UwmlRobotF32,
+    form: i32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_added_mass_form`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_added_mass_form::<f32>(robot, form)) }
+}
+
 /// `uwml_robot_paper_f64` in f32.
 ///
 /// # Safety

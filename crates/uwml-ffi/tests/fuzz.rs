@@ -225,6 +225,7 @@ proptest! {
         motion_edits in prop::collection::vec(edit(), 0..4),
         current in prop::array::uniform6(float()),
         with_motion in any::<bool>(),
+        form in prop_oneof![Just(UWML_ADDED_MASS_MORISON), Just(UWML_ADDED_MASS_KIRCHHOFF), any::<i32>()],
     ) {
         let (joints, links, base, segments) = robot_params();
         let joints: Vec<_> = joints.into_iter().map(|j| edited(j, &joint_edits)).collect();
@@ -246,6 +247,11 @@ proptest! {
             prop_assert_eq!(robot.opaque_tag, 0, "a failed construction writes no robot");
             return Ok(());
         }
+        // SAFETY: a live robot and error.
+        let code = unsafe { uwml_robot_set_added_mass_form_f64(&mut *robot, form, &mut error) };
+        check(code, &error);
+        let known = form == UWML_ADDED_MASS_MORISON || form == UWML_ADDED_MASS_KIRCHHOFF;
+        prop_assert_eq!(code, if known { UWML_OK } else { UWML_ERR_OUT_OF_RANGE });
         let n = n_joints as usize;
         let motion = edited(UwmlBaseMotionF64 { orientation: [1.0, 0.0, 0.0, 0.0], ..Default::default() }, &motion_edits);
         let current = UwmlCurrentF64 { velocity: [current[0], current[1], current[2]], acceleration: [current[3], current[4], current[5]] };

@@ -5,14 +5,14 @@
 use core::ffi::CStr;
 use core::ptr::{null, null_mut};
 
-use uwml_core::Water;
+use uwml_core::{AddedMassForm, Water};
 use uwml_ffi::*;
 
 mod robots;
 use robots::{
     ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_motion, core_current,
-    core_hydro, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion, params32,
-    wrench32, wrench64,
+    core_hydro, core_hydro_with, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion,
+    params32, wrench32, wrench64,
 };
 
 fn blank_error() -> UwmlError {
@@ -698,4 +698,75 @@ fn robot_forces_that_overflow_are_an_error() {
     assert!(!out.forces[0].total.is_finite() && !out.forces[1].total.is_finite());
     let out = hydro64(&mut robot, [&[0.1, 0.2, 0.3], &[0.0, 1e100, 0.0], &[0.0; 3]], None, None);
     assert_eq!(out.code, UWML_OK);
+}
+
+fn set_form64(robot: *mut UwmlRobotF64, form: i32) -> (i32, UwmlError) {
+    let mut error = blank_error();
+    // SAFETY: `robot` is null or a live robot; `error` a live local.
+    let code = unsafe { uwml_robot_set_added_mass_form_f64(robot, form, &mut error) };
+    assert_eq!(error.code, code);
+    (code, error)
+}
+
+#[test]
+fn kirchhoffs_added_mass_is_the_cores_and_can_be_chosen_back() {
+    let params = arm();
+    let mut robot = built64(&params);
+    let mut robot32 = built32(&params);
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    let water32 = Water::new(DENSITY as f32, GRAVITY as f32).unwrap();
+    let motion = arm_motion();
+    let [q, qd, qdd] = ARM_STATE;
+    let state = [&q[..], &qd[..], &qdd[..]];
+    let morison = hydro64(&mut robot, state, Some(&motion), Some(&ARM_CURRENT));
+    assert_eq!(morison.code, UWML_OK);
+
+    let (code, error) = set_form64(&mut *robot, UWML_ADDED_MASS_KIRCHHOFF);
+    assert_eq!((code, parts(&error)), (UWML_OK, (UWML_OK, -1, String::new())));
+    // SAFETY: a live robot; a null error is allowed.
+    let code32 = unsafe { uwml_robot_set_added_mass_form_f32(&mut *robot32, UWML_ADDED_MASS_KIRCHHOFF, null_mut()) };
+    assert_eq!(code32, UWML_OK);
+    let core = core_robot(&params);
+    let core32 = core_robot::<f32>(&params);
+    for (m, c) in [(Some(&motion), Some(&ARM_CURRENT)), (None, None)] {
+        let kirchhoff = hydro64(&mut robot, state, m, c);
+        assert_eq!(kirchhoff.code, UWML_OK);
+        let data = core_hydro_with(&core, &water, AddedMassForm::Kirchhoff, &core_motion(m), &core_current(c), state);
+        assert_eq!(forces_bits64(&kirchhoff.forces), forces_bits64(&forces64(&data)), "joint forces");
+        assert_eq!(wrench_bits64(&kirchhoff.wrench), wrench_bits64(&wrench64(&data)), "base wrench");
+        let state32: Vec<Vec<f32>> = state.iter().map(|s| s.iter().map(|&x| x as f32).collect()).collect();
+        let state32 = [&state32[0][..], &state32[1][..], &state32[2][..]];
+        let (m32, c32) = (m.map(motion32), c.map(current32));
+        let (code, forces, wrench) = hydro32(&mut robot32, state32, m32.as_ref(), c32.as_ref());
+        assert_eq!(code, UWML_OK);
+        let data =
+            core_hydro_with(&core32, &water32, AddedMassForm::Kirchhoff, &core_motion(m), &core_current(c), state32);
+        assert_eq!(forces_bits32(&forces), forces_bits32(&forces32(&data)), "f32 joint forces");
+        assert_eq!(wrench_bits32(&wrench), wrench_bits32(&wrench32(&data)), "f32 base wrench");
+    }
+    // The test can fail: the two forms differ in the added mass of a moving robot, not in drag
+    // or buoyancy.
+    let kirchhoff = hydro64(&mut robot, state, Some(&motion), Some(&ARM_CURRENT));
+    assert!(kirchhoff.forces.iter().zip(&morison.forces).all(|(k, m)| k.drag == m.drag && k.buoyancy == m.buoyancy));
+    assert!(kirchhoff.forces.iter().zip(&morison.forces).any(|(k, m)| k.added_mass != m.added_mass));
+
+    // Another value is refused and changes nothing; Morison again gives the first forces.
+    for bad in [-1, 2, i32::MAX] {
+        let (code, error) = set_form64(&mut *robot, bad);
+        assert_eq!(code, UWML_ERR_OUT_OF_RANGE);
+        assert!(parts(&error).2.starts_with("form"), "{:?}", parts(&error));
+        let again = hydro64(&mut robot, state, Some(&motion), Some(&ARM_CURRENT));
+        assert_eq!(forces_bits64(&again.forces), forces_bits64(&kirchhoff.forces));
+    }
+    assert_eq!(set_form64(&mut *robot, UWML_ADDED_MASS_MORISON).0, UWML_OK);
+    let back = hydro64(&mut robot, state, Some(&motion), Some(&ARM_CURRENT));
+    assert_eq!(forces_bits64(&back.forces), forces_bits64(&morison.forces));
+    assert_eq!(wrench_bits64(&back.wrench), wrench_bits64(&morison.wrench));
+
+    // A new robot is Morison's; null and unwritten robots are refused.
+    let mut fresh = built64(&params);
+    let first = hydro64(&mut fresh, state, Some(&motion), Some(&ARM_CURRENT));
+    assert_eq!(forces_bits64(&first.forces), forces_bits64(&morison.forces));
+    assert_eq!(set_form64(null_mut(), UWML_ADDED_MASS_KIRCHHOFF).0, UWML_ERR_NULL_POINTER);
+    assert_eq!(set_form64(&mut *zeroed64(), UWML_ADDED_MASS_KIRCHHOFF).0, UWML_ERR_UNINITIALIZED);
 }

@@ -7,8 +7,8 @@
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Current, JointKind, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
-    TreeJoint, Water, robot_hydro,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Current, JointKind, Owner, RigidBody, Robot, RobotData,
+    RobotSegment, Section, TreeJoint, Water, robot_hydro_with,
 };
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR,
@@ -315,6 +315,18 @@ pub fn core_hydro<T: Real>(
     current: &Current<T>,
     state: [&[T]; 3],
 ) -> RobotData<T, J> {
+    core_hydro_with(robot, water, AddedMassForm::Morison, motion, current, state)
+}
+
+/// As [`core_hydro`], with the added-mass forces in `form`.
+pub fn core_hydro_with<T: Real>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    form: AddedMassForm,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    state: [&[T]; 3],
+) -> RobotData<T, J> {
     let padded = |x: &[T]| {
         let mut out = [T::narrow(0.0); J];
         out[..x.len()].copy_from_slice(x);
@@ -322,7 +334,7 @@ pub fn core_hydro<T: Real>(
     };
     let (q, qd, qdd) = (padded(state[0]), padded(state[1]), padded(state[2]));
     let mut data = RobotData::new();
-    robot_hydro(robot, water, None, motion, current, &q, &qd, &qdd, &mut data);
+    robot_hydro_with(robot, water, None, form, motion, current, &q, &qd, &qdd, &mut data);
     data
 }
 
