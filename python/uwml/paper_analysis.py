@@ -177,7 +177,7 @@ def run(out_dir: str, seed: int) -> int:
         ),
         "  what each part of the model error does to the fit (same noise and seed):",
         *[
-            f"    {p['label']:<40} Cd = {p['cd']:.3f} ({_sigmas(p['cd'], p['cd_stderr'], cd_true)}),"
+            f"    {p['label']:<42} Cd = {p['cd']:.3f} ({_sigmas(p['cd'], p['cd_stderr'], cd_true)}),"
             f" Cm = {p['cm']:.3f} ({_sigmas(p['cm'], p['cm_stderr'], cm_true)}), COD = {p['cod']:.3f}"
             for p in parts
         ],
