@@ -7,12 +7,15 @@ path is ``python/uwml``, so their relative imports resolve to the sources under 
 """
 
 import importlib
+import importlib.util
 import sys
 from pathlib import Path
 from types import ModuleType
 
 _PACKAGE = "uwml_pure"
 _SOURCE = Path(__file__).resolve().parents[1] / "python" / "uwml"
+#: The numpy reference package, which stands alone (numpy and the standard library only).
+REFERENCE_DIR = _SOURCE / "reference"
 
 
 def load(name: str) -> ModuleType:
@@ -22,3 +25,22 @@ def load(name: str) -> ModuleType:
         package.__path__ = [str(_SOURCE)]
         sys.modules[_PACKAGE] = package
     return importlib.import_module(f"{_PACKAGE}.{name}")
+
+
+def load_reference() -> ModuleType:
+    """The package ``python/uwml/reference/`` on its own, without ``uwml/__init__.py`` (which
+    imports the compiled extension): registered under a name of its own so that its relative
+    imports resolve to its own submodules."""
+    name = "uwml_reference_standalone"
+    if name in sys.modules:
+        return sys.modules[name]
+    spec = importlib.util.spec_from_file_location(name, REFERENCE_DIR / "__init__.py", submodule_search_locations=[str(REFERENCE_DIR)])
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[name]
+        raise
+    return module

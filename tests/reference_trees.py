@@ -2,38 +2,18 @@
 reference package loaded standalone, duck-typed descriptions and random robots built here, and
 rotations written here (quaternions), independent of the reference."""
 
-import importlib.util
 import math
-import sys
-from pathlib import Path
-from types import ModuleType, SimpleNamespace
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
+from pure import load_reference
 
 NS = SimpleNamespace
 RHO, G = 1000.0, 9.81
-REFERENCE_DIR = Path(__file__).resolve().parents[1] / "python" / "uwml" / "reference"
 
 
-def _load_reference() -> ModuleType:
-    """The package ``python/uwml/reference/`` on its own, without the compiled extension."""
-    name = "uwml_reference_standalone"
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, REFERENCE_DIR / "__init__.py", submodule_search_locations=[str(REFERENCE_DIR)])
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[name]
-        raise
-    return module
-
-
-ref = _load_reference()
+ref = load_reference()
 
 PARTS = ("drag", "added_mass", "buoyancy", "gravity")
 KEYS = PARTS + tuple(f"base_{p}" for p in PARTS)

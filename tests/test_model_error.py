@@ -60,8 +60,6 @@ def test_a_drag_coefficient_that_varies_with_speed() -> None:
         here = LEG.hydro(log.q[i], log.qd[i], log.qdd[i], cd=cd_here, cm=0.5)
         there = LEG.hydro(log.q[i], log.qd[i], log.qdd[i], cd=2.2, cm=0.5)
         np.testing.assert_allclose(log.tau_water[i] - plain.tau_water[i], there.total - here.total, rtol=1e-10, atol=1e-12)
-    # Near rest the coefficient is higher, fast lower: at ‖q̇‖ = ω_ref it is cd.
-    assert 2.2 * (1.0 + a) > 2.2 > 2.2 * (1.0 - a)
 
 
 def test_buoyancy_computed_wrong_spares_joint_1() -> None:

@@ -7,41 +7,18 @@ the moment arm of joint j is ``∂p/∂q_j``), slice accelerations by finite dif
 exact velocities along a trajectory, and high-order Gauss-Legendre quadrature.
 """
 
-import importlib.util
 import itertools
 import math
-import sys
-from pathlib import Path
-from types import ModuleType, SimpleNamespace
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from pure import load_reference
 
-
-def _load_reference() -> ModuleType:
-    """The package ``python/uwml/reference/`` on its own, without ``uwml/__init__.py`` (which
-    imports the compiled extension): registered under a name of its own so that its relative
-    imports resolve to its own submodules."""
-    name = "uwml_reference_standalone"
-    if name in sys.modules:
-        return sys.modules[name]
-    directory = Path(__file__).resolve().parents[1] / "python" / "uwml" / "reference"
-    spec = importlib.util.spec_from_file_location(name, directory / "__init__.py", submodule_search_locations=[str(directory)])
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[name]
-        raise
-    return module
-
-
-ref = _load_reference()
+ref = load_reference()
 JOINTS, LINKS = ref.paper_leg()
 
 RHO = 1000.0

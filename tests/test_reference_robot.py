@@ -25,11 +25,11 @@ import sys
 
 import numpy as np
 import pytest
+from pure import REFERENCE_DIR
 from reference_trees import (
     KEYS,
     NS,
     PARTS,
-    REFERENCE_DIR,
     RHO,
     G,
     assert_close,

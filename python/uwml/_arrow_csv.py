@@ -50,15 +50,22 @@ def finite_float64(values: pa.Array | pa.ChunkedArray) -> bool:
     return values.null_count == 0 and bool(pc.all(pc.is_finite(values)).as_py() is not False)
 
 
-def _text_to_float(values: pa.Array, name: str, prefix: str, first_row: int) -> Array:
-    """A block of a text column as float64: Arrow's cast when it is clean, else the cell rule."""
+def float64_column(values: pa.Array | pa.ChunkedArray, name: str, prefix: str, first_row: int) -> pa.Array | pa.ChunkedArray | Array:
+    """An Arrow column of any type (text, numbers) as float64 by the cell rule: Arrow's cast when
+    it is clean (an Arrow array, not copied if already float64), else cell by cell (a numpy
+    array, or a ValueError naming the row, ``first_row`` for the first cell, and the column)."""
     try:
         cast = pc.cast(values, pa.float64())
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
         cast = None
     if cast is not None and finite_float64(cast):
-        return np.asarray(cast.to_numpy(zero_copy_only=False), dtype=np.float64)
+        return cast
     return float_cells(values.to_pylist(), name, prefix, first_row)
+
+
+def _text_to_float(values: pa.Array, name: str, prefix: str, first_row: int) -> Array:
+    """A block of a text column as a float64 numpy array (:func:`float64_column`)."""
+    return np.asarray(float64_column(values, name, prefix, first_row), dtype=np.float64)
 
 
 class CsvTable:
@@ -160,13 +167,16 @@ class CsvTable:
                     return row, len(record)
         return None
 
+    def _wrong_length(self, row: int, cells: int) -> ValueError:
+        """The error of a row with ``cells`` cells where the header has another number."""
+        column = self.header[min(cells, len(self.header) - 1)]
+        what = "missing value" if cells < len(self.header) else "too many cells"
+        return ValueError(f"{self.prefix}row {row}, column {column!r}: {what} ({cells} cells, header has {len(self.header)})")
+
     def _rows_of_wrong_length(self, names: Sequence[str]) -> dict[str, Any]:
         wrong = self._first_row_of_wrong_length()
         if wrong is not None and wrong[1] < len(self.header):
-            row, cells = wrong
-            raise ValueError(
-                f"{self.prefix}row {row}, column {self.header[cells]!r}: missing value ({cells} cells, header has {len(self.header)})"
-            )
+            raise self._wrong_length(*wrong)
         # Rows with cells beyond the header's: the pure-Python reader ignores them, as it always did.
         source: Any = self._path if self._path is not None else self._text()
         columns = read_csv_columns(source, self.prefix, self.header[0])
@@ -181,7 +191,7 @@ class CsvTable:
         blocks before it have been yielded), as does a row with another number of cells than
         the header.
         """
-        block_bytes = STREAM_BLOCK_BYTES if block_bytes is None else block_bytes
+        block_bytes = STREAM_BLOCK_BYTES if block_bytes is None else block_bytes  # read when called
         done = 0
         try:
             reader = pacsv.open_csv(self._binary(), **self._options(names, pa.float64(), block_bytes))
@@ -211,10 +221,7 @@ class CsvTable:
             wrong = self._first_row_of_wrong_length()
             if wrong is None:
                 raise ValueError(f"{self.prefix}cannot parse the file as CSV") from None
-            row, cells = wrong
-            column = self.header[min(cells, len(self.header) - 1)]
-            what = "missing value" if cells < len(self.header) else "too many cells"
-            raise ValueError(f"{self.prefix}row {row}, column {column!r}: {what} ({cells} cells, header has {len(self.header)})") from None
+            raise self._wrong_length(*wrong) from None
 
 
 class CsvColumnsWriter:

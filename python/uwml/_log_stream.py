@@ -57,7 +57,7 @@ def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> 
         return
     from . import _arrow_csv
 
-    yield from _arrow_csv.CsvTable(path, f"{source}: ", "time").batches(names, _arrow_csv.STREAM_BLOCK_BYTES)
+    yield from _arrow_csv.CsvTable(path, f"{source}: ", "time").batches(names)
 
 
 def _header(path: str | os.PathLike[str], source: str) -> list[str]:

@@ -117,12 +117,12 @@ def _torques(args: argparse.Namespace) -> int:
         for log in chunks:
             assert log.qd is not None and log.qdd is not None
             tau = leg.environment(log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm)
-            columns = [log.time] + [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
-            table = np.column_stack(columns)
+            blocks = [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
+            columns = [log.time] + [block[:, k] for block in blocks for k in range(block.shape[1])]
             if parquet:
-                writer.write_table(pyarrow.table({name: table[:, i] for i, name in enumerate(names)}))
+                writer.write_table(pyarrow.table({name: np.ascontiguousarray(c) for name, c in zip(names, columns, strict=True)}))
             else:
-                writer.write(list(table.T))
+                writer.write(columns)
             done += log.n_samples
             if progress:
                 print(f"uwml torques: {done}/{n} rows ({100.0 * done / n:.0f} %)", file=sys.stderr, flush=True)

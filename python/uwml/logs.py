@@ -346,22 +346,10 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
 
 def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: int = 2) -> dict[str, Any]:
     """The columns of a Parquet table (its first row is ``first_row`` of the file) as float64,
-    checked column by column by the cell rule."""
-    import pyarrow
+    checked column by column by the cell rule (:func:`uwml._arrow_csv.float64_column`)."""
+    from ._arrow_csv import float64_column
 
-    from ._arrow_csv import finite_float64, float_cells
-
-    columns: dict[str, Any] = {}
-    for name in names:
-        column = table.column(name)
-        try:
-            values = column.cast(pyarrow.float64())
-        except (pyarrow.ArrowInvalid, pyarrow.ArrowNotImplementedError):
-            values = None
-        if values is None or not finite_float64(values):
-            values = float_cells(column.to_pylist(), name, f"{source}: ", first_row)
-        columns[name] = values
-    return columns
+    return {name: float64_column(table.column(name), name, f"{source}: ", first_row) for name in names}
 
 
 def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:

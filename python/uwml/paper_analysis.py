@@ -117,7 +117,7 @@ def run(out_dir: str, seed: int) -> int:
     write_log(log, out / "land_water.csv")
     result = fit.hydro_coefficients(log, leg)
     plot.hydro_fit_plot(result, out / "fig7_fit.png")
-    parts = _error_parts(leg, gait, seed)
+    parts = _error_parts(leg, gait, seed, result)
 
     # Joint losses (Figs. 13-14) and the current budget.
     oil, seal, drive = OilDrag(), Seal(), Drive()
@@ -132,6 +132,8 @@ def run(out_dir: str, seed: int) -> int:
     summary = {
         "rms": {name: rms[name].tolist() for name, _ in _COMPONENTS},
         "fit": {
+            "cd_true": cd_true,
+            "cm_true": cm_true,
             "cd": cd,
             "cd_stderr": cd_err,
             "cm": cm,
@@ -191,9 +193,10 @@ def run(out_dir: str, seed: int) -> int:
     return 0
 
 
-def _error_parts(leg: Leg, gait: Any, seed: int) -> list[dict[str, Any]]:
-    """Fits of the experiment with no model error, each part of ``PAPER_LIKE_ERROR`` alone, and
-    all of it: the same gait, noise and seed, so only the model error differs."""
+def _error_parts(leg: Leg, gait: Any, seed: int, everything: Any) -> list[dict[str, Any]]:
+    """Fits of the experiment with no model error and each part of ``PAPER_LIKE_ERROR`` alone,
+    then ``everything``, the fit of the experiment with all of it: the same gait, noise and seed,
+    so only the model error differs."""
     from dataclasses import asdict
 
     from . import fit, synthetic
@@ -207,25 +210,31 @@ def _error_parts(leg: Leg, gait: Any, seed: int) -> list[dict[str, Any]]:
             f"+ Cd falling with speed (Cd at {error.reference_speed:g} rad/s)",
             synthetic.ModelError(cd_speed=error.cd_speed, reference_speed=error.reference_speed),
         ),
-        ("all of it (the experiment above)", error),
     ]
-    parts = []
-    for label, part in cases:
-        log = synthetic.land_water_experiment(leg, gait, torque_noise=synthetic.PAPER_LIKE_NOISE, model_error=part, seed=seed)
-        result = fit.hydro_coefficients(log, leg)
-        parts.append(
-            {
-                "label": label,
-                "model_error": asdict(part),
-                "cd": result.params["cd"],
-                "cd_stderr": result.stderr["cd"],
-                "cm": result.params["cm"],
-                "cm_stderr": result.stderr["cm"],
-                "redchi_unweighted": result.redchi_unweighted,
-                "cod": result.cod,
-            }
+    fits = [
+        (
+            label,
+            part,
+            fit.hydro_coefficients(
+                synthetic.land_water_experiment(leg, gait, torque_noise=synthetic.PAPER_LIKE_NOISE, model_error=part, seed=seed), leg
+            ),
         )
-    return parts
+        for label, part in cases
+    ]
+    fits.append(("all of it (the experiment above)", error, everything))
+    return [
+        {
+            "label": label,
+            "model_error": asdict(part),
+            "cd": result.params["cd"],
+            "cd_stderr": result.stderr["cd"],
+            "cm": result.params["cm"],
+            "cm_stderr": result.stderr["cm"],
+            "redchi_unweighted": result.redchi_unweighted,
+            "cod": result.cod,
+        }
+        for label, part, result in fits
+    ]
 
 
 def _sigmas(value: float, error: float | None, truth: float) -> str:
@@ -246,12 +255,12 @@ def _write_paper_report(path: Path, s: dict[str, Any], seed: int, gait: Any, res
     f_noise = synthetic.PAPER_LIKE_NOISE
     err = s["error_parts"][-1]["model_error"]
     parts_table = "\n".join(
-        f"| {p['label']} | {p['cd']:.3f} ({_sigmas(p['cd'], p['cd_stderr'], 2.2)}) | {p['cm']:.3f} ({_sigmas(p['cm'], p['cm_stderr'], 0.5)})"
+        f"| {p['label']} | {p['cd']:.3f} ({_sigmas(p['cd'], p['cd_stderr'], f['cd_true'])}) | {p['cm']:.3f} ({_sigmas(p['cm'], p['cm_stderr'], f['cm_true'])})"
         f" | {p['redchi_unweighted']:.4g} | {p['cod']:.4f} |"
         for p in s["error_parts"]
     )
-    cd_off = abs(f["cd"] - 2.2) / f["cd_stderr"]
-    cm_off = abs(f["cm"] - 0.5) / f["cm_stderr"]
+    cd_off = abs(f["cd"] - f["cd_true"]) / f["cd_stderr"]
+    cm_off = abs(f["cm"] - f["cm_true"]) / f["cm_stderr"]
     table = [
         "| component | " + " | ".join(f"joint {j + 1}" for j in range(n)) + " |",
         "|---|" + "---:|" * n,

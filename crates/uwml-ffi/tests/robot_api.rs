@@ -196,8 +196,21 @@ fn assert_core64(
     motion: Option<&UwmlBaseMotionF64>,
     current: Option<&UwmlCurrentF64>,
 ) -> Out64 {
+    assert_core64_with(AddedMassForm::Morison, robot, params, water, state, motion, current)
+}
+
+/// As `assert_core64`, for a robot whose added-mass forces are in `form`.
+fn assert_core64_with(
+    form: AddedMassForm,
+    robot: &mut UwmlRobotF64,
+    params: &Params,
+    water: &Water<f64>,
+    state: [&[f64]; 3],
+    motion: Option<&UwmlBaseMotionF64>,
+    current: Option<&UwmlCurrentF64>,
+) -> Out64 {
     let out = hydro64(robot, state, motion, current);
-    let data = core_hydro(&core_robot(params), water, &core_motion(motion), &core_current(current), state);
+    let data = core_hydro_with(&core_robot(params), water, form, &core_motion(motion), &core_current(current), state);
     assert_eq!(forces_bits64(&out.forces), forces_bits64(&forces64(&data)), "joint forces");
     assert_eq!(wrench_bits64(&out.wrench), wrench_bits64(&wrench64(&data)), "base wrench");
     out
@@ -211,12 +224,25 @@ fn assert_core32(
     motion: Option<&UwmlBaseMotionF64>,
     current: Option<&UwmlCurrentF64>,
 ) {
+    assert_core32_with(AddedMassForm::Morison, robot, params, water, state, motion, current);
+}
+
+fn assert_core32_with(
+    form: AddedMassForm,
+    robot: &mut UwmlRobotF32,
+    params: &Params,
+    water: &Water<f32>,
+    state: [&[f64]; 3],
+    motion: Option<&UwmlBaseMotionF64>,
+    current: Option<&UwmlCurrentF64>,
+) {
     let state: Vec<Vec<f32>> = state.iter().map(|s| s.iter().map(|&x| f32::narrow(x)).collect()).collect();
     let state = [&state[0][..], &state[1][..], &state[2][..]];
     let (m, c) = (motion.map(motion32), current.map(current32));
     let (code, forces, wrench) = hydro32(robot, state, m.as_ref(), c.as_ref());
     assert_eq!(code, UWML_OK);
-    let data = core_hydro(&core_robot::<f32>(params), water, &core_motion(motion), &core_current(current), state);
+    let data =
+        core_hydro_with(&core_robot::<f32>(params), water, form, &core_motion(motion), &core_current(current), state);
     assert_eq!(forces_bits32(&forces), forces_bits32(&forces32(&data)), "f32 joint forces");
     assert_eq!(wrench_bits32(&wrench), wrench_bits32(&wrench32(&data)), "f32 base wrench");
 }
@@ -726,23 +752,10 @@ fn kirchhoffs_added_mass_is_the_cores_and_can_be_chosen_back() {
     // SAFETY: a live robot; a null error is allowed.
     let code32 = unsafe { uwml_robot_set_added_mass_form_f32(&mut *robot32, UWML_ADDED_MASS_KIRCHHOFF, null_mut()) };
     assert_eq!(code32, UWML_OK);
-    let core = core_robot(&params);
-    let core32 = core_robot::<f32>(&params);
     for (m, c) in [(Some(&motion), Some(&ARM_CURRENT)), (None, None)] {
-        let kirchhoff = hydro64(&mut robot, state, m, c);
+        let kirchhoff = assert_core64_with(AddedMassForm::Kirchhoff, &mut robot, &params, &water, state, m, c);
         assert_eq!(kirchhoff.code, UWML_OK);
-        let data = core_hydro_with(&core, &water, AddedMassForm::Kirchhoff, &core_motion(m), &core_current(c), state);
-        assert_eq!(forces_bits64(&kirchhoff.forces), forces_bits64(&forces64(&data)), "joint forces");
-        assert_eq!(wrench_bits64(&kirchhoff.wrench), wrench_bits64(&wrench64(&data)), "base wrench");
-        let state32: Vec<Vec<f32>> = state.iter().map(|s| s.iter().map(|&x| x as f32).collect()).collect();
-        let state32 = [&state32[0][..], &state32[1][..], &state32[2][..]];
-        let (m32, c32) = (m.map(motion32), c.map(current32));
-        let (code, forces, wrench) = hydro32(&mut robot32, state32, m32.as_ref(), c32.as_ref());
-        assert_eq!(code, UWML_OK);
-        let data =
-            core_hydro_with(&core32, &water32, AddedMassForm::Kirchhoff, &core_motion(m), &core_current(c), state32);
-        assert_eq!(forces_bits32(&forces), forces_bits32(&forces32(&data)), "f32 joint forces");
-        assert_eq!(wrench_bits32(&wrench), wrench_bits32(&wrench32(&data)), "f32 base wrench");
+        assert_core32_with(AddedMassForm::Kirchhoff, &mut robot32, &params, &water32, state, m, c);
     }
     // The test can fail: the two forms differ in the added mass of a moving robot, not in drag
     // or buoyancy.

@@ -4,6 +4,7 @@ and the loss fits' results.
 
 from __future__ import annotations
 
+import functools
 import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass
@@ -93,9 +94,10 @@ class FitResult:
     #: weighted χ² about ``N − p`` and the reduced χ² 1 by construction).
     sigma_given: bool = True
 
-    # --- unweighted statistics, in the data's units (Origin's and lmfit's without weights) ---
+    # --- unweighted statistics, in the data's units (Origin's and lmfit's without weights);
+    # the two that pass over every point are computed once (a result's arrays never change) ---
 
-    @property
+    @functools.cached_property
     def rss(self) -> float:
         """Residual sum of squares, unweighted: ``Σ (data − best_fit)²`` [``unit``²]."""
         return float(np.sum((np.asarray(self.data) - np.asarray(self.best_fit)) ** 2))
@@ -111,7 +113,7 @@ class FitResult:
         of a fit without error bars (the paper's 2.425 N·m²)."""
         return self.rss / self.nfree if self.nfree > 0 else math.nan
 
-    @property
+    @functools.cached_property
     def cod(self) -> float:
         """Coefficient of determination without weights, ``1 − RSS / Σ (data − mean)²`` (the
         paper's COD, 0.826)."""
