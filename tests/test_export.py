@@ -4,6 +4,8 @@ for the arm of ``uwml.examples.arm_on_rov`` are what the exporter writes today (
 compile and evaluate exactly this output); every literal reads back to the model's number."""
 
 import re
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -60,3 +62,131 @@ def test_uwml_export_prints_them(tmp_path: Path, capsys: pytest.CaptureFixture[s
     assert "pub const N_JOINTS: usize = 3;" in out and "RigidBody<f32>" in out
     assert main(["export", "--c", "--name", "not valid"]) == 2
     assert "prefix must be an upper-case C identifier" in capsys.readouterr().err
+
+
+# Hostile names: a URDF's or MJCF's names are untrusted text. Each must land in the generated
+# source as inert comment text, never as code (docs/firmware.md, "The model as source").
+INJECTION = "x */ int pwned(void) { return 42; } /* y"
+HOSTILE_NAMES = [
+    INJECTION,
+    "a\npub fn pwned() -> i32 { 42 }\n//",  # a newline would end a Rust line comment
+    "a\r\npub fn pwned() -> i32 { 42 } //",
+    "b\rc",
+    "end */",
+    "/* open",
+    "// slashes",
+    'quote " and \\ backslash\\',
+    "tab\there",
+    "trailing backslash\\",
+    "??/",  # a C trigraph for a backslash
+    "é ü 水 \u202e\u2066",  # non-ASCII, with the text-direction marks Rust refuses in comments
+    "nul\x00byte",
+    "del\x7f and \x1b[31m escape",
+    "<b>html</b> & `code` [link](javascript:pwned())",
+]
+PWNED_PROBE_C = "int pwned(void);\nint probe(void) { return pwned(); }\n"
+# A stand-in for uwml_core's plain types, enough for the exported constants to type-check
+# (the real crate compiles the checked-in export in crates/uwml-core/tests/exported.rs).
+UWML_CORE_STUB = """
+#![allow(dead_code)]
+pub mod uwml_core {
+    pub mod nalgebra {
+        pub struct Vector3<T>([T; 3]);
+        impl<T> Vector3<T> { pub const fn new(x: T, y: T, z: T) -> Self { Vector3([x, y, z]) } }
+    }
+    use self::nalgebra::Vector3;
+    pub enum JointKind { Revolute, Prismatic }
+    pub enum Owner { Base, Link(usize) }
+    pub struct TreeJoint<T> { pub parent: Option<usize>, pub kind: JointKind, pub origin: Vector3<T>, pub axis: Vector3<T> }
+    pub struct RigidBody<T> { pub mass: T, pub com: Vector3<T>, pub volume: T, pub cob: Vector3<T> }
+    pub enum Section<T> { Circular { diameter: T }, Rectangular { normals: [Vector3<T>; 2], widths: [T; 2] } }
+    pub struct RobotSegment<T> {
+        pub owner: Owner, pub start: Vector3<T>, pub axis: Vector3<T>, pub length: T, pub area: T,
+        pub section: Section<T>, pub cd: [T; 2], pub cm: [T; 2],
+    }
+}
+"""
+
+
+def hostile_robot(names: list[str]) -> uwml.Robot:
+    """The arm on an ROV with ``names`` for its joints and, reversed, its links (cycled)."""
+    arm = arm_on_rov()
+    n = arm.n_joints
+    joint_names = [f"{names[i % len(names)]}#{i}" if i >= len(names) else names[i] for i in range(n)]
+    link_names = [f"{names[-1 - i % len(names)]}@{i}" for i in range(n)]
+    joints = [uwml.Joint(j.origin, j.axis, parent=j.parent, kind=j.kind, name=name) for j, name in zip(arm.joints, joint_names)]
+    links = [
+        uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments, name=name)
+        for link, name in zip(arm.links, link_names)
+    ]
+    return uwml.Robot(joints, links, base=arm.base)
+
+
+def hostile_robots() -> list[uwml.Robot]:
+    return [hostile_robot(HOSTILE_NAMES[i : i + 7]) for i in range(0, len(HOSTILE_NAMES), 7)]
+
+
+def _run(command: list[str], cwd: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(command, cwd=cwd, capture_output=True, text=True, timeout=120, check=False)
+
+
+@pytest.mark.skipif(shutil.which("gcc") is None or shutil.which("nm") is None, reason="needs gcc and nm (binutils) to compile the C export")
+def test_hostile_names_stay_comments_in_c(tmp_path: Path) -> None:
+    include = ROOT / "crates/uwml-ffi/include"
+    for k, robot in enumerate(hostile_robots()):
+        header = tmp_path / f"robot{k}.h"
+        source = "evil.toml */ int pwned(void) { return 1; } /*\n#error"
+        header.write_bytes(to_c(robot, prefix="ROBOT", source=source).encode("ascii"))  # ASCII only: nothing for a charset to mangle
+        # One translation unit that uses every constant: with -Wall -Werror it must compile cleanly.
+        unit = tmp_path / f"unit{k}.c"
+        unit.write_text(
+            f'#include "{header.name}"\n'
+            "unsigned long used(void) { return sizeof ROBOT_JOINTS + sizeof ROBOT_LINKS + sizeof ROBOT_SEGMENTS + ROBOT_N_JOINTS"
+            " + ROBOT_N_SEGMENTS + (unsigned long)(ROBOT_BASE->mass + ROBOT_WATER_DENSITY + ROBOT_GRAVITY); }\n"
+        )
+        built = _run(
+            ["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-I", str(include), "-c", unit.name, "-o", "unit.o"], tmp_path
+        )
+        assert built.returncode == 0, built.stderr
+        symbols = _run(["nm", "unit.o"], tmp_path)
+        assert symbols.returncode == 0 and "used" in symbols.stdout and "pwned" not in symbols.stdout, symbols.stdout
+        # A program that calls pwned() must not link: no such function came with the header.
+        (tmp_path / "main.c").write_text(PWNED_PROBE_C + "int main(void) { return probe(); }\n")
+        linked = _run(["gcc", "main.c", "unit.o", "-o", "main"], tmp_path)
+        assert linked.returncode != 0 and "pwned" in linked.stderr, linked.stderr
+
+
+@pytest.mark.skipif(shutil.which("rustc") is None, reason="needs rustc to compile the Rust export")
+def test_hostile_names_stay_comments_in_rust(tmp_path: Path) -> None:
+    for k, robot in enumerate(hostile_robots()):
+        exported = to_rust(robot, source="evil.toml\npub fn pwned() -> i32 { 1 }\n//")
+        assert {ch for ch in exported if not ch.isascii()} <= {"³", "²"}  # the units in the water's doc comment
+        lib = tmp_path / f"lib{k}.rs"
+        lib.write_text(UWML_CORE_STUB + exported)
+        command = ["rustc", "--edition", "2021", "--crate-type", "lib", "--emit", "metadata", "-D", "warnings", "--out-dir", str(tmp_path)]
+        built = _run([*command, lib.name], tmp_path)
+        assert built.returncode == 0, built.stderr
+        # The same crate with a function that calls pwned(): it must not resolve.
+        probe = tmp_path / f"probe{k}.rs"
+        probe.write_text(UWML_CORE_STUB + exported + "pub fn probe() -> i32 { pwned() }\n")
+        probed = _run([*command, probe.name], tmp_path)
+        assert probed.returncode != 0 and "cannot find function `pwned`" in probed.stderr, probed.stderr
+
+
+def test_names_are_escaped_in_comments() -> None:
+    robot = hostile_robot(["a*/b", "c\nd", "e\\f", "ü", "plain_name-1.x/y"])
+    c, rust = to_c(robot), to_rust(robot)
+    assert c.isascii() and {ch for ch in rust if not ch.isascii()} <= {"³", "²"}  # the units in the water's doc comment
+    for text in (c, rust):
+        assert "a\\u{2a}/b" in text and "c\\u{a}d" in text and "e\\u{5c}f" in text and "\\u{fc}" in text and "plain_name-1.x/y" in text
+    # Every comment line of the C header stays one comment: no */ but the one closing it.
+    for line in c.splitlines():
+        if line.startswith(("/* joints", "/* links")):
+            assert line.count("*/") == 1 and line.endswith(" */") and line.count("/*") == 1, line
+
+
+@pytest.mark.parametrize("prefix", ["ÄRM", "ＡＲＭ", "ARM\n", "ARM */", "ARM;", "arm", "", "1ARM", "AR M"])
+def test_the_c_prefix_is_an_ascii_identifier(prefix: str) -> None:
+    with pytest.raises(ValueError, match="prefix must be an upper-case C identifier"):
+        to_c(arm_on_rov(), prefix=prefix)
+    assert "#define _ARM_2_N_JOINTS 7u" in to_c(arm_on_rov(), prefix="_ARM_2")
