@@ -6,9 +6,11 @@ a spinning thread's progress during a long batch call tells whether the GIL was 
 its full rate times the call's duration if it was, at most a switch interval's worth if not.
 """
 
+import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -123,3 +125,16 @@ def test_bad_thread_counts(threads):
         leg.hydro([0.1, 0.2, 0.3], [0.0] * 3, [0.0] * 3, threads=threads)
     with pytest.raises(ValueError, match="threads must be an integer >= 1"):
         leg.environment([0.1, 0.2, 0.3], [0.0] * 3, [0.0] * 3, threads=threads)
+
+
+def test_every_evaluation_from_eight_threads_is_the_sequential_one():
+    """Every public evaluation, called on one object from 8 threads at once, gives the bits of a
+    sequential run, and never hangs: the check runs in its own process under a watchdog (a
+    deadlock holding the GIL would stop this process's threads too)."""
+    script = Path(__file__).with_name("_thread_check.py")
+    try:
+        done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
+    except subprocess.TimeoutExpired as error:
+        pytest.fail(f"deadlock: the threads did not finish in 300 s; last output:\n{error.stdout}")
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert done.stdout.strip().endswith("ok")

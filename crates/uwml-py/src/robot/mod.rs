@@ -2,7 +2,8 @@
 //! Thin: unpacks the model, broadcasts the per-sample base motion and current, loops over samples
 //! with the GIL released (optionally on several threads), writes numpy arrays.
 
-use std::sync::Mutex;
+use std::ops::{Deref, DerefMut};
+use std::sync::{Mutex, MutexGuard, TryLockError};
 
 use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -256,7 +257,7 @@ impl PyRobot {
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
         let Some(one) = OneState::read(self.robot.joint_count(), arguments) else { return Ok(None) };
-        let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut data = self.one_state_workspace();
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         if !one::finite(&data, &[]) {
             return Ok(None); // forces that overflow: the general path names the sample
@@ -315,7 +316,7 @@ impl PyRobot {
         // The batch path's pressure and loss states, so that the bits are its.
         let (pressure, temperature) = ([sea_density * one.water.gravity() * depth], [temperature]);
         let conditions = Losses { joints, pressure: &pressure, temperature: &temperature };
-        let mut data = self.data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let mut data = self.one_state_workspace();
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         let (visc, seal, loss_current) = loss_torques(LossStates::new().at(&conditions, 0), &one.row.qd.into());
         if !one::finite(&data, &[visc.as_slice(), seal.as_slice(), loss_current.as_slice()]) {
@@ -446,9 +447,12 @@ impl PyRobot {
         let mut guards = arrays.each_ref().map(|a| a.readwrite());
         let [value, d_q, d_velocity, matrix] = writable(&mut guards)?;
         let robot = &*self.robot;
-        let mut work = self.jacobian_data.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let work = work.get_or_insert_with(|| Box::new(RobotJacobianData::new(robot)));
+        let shared = &self.jacobian_data;
         let result = py.detach(|| -> Result<(), SampleError> {
+            // Locked only while detached: a thread that waits for the workspace holds no GIL
+            // that the thread holding the workspace needs to return (no deadlock).
+            let mut work = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            let work = work.get_or_insert_with(|| Box::new(RobotJacobianData::new(robot)));
             let mut row = StateRow::new();
             let mut loss_states = LossStates::new();
             let rows = value
@@ -522,6 +526,17 @@ impl PyRobot {
 }
 
 impl PyRobot {
+    /// The kept workspace for a one-state call made with the GIL held, or a new one if another
+    /// thread is using it: a thread holding the GIL never waits for a lock (no deadlock with a
+    /// detached batch, none when the result's construction runs Python that calls back in).
+    fn one_state_workspace(&self) -> OneStateWorkspace<'_> {
+        match self.data.try_lock() {
+            Ok(guard) => OneStateWorkspace::Kept(guard),
+            Err(TryLockError::Poisoned(poisoned)) => OneStateWorkspace::Kept(poisoned.into_inner()),
+            Err(TryLockError::WouldBlock) => OneStateWorkspace::New(Box::new(Data::new())),
+        }
+    }
+
     /// Per-segment coefficients `(S, 2)`, or `None` for `(0, 2)` (the segments' own).
     fn coefficients(
         &self,
@@ -544,6 +559,31 @@ impl PyRobot {
             (a, b) => Err(PyValueError::new_err(format!(
                 "cd and cm must have shape ({segments}, 2) (one pair per segment), got {a:?} and {b:?}"
             ))),
+        }
+    }
+}
+
+/// A one-state call's workspace: the robot's kept one, or a new one (see `one_state_workspace`).
+enum OneStateWorkspace<'a> {
+    Kept(MutexGuard<'a, Box<Data>>),
+    New(Box<Data>),
+}
+
+impl Deref for OneStateWorkspace<'_> {
+    type Target = Data;
+    fn deref(&self) -> &Data {
+        match self {
+            Self::Kept(guard) => guard,
+            Self::New(data) => data,
+        }
+    }
+}
+
+impl DerefMut for OneStateWorkspace<'_> {
+    fn deref_mut(&mut self) -> &mut Data {
+        match self {
+            Self::Kept(guard) => guard,
+            Self::New(data) => data,
         }
     }
 }
