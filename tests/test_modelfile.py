@@ -1,6 +1,7 @@
 """The uwml model file (``uwml.modelfile``): a saved robot loads equal to itself and gives the same
 forces bit for bit; every bad file is an error naming the file, the table and the key."""
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -83,7 +84,10 @@ def test_random_robots_round_trip_exactly(seed: int, n: int) -> None:
         (lambda t: t.replace("length = 0.66", "length = [0.66]"), r"links\[1\], segments\[0\], key 'length': must be a length"),
         (lambda t: t.replace("widths = [0.131, 0.238]", "widths = [0.131]"), r"segments\[0\], key 'widths'"),
         (lambda t: t + "[[oops", "not valid TOML"),
-        (lambda t: t.replace("density = 1000.0", "density = -1000.0"), r"water: water.density must be positive"),
+        (
+            lambda t: t.replace("density = 1000.0", "density = -1000.0"),
+            r"water, key 'density': must be a density \[kg/m³\], 900 to 1300, got -1000.0",
+        ),
         (
             lambda t: t.replace("density = 1000.0", "density = 1000.0\nsalinity = 35.0"),
             r"water, key 'salinity': is not a key of this table",
@@ -140,3 +144,146 @@ def test_joint_losses_are_part_of_the_model(tmp_path: Path) -> None:
     path.write_text(text)
     with pytest.raises(uwml.ModelFileError, match=r"joints\[2\], losses, drive: drive.ratio must be > 0"):
         uwml.Robot.load(path)
+
+
+def _named(names: list[str]) -> uwml.Robot:
+    """The paper's leg with ``names`` for its joints, then its links."""
+    leg = uwml.Robot.from_leg(uwml.Leg.paper())
+    joints = [uwml.Joint(j.origin, j.axis, parent=j.parent, kind=j.kind, name=n) for j, n in zip(leg.joints, names[:3])]
+    links = [
+        uwml.Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments, name=n) for link, n in zip(leg.links, names[3:])
+    ]
+    return uwml.Robot(joints, links, water=uwml.Water(1025.0, 9.81))
+
+
+# Any text a str can hold in UTF-8 (every code point but the lone surrogates), control
+# characters, quotes and backslashes made likely.
+NAME_CHARACTERS = st.one_of(
+    st.characters(codec="utf-8"),
+    st.sampled_from(['"', "\\", "\n", "\r", "\t", "\x00", "\x1f", "\x7f", "\x08", "\x0c", "'", "#", "=", "[", "]", "\u2028", "\ufeff"]),
+)
+
+
+@settings(max_examples=max(10, int(settings.default.max_examples / 2)))
+@given(names=st.lists(st.text(NAME_CHARACTERS, min_size=1, max_size=12), min_size=6, max_size=6, unique=True))
+def test_any_names_round_trip_exactly(names: list[str]) -> None:
+    robot = _named(names)
+    again = loads(dumps(robot))
+    assert again.joint_names == tuple(names[:3]) and again.link_names == tuple(names[3:])
+    assert again == robot
+
+
+def test_control_characters_in_names_are_escaped(tmp_path: Path) -> None:
+    names = ["nul\x00", 'q"uote', "back\\slash", "new\nline", "cr\r", "del\x7f esc\x1b"]
+    path = tmp_path / "named.toml"
+    _named(names).save(path)
+    text = path.read_text(encoding="utf-8")
+    assert all(c in "\n" or " " <= c != "\x7f" for c in text), "a raw control character in the file"
+    assert 'name = "nul\\u0000"' in text and 'name = "new\\nline"' in text and 'name = "q\\"uote"' in text
+    assert uwml.Robot.load(path).joint_names == tuple(names[:3])
+
+
+def test_a_failed_save_keeps_the_old_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    path = tmp_path / "arm.toml"
+    arm_on_rov().save(path)
+    before = path.read_bytes()
+    # A name that UTF-8 cannot hold (a lone surrogate): refused, and the old file is untouched.
+    with pytest.raises(ValueError, match=r"joints\[1\]\.name.*cannot be written"):
+        _named(["a", "b\ud800c", "d", "e", "f", "g"]).save(path)
+    assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml"]
+
+    # A failure while writing (here: the disk refuses to sync) leaves the old file and no temporary one.
+    def refuse(fd: int) -> None:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr("os.fsync", refuse)
+    with pytest.raises(OSError, match="No space left"):
+        uwml.Robot.from_leg(uwml.Leg.paper()).save(path)
+    assert path.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml"]
+    monkeypatch.undo()
+    # A save that succeeds replaces the file whole.
+    uwml.Robot.from_leg(uwml.Leg.paper()).save(path)
+    assert uwml.Robot.load(path) == uwml.Robot.from_leg(uwml.Leg.paper())
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml"]
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "message"),
+    [
+        ("density", "1.025", r"water, key 'density': .*900 to 1300 kg/m³.*1000 times too small"),
+        ("density", "1e300", r"water, key 'density': .*900 to 1300 kg/m³"),
+        ("density", "nan", r"water, key 'density': .*900 to 1300 kg/m³"),
+        ("gravity", "0.0", r"water, key 'gravity': .*9.7 to 9.9 m/s²"),
+        ("gravity", "32.2", r"water, key 'gravity': .*9.7 to 9.9 m/s².*ft/s²"),
+    ],
+)
+def test_the_water_of_a_model_file_is_range_checked(tmp_path: Path, key: str, value: str, message: str) -> None:
+    text = dumps(uwml.Robot.from_leg(uwml.Leg.paper()))
+    old = "density = 1000.0" if key == "density" else "gravity = 9.81"
+    path = tmp_path / "leg.toml"
+    path.write_text(text.replace(old, f"{key} = {value}"))
+    with pytest.raises(uwml.ModelFileError, match=rf"leg.toml: {message}"):
+        uwml.Robot.load(path)
+
+
+def test_a_robot_whose_water_a_model_file_cannot_hold_is_not_saved(tmp_path: Path) -> None:
+    leg = uwml.Leg.paper()
+    path = tmp_path / "leg.toml"
+    with pytest.raises(ValueError, match=r"water.density .*900 to 1300"):
+        uwml.Robot(leg.joints, leg.links, water=uwml.Water(1.025)).save(path)
+    assert not path.exists()
+
+
+def test_deeply_nested_arrays_are_a_model_file_error(tmp_path: Path) -> None:
+    path = tmp_path / "deep.toml"
+    text = dumps(uwml.Robot.from_leg(uwml.Leg.paper()))
+    path.write_text(text.replace("com = [", "com = " + "[" * 100_000 + "]" * 100_000 + "\nxcom = [", 1))
+    with pytest.raises(uwml.ModelFileError, match=r"deep.toml: .*nested too deeply") as info:
+        uwml.Robot.load(path)
+    assert len(str(info.value)) < 500
+
+
+def test_a_file_that_is_not_utf8_names_the_file_and_the_byte(tmp_path: Path) -> None:
+    path = tmp_path / "latin1.toml"
+    data = dumps(_named(["a", "b", "c", "links_0", "links_1", "links_2"])).replace('name = "b"', 'name = "b±"').encode("latin-1")
+    path.write_bytes(data)
+    offset = data.index(b"\xb1")
+    line = data[:offset].count(b"\n") + 1
+    with pytest.raises(uwml.ModelFileError, match=rf"latin1.toml: not UTF-8 text: byte 0xb1 at offset {offset} \(line {line}\)"):
+        uwml.Robot.load(path)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "where"),
+    [
+        ("com = [", "com = [" + "0.5, " * 1_000_000, r"key 'com'"),
+        ('format = "uwml-robot"', 'format = "' + "u" * 1_000_000 + '"', r"key 'format'"),
+        ("mass = 19.261", 'mass = "' + "heavy" * 200_000 + '"', r"key 'mass'"),
+        ("mass = 19.261", "mass = 19.261\n" + "m" * 1_000_000 + " = 1.0", r"links\[1\], key 'mmmm"),
+        ("[[joints]]\nparent", '[[joints]]\nname = "' + "j" * 1_000_000 + '"\nparent', r"names must be unique; 'jjj"),
+    ],
+)
+def test_huge_values_give_short_messages(tmp_path: Path, old: str, new: str, where: str) -> None:
+    text = dumps(uwml.Robot.from_leg(uwml.Leg.paper()))
+    if "name = " in new:  # the same huge name on two joints
+        text = text.replace(old, new, 2)
+    else:
+        text = text.replace(old, new, 1)
+    path = tmp_path / "huge.toml"
+    path.write_text(text)
+    with pytest.raises(uwml.ModelFileError, match=rf"huge.toml: .*{where}") as info:
+        uwml.Robot.load(path)
+    assert len(str(info.value)) < 500, str(info.value)[:1000]
+
+
+@pytest.mark.skipif(not hasattr(os, "symlink") or os.name != "posix", reason="POSIX file modes and symbolic links")
+def test_save_keeps_the_files_mode_and_its_links(tmp_path: Path) -> None:
+    path = tmp_path / "arm.toml"
+    arm_on_rov().save(path)
+    path.chmod(0o640)
+    link = tmp_path / "current.toml"
+    link.symlink_to(path.name)
+    uwml.Robot.from_leg(uwml.Leg.paper()).save(link)
+    assert link.is_symlink() and (path.stat().st_mode & 0o777) == 0o640
+    assert uwml.Robot.load(path) == uwml.Robot.from_leg(uwml.Leg.paper())
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["arm.toml", "current.toml"]

@@ -69,3 +69,25 @@ def read_csv_columns(path_or_file: "str | os.PathLike[str] | IO[str]", prefix: s
         for name, cell in zip(header, record, strict=False):
             columns[name].append(cell)
     return columns
+
+
+def shown(value: Any, limit: int = 60) -> str:
+    """``value`` for an error message, short whatever it holds: its repr, but an array (list,
+    tuple) or a table (dict) shows its first 3 items and how many it has, a string longer than
+    ``limit`` its first ``limit`` characters and its length, and anything else is cut after
+    about ``3 * limit`` characters. A million-element array or a megabyte string makes a short
+    message."""
+    if isinstance(value, list | tuple | dict):
+        if limit < 6:
+            return f"[... {len(value)} items]" if not isinstance(value, dict) else f"{{... {len(value)} keys}}"
+        if isinstance(value, dict):
+            inner = ", ".join(f"{shown(key, limit // 3)}: {shown(item, limit // 3)}" for key, item in list(value.items())[:3])
+            text = "{" + inner + (f", ...}} ({len(value)} keys)" if len(value) > 3 else "}")
+        else:
+            inner = ", ".join(shown(item, limit // 3) for item in value[:3])
+            text = "[" + inner + (f", ...] ({len(value)} items)" if len(value) > 3 else "]")
+    elif isinstance(value, str) and len(value) > limit:
+        return f"{value[:limit]!r}... ({len(value)} characters)"
+    else:
+        text = repr(value)
+    return text if len(text) <= 3 * limit else text[: 3 * limit] + "..."

@@ -132,7 +132,7 @@ from numpy.typing import NDArray
 
 from .environment import JointLosses
 from .model import Joint, Link, Segment, Water
-from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3
+from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3, _water
 from .robot import Robot
 
 __all__ = ["DescriptionError", "HydroFile", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "model_and_robot", "read_hydro"]
@@ -201,13 +201,6 @@ def _nonnegative(value: Any) -> float:
     return x
 
 
-#: A hydro file's water must lie in these ranges (SI units; a value outside is taken for a unit
-#: mistake, such as a density in g/cm³ or a gravity in g or ft/s²). Other fluids or planets:
-#: construct :class:`uwml.Water` in code.
-WATER_DENSITY_RANGE = (900.0, 1300.0)
-WATER_GRAVITY_RANGE = (9.7, 9.9)
-
-
 @dataclass(frozen=True)
 class HydroFile:
     """A hydro file: per link by name (:class:`HydroLink`), per joint by name (its
@@ -219,36 +212,9 @@ class HydroFile:
     source: str = "<string>"
 
 
-def _within(low: float, high: float, unit: str, hint: str) -> Any:
-    def check(value: Any) -> float:
-        x = _float(value)
-        if not (math.isfinite(x) and low <= x <= high):
-            raise ValueError(f"outside {low:g} to {high:g} {unit}; {hint}")
-        return x
-
-    return check
-
-
 def _hydro_water(source: str, table: object) -> Water:
-    r = _Reader(source, "[water]", table, DescriptionError)
-    r.check_keys(("density", "gravity"))
-    low, high = WATER_DENSITY_RANGE
-    density = r.get(
-        "density",
-        _within(low, high, "kg/m³", "fresh water is 1000, sea water about 1025 (a density in g/cm³ or t/m³ is 1000 times too small)"),
-        f"a density [kg/m³], {low:g} to {high:g}",
-        required=False,
-        default=Water.density,
-    )
-    low, high = WATER_GRAVITY_RANGE
-    gravity = r.get(
-        "gravity",
-        _within(low, high, "m/s²", "the Earth's is 9.78 to 9.83 (not in g, not in ft/s²)"),
-        f"an acceleration [m/s²], {low:g} to {high:g}",
-        required=False,
-        default=Water.gravity,
-    )
-    return Water(density=density, gravity=gravity)
+    # The model file's rule: uwml.modelfile.WATER_DENSITY_RANGE and WATER_GRAVITY_RANGE.
+    return _water(source, "[water]", table, DescriptionError)
 
 
 def _hydro_loads(text: str, source: str) -> HydroFile:

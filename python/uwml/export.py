@@ -29,6 +29,7 @@ from collections.abc import Iterable, Sequence
 
 import numpy as np
 
+from ._checks import shown
 from .model import Link, Segment
 from .robot import Robot
 
@@ -48,7 +49,7 @@ def _literal(x: float, precision: str, suffix: str = "") -> str:
 
 def _check(precision: str) -> None:
     if precision not in PRECISIONS:
-        raise ValueError(f"precision must be one of {PRECISIONS}, got {_shown(precision)}")
+        raise ValueError(f"precision must be one of {PRECISIONS}, got {shown(precision)}")
 
 
 # Names (a URDF's or MJCF's) and the source's path are untrusted text: they go only into
@@ -58,7 +59,6 @@ def _check(precision: str) -> None:
 _COMMENT_SAFE = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 _-.,:;/+=()#@!?'\"$%^|~{}")
 # The C names are PREFIX_...: an ASCII identifier in upper case.
 _C_PREFIX = re.compile(r"[A-Z_][A-Z0-9_]*")
-_SHOWN = 60
 
 
 def _comment(text: str) -> str:
@@ -72,12 +72,6 @@ def _names(names: Iterable[str]) -> str:
 
 def _from(source: str | None) -> str:
     return f" from {_comment(source)}" if source else ""
-
-
-def _shown(value: object) -> str:
-    """``value``'s repr, shortened for an error message."""
-    text = repr(value)
-    return text if len(text) <= _SHOWN else f"{text[:_SHOWN]}... ({len(text)} characters)"
 
 
 def _owned(robot: Robot) -> list[tuple[int, Segment]]:
@@ -172,7 +166,7 @@ def to_c(robot: Robot, precision: str = "f64", prefix: str = "ROBOT", source: st
     the robot's water, ``PREFIX_WATER_DENSITY`` and ``PREFIX_GRAVITY``."""
     _check(precision)
     if not isinstance(prefix, str) or not _C_PREFIX.fullmatch(prefix) or not prefix.isupper():
-        raise ValueError(f"prefix must be an upper-case C identifier (ASCII: A-Z, 0-9, _, not first a digit), got {_shown(prefix)}")
+        raise ValueError(f"prefix must be an upper-case C identifier (ASCII: A-Z, 0-9, _, not first a digit), got {shown(prefix)}")
     p = precision
     t = "F64" if p == "f64" else "F32"
     suffix = "f" if p == "f32" else ""

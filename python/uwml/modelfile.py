@@ -2,8 +2,13 @@
 
 ``Robot.save(path)`` writes it, ``Robot.load(path)`` reads it (``dumps`` and ``loads`` do the same
 with strings). Every number is written as Python's shortest repr of the float, which reads back
-to the same float, so a saved model loads equal to itself. The file is read with the standard
-library's ``tomllib``; every error names the file, the table and the key.
+to the same float, so a saved model loads equal to itself, names too (any text; control
+characters are escaped, a lone surrogate, which UTF-8 cannot hold, is refused). ``save`` writes
+the whole file to a temporary file beside it and renames it over the old one, so a failed save
+leaves the old file as it was. The file is read with the standard library's ``tomllib``; every
+error names the file, the table and the key, and quotes at most a short part of a value. The
+water must be within 900-1300 kg/m³ and 9.7-9.9 m/s² (anything else is taken for a unit mistake,
+as in a hydro file; docs/domains.md); another fluid or planet is a :class:`uwml.Water` in code.
 
 Layout (SI units; vectors as arrays of 3 numbers; every link frame parallel to the base frame
 at ``q = 0``, as in :mod:`uwml.model`)::
@@ -12,8 +17,8 @@ at ``q = 0``, as in :mod:`uwml.model`)::
     version = 1
 
     [water]                      # optional: the robot's water (uwml.Water); default fresh water
-    density = 1025.0             # kg/m³
-    gravity = 9.81               # m/s²
+    density = 1025.0             # kg/m³, 900 to 1300
+    gravity = 9.81               # m/s², 9.7 to 9.9
 
     [base]                       # optional: the base's own body, in the base frame
     mass = 300.0                 # kg
@@ -73,13 +78,17 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 import os
+import secrets
+import unicodedata
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, TypeVar
 
 import tomllib
 
+from ._checks import shown
 from .environment import JointLosses
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
@@ -99,6 +108,17 @@ class ModelFileError(ValueError):
     """A uwml model file that cannot be read: names the file, the table and the key."""
 
 
+#: The water of a model file or a hydro file must lie in these ranges (SI units; a value outside
+#: is taken for a unit mistake, such as a density in g/cm³ or a gravity in g or ft/s²). Other
+#: fluids or planets: construct :class:`uwml.Water` in code.
+WATER_DENSITY_RANGE = (900.0, 1300.0)
+WATER_GRAVITY_RANGE = (9.7, 9.9)
+_DENSITY_HINT = "fresh water is 1000, sea water about 1025 (a density in g/cm³ or t/m³ is 1000 times too small)"
+_GRAVITY_HINT = "the Earth's is 9.78 to 9.83 (not in g, not in ft/s²)"
+#: The longest message a model file's error quotes from the library's own checks [characters].
+_MESSAGE_LIMIT = 300
+
+
 def _number(x: float) -> str:
     # repr is the shortest string that reads back to the same float; TOML wants a decimal
     # point or an exponent, which repr of a float always has.
@@ -109,12 +129,33 @@ def _vector(v: Sequence[float]) -> str:
     return "[" + ", ".join(_number(x) for x in v) + "]"
 
 
-def _string(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
 
 
-def _body_lines(body: Link) -> list[str]:
-    lines = [] if body.name is None else [f"name = {_string(body.name)}"]
+def _escaped(c: str) -> str:
+    if c in _ESCAPES:
+        return _ESCAPES[c]
+    # TOML requires U+0000-U+001F and U+007F escaped; the other control and format characters
+    # (C1 controls, text-direction marks, line separators) are escaped too, so the file shows them.
+    if unicodedata.category(c) in ("Cc", "Cf", "Zl", "Zp"):
+        return f"\\u{ord(c):04X}" if ord(c) <= 0xFFFF else f"\\U{ord(c):08X}"
+    return c
+
+
+def _string(text: str, what: str = "a string") -> str:
+    """``text`` as a TOML basic string that reads back exactly; a lone surrogate (which no UTF-8
+    file can hold) is a ValueError naming ``what``."""
+    surrogate = next((c for c in text if "\ud800" <= c <= "\udfff"), None)
+    if surrogate is not None:
+        raise ValueError(
+            f"{what} {shown(text)} cannot be written to a model file: it holds a lone surrogate "
+            f"(U+{ord(surrogate):04X}), which is not a character UTF-8 can encode"
+        )
+    return '"' + "".join(_escaped(c) for c in text) + '"'
+
+
+def _body_lines(body: Link, where: str) -> list[str]:
+    lines = [] if body.name is None else [f"name = {_string(body.name, f'{where}.name')}"]
     cob = body.cob if body.cob is not None else body.com
     return [
         *lines,
@@ -156,15 +197,24 @@ def dumps(robot: Robot) -> str:
         f"format = {_string(FORMAT)}",
         f"version = {VERSION}",
     ]
+    for key, value, (low, high), unit, hint in (
+        ("density", robot.water.density, WATER_DENSITY_RANGE, "kg/m³", _DENSITY_HINT),
+        ("gravity", robot.water.gravity, WATER_GRAVITY_RANGE, "m/s²", _GRAVITY_HINT),
+    ):
+        if not low <= value <= high:
+            raise ValueError(
+                f"water.{key} {value:g} {unit} cannot be written to a model file, which holds {low:g} to {high:g} {unit} "
+                f"(docs/domains.md; {hint}): another fluid or planet is a uwml.Water given in code"
+            )
     out += ["", "[water]", f"density = {_number(robot.water.density)}", f"gravity = {_number(robot.water.gravity)}"]
     if robot.base is not None:
-        out += ["", "[base]", *_body_lines(robot.base)]
+        out += ["", "[base]", *_body_lines(robot.base, "base")]
         for segment in robot.base.segments:
             out += ["", "[[base.segments]]", *_segment_lines(segment)]
-    for joint, losses in zip(robot.joints, robot.losses):
+    for i, (joint, losses) in enumerate(zip(robot.joints, robot.losses)):
         out += ["", "[[joints]]"]
         if joint.name is not None:
-            out.append(f"name = {_string(joint.name)}")
+            out.append(f"name = {_string(joint.name, f'joints[{i}].name')}")
         out += [
             f"parent = {joint.parent}",
             f"kind = {_string(joint.kind)}",
@@ -173,16 +223,48 @@ def dumps(robot: Robot) -> str:
         ]
         if losses is not None:
             out += _losses_lines(losses)
-    for link in robot.links:
-        out += ["", "[[links]]", *_body_lines(link)]
+    for i, link in enumerate(robot.links):
+        out += ["", "[[links]]", *_body_lines(link, f"links[{i}]")]
         for segment in link.segments:
             out += ["", "[[links.segments]]", *_segment_lines(segment)]
     return "\n".join(out) + "\n"
 
 
 def save(robot: Robot, path: str | os.PathLike[str]) -> None:
-    """Writes :func:`dumps` of ``robot`` to ``path`` (UTF-8)."""
-    Path(path).write_text(dumps(robot), encoding="utf-8")
+    """Writes :func:`dumps` of ``robot`` to ``path`` (UTF-8), whole or not at all: the text is
+    written to a temporary file in the same folder, synced, and renamed over ``path``; on any
+    failure the temporary file is removed and an existing file at ``path`` is left as it was."""
+    data = dumps(robot).encode("utf-8")
+    target = Path(os.path.realpath(path))  # through a symbolic link: replace the file it points to
+    temporary = target.with_name(f".{target.name}.{secrets.token_hex(8)}.tmp")
+    # Created with mode 0o666 (less the umask) like any new file; an existing file keeps its mode.
+    fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        if target.is_file():
+            os.chmod(temporary, target.stat().st_mode & 0o7777)
+        os.replace(temporary, target)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    _sync_folder(target.parent)
+
+
+def _sync_folder(folder: Path) -> None:
+    """Makes a rename in ``folder`` durable where the system allows it (POSIX; a no-op elsewhere)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
 
 
 class _Reader:
@@ -195,7 +277,7 @@ class _Reader:
         self.table: dict[str, Any] = table  # type: ignore[assignment]
 
     def fail(self, key: str | None, message: str) -> None:
-        at = self.where if key is None else f"{self.where}, key '{key}'"
+        at = self.where if key is None else f"{self.where}, key {shown(key, 40)}"
         raise self.error(f"{self.source}: {at}: {message}")
 
     def check_keys(self, allowed: Sequence[str]) -> None:
@@ -212,7 +294,7 @@ class _Reader:
         try:
             return convert(value)
         except (TypeError, ValueError) as exc:
-            self.fail(key, f"must be {what}, got {value!r} ({exc})")
+            self.fail(key, f"must be {what}, got {shown(value)} ({_clipped(str(exc))})")
             raise  # unreachable: fail raises
 
     def build(self, make: Callable[[], _T]) -> _T:
@@ -220,8 +302,13 @@ class _Reader:
         try:
             return make()
         except (TypeError, ValueError) as exc:
-            self.fail(None, str(exc))
+            self.fail(None, _clipped(str(exc)))
             raise  # unreachable
+
+
+def _clipped(message: str) -> str:
+    """A message of the model's own checks, which may quote a whole value (a name), made short."""
+    return message if len(message) <= _MESSAGE_LIMIT else f"{message[:_MESSAGE_LIMIT]}... ({len(message)} characters)"
 
 
 def _float(value: Any) -> float:
@@ -326,13 +413,40 @@ def _losses(source: str, where: str, table: object, error: type[ValueError] = Mo
     return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
 
 
+def _within(low: float, high: float, unit: str, hint: str) -> Callable[[Any], float]:
+    """A converter to a number from ``low`` to ``high``, else a ValueError with ``hint``."""
+
+    def check(value: Any) -> float:
+        x = _float(value)
+        if not (math.isfinite(x) and low <= x <= high):
+            raise ValueError(f"outside {low:g} to {high:g} {unit}; {hint}")
+        return x
+
+    return check
+
+
 def _water(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Water:
-    """The water of a ``[water]`` table: ``density`` [kg/m³] and ``gravity`` [m/s²], each
-    defaulting to :class:`uwml.Water`'s."""
+    """The water of a ``[water]`` table of a model file or a hydro file: ``density`` [kg/m³]
+    within :data:`WATER_DENSITY_RANGE` and ``gravity`` [m/s²] within :data:`WATER_GRAVITY_RANGE`,
+    each defaulting to :class:`uwml.Water`'s."""
     r = _Reader(source, where, table, error)
     r.check_keys(("density", "gravity"))
-    density = r.get("density", _float, "a density [kg/m³]", required=False, default=Water.density)
-    gravity = r.get("gravity", _float, "an acceleration [m/s²]", required=False, default=Water.gravity)
+    low, high = WATER_DENSITY_RANGE
+    density = r.get(
+        "density",
+        _within(low, high, "kg/m³", _DENSITY_HINT),
+        f"a density [kg/m³], {low:g} to {high:g}",
+        required=False,
+        default=Water.density,
+    )
+    low, high = WATER_GRAVITY_RANGE
+    gravity = r.get(
+        "gravity",
+        _within(low, high, "m/s²", _GRAVITY_HINT),
+        f"an acceleration [m/s²], {low:g} to {high:g}",
+        required=False,
+        default=Water.gravity,
+    )
     return r.build(lambda: Water(density=density, gravity=gravity))
 
 
@@ -344,14 +458,16 @@ def loads(text: str, source: str = "<string>") -> Robot:
     """The robot of a uwml model file given as text (``source`` names it in errors)."""
     try:
         document = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ModelFileError(f"{source}: not valid TOML: {exc}") from None
+    except RecursionError:
+        raise ModelFileError(f"{source}: not a model file: arrays or tables nested too deeply to read") from None
+    except (ValueError, TypeError, OverflowError) as exc:  # tomllib.TOMLDecodeError is a ValueError
+        raise ModelFileError(f"{source}: not valid TOML: {_clipped(str(exc))}") from None
     top = _Reader(source, "top level", document)
     top.check_keys(("format", "version", "water", "base", "joints", "links"))
     if top.get("format", _text, f'"{FORMAT}"') != FORMAT:
-        top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {document["format"]!r}')
+        top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {shown(document["format"])}')
     if top.get("version", _integer, f"the integer {VERSION}") != VERSION:
-        top.fail("version", f"must be {VERSION} (this uwml reads version {VERSION}), got {document['version']!r}")
+        top.fail("version", f"must be {VERSION} (this uwml reads version {VERSION}), got {shown(document['version'])}")
     as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")
     joint_tables = top.get("joints", as_list, "an array of tables [[joints]]")
     link_tables = top.get("links", as_list, "an array of tables [[links]]")
@@ -375,7 +491,14 @@ def loads(text: str, source: str = "<string>") -> Robot:
 def load(path: str | os.PathLike[str]) -> Robot:
     """The robot of the uwml model file at ``path``."""
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        data = Path(path).read_bytes()
     except OSError as exc:
         raise ModelFileError(f"{path}: cannot be read: {exc.strerror or exc}") from None
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise ModelFileError(
+            f"{path}: not UTF-8 text: byte 0x{data[exc.start]:02x} at offset {exc.start} (line {line}) cannot be decoded ({exc.reason})"
+        ) from None
     return loads(text, str(path))
