@@ -181,7 +181,7 @@ def test_each_step_applies_the_public_apis_forces_and_added_mass(scheme: str) ->
     """The per-step arithmetic is native (``MujocoCoupling``); what it writes into MuJoCo is
     held here against the public path (``Simulation.environment``: ``Robot.environment`` and
     ``Robot.added_mass_matrix``) mapped by hand: on the floating arm at depth with joint losses
-    in a current, ``qfrc_applied = T (τ_env,0 + [0, τ_motor])`` and MuJoCo's inertia grows by
+    in a current, ``qfrc_applied = T (τ_env,0 − [0, τ_losses] + [0, τ_motor])`` and MuJoCo's inertia grows by
     ``T M_A Tᵀ``, ``T = diag(R, I, I)``; lagged: no growth, and ``− M_A a_previous`` in the forces,
     ``a_previous`` the last step's ``(Rᵀ v̇_world − ω × v, ω̇, q̈)``."""
     from pathlib import Path
@@ -211,7 +211,11 @@ def test_each_step_applies_the_public_apis_forces_and_added_mass(scheme: str) ->
     sim.forward(torque=np.float32(1.0) * motor.astype(np.float32))  # any float array is taken
     turn = np.eye(6 + n)
     turn[:3, :3] = rotation
-    expected = forces + np.concatenate([np.zeros(6), motor.astype(np.float32)])
+    # The joint losses are MuJoCo's friction and damping (tests/test_simulation_losses.py), not
+    # applied forces: environment() returns them, qfrc_applied holds the rest.
+    pressure = uwml.reference.hydrostatic_pressure_mpa(3000.0, sim.water.density, sim.water.gravity)
+    loss = uwml.JointLosses().torques(d.qvel[6:], pressure, 4.0)
+    expected = forces - np.concatenate([np.zeros(6), loss.visc + loss.seal]) + np.concatenate([np.zeros(6), motor.astype(np.float32)])
     if scheme == "lagged":
         expected = expected - added_mass @ previous
     np.testing.assert_allclose(d.qfrc_applied, turn @ expected, rtol=1e-12, atol=1e-12 * np.max(np.abs(expected)))

@@ -10,7 +10,7 @@ on the seabed), joint limits, actuators.
 **Added mass in the mass matrix.** The added-mass force is linear in the accelerations, so the
 environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈`` (MODEL.md 11).
 Each step evaluates ``τ_env,0`` (uwml at zero joint and base acceleration: drag, buoyancy,
-Froude-Krylov, losses and the velocity part of the added mass) and ``M_A(q)``; ``M_A`` is added
+Froude-Krylov and the velocity part of the added mass; the joint losses below) and ``M_A(q)``; ``M_A`` is added
 to MuJoCo's joint-space inertia between its assembly (``mj_makeM``) and its factorization
 (``mj_factorM``), so MuJoCo solves ``(M + M_A) q̈ = τ + τ_env,0`` with its constraints: no
 acceleration is fed back from the last step, and a link lighter than the water it drags along
@@ -18,6 +18,25 @@ is as stable as any other. The position stage is MuJoCo's ``mj_fwdPosition`` run
 function with that one addition; the rest is ``mj_forwardSkip`` from the velocity stage.
 ``scheme="lagged"`` instead applies ``−M_A q̈`` with the previous step's ``q̈`` as a force, as
 gz-sim and UUV Simulator do: for comparison only (it diverges once ``M_A`` exceeds ``M``).
+
+**Joint losses.** The seal's dry friction has a slope of ``S/ε`` at rest (about 2e4 N·m·s/rad
+for the default seal at depth), which no explicit step of a light joint survives; the oil drag
+is stiff too on a light wrist. So the losses are not forces here: each step sets every joint's
+MuJoCo ``dof_frictionloss`` to the seal's dry-friction level at its speed,
+``C(p) + (S(p) − C(p)) exp(−(ω/ω_s)²)`` (breakaway at rest, running friction in motion), which
+MuJoCo solves as a friction constraint (stable at any step; it holds the joint at rest while the
+load is below the level), and its ``dof_damping`` to the secant damping of the oil drag and the
+seal's viscous term, ``−(τ_oil + D ω)/ω``, which MuJoCo's Euler integrator takes implicitly
+(``LossState::dry_friction_split`` in the core; both added to the model's own values). The
+friction is the hard sign's: the smooth sign's ``ε`` is a regularization for evaluation and
+identification, not part of the simulated physics. MuJoCo's noslip solver is turned on (at least
+``NOSLIP_ITERATIONS``, tolerance at most ``NOSLIP_TOLERANCE``) so that a held joint stays still
+instead of creeping as soft constraints do. So ``data.qfrc_applied`` holds the hydrodynamics and
+the motor torques, ``data.qfrc_constraint`` the seal's friction and ``data.qfrc_passive`` the
+damping, while :meth:`Simulation.environment` returns uwml's whole environment, losses as forces,
+for inspection. With ``mjDSBL_CONSTRAINT`` or ``mjDSBL_FRICTIONLOSS`` set, MuJoCo applies no
+seal friction. ``integrator="rk4"`` takes the damping explicitly (each stage's forward pass):
+for a stiff oil drag on light joints use Euler.
 
 **Coordinates.** uwml's base twist is Fossen's ``ν`` (base frame); MuJoCo's free joint has the
 world-frame velocity of the body origin and the body-frame angular velocity. With ``R`` the
@@ -52,7 +71,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
-from .environment import SEA_WATER_DENSITY, JointLosses, check_depths, check_temperatures, pack_leg_losses
+from .environment import JointLosses, check_depths, check_temperatures, pack_leg_losses
 from .model import Water
 from .robot import BaseMotion, Robot
 from .robot_types import BaseWrench, RobotEnvironment, _trusted_motion
@@ -64,6 +83,10 @@ FloatArray = NDArray[np.float64]
 #: How the added mass enters the equations of motion.
 SCHEMES = ("matrix", "lagged")
 INTEGRATORS = ("euler", "rk4")
+#: MuJoCo's noslip solver with joint losses (at least these iterations, at most this tolerance):
+#: a friction constraint then holds a joint at rest (to about 1e-8 rad/s) instead of creeping.
+NOSLIP_ITERATIONS = 50
+NOSLIP_TOLERANCE = 1e-10
 
 
 def _mujoco() -> Any:
@@ -222,8 +245,9 @@ class Simulation:
         The MuJoCo model (fluid model off) and data; set ``data.qpos``, ``data.qvel`` and
         ``data.ctrl`` as usual (in place: the simulation keeps views of this data's arrays, so
         both attributes are read-only).
-    robot
-        The uwml robot.
+    robot, water, depth, temperature_c, losses, current, current_acceleration, scheme, integrator, added_mass
+        As given (read-only: each step uses what the simulation was made with; make a new
+        :class:`Simulation` for other conditions).
     """
 
     def __init__(
@@ -258,24 +282,40 @@ class Simulation:
         self._model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
         self._model.opt.viscosity = 0.0
         self._data = mujoco.MjData(self._model)
-        self.robot = robot
-        self.water = robot.water if water is None else water
+        self._robot = robot
+        self._water = robot.water if water is None else water
+        if not isinstance(self._water, Water):
+            raise TypeError(f"water must be a uwml.Water or None, got {type(water).__name__}")
         gravity = np.asarray(self.model.opt.gravity, dtype=np.float64)
         if not np.allclose(gravity, (0.0, 0.0, -self.water.gravity), rtol=1e-12, atol=0.0):
             raise ValueError(
                 f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
             )
+        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
+            if np.ndim(value) != 0:
+                raise ValueError(f"{name} must be one number, got an array of shape {np.shape(value)}")
         check_depths(np.asarray(depth, dtype=np.float64))
         check_temperatures(np.asarray(temperature_c, dtype=np.float64))
-        self.depth, self.temperature_c, self.losses = float(depth), float(temperature_c), losses
-        self.current = _vector3(current, "current")
-        self.current_acceleration = _vector3(current_acceleration, "current_acceleration")
+        self._depth, self._temperature_c = float(depth), float(temperature_c)
+        self._current = _vector3(current, "current")
+        self._current_acceleration = _vector3(current_acceleration, "current_acceleration")
         if added_mass not in ("morison", "kirchhoff"):
             raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
-        self.scheme, self.integrator, self.added_mass = scheme, integrator, added_mass
+        self._scheme, self._integrator, self._added_mass = scheme, integrator, added_mass
         # The joint losses, packed once for the one-state native path.
         self._losses = robot._effective_losses(losses)
         self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
+        effective = self._losses
+        if effective is None or isinstance(effective, JointLosses):
+            self._joint_losses: tuple[JointLosses | None, ...] = (effective,) * robot.n_joints
+        else:
+            self._joint_losses = tuple(effective)
+        if any(loss is not None and loss.seal is not None for loss in self._joint_losses):
+            # The seal's friction is a MuJoCo friction constraint (module docstring): the noslip
+            # solver removes the creep of soft constraints, so that a held joint stays at rest.
+            opt = self._model.opt
+            opt.noslip_iterations = max(int(opt.noslip_iterations), NOSLIP_ITERATIONS)
+            opt.noslip_tolerance = min(float(opt.noslip_tolerance), NOSLIP_TOLERANCE)
         self._no_coefficients = np.zeros((0, 2))
         self._map_degrees_of_freedom()
         # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
@@ -294,12 +334,65 @@ class Simulation:
         d = self.data
         self._coupling = _core.MujocoCoupling(
             robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
+            self.model.dof_damping, self.model.dof_frictionloss,
             None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
             self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._packed_losses,
-            self.depth, self.temperature_c, self.water.density, self.water.gravity, SEA_WATER_DENSITY,
+            self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
             tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
+
+    # Read-only: the native coupling took them at construction, so that a change would be
+    # honoured by environment() and not by step(). Make a new Simulation for other conditions.
+    @property
+    def robot(self) -> Robot:
+        """The uwml robot."""
+        return self._robot
+
+    @property
+    def water(self) -> Water:
+        """The water's density and gravity."""
+        return self._water
+
+    @property
+    def depth(self) -> float:
+        """Where the joint losses are evaluated [m]."""
+        return self._depth
+
+    @property
+    def temperature_c(self) -> float:
+        """The joints' oil temperature [°C]."""
+        return self._temperature_c
+
+    @property
+    def losses(self) -> tuple[JointLosses | None, ...]:
+        """Each joint's losses (None: none), the robot's own unless given others."""
+        return self._joint_losses
+
+    @property
+    def current(self) -> FloatArray:
+        """The water's velocity [m/s], world frame (a copy)."""
+        return self._current.copy()
+
+    @property
+    def current_acceleration(self) -> FloatArray:
+        """The water's acceleration [m/s²], world frame (a copy)."""
+        return self._current_acceleration.copy()
+
+    @property
+    def scheme(self) -> str:
+        """How the added mass enters: ``"matrix"`` or ``"lagged"``."""
+        return self._scheme
+
+    @property
+    def integrator(self) -> str:
+        """``"euler"`` or ``"rk4"``."""
+        return self._integrator
+
+    @property
+    def added_mass(self) -> str:
+        """The added mass's velocity terms: ``"morison"`` or ``"kirchhoff"``."""
+        return self._added_mass
 
     @property
     def model(self) -> Any:
@@ -392,10 +485,10 @@ class Simulation:
             None,
             self.water.density,
             self.water.gravity,
-            SEA_WATER_DENSITY,
+            self.water.density,  # the water column above is the robot's water, as in Robot.environment
             motion._single(),
-            self.current,
-            self.current_acceleration,
+            self._current,
+            self._current_acceleration,
             1,
             self.added_mass == "kirchhoff",
         )

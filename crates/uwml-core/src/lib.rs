@@ -23,9 +23,9 @@ pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
 pub use jacobian::point_jacobian;
 pub use kinematics::{LinkMotion, link_motions};
 pub use losses::{
-    ABSOLUTE_ZERO_C, Drive, EnvironmentTorques, JointLoss, JointLosses, LossState, MAX_DEPTH, MAX_PRESSURE,
-    OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques, pressure_at_depth,
-    smooth_sign,
+    ABSOLUTE_ZERO_C, Drive, DryFrictionSplit, EnvironmentTorques, JointLoss, JointLosses, LossState, MAX_DEPTH,
+    MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques,
+    pressure_at_depth, smooth_sign,
 };
 pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water};
 pub use motion::{BaseMotion, Current};

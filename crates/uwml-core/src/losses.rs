@@ -356,18 +356,13 @@ impl<T: RealField + Copy> JointLosses<T> {
 }
 
 impl<T: RealField + Copy> LossState<T> {
-    /// Oil and seal losses at output speed `speed` [rad/s].
-    #[must_use]
+    /// `|ω_m|ⁿ` at motor speed `motor_speed` = `|ω_m|` ≥ 0.
     #[inline]
     #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn evaluate(&self, speed: T) -> JointLoss<T> {
-        // sgn_ε(ω_m) with ε_m = N ε equals sgn_ε(ω): one square root serves both.
-        let sign = smooth_sign(speed, self.epsilon);
-        let magnitude = speed.abs();
-        let motor_speed = self.ratio * magnitude;
+    fn oil_power(&self, motor_speed: T) -> T {
         // The flow regimes' exponents (laminar 1, Taylor vortices 1.5) and 2 need no power
         // function: one square root at most.
-        let power = if self.exponent == T::one() {
+        if self.exponent == T::one() {
             motor_speed
         } else if self.exponent == constant(1.5) {
             // At rest exactly 0 (and so is its slope, which the square root's would not give).
@@ -376,8 +371,18 @@ impl<T: RealField + Copy> LossState<T> {
             motor_speed * motor_speed
         } else {
             motor_speed.powf(self.exponent)
-        };
-        let oil = self.oil_scale * power * sign;
+        }
+    }
+
+    /// Oil and seal losses at output speed `speed` [rad/s].
+    #[must_use]
+    #[inline]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+    pub fn evaluate(&self, speed: T) -> JointLoss<T> {
+        // sgn_ε(ω_m) with ε_m = N ε equals sgn_ε(ω): one square root serves both.
+        let sign = smooth_sign(speed, self.epsilon);
+        let magnitude = speed.abs();
+        let oil = self.oil_scale * self.oil_power(self.ratio * magnitude) * sign;
         let x = magnitude * self.inverse_stribeck_speed;
         let seal =
             sign * (self.seal_running + self.seal_breakaway_excess * (-(x * x)).exp()) + self.seal_viscous * speed;
@@ -386,6 +391,48 @@ impl<T: RealField + Copy> LossState<T> {
             seal: -seal,
             current: (oil + seal / self.output_per_motor_torque) * self.inverse_torque_constant,
         }
+    }
+}
+
+/// A joint's losses as a simulator with dry friction as a constraint applies them
+/// ([`LossState::dry_friction_split`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DryFrictionSplit<T: RealField + Copy> {
+    /// The seal's dry-friction level `C(p) + (S(p) − C(p)) exp(−(|ω|/ω_s)²)` [N·m], ≥ 0: the
+    /// most a friction constraint may apply (MuJoCo's `frictionloss`), against the motion, or
+    /// holding the joint at rest.
+    pub friction: T,
+    /// The secant damping of the smooth rest [N·m·s/rad], ≥ 0: the oil drag and the seal's
+    /// viscous term are `−damping · ω` at this speed.
+    pub damping: T,
+}
+
+impl<T: RealField + Copy> LossState<T> {
+    /// The losses at output speed `speed` [rad/s] split for a simulator that solves dry friction
+    /// as a constraint (docs/simulation.md): the seal's Coulomb and breakaway part, whose slope
+    /// `S/ε` at rest makes it stiff as an explicit force, becomes a friction level; the oil drag
+    /// and the seal's viscous term a damping, which a simulator may integrate implicitly. With
+    /// the hard sign (ε = 0) and `speed` ≠ 0, `−(friction · sgn ω + damping · ω)` is
+    /// `visc + seal` of [`LossState::evaluate`]; with ε > 0 they differ only in the smooth sign.
+    /// At rest the damping is its limit: `N η k N` for laminar oil (n = 1) with the hard sign,
+    /// else 0.
+    #[must_use]
+    #[inline]
+    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+    pub fn dry_friction_split(&self, speed: T) -> DryFrictionSplit<T> {
+        let magnitude = speed.abs();
+        let x = magnitude * self.inverse_stribeck_speed;
+        let friction = self.seal_running + self.seal_breakaway_excess * (-(x * x)).exp();
+        let oil = if magnitude > T::zero() {
+            // −visc / ω = N η T_oil / ω ≥ 0.
+            let sign = smooth_sign(speed, self.epsilon);
+            self.output_per_motor_torque * self.oil_scale * self.oil_power(self.ratio * magnitude) * sign / speed
+        } else if self.exponent == T::one() && self.epsilon == T::zero() {
+            self.output_per_motor_torque * self.oil_scale * self.ratio
+        } else {
+            T::zero()
+        };
+        DryFrictionSplit { friction, damping: oil.max(T::zero()) + self.seal_viscous }
     }
 }
 

@@ -232,3 +232,36 @@ fn an_absurd_water_gives_no_absurd_pressure() {
     assert_eq!((e.field, e.problem), ("pressure", Problem::BeyondDeepestOcean));
     assert!(pressure_at_depth(11_000.0, 1025.0, 9.81).unwrap() < MAX_PRESSURE);
 }
+
+#[test]
+fn dry_friction_split_is_the_hard_sign_loss_as_friction_and_damping() {
+    // Hand values: seal C = 18, S = 35, D = 3 at 4 MPa, ω_s = 0.1; laminar oil k = 2e-3,
+    // N = 100, η = 0.9: N η k N = 18 N·m·s/rad at the output.
+    let seal = Seal::new([10.0, 2.0 / MPA], [15.0, 5.0 / MPA], [1.0, 0.5 / MPA], 0.1).unwrap();
+    let oil = OilDrag::new(2e-3, 1.0, 0.0, 0.0, 0.0, 20.0).unwrap();
+    let drive = Drive::new(0.5, 100.0, 0.9, 8.0).unwrap();
+    let p = 4.0 * MPA;
+    let hard = JointLosses::new(drive, Some(oil), Some(seal), 0.0).unwrap().at(p, 20.0).unwrap();
+    for speed in [-3.0, -0.1, -1e-9, 1e-9, 0.05, 0.1, 2.0] {
+        let split = hard.dry_friction_split(speed);
+        assert!(close(split.friction, 18.0 + 17.0 * (-(speed / 0.1f64).powi(2)).exp(), 1e-14), "{speed}");
+        assert!(close(split.damping, 18.0 + 3.0, 1e-14), "{speed}: {split:?}");
+        // −(friction sgn ω + damping ω) is the evaluated loss.
+        let loss = hard.evaluate(speed);
+        let rebuilt = -(split.friction * speed.signum() + split.damping * speed);
+        assert!(close(rebuilt, loss.visc + loss.seal, 1e-14), "{speed}: {rebuilt} {loss:?}");
+    }
+    // At rest: the breakaway level, and the laminar oil's slope with the hard sign.
+    let rest = hard.dry_friction_split(0.0);
+    assert!(close(rest.friction, 35.0, 1e-15) && close(rest.damping, 21.0, 1e-15), "{rest:?}");
+    // A smooth sign: the damping at rest is the seal's D alone (the oil's torque is quadratic
+    // there), and far above ε the oil's secant slope is N η k N again.
+    let smooth = JointLosses::new(drive, Some(oil), Some(seal), 0.01).unwrap().at(p, 20.0).unwrap();
+    assert!(close(smooth.dry_friction_split(0.0).damping, 3.0, 1e-15));
+    assert!(close(smooth.dry_friction_split(5.0).damping, 3.0 + 18.0 * 5.0 / (25.0f64 + 1e-4).sqrt(), 1e-14));
+    // Taylor vortices (n = 1.5): the secant is N η k N^1.5 |ω|^0.5, 0 at rest.
+    let vortex = OilDrag::new(2e-3, 1.5, 0.0, 0.0, 0.0, 20.0).unwrap();
+    let state = JointLosses::new(drive, Some(vortex), None, 0.0).unwrap().at(0.0, 20.0).unwrap();
+    assert!(close(state.dry_friction_split(-0.25).damping, 90.0 * 2e-3 * 1000.0 * 0.5, 1e-14));
+    assert_eq!(state.dry_friction_split(0.0), uwml_core::DryFrictionSplit { friction: 0.0, damping: 0.0 });
+}

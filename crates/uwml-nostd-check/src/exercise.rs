@@ -153,6 +153,9 @@ fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mu
     for (state, &speed) in losses.iter().flatten().zip(qd.iter()) {
         let loss = state.evaluate(speed);
         tally.all_finite([loss.visc, loss.seal, loss.current].iter());
+        let split = state.dry_friction_split(speed);
+        tally.all_finite([split.friction, split.damping].iter());
+        tally.expect(state.dry_friction_split(black_box(c(0.0))).friction >= c(0.0));
     }
 
     // Derivatives, by dual numbers through the same functions (instantiated at `Dual<T, N>`).

@@ -11,8 +11,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{Matrix3, Vector3};
 use uwml_core::{
-    BaseMotion, Current, LossState, Water, loss_torques, robot_added_mass_matrix, robot_hydro_with,
-    robot_joint_added_mass_matrix,
+    BaseMotion, Current, LossState, Water, robot_added_mass_matrix, robot_hydro_with, robot_joint_added_mass_matrix,
 };
 
 use super::inputs::StateRow;
@@ -29,6 +28,9 @@ struct Views {
     xmat: Py<PyArrayDyn<f64>>,
     mass_matrix: Py<PyArrayDyn<f64>>,
     qfrc_applied: Py<PyArrayDyn<f64>>,
+    /// The `MjModel`'s `dof_damping` and `dof_frictionloss`: the joint losses go there.
+    dof_damping: Py<PyArrayDyn<f64>>,
+    dof_frictionloss: Py<PyArrayDyn<f64>>,
 }
 
 /// Where uwml's coordinates `(ν, q̇)` sit among MuJoCo's degrees of freedom.
@@ -55,6 +57,9 @@ pub(crate) struct MujocoCoupling {
     map: DofMap,
     data: Box<Data>,
     losses: [Option<LossState<f64>>; MAX_ROBOT_JOINTS],
+    /// The model's own `dof_damping` and `dof_frictionloss` of each joint, which the losses add to.
+    own_damping: Vec<f64>,
+    own_frictionloss: Vec<f64>,
     water: Water<f64>,
     current: Current<f64>,
     kirchhoff: bool,
@@ -85,7 +90,7 @@ impl MujocoCoupling {
     /// water of `sea_density` and at `temperature`.
     #[new]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, root, joint_qpos, joint_dofs, free_dof, mass_pairs, losses, depth, temperature, density, gravity, sea_density, current, current_acceleration, kirchhoff, lagged))]
+    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, dof_damping, dof_frictionloss, root, joint_qpos, joint_dofs, free_dof, mass_pairs, losses, depth, temperature, density, gravity, sea_density, current, current_acceleration, kirchhoff, lagged))]
     fn new(
         robot: Bound<'_, PyRobot>,
         qpos: Bound<'_, PyArrayDyn<f64>>,
@@ -95,6 +100,8 @@ impl MujocoCoupling {
         xmat: Bound<'_, PyArrayDyn<f64>>,
         mass_matrix: Bound<'_, PyArrayDyn<f64>>,
         qfrc_applied: Bound<'_, PyArrayDyn<f64>>,
+        dof_damping: Bound<'_, PyArrayDyn<f64>>,
+        dof_frictionloss: Bound<'_, PyArrayDyn<f64>>,
         root: Option<usize>,
         joint_qpos: Vec<usize>,
         joint_dofs: Vec<usize>,
@@ -117,8 +124,10 @@ impl MujocoCoupling {
         }
         let nv = qvel.len();
         let nq = qpos.len();
-        if qacc.len() != nv || qfrc_applied.len() != nv {
-            return Err(PyValueError::new_err("data.qacc and data.qfrc_applied must have nv entries, as data.qvel"));
+        if qacc.len() != nv || qfrc_applied.len() != nv || dof_damping.len() != nv || dof_frictionloss.len() != nv {
+            return Err(PyValueError::new_err(
+                "data.qacc, data.qfrc_applied, model.dof_damping and model.dof_frictionloss must have nv entries, as data.qvel",
+            ));
         }
         let bodies = xquat.len() / 4;
         if xmat.len() != 9 * bodies || root.is_some_and(|r| r >= bodies) {
@@ -165,6 +174,13 @@ impl MujocoCoupling {
                 *slot = joint.map(|l| l.at(pressure, temperature)).transpose().map_err(crate::model_error)?;
             }
         }
+        let own = |array: &Bound<'_, PyArrayDyn<f64>>, name: &str| -> PyResult<Vec<f64>> {
+            let array = array.try_readonly()?;
+            let all = values(&array, name, nv)?;
+            Ok(joint_dofs.iter().map(|&d| all.get(d).copied().unwrap_or(0.0)).collect())
+        };
+        let (own_damping, own_frictionloss) =
+            (own(&dof_damping, "dof_damping")?, own(&dof_frictionloss, "dof_frictionloss")?);
         let size = 6 + n;
         Ok(Self {
             robot: robot.unbind(),
@@ -176,10 +192,14 @@ impl MujocoCoupling {
                 xmat: xmat.unbind(),
                 mass_matrix: mass_matrix.unbind(),
                 qfrc_applied: qfrc_applied.unbind(),
+                dof_damping: dof_damping.unbind(),
+                dof_frictionloss: dof_frictionloss.unbind(),
             },
             map: DofMap { uwml_of_dof, joint_qpos, joint_dofs, free_dof, root, mass_pairs: mass_entries },
             data: Box::new(Data::new()),
             losses: states,
+            own_damping,
+            own_frictionloss,
             water,
             current,
             kirchhoff,
@@ -256,19 +276,18 @@ impl MujocoCoupling {
             &mut self.data,
         );
         // uwml's generalized forces: the base wrench's hydrodynamic part, then the joints'
-        // hydrodynamics, losses and motor torques.
+        // hydrodynamics and motor torques. The joint losses are MuJoCo's: the seal's dry
+        // friction a friction constraint, the smooth rest a damping (`write_losses`).
         let mut forces = [0.0; 6 + MAX_ROBOT_JOINTS];
         for (slot, value) in forces.iter_mut().zip(self.data.base_wrench().total().to_array()) {
             *slot = value;
         }
-        let (visc, seal, _) = loss_torques(&self.losses, &row.qd.into());
         for (i, joint) in self.data.joint_forces().iter().enumerate() {
-            if let (Some(slot), Some(v), Some(s), Some(m)) =
-                (forces.get_mut(6 + i), visc.get(i), seal.get(i), motor.get(i))
-            {
-                *slot = joint.total() + v + s + m;
+            if let (Some(slot), Some(m)) = (forces.get_mut(6 + i), motor.get(i)) {
+                *slot = joint.total() + m;
             }
         }
+        self.write_losses(py, &row.qd)?;
         if let Some(previous) = &self.lagged {
             for (r, slot) in forces.iter_mut().take(size).enumerate() {
                 let row = self.added_mass.get(r * size..(r + 1) * size).unwrap_or_default();
@@ -331,6 +350,33 @@ impl MujocoCoupling {
 }
 
 impl MujocoCoupling {
+    /// The joint losses at joint speeds `qd` into the model, for MuJoCo to solve: each joint's
+    /// `dof_frictionloss` is its own plus the seal's dry-friction level, its `dof_damping` its own
+    /// plus the secant damping of the oil drag and the seal's viscous term
+    /// (`LossState::dry_friction_split`). MuJoCo solves the friction as a constraint (it sticks
+    /// at rest, stably at any step) and its Euler integrator the damping implicitly.
+    fn write_losses(&self, py: Python<'_>, qd: &[f64]) -> PyResult<()> {
+        if self.losses.iter().all(Option::is_none) {
+            return Ok(());
+        }
+        let mut damping = self.views.dof_damping.bind(py).try_readwrite()?;
+        let damping =
+            damping.as_slice_mut().map_err(|_| PyValueError::new_err("model.dof_damping must be contiguous"))?;
+        let mut friction = self.views.dof_frictionloss.bind(py).try_readwrite()?;
+        let friction =
+            friction.as_slice_mut().map_err(|_| PyValueError::new_err("model.dof_frictionloss must be contiguous"))?;
+        let joints =
+            self.map.joint_dofs.iter().zip(&self.losses).zip(self.own_damping.iter().zip(&self.own_frictionloss));
+        for (i, ((&dof, state), (&own_damping, &own_friction))) in joints.enumerate() {
+            let Some(state) = state else { continue };
+            let split = state.dry_friction_split(qd.get(i).copied().unwrap_or(0.0));
+            if let (Some(d), Some(f)) = (damping.get_mut(dof), friction.get_mut(dof)) {
+                (*d, *f) = (own_damping + split.damping, own_friction + split.friction);
+            }
+        }
+        Ok(())
+    }
+
     /// World from base: the root body's `xmat` (identity when the base is the world frame).
     fn rotation(&self, py: Python<'_>) -> PyResult<Matrix3<f64>> {
         let Some(root) = self.map.root else { return Ok(Matrix3::identity()) };
