@@ -33,11 +33,14 @@ from .logs import (
     WINDOW_S,
     Array,
     Log,
+    _check_derivatives,
+    _check_file,
     _check_time,
     _is_parquet,
     _layout,
     _parquet,
     _parquet_columns,
+    _parquet_error,
     _sampling,
     _savgol,
     _source,
@@ -50,19 +53,36 @@ def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> 
         import pyarrow
 
         row = 2
-        for batch in _parquet().ParquetFile(path).iter_batches(columns=list(names)):
+        batches = iter(_parquet_file(path, source).iter_batches(columns=list(names)))
+        while True:
+            try:
+                batch = next(batches, None)
+            except (pyarrow.ArrowException, OSError) as exc:  # a damaged page
+                raise _parquet_error(exc, source) from None
+            if batch is None:
+                return
             table = pyarrow.Table.from_batches([batch])
             yield {name: np.asarray(column, dtype=np.float64) for name, column in _parquet_columns(table, names, source, row).items()}
             row += batch.num_rows
-        return
     from . import _arrow_csv
 
     yield from _arrow_csv.CsvTable(path, f"{source}: ", "time").batches(names)
 
 
+def _parquet_file(path: str | os.PathLike[str], source: str) -> object:
+    """A ``pyarrow.parquet.ParquetFile``, or a ValueError naming a damaged file."""
+    import pyarrow
+
+    try:
+        return _parquet().ParquetFile(path)
+    except (pyarrow.ArrowException, OSError) as exc:
+        raise _parquet_error(exc, source) from None
+
+
 def _header(path: str | os.PathLike[str], source: str) -> list[str]:
+    _check_file(path, source)
     if _is_parquet(path):
-        return list(_parquet().ParquetFile(path).schema_arrow.names)
+        return list(_parquet_file(path, source).schema_arrow.names)  # type: ignore[attr-defined]
     from ._arrow_csv import CsvTable
 
     return CsvTable(path, f"{source}: ", "time").header
@@ -131,14 +151,17 @@ def _with_derivatives(
     dt, window = sampling
     before = np.empty((0, n))  # the last `window` positions yielded (all of them while fewer)
     pending: list[Log] = []
+    done = 0  # rows yielded
 
     def emit(log: Log, after: list[Log]) -> Log:
-        nonlocal before
+        nonlocal before, done
         ahead = np.concatenate([a.q for a in after], axis=0)[:window] if after else np.empty((0, n))
         segment = np.concatenate([before, log.q, ahead], axis=0)
         qd, qdd = _savgol(segment, window, polyorder, dt)
         rows = slice(before.shape[0], before.shape[0] + log.n_samples)
+        _check_derivatives(qd[rows], qdd[rows], source, dt, first_row=done + 2)
         before = np.concatenate([before, log.q], axis=0)[-window:]
+        done += log.n_samples
         return Log(
             time=log.time,
             q=log.q,

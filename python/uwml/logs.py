@@ -1,7 +1,7 @@
 """Joint logs of the land/water experiment: reading, writing, aligning, differentiating.
 
 The paper identifies Cd and Cm by driving the leg along the same trajectory on land and in
-water and taking the difference of the motor torques (MODEL.md section 4, :mod:`uwml.fit`'s
+water and taking the difference of the motor torques (docs/model.md, section 4; :mod:`uwml.fit`'s
 :func:`~uwml.fit.hydro_coefficients`). This module holds such logs.
 
 CSV format
@@ -13,7 +13,7 @@ column names (``q1`` is joint index 0 in Python). Extra columns are ignored.
 ====================  ===========  =========================================================
 column                required     meaning
 ====================  ===========  =========================================================
-``time``              yes          time [s], strictly increasing
+``time``              yes          time [s], strictly increasing, within ±``MAX_TIME_S``
 ``q1`` … ``qN``       yes          joint positions [rad]
 ``qd1`` … ``qdN``     no           joint velocities [rad/s]; estimated if absent
 ``qdd1`` … ``qddN``   no           joint accelerations [rad/s²]; estimated if absent
@@ -34,7 +34,17 @@ logs at the same point of the trajectory, e.g. the start of the commanded motion
 
 A column family must be complete: ``q1`` … ``qN`` all present and no ``q(N+1)``; the same for
 each optional family present. With ``n_joints`` given, a log with another number of joints
-is an error.
+is an error. Joints are numbered 1 to ``MAX_ROBOT_JOINTS`` (64, the most a :class:`uwml.Robot`
+has), without leading zeros; a column of the format (``time``, ``q1``, …) may appear once.
+
+The time column's domain (docs/domains.md): finite, strictly increasing, and within
+``±MAX_TIME_S`` = 1e10 s (317 years: Unix time in seconds fits, milli- or nanosecond time
+stamps do not; beyond it the squares and cubes of time steps that the derivative estimation
+takes overflow float64).
+
+Files: UTF-8 text (a leading byte-order mark, as Excel writes, is skipped), any line endings;
+a file that is missing, a directory, not UTF-8 or not Parquet though named ``.parquet`` is a
+``ValueError`` naming it.
 
 Parquet (``.parquet`` files) holds the same columns. Both formats are read and written with
 ``pyarrow`` (a dependency): CSV columns are parsed straight into float64 and written in the
@@ -50,6 +60,8 @@ closest to ``WINDOW_S = 0.1 s`` of log, ``2·round(WINDOW_S · rate / 2) + 1`` (
 at 200 Hz, 101 at 1 kHz), and at least ``polyorder + 2`` rounded up to odd (5). The sample rate is
 ``1 / median(Δt)``. Savitzky-Golay assumes uniform sampling: every step must be within 1 %
 (``UNIFORM_TOLERANCE``) of the median step, otherwise the error names the first offending row.
+Estimated velocities and accelerations that overflow float64 (positions of 1e300 rad changing
+every sample) are refused, naming the row and column.
 0.1 s is short against the gait's features (a 0.8 s swing) and long enough to average out
 sensor noise; the derivative error it leaves on our walking gait is bounded in
 ``tests/test_identification.py``.
@@ -70,7 +82,12 @@ from typing import IO, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from . import _core
+from ._checks import shown
+
 __all__ = [
+    "MAX_ROBOT_JOINTS",
+    "MAX_TIME_S",
     "POLYORDER",
     "UNIFORM_TOLERANCE",
     "WINDOW_S",
@@ -91,6 +108,10 @@ WINDOW_S = 0.1
 POLYORDER = 3
 #: Largest relative deviation of a time step from the median step for derivative estimation.
 UNIFORM_TOLERANCE = 0.01
+#: Largest magnitude of a time stamp [s] (module docstring).
+MAX_TIME_S = 1e10
+#: Most joints of a log: the most a robot has (``uwml.robot.MAX_ROBOT_JOINTS``).
+MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 #: Column families, in the order they are written.
 _FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
 _COLUMN = re.compile(r"^(q|qd|qdd|tau_land|tau_water|tau)(\d+)$")
@@ -181,8 +202,13 @@ def estimate_derivatives(
         ``UNIFORM_TOLERANCE`` of the median step, or when the log is shorter than the window.
     """
     t = np.asarray(time, dtype=np.float64)
+    positions = np.asarray(q, dtype=np.float64)
+    if t.ndim != 1 or positions.ndim != 2 or positions.shape[0] != t.shape[0]:
+        raise ValueError(f"{source}: time must have shape (n,) and q (n, n_joints), got {t.shape} and {positions.shape}")
     dt, window = _sampling(t, window_s, polyorder, source)
-    return _savgol(np.asarray(q, dtype=np.float64), window, polyorder, dt)
+    qd, qdd = _savgol(positions, window, polyorder, dt)
+    _check_derivatives(qd, qdd, source, dt)
+    return qd, qdd
 
 
 def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[float, int]:
@@ -190,6 +216,7 @@ def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[f
     as :func:`estimate_derivatives` says."""
     if t.size < 2:
         raise ValueError(f"{source}: row 2, column 'time': need at least 2 samples to estimate derivatives")
+    _check_time(t, source)
     step = np.diff(t)
     dt = float(np.median(step))
     bad = np.flatnonzero(~(np.abs(step - dt) <= UNIFORM_TOLERANCE * dt))
@@ -200,10 +227,15 @@ def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[f
             "velocities and accelerations are estimated by a Savitzky-Golay filter, which needs uniform sampling: "
             "resample the log, or give qd and qdd columns"
         )
-    window = savgol_window(1.0 / dt, window_s, polyorder)
+    rate = 1.0 / dt
+    if not math.isfinite(rate):  # a subnormal step
+        raise ValueError(f"{source}: row 3, column 'time': median time step {dt!r} s, too short to estimate derivatives")
+    window = savgol_window(rate, window_s, polyorder)
     if window > t.size:
+        count = str(window) if window < 10**9 else f"{float(window):.3g}"
         raise ValueError(
-            f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({window} samples)"
+            f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({count} samples: "
+            f"{window_s:g} s at a median time step of {dt:.6g} s)"
         )
     return dt, window
 
@@ -212,9 +244,25 @@ def _savgol(positions: Array, window: int, polyorder: int, dt: float) -> tuple[A
     # Imported here: scipy.signal takes most of a second to import, and `import uwml` should not.
     from scipy.signal import savgol_filter
 
-    qd = savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
-    qdd = savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
+    # Overflow gives inf (or NaN), refused by _check_derivatives, not a warning.
+    with np.errstate(over="ignore", invalid="ignore"):
+        qd = savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
+        qdd = savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
     return np.asarray(qd, dtype=np.float64), np.asarray(qdd, dtype=np.float64)
+
+
+def _check_derivatives(qd: Array, qdd: Array, source: str, dt: float, first_row: int = 2) -> None:
+    """Estimated velocities and accelerations finite, or a ValueError naming the first row
+    (``first_row`` for the first sample) and the joint's position column."""
+    for what, unit, values in (("velocity", "rad/s", qd), ("acceleration", "rad/s²", qdd)):
+        bad = np.flatnonzero(~np.isfinite(values).all(axis=1))
+        if bad.size:
+            i = int(bad[0])
+            k = int(np.flatnonzero(~np.isfinite(values[i]))[0])
+            raise ValueError(
+                f"{source}: row {i + first_row}, column 'q{k + 1}': the estimated {what} [{unit}] is not finite: the positions "
+                f"change too much for a time step of {dt:.6g} s"
+            )
 
 
 def align_logs(land: Log, water: Log) -> Log:
@@ -273,33 +321,88 @@ def _is_parquet(path_or_file: Any) -> bool:
     return isinstance(path_or_file, str | os.PathLike) and os.fspath(path_or_file).lower().endswith(".parquet")
 
 
+def _check_file(path_or_file: Any, source: str) -> None:
+    """A path names a file (and a ``.parquet`` path a Parquet file), or a ValueError naming it."""
+    if not isinstance(path_or_file, str | os.PathLike):
+        return
+    if os.path.isdir(path_or_file):
+        raise ValueError(f"{source}: is a directory, not a file")
+    if not os.path.exists(path_or_file):
+        raise ValueError(f"{source}: no such file")
+    if _is_parquet(path_or_file):
+        with open(path_or_file, "rb") as handle:
+            head = handle.read(4)
+            size = handle.seek(0, os.SEEK_END)
+            handle.seek(max(size - 4, 0))
+            tail = handle.read(4)
+        if size < 12 or head != b"PAR1" or tail != b"PAR1":
+            raise ValueError(
+                f"{source}: not a Parquet file (it does not begin and end with the bytes PAR1); a CSV log must not be named .parquet"
+            )
+
+
 def _parquet() -> Any:
     import pyarrow.parquet as pq
 
     return pq
 
 
+def _parquet_error(exc: Exception, source: str) -> ValueError:
+    """A ValueError naming the file for pyarrow's error on a damaged Parquet file."""
+    reason = " ".join(str(exc).split())
+    reason = reason if len(reason) <= 200 else reason[:200] + "…"
+    return ValueError(f"{source}: not a readable Parquet file ({reason})")
+
+
+def _parquet_table(path: Any, source: str) -> Any:
+    """The whole table of a Parquet file, or a ValueError naming it."""
+    import pyarrow
+
+    try:
+        return _parquet().ParquetFile(path).read()  # not read_table, which refuses a name twice before _layout can say so
+    except (pyarrow.ArrowException, OSError) as exc:
+        raise _parquet_error(exc, source) from None
+
+
 def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[int, list[str], list[str]]:
     """Check a log's header: the number of joints, the column families present (in ``_FAMILIES``
     order) and the names of the columns to read."""
+    if n_joints is not None and not (isinstance(n_joints, int | np.integer) and 1 <= n_joints <= MAX_ROBOT_JOINTS):
+        raise ValueError(f"n_joints must be 1 to {MAX_ROBOT_JOINTS}, got {n_joints!r}")
     if "time" not in header:
-        raise ValueError(f"{source}: row 1 (header), column 'time': missing column")
-    present: dict[str, set[int]] = {family: set() for family in _FAMILIES}
-    for name in header:
+        raise ValueError(f"{source}: row 1 (header), column 'time': missing column{_header_hint(header)}")
+    first: dict[str, int] = {}
+    present: dict[str, dict[int, str]] = {family: {} for family in _FAMILIES}
+    for index, name in enumerate(header):
         match = _COLUMN.match(name)
+        if name != "time" and not match:
+            continue  # an extra column, ignored
+        if name in first:
+            raise ValueError(
+                f"{source}: row 1 (header), column {shown(name)}: the column appears twice (columns {first[name] + 1} and {index + 1})"
+            )
+        first[name] = index
         if match:
-            present[match.group(1)].add(int(match.group(2)))
+            digits = match.group(2)
+            if digits.startswith("0"):
+                why = "joints are numbered from 1" if digits.strip("0") == "" else "joint numbers have no leading zero"
+                raise ValueError(f"{source}: row 1 (header), column {shown(name)}: {why} ({match.group(1)}1, {match.group(1)}2, …)")
+            # Beyond MAX_ROBOT_JOINTS, the exact number does not matter (and int() refuses 4300 digits).
+            number = int(digits) if len(digits) <= 6 else 10**6
+            present[match.group(1)].setdefault(number, name)
     if not present["q"]:
         raise ValueError(f"{source}: row 1 (header), column 'q1': missing column (joint positions q1 … qN)")
     n = max(present["q"]) if n_joints is None else int(n_joints)
-    if n < 1:
-        raise ValueError(f"n_joints must be >= 1, got {n_joints!r}")
+    if n > MAX_ROBOT_JOINTS:
+        raise ValueError(
+            f"{source}: row 1 (header), column {shown(present['q'][n])}: a log has at most {MAX_ROBOT_JOINTS} joints (the most a robot has)"
+        )
     for family, numbers in present.items():
         if not numbers:
             continue
-        extra = sorted(k for k in numbers if k < 1 or k > n)
+        extra = sorted(k for k in numbers if k > n)
         if extra:
-            raise ValueError(f"{source}: row 1 (header), column '{family}{extra[0]}': the log has more joints than the {n} expected")
+            raise ValueError(f"{source}: row 1 (header), column {shown(numbers[extra[0]])}: the log has more joints than the {n} expected")
         for k in range(1, n + 1):
             if k not in numbers:
                 raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column (the log has {n} joints)")
@@ -317,8 +420,29 @@ def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[i
     return n, families, names
 
 
+def _header_hint(header: Sequence[str]) -> str:
+    """What a header without ``time`` holds, for the error: its first names, and a word on the
+    separator when the names look separated by something else than commas."""
+    names = ", ".join(shown(name, 20) for name in header[:6]) + (f", … ({len(header)} columns)" if len(header) > 6 else "")
+    hint = f" (the header has {names})"
+    if any(";" in name or "\t" in name for name in header[:6]):
+        hint += "; columns must be separated by commas"
+    return hint
+
+
 def _check_time(time: Array, source: str, first_row: int = 2) -> None:
-    """Time strictly increasing, or a ValueError naming the row (``first_row`` for ``time[0]``)."""
+    """The time column in its domain (module docstring): finite, within ±MAX_TIME_S, strictly
+    increasing, or a ValueError naming the row (``first_row`` for ``time[0]``)."""
+    outside = np.flatnonzero(~(np.abs(time) <= MAX_TIME_S))
+    if outside.size:
+        i = int(outside[0])
+        value = float(time[i])
+        if not math.isfinite(value):
+            raise ValueError(f"{source}: row {i + first_row}, column 'time': expected a finite number, got {value!r}")
+        raise ValueError(
+            f"{source}: row {i + first_row}, column 'time': {value!r} s is beyond ±{MAX_TIME_S:g} s (317 years): "
+            "time must be in seconds (Unix time in seconds fits; milli- or nanosecond stamps do not)"
+        )
     bad = np.flatnonzero(np.diff(time) <= 0.0)
     if bad.size:
         i = int(bad[0]) + 1
@@ -366,12 +490,15 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
     ------
     ValueError
         Naming the file, row (header = row 1) and column of the first problem: a missing column,
-        a log with another number of joints, an incomplete column family, a cell that is not a
-        finite number, a row with fewer cells than the header, time not strictly increasing.
+        a log with another number of joints, an incomplete column family, a column twice, a cell
+        that is not a finite number, a row with fewer cells than the header, time not strictly
+        increasing or beyond ``±MAX_TIME_S``, text that is not UTF-8; or naming the file alone: no
+        such file, a directory, not a Parquet file.
     """
     source = _source(path_or_file)
+    _check_file(path_or_file, source)
     if _is_parquet(path_or_file):
-        table = _parquet().read_table(path_or_file)
+        table = _parquet_table(path_or_file, source)
         n, families, names = _layout(table.column_names, n_joints, source)
         return _from_columns(_parquet_columns(table, names, source), n, families, source)
     from ._arrow_csv import CsvTable
