@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import os
 import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -441,6 +443,27 @@ def test_fit_losses_report_json_and_plots(tmp_path: Path, loss_csv: Path) -> Non
     assert all(isinstance(v, float) for v in summary["seal"]["params"].values())
 
 
+def test_fit_losses_hostile_files(tmp_path: Path, loss_csv: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    bom = tmp_path / "bom.csv"
+    bom.write_bytes(b"\xef\xbb\xbf" + loss_csv.read_bytes())  # Excel's "CSV UTF-8": read
+    status, out, err = _in_process(["fit", "losses", str(bom), "--json"], capsys)
+    assert status == 0 and set(json.loads(out)) == {"oil_drag", "seal"}, err
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes(loss_csv.read_bytes().replace(b"\n", b"\n\xb1", 1))
+    long_cell = tmp_path / "long.csv"
+    long_cell.write_bytes(loss_csv.read_bytes().replace(b"\n", b'\n"' + b"x" * 200_000, 1))
+    for path, words in [
+        (latin, [f"{latin}: row 2, column 'configuration': not UTF-8 text (byte 0xb1)"]),
+        (long_cell, [f"{long_cell}: not CSV"]),
+        (tmp_path / "absent.csv", [f"{tmp_path / 'absent.csv'}: no such file"]),
+        (tmp_path, [f"{tmp_path}: is a directory"]),
+    ]:
+        status, _, err = _in_process(["fit", "losses", str(path)], capsys)
+        assert status == 2 and err.count("\n") == 1 and err.startswith("uwml: error: "), err
+        for word in words:
+            assert word in err, (word, err)
+
+
 def test_fit_losses_bad_files(tmp_path: Path, loss_csv: Path) -> None:
     cell = tmp_path / "cell.csv"
     _replace_cell(loss_csv, cell, 9, "current_a", "1,5A")
@@ -449,3 +472,107 @@ def test_fit_losses_bad_files(tmp_path: Path, loss_csv: Path) -> None:
     results = _uwml_all(("fit", "losses", cell), ("fit", "losses", missing))
     _assert_bad_file(results[0], cell, 9, "current_a")
     _assert_bad_file(results[1], missing, 1, "pressure_mpa")
+
+
+# --------------------------------------------------------------------------------------------
+# Hostile logs and arguments: a one-line error, never a traceback
+# --------------------------------------------------------------------------------------------
+
+
+def _assert_one_line_error(result: subprocess.CompletedProcess, *words: str) -> None:
+    assert result.returncode == 2, (result.returncode, result.stderr[-2000:])
+    message = result.stderr.strip()
+    assert "Traceback" not in message and "\n" not in message and message.startswith("uwml: error: "), message[-2000:]
+    for word in words:
+        assert word in message, (word, message)
+
+
+def test_hostile_logs_in_a_subprocess(tmp_path: Path, experiment: Log) -> None:
+    good = tmp_path / "good.csv"
+    write_log(Log(time=experiment.time, q=experiment.q), good)
+    text = good.read_bytes()
+    latin = tmp_path / "latin.csv"
+    latin.write_bytes(text.replace(b"\n", "\n\u00b1".encode("latin-1"), 1))  # a Latin-1 byte before row 2's time
+    fake = tmp_path / "fake.parquet"
+    fake.write_bytes(text)
+    huge = tmp_path / "huge.csv"
+    write_log(Log(time=5e297 * np.arange(experiment.n_samples), q=experiment.q), huge)
+    both = tmp_path / "both.csv"
+    write_log(Log(time=5e297 * np.arange(experiment.n_samples), q=experiment.q, tau_land=experiment.q, tau_water=experiment.q), both)
+    results = _uwml_all(("torques", latin), ("fit", "hydro", fake), ("torques", huge), ("fit", "hydro", both), ("torques", tmp_path))
+    _assert_one_line_error(results[0], f"{latin}: row 2, column 'time': not UTF-8 text (byte 0xb1)")
+    _assert_one_line_error(results[1], f"{fake}: not a Parquet file")
+    _assert_one_line_error(results[2], f"{huge}: row 3, column 'time'")
+    _assert_one_line_error(results[3], f"{both}: row 3, column 'time'")
+    _assert_one_line_error(results[4], f"{tmp_path}: is a directory")
+
+
+def test_hostile_logs_in_process(tmp_path: Path, experiment: Log, capsys: pytest.CaptureFixture[str]) -> None:
+    good = tmp_path / "good.csv"
+    write_log(experiment, good)
+    bom = tmp_path / "bom.csv"
+    bom.write_bytes(b"\xef\xbb\xbf" + good.read_bytes())
+    out = tmp_path / "out.csv"
+    status, _, err = _in_process(["torques", str(bom), "--out", str(out)], capsys)
+    assert status == 0 and out.exists(), err
+    status, out_text, err = _in_process(["fit", "hydro", str(bom), "--json"], capsys)
+    assert status == 0 and json.loads(out_text)["params"]["cd"] > 0.0, err
+    for args, words in [
+        (["torques", str(tmp_path / "absent.csv")], [f"{tmp_path / 'absent.csv'}: no such file"]),
+        (["fit", "hydro", str(good), str(tmp_path / "absent.csv")], [f"{tmp_path / 'absent.csv'}: no such file"]),
+        (["fit", "hydro", str(tmp_path)], [f"{tmp_path}: is a directory"]),
+        (["torques", str(good), "--out", str(tmp_path)], [f"{tmp_path}: is a directory; --out takes a file"]),
+        (["torques", str(good), "--out", str(tmp_path / "no" / "x.csv")], [f"{tmp_path / 'no' / 'x.csv'}: no such directory"]),
+        (["fit", "hydro", str(good), "--plot", str(tmp_path / "no" / "x.png")], [f"{tmp_path / 'no' / 'x.png'}: no such directory"]),
+    ]:
+        status, _, err = _in_process(args, capsys)
+        assert status == 2 and err.count("\n") == 1 and err.startswith("uwml: error: "), err
+        for word in words:
+            assert word in err, (word, err)
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["simulate", "--cycles", "1e12"], ["--cycles", "between 0 and 100", "1e12"]),
+        (["simulate", "--cycles", "nan"], ["--cycles", "between 0 and 100"]),
+        (["simulate", "--cycles", "inf"], ["--cycles", "between 0 and 100"]),
+        (["simulate", "--cycles", "-1"], ["--cycles", "between 0 and 100"]),
+        (["simulate", "--cycles", "0"], ["--cycles", "between 0 and 100"]),
+        (["simulate", "--cycles", "two"], ["--cycles", "between 0 and 100", "'two'"]),
+        (["simulate", "--depths", ",".join(["0"] * 21)], ["--depths", "at most 20"]),
+        (["demo", "--samples", "1000000000000"], ["--samples", "2 to 10000"]),
+        (["demo", "--samples", "1e3"], ["--samples", "2 to 10000", "'1e3'"]),
+        (["demo", "--period", "abc"], ["--period", "positive number", "'abc'"]),
+        (["torques", "log.csv", "--joints", "1000000"], ["--joints", "1 to 64"]),
+        (["torques", "log.csv", "--depth", "1e6"], ["--depth", "0 to 11000"]),
+        (["fit", "hydro", "log.csv", "--joints", "1," + "9" * 5000], ["--joints", "joint numbers"]),
+        (["fit", "hydro", "log.csv", "--joints", "1,65"], ["--joints", "1 to 64"]),
+        (["paper", "--seed", "-1"], ["--seed", "non-negative"]),
+    ],
+    ids=lambda v: " ".join(v)[:40] if isinstance(v, list) and v and v[0] in ("simulate", "demo", "torques", "fit", "paper") else None,
+)
+def test_size_like_arguments_are_bounded(args: list[str], words: list[str], capsys: pytest.CaptureFixture[str]) -> None:
+    status, _, err = _in_process(args, capsys)
+    assert status == 2, err
+    message = err.strip().splitlines()[-1]
+    assert "invalid _" not in message and len(message) < 300, message
+    for word in words:
+        assert word in message, (word, message)
+
+
+def test_simulate_run_bounds_cycles_before_allocating() -> None:
+    from uwml import simulate
+
+    for cycles in (1e12, 101.0, math.nan, math.inf, -1.0, 0.0):
+        with pytest.raises(ValueError, match=r"^cycles must be finite and > 0, at most 100 \(gait cycles\), got "):
+            simulate.run("land", 0.0, cycles=cycles)
+
+
+def test_out_of_memory_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]) -> None:
+    def exhausted(args: Any) -> int:
+        raise MemoryError
+
+    monkeypatch.setattr(uwml.cli, "_demo", exhausted)
+    status, _, err = _in_process(["demo"], capsys)
+    assert status == 1 and err.startswith("uwml: error: out of memory") and err.count("\n") == 1, err

@@ -10,7 +10,9 @@ Subcommands (``uwml <command> --help`` for each):
 * ``uwml simulate``: the paper's leg walking in sea water under four controllers (MuJoCo).
 
 Exit codes: 0 on success, 2 for usage errors and bad input files (the message names the file,
-row and column), 1 for other failures. Errors are printed as ``uwml: error: <message>``.
+row and column), 1 for other failures (out of memory included). Errors are printed as one line,
+``uwml: error: <message>``. Size-like arguments are bounded (``--samples``, ``--cycles``,
+``--joints``, the number of ``--depths``), so that no argument asks for an absurd allocation.
 """
 
 from __future__ import annotations
@@ -26,19 +28,37 @@ from typing import IO, Any
 
 import numpy as np
 
+from .domains import MAX_DEPTH
 from .leg import Leg
+from .logs import MAX_ROBOT_JOINTS
 from .model import Water
 from .paper_analysis import _component_table, _rms, gait_like_motion
+from .simulate import MAX_CYCLES
 
 __all__ = ["build_parser", "gait_like_motion", "main"]
 
 #: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
 #: longer inputs report progress on stderr.
 CHUNK_ROWS = 100_000
+#: Most samples of ``uwml demo``'s printed table.
+MAX_DEMO_SAMPLES = 10_000
+#: Most depths of ``uwml simulate`` (each runs five simulations).
+MAX_DEPTHS = 20
 
 
 class _UsageError(ValueError):
     """A bad combination of options (exit code 2)."""
+
+
+def _check_output(path: str | None, option: str) -> None:
+    """An output file can be written where ``option`` says, before any work (else a usage error)."""
+    if path is None:
+        return
+    if os.path.isdir(path):
+        raise _UsageError(f"{path}: is a directory; {option} takes a file")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise _UsageError(f"{path}: no such directory: {folder}")
 
 
 def _demo(args: argparse.Namespace) -> int:
@@ -72,6 +92,7 @@ def _torques(args: argparse.Namespace) -> int:
     from .environment import JointLosses
 
     out = args.out
+    _check_output(out, "--out")
     parquet = out is not None and out.lower().endswith(".parquet")
     if parquet:
         try:
@@ -189,6 +210,7 @@ def _describe(args: argparse.Namespace) -> int:
     from .describe import describe, draw
     from .robot import Robot
 
+    _check_output(args.plot, "--plot")
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
     water = robot.water if args.density is None else Water(density=args.density, gravity=robot.water.gravity)
     print(describe(robot, water))
@@ -199,18 +221,20 @@ def _describe(args: argparse.Namespace) -> int:
 
 
 def _joint_list(text: str) -> list[int]:
+    allowed = f"must be distinct joint numbers from 1 to {MAX_ROBOT_JOINTS}, separated by commas, got {_quoted(text)}"
     try:
         joints = [int(item) for item in text.split(",") if item.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be joint numbers from 1, separated by commas, got {text!r}") from None
-    if not joints or any(j < 1 for j in joints) or len(set(joints)) != len(joints):
-        raise argparse.ArgumentTypeError(f"must be distinct joint numbers from 1, separated by commas, got {text!r}")
+    except ValueError:  # not integers, or integers of more than 4300 digits
+        raise argparse.ArgumentTypeError(allowed) from None
+    if not joints or any(not 1 <= j <= MAX_ROBOT_JOINTS for j in joints) or len(set(joints)) != len(joints):
+        raise argparse.ArgumentTypeError(allowed)
     return joints
 
 
 def _fit_hydro(args: argparse.Namespace) -> int:
     from . import fit
 
+    _check_output(args.plot, "--plot")
     leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     if any(j > leg.n_joints for j in args.joints):
@@ -233,10 +257,21 @@ def _fit_hydro(args: argparse.Namespace) -> int:
 
 
 def _fit_losses(args: argparse.Namespace) -> int:
-    from . import fit
+    import csv
 
+    from . import fit
+    from ._arrow_csv import not_utf8_error
+    from .logs import _check_file
+
+    _check_file(args.csv, args.csv)  # no such file, a directory
     try:
-        data = fit.read_loss_csv(args.csv)
+        # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8") is skipped.
+        with open(args.csv, newline="", encoding="utf-8-sig") as handle:
+            data = fit.read_loss_csv(handle)
+    except UnicodeDecodeError:
+        raise not_utf8_error(lambda: open(args.csv, "rb"), f"{args.csv}: ") from None  # noqa: SIM115 (opened and closed by the callee)
+    except csv.Error as exc:
+        raise ValueError(f"{args.csv}: not CSV ({exc}; is a quote not closed?)") from None
     except ValueError as exc:
         raise ValueError(f"{args.csv}: {exc}") from None
     results: dict[str, Any] = {}
@@ -271,38 +306,69 @@ def _fit_losses(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not np.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
+# The argument types: each says what is allowed (argparse would otherwise print "invalid
+# _positive value" for a word).
+
+
+def _quoted(text: str) -> str:
+    return repr(text) if len(text) <= 40 else repr(text[:40]) + "…"
+
+
+def _number(text: str, allowed: str, low: float, high: float, low_open: bool = False) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and (low < value if low_open else low <= value) and value <= high):
+        raise argparse.ArgumentTypeError(f"{allowed}, got {_quoted(text)}")
     return value
+
+
+def _integer(text: str, low: int, high: int) -> int:
+    try:
+        value = int(text)
+    except ValueError:  # not an integer, or one of more than 4300 digits
+        value = low - 1
+    if not low <= value <= high:
+        raise argparse.ArgumentTypeError(f"must be an integer from {low} to {high}, got {_quoted(text)}")
+    return value
+
+
+def _positive(text: str) -> float:
+    return _number(text, "must be a positive number", 0.0, math.inf, low_open=True)
 
 
 def _non_negative(text: str) -> float:
-    value = float(text)
-    if not np.isfinite(value) or value < 0:
-        raise argparse.ArgumentTypeError(f"must be a non-negative number, got {text}")
-    return value
+    return _number(text, "must be a non-negative number", 0.0, math.inf)
 
 
 def _finite(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"must be a finite number, got {text}")
-    return value
+    return _number(text, "must be a finite number", -math.inf, math.inf)
+
+
+def _depth(text: str) -> float:
+    return _number(text, f"must be a depth from 0 to {MAX_DEPTH:g} m", 0.0, MAX_DEPTH)
+
+
+def _cycles(text: str) -> float:
+    return _number(text, f"must be between 0 and {MAX_CYCLES} (gait cycles, more than 0)", 0.0, MAX_CYCLES, low_open=True)
 
 
 def _count(text: str) -> int:
-    value = int(text)
-    if value < 2:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 2, got {text}")
-    return value
+    return _integer(text, 2, MAX_DEMO_SAMPLES)
 
 
 def _n_joints(text: str) -> int:
-    value = int(text)
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text}")
+    return _integer(text, 1, MAX_ROBOT_JOINTS)
+
+
+def _seed(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be a non-negative integer, got {_quoted(text)}")
     return value
 
 
@@ -324,7 +390,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True)
 
     demo = commands.add_parser("demo", help="print the paper leg's torque components along a gait-like motion")
-    demo.add_argument("--samples", type=_count, default=9, help="samples over one cycle (default 9)")
+    demo.add_argument("--samples", type=_count, default=9, help=f"samples over one cycle, 2 to {MAX_DEMO_SAMPLES} (default 9)")
     demo.add_argument("--period", type=_positive, default=2.0, help="cycle period [s] (default 2)")
     demo.add_argument("--cd", type=_non_negative, default=2.2, help="drag coefficient (default 2.2, the paper's fit)")
     demo.add_argument("--cm", type=_non_negative, default=0.5, help="added-mass coefficient (default 0.5, the paper's fit)")
@@ -353,7 +419,7 @@ terminal.""",
         epilog=_EXIT,
     )
     paper.add_argument("--out", default="uwml-paper", metavar="DIR", help="output directory, created if needed (default uwml-paper)")
-    paper.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the synthetic experiment's noise (default 0)")
+    paper.add_argument("--seed", type=_seed, default=0, metavar="N", help="seed of the synthetic experiment's noise (default 0)")
     paper.set_defaults(run=_paper)
 
     torques = commands.add_parser(
@@ -384,7 +450,7 @@ not written (standard output has the rows before it).""",
     torques.add_argument("log", metavar="LOG", help="trajectory log (CSV, or .parquet)")
     torques.add_argument("--out", metavar="FILE", help="output file (.csv, or .parquet); default: standard output")
     torques.add_argument(
-        "--depth", type=_non_negative, default=0.0, metavar="M", help="depth [m] for the pressure of the losses (default 0)"
+        "--depth", type=_depth, default=0.0, metavar="M", help="depth [m] for the pressure of the losses, 0 to 11000 (default 0)"
     )
     torques.add_argument("--temperature", type=_finite, default=20.0, metavar="C", help="oil temperature [°C] (default 20)")
     torques.add_argument(
@@ -401,7 +467,11 @@ not written (standard output has the rows before it).""",
     torques.add_argument("--cm", type=_non_negative, default=None, metavar="X", help="added-mass coefficient (default: 0.5; a robot's own)")
     torques.add_argument("--losses", action="store_true", help="add the oil-viscous and seal losses, loss current and total")
     torques.add_argument(
-        "--joints", type=_n_joints, default=None, metavar="N", help="number of joints the log must have (default 3, the paper leg's)"
+        "--joints",
+        type=_n_joints,
+        default=None,
+        metavar="N",
+        help=f"number of joints the log must have, 1 to {MAX_ROBOT_JOINTS} (default: the robot's; 3, the paper leg's)",
     )
     torques.set_defaults(run=_torques)
 
@@ -512,9 +582,19 @@ depth_sweep.png in --out. A progress bar on standard error.""",
         epilog=_EXIT,
     )
     simulate.add_argument("--out", default="uwml-simulate", metavar="DIR", help="directory for the report (default uwml-simulate)")
-    simulate.add_argument("--depths", type=_depth_list, default=[0.0, 1000.0, 3000.0, 6000.0], metavar="0,1000,...", help="depths [m]")
     simulate.add_argument(
-        "--cycles", type=_positive, default=2.0, metavar="N", help="gait cycles per run (default 2; metrics over the last)"
+        "--depths",
+        type=_depth_list,
+        default=[0.0, 1000.0, 3000.0, 6000.0],
+        metavar="0,1000,...",
+        help=f"depths [m], 0 to 11000, at most {MAX_DEPTHS} of them",
+    )
+    simulate.add_argument(
+        "--cycles",
+        type=_cycles,
+        default=2.0,
+        metavar="N",
+        help=f"gait cycles per run, up to {MAX_CYCLES} (default 2; metrics over the last)",
     )
     simulate.add_argument("--json", action="store_true", help="print the runs' summaries as JSON only")
     simulate.set_defaults(run=_simulate)
@@ -525,9 +605,11 @@ def _depth_list(text: str) -> list[float]:
     try:
         depths = [float(item) for item in text.split(",") if item.strip()]
     except ValueError:
-        raise argparse.ArgumentTypeError(f"must be depths in m separated by commas, got {text!r}") from None
-    if not depths or any(not (math.isfinite(d) and 0.0 <= d <= 11_000.0) for d in depths):
-        raise argparse.ArgumentTypeError(f"must be depths from 0 to 11000 m, separated by commas, got {text!r}")
+        raise argparse.ArgumentTypeError(f"must be depths in m separated by commas, got {_quoted(text)}") from None
+    if not depths or any(not (math.isfinite(d) and 0.0 <= d <= MAX_DEPTH) for d in depths):
+        raise argparse.ArgumentTypeError(f"must be depths from 0 to 11000 m, separated by commas, got {_quoted(text)}")
+    if len(depths) > MAX_DEPTHS:
+        raise argparse.ArgumentTypeError(f"must be at most {MAX_DEPTHS} depths (each runs five simulations), got {len(depths)}")
     return depths
 
 
@@ -558,6 +640,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     except ImportError as exc:  # an optional dependency is missing
         print(f"uwml: error: {exc}", file=sys.stderr)
+        return 1
+    except MemoryError:
+        print("uwml: error: out of memory (a log too large for this machine's memory?)", file=sys.stderr)
         return 1
 
 

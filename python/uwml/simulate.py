@@ -43,7 +43,19 @@ from .leg import Leg
 from .model import Water
 from .robot import BaseMotion, Robot
 
-__all__ = ["CONTROLLERS", "DEPTHS", "Drift", "FluidComparison", "Run", "fluid_models", "leg_model", "rov_drift", "run", "study"]
+__all__ = [
+    "CONTROLLERS",
+    "DEPTHS",
+    "MAX_CYCLES",
+    "Drift",
+    "FluidComparison",
+    "Run",
+    "fluid_models",
+    "leg_model",
+    "rov_drift",
+    "run",
+    "study",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -59,6 +71,8 @@ SEA_VISCOSITY = 1.6e-3
 #: The PD loop's natural frequency [Hz] (critically damped).
 PD_HZ = 4.0
 TIMESTEP = 1e-3
+#: Most gait cycles of a run: each holds its trajectories in memory (about 0.2 MB a cycle).
+MAX_CYCLES = 100
 
 
 def leg_model(leg: Leg | None = None, fluid: str | None = None) -> str:
@@ -148,19 +162,20 @@ class Run:
 
 
 def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | None = None) -> Run:
-    """Simulates the paper's leg following the gait under ``controller`` at ``depth`` [m]."""
+    """Simulates the paper's leg following the gait under ``controller`` at ``depth`` [m], for
+    ``cycles`` gait cycles (more than 0, at most ``MAX_CYCLES``)."""
+    if controller not in CONTROLLERS:
+        raise ValueError(f"controller must be one of {', '.join(CONTROLLERS)}, got {controller!r}")
+    if not (math.isfinite(depth) and 0.0 <= depth <= 11_000.0):
+        raise ValueError(f"depth must be between 0 and 11000 m, got {depth!r}")
+    if not (math.isfinite(cycles) and 0.0 < cycles <= MAX_CYCLES):
+        raise ValueError(f"cycles must be finite and > 0, at most {MAX_CYCLES} (gait cycles), got {cycles!r}")
     import mujoco  # type: ignore[import-untyped]
 
     from . import synthetic
     from .gait import WalkingGait
     from .mujoco import Simulation
 
-    if controller not in CONTROLLERS:
-        raise ValueError(f"controller must be one of {', '.join(CONTROLLERS)}, got {controller!r}")
-    if not (math.isfinite(depth) and 0.0 <= depth <= 11_000.0):
-        raise ValueError(f"depth must be between 0 and 11000 m, got {depth!r}")
-    if not (math.isfinite(cycles) and cycles > 0.0):
-        raise ValueError(f"cycles must be finite and > 0, got {cycles!r}")
     leg = Leg.paper()
     robot = Robot(leg.joints, leg.links, losses=JointLosses(), water=SEA)
     model = mujoco.MjModel.from_xml_string(model_xml or leg_model(leg))
