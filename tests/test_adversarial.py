@@ -157,3 +157,69 @@ def test_adversarial_base_motions_in_an_evaluation(data: st.DataObject) -> None:
         assert str(exc)
         return
     _call(ROBOT.hydro, "base_motion", STATE | {"base_motion": motion})
+
+
+# --- model values: finite but huge (docs/domains.md, "Model values") -------------------------
+
+
+def _arm_with(change: str, value: float) -> uwml.Robot:
+    """``uwml.examples.arm_on_rov`` with one model value replaced."""
+    import dataclasses
+
+    from uwml.examples import arm_on_rov
+
+    arm = arm_on_rov()
+    joints, links, base = list(arm.joints), list(arm.links), arm.base
+    assert base is not None
+    owner, name = change.split(".")
+    if owner == "joint":
+        joints[2] = dataclasses.replace(joints[2], origin=(0.1, value, 0.0))
+    elif owner == "base":
+        base = dataclasses.replace(base, **{name: (value, 0.0, 0.0) if name in ("com", "cob") else value})
+    elif owner == "link":
+        links[3] = dataclasses.replace(links[3], **{name: (value, 0.0, 0.0) if name in ("com", "cob") else value})
+    else:
+        tube, housing = links[1].segments  # the rectangular housing (a circular one's cd is one number)
+        changed = dataclasses.replace(housing, **{name: (0.0, value, 0.0) if name == "start" else value})
+        links[1] = dataclasses.replace(links[1], segment=None, segments=(tube, changed))
+    return uwml.Robot(joints, links, base=base)
+
+
+MODEL_VALUES = ["joint.origin", "link.com", "link.cob", "link.mass", "link.volume", "base.com", "base.cob", "base.mass", "base.volume", "segment.start", "segment.length"]
+
+
+@pytest.mark.parametrize("field", MODEL_VALUES)
+@pytest.mark.parametrize("value", [1e308, -1e300, 1e30, 2e9])
+def test_finite_but_huge_model_values_are_refused_at_construction(field: str, value: float) -> None:
+    """A link COM (or any model value) at 1e308 gave ``Robot.hydro`` NaN and inf with no error:
+    finite in, finite out or an error, for the model's values too. Signs that make no sense
+    (a negative mass) are refused for that reason instead."""
+    if value < 0 and field.split(".")[1] in ("mass", "volume", "length"):
+        value = -value
+    with pytest.raises(ValueError, match=field.replace(".", r"\.") + r" must be at most"):
+        _arm_with(field, value)
+
+
+@pytest.mark.parametrize("field", MODEL_VALUES)
+def test_model_values_at_their_bounds_give_finite_forces(field: str) -> None:
+    """At the bound itself (1e4 m, 1e9 kg, 1e6 m³) the robot is built and every force of an
+    ordinary state is finite: the bounds are where overflow cannot happen, not below."""
+    from uwml import domains
+
+    name = field.split(".")[1]
+    bound = {"mass": domains.MAX_MASS, "volume": domains.MAX_VOLUME}.get(name, domains.MAX_LENGTH)
+    robot = _arm_with(field, bound)
+    q, qd, qdd = np.full(7, 0.3), np.full(7, -0.5), np.full(7, 1.0)
+    motion = uwml.BaseMotion(velocity=(1.0, 0.2, 0.0), angular_velocity=(0.0, 0.3, 0.1))
+    for result in (
+        robot.hydro(q, qd, qdd, base_motion=motion, current=(0.5, 0.0, 0.0)),
+        robot.environment(q, qd, qdd, depth=6000.0, losses=uwml.JointLosses(), base_motion=motion),
+        robot.jacobians(q, qd, qdd, base_motion=motion),
+    ):
+        assert _finite(result), field
+
+
+@pytest.mark.parametrize(("density", "gravity"), [(1e300, 9.81), (2e5, 9.81), (1025.0, 1e10), (1025.0, 2e3)])
+def test_a_huge_water_is_refused_at_construction(density: float, gravity: float) -> None:
+    with pytest.raises(ValueError, match=r"water\.(density|gravity) must be at most"):
+        uwml.Water(density, gravity)

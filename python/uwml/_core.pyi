@@ -12,11 +12,18 @@ __all__ = [
     "JOINT_WIDTH",
     "LINK_WIDTH",
     "LOSS_WIDTH",
+    "MAX_AREA",
+    "MAX_COEFFICIENT",
+    "MAX_DENSITY",
     "MAX_DEPTH",
+    "MAX_GRAVITY",
     "MAX_JOINTS",
+    "MAX_LENGTH",
+    "MAX_MASS",
     "MAX_PRESSURE",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
+    "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
     "SEGMENT_WIDTH",
     "TREE_JOINT_WIDTH",
@@ -32,6 +39,13 @@ _Result = TypeVar("_Result")
 MAX_JOINTS: int
 MAX_DEPTH: float
 MAX_PRESSURE: float
+MAX_LENGTH: float
+MAX_MASS: float
+MAX_VOLUME: float
+MAX_AREA: float
+MAX_COEFFICIENT: float
+MAX_DENSITY: float
+MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
 JOINT_WIDTH: int
@@ -264,6 +278,8 @@ class MujocoCoupling:
         xmat: NDArray[np.float64],
         mass_matrix: NDArray[np.float64],
         qfrc_applied: NDArray[np.float64],
+        dof_damping: NDArray[np.float64],
+        dof_frictionloss: NDArray[np.float64],
         root: int | None,
         joint_qpos: Sequence[int],
         joint_dofs: Sequence[int],

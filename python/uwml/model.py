@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .domains import MAX_DENSITY, MAX_GRAVITY
+
 Vec3 = tuple[float, float, float]
 
 __all__ = ["CIRCULAR_DEFAULTS", "RECTANGULAR_DEFAULTS", "SECTIONS", "Joint", "Link", "Segment", "Vec3", "Water"]
@@ -314,3 +316,7 @@ class Water:
     def __post_init__(self) -> None:
         object.__setattr__(self, "density", _scalar(self.density, "water.density", positive=True))
         object.__setattr__(self, "gravity", _scalar(self.gravity, "water.gravity", positive=False))
+        # docs/domains.md, "Model values": beyond these, forces of ordinary states overflow.
+        for name, limit, unit in (("density", MAX_DENSITY, "kg/m³"), ("gravity", MAX_GRAVITY, "m/s²")):
+            if getattr(self, name) > limit:
+                raise ValueError(f"water.{name} must be at most {limit:g} {unit}, got {getattr(self, name)!r}")

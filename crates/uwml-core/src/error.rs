@@ -24,6 +24,12 @@ pub enum Problem {
     /// Deeper than the deepest ocean: a depth beyond [`MAX_DEPTH`](crate::MAX_DEPTH), or a
     /// pressure beyond [`MAX_PRESSURE`](crate::MAX_PRESSURE).
     BeyondDeepestOcean,
+    /// Larger in magnitude than the model's bound for its kind ([`MAX_LENGTH`](crate::MAX_LENGTH),
+    /// [`MAX_MASS`](crate::MAX_MASS), [`MAX_VOLUME`](crate::MAX_VOLUME),
+    /// [`MAX_AREA`](crate::MAX_AREA), [`MAX_COEFFICIENT`](crate::MAX_COEFFICIENT),
+    /// [`MAX_DENSITY`](crate::MAX_DENSITY), [`MAX_GRAVITY`](crate::MAX_GRAVITY)): a unit
+    /// mistake, or a value whose forces would overflow.
+    TooLarge,
 }
 
 /// A non-physical or malformed model parameter, found at construction.
@@ -71,8 +77,28 @@ impl fmt::Display for ModelError {
                 "must be at most 1.2e8 Pa (the deepest ocean's 110 MPa, with margin)"
             }
             Problem::BeyondDeepestOcean => "must be at most 11000 m (the deepest ocean)",
+            Problem::TooLarge => too_large(self.field),
         };
         write!(f, "{} {allowed}", self.field)
+    }
+}
+
+/// The bound a field broke ([`Problem::TooLarge`]), in words.
+fn too_large(field: &str) -> &'static str {
+    if field.ends_with(".mass") {
+        "must be at most 1e9 kg"
+    } else if field.ends_with(".volume") {
+        "must be at most 1e6 m^3"
+    } else if field.ends_with(".area") {
+        "must be at most 1e8 m^2"
+    } else if field.ends_with("cd") || field.ends_with("cm") {
+        "must be at most 1e3 (measured coefficients are of order 1)"
+    } else if field.ends_with("density") {
+        "must be at most 1e5 kg/m^3"
+    } else if field.ends_with("gravity") {
+        "must be at most 1e3 m/s^2"
+    } else {
+        "must be at most 1e4 m in magnitude (each coordinate or length)"
     }
 }
 

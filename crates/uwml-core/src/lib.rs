@@ -27,7 +27,10 @@ pub use losses::{
     MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques,
     pressure_at_depth, smooth_sign,
 };
-pub use model::{AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, Segment, Water};
+pub use model::{
+    AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, MAX_AREA, MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY, MAX_LENGTH,
+    MAX_MASS, MAX_VOLUME, Segment, Water,
+};
 pub use motion::{BaseMotion, Current};
 pub use nalgebra;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};

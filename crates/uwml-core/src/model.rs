@@ -132,11 +132,70 @@ pub(crate) fn check_coefficient_table<T: RealField + Copy>(
 ) -> Result<(), ModelError> {
     for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
         for (&d, &m) in cd.iter().zip(cm.iter()) {
-            check_non_negative(d, cd_field, Some(index))?;
-            check_non_negative(m, cm_field, Some(index))?;
+            check_coefficient(d, cd_field, Some(index))?;
+            check_coefficient(m, cm_field, Some(index))?;
         }
     }
     Ok(())
+}
+
+/// The largest length a model may hold [m]: every coordinate of a point (joint origins, centres
+/// of mass and buoyancy, segment starts) and every length, width and diameter. A robot's
+/// dimensions beyond 10 km are a unit mistake; the bounds keep every force of a finite state
+/// finite (docs/domains.md), in f32 too.
+pub const MAX_LENGTH: f64 = 1e4;
+/// The largest mass of a body [kg] (the largest ships displace under 1e9 kg).
+pub const MAX_MASS: f64 = 1e9;
+/// The largest volume of a body [m³] (1e9 kg of water).
+pub const MAX_VOLUME: f64 = 1e6;
+/// The largest cross-section area of a segment [m²] (`MAX_LENGTH²`).
+pub const MAX_AREA: f64 = 1e8;
+/// The largest drag or added-mass coefficient (measured ones are of order 1).
+pub const MAX_COEFFICIENT: f64 = 1e3;
+/// The largest water density [kg/m³] (more than any liquid's).
+pub const MAX_DENSITY: f64 = 1e5;
+/// The largest gravity [m/s²].
+pub const MAX_GRAVITY: f64 = 1e3;
+
+/// `x` (already checked finite) at most `limit` in magnitude, else [`Problem::TooLarge`].
+pub(crate) fn check_at_most<T: RealField + Copy>(
+    x: T,
+    limit: f64,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    if x.abs() <= constant(limit) { Ok(x) } else { Err(ModelError::new(field, index, Problem::TooLarge)) }
+}
+
+/// A drag or added-mass coefficient: finite, not negative, at most [`MAX_COEFFICIENT`].
+pub(crate) fn check_coefficient<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    check_at_most(check_non_negative(x, field, index)?, MAX_COEFFICIENT, field, index)
+}
+
+/// A point of the model: finite, each coordinate at most [`MAX_LENGTH`] in magnitude.
+pub(crate) fn check_point<T: RealField + Copy>(
+    v: Vector3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Vector3<T>, ModelError> {
+    let v = check_vector(v, field, index)?;
+    for &x in v.iter() {
+        check_at_most(x, MAX_LENGTH, field, index)?;
+    }
+    Ok(v)
+}
+
+/// A length, width, diameter: finite, positive, at most [`MAX_LENGTH`].
+pub(crate) fn check_length<T: RealField + Copy>(
+    x: T,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<T, ModelError> {
+    check_at_most(check_positive(x, field, index)?, MAX_LENGTH, field, index)
 }
 
 pub(crate) fn check_vector<T: RealField + Copy>(
@@ -193,10 +252,7 @@ fn check_perpendicular<T: RealField + Copy>(
 impl<T: RealField + Copy> Joint<T> {
     fn validated(self, index: usize) -> Result<Self, ModelError> {
         let i = Some(index);
-        Ok(Self {
-            origin: check_vector(self.origin, "joint.origin", i)?,
-            axis: check_unit(self.axis, "joint.axis", i)?,
-        })
+        Ok(Self { origin: check_point(self.origin, "joint.origin", i)?, axis: check_unit(self.axis, "joint.axis", i)? })
     }
 }
 
@@ -213,12 +269,12 @@ impl<T: RealField + Copy> Segment<T> {
         let n2 = axis.cross(&n1) * axis.cross(&n1).dot(&n2).signum();
         let [w1, w2] = self.widths;
         Ok(Self {
-            start: check_vector(self.start, "segment.start", i)?,
+            start: check_point(self.start, "segment.start", i)?,
             axis,
-            length: check_positive(self.length, "segment.length", i)?,
+            length: check_length(self.length, "segment.length", i)?,
             normals: [n1, n2],
-            widths: [check_positive(w1, "segment.widths[0]", i)?, check_positive(w2, "segment.widths[1]", i)?],
-            area: check_positive(self.area, "segment.area", i)?,
+            widths: [check_length(w1, "segment.widths[0]", i)?, check_length(w2, "segment.widths[1]", i)?],
+            area: check_at_most(check_positive(self.area, "segment.area", i)?, MAX_AREA, "segment.area", i)?,
         })
     }
 }
@@ -227,10 +283,10 @@ impl<T: RealField + Copy> Link<T> {
     fn validated(self, index: usize) -> Result<Self, ModelError> {
         let i = Some(index);
         Ok(Self {
-            mass: check_non_negative(self.mass, "link.mass", i)?,
-            com: check_vector(self.com, "link.com", i)?,
-            volume: check_non_negative(self.volume, "link.volume", i)?,
-            cob: check_vector(self.cob, "link.cob", i)?,
+            mass: check_at_most(check_non_negative(self.mass, "link.mass", i)?, MAX_MASS, "link.mass", i)?,
+            com: check_point(self.com, "link.com", i)?,
+            volume: check_at_most(check_non_negative(self.volume, "link.volume", i)?, MAX_VOLUME, "link.volume", i)?,
+            cob: check_point(self.cob, "link.cob", i)?,
             segment: match self.segment {
                 Some(segment) => Some(segment.validated(index)?),
                 None => None,
@@ -357,11 +413,22 @@ impl<T: RealField + Copy> Water<T> {
     /// Water of the given density [kg/m³] under the given gravity [m/s²].
     ///
     /// # Errors
-    /// Density not positive and finite, or gravity negative or not finite.
+    /// Density not positive and finite, or gravity negative or not finite; either beyond
+    /// [`MAX_DENSITY`], [`MAX_GRAVITY`].
     pub fn new(density: T, gravity: T) -> Result<Self, ModelError> {
         Ok(Self {
-            density: check_positive(density, "water.density", None)?,
-            gravity: check_non_negative(gravity, "water.gravity", None)?,
+            density: check_at_most(
+                check_positive(density, "water.density", None)?,
+                MAX_DENSITY,
+                "water.density",
+                None,
+            )?,
+            gravity: check_at_most(
+                check_non_negative(gravity, "water.gravity", None)?,
+                MAX_GRAVITY,
+                "water.gravity",
+                None,
+            )?,
         })
     }
 }

@@ -15,8 +15,8 @@ use nalgebra::{RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
 use crate::model::{
-    AXIS_TOLERANCE, Chain, check_coefficient_table, check_non_negative, check_normal, check_positive, check_unit,
-    check_vector, constant,
+    AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_coefficient_table,
+    check_length, check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
 };
 
 /// How a joint moves its link.
@@ -137,7 +137,7 @@ impl<T: RealField + Copy> TreeJoint<T> {
             return Err(ModelError::new("joint.parent", i, Problem::OutOfRange));
         }
         Ok(Self {
-            origin: check_vector(self.origin, "joint.origin", i)?,
+            origin: check_point(self.origin, "joint.origin", i)?,
             axis: check_unit(self.axis, "joint.axis", i)?,
             ..self
         })
@@ -152,10 +152,10 @@ impl<T: RealField + Copy> RigidBody<T> {
             None => ["base.mass", "base.com", "base.volume", "base.cob"],
         };
         Ok(Self {
-            mass: check_non_negative(self.mass, mass, index)?,
-            com: check_vector(self.com, com, index)?,
-            volume: check_non_negative(self.volume, volume, index)?,
-            cob: check_vector(self.cob, cob, index)?,
+            mass: check_at_most(check_non_negative(self.mass, mass, index)?, MAX_MASS, mass, index)?,
+            com: check_point(self.com, com, index)?,
+            volume: check_at_most(check_non_negative(self.volume, volume, index)?, MAX_VOLUME, volume, index)?,
+            cob: check_point(self.cob, cob, index)?,
         })
     }
 
@@ -188,17 +188,17 @@ impl<T: RealField + Copy> RobotSegment<T> {
                 let n1 = axis.cross(&n0) * axis.cross(&n0).dot(&n1).signum();
                 Section::Rectangular {
                     normals: [n0, n1],
-                    widths: [check_positive(w0, "segment.widths[0]", i)?, check_positive(w1, "segment.widths[1]", i)?],
+                    widths: [check_length(w0, "segment.widths[0]", i)?, check_length(w1, "segment.widths[1]", i)?],
                 }
             }
             Section::Circular { diameter } => {
                 let [cd0, cd1] = self.cd;
                 let [cm0, cm1] = self.cm;
                 for x in [cd0, cd1] {
-                    check_non_negative(x, "segment.cd", i)?;
+                    check_coefficient(x, "segment.cd", i)?;
                 }
                 for x in [cm0, cm1] {
-                    check_non_negative(x, "segment.cm", i)?;
+                    check_coefficient(x, "segment.cm", i)?;
                 }
                 if cd0 != cd1 {
                     return Err(ModelError::new("segment.cd", i, Problem::OutOfRange));
@@ -206,20 +206,20 @@ impl<T: RealField + Copy> RobotSegment<T> {
                 if cm0 != cm1 {
                     return Err(ModelError::new("segment.cm", i, Problem::OutOfRange));
                 }
-                Section::Circular { diameter: check_positive(diameter, "segment.diameter", i)? }
+                Section::Circular { diameter: check_length(diameter, "segment.diameter", i)? }
             }
         };
         let [cd0, cd1] = self.cd;
         let [cm0, cm1] = self.cm;
         Ok(Self {
             owner: self.owner,
-            start: check_vector(self.start, "segment.start", i)?,
+            start: check_point(self.start, "segment.start", i)?,
             axis,
-            length: check_positive(self.length, "segment.length", i)?,
-            area: check_positive(self.area, "segment.area", i)?,
+            length: check_length(self.length, "segment.length", i)?,
+            area: check_at_most(check_positive(self.area, "segment.area", i)?, MAX_AREA, "segment.area", i)?,
             section,
-            cd: [check_non_negative(cd0, "segment.cd", i)?, check_non_negative(cd1, "segment.cd", i)?],
-            cm: [check_non_negative(cm0, "segment.cm", i)?, check_non_negative(cm1, "segment.cm", i)?],
+            cd: [check_coefficient(cd0, "segment.cd", i)?, check_coefficient(cd1, "segment.cd", i)?],
+            cm: [check_coefficient(cm0, "segment.cm", i)?, check_coefficient(cm1, "segment.cm", i)?],
         })
     }
 }

@@ -127,6 +127,14 @@
 #define UWML_ERR_OVERFLOW 13
 
 /**
+ * A model value larger than its kind's bound (a coordinate or length beyond 1e4 m, a mass beyond
+ * 1e9 kg, a volume beyond 1e6 m³, an area beyond 1e8 m², a coefficient beyond 1e3, a water
+ * density beyond 1e5 kg/m³ or gravity beyond 1e3 m/s²): a unit mistake, or forces that would
+ * overflow.
+ */
+#define UWML_ERR_TOO_LARGE 14
+
+/**
  * The number of joints (and links) of the leg of this API.
  */
 #define UWML_LEG3_JOINTS 3

@@ -73,6 +73,11 @@ pub const UWML_ERR_BEYOND_DEEPEST_OCEAN: i32 = 12;
 /// beyond any robot's): the outputs are written and hold infinities or NaN; the field names the
 /// output ("total", "current" or "base_wrench") and the index the first joint (or -1).
 pub const UWML_ERR_OVERFLOW: i32 = 13;
+/// A model value larger than its kind's bound (a coordinate or length beyond 1e4 m, a mass beyond
+/// 1e9 kg, a volume beyond 1e6 m³, an area beyond 1e8 m², a coefficient beyond 1e3, a water
+/// density beyond 1e5 kg/m³ or gravity beyond 1e3 m/s²): a unit mistake, or forces that would
+/// overflow.
+pub const UWML_ERR_TOO_LARGE: i32 = 14;
 
 /// The number of joints (and links) of the leg of this API.
 pub const UWML_LEG3_JOINTS: usize = 3;
@@ -488,6 +493,7 @@ pub extern "C" fn uwml_error_message(code: i32) -> *const c_char {
         UWML_ERR_BELOW_ABSOLUTE_ZERO => c"at or below absolute zero",
         UWML_ERR_BEYOND_DEEPEST_OCEAN => c"beyond the deepest ocean",
         UWML_ERR_OVERFLOW => c"forces overflow",
+        UWML_ERR_TOO_LARGE => c"too large",
         _ => c"unknown error",
     };
     message.as_ptr()

@@ -655,8 +655,9 @@ fn error_messages_and_helpers() {
         UWML_ERR_BELOW_ABSOLUTE_ZERO,
         UWML_ERR_BEYOND_DEEPEST_OCEAN,
         UWML_ERR_OVERFLOW,
+        UWML_ERR_TOO_LARGE,
     ];
-    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13]);
+    assert_eq!(codes, [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14]);
     let mut messages: Vec<String> = codes
         .iter()
         .map(|&code| {

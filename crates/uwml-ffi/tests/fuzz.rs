@@ -81,7 +81,7 @@ fn edited<T: Copy>(value: T, edits: &[Edit]) -> T {
     value
 }
 
-const CODES: std::ops::RangeInclusive<i32> = UWML_OK..=UWML_ERR_OVERFLOW;
+const CODES: std::ops::RangeInclusive<i32> = UWML_OK..=UWML_ERR_TOO_LARGE;
 
 fn blank() -> UwmlError {
     UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }

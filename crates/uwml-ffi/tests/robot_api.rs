@@ -490,6 +490,12 @@ fn invalid_robots_name_the_field_and_index() {
         (|p| p.segments[2].length = -0.1, (UWML_ERR_NON_POSITIVE, 2, "segment.length")),
         (|p| p.segments[2].area = f64::NAN, (UWML_ERR_NON_FINITE, 2, "segment.area")),
         (|p| p.segments[4].axis = [0.0, 0.0, 2.0], (UWML_ERR_NOT_UNIT, 4, "segment.axis")),
+        // Finite but beyond the model's bounds (their forces would overflow).
+        (|p| p.links[1].com[0] = 1e308, (UWML_ERR_TOO_LARGE, 1, "link.com")),
+        (|p| p.joints[2].origin[2] = -2e4, (UWML_ERR_TOO_LARGE, 2, "joint.origin")),
+        (|p| p.base.as_mut().unwrap().mass = 2e9, (UWML_ERR_TOO_LARGE, -1, "base.mass")),
+        (|p| p.segments[3].length = 1e5, (UWML_ERR_TOO_LARGE, 3, "segment.length")),
+        (|p| p.segments[0].cd = [5e3, 5e3], (UWML_ERR_TOO_LARGE, 0, "segment.cd")),
         (
             |p| {
                 let joint = p.joints[5];
@@ -519,6 +525,8 @@ fn invalid_robots_name_the_field_and_index() {
     let mut robot = zeroed64();
     let (code, error) = new64(&mut robot, &arm(), 0.0);
     expect_error(code, &error, (UWML_ERR_NON_POSITIVE, -1, "water.density"));
+    let (code, error) = new64(&mut robot, &arm(), 1e300);
+    expect_error(code, &error, (UWML_ERR_TOO_LARGE, -1, "water.density"));
     // Fields a section does not use are not read.
     let mut params = arm();
     params.segments[0].normals = [[f64::NAN; 3]; 2];

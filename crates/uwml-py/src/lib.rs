@@ -587,6 +587,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
     m.add("MAX_DEPTH", uwml_core::MAX_DEPTH)?;
     m.add("MAX_PRESSURE", uwml_core::MAX_PRESSURE)?;
+    m.add("MAX_LENGTH", uwml_core::MAX_LENGTH)?;
+    m.add("MAX_MASS", uwml_core::MAX_MASS)?;
+    m.add("MAX_VOLUME", uwml_core::MAX_VOLUME)?;
+    m.add("MAX_AREA", uwml_core::MAX_AREA)?;
+    m.add("MAX_COEFFICIENT", uwml_core::MAX_COEFFICIENT)?;
+    m.add("MAX_DENSITY", uwml_core::MAX_DENSITY)?;
+    m.add("MAX_GRAVITY", uwml_core::MAX_GRAVITY)?;
     m.add("ABSOLUTE_ZERO_C", uwml_core::ABSOLUTE_ZERO_C)?;
     m.add("OIL_TEMPERATURE_RANGE_C", (uwml_core::OIL_TEMPERATURE_RANGE_C[0], uwml_core::OIL_TEMPERATURE_RANGE_C[1]))?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
