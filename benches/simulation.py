@@ -4,7 +4,8 @@ and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tes
     python benches/simulation.py [--steps N]
 
 Prints microseconds per step (median of 5 runs of N steps) and the ratios to a bare mj_step, for
-the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints). Timings on a
+the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints), without joint
+losses and (Euler) with the default ones at 3000 m. Timings on a
 shared machine are noisy: compare ratios from one run.
 """
 
@@ -17,6 +18,7 @@ from pathlib import Path
 
 import mujoco
 import numpy as np
+import uwml
 from uwml.descriptions import model_and_robot
 from uwml.mujoco import Simulation
 
@@ -72,6 +74,10 @@ def main() -> None:
             sim = Simulation.from_file(DATA / file, DATA / hydro, integrator=integrator)
             sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
             rows.append((f"uwml.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps)))
+        # The default joint losses at 3000 m: the seals' friction a MuJoCo constraint, noslip on.
+        sim = Simulation.from_file(DATA / file, DATA / hydro, depth=3000.0, losses=uwml.JointLosses())
+        sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
+        rows.append(("uwml.mujoco, euler, losses", per_step(sim.step, args.steps)))
         print(f"\n{name}")
         for label, micro in rows:
             print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")
