@@ -223,3 +223,42 @@ def test_model_values_at_their_bounds_give_finite_forces(field: str) -> None:
 def test_a_huge_water_is_refused_at_construction(density: float, gravity: float) -> None:
     with pytest.raises(ValueError, match=r"water\.(density|gravity) must be at most"):
         uwml.Water(density, gravity)
+
+
+# --- simulation conditions (uwml.mujoco.Simulation) ----------------------------------------------
+
+SIMULATION_ARGUMENTS: dict[str, list[Any]] = {
+    "depth": [math.nan, math.inf, -1.0, 1e308, 12000.0, "1", None, True, [1.0, 2.0], np.zeros(3)],
+    "temperature_c": [math.nan, -300.0, None, "x", b"1", [4.0]],
+    "current": [(math.nan, 0, 0), (1e308, 0, 0), (1e200, 1e200, 0), (1, 2), None, "abc", np.zeros((2, 3)), [[1.0], [2.0], [3.0]]],
+    "current_acceleration": [(math.inf, 0, 0), (1e308, 0, 0), "x", (0,) * 1000],
+    "water": ["sea", 5, (1025.0, 9.81)],
+    "losses": [[uwml.JointLosses()], "x", 5, [1, 2, 3]],
+    "scheme": ["foo", None, 1],
+    "integrator": ["x", 3, None],
+    "added_mass": ["x", None],
+}
+SIMULATION_CASES = [(name, value) for name, values in SIMULATION_ARGUMENTS.items() for value in values]
+
+
+@pytest.mark.parametrize(("argument", "value"), SIMULATION_CASES, ids=[f"{n}-{i}" for i, (n, _) in enumerate(SIMULATION_CASES)])
+def test_hostile_simulation_conditions_give_an_error_naming_them_or_a_finite_run(argument: str, value: Any) -> None:
+    """Every condition of a simulation (the arm of tests/data on its floating hull): a
+    ``ValueError`` or ``TypeError`` naming the argument (and short), or a simulation whose state
+    stays finite; never a run that diverges from the first step (a current of 1e308 m/s did)."""
+    pytest.importorskip("mujoco")
+    from pathlib import Path
+
+    from uwml.mujoco import Simulation
+
+    data = Path(__file__).parent / "data"
+    try:
+        sim = Simulation.from_file(data / "arm.xml", data / "arm.hydro.toml", **{argument: value})
+    except (ValueError, TypeError) as error:
+        message = str(error)
+        assert argument in message or "forces" in message, message
+        assert len(message) < 500, message
+        return
+    for _ in range(20):
+        sim.step()
+    assert np.all(np.isfinite(sim.data.qpos)) and np.all(np.isfinite(sim.data.qvel))

@@ -71,6 +71,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import _core
+from ._checks import shown
 from .environment import JointLosses, check_depths, check_temperatures, pack_leg_losses
 from .model import Water
 from .robot import BaseMotion, Robot
@@ -98,10 +99,23 @@ def _mujoco() -> Any:
 
 
 def _vector3(value: ArrayLike, name: str) -> FloatArray:
-    array = np.asarray(value, dtype=np.float64)
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        array = np.full(0, np.nan)
     if array.shape != (3,) or not np.all(np.isfinite(array)):
-        raise ValueError(f"{name} must be 3 finite numbers [world frame], got {value!r}")
+        raise ValueError(f"{name} must be 3 finite numbers [world frame], got {shown(value)}")
     return array
+
+
+def _number(value: Any, name: str) -> float:
+    """``value`` as one float (a number, or a 0-d array), or a ValueError naming ``name``."""
+    if isinstance(value, (bool, np.bool_)) or value is None or np.ndim(value) != 0:
+        raise ValueError(f"{name} must be one number, got {shown(value)}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be one number, got {shown(value)}") from None
 
 
 def _segment_solid(segment: Any) -> tuple[float, FloatArray, FloatArray]:
@@ -291,12 +305,9 @@ class Simulation:
             raise ValueError(
                 f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
             )
-        for name, value in (("depth", depth), ("temperature_c", temperature_c)):
-            if np.ndim(value) != 0:
-                raise ValueError(f"{name} must be one number, got an array of shape {np.shape(value)}")
-        check_depths(np.asarray(depth, dtype=np.float64))
-        check_temperatures(np.asarray(temperature_c, dtype=np.float64))
-        self._depth, self._temperature_c = float(depth), float(temperature_c)
+        self._depth, self._temperature_c = _number(depth, "depth"), _number(temperature_c, "temperature_c")
+        check_depths(np.asarray(self._depth))
+        check_temperatures(np.asarray(self._temperature_c))
         self._current = _vector3(current, "current")
         self._current_acceleration = _vector3(current_acceleration, "current_acceleration")
         if added_mass not in ("morison", "kirchhoff"):
@@ -341,6 +352,10 @@ class Simulation:
             tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
+        try:  # a current so strong that the water's forces overflow is outside the physics
+            self.environment()
+        except ValueError as error:
+            raise ValueError(f"the water's forces at the model's initial state are not finite numbers: {error}") from None
 
     # Read-only: the native coupling took them at construction, so that a change would be
     # honoured by environment() and not by step(). Make a new Simulation for other conditions.
