@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 from collections.abc import Sequence
@@ -28,7 +27,20 @@ from typing import IO, Any
 
 import numpy as np
 
-from .domains import MAX_DEPTH
+from ._cli_arguments import (
+    MAX_DEMO_SAMPLES,
+    MAX_DEPTHS,
+    _count,
+    _cycles,
+    _depth,
+    _depth_list,
+    _finite,
+    _joint_list,
+    _n_joints,
+    _non_negative,
+    _positive,
+    _seed,
+)
 from .leg import Leg
 from .logs import MAX_ROBOT_JOINTS
 from .model import Water
@@ -40,10 +52,6 @@ __all__ = ["build_parser", "gait_like_motion", "main"]
 #: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
 #: longer inputs report progress on stderr.
 CHUNK_ROWS = 100_000
-#: Most samples of ``uwml demo``'s printed table.
-MAX_DEMO_SAMPLES = 10_000
-#: Most depths of ``uwml simulate`` (each runs five simulations).
-MAX_DEPTHS = 20
 
 
 class _UsageError(ValueError):
@@ -220,17 +228,6 @@ def _describe(args: argparse.Namespace) -> int:
     return 0
 
 
-def _joint_list(text: str) -> list[int]:
-    allowed = f"must be distinct joint numbers from 1 to {MAX_ROBOT_JOINTS}, separated by commas, got {_quoted(text)}"
-    try:
-        joints = [int(item) for item in text.split(",") if item.strip()]
-    except ValueError:  # not integers, or integers of more than 4300 digits
-        raise argparse.ArgumentTypeError(allowed) from None
-    if not joints or any(not 1 <= j <= MAX_ROBOT_JOINTS for j in joints) or len(set(joints)) != len(joints):
-        raise argparse.ArgumentTypeError(allowed)
-    return joints
-
-
 def _fit_hydro(args: argparse.Namespace) -> int:
     from . import fit
 
@@ -304,72 +301,6 @@ def _fit_losses(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 # Parser
 # --------------------------------------------------------------------------------------------
-
-
-# The argument types: each says what is allowed (argparse would otherwise print "invalid
-# _positive value" for a word).
-
-
-def _quoted(text: str) -> str:
-    return repr(text) if len(text) <= 40 else repr(text[:40]) + "…"
-
-
-def _number(text: str, allowed: str, low: float, high: float, low_open: bool = False) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and (low < value if low_open else low <= value) and value <= high):
-        raise argparse.ArgumentTypeError(f"{allowed}, got {_quoted(text)}")
-    return value
-
-
-def _integer(text: str, low: int, high: int) -> int:
-    try:
-        value = int(text)
-    except ValueError:  # not an integer, or one of more than 4300 digits
-        value = low - 1
-    if not low <= value <= high:
-        raise argparse.ArgumentTypeError(f"must be an integer from {low} to {high}, got {_quoted(text)}")
-    return value
-
-
-def _positive(text: str) -> float:
-    return _number(text, "must be a positive number", 0.0, math.inf, low_open=True)
-
-
-def _non_negative(text: str) -> float:
-    return _number(text, "must be a non-negative number", 0.0, math.inf)
-
-
-def _finite(text: str) -> float:
-    return _number(text, "must be a finite number", -math.inf, math.inf)
-
-
-def _depth(text: str) -> float:
-    return _number(text, f"must be a depth from 0 to {MAX_DEPTH:g} m", 0.0, MAX_DEPTH)
-
-
-def _cycles(text: str) -> float:
-    return _number(text, f"must be between 0 and {MAX_CYCLES} (gait cycles, more than 0)", 0.0, MAX_CYCLES, low_open=True)
-
-
-def _count(text: str) -> int:
-    return _integer(text, 2, MAX_DEMO_SAMPLES)
-
-
-def _n_joints(text: str) -> int:
-    return _integer(text, 1, MAX_ROBOT_JOINTS)
-
-
-def _seed(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = -1
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"must be a non-negative integer, got {_quoted(text)}")
-    return value
 
 
 _LOG_FORMAT = """Log format (uwml.logs, docs/identification.md): CSV with a header row; columns
@@ -599,18 +530,6 @@ depth_sweep.png in --out. A progress bar on standard error.""",
     simulate.add_argument("--json", action="store_true", help="print the runs' summaries as JSON only")
     simulate.set_defaults(run=_simulate)
     return parser
-
-
-def _depth_list(text: str) -> list[float]:
-    try:
-        depths = [float(item) for item in text.split(",") if item.strip()]
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"must be depths in m separated by commas, got {_quoted(text)}") from None
-    if not depths or any(not (math.isfinite(d) and 0.0 <= d <= MAX_DEPTH) for d in depths):
-        raise argparse.ArgumentTypeError(f"must be depths from 0 to 11000 m, separated by commas, got {_quoted(text)}")
-    if len(depths) > MAX_DEPTHS:
-        raise argparse.ArgumentTypeError(f"must be at most {MAX_DEPTHS} depths (each runs five simulations), got {len(depths)}")
-    return depths
 
 
 def _simulate(args: argparse.Namespace) -> int:
