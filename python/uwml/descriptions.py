@@ -1,20 +1,28 @@
-"""Robot descriptions (URDF, MJCF, a MuJoCo model) to a :class:`uwml.Robot` (MODEL.md section 10).
+"""Robot descriptions (URDF, MJCF, a MuJoCo model) to a :class:`uwml.Robot` (docs/model.md section 10).
 
 ``from_urdf(path, hydro=None)``, ``from_mjcf(path, hydro=None)`` and ``from_mujoco(model,
 hydro=None)`` (also as the classmethods ``uwml.Robot.from_urdf`` and so on) read a description
 with MuJoCo (``pip install "uwml[mujoco]"``), which parses both formats into one model, and map it
-by the fixed rules of MODEL.md 10:
+by the fixed rules of docs/model.md section 10 ("From URDF and MJCF"):
 
 - The root body is the base: its own mass, COM and collision geometry become the base body. A
   free joint on the root makes it the moving base (no uwml joint; the motion is a
   :class:`uwml.BaseMotion`). An MJCF root carrying hinge or slide joints hangs from the world: the
   base is then the world, without a body of its own. The world body's own geoms (a floor) are
-  scenery and ignored; the world must hold exactly one root body.
+  scenery and ignored; the world must hold exactly one root body. ``world`` is not a link of the
+  robot: a hydro file's ``[links.world]`` is an error, and so is a URDF link named ``world`` with
+  an ``<inertial>`` or a ``<collision>`` (MuJoCo takes it for the world and drops both).
 - Fixed joints (URDF ``fixed``; MJCF bodies without joints) are fused into their parent:
   geometry, mass with the COM mass-weighted, volume with the COB volume-weighted.
 - URDF revolute and continuous, MJCF hinge: revolute; URDF prismatic, MJCF slide: prismatic;
   anything else (ball, planar, a floating or free joint other than the root's, several joints in
-  one body, a joint with a nonzero ``ref``) is a :class:`DescriptionError` naming the joint.
+  one body, a joint with a nonzero ``ref``, a URDF ``<mimic>``: uwml has no coupled joints) is a
+  :class:`DescriptionError` naming the joint. Every joint and link name is given once.
+- Masses. A URDF link without ``<inertial>`` is massless (URDF's rule; MuJoCo would compute a
+  mass from its collision geometry, and does not here); a link moved by a joint with no mass,
+  neither its own nor a fixed child's, is an error naming it (MuJoCo cannot move it). An MJCF
+  body without ``<inertial>`` takes its mass from its geoms, as MuJoCo does. A negative mass is an
+  error (MuJoCo would clamp it to 0).
 - Frames. uwml's link frames are parallel to the base frame at ``q = 0``; a description's body
   frames may be rotated (URDF ``rpy``, MJCF ``quat``/``euler``/``axisangle``/...). With ``R_i``
   the orientation of body ``i`` relative to the base at ``q = 0`` (the product of the fixed
@@ -41,107 +49,65 @@ by the fixed rules of MODEL.md 10:
 - Names: URDF link and joint names, MJCF body and joint names, are kept (``Link.name``,
   ``Joint.name``; an unnamed MJCF joint has none). Links are in MuJoCo's body order (depth first,
   as written), so ``q`` is in the order of the description's moving joints.
+- The files: regular files only (a directory, a named pipe or a device is refused, not waited
+  on), the description and every file it names or includes; at most
+  :data:`MAX_DESCRIPTION_BODIES` bodies, ``uwml.MAX_ROBOT_JOINTS`` moving joints (and a free
+  root) and :data:`MAX_DESCRIPTION_GEOMS` geoms, counted as written (``<replicate>`` multiplied,
+  ``<include>`` added) before MuJoCo reads the file; numbers finite. See
+  :mod:`uwml._description_xml`, which reads the XML as written for these checks before MuJoCo
+  does.
 
 What MuJoCo loses, and how this module keeps it. ``mujoco.MjModel.from_xml_path`` on a URDF
 fuses every body without a joint into its parent (``fusestatic``, on by default for URDF): the
 root link is merged into the world body, whose mass MuJoCo does not keep (``body_mass[0]`` is 0),
 so the base body's mass, COM and geometry would be lost. So the description is read as an
-``mujoco.MjSpec``, with ``fusestatic`` turned off and the non-collision geoms (and the meshes only
-they use) deleted, then compiled: the root stays a body with its own inertial and geoms, fixed
-links stay bodies (fused here, by the rules above), and the compiled model supplies what the
-spec leaves implicit (MJCF default classes, ``fromto``, Euler sequences and degrees, inertia from
-geoms where MJCF has no ``<inertial>``). Nothing the rules need is then missing, so no second
-XML reader is used. A URDF link without ``<inertial>`` is massless by URDF's rules; MuJoCo
-refuses a massless link moved by a joint ("mass and inertia of moving bodies must be larger than
-mjMINVAL"), which is reported as a :class:`DescriptionError`. ``from_mujoco`` takes a model
-already compiled: if it was compiled from a URDF with ``fusestatic`` on, the root's mass is
-already gone (the base is then the world, without a body); load the file with
-:func:`from_urdf` instead.
+``mujoco.MjSpec``, with ``fusestatic`` turned off (and, for URDF, ``inertiafromgeom``), the
+non-collision geoms (and the meshes only they use) deleted, then compiled: the root stays a body
+with its own inertial and geoms, fixed links stay bodies (fused here, by the rules above), and the
+compiled model supplies what the spec leaves implicit (MJCF default classes, ``fromto``, Euler
+sequences and degrees, inertia from geoms where MJCF has no ``<inertial>``). What MuJoCo changes
+without a word (a repeated joint name, a ``<mimic>``, a negative mass) is refused from the XML as
+written or from the spec before compiling. ``from_mujoco`` takes a model already compiled: if it
+was compiled from a URDF with ``fusestatic`` on, the root's mass is already gone (the base is then
+the world, without a body); load the file with :func:`from_urdf` instead.
 
-The hydro file (TOML, read with ``tomllib``): what the descriptions lack, per link by name (a
-URDF link's, an MJCF body's; a link fused into its parent may have its own entry). Every vector
-is in that link's own description frame, as in the URDF/MJCF (this module turns it into uwml's
-frames)::
-
-    # uwml hydro file: SI units
-    [links.thigh]
-    cd = 2.2                  # every segment of this link: one number, or [along n0, along n1]
-    cm = [0.5, 0.6]
-    volume = 0.00713          # m³, displaced volume (instead of the primitives' sum)
-    cob = [0.506, 0.0, 0.0]   # m, centre of buoyancy (default: the primitives' centroid, or the COM)
-
-    [links.camera]
-    dry = true                # no segments, no volume (a link out of the water, or to ignore)
-
-    [links.hull]              # a link drawn as a mesh: give its volume and segments
-    volume = 0.29
-    cob = [0.0, 0.0, 0.05]
-    segment_cd = [0.9, [1.1, 1.3]]   # per segment, in order (primitives, then the segments below)
-
-    [[links.hull.segments]]   # the keys of a uwml model file's segments (uwml.modelfile)
-    section = "circular"
-    start = [-0.9, 0.0, 0.0]
-    axis = [1.0, 0.0, 0.0]
-    length = 1.8
-    diameter = 0.6
-    area = 0.283
-    cd = [0.9, 0.9]
-    cm = [1.0, 1.0]
-
-    [[links.hull.segments]]
-    section = "rectangular"
-    start = [0.0, -0.3, 0.0]
-    axis = [0.0, 1.0, 0.0]
-    length = 0.6
-    normals = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
-    widths = [0.2, 0.4]
-    area = 0.08
-    cd = [1.1, 1.3]
-    cm = [1.0, 1.0]
-
-A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, else the link's
-``cd``/``cm``, else its own (hydro segments), else the documented defaults per section
-(:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
-segment takes one number (a pair must have two equal entries). Unknown link names, unknown keys,
-missing values and wrong types are :class:`DescriptionError`\\ s naming the file, the table and
-the key. Per joint by name, ``[joints.NAME]`` gives that joint's losses (``uwml.JointLosses``: the
-same tables as the model file's ``[joints.losses]``: ``epsilon``, ``[joints.NAME.drive]``,
-``[joints.NAME.oil]``, ``[joints.NAME.seal]`` with their dataclasses' fields), kept as the
-robot's own (``Robot.losses``). ``[water]`` gives the robot's water (``Robot.water``, which every
-evaluation uses unless given another)::
-
-    [water]
-    density = 1025.0   # kg/m³, 900 to 1300 (default 1000, fresh water)
-    gravity = 9.81     # m/s², 9.7 to 9.9 (default 9.81)
-
-A density or gravity outside those ranges is taken for a unit mistake (g/cm³, g, ft/s²) and is an
-error; another fluid or planet is a :class:`uwml.Water` given in code.
+The hydro file (TOML): what the descriptions lack, per link and per joint by name, and the water;
+its format is :mod:`uwml.hydrofile`'s (:func:`read_hydro`, :class:`HydroFile`).
 """
 
 from __future__ import annotations
 
 import math
 import os
+import re
+import warnings
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
-import tomllib
 from numpy.typing import NDArray
 
-from .environment import JointLosses
-from .model import Joint, Link, Segment, Water
-from .modelfile import _float, _losses, _pair, _Reader, _segment, _vec3, _water
+from ._checks import shown
+from ._description_io import DescriptionError, clipped
+from ._description_xml import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS, limits_exceeded, scan
+from .hydrofile import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, HydroFile, HydroLink, _hydro_water, _table, read_hydro  # noqa: F401 (kept importable from here)
+from .model import Joint, Link, Segment
 from .robot import Robot
 
-__all__ = ["DescriptionError", "HydroFile", "HydroLink", "from_mjcf", "from_mujoco", "from_urdf", "model_and_robot", "read_hydro"]
+__all__ = [
+    "MAX_DESCRIPTION_BODIES",
+    "MAX_DESCRIPTION_GEOMS",
+    "DescriptionError",
+    "HydroFile",
+    "HydroLink",
+    "from_mjcf",
+    "from_mujoco",
+    "from_urdf",
+    "model_and_robot",
+    "read_hydro",
+]
 
 FloatArray = NDArray[np.float64]
-
-
-class DescriptionError(ValueError):
-    """A robot description or hydro file that cannot be mapped: names the file and the element."""
 
 
 def _mujoco() -> Any:
@@ -152,134 +118,8 @@ def _mujoco() -> Any:
     return mujoco
 
 
-# --- the hydro file ---------------------------------------------------------------------------
-
-_LINK_KEYS = ("cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments")
-
-
-@dataclass(frozen=True)
-class HydroLink:
-    """One link's entry of a hydro file (vectors in the link's description frame)."""
-
-    cd: float | tuple[float, float] | None = None
-    cm: float | tuple[float, float] | None = None
-    segment_cd: tuple[float | tuple[float, float], ...] | None = None
-    segment_cm: tuple[float | tuple[float, float], ...] | None = None
-    volume: float | None = None
-    cob: tuple[float, float, float] | None = None
-    dry: bool = False
-    segments: tuple[Segment, ...] = field(default=())
-
-    @property
-    def describes_geometry(self) -> bool:
-        """Whether the entry stands in for the link's geometry (a mesh link may then load)."""
-        return self.dry or self.volume is not None
-
-
-def _coefficient(value: Any) -> float | tuple[float, float]:
-    if isinstance(value, list):
-        return _pair(value)
-    return _float(value)
-
-
-def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:
-    if not isinstance(value, list):
-        raise TypeError("not an array")
-    return tuple(_coefficient(v) for v in value)
-
-
-def _boolean(value: Any) -> bool:
-    if not isinstance(value, bool):
-        raise TypeError("not true or false")
-    return value
-
-
-def _nonnegative(value: Any) -> float:
-    x = _float(value)
-    if not (math.isfinite(x) and x >= 0.0):
-        raise ValueError("must be finite and >= 0")
-    return x
-
-
-@dataclass(frozen=True)
-class HydroFile:
-    """A hydro file: per link by name (:class:`HydroLink`), per joint by name (its
-    :class:`uwml.JointLosses`), and the water (None: not given)."""
-
-    links: dict[str, HydroLink] = field(default_factory=dict)
-    joints: dict[str, JointLosses] = field(default_factory=dict)
-    water: Water | None = None
-    source: str = "<string>"
-
-
-def _hydro_water(source: str, table: object) -> Water:
-    # The model file's rule: uwml.modelfile.WATER_DENSITY_RANGE and WATER_GRAVITY_RANGE.
-    return _water(source, "[water]", table, DescriptionError)
-
-
-def _hydro_loads(text: str, source: str) -> HydroFile:
-    try:
-        document = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise DescriptionError(f"{source}: not valid TOML: {exc}") from None
-    top = _Reader(source, "top level", document, DescriptionError)
-    top.check_keys(("links", "joints", "water"))
-    links: dict[str, Any] = top.get(
-        "links",
-        lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"),
-        "a table of links by name",
-        required=False,
-        default={},
-    )
-    out: dict[str, HydroLink] = {}
-    for name, table in links.items():
-        where = f"[links.{name}]"
-        r = _Reader(source, where, table, DescriptionError)
-        r.check_keys(_LINK_KEYS)
-        raw_segments: list[Any] = r.get(
-            "segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[]
-        )
-        segments = tuple(_segment(source, f"{where}, segments[{i}]", s, DescriptionError) for i, s in enumerate(raw_segments))
-        entry = HydroLink(
-            cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
-            cm=r.get("cm", _coefficient, "a number or [along n0, along n1]", required=False),
-            segment_cd=r.get("segment_cd", _coefficients, "an array, one number or pair per segment", required=False),
-            segment_cm=r.get("segment_cm", _coefficients, "an array, one number or pair per segment", required=False),
-            volume=r.get("volume", _nonnegative, "a volume [m³], >= 0", required=False),
-            cob=r.get("cob", _vec3, "an array of 3 numbers [m]", required=False),
-            dry=r.get("dry", _boolean, "true or false", required=False, default=False),
-            segments=segments,
-        )
-        if entry.dry:
-            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm"):
-                if key in r.table:
-                    r.fail(key, "a dry link has no segments and no volume: remove this key or dry = true")
-        if entry.cob is not None and entry.volume is None:
-            r.fail("cob", "needs volume (give the displaced volume with its centre of buoyancy)")
-        out[name] = entry
-    joints: dict[str, Any] = top.get(
-        "joints",
-        lambda v: v if isinstance(v, dict) else _not("a table [joints.NAME]"),
-        "a table of joints by name",
-        required=False,
-        default={},
-    )
-    losses = {name: _losses(source, f"[joints.{name}]", table, DescriptionError) for name, table in joints.items()}
-    water = _hydro_water(source, document["water"]) if "water" in document else None
-    return HydroFile(links=out, joints=losses, water=water, source=source)
-
-
-def _not(what: str) -> Any:
-    raise TypeError(f"not {what}")
-
-
-def read_hydro(path: str | os.PathLike[str]) -> HydroFile:
-    """The hydro file at ``path`` (see the module docstring)."""
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except OSError as exc:
-        raise DescriptionError(f"{path}: the hydro file cannot be read: {exc.strerror or exc}") from None
-    return _hydro_loads(text, str(path))
+def _quoted(name: str) -> str:
+    return f"'{name}'" if len(name) <= 60 and name.isprintable() and "'" not in name else shown(name, 40)
 
 
 def _with_joints_and_water(robot: Robot, hydro: HydroFile) -> Robot:
@@ -287,8 +127,10 @@ def _with_joints_and_water(robot: Robot, hydro: HydroFile) -> Robot:
     names = robot.joint_names
     for name in hydro.joints:
         if name not in names:
-            known = ", ".join(names) or "none"
-            raise DescriptionError(f"{hydro.source}: [joints.{name}]: no joint of that name in the description (its joints: {known})")
+            known = clipped(", ".join(names) or "none")
+            raise DescriptionError(
+                f"{hydro.source}: {_table('joints', name)}: no joint of that name in the description (its joints: {known})"
+            )
     if not hydro.joints and hydro.water is None:
         return robot
     losses = [hydro.joints.get(name) for name in names] if hydro.joints else robot.losses
@@ -395,10 +237,11 @@ def _primitive(mujoco: Any, kind: int, size: FloatArray) -> tuple[Segment | None
         segment = Segment(
             start=(0.0, 0.0, -0.5 * length), axis=(0.0, 0.0, 1.0), length=length, section="circular", diameter=2.0 * r, area=math.pi * r * r
         )
-        volume = math.pi * r * r * length + (4.0 / 3.0 * math.pi * r**3 if kind == g.mjGEOM_CAPSULE else 0.0)
+        volume = math.pi * r * r * length + (4.0 / 3.0 * math.pi * r * r * r if kind == g.mjGEOM_CAPSULE else 0.0)
         return segment, volume
     if kind == g.mjGEOM_SPHERE:
-        return None, 4.0 / 3.0 * math.pi * float(size[0]) ** 3
+        r = float(size[0])
+        return None, 4.0 / 3.0 * math.pi * r * r * r
     if kind == g.mjGEOM_ELLIPSOID:
         return None, 4.0 / 3.0 * math.pi * float(size[0]) * float(size[1]) * float(size[2])
     return None, -1.0
@@ -412,21 +255,93 @@ def _is_collision(geom: Any) -> bool:
 
 
 def _unknown_link(hydro_source: str, name: str, source: str, names: set[str]) -> DescriptionError:
-    known = ", ".join(sorted(n for n in names if n and n != "world"))
-    return DescriptionError(f"{hydro_source}: [links.{name}]: {source} has no link (body) named '{name}' (its links: {known})")
+    known = clipped(", ".join(sorted(n for n in names if n and n != "world")))
+    if name == "world":
+        return DescriptionError(
+            f"{hydro_source}: [links.world]: 'world' is the world (MuJoCo's world body; a URDF link named 'world' becomes it), "
+            f"not a link of the robot: {source}'s links are {known}"
+        )
+    return DescriptionError(
+        f"{hydro_source}: {_table('links', name)}: {source} has no link (body) named {_quoted(name)} (its links: {known})"
+    )
+
+
+def _check_masses(spec: Any, fmt: str, source: str) -> None:
+    """Refuses what MuJoCo's compile would change without a word: a negative mass (clamped to 0),
+    a URDF link named 'world' with mass or geometry (taken for the world), and a URDF link moved
+    by a joint with no mass (massless by URDF's rules; MuJoCo cannot move it)."""
+    noun = "link" if fmt == "URDF" else "body"
+    world, bodies = spec.bodies[0], spec.bodies[1:]
+    for body in bodies:
+        if body.explicitinertial and not body.mass >= 0.0:
+            raise DescriptionError(f"{source}: {noun} {_quoted(body.name)} has mass {body.mass:g} kg in its <inertial>, which is negative")
+        if body.explicitinertial and not np.all(np.asarray(body.inertia) >= 0.0):
+            raise DescriptionError(
+                f"{source}: {noun} {_quoted(body.name)} has a negative moment of inertia in its <inertial> ({', '.join(f'{x:g}' for x in body.inertia)})"
+            )
+    if fmt != "URDF":
+        return
+    if world.explicitinertial or world.mass != 0.0 or any(_is_collision(g) for g in world.geoms):
+        raise DescriptionError(
+            f"{source}: link 'world' has an <inertial> or a <collision>; MuJoCo takes a URDF link named 'world' for the world itself "
+            "(fixed, without mass, its geometry scenery): rename the link if it is the robot's base"
+        )
+
+    def massive(body: Any) -> bool:
+        return (body.explicitinertial and body.mass > 0.0) or any(massive(child) for child in body.bodies if not child.joints)
+
+    for body in bodies:
+        if body.joints and not massive(body):
+            raise DescriptionError(
+                f"{source}: link {_quoted(body.name)} is moved by joint {_quoted(body.joints[0].name)} but has no <inertial> with a mass "
+                "(nor has a link fixed to it): URDF makes it massless, and a link moved by a joint needs a mass and inertia"
+            )
+
+
+_ELEMENT = re.compile(r"Element name '([^']*)', id (\d+)")
+_ELEMENT_KINDS = ("geom", "joint", "mesh", "site", "material", "texture", "hfield", "skin", "tendon", "actuator", "sensor", "equality")
+
+
+def _compile_error(exc: ValueError, spec: Any, fmt: str, source: str) -> DescriptionError:
+    """MuJoCo's compile error, with the element it names ("Element name '', id 3") as uwml names
+    it: the geom's link, the body or joint by name."""
+    text = " ".join(str(exc).split()).removeprefix("Error: ")
+    found = _ELEMENT.search(text)
+    if found is None:
+        return DescriptionError(f"{source}: MuJoCo cannot compile this {fmt} file: {clipped(text)}")
+    message, name, index = text[: found.start()].strip(), found.group(1), int(found.group(2))
+    kind = message.rsplit(" in ", 1)[1] if " in " in message else "body"
+    kind = kind if kind in _ELEMENT_KINDS else "body"  # "... in fullinertia": the body's
+    noun = "link" if fmt == "URDF" else "body"
+    if kind == "geom" and index < len(spec.geoms):
+        where = (
+            f"{noun} {_quoted(spec.geoms[index].parent.name)}, its geom {_quoted(name)}"
+            if name
+            else f"{noun} {_quoted(spec.geoms[index].parent.name)}"
+        )
+    else:
+        where = f"{noun if kind == 'body' else kind} {_quoted(name)}" if name else f"{kind} {index}"
+    line = re.search(r"line (\d+)", text[found.end() :])
+    if line is not None:
+        where += f" (line {line.group(1)})"
+    if "moving bodies" in message:
+        message += " (a body moved by a joint needs a positive mass and inertia)"
+    return DescriptionError(f"{source}: {where}: MuJoCo cannot compile this {fmt} file: {clipped(message)}")
 
 
 def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str) -> Any:
     mujoco = _mujoco()
     source = str(path)
-    if not Path(path).is_file():
-        raise DescriptionError(f"{source}: the {what} file cannot be read: no such file")
+    fmt = scan(path, what)  # the XML as written: files, sizes, names, numbers (uwml._description_xml)
     try:
         spec = mujoco.MjSpec.from_file(source)
     except ValueError as exc:
-        raise DescriptionError(f"{source}: not a readable {what} file: {' '.join(str(exc).split())}") from None
+        raise DescriptionError(f"{source}: not a readable {fmt} file: {clipped(str(exc))}") from None
     spec.compiler.fusestatic = False
-    names = {body.name for body in spec.bodies}
+    if fmt == "URDF":  # URDF's rule: no <inertial>, no mass (MuJoCo would compute one from the geoms)
+        spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
+    _check_masses(spec, fmt, source)
+    names = {body.name for body in spec.bodies[1:]}
     for name in hydro:
         if name not in names:
             raise _unknown_link(hydro_source, name, source, names)
@@ -440,20 +355,26 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
             entry = hydro.get(body.name)
             if entry is None or not entry.describes_geometry:
                 raise DescriptionError(
-                    f"{source}: link '{body.name}' has a collision mesh ({geom.meshname or 'unnamed'}), which uwml cannot turn into segments: "
-                    f"describe the link in a hydro file ([links.{body.name}] with volume and segments, or dry = true)"
+                    f"{source}: link {_quoted(body.name)} has a collision mesh ({_quoted(geom.meshname) if geom.meshname else 'unnamed'}), "
+                    f"which uwml cannot turn into segments: describe the link in a hydro file ({_table('links', body.name)} with volume "
+                    "and segments, or dry = true)"
                 )
-            if body.explicitinertial:
+            if body.explicitinertial or fmt == "URDF":
                 spec.delete(geom)  # its geometry is the hydro file's; its mass is the inertial's
                 continue
             kept_meshes.add(geom.meshname)
     for mesh in list(spec.meshes):
         if mesh.name not in kept_meshes:
             spec.delete(mesh)
-    try:
-        return spec.compile()
-    except ValueError as exc:
-        raise DescriptionError(f"{source}: MuJoCo cannot compile this {what} file: {' '.join(str(exc).split())}") from None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            model = spec.compile()
+        except ValueError as exc:
+            raise _compile_error(exc, spec, fmt, source) from None
+    if caught:  # MuJoCo's warnings while compiling ("inertia matrix too close to singular"): a broken model
+        raise DescriptionError(f"{source}: MuJoCo warns while compiling this {fmt} file: {clipped(str(caught[0].message))}")
+    return model
 
 
 def from_urdf(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
@@ -473,7 +394,7 @@ def model_and_robot(path: str | os.PathLike[str], hydro: str | os.PathLike[str] 
     this module reads it (visual geoms and their meshes removed, so absent visual mesh files do
     not matter; fixed links kept as bodies; the root kept with its inertial), and its
     :class:`uwml.Robot`: what a simulation of the description needs (:mod:`uwml.mujoco`)."""
-    what = "URDF" if Path(path).suffix.lower() == ".urdf" else "MJCF"
+    what = "URDF" if str(path).lower().endswith(".urdf") else "MJCF"
     file = HydroFile() if hydro is None else read_hydro(hydro)
     model = _spec(path, what, file.links, str(hydro))
     return model, _with_joints_and_water(_from_model(model, file.links, str(path), str(hydro)), file)
@@ -485,16 +406,27 @@ def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robo
     mujoco = _mujoco()
     if not isinstance(model, mujoco.MjModel):
         raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+    source = "<mujoco.MjModel>"
+    error = limits_exceeded(source, model.nbody - 1, model.njnt, model.ngeom, urdf=False, counted="in the compiled model")
+    if error is not None:
+        raise error
     file = HydroFile() if hydro is None else read_hydro(hydro)
     entries = file.links
-    names = {model.body(i).name for i in range(model.nbody)}
+    names = {model.body(i).name for i in range(1, model.nbody)}
     for name in entries:
         if name not in names:
             raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
-    return _with_joints_and_water(_from_model(model, entries, "<mujoco.MjModel>", str(hydro)), file)
+    return _with_joints_and_water(_from_model(model, entries, source, str(hydro)), file)
 
 
 def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: str) -> Robot:
+    # A huge coordinate overflows to inf in the frames' products: the model's checks then refuse
+    # it by name (a numpy warning would say nothing of where).
+    with np.errstate(all="ignore"):
+        return _mapped(model, hydro, source, hydro_source)
+
+
+def _mapped(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: str) -> Robot:
     mujoco = _mujoco()
     jt = mujoco.mjtJoint
     body_name = [model.body(i).name for i in range(model.nbody)]
@@ -507,7 +439,11 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
     root = roots[0]
 
     def joint_label(j: int) -> str:
-        return f"joint '{joint_name[j]}'" if joint_name[j] else f"the unnamed joint of body '{body_name[int(model.jnt_bodyid[j])]}'"
+        return (
+            f"joint {_quoted(joint_name[j])}"
+            if joint_name[j]
+            else f"the unnamed joint of body {_quoted(body_name[int(model.jnt_bodyid[j])])}"
+        )
 
     moving: dict[int, int] = {}  # body -> its hinge/slide joint
     free_root = False
@@ -527,7 +463,7 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
             )
         if b in moving:
             raise DescriptionError(
-                f"{source}: body '{body_name[b]}' has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link"
+                f"{source}: body {_quoted(body_name[b])} has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link"
             )
         if model.qpos0[model.jnt_qposadr[j]] != 0.0:
             raise DescriptionError(f"{source}: {joint_label(j)} has a nonzero ref; uwml's q = 0 is the pose as written")
@@ -560,22 +496,30 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
         axis = rotation[b] @ model.jnt_axis[j]
         axis = axis / np.linalg.norm(axis)
         parent_owner = owner[parent[b]]
-        joints.append(
-            Joint(
-                _t(origin[b] - origin[parent_owner]),
-                _t(axis),
-                parent=link_index.get(parent_owner, -1),
-                kind="revolute" if model.jnt_type[j] == jt.mjJNT_HINGE else "prismatic",
-                name=joint_name[j] or None,
+        try:
+            joints.append(
+                Joint(
+                    _t(origin[b] - origin[parent_owner]),
+                    _t(axis),
+                    parent=link_index.get(parent_owner, -1),
+                    kind="revolute" if model.jnt_type[j] == jt.mjJNT_HINGE else "prismatic",
+                    name=joint_name[j] or None,
+                )
             )
-        )
+        except (TypeError, ValueError) as exc:
+            raise DescriptionError(f"{source}: {joint_label(j)}: {clipped(str(exc))}") from None
 
     parts: dict[int, list[_Body]] = {b: [] for b in order}
     for i in range(1, model.nbody):
         k = owner[i]
-        parts[k].append(
-            _body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source)
-        )
+        try:
+            parts[k].append(
+                _body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source)
+            )
+        except DescriptionError:
+            raise
+        except (TypeError, ValueError) as exc:  # a segment of non-finite numbers
+            raise DescriptionError(f"{source}: link {_quoted(body_name[i])}: {clipped(str(exc))}") from None
 
     def link(b: int) -> Link:
         bodies = parts[b]
@@ -587,7 +531,7 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
         try:
             return Link(mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None)
         except (TypeError, ValueError) as exc:
-            raise DescriptionError(f"{source}: link '{body_name[b]}': {exc}") from None
+            raise DescriptionError(f"{source}: link {_quoted(body_name[b])}: {clipped(str(exc))}") from None
 
     links = [link(b) for b in order[1:]]
     base = link(base_body) if base_body != 0 else None
@@ -595,7 +539,16 @@ def _from_model(model: Any, hydro: dict[str, HydroLink], source: str, hydro_sour
     try:
         return Robot(joints, links, base=base)
     except (TypeError, ValueError) as exc:
-        raise DescriptionError(f"{source}: {exc}") from None
+        # The model's checks number joints and links ("joint 0: ..."); the description names them.
+        message = clipped(str(exc))
+        numbered = re.match(r"(joint|link) (\d+): ", message)
+        if numbered is not None and int(numbered.group(2)) < len(order) - 1:
+            b = order[1 + int(numbered.group(2))]
+            named = joint_label(moving[b]) if numbered.group(1) == "joint" else f"link {_quoted(body_name[b])}"
+            message = f"{named}: {message[numbered.end() :]}"
+        elif message.startswith("base.") and base_body != 0:
+            message = f"link {_quoted(body_name[base_body])} (the base): {message}"
+        raise DescriptionError(f"{source}: {message}") from None
 
 
 def _body(
@@ -615,8 +568,9 @@ def _body(
         return body
     segments: list[Segment] = []
     volume, moment = 0.0, np.zeros(3)
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] != i or not (model.geom_contype[g] or model.geom_conaffinity[g]):
+    first = int(model.body_geomadr[i])
+    for g in range(first, first + int(model.body_geomnum[i])):
+        if not (model.geom_contype[g] or model.geom_conaffinity[g]):
             continue
         kind = int(model.geom_type[g])
         segment, v = _primitive(mujoco, kind, model.geom_size[g])
@@ -625,7 +579,7 @@ def _body(
                 continue
             what = "mesh" if kind == mujoco.mjtGeom.mjGEOM_MESH else f"geom of type {mujoco.mjtGeom(kind).name}"
             raise DescriptionError(
-                f"{source}: link '{name}' has a collision {what}, which uwml cannot turn into segments: describe the link in a hydro file"
+                f"{source}: link {_quoted(name)} has a collision {what}, which uwml cannot turn into segments: describe the link in a hydro file"
             )
         geom_rotation = rotation @ _rotation(model.geom_quat[g])
         geom_offset = rotation @ model.geom_pos[g] + offset

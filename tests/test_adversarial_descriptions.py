@@ -1,0 +1,493 @@
+"""Hostile robot descriptions (URDF, MJCF) and hydro files, read by uwml.descriptions
+(docs/model.md section 10, "From URDF and MJCF").
+
+What must hold: a correct load, or a :class:`uwml.DescriptionError` (a ``ValueError``) whose
+message names the file, says what is wrong and is short (under ``MAX_MESSAGE`` characters); never
+another exception (``RecursionError``, ``UnicodeDecodeError``, a numpy warning, which pytest turns
+into an error), never a silent change of what the file says (a mass clamped, a mass invented, a
+joint renamed, a coupling dropped, a table ignored), and never a hang (a named pipe where a file
+should be, a description that expands into thousands of bodies).
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import textwrap
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+pytest.importorskip("mujoco")
+
+import uwml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+DATA = Path(__file__).parent / "data"
+MAX_MESSAGE = 500
+
+INERTIAL = '<inertial><mass value="{mass}"/><inertia ixx="0.1" iyy="0.1" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+
+
+def link(name: str, mass: float | str | None = 1.0, collision: str = '<box size="0.1 0.2 0.3"/>') -> str:
+    inertial = "" if mass is None else INERTIAL.format(mass=mass)
+    geometry = f"<collision><geometry>{collision}</geometry></collision>" if collision else ""
+    return f'<link name="{name}">{inertial}{geometry}</link>'
+
+
+def joint(name: str, parent: str, child: str, kind: str = "continuous", extra: str = "") -> str:
+    return (
+        f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
+        f'<origin xyz="0.2 0 0"/><axis xyz="0 0 1"/>{extra}</joint>'
+    )
+
+
+def urdf(*parts: str) -> str:
+    return '<robot name="r">' + "".join(parts) + "</robot>"
+
+
+ARM = urdf(link("base", 2.0), link("upper"), link("fore"), joint("shoulder", "base", "upper"), joint("elbow", "upper", "fore"))
+
+MJCF = """<mujoco><worldbody><body name="base"><inertial pos="0 0 0" mass="{mass}" diaginertia="1 1 1"/><geom size="0.1"/>
+<body name="arm"><joint name="shoulder"/><geom type="box" size="0.1 0.2 0.3"/></body></body></worldbody></mujoco>"""
+
+
+def write(tmp_path: Path, name: str, text: str | bytes) -> Path:
+    path = tmp_path / name
+    if isinstance(text, bytes):
+        path.write_bytes(text)
+    else:
+        path.write_text(text)
+    return path
+
+
+def refused(load: Callable[[], Any], *names: str, match: str = "") -> str:
+    """The message of the DescriptionError ``load()`` raises: short, naming one of the files."""
+    import re
+
+    with pytest.raises(uwml.DescriptionError) as info:
+        load()
+    message = str(info.value)
+    assert len(message) < MAX_MESSAGE, (len(message), message[:300])
+    assert any(name in message for name in names), (names, message)
+    assert re.search(match, message), (match, message)
+    return message
+
+
+# --- 1. descriptions accepted silently ---------------------------------------------------------
+
+
+def test_a_negative_mass_is_refused_not_clamped(tmp_path: Path) -> None:
+    """MuJoCo's compile clamps a negative mass of a body that does not move to 0."""
+    path = write(tmp_path, "neg.urdf", urdf(link("base", -5.0), link("arm"), joint("j", "base", "arm")))
+    refused(lambda: uwml.Robot.from_urdf(path), "neg.urdf", match=r"link 'base'.*mass -5 .*negative")
+    path = write(tmp_path, "neg.xml", MJCF.format(mass=-5))
+    refused(lambda: uwml.Robot.from_mjcf(path), "neg.xml", match=r"body 'base'.*mass -5 .*negative")
+
+
+def test_a_urdf_link_without_inertial_is_massless(tmp_path: Path) -> None:
+    """URDF: no <inertial>, no mass (MuJoCo would compute one from the collision geometry)."""
+    path = write(tmp_path, "noinertial.urdf", urdf(link("base"), link("arm", None), joint("j", "base", "arm")))
+    refused(lambda: uwml.Robot.from_urdf(path), "noinertial.urdf", match=r"link 'arm' .*no <inertial>")
+    # A fixed link without <inertial> adds its geometry, and no mass, to the link it is fused into.
+    path = write(
+        tmp_path,
+        "fixed.urdf",
+        urdf(link("base"), link("arm"), link("sensor", None), joint("j", "base", "arm"), joint("f", "arm", "sensor", "fixed")),
+    )
+    robot = uwml.Robot.from_urdf(path)
+    assert robot.links[0].mass == 1.0 and robot.links[0].volume == pytest.approx(2 * 0.1 * 0.2 * 0.3, rel=1e-12)
+    # The root without <inertial>: a massless base (the URDF convention for a frame to hang from).
+    path = write(tmp_path, "root.urdf", urdf(link("base", None), link("arm"), joint("j", "base", "arm")))
+    assert uwml.Robot.from_urdf(path).base.mass == 0.0  # type: ignore[union-attr]
+
+
+def test_a_joint_name_given_twice_is_refused(tmp_path: Path) -> None:
+    """MuJoCo's URDF reader renames the second joint ('joint1')."""
+    path = write(tmp_path, "dup.urdf", urdf(link("base"), link("a"), link("b"), joint("j", "base", "a"), joint("j", "a", "b")))
+    refused(lambda: uwml.Robot.from_urdf(path), "dup.urdf", match=r"joint name 'j' .*twice")
+
+
+def test_a_link_name_given_twice_names_the_link(tmp_path: Path) -> None:
+    """MuJoCo says 'repeated URDF name:' and cuts the name off."""
+    path = write(tmp_path, "dup.urdf", urdf(link("base"), link("forearm"), link("forearm"), joint("j", "base", "forearm")))
+    refused(lambda: uwml.Robot.from_urdf(path), "dup.urdf", match=r"link name 'forearm' .*twice")
+
+
+def test_a_mimic_joint_is_refused(tmp_path: Path) -> None:
+    path = write(
+        tmp_path,
+        "mimic.urdf",
+        urdf(link("base"), link("a"), link("b"), joint("j", "base", "a"), joint("k", "a", "b", extra='<mimic joint="j" multiplier="2"/>')),
+    )
+    refused(lambda: uwml.Robot.from_urdf(path), "mimic.urdf", match=r"joint 'k' .*mimic.*'j'")
+
+
+@pytest.mark.parametrize("form", ["urdf", "mjcf", "mujoco"])
+def test_a_hydro_table_for_the_world_is_refused(tmp_path: Path, form: str) -> None:
+    """[links.world] named no link of the robot and was ignored."""
+    hydro = write(tmp_path, "h.toml", "[links.world]\nvolume = 1.0\n")
+    if form == "urdf":
+        load = lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)
+    elif form == "mjcf":
+        load = lambda: uwml.Robot.from_mjcf(DATA / "paper_leg.xml", hydro)
+    else:
+        import mujoco
+
+        model = mujoco.MjModel.from_xml_string(MJCF.format(mass=1.0))
+        load = lambda: uwml.Robot.from_mujoco(model, hydro)
+    refused(load, "h.toml", match=r"h\.toml: \[links\.world\]: .*world")
+
+
+def test_a_urdf_link_named_world_with_a_mass_is_refused(tmp_path: Path) -> None:
+    """MuJoCo takes a URDF link named 'world' for its world body: its mass would be lost."""
+    path = write(tmp_path, "w.urdf", urdf(link("world", 5.0), link("arm"), joint("j", "world", "arm")))
+    refused(lambda: uwml.Robot.from_urdf(path), "w.urdf", match=r"link 'world'.*<inertial>")
+    # The ROS idiom, an empty 'world' link fixed to the base, still loads.
+    path = write(
+        tmp_path,
+        "ros.urdf",
+        urdf('<link name="world"/>', link("base", 3.0), link("arm"), joint("fix", "world", "base", "fixed"), joint("j", "base", "arm")),
+    )
+    robot = uwml.Robot.from_urdf(path)
+    assert robot.base is not None and robot.base.name == "base" and robot.base.mass == 3.0
+
+
+# --- 2. uncaught exceptions and hangs ----------------------------------------------------------
+
+
+def test_a_deeply_nested_hydro_array_is_a_description_error(tmp_path: Path) -> None:
+    hydro = write(tmp_path, "deep.toml", "[links.calf]\ncd = " + "[" * 5000 + "]" * 5000 + "\n")
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "deep.toml", match="nested too deeply")
+
+
+def run_with_watchdog(code: str, cwd: Path, timeout: float = 30.0) -> subprocess.CompletedProcess[str]:
+    """``code`` in a fresh interpreter, killed (and the test failed) if it has not ended in
+    ``timeout`` seconds: a load that blocks on a named pipe blocks in MuJoCo or in ``open``."""
+    try:
+        return subprocess.run(
+            [sys.executable, "-c", textwrap.dedent(code)], cwd=cwd, capture_output=True, text=True, timeout=timeout, check=False
+        )
+    except subprocess.TimeoutExpired:
+        pytest.fail(f"the load hung (still running after {timeout} s): {code.strip()}")
+
+
+FIFO_CASES = {
+    "description": ("robot.urdf", {}, "uwml.Robot.from_urdf('robot.urdf')"),
+    "hydro file": ("h.toml", {"robot.urdf": ARM}, "uwml.Robot.from_urdf('robot.urdf', 'h.toml')"),
+    "collision mesh": (
+        "m.stl",
+        {
+            "robot.xml": '<mujoco><asset><mesh name="m" file="m.stl"/></asset><worldbody><body name="b"><geom size="0.1"/>'
+            '<body name="hand"><joint name="j"/><geom type="mesh" mesh="m"/></body></body></worldbody></mujoco>',
+            "h.toml": "[links.hand]\nvolume = 0.001\n",
+        },
+        "uwml.Robot.from_mjcf('robot.xml', 'h.toml')",
+    ),
+    "collision mesh in meshdir": (
+        "meshes/m.stl",
+        {
+            "robot.urdf": urdf(
+                '<mujoco><compiler meshdir="meshes"/></mujoco>',
+                link("base"),
+                link("hand", None, '<mesh filename="m.stl"/>'),
+                joint("j", "base", "hand"),
+            ),
+            "h.toml": "[links.hand]\nvolume = 0.001\n",
+        },
+        "uwml.Robot.from_urdf('robot.urdf', 'h.toml')",
+    ),
+    "include": (
+        "inc.xml",
+        {"robot.xml": '<mujoco><include file="inc.xml"/><worldbody><body name="b"><geom size="0.1"/></body></worldbody></mujoco>'},
+        "uwml.Robot.from_mjcf('robot.xml')",
+    ),
+}
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes need os.mkfifo")
+@pytest.mark.parametrize("case", list(FIFO_CASES))
+def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path, case: str) -> None:
+    fifo, files, call = FIFO_CASES[case]
+    for name, text in files.items():
+        write(tmp_path, name, text)
+    (tmp_path / fifo).parent.mkdir(exist_ok=True)
+    os.mkfifo(tmp_path / fifo)
+    code = f"""
+    import uwml
+    try:
+        {call}
+    except uwml.DescriptionError as exc:
+        print(exc)
+    else:
+        print("loaded")
+    """
+    run = run_with_watchdog(code, tmp_path)
+    assert run.returncode == 0, run.stderr[-2000:]
+    message = run.stdout.strip()
+    assert Path(fifo).name in message and "not a regular file" in message and len(message) < MAX_MESSAGE, message
+
+
+def test_a_directory_or_a_missing_file_says_so(tmp_path: Path) -> None:
+    (tmp_path / "robot.urdf").mkdir()
+    refused(lambda: uwml.Robot.from_urdf(tmp_path / "robot.urdf"), "robot.urdf", match="is a directory")
+    (tmp_path / "h.toml").mkdir()
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", tmp_path / "h.toml"), "h.toml", match="is a directory")
+    refused(lambda: uwml.Robot.from_urdf(tmp_path / "absent.urdf"), "absent.urdf", match="no such file")
+
+
+# --- 3. huge descriptions ----------------------------------------------------------------------
+
+
+def chain(n: int) -> str:
+    parts = [link("l0")]
+    for i in range(1, n):
+        parts += [link(f"l{i}"), joint(f"j{i}", f"l{i - 1}", f"l{i}")]
+    return urdf(*parts)
+
+
+def test_a_10000_link_chain_is_refused_before_mujoco_reads_it(tmp_path: Path) -> None:
+    path = write(tmp_path, "chain.urdf", chain(10_000))
+    start = time.perf_counter()
+    refused(lambda: uwml.Robot.from_urdf(path), "chain.urdf", match=r"9999 moving joints.*at most 64 \(uwml\.MAX_ROBOT_JOINTS\)")
+    elapsed = time.perf_counter() - start
+    print(f"10,000-link URDF refused in {elapsed:.3f} s")
+    assert elapsed < 30.0
+
+
+def test_a_small_mjcf_that_replicates_into_thousands_of_bodies_is_refused(tmp_path: Path) -> None:
+    text = (
+        '<mujoco><worldbody><body name="b"><geom size=".1"/><replicate count="30" offset=".1 0 0"><replicate count="30" '
+        'offset="0 .1 0"><replicate count="30" offset="0 0 .1"><body name="c"><joint/><geom size=".1"/></body></replicate>'
+        "</replicate></replicate></body></worldbody></mujoco>"
+    )
+    assert len(text) < 300
+    path = write(tmp_path, "rep.xml", text)
+    start = time.perf_counter()
+    refused(lambda: uwml.Robot.from_mjcf(path), "rep.xml", match=r"27001 bodies.*at most \d+.*MAX_ROBOT_JOINTS.*MAX_SEGMENTS")
+    elapsed = time.perf_counter() - start
+    print(f"replicated MJCF refused in {elapsed:.3f} s")
+    assert elapsed < 30.0
+
+
+def test_a_model_over_the_limits_is_refused_before_the_mapping() -> None:
+    import mujoco
+
+    text = (
+        '<mujoco><worldbody><body name="b"><geom size=".1"/><replicate count="20" offset=".1 0 0"><replicate count="20" '
+        'offset="0 .1 0"><body name="c"><joint/><geom size=".1"/></body></replicate></replicate></body></worldbody></mujoco>'
+    )
+    model = mujoco.MjModel.from_xml_string(text)
+    refused(lambda: uwml.Robot.from_mujoco(model), "mujoco.MjModel", match=r"400 joints.*MAX_ROBOT_JOINTS")
+
+
+# --- 4. clear messages -------------------------------------------------------------------------
+
+
+def test_a_hydro_file_that_is_not_utf8_is_named(tmp_path: Path) -> None:
+    hydro = write(tmp_path, "latin1.toml", "[links.calf]\n# ±\nvolume = 0.1\n".encode("latin-1"))
+    message = refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "latin1.toml", match="UTF-8")
+    assert "0xb1" in message and "codec" not in message
+
+
+def test_a_nan_joint_axis_names_the_file_and_the_joint(tmp_path: Path) -> None:
+    text = ARM.replace('<axis xyz="0 0 1"/></joint></robot>', '<axis xyz="nan 0 1"/></joint></robot>')
+    path = write(tmp_path, "nan.urdf", text)
+    refused(lambda: uwml.Robot.from_urdf(path), "nan.urdf", match=r"joint 'elbow'.*<axis>.*xyz.*finite")
+
+
+def test_a_huge_hydro_value_gives_a_short_message(tmp_path: Path) -> None:
+    big = "[" + ", ".join(["1.0"] * 200_000) + "]"
+    for key in ("volume", "cob", "cd"):
+        hydro = write(tmp_path, "big.toml", f"[links.calf]\n{key} = {big}\n")
+        refused(
+            lambda hydro=hydro: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "big.toml", match=rf"\[links\.calf\], key '{key}'"
+        )
+    text = f'[[links.calf.segments]]\nsection = "circular"\nstart = {big}\n'
+    hydro = write(tmp_path, "big.toml", text)
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "big.toml", match=r"segments\[0\], key 'start'")
+    hydro = write(tmp_path, "big.toml", f"[joints.knee]\nepsilon = {big}\n")
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "big.toml", match=r"\[joints\.knee\], key 'epsilon'")
+
+
+@pytest.mark.parametrize("kind", ["planar", "floating"])
+def test_an_unsupported_urdf_joint_is_named(tmp_path: Path, kind: str) -> None:
+    path = write(tmp_path, "p.urdf", urdf(link("base"), link("arm"), joint("j3_elbow", "base", "arm", kind)))
+    message = refused(lambda: uwml.Robot.from_urdf(path), "p.urdf", match=rf"joint 'j3_elbow' is a {kind} joint.*revolute.*prismatic")
+    assert "_TX" not in message
+
+
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("", r"not a readable URDF file: .*no element found"),
+        ('<html><body name="b"/></html>', r"root element <html> is neither <robot> \(URDF\) nor <mujoco> \(MJCF\)"),
+        ("\x00\x01binary", r"not a readable URDF file"),
+        ('<robot name="r"><link name="a"></robot>', r"not a readable URDF file: .*mismatched tag.*line 1"),
+    ],
+)
+def test_files_that_are_not_descriptions(tmp_path: Path, text: str, match: str) -> None:
+    path = write(tmp_path, "x.urdf", text)
+    refused(lambda: uwml.Robot.from_urdf(path), "x.urdf", match=match)
+
+
+def test_an_unknown_urdf_joint_type_is_named(tmp_path: Path) -> None:
+    path = write(tmp_path, "t.urdf", urdf(link("base"), link("arm"), joint("wrist", "base", "arm", "spherical")))
+    refused(lambda: uwml.Robot.from_urdf(path), "t.urdf", match=r"joint 'wrist' .*type 'spherical'.*revolute")
+
+
+def test_huge_coordinates_give_a_description_error_not_a_numpy_warning(tmp_path: Path) -> None:
+    text = ARM.replace('<origin xyz="0.2 0 0"/>', '<origin xyz="1e308 0 0"/>')
+    path = write(tmp_path, "far.urdf", text)
+    refused(lambda: uwml.Robot.from_urdf(path), "far.urdf", match=r"joint '(shoulder|elbow)'")
+
+
+def test_a_mujoco_compile_error_names_the_link(tmp_path: Path) -> None:
+    """MuJoCo names the geom by its index ('Element name '', id 1'); uwml names its link."""
+    path = write(
+        tmp_path, "g.urdf", urdf(link("base"), link("arm", 1.0, '<cylinder radius="-1" length="0.2"/>'), joint("j", "base", "arm"))
+    )
+    refused(lambda: uwml.Robot.from_urdf(path), "g.urdf", match=r"link 'arm'.*size")
+
+
+# --- 5. grown by hypothesis --------------------------------------------------------------------
+
+HOSTILE = ["nan", "-nan", "inf", "-inf", "1e308", "-1e308", "1e400", "-1", "0", "", "abc", "1 2", "1e-320", " ", "0x10", "1,2,3"]
+
+TEMPLATE_URDF = urdf(
+    '<link name="base"><inertial><origin xyz="{0}" rpy="{1}"/><mass value="{2}"/><inertia ixx="{3}" iyy="1" izz="1" ixy="{4}" ixz="0" iyz="0"/></inertial>'
+    '<collision><origin xyz="{5}" rpy="{6}"/><geometry><box size="{7}"/></geometry></collision></link>',
+    '<link name="arm"><inertial><origin xyz="{8}"/><mass value="{9}"/><inertia ixx="0.1" iyy="{10}" izz="0.1" ixy="0" ixz="0" iyz="0"/></inertial>'
+    '<collision><origin xyz="{11}" rpy="{12}"/><geometry><cylinder radius="{13}" length="{14}"/></geometry></collision>'
+    '<collision><geometry><sphere radius="{15}"/></geometry></collision></link>',
+    '<joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/><origin xyz="{16}" rpy="{17}"/>'
+    '<axis xyz="{18}"/><limit lower="{19}" upper="1" effort="10" velocity="1"/></joint>',
+)
+GOOD_URDF = [
+    "0 0 0",
+    "0 0 0",
+    "2",
+    "1",
+    "0",
+    "0 0 0",
+    "0 0 0",
+    "0.1 0.2 0.3",
+    "0.1 0 0",
+    "1",
+    "0.1",
+    "0.2 0 0",
+    "0 0 0",
+    "0.05",
+    "0.4",
+    "0.05",
+    "0.5 0 0",
+    "0 0 0",
+    "0 0 1",
+    "-1",
+]
+
+TEMPLATE_MJCF = (
+    '<mujoco><compiler angle="radian"/><worldbody><body name="base" pos="{0}" euler="{1}"><inertial pos="{2}" mass="{3}" diaginertia="{4}"/>'
+    '<geom type="box" size="{5}" pos="{6}"/><body name="arm" pos="{7}" quat="{8}"><joint name="shoulder" axis="{9}" pos="{10}" ref="{11}"/>'
+    '<geom type="capsule" fromto="{12}" size="{13}" density="{14}"/><geom type="cylinder" size="{15}" mass="{16}"/></body></body></worldbody></mujoco>'
+)
+GOOD_MJCF = [
+    "0 0 0",
+    "0 0 0",
+    "0 0 0",
+    "2",
+    "1 1 1",
+    "0.1 0.2 0.3",
+    "0 0 0",
+    "0.5 0 0",
+    "1 0 0 0",
+    "0 0 1",
+    "0 0 0",
+    "0",
+    "0 0 0 0.4 0 0",
+    "0.05",
+    "1000",
+    "0.05 0.1",
+    "1",
+]
+
+
+def hostile_values(good: list[str]) -> st.SearchStrategy[list[str]]:
+    """The good values with one to three replaced by hostile ones (a number in each slot of a
+    vector too)."""
+
+    def mutate(draw: Any) -> list[str]:
+        values = list(good)
+        for _ in range(draw(st.integers(1, 3))):
+            slot = draw(st.integers(0, len(values) - 1))
+            width = len(values[slot].split()) or 1
+            bad = draw(st.sampled_from(HOSTILE))
+            if width > 1 and draw(st.booleans()):
+                tokens = values[slot].split()
+                tokens[draw(st.integers(0, width - 1))] = bad or "0"
+                values[slot] = " ".join(tokens)
+            else:
+                values[slot] = " ".join([bad] * width) if bad.strip() else bad
+        return values
+
+    return st.composite(lambda draw: mutate(draw))()
+
+
+def assert_loads_or_refused_clearly(load: Callable[[], Any], *names: str) -> None:
+    try:
+        load()
+    except uwml.DescriptionError as exc:
+        message = str(exc)
+        assert len(message) < MAX_MESSAGE and any(name in message for name in names), message[:600]
+
+
+@settings(max_examples=60, deadline=None)
+@given(values=hostile_values(GOOD_URDF))
+def test_hostile_urdf_numbers(tmp_path_factory: pytest.TempPathFactory, values: list[str]) -> None:
+    path = tmp_path_factory.mktemp("urdf") / "hostile.urdf"
+    path.write_text(TEMPLATE_URDF.format(*values))
+    assert_loads_or_refused_clearly(lambda: uwml.Robot.from_urdf(path), "hostile.urdf")
+
+
+@settings(max_examples=60, deadline=None)
+@given(values=hostile_values(GOOD_MJCF))
+def test_hostile_mjcf_numbers(tmp_path_factory: pytest.TempPathFactory, values: list[str]) -> None:
+    path = tmp_path_factory.mktemp("mjcf") / "hostile.xml"
+    path.write_text(TEMPLATE_MJCF.format(*values))
+    assert_loads_or_refused_clearly(lambda: uwml.Robot.from_mjcf(path), "hostile.xml")
+
+
+TOML_VALUES = st.one_of(
+    st.sampled_from(["1.0", "-1.0", "nan", "inf", "-inf", "0", "1e308", "true", '"x"', "[]", "[1.0]", "[1.0, 2.0]", "[1.0, 2.0, 3.0]"]),
+    st.sampled_from(["[[1.0, 2.0], [3.0]]", '["a", "b"]', "{ a = 1 }", "[1.0, 2.0, 3.0, 4.0]", "1979-05-27", "[[]]", "[nan, nan]"]),
+)
+HYDRO_KEYS = ["cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "bogus"]
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    table=st.sampled_from(["links.calf", "links.thigh", "links.hip", "links.body", "joints.knee", "joints.knee.seal", "water", "links"]),
+    entries=st.lists(st.tuples(st.sampled_from([*HYDRO_KEYS, "epsilon", "c0", "density", "gravity"]), TOML_VALUES), min_size=1, max_size=4),
+)
+def test_hostile_hydro_values(tmp_path_factory: pytest.TempPathFactory, table: str, entries: list[tuple[str, str]]) -> None:
+    lines = [f"[{table}]"] + [f"{key} = {value}" for key, value in dict(entries).items()]
+    hydro = tmp_path_factory.mktemp("hydro") / "hostile.toml"
+    hydro.write_text("\n".join(lines) + "\n")
+    assert_loads_or_refused_clearly(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "hostile.toml")
+
+
+@settings(max_examples=40, deadline=None)
+@given(data=st.binary(max_size=200))
+def test_random_bytes_as_a_hydro_file_or_a_description(tmp_path_factory: pytest.TempPathFactory, data: bytes) -> None:
+    folder = tmp_path_factory.mktemp("bytes")
+    (folder / "junk.toml").write_bytes(data)
+    (folder / "junk.urdf").write_bytes(data)
+    assert_loads_or_refused_clearly(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", folder / "junk.toml"), "junk.toml")
+    with pytest.raises(uwml.DescriptionError) as info:
+        uwml.Robot.from_urdf(folder / "junk.urdf")
+    assert "junk.urdf" in str(info.value) and len(str(info.value)) < MAX_MESSAGE
