@@ -7,14 +7,14 @@
  *   uwml_robot_*: hydrodynamic forces on every joint and the wrench on the base of any robot up
  *     to UWML_ROBOT_MAX_JOINTS (16) revolute or prismatic joints in a tree and
  *     UWML_ROBOT_MAX_SEGMENTS (32) rectangular or circular segments, on a base that may move
- *     and carry a body of its own, in a current.
+ *     and carry a body of its own, in a current; with the leg's joint losses on any joint.
  *
  * Memory: no heap, no globals, no locks. All structs are plain data that the caller allocates,
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  3208 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  1608 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 16328 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) =  8776 bytes.
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 20296 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 10760 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -28,8 +28,11 @@
  * Call sequence, robot:
  *   1. uwml_robot_paper_f64(&robot) or uwml_robot_new_f64(&robot, joints, n_joints, links,
  *      &base, segments, n_segments, density, gravity, &err), once;
- *   2. every control period: uwml_robot_hydro_f64(&robot, q, qd, qdd, n, &motion, &current,
- *      forces, &wrench, &err).
+ *   2. optionally uwml_robot_set_added_mass_form_f64, uwml_robot_set_losses_f64 per joint
+ *      (start from uwml_leg3_default_losses_f64);
+ *   3. when depth or oil temperature change: uwml_robot_set_conditions_f64;
+ *   4. every control period: uwml_robot_environment_f64(&robot, q, qd, qdd, n, &motion,
+ *      &current, joint_environment, &wrench, &err) (or uwml_robot_hydro_f64, without losses).
  *
  * Errors: every function returns UWML_OK (0) or a UWML_ERR_* code; those with a trailing
  * `UwmlError *error` (may be NULL) also fill it with the code, the joint, link or segment index
@@ -99,7 +102,7 @@
 #define UWML_ERR_OUT_OF_RANGE 8
 
 /**
- * `joint_index` is not 0, 1 or 2.
+ * `joint_index` is not a joint: not 0, 1 or 2 for a leg, not below the joint count for a robot.
  */
 #define UWML_ERR_INDEX_OUT_OF_RANGE 9
 
@@ -167,12 +170,12 @@
 /**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 2040
+#define UWML_ROBOT_F64_WORDS 2536
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1096
+#define UWML_ROBOT_F32_WORDS 1344
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
@@ -210,7 +213,8 @@
 /**
  * `uwml_robot_set_added_mass_form_*`: Kirchhoff's form, from the water's kinetic energy (also
  * the Munk couple and the velocity terms that make added mass conserve energy in a simulation,
- * MODEL.md 11). The same added-mass matrix; other forces at non-zero velocity.
+ * docs/simulation.md, "Energy-consistent added mass"). The same added-mass matrix; other forces
+ * at non-zero velocity.
  */
 #define UWML_ADDED_MASS_KIRCHHOFF 1
 
@@ -407,7 +411,8 @@ typedef struct UwmlSealParamsF64 {
 } UwmlSealParamsF64;
 
 /**
- * The losses of one joint: its drive, and optionally oil drag and a seal.
+ * The losses of one joint: its drive, and optionally oil drag and a seal (for
+ * `uwml_leg3_set_losses_f64` and `uwml_robot_set_losses_f64`).
  */
 typedef struct UwmlJointLossParamsF64 {
     /**
@@ -757,9 +762,10 @@ typedef struct UwmlEnvironment3F32 {
 } UwmlEnvironment3F32;
 
 /**
- * A robot (tree, bodies, segments, water) and its evaluation workspace, in f64, for C to
- * allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
- * `uwml_robot_paper_f64` or `uwml_robot_new_f64`; `uwml_robot_hydro_f64` uses its workspace.
+ * A robot (tree, bodies, segments, water, added-mass form, joint losses) and its evaluation
+ * workspace, in f64, for C to allocate (statically: `static UwmlRobotF64 robot;`). Opaque:
+ * written only by `uwml_robot_paper_f64` or `uwml_robot_new_f64` and changed only by the setters;
+ * `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` use its workspace.
  * It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
  * did not write (`UWML_ERR_UNINITIALIZED`).
  */
@@ -874,7 +880,8 @@ typedef struct UwmlRobotSegmentF64 {
 } UwmlRobotSegmentF64;
 
 /**
- * The base's orientation and motion at one instant (MODEL.md 9.2).
+ * The base's orientation and motion at one instant (docs/model.md section 10, "Base motion and
+ * current").
  */
 typedef struct UwmlBaseMotionF64 {
     /**
@@ -969,6 +976,46 @@ typedef struct UwmlBaseWrenchF64 {
      */
     double total[6];
 } UwmlBaseWrenchF64;
+
+/**
+ * The environment's generalized force on one joint with its joint losses, in the joint's
+ * positive direction [N·m for a revolute joint, N for a prismatic one], and the loss current [A]:
+ * `UwmlJointForcesF64` and the leg's `UwmlEnvironment3F64` for one joint of a robot.
+ */
+typedef struct UwmlJointEnvironmentF64 {
+    /**
+     * Drag (relative to the current).
+     */
+    double drag;
+    /**
+     * Added mass (relative to the current's acceleration).
+     */
+    double added_mass;
+    /**
+     * Buoyancy, with the Froude-Krylov force of an accelerating current.
+     */
+    double buoyancy;
+    /**
+     * Gravity of the links (not part of `total`).
+     */
+    double gravity;
+    /**
+     * Oil drag reflected to the output (0 without oil or losses).
+     */
+    double visc;
+    /**
+     * Seal friction (0 without a seal or losses).
+     */
+    double seal;
+    /**
+     * Loss current [A], signed like the motion (0 without losses).
+     */
+    double current;
+    /**
+     * `drag + added_mass + buoyancy + visc + seal`.
+     */
+    double total;
+} UwmlJointEnvironmentF64;
 
 /**
  * A robot in f32; as `UwmlRobotF64`.
@@ -1170,6 +1217,44 @@ typedef struct UwmlBaseWrenchF32 {
     float total[6];
 } UwmlBaseWrenchF32;
 
+/**
+ * `UwmlJointEnvironmentF64` in f32.
+ */
+typedef struct UwmlJointEnvironmentF32 {
+    /**
+     * Drag.
+     */
+    float drag;
+    /**
+     * Added mass.
+     */
+    float added_mass;
+    /**
+     * Buoyancy and Froude-Krylov.
+     */
+    float buoyancy;
+    /**
+     * Gravity (not part of `total`).
+     */
+    float gravity;
+    /**
+     * Oil drag reflected to the output.
+     */
+    float visc;
+    /**
+     * Seal friction.
+     */
+    float seal;
+    /**
+     * Loss current [A].
+     */
+    float current;
+    /**
+     * `drag + added_mass + buoyancy + visc + seal`.
+     */
+    float total;
+} UwmlJointEnvironmentF32;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1256,7 +1341,8 @@ int32_t uwml_leg3_set_coefficients_per_direction_f64(struct UwmlLeg3F64 *leg,
 
 /**
  * Fills `*out` with the core's illustrative default joint losses (`JointLosses::default()`:
- * drive K_t 0.40, ratio 160, η 0.80, 10.4 A; oil and seal as in docs/losses.md; ε = 1e-3).
+ * drive K_t 0.40, ratio 160, η 0.80, 10.4 A; oil and seal as in docs/losses.md; ε = 1e-3), for a
+ * leg's joint or a robot's (`uwml_robot_set_losses_f64`).
  *
  * # Safety
  * `out` is NULL or valid for writes of a `UwmlJointLossParamsF64`.
@@ -1467,7 +1553,7 @@ int32_t uwml_leg3_environment_f32(const struct UwmlLeg3F32 *leg,
 /**
  * Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
  * fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
- * water (1000 kg/m³, g = 9.81).
+ * water (1000 kg/m³, g = 9.81), Morison's added mass, no joint losses.
  *
  * # Safety
  * `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
@@ -1479,7 +1565,8 @@ int32_t uwml_robot_paper_f64(struct UwmlRobotF64 *robot);
  * `UWML_ROBOT_MAX_JOINTS`) and as many links (joint `i` moves link `i`), the base's own body
  * (`base`, NULL for none), `n_segments` segments of all bodies (at most
  * `UWML_ROBOT_MAX_SEGMENTS`), in water of `density` [kg/m³] (positive) under `gravity` [m/s²]
- * (zero or positive). Errors name the field and the joint, link or segment index: e.g.
+ * (zero or positive), with Morison's added mass and no joint losses. Errors name the field and
+ * the joint, link or segment index: e.g.
  * "joint.parent", "link.volume", "base.mass" (index -1), "segment.diameter",
  * "n_joints (at most 16)". On error `*robot` is left as it was.
  *
@@ -1534,7 +1621,7 @@ int32_t uwml_robot_hydro_f64(struct UwmlRobotF64 *robot,
  * Chooses how the added-mass forces of `robot` depend on the velocities, for every later
  * `uwml_robot_hydro_f64`: `UWML_ADDED_MASS_MORISON` (the paper's, what a new robot uses) or
  * `UWML_ADDED_MASS_KIRCHHOFF` (from the water's kinetic energy: the form that conserves energy
- * in a simulation, MODEL.md 11; a controller designed in `uwml.mujoco.Simulation(...,
+ * in a simulation, docs/simulation.md, "Energy-consistent added mass"; a controller designed in `uwml.mujoco.Simulation(...,
  * added_mass="kirchhoff")` gets the same forces). Both share the added-mass matrix; they differ
  * where the links move. Another value is `UWML_ERR_OUT_OF_RANGE` (field "form ...") and changes
  * nothing.
@@ -1546,6 +1633,80 @@ int32_t uwml_robot_hydro_f64(struct UwmlRobotF64 *robot,
 int32_t uwml_robot_set_added_mass_form_f64(struct UwmlRobotF64 *robot,
                                            int32_t form,
                                            struct UwmlError *error);
+
+/**
+ * Gives joint `joint_index` (0 to the robot's joint count - 1) of `robot` the losses `*params`
+ * (the leg API's struct: start from `uwml_leg3_default_losses_f64`) at gauge pressure
+ * `pressure_pa` [Pa] (finite, 0 to 1.2e8: `uwml_pressure_at_depth_f64` gives it from a depth) and
+ * oil temperature `temperature_c` [°C] (finite, above -273.15), for every later
+ * `uwml_robot_environment_f64`. Checked as `uwml_leg3_set_losses_f64` checks them, in that order:
+ * the robot, `UWML_ERR_INDEX_OUT_OF_RANGE` (field "joint_index", index the value given),
+ * `params` NULL, the parameters (field e.g. "drive.ratio", "oil.exponent (1 to 2)", "seal.s0",
+ * "losses.epsilon", index the joint), the conditions (field "pressure_pa" or "temperature_c").
+ * On a prismatic joint the same laws hold in its units (speed in m/s, forces in N, the drive's
+ * ratio in rad/m). On error the robot is left as it was.
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `params` is NULL or valid for reads of a `UwmlJointLossParamsF64`; `error` is
+ * NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ */
+int32_t uwml_robot_set_losses_f64(struct UwmlRobotF64 *robot,
+                                  uint32_t joint_index,
+                                  const struct UwmlJointLossParamsF64 *params,
+                                  double pressure_pa,
+                                  double temperature_c,
+                                  struct UwmlError *error);
+
+/**
+ * Removes the losses of joint `joint_index` (0 to the robot's joint count - 1; else
+ * `UWML_ERR_INDEX_OUT_OF_RANGE`, nothing changed).
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `error` is NULL or valid for writes of a `UwmlError`.
+ */
+int32_t uwml_robot_clear_losses_f64(struct UwmlRobotF64 *robot,
+                                    uint32_t joint_index,
+                                    struct UwmlError *error);
+
+/**
+ * Moves every joint of `robot` that has losses to a new gauge pressure [Pa] and oil temperature
+ * [°C] (checked as in `uwml_robot_set_losses_f64`; on error nothing changes): call it when the
+ * depth or temperature changes.
+ *
+ * # Safety
+ * As `uwml_robot_clear_losses_f64`.
+ */
+int32_t uwml_robot_set_conditions_f64(struct UwmlRobotF64 *robot,
+                                      double pressure_pa,
+                                      double temperature_c,
+                                      struct UwmlError *error);
+
+/**
+ * `uwml_robot_hydro_f64` with the joint losses: writes `n` `UwmlJointEnvironmentF64` to
+ * `joint_environment` (each joint's forces as `uwml_robot_hydro_f64` gives them, its oil drag,
+ * seal friction and loss current at its speed `qd[i]`, zero for a joint without losses, and
+ * `total` = drag + added mass + buoyancy + visc + seal) and, if `base_wrench` is not NULL, the
+ * base wrench, which losses do not change (they act between a link and its parent). The same
+ * arguments, checks and errors as `uwml_robot_hydro_f64` (the array's field is
+ * "joint_environment"); a finite state whose loss current overflows is `UWML_ERR_OVERFLOW`
+ * with field "current".
+ *
+ * # Safety
+ * As `uwml_robot_hydro_f64`, with `joint_environment` NULL or valid for writes of `n`
+ * `UwmlJointEnvironmentF64`.
+ */
+int32_t uwml_robot_environment_f64(struct UwmlRobotF64 *robot,
+                                   const double *q,
+                                   const double *qd,
+                                   const double *qdd,
+                                   uint32_t n,
+                                   const struct UwmlBaseMotionF64 *motion,
+                                   const struct UwmlCurrentF64 *current,
+                                   struct UwmlJointEnvironmentF64 *joint_environment,
+                                   struct UwmlBaseWrenchF64 *base_wrench,
+                                   struct UwmlError *error);
 
 /**
  * `uwml_robot_set_added_mass_form_f64` in f32.
@@ -1598,6 +1759,57 @@ int32_t uwml_robot_hydro_f32(struct UwmlRobotF32 *robot,
                              struct UwmlJointForcesF32 *joint_forces,
                              struct UwmlBaseWrenchF32 *base_wrench,
                              struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_losses_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_set_losses_f64`, with the f32 types.
+ */
+int32_t uwml_robot_set_losses_f32(struct UwmlRobotF32 *robot,
+                                  uint32_t joint_index,
+                                  const struct UwmlJointLossParamsF32 *params,
+                                  float pressure_pa,
+                                  float temperature_c,
+                                  struct UwmlError *error);
+
+/**
+ * `uwml_robot_clear_losses_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_clear_losses_f64`, with `UwmlRobotF32`.
+ */
+int32_t uwml_robot_clear_losses_f32(struct UwmlRobotF32 *robot,
+                                    uint32_t joint_index,
+                                    struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_conditions_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_clear_losses_f64`, with `UwmlRobotF32`.
+ */
+int32_t uwml_robot_set_conditions_f32(struct UwmlRobotF32 *robot,
+                                      float pressure_pa,
+                                      float temperature_c,
+                                      struct UwmlError *error);
+
+/**
+ * `uwml_robot_environment_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_environment_f64`, with the f32 types.
+ */
+int32_t uwml_robot_environment_f32(struct UwmlRobotF32 *robot,
+                                   const float *q,
+                                   const float *qd,
+                                   const float *qdd,
+                                   uint32_t n,
+                                   const struct UwmlBaseMotionF32 *motion,
+                                   const struct UwmlCurrentF32 *current,
+                                   struct UwmlJointEnvironmentF32 *joint_environment,
+                                   struct UwmlBaseWrenchF32 *base_wrench,
+                                   struct UwmlError *error);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -68,7 +68,7 @@ impl Failure {
     }
 
     /// A core error, attributed to joint `joint` when the core names no index.
-    fn from_model(error: ModelError, joint: Option<usize>) -> Self {
+    pub(crate) fn from_model(error: ModelError, joint: Option<usize>) -> Self {
         let code = match error.problem {
             Problem::NonFinite => UWML_ERR_NON_FINITE,
             Problem::NonPositive => UWML_ERR_NON_POSITIVE,
@@ -390,7 +390,7 @@ fn check_state<T: RealField + Copy>(states: [(&Vector3<T>, &'static str); 3]) ->
 
 /// The core's domain of the loss conditions (`JointLosses::at`), with the C names of the
 /// arguments: pressure from 0 to 1.2e8 Pa, temperature above absolute zero.
-fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), Failure> {
+pub(crate) fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), Failure> {
     uwml_core::check_conditions(pressure, temperature).map_err(|e| {
         let field = if e.field == "pressure" { "pressure_pa" } else { "temperature_c" };
         Failure { field, ..Failure::from(e) }
@@ -414,8 +414,9 @@ pub(crate) unsafe fn pressure_at_depth<T: RealField + Copy>(
     Ok(())
 }
 
-fn joint_slot(joint_index: u32) -> Result<usize, Failure> {
-    usize::try_from(joint_index).ok().filter(|&i| i < N).ok_or(Failure::new(
+/// `joint_index` as an index, if it is one of `count` joints (the leg's 3, a robot's joint count).
+pub(crate) fn joint_slot(joint_index: u32, count: usize) -> Result<usize, Failure> {
+    usize::try_from(joint_index).ok().filter(|&i| i < count).ok_or(Failure::new(
         UWML_ERR_INDEX_OUT_OF_RANGE,
         "joint_index",
         usize::try_from(joint_index).ok(),
@@ -509,7 +510,7 @@ pub(crate) unsafe fn set_losses<T: Precision>(
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract (checked first, the mutable reference is taken last).
     unsafe { leg_ref::<T>(leg) }?;
-    let slot = joint_slot(joint_index)?;
+    let slot = joint_slot(joint_index, N)?;
     // SAFETY: forwarded contract.
     let params = unsafe { read_one(params, "params") }?;
     let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
@@ -528,7 +529,7 @@ pub(crate) unsafe fn set_losses<T: Precision>(
 pub(crate) unsafe fn clear_losses<T: Precision>(leg: *mut T::Leg, joint_index: u32) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    let slot = joint_slot(joint_index)?;
+    let slot = joint_slot(joint_index, N)?;
     if let (Some(model), Some(state)) = (leg.losses.get_mut(slot), leg.states.get_mut(slot)) {
         (*model, *state) = (None, None);
     }

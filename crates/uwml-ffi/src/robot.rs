@@ -1,23 +1,26 @@
 //! The precision-generic implementation of the `uwml_robot_*` functions of the crate root: any
-//! robot up to `J` joints and `S` segments (MODEL.md section 9), in an opaque block that also
-//! holds the evaluation's workspace, so that an evaluation needs no other storage.
+//! robot up to `J` joints and `S` segments (docs/model.md section 10), with joint losses, in an
+//! opaque block that also holds the evaluation's workspace, so that an evaluation needs no other
+//! storage.
 //!
 //! As in `imp`: every caller pointer is checked for null before anything else, inputs are copied
 //! by value, outputs are written at the end, and nothing is written on error (except NaN
 //! forces for a non-finite joint state).
 
-use uwml_core::nalgebra::{RealField, Vector3};
+use uwml_core::nalgebra::{RealField, SVector, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, ModelError,
-    Owner, RigidBody, Robot, RobotData, RobotSegment, Section, TreeJoint, Water, robot_hydro_with,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, JointLoss,
+    JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section, TreeJoint, Water,
+    loss_torques, robot_hydro_with,
 };
 
-use crate::imp::{Failure, check_overflow, non_null, read_one};
+use crate::imp::{Failure, check_conditions, check_overflow, joint_slot, non_null, read_one};
 use crate::{
     UWML_ADDED_MASS_KIRCHHOFF, UWML_ADDED_MASS_MORISON, UWML_BASE, UWML_ERR_NON_FINITE, UWML_ERR_OUT_OF_RANGE,
     UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR,
     UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32,
-    UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotF32, UwmlRobotF64,
+    UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointEnvironmentF32, UwmlJointEnvironmentF64, UwmlJointForcesF32,
+    UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlRobotF32, UwmlRobotF64,
     UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64,
 };
 
@@ -36,6 +39,11 @@ pub(crate) struct Block<T: RealField + Copy> {
     form: i32,
     /// The workspace and results of the last evaluation.
     data: RobotData<T, J>,
+    /// Each joint's loss model (`uwml_robot_set_losses_*`), kept so that a change of conditions
+    /// can recompute `states`; `None` for a joint without losses and beyond the robot's joints.
+    losses: [Option<JointLosses<T>>; J],
+    /// Each joint's losses at its current pressure and temperature.
+    states: [Option<LossState<T>>; J],
 }
 
 /// The arguments of `uwml_robot_new_*`.
@@ -50,15 +58,18 @@ pub(crate) struct Params<T: RobotPrecision> {
     pub(crate) gravity: T,
 }
 
-/// The arguments of `uwml_robot_hydro_*` after the robot.
-pub(crate) struct Evaluation<T: RobotPrecision> {
+/// The arguments of `uwml_robot_hydro_*` and `uwml_robot_environment_*` after the robot: `joints`
+/// is their array of `n` results per joint (`T::JointForces` or `T::JointEnvironment`), named
+/// `joints_name` in errors.
+pub(crate) struct Evaluation<T: RobotPrecision, F> {
     pub(crate) q: *const T,
     pub(crate) qd: *const T,
     pub(crate) qdd: *const T,
     pub(crate) n: u32,
     pub(crate) motion: *const T::Motion,
     pub(crate) current: *const T::Current,
-    pub(crate) joint_forces: *mut T::JointForces,
+    pub(crate) joints: *mut F,
+    pub(crate) joints_name: &'static str,
     pub(crate) base_wrench: *mut T::BaseWrench,
 }
 
@@ -73,6 +84,8 @@ pub(crate) trait RobotPrecision: RealField + Copy {
     type Current: Copy;
     type JointForces: Copy;
     type BaseWrench: Copy;
+    type LossParams: Copy;
+    type JointEnvironment: Copy;
     /// The tag word of a robot written by this library ("UWMLRF64" / "UWMLRF32" in ASCII).
     const TAG: u64;
     /// # Errors
@@ -90,6 +103,12 @@ pub(crate) trait RobotPrecision: RealField + Copy {
     fn current(p: &Self::Current) -> Result<Current<Self>, ModelError>;
     fn joint_forces(f: &JointForces<Self>) -> Self::JointForces;
     fn base_wrench(w: &EnvironmentWrench<Self>) -> Self::BaseWrench;
+    /// # Errors
+    /// A parameter that the core rejects (as the leg API's).
+    fn losses(p: &Self::LossParams) -> Result<JointLosses<Self>, ModelError>;
+    /// A joint's forces and losses; `total` is the core's `(hydro total + visc) + seal`, as
+    /// `EnvironmentTorques::total` sums them.
+    fn joint_environment(f: &JointForces<Self>, loss: &JointLoss<Self>) -> Self::JointEnvironment;
 }
 
 /// `UWML_BASE` or an index (checked against the joints by the core).
@@ -119,7 +138,7 @@ fn circular(value: i32, index: usize) -> Result<bool, Failure> {
 
 macro_rules! robot_precision {
     ($t:ty, $tag:expr, $robot:ty, $joint:ty, $body:ty, $segment:ty, $motion:ty, $current:ty, $forces:ident,
-     $wrench:ident) => {
+     $wrench:ident, $loss:ty, $environment:ident) => {
         impl RobotPrecision for $t {
             type Robot = $robot;
             type Joint = $joint;
@@ -129,6 +148,8 @@ macro_rules! robot_precision {
             type Current = $current;
             type JointForces = $forces;
             type BaseWrench = $wrench;
+            type LossParams = $loss;
+            type JointEnvironment = $environment;
             const TAG: u64 = $tag;
 
             fn joint(p: &$joint, index: usize) -> Result<TreeJoint<$t>, Failure> {
@@ -197,8 +218,31 @@ macro_rules! robot_precision {
                     total: w.total().to_array(),
                 }
             }
+
+            fn losses(p: &$loss) -> Result<JointLosses<$t>, ModelError> {
+                <$t as crate::imp::Precision>::losses(p)
+            }
+
+            fn joint_environment(f: &JointForces<$t>, loss: &JointLoss<$t>) -> $environment {
+                $environment {
+                    drag: f.drag,
+                    added_mass: f.added_mass,
+                    buoyancy: f.buoyancy,
+                    gravity: f.gravity,
+                    visc: loss.visc,
+                    seal: loss.seal,
+                    current: loss.current,
+                    total: environment_total(f, loss),
+                }
+            }
         }
     };
+}
+
+/// A joint's environment force, hydrodynamics and losses: `(hydro total + visc) + seal`, in the
+/// order of the core's `EnvironmentTorques::total`.
+fn environment_total<T: RealField + Copy>(f: &JointForces<T>, loss: &JointLoss<T>) -> T {
+    f.total() + loss.visc + loss.seal
 }
 
 robot_precision!(
@@ -211,7 +255,9 @@ robot_precision!(
     UwmlBaseMotionF64,
     UwmlCurrentF64,
     UwmlJointForcesF64,
-    UwmlBaseWrenchF64
+    UwmlBaseWrenchF64,
+    UwmlJointLossParamsF64,
+    UwmlJointEnvironmentF64
 );
 robot_precision!(
     f32,
@@ -223,7 +269,9 @@ robot_precision!(
     UwmlBaseMotionF32,
     UwmlCurrentF32,
     UwmlJointForcesF32,
-    UwmlBaseWrenchF32
+    UwmlBaseWrenchF32,
+    UwmlJointLossParamsF32,
+    UwmlJointEnvironmentF32
 );
 
 /// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).
@@ -288,8 +336,8 @@ unsafe fn write_paper<T: RobotPrecision>(block: *mut Block<T>) -> Result<(), Mod
     Ok(())
 }
 
-/// Completes a block whose robot field was just written: the water, a fresh workspace, and the
-/// tag, last, so that a block carries the tag only once its contents are valid. Not inlined: the
+/// Completes a block whose robot field was just written: the water, Morison's added mass, a fresh
+/// workspace, no joint losses, and the tag, last, so that a block carries the tag only once its contents are valid. Not inlined: the
 /// workspace built here does not add to the caller's frame.
 ///
 /// # Safety
@@ -304,6 +352,8 @@ unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
         (&raw mut (*block).water).write(water);
         (&raw mut (*block).form).write(UWML_ADDED_MASS_MORISON);
         (&raw mut (*block).data).write(RobotData::new());
+        (&raw mut (*block).losses).write([None; J]);
+        (&raw mut (*block).states).write([None; J]);
         out.cast::<u64>().write(T::TAG);
     }
 }
@@ -426,13 +476,24 @@ fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Resul
     Ok(())
 }
 
+/// The evaluation behind `uwml_robot_hydro_*` (`with_losses` false: every joint's loss is zero,
+/// and the joint losses are not evaluated) and `uwml_robot_environment_*` (true): checks, the
+/// core's `robot_hydro_with` and, with losses, `loss_torques`; writes `row` of every joint's
+/// forces and losses to `io.joints` and the base wrench; then reports a non-finite state or
+/// outputs that overflow (`total`: forces plus losses; `current`; `base_wrench`).
+///
 /// # Safety
 /// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
 /// the call; the pointers of `io` are null or valid for their `n` elements (`motion`, `current`,
 /// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`.
-pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluation<T>) -> Result<(), Failure> {
+unsafe fn evaluate<T: RobotPrecision, F>(
+    robot: *mut T::Robot,
+    io: &Evaluation<T, F>,
+    with_losses: bool,
+    row: impl Fn(&JointForces<T>, &JointLoss<T>) -> F,
+) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let Block { robot, water, form, data } = unsafe { block_mut::<T>(robot) }?;
+    let Block { robot, water, form, data, states, .. } = unsafe { block_mut::<T>(robot) }?;
     let n = robot.joint_count();
     if usize::try_from(io.n).ok() != Some(n) {
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n (the robot's joint count)", None));
@@ -452,13 +513,20 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluat
         // SAFETY: not null, valid for reads (contract).
         T::current(&unsafe { read_one(io.current, "current") }?)?
     };
-    let joint_forces = if n == 0 { io.joint_forces } else { non_null(io.joint_forces, "joint_forces")? };
+    let joints = if n == 0 { io.joints } else { non_null(io.joints, io.joints_name)? };
     let form = if *form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
     robot_hydro_with(robot, water, None, form, &motion, &current, &q, &qd, &qdd, data);
+    let losses = with_losses.then(|| loss_torques(states, &SVector::from(qd)));
+    let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
+    let loss = |i: usize| {
+        let (visc, seal, current) = losses.as_ref()?;
+        Some(JointLoss { visc: *visc.get(i)?, seal: *seal.get(i)?, current: *current.get(i)? })
+    };
+    let loss = |i: usize| loss(i).unwrap_or(none);
     for (i, forces) in data.joint_forces().iter().enumerate() {
-        // SAFETY: `i < n` and `joint_forces` is valid for writes of `n` elements (contract; not
-        // null when n > 0).
-        unsafe { joint_forces.add(i).write(T::joint_forces(forces)) };
+        // SAFETY: `i < n` and `joints` is valid for writes of `n` elements (contract; not null
+        // when n > 0).
+        unsafe { joints.add(i).write(row(forces, &loss(i))) };
     }
     if !io.base_wrench.is_null() {
         // SAFETY: not null, valid for writes (contract).
@@ -470,10 +538,86 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(robot: *mut T::Robot, io: &Evaluat
         (qd.get(used).unwrap_or(&[]), "qd"),
         (qdd.get(used).unwrap_or(&[]), "qdd"),
     ])?;
-    check_overflow(data.joint_forces().iter().map(uwml_core::JointForces::total), "total")?;
+    let forces = data.joint_forces().iter().enumerate();
+    check_overflow(forces.map(|(i, f)| environment_total(f, &loss(i))), "total")?;
+    check_overflow((0..n).map(|i| loss(i).current), "current")?;
     let wrench = data.base_wrench().total().to_array();
     if wrench.iter().any(|x| !x.is_finite()) {
         return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
+    }
+    Ok(())
+}
+
+/// # Safety
+/// As [`evaluate`].
+pub(crate) unsafe fn hydro<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    io: &Evaluation<T, T::JointForces>,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract.
+    unsafe { evaluate(robot, io, false, |forces, _| T::joint_forces(forces)) }
+}
+
+/// # Safety
+/// As [`evaluate`].
+pub(crate) unsafe fn environment<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    io: &Evaluation<T, T::JointEnvironment>,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract.
+    unsafe { evaluate(robot, io, true, T::joint_environment) }
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call; `params` is null or valid for reads of a `T::LossParams` that does not overlap it.
+pub(crate) unsafe fn set_losses<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    joint_index: u32,
+    params: *const T::LossParams,
+    pressure: T,
+    temperature: T,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let block = unsafe { block_mut::<T>(robot) }?;
+    let slot = joint_slot(joint_index, block.robot.joint_count())?;
+    // SAFETY: forwarded contract.
+    let params = unsafe { read_one(params, "params") }?;
+    let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
+    check_conditions(pressure, temperature)?;
+    if let (Some(model), Some(state)) = (block.losses.get_mut(slot), block.states.get_mut(slot)) {
+        *model = Some(losses);
+        *state = losses.at(pressure, temperature).ok();
+    }
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call.
+pub(crate) unsafe fn clear_losses<T: RobotPrecision>(robot: *mut T::Robot, joint_index: u32) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let block = unsafe { block_mut::<T>(robot) }?;
+    let slot = joint_slot(joint_index, block.robot.joint_count())?;
+    if let (Some(model), Some(state)) = (block.losses.get_mut(slot), block.states.get_mut(slot)) {
+        (*model, *state) = (None, None);
+    }
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call.
+pub(crate) unsafe fn set_conditions<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    pressure: T,
+    temperature: T,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let block = unsafe { block_mut::<T>(robot) }?;
+    check_conditions(pressure, temperature)?;
+    for (model, state) in block.losses.iter().zip(block.states.iter_mut()) {
+        *state = model.and_then(|m| m.at(pressure, temperature).ok());
     }
     Ok(())
 }

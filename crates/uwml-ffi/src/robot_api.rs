@@ -1,13 +1,17 @@
 //! The robot API of the C ABI (`uwml_robot_*`): its plain structs and functions, any tree of up
 //! to `UWML_ROBOT_MAX_JOINTS` joints and `UWML_ROBOT_MAX_SEGMENTS` segments on a base that may
-//! move, in a current (the implementation is `crate::robot`). The leg API, the error codes and
-//! the constants are in the crate root.
+//! move, in a current, with joint losses (the implementation is `crate::robot`). The leg API, the
+//! loss parameters it shares with the robot API, the error codes and the constants are in the
+//! crate root.
 
-use crate::{UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS, UwmlError, imp, robot};
+use crate::{
+    UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS, UwmlError, UwmlJointLossParamsF32, UwmlJointLossParamsF64, imp, robot,
+};
 
-/// A robot (tree, bodies, segments, water) and its evaluation workspace, in f64, for C to
-/// allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
-/// `uwml_robot_paper_f64` or `uwml_robot_new_f64`; `uwml_robot_hydro_f64` uses its workspace.
+/// A robot (tree, bodies, segments, water, added-mass form, joint losses) and its evaluation
+/// workspace, in f64, for C to allocate (statically: `static UwmlRobotF64 robot;`). Opaque:
+/// written only by `uwml_robot_paper_f64` or `uwml_robot_new_f64` and changed only by the setters;
+/// `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` use its workspace.
 /// It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
 /// did not write (`UWML_ERR_UNINITIALIZED`).
 #[repr(C)]
@@ -90,7 +94,8 @@ pub struct UwmlRobotSegmentF64 {
     pub cm: [f64; 2],
 }
 
-/// The base's orientation and motion at one instant (MODEL.md 9.2).
+/// The base's orientation and motion at one instant (docs/model.md section 10, "Base motion and
+/// current").
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UwmlBaseMotionF64 {
@@ -151,6 +156,30 @@ pub struct UwmlBaseWrenchF64 {
     pub gravity: [f64; 6],
     /// `drag + added_mass + buoyancy`.
     pub total: [f64; 6],
+}
+
+/// The environment's generalized force on one joint with its joint losses, in the joint's
+/// positive direction [N·m for a revolute joint, N for a prismatic one], and the loss current [A]:
+/// `UwmlJointForcesF64` and the leg's `UwmlEnvironment3F64` for one joint of a robot.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlJointEnvironmentF64 {
+    /// Drag (relative to the current).
+    pub drag: f64,
+    /// Added mass (relative to the current's acceleration).
+    pub added_mass: f64,
+    /// Buoyancy, with the Froude-Krylov force of an accelerating current.
+    pub buoyancy: f64,
+    /// Gravity of the links (not part of `total`).
+    pub gravity: f64,
+    /// Oil drag reflected to the output (0 without oil or losses).
+    pub visc: f64,
+    /// Seal friction (0 without a seal or losses).
+    pub seal: f64,
+    /// Loss current [A], signed like the motion (0 without losses).
+    pub current: f64,
+    /// `drag + added_mass + buoyancy + visc + seal`.
+    pub total: f64,
 }
 
 /// `UwmlTreeJointF64` in f32.
@@ -267,9 +296,31 @@ pub struct UwmlBaseWrenchF32 {
     pub total: [f32; 6],
 }
 
+/// `UwmlJointEnvironmentF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlJointEnvironmentF32 {
+    /// Drag.
+    pub drag: f32,
+    /// Added mass.
+    pub added_mass: f32,
+    /// Buoyancy and Froude-Krylov.
+    pub buoyancy: f32,
+    /// Gravity (not part of `total`).
+    pub gravity: f32,
+    /// Oil drag reflected to the output.
+    pub visc: f32,
+    /// Seal friction.
+    pub seal: f32,
+    /// Loss current [A].
+    pub current: f32,
+    /// `drag + added_mass + buoyancy + visc + seal`.
+    pub total: f32,
+}
+
 /// Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
 /// fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
-/// water (1000 kg/m³, g = 9.81).
+/// water (1000 kg/m³, g = 9.81), Morison's added mass, no joint losses.
 ///
 /// # Safety
 /// `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
@@ -283,7 +334,8 @@ pub unsafe extern "C" fn uwml_robot_paper_f64(robot: *mut UwmlRobotF64) -> i32 {
 /// `UWML_ROBOT_MAX_JOINTS`) and as many links (joint `i` moves link `i`), the base's own body
 /// (`base`, NULL for none), `n_segments` segments of all bodies (at most
 /// `UWML_ROBOT_MAX_SEGMENTS`), in water of `density` [kg/m³] (positive) under `gravity` [m/s²]
-/// (zero or positive). Errors name the field and the joint, link or segment index: e.g.
+/// (zero or positive), with Morison's added mass and no joint losses. Errors name the field and
+/// the joint, link or segment index: e.g.
 /// "joint.parent", "link.volume", "base.mass" (index -1), "segment.diameter",
 /// "n_joints (at most 16)". On error `*robot` is left as it was.
 ///
@@ -342,7 +394,8 @@ pub unsafe extern "C" fn uwml_robot_hydro_f64(
     base_wrench: *mut UwmlBaseWrenchF64,
     error: *mut UwmlError,
 ) -> i32 {
-    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joint_forces, base_wrench };
+    let joints_name = "joint_forces";
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_forces, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
     unsafe { imp::report(error, robot::hydro::<f64>(robot, &io)) }
 }
@@ -350,7 +403,7 @@ pub unsafe extern "C" fn uwml_robot_hydro_f64(
 /// Chooses how the added-mass forces of `robot` depend on the velocities, for every later
 /// `uwml_robot_hydro_f64`: `UWML_ADDED_MASS_MORISON` (the paper's, what a new robot uses) or
 /// `UWML_ADDED_MASS_KIRCHHOFF` (from the water's kinetic energy: the form that conserves energy
-/// in a simulation, MODEL.md 11; a controller designed in `uwml.mujoco.Simulation(...,
+/// in a simulation, docs/simulation.md, "Energy-consistent added mass"; a controller designed in `uwml.mujoco.Simulation(...,
 /// added_mass="kirchhoff")` gets the same forces). Both share the added-mass matrix; they differ
 /// where the links move. Another value is `UWML_ERR_OUT_OF_RANGE` (field "form ...") and changes
 /// nothing.
@@ -366,6 +419,99 @@ pub unsafe extern "C" fn uwml_robot_set_added_mass_form_f64(
 ) -> i32 {
     // SAFETY: this function's contract is `robot::set_added_mass_form`'s and `imp::report`'s.
     unsafe { imp::report(error, robot::set_added_mass_form::<f64>(robot, form)) }
+}
+
+/// Gives joint `joint_index` (0 to the robot's joint count - 1) of `robot` the losses `*params`
+/// (the leg API's struct: start from `uwml_leg3_default_losses_f64`) at gauge pressure
+/// `pressure_pa` [Pa] (finite, 0 to 1.2e8: `uwml_pressure_at_depth_f64` gives it from a depth) and
+/// oil temperature `temperature_c` [°C] (finite, above -273.15), for every later
+/// `uwml_robot_environment_f64`. Checked as `uwml_leg3_set_losses_f64` checks them, in that order:
+/// the robot, `UWML_ERR_INDEX_OUT_OF_RANGE` (field "joint_index", index the value given),
+/// `params` NULL, the parameters (field e.g. "drive.ratio", "oil.exponent (1 to 2)", "seal.s0",
+/// "losses.epsilon", index the joint), the conditions (field "pressure_pa" or "temperature_c").
+/// On a prismatic joint the same laws hold in its units (speed in m/s, forces in N, the drive's
+/// ratio in rad/m). On error the robot is left as it was.
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `params` is NULL or valid for reads of a `UwmlJointLossParamsF64`; `error` is
+/// NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_losses_f64(
+    robot: *mut UwmlRobotF64,
+    joint_index: u32,
+    params: *const UwmlJointLossParamsF64,
+    pressure_pa: f64,
+    temperature_c: f64,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_losses`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_losses::<f64>(robot, joint_index, params, pressure_pa, temperature_c)) }
+}
+
+/// Removes the losses of joint `joint_index` (0 to the robot's joint count - 1; else
+/// `UWML_ERR_INDEX_OUT_OF_RANGE`, nothing changed).
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `error` is NULL or valid for writes of a `UwmlError`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_clear_losses_f64(
+    robot: *mut UwmlRobotF64,
+    joint_index: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::clear_losses`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::clear_losses::<f64>(robot, joint_index)) }
+}
+
+/// Moves every joint of `robot` that has losses to a new gauge pressure [Pa] and oil temperature
+/// [°C] (checked as in `uwml_robot_set_losses_f64`; on error nothing changes): call it when the
+/// depth or temperature changes.
+///
+/// # Safety
+/// As `uwml_robot_clear_losses_f64`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_conditions_f64(
+    robot: *mut UwmlRobotF64,
+    pressure_pa: f64,
+    temperature_c: f64,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_conditions`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_conditions::<f64>(robot, pressure_pa, temperature_c)) }
+}
+
+/// `uwml_robot_hydro_f64` with the joint losses: writes `n` `UwmlJointEnvironmentF64` to
+/// `joint_environment` (each joint's forces as `uwml_robot_hydro_f64` gives them, its oil drag,
+/// seal friction and loss current at its speed `qd[i]`, zero for a joint without losses, and
+/// `total` = drag + added mass + buoyancy + visc + seal) and, if `base_wrench` is not NULL, the
+/// base wrench, which losses do not change (they act between a link and its parent). The same
+/// arguments, checks and errors as `uwml_robot_hydro_f64` (the array's field is
+/// "joint_environment"); a finite state whose loss current overflows is `UWML_ERR_OVERFLOW`
+/// with field "current".
+///
+/// # Safety
+/// As `uwml_robot_hydro_f64`, with `joint_environment` NULL or valid for writes of `n`
+/// `UwmlJointEnvironmentF64`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_environment_f64(
+    robot: *mut UwmlRobotF64,
+    q: *const f64,
+    qd: *const f64,
+    qdd: *const f64,
+    n: u32,
+    motion: *const UwmlBaseMotionF64,
+    current: *const UwmlCurrentF64,
+    joint_environment: *mut UwmlJointEnvironmentF64,
+    base_wrench: *mut UwmlBaseWrenchF64,
+    error: *mut UwmlError,
+) -> i32 {
+    let joints_name = "joint_environment";
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_environment, joints_name, base_wrench };
+    // SAFETY: this function's contract is `robot::environment`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::environment::<f64>(robot, &io)) }
 }
 
 /// `uwml_robot_set_added_mass_form_f64` in f32.
@@ -433,7 +579,78 @@ pub unsafe extern "C" fn uwml_robot_hydro_f32(
     base_wrench: *mut UwmlBaseWrenchF32,
     error: *mut UwmlError,
 ) -> i32 {
-    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joint_forces, base_wrench };
+    let joints_name = "joint_forces";
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_forces, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
     unsafe { imp::report(error, robot::hydro::<f32>(robot, &io)) }
+}
+
+/// `uwml_robot_set_losses_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_set_losses_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_losses_f32(
+    robot: *mut UwmlRobotF32,
+    joint_index: u32,
+    params: *const UwmlJointLossParamsF32,
+    pressure_pa: f32,
+    temperature_c: f32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_losses`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_losses::<f32>(robot, joint_index, params, pressure_pa, temperature_c)) }
+}
+
+/// `uwml_robot_clear_losses_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_clear_losses_f64`, with `UwmlRobotF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_clear_losses_f32(
+    robot: *mut UwmlRobotF32,
+    joint_index: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::clear_losses`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::clear_losses::<f32>(robot, joint_index)) }
+}
+
+/// `uwml_robot_set_conditions_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_clear_losses_f64`, with `UwmlRobotF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_conditions_f32(
+    robot: *mut UwmlRobotF32,
+    pressure_pa: f32,
+    temperature_c: f32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_conditions`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_conditions::<f32>(robot, pressure_pa, temperature_c)) }
+}
+
+/// `uwml_robot_environment_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_environment_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn uwml_robot_environment_f32(
+    robot: *mut UwmlRobotF32,
+    q: *const f32,
+    qd: *const f32,
+    qdd: *const f32,
+    n: u32,
+    motion: *const UwmlBaseMotionF32,
+    current: *const UwmlCurrentF32,
+    joint_environment: *mut UwmlJointEnvironmentF32,
+    base_wrench: *mut UwmlBaseWrenchF32,
+    error: *mut UwmlError,
+) -> i32 {
+    let joints_name = "joint_environment";
+    let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_environment, joints_name, base_wrench };
+    // SAFETY: this function's contract is `robot::environment`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::environment::<f32>(robot, &io)) }
 }

@@ -201,8 +201,8 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
     let stdout = check_program("robot", &expected, &expected_offsets);
     assert!(stdout.lines().filter(|l| l.starts_with("ok ")).count() > 100, "the robot program runs its checks");
     // The sizes the header's preamble and docs/firmware.md state.
-    assert_eq!(size_of::<UwmlRobotF64>(), 16328);
-    assert_eq!(size_of::<UwmlRobotF32>(), 8776);
+    assert_eq!(size_of::<UwmlRobotF64>(), 20296);
+    assert_eq!(size_of::<UwmlRobotF32>(), 10760);
 }
 
 /// The C example of docs/firmware.md is the one `tests/c/robot.c` compiles and runs.
