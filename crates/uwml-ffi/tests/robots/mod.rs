@@ -1,19 +1,23 @@
 //! The robots of the robot API's tests, as the core describes them and as C gives them: a 6-joint
 //! arm (a tree: five joints in a chain, one prismatic, and a camera on a side branch; circular
-//! and rectangular segments) on a vehicle with a body and a circular hull, moving in a current;
-//! and the paper's leg. Shared by `robot_api.rs` (the C API against the core, bit for bit) and
-//! `robot_expected.rs` (the core's values for `tests/c/robot.c`).
+//! and rectangular segments) on a vehicle with a body and a circular hull, moving in a current,
+//! with joint losses on four of its joints; and the paper's leg. Shared by `robot_api.rs` and
+//! `robot_losses.rs` (the C API against the core, bit for bit) and `robot_expected.rs` (the
+//! core's values for `tests/c/robot.c`).
 #![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Current, JointKind, Owner, RigidBody, Robot, RobotData,
-    RobotSegment, Section, TreeJoint, Water, robot_hydro_with,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Current, Drive, JointForces, JointKind, JointLosses, LossState,
+    OilDrag, Owner, RigidBody, Robot, RobotData, RobotSegment, Seal, Section, TreeJoint, Water, loss_torques,
+    robot_hydro_with,
 };
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR,
     UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64,
-    UwmlCurrentF32, UwmlCurrentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64,
+    UwmlCurrentF32, UwmlCurrentF64, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlJointEnvironmentF32,
+    UwmlJointEnvironmentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64,
+    UwmlOilParamsF32, UwmlOilParamsF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlSealParamsF32, UwmlSealParamsF64,
     UwmlTreeJointF32, UwmlTreeJointF64,
 };
 
@@ -184,6 +188,172 @@ pub fn arm_motion() -> UwmlBaseMotionF64 {
 /// A current across the vehicle's path, speeding up.
 pub const ARM_CURRENT: UwmlCurrentF64 = UwmlCurrentF64 { velocity: [0.3, -0.4, 0.05], acceleration: [0.02, 0.01, 0.0] };
 
+/// The core's illustrative default losses (`JointLosses::default()`, what
+/// `uwml_leg3_default_losses_f64` writes), as C gives them.
+pub fn default_losses() -> UwmlJointLossParamsF64 {
+    let d = JointLosses::<f64>::default();
+    let (drive, oil, seal) = (d.drive, d.oil.unwrap(), d.seal.unwrap());
+    UwmlJointLossParamsF64 {
+        drive: UwmlDriveParamsF64 {
+            torque_constant: drive.torque_constant(),
+            ratio: drive.ratio(),
+            efficiency: drive.efficiency(),
+            rated_current: drive.rated_current(),
+        },
+        oil: UwmlOilParamsF64 {
+            k_oil: oil.k_oil(),
+            exponent: oil.exponent(),
+            pressure_sensitivity: oil.pressure_sensitivity(),
+            temperature_sensitivity: oil.temperature_sensitivity(),
+            reference_pressure: oil.reference_pressure(),
+            reference_temperature: oil.reference_temperature(),
+        },
+        seal: UwmlSealParamsF64 {
+            c: seal.running(),
+            s: seal.breakaway(),
+            d: seal.viscous(),
+            stribeck_speed: seal.stribeck_speed(),
+        },
+        epsilon: d.epsilon(),
+        has_oil: 1,
+        has_seal: 1,
+    }
+}
+
+/// The arm's joint losses, `(joint, losses)`: a seal only on the turret (0); the defaults on the
+/// shoulder (1); on the elbow (2) Taylor-vortex oil (n = 1.5) and a hard sign (ε = 0); oil only,
+/// n = 2, on the telescope (3, prismatic: a ball screw of 2π·500 rad/m); none on the wrist (4)
+/// and the camera (5).
+pub fn arm_losses() -> Vec<(u32, UwmlJointLossParamsF64)> {
+    let defaults = default_losses();
+    let mut turret = defaults;
+    turret.has_oil = 0;
+    turret.seal.c = [2.0, 3e-7];
+    turret.seal.s = [3.5, 5e-7];
+    let mut elbow = defaults;
+    elbow.oil.exponent = 1.5;
+    elbow.oil.k_oil = 2e-4;
+    elbow.epsilon = 0.0;
+    let mut telescope = defaults;
+    telescope.has_seal = 0;
+    telescope.drive.ratio = 2.0 * core::f64::consts::PI * 500.0;
+    telescope.oil.exponent = 2.0;
+    telescope.oil.k_oil = 1e-7;
+    vec![(0, turret), (1, defaults), (2, elbow), (3, telescope)]
+}
+
+/// The arm's loss conditions: the gauge pressure at 3000 m in sea water [Pa] and 4 °C.
+pub fn arm_conditions() -> (f64, f64) {
+    (uwml_core::pressure_at_depth(3000.0, DENSITY, GRAVITY).unwrap(), 4.0)
+}
+
+/// The core's losses of a joint given as C gives them, in `T` (every field rounded as C's
+/// `(float)x` does), through the core's constructors.
+pub fn core_losses<T: Real>(p: &UwmlJointLossParamsF64) -> JointLosses<T> {
+    let (d, o, s) = (&p.drive, &p.oil, &p.seal);
+    let n = T::narrow;
+    let drive = Drive::new(n(d.torque_constant), n(d.ratio), n(d.efficiency), n(d.rated_current)).unwrap();
+    let oil = (p.has_oil != 0).then(|| {
+        OilDrag::new(
+            n(o.k_oil),
+            n(o.exponent),
+            n(o.pressure_sensitivity),
+            n(o.temperature_sensitivity),
+            n(o.reference_pressure),
+            n(o.reference_temperature),
+        )
+        .unwrap()
+    });
+    let seal = (p.has_seal != 0).then(|| Seal::new(s.c.map(n), s.s.map(n), s.d.map(n), n(s.stribeck_speed)).unwrap());
+    JointLosses::new(drive, oil, seal, n(p.epsilon)).unwrap()
+}
+
+/// Every joint's loss state at `(pressure, temperature)`: the core's, from `losses`.
+pub fn core_loss_states<T: Real>(
+    losses: &[(u32, UwmlJointLossParamsF64)],
+    (pressure, temperature): (f64, f64),
+) -> [Option<LossState<T>>; J] {
+    let mut states = [None; J];
+    for (joint, p) in losses {
+        states[*joint as usize] = Some(core_losses::<T>(p).at(T::narrow(pressure), T::narrow(temperature)).unwrap());
+    }
+    states
+}
+
+/// What `uwml_robot_environment_*` must give: the core's `robot_hydro_with` forces (`data`) and
+/// its `loss_torques` at the joint speeds `qd`, `total` summed as `EnvironmentTorques::total`
+/// sums it, `(hydro total + visc) + seal`.
+pub fn core_environment<T: Real>(
+    data: &RobotData<T, J>,
+    states: &[Option<LossState<T>>; J],
+    qd: &[T],
+) -> Vec<(JointForces<T>, [T; 4])> {
+    let mut speeds = [T::narrow(0.0); J];
+    speeds[..qd.len()].copy_from_slice(qd);
+    let (visc, seal, current) = loss_torques(states, &speeds.into());
+    data.joint_forces()
+        .iter()
+        .enumerate()
+        .map(|(i, f)| (*f, [visc[i], seal[i], current[i], f.total() + visc[i] + seal[i]]))
+        .collect()
+}
+
+pub fn environment64(e: &[(JointForces<f64>, [f64; 4])]) -> Vec<UwmlJointEnvironmentF64> {
+    e.iter()
+        .map(|(f, [visc, seal, current, total])| UwmlJointEnvironmentF64 {
+            drag: f.drag,
+            added_mass: f.added_mass,
+            buoyancy: f.buoyancy,
+            gravity: f.gravity,
+            visc: *visc,
+            seal: *seal,
+            current: *current,
+            total: *total,
+        })
+        .collect()
+}
+
+pub fn environment32(e: &[(JointForces<f32>, [f32; 4])]) -> Vec<UwmlJointEnvironmentF32> {
+    e.iter()
+        .map(|(f, [visc, seal, current, total])| UwmlJointEnvironmentF32 {
+            drag: f.drag,
+            added_mass: f.added_mass,
+            buoyancy: f.buoyancy,
+            gravity: f.gravity,
+            visc: *visc,
+            seal: *seal,
+            current: *current,
+            total: *total,
+        })
+        .collect()
+}
+
+/// The f32 loss parameters, as C would convert them.
+pub fn losses32(p: &UwmlJointLossParamsF64) -> UwmlJointLossParamsF32 {
+    let n = f32::narrow;
+    let (d, o, s) = (&p.drive, &p.oil, &p.seal);
+    UwmlJointLossParamsF32 {
+        drive: UwmlDriveParamsF32 {
+            torque_constant: n(d.torque_constant),
+            ratio: n(d.ratio),
+            efficiency: n(d.efficiency),
+            rated_current: n(d.rated_current),
+        },
+        oil: UwmlOilParamsF32 {
+            k_oil: n(o.k_oil),
+            exponent: n(o.exponent),
+            pressure_sensitivity: n(o.pressure_sensitivity),
+            temperature_sensitivity: n(o.temperature_sensitivity),
+            reference_pressure: n(o.reference_pressure),
+            reference_temperature: n(o.reference_temperature),
+        },
+        seal: UwmlSealParamsF32 { c: s.c.map(n), s: s.s.map(n), d: s.d.map(n), stribeck_speed: n(s.stribeck_speed) },
+        epsilon: n(p.epsilon),
+        has_oil: p.has_oil,
+        has_seal: p.has_seal,
+    }
+}
+
 /// The paper's leg as C would give it (what `uwml_robot_paper_*` holds): 3 revolute joints in a chain, rectangular segments with
 /// Cd 2.2, Cm 0.5, no base body.
 pub fn paper() -> Params {
@@ -229,7 +399,7 @@ pub fn paper() -> Params {
     Params { joints, links: links.collect(), base: None, segments }
 }
 
-/// MODEL.md section 5's state of the paper's leg.
+/// The state of the paper's leg whose torques docs/model.md section 5 publishes.
 pub const PAPER_STATE: [[f64; 3]; 3] = [[0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]];
 
 /// The leg on a body that heaves and rolls a little.
