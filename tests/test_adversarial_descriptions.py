@@ -355,6 +355,87 @@ def test_a_mujoco_compile_error_names_the_link(tmp_path: Path) -> None:
     refused(lambda: uwml.Robot.from_urdf(path), "g.urdf", match=r"link 'arm'.*size")
 
 
+BODY = '<worldbody><body name="b"><geom size="0.1"/><body name="c"><joint name="j"/><geom size="0.1"/></body></body></worldbody>'
+LAUGHS = "".join(f'<!ENTITY l{i + 1} "{f"&l{i};" * 10}">' for i in range(8))
+MESH_LINK = '<mujoco><asset><mesh name="m" file="{file}"/></asset><worldbody><body name="b"><geom size="0.1"/><body name="hand"><joint name="j"/><geom type="mesh" mesh="m"/></body></body></worldbody></mujoco>'
+
+
+@pytest.mark.parametrize(
+    "files, match",
+    [
+        ({"robot.xml": f'<mujoco><include file="robot.xml"/>{BODY}</mujoco>'}, r"robot\.xml: included in itself"),
+        (
+            {"robot.xml": f'<mujoco><include file="b.xml"/>{BODY}</mujoco>', "b.xml": '<mujoco><include file="robot.xml"/></mujoco>'},
+            r"included in itself",
+        ),
+        (
+            {"robot.xml": f'<mujoco><include file="sub"/>{BODY}</mujoco>', "sub/x": ""},
+            r"sub: the included file cannot be read: it is a directory",
+        ),
+        (
+            {"robot.xml": MESH_LINK.format(file="/dev/zero"), "h.toml": "[links.hand]\nvolume = 0.001\n"},
+            r"'/dev/zero'.*not a regular file \(a device\)",
+        ),
+        (
+            {"robot.xml": f'<?xml version="1.0"?><!DOCTYPE m [<!ENTITY l0 "lol">{LAUGHS}]><mujoco model="&l8;">{BODY}</mujoco>'},
+            r"not well-formed XML \(limit on input amplification",
+        ),
+        (
+            {
+                "robot.xml": f'<?xml version="1.0"?><!DOCTYPE m [<!ENTITY x SYSTEM "file:///etc/hostname">]><mujoco model="&x;">{BODY}</mujoco>'
+            },
+            r"external entity",
+        ),
+        (
+            {
+                "robot.xml": '<mujoco><asset><model name="arm" file="arm.xml"/></asset><worldbody><body name="b"><geom size="0.1"/>'
+                '<replicate count="100"><attach model="arm" body="c" prefix="p"/></replicate></body></worldbody></mujoco>',
+                "arm.xml": f"<mujoco>{BODY}</mujoco>",
+            },
+            r"too large for uwml: 100 joints",
+        ),
+        (
+            {
+                "robot.xml": '<mujoco><worldbody><body name="b"><geom size="0.1"/><composite type="cable" count="1000 1 1"><geom type="capsule" size=".01"/></composite></body></worldbody></mujoco>'
+            },
+            r"<composite> generates bodies",
+        ),
+        (
+            {
+                "robot.xml": '<mujoco><worldbody><flexcomp name="f" type="grid" count="1000 1000 1" spacing=".1 .1 .1" dim="2"/></worldbody></mujoco>'
+            },
+            r"<flexcomp> generates bodies",
+        ),
+    ],
+)
+def test_hostile_includes_assets_and_entities(tmp_path: Path, files: dict[str, str], match: str) -> None:
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        write(tmp_path, name, text)
+    hydro = tmp_path / "h.toml" if "h.toml" in files else None
+    refused(lambda: uwml.Robot.from_mjcf(tmp_path / "robot.xml", hydro), "robot.xml", "sub", match=match)
+
+
+def test_a_hydro_file_may_start_with_a_byte_order_mark(tmp_path: Path) -> None:
+    hydro = write(tmp_path, "bom.toml", b"\xef\xbb\xbf[links.calf]\nvolume = 0.1\n")
+    assert uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro).links[2].volume == 0.1
+
+
+def test_too_many_hydro_segments_are_refused_before_they_are_read(tmp_path: Path) -> None:
+    segment = '[[links.calf.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [1.0, 0.0, 0.0]\nlength = 0.1\n'
+    hydro = write(tmp_path, "h.toml", "[links.calf]\nvolume = 0.1\n" + segment * 300)
+    refused(
+        lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro),
+        "h.toml",
+        match=r"key 'segments': has 300 entries; .*256 .*MAX_SEGMENTS",
+    )
+
+
+def test_a_nul_in_a_path_is_a_description_error(tmp_path: Path) -> None:
+    refused(lambda: uwml.Robot.from_urdf("robot\x00.urdf"), "robot", match="null")
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", "h\x00.toml"), "h", match="null")
+
+
 # --- 5. grown by hypothesis --------------------------------------------------------------------
 
 HOSTILE = ["nan", "-nan", "inf", "-inf", "1e308", "-1e308", "1e400", "-1", "0", "", "abc", "1 2", "1e-320", " ", "0x10", "1,2,3"]

@@ -127,8 +127,11 @@ class _Scan:
     # --- one file --------------------------------------------------------------------------
 
     def document(self, path: Path, in_world: bool, label: str) -> _Counts:
-        real = os.path.realpath(path)
-        if (real, in_world) in self.memo:
+        try:
+            real = os.path.realpath(path)
+        except ValueError:  # a NUL in the path: read_regular says so
+            real = str(path)
+        if (real, in_world) in self.memo:  # a file included many times is read once
             return self.memo[(real, in_world)]
         source = self.source if not self.active else str(path)
         if real in self.active or len(self.active) >= _MAX_NESTING:

@@ -127,8 +127,6 @@ def _coefficient(value: Any) -> float | tuple[float, float]:
 def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:
     if not isinstance(value, list):
         raise TypeError("not an array")
-    if len(value) > MAX_SEGMENTS:
-        raise ValueError(f"{len(value)} entries; a link has at most {MAX_SEGMENTS} segments (uwml.MAX_SEGMENTS)")
     return tuple(_coefficient(v) for v in value)
 
 
@@ -143,14 +141,6 @@ def _nonnegative(value: Any) -> float:
     if not (math.isfinite(x) and x >= 0.0):
         raise ValueError("must be finite and >= 0")
     return x
-
-
-def _segment_tables(value: Any) -> list[Any]:
-    if not isinstance(value, list):
-        raise TypeError("not an array of tables")
-    if len(value) > MAX_SEGMENTS:
-        raise ValueError(f"{len(value)} segments; a link has at most {MAX_SEGMENTS} (uwml.MAX_SEGMENTS)")
-    return value
 
 
 def _not(what: str) -> Any:
@@ -192,7 +182,12 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
         where = _table("links", name)
         r = _Reader(source, where, table, DescriptionError)
         r.check_keys(_LINK_KEYS)
-        raw_segments: list[Any] = r.get("segments", _segment_tables, "[[...segments]]", required=False, default=[])
+        for key in ("segments", "segment_cd", "segment_cm"):  # refused before reading a thousand of them
+            if isinstance(r.table.get(key), list) and len(r.table[key]) > MAX_SEGMENTS:
+                r.fail(key, f"has {len(r.table[key])} entries; a link has at most {MAX_SEGMENTS} segments (uwml.MAX_SEGMENTS)")
+        raw_segments: list[Any] = r.get(
+            "segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[]
+        )
         segments = tuple(_segment(source, f"{where}, segments[{i}]", s, DescriptionError) for i, s in enumerate(raw_segments))
         entry = HydroLink(
             cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
@@ -235,4 +230,4 @@ def read_hydro(path: str | os.PathLike[str]) -> HydroFile:
             f"{source}: not UTF-8 text: byte 0x{data[exc.start]:02x} at offset {exc.start} (line {line}) cannot be decoded "
             f"({exc.reason}); a hydro file is TOML, which is UTF-8"
         ) from None
-    return _hydro_loads(text, source)
+    return _hydro_loads(text.removeprefix("\ufeff"), source)  # a byte-order mark (Windows editors) is not content
