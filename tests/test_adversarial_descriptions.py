@@ -572,3 +572,13 @@ def test_random_bytes_as_a_hydro_file_or_a_description(tmp_path_factory: pytest.
     with pytest.raises(uwml.DescriptionError) as info:
         uwml.Robot.from_urdf(folder / "junk.urdf")
     assert "junk.urdf" in str(info.value) and len(str(info.value)) < MAX_MESSAGE
+
+
+def test_the_documented_limits_are_the_code_s() -> None:
+    """docs/model.md section 10 states the description limits as numbers: they must be the code's."""
+    from uwml.descriptions import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS
+
+    docs = " ".join((Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text(encoding="utf-8").split())
+    assert MAX_DESCRIPTION_BODIES == 1 + uwml.MAX_ROBOT_JOINTS + uwml.MAX_SEGMENTS
+    assert f"`uwml.descriptions.MAX_DESCRIPTION_BODIES` bodies ({MAX_DESCRIPTION_BODIES}:" in docs
+    assert f"`uwml.descriptions.MAX_DESCRIPTION_GEOMS` geoms ({MAX_DESCRIPTION_GEOMS})" in docs
