@@ -2,7 +2,7 @@
 vehicle with a box hull (rov_manipulator: rotated frames, fixed joints, a gripper of boxes on
 prismatic joints, visuals pointing to absent meshes) and a six-legged body (hexapod: a tree of 18
 joints). Both forms must be the same uwml robot: the same names, tree and forces. What the mapping
-must give is worked out here by hand from the files' numbers (MODEL.md 10), not taken from the
+must give is worked out here by hand from the files' numbers (docs/model.md section 10), not taken from the
 code under test."""
 
 from __future__ import annotations

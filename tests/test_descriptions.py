@@ -1,4 +1,4 @@
-"""URDF and MJCF descriptions to uwml.Robot (uwml.descriptions, MODEL.md section 10)."""
+"""URDF and MJCF descriptions to uwml.Robot (uwml.descriptions, docs/model.md section 10)."""
 
 from __future__ import annotations
 
