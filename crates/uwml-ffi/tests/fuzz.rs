@@ -1,5 +1,5 @@
-//! Fuzzing the C ABI (proptest): constructors, setters and evaluations of the leg and robot APIs,
-//! f64 and f32, from valid parameters with arbitrary words written over them (NaN, ±inf, huge,
+//! Fuzzing the C ABI (proptest): constructors, setters (joint losses and their conditions
+//! included) and evaluations of the leg and robot APIs, f64 and f32, from valid parameters with arbitrary words written over them (NaN, ±inf, huge,
 //! tiny, subnormal, negative zero, random bit patterns; any i32 in the enum and flag fields) and
 //! from arbitrary joint states, base motions and currents. Every parameter struct is plain old
 //! data (floats and i32), so any bytes are a valid value. What must hold: nothing panics (a
@@ -93,6 +93,19 @@ fn check(code: i32, error: &UwmlError) {
     assert_eq!(error.code, code);
     assert_eq!(error.reserved, 0);
     assert!(error.field.contains(&0), "the field is NUL-terminated");
+}
+
+/// A joint index: the small ones (valid for some robots), the capacity's edge, and any.
+fn index() -> impl Strategy<Value = u32> {
+    prop_oneof![0..7u32, Just(15), Just(16), Just(u32::MAX), any::<u32>()]
+}
+
+/// A pressure [Pa] and a temperature [°C]: the sea's, at the domain's edges, or any float.
+fn conditions() -> impl Strategy<Value = (f64, f64)> {
+    (
+        prop_oneof![0.0..1.2e8f64, Just(1.2e8), Just(1.2e8 + 1.0), float()],
+        prop_oneof![-2.0..40.0f64, Just(-273.15), Just(-273.14), float()],
+    )
 }
 
 fn leg_params() -> ([UwmlJointParamsF64; 3], [UwmlLinkParamsF64; 3]) {
@@ -213,7 +226,8 @@ proptest! {
     }
 
     /// The robot API in f64: build from edited joints, links, base and segments (and counts),
-    /// evaluate with arbitrary states, base motion and current.
+    /// set edited joint losses on any joint index at any conditions, move them to other
+    /// conditions, clear any joint, evaluate with arbitrary states, base motion and current.
     #[test]
     fn robot_api_takes_any_input(
         joint_edits in prop::collection::vec(edit(), 0..3),
@@ -226,6 +240,9 @@ proptest! {
         current in prop::array::uniform6(float()),
         with_motion in any::<bool>(),
         form in prop_oneof![Just(UWML_ADDED_MASS_MORISON), Just(UWML_ADDED_MASS_KIRCHHOFF), any::<i32>()],
+        losses in prop::collection::vec((index(), prop::collection::vec(edit(), 0..3), conditions()), 0..4),
+        moved in conditions(),
+        cleared in index(),
     ) {
         let (joints, links, base, segments) = robot_params();
         let joints: Vec<_> = joints.into_iter().map(|j| edited(j, &joint_edits)).collect();
@@ -252,6 +269,29 @@ proptest! {
         check(code, &error);
         let known = form == UWML_ADDED_MASS_MORISON || form == UWML_ADDED_MASS_KIRCHHOFF;
         prop_assert_eq!(code, if known { UWML_OK } else { UWML_ERR_OUT_OF_RANGE });
+        let mut defaults = UwmlJointLossParamsF64::default();
+        // SAFETY: a live local.
+        prop_assert_eq!(unsafe { uwml_leg3_default_losses_f64(&mut defaults) }, UWML_OK);
+        for (joint_index, loss_edits, (pressure, temperature)) in &losses {
+            let params = edited(defaults, loss_edits);
+            let before = robot.opaque;
+            // SAFETY: live locals.
+            let code = unsafe {
+                uwml_robot_set_losses_f64(&mut *robot, *joint_index, &params, *pressure, *temperature, &mut error)
+            };
+            check(code, &error);
+            prop_assert!(code != UWML_OK || *joint_index < n_joints, "only the robot's joints take losses");
+            prop_assert!(code == UWML_OK || robot.opaque == before, "a failed setter changes nothing");
+        }
+        let before = robot.opaque;
+        // SAFETY: a live robot and error.
+        let code = unsafe { uwml_robot_set_conditions_f64(&mut *robot, moved.0, moved.1, &mut error) };
+        check(code, &error);
+        prop_assert!(code == UWML_OK || robot.opaque == before, "a failed setter changes nothing");
+        // SAFETY: a live robot and error.
+        let code = unsafe { uwml_robot_clear_losses_f64(&mut *robot, cleared, &mut error) };
+        check(code, &error);
+        prop_assert_eq!(code, if cleared < n_joints { UWML_OK } else { UWML_ERR_INDEX_OUT_OF_RANGE });
         let n = n_joints as usize;
         let motion = edited(UwmlBaseMotionF64 { orientation: [1.0, 0.0, 0.0, 0.0], ..Default::default() }, &motion_edits);
         let current = UwmlCurrentF64 { velocity: [current[0], current[1], current[2]], acceleration: [current[3], current[4], current[5]] };
@@ -268,6 +308,19 @@ proptest! {
             prop_assert!(forces.iter().take(n).all(|f| f.total.is_finite()));
             prop_assert!(wrench.total.iter().all(|x| x.is_finite()));
         }
+        let hydro_code = code;
+        let mut environment = vec![UwmlJointEnvironmentF64::default(); n.max(1)];
+        // SAFETY: live locals; q, qd, qdd and environment hold at least n elements.
+        let code = unsafe {
+            uwml_robot_environment_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
+                if with_motion { &motion } else { null() }, &current, environment.as_mut_ptr(), &mut wrench, &mut error)
+        };
+        check(code, &error);
+        if code == UWML_OK {
+            prop_assert!(environment.iter().take(n).all(|e| e.total.is_finite() && e.current.is_finite()));
+            prop_assert!(wrench.total.iter().all(|x| x.is_finite()));
+            prop_assert_eq!(hydro_code, UWML_OK, "losses add errors, never remove one");
+        }
         // A joint count not the robot's is refused, not read past.
         // SAFETY: as above, with n + 1 <= 5 elements in every array.
         let code = unsafe {
@@ -275,6 +328,44 @@ proptest! {
                 forces.as_mut_ptr(), null_mut(), &mut error)
         };
         prop_assert_eq!(code, UWML_ERR_OUT_OF_RANGE);
+    }
+
+    /// The f32 robot (the paper's leg): losses and conditions, then the environment.
+    #[test]
+    fn f32_robot_losses_take_any_input(
+        loss_edits in prop::collection::vec(edit(), 0..3),
+        joint_index in index(),
+        conditions in conditions(),
+        moved in conditions(),
+        state in prop::array::uniform9(float()),
+    ) {
+        #[allow(clippy::cast_possible_truncation)]
+        let narrow = |x: f64| x as f32;
+        let mut robot = Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] });
+        let mut error = blank();
+        let mut losses = UwmlJointLossParamsF32::default();
+        // SAFETY: live locals.
+        unsafe {
+            prop_assert_eq!(uwml_robot_paper_f32(&mut *robot), UWML_OK);
+            prop_assert_eq!(uwml_leg3_default_losses_f32(&mut losses), UWML_OK);
+            let losses = edited(losses, &loss_edits);
+            let (p, t) = (narrow(conditions.0), narrow(conditions.1));
+            let code = uwml_robot_set_losses_f32(&mut *robot, joint_index, &losses, p, t, &mut error);
+            check(code, &error);
+            prop_assert!(code != UWML_OK || joint_index < 3);
+            let code = uwml_robot_set_conditions_f32(&mut *robot, narrow(moved.0), narrow(moved.1), &mut error);
+            check(code, &error);
+            let s = state.map(narrow);
+            let mut out = [UwmlJointEnvironmentF32::default(); 3];
+            let mut wrench = UwmlBaseWrenchF32::default();
+            let code = uwml_robot_environment_f32(&mut *robot, s[0..3].as_ptr(), s[3..6].as_ptr(), s[6..9].as_ptr(), 3,
+                null(), null(), out.as_mut_ptr(), &mut wrench, &mut error);
+            check(code, &error);
+            if code == UWML_OK {
+                prop_assert!(out.iter().all(|e| e.total.is_finite() && e.current.is_finite()));
+                prop_assert!(wrench.total.iter().all(|x| x.is_finite()));
+            }
+        }
     }
 
     /// The f32 leg: the same setters and evaluation in single precision.
