@@ -544,22 +544,53 @@ def test_hostile_mjcf_numbers(tmp_path_factory: pytest.TempPathFactory, values: 
 
 
 TOML_VALUES = st.one_of(
-    st.sampled_from(["1.0", "-1.0", "nan", "inf", "-inf", "0", "1e308", "true", '"x"', "[]", "[1.0]", "[1.0, 2.0]", "[1.0, 2.0, 3.0]"]),
+    st.sampled_from(["1.0", "-1.0", "nan", "inf", "-inf", "0", "1e308", "1e4", "1e9", "true", '"x"', "[]", "[1.0]", "[1.0, 2.0]"]),
     st.sampled_from(["[[1.0, 2.0], [3.0]]", '["a", "b"]', "{ a = 1 }", "[1.0, 2.0, 3.0, 4.0]", "1979-05-27", "[[]]", "[nan, nan]"]),
+    st.sampled_from(["[1.0, 2.0, 3.0]", "[1e308, 0.0, 0.0]", "[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]", '"rectangular"', '"circular"']),
 )
 HYDRO_KEYS = ["cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "bogus"]
+SEGMENT_KEYS = ["section", "start", "axis", "length", "diameter", "area", "normals", "widths"]
+A_SEGMENT = (
+    '[links.calf]\nvolume = 0.1\n[[links.calf.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [1.0, 0.0, 0.0]\n'
+    "length = 0.1\ndiameter = 0.1\narea = 0.01\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\n"
+)
 
 
 @settings(max_examples=80, deadline=None)
 @given(
-    table=st.sampled_from(["links.calf", "links.thigh", "links.hip", "links.body", "joints.knee", "joints.knee.seal", "water", "links"]),
-    entries=st.lists(st.tuples(st.sampled_from([*HYDRO_KEYS, "epsilon", "c0", "density", "gravity"]), TOML_VALUES), min_size=1, max_size=4),
+    table=st.sampled_from(
+        ["links.calf", "links.thigh", "links.hip", "links.body", "joints.knee", "joints.knee.seal", "water", "links", "links.calf.segments"]
+    ),
+    entries=st.lists(
+        st.tuples(st.sampled_from([*HYDRO_KEYS, *SEGMENT_KEYS, "epsilon", "c0", "density", "gravity"]), TOML_VALUES), min_size=1, max_size=5
+    ),
+    with_segment=st.booleans(),
 )
-def test_hostile_hydro_values(tmp_path_factory: pytest.TempPathFactory, table: str, entries: list[tuple[str, str]]) -> None:
-    lines = [f"[{table}]"] + [f"{key} = {value}" for key, value in dict(entries).items()]
+def test_hostile_hydro_values(
+    tmp_path_factory: pytest.TempPathFactory, table: str, entries: list[tuple[str, str]], with_segment: bool
+) -> None:
+    head = "[[links.calf.segments]]" if table == "links.calf.segments" else f"[{table}]"
+    before = [A_SEGMENT] if with_segment and table != "links.calf" else []
+    lines = [*before, head] + [f"{key} = {value}" for key, value in dict(entries).items()]
     hydro = tmp_path_factory.mktemp("hydro") / "hostile.toml"
     hydro.write_text("\n".join(lines) + "\n")
     assert_loads_or_refused_clearly(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "hostile.toml")
+
+
+@pytest.mark.parametrize(
+    "text, match",
+    [
+        ("[links.calf]\ncd = 1e308\n", r"h\.toml: \[links\.calf\], key 'cd': .*between 0 and 1000"),
+        ("[links.calf]\nvolume = 1e308\n", r"h\.toml: \[links\.calf\], key 'volume': .*0 to 1e\+06"),
+        ("[links.calf]\nvolume = 0.1\ncob = [1e308, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], key 'cob': .*at most 10000 m"),
+        (A_SEGMENT.replace("cd = [1.0, 1.0]", "cd = [1e308, 1e308]"), r"link 'calf' \(with .*h\.toml \[links\.calf\]\), segment \d+: .*cd"),
+    ],
+)
+def test_hydro_values_beyond_the_model_s_bounds_name_the_hydro_file(tmp_path: Path, text: str, match: str) -> None:
+    """The model's checks refuse them after the mapping; the message must still name the hydro
+    file (they were 'paper_leg.urdf: segment 1: segment.cd must be at most 1e3')."""
+    hydro = write(tmp_path, "h.toml", text)
+    refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "h.toml", match=match)
 
 
 @settings(max_examples=40, deadline=None)

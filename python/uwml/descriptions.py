@@ -521,6 +521,11 @@ def _mapped(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: 
         except (TypeError, ValueError) as exc:  # a segment of non-finite numbers
             raise DescriptionError(f"{source}: link {_quoted(body_name[i])}: {clipped(str(exc))}") from None
 
+    def with_hydro(b: int) -> str:
+        """Where the hydro file describes link ``b`` (its own body or one fused into it), if it does."""
+        tables = [_table("links", x.name) for x in parts.get(b, ()) if x.name in hydro]
+        return f" (with {hydro_source} {', '.join(tables)})" if tables else ""
+
     def link(b: int) -> Link:
         bodies = parts[b]
         mass = sum(x.mass for x in bodies)
@@ -531,7 +536,7 @@ def _mapped(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: 
         try:
             return Link(mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None)
         except (TypeError, ValueError) as exc:
-            raise DescriptionError(f"{source}: link {_quoted(body_name[b])}: {clipped(str(exc))}") from None
+            raise DescriptionError(f"{source}: link {_quoted(body_name[b])}{with_hydro(b)}: {clipped(str(exc))}") from None
 
     links = [link(b) for b in order[1:]]
     base = link(base_body) if base_body != 0 else None
@@ -541,13 +546,18 @@ def _mapped(model: Any, hydro: dict[str, HydroLink], source: str, hydro_source: 
     except (TypeError, ValueError) as exc:
         # The model's checks number joints and links ("joint 0: ..."); the description names them.
         message = clipped(str(exc))
-        numbered = re.match(r"(joint|link) (\d+): ", message)
-        if numbered is not None and int(numbered.group(2)) < len(order) - 1:
+        numbered = re.match(r"(joint|link|segment) (\d+): ", message)
+        # Segments are numbered over the base's, then each link's (uwml.Robot.segments).
+        owners = [base_body] * len(base.segments if base is not None else ()) + [b for b, x in zip(order[1:], links) for _ in x.segments]
+        if numbered is not None and numbered.group(1) == "segment" and int(numbered.group(2)) < len(owners):
+            b = owners[int(numbered.group(2))]
+            message = f"link {_quoted(body_name[b])}{with_hydro(b)}, {message}"
+        elif numbered is not None and numbered.group(1) != "segment" and int(numbered.group(2)) < len(order) - 1:
             b = order[1 + int(numbered.group(2))]
-            named = joint_label(moving[b]) if numbered.group(1) == "joint" else f"link {_quoted(body_name[b])}"
+            named = joint_label(moving[b]) if numbered.group(1) == "joint" else f"link {_quoted(body_name[b])}{with_hydro(b)}"
             message = f"{named}: {message[numbered.end() :]}"
         elif message.startswith("base.") and base_body != 0:
-            message = f"link {_quoted(body_name[base_body])} (the base): {message}"
+            message = f"link {_quoted(body_name[base_body])} (the base){with_hydro(base_body)}: {message}"
         raise DescriptionError(f"{source}: {message}") from None
 
 

@@ -44,7 +44,10 @@ frames)::
 A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, else the link's
 ``cd``/``cm``, else its own (hydro segments), else the documented defaults per section
 (:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
-segment takes one number (a pair must have two equal entries). A link takes at most
+segment takes one number (a pair must have two equal entries); every coefficient is between 0
+and ``MAX_COEFFICIENT`` (1e3: measured ones are of order 1), a ``volume`` at most ``MAX_VOLUME``
+(1e6 m³), a ``cob`` coordinate at most ``MAX_LENGTH`` (1e4 m): the model's own bounds
+(``uwml._core``), checked here so that the error names the key. A link takes at most
 :data:`uwml.MAX_SEGMENTS` segments (and as many per-segment coefficients). Unknown link names
 (``world`` too: the world is not a link of the robot), unknown keys, missing values and wrong
 types are :class:`DescriptionError`\\ s naming the file, the table and the key. Per joint by
@@ -77,6 +80,7 @@ from typing import Any
 import tomllib
 
 from ._checks import shown
+from ._core import MAX_COEFFICIENT, MAX_LENGTH, MAX_VOLUME
 from ._description_io import DescriptionError, clipped, read_regular
 from .environment import JointLosses
 from .model import Segment, Water
@@ -119,9 +123,11 @@ class HydroFile:
 
 
 def _coefficient(value: Any) -> float | tuple[float, float]:
-    if isinstance(value, list):
-        return _pair(value)
-    return _float(value)
+    numbers = _pair(value) if isinstance(value, list) else (_float(value),)
+    for x in numbers:
+        if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
+            raise ValueError(f"each between 0 and {MAX_COEFFICIENT:g}")
+    return numbers if isinstance(value, list) else numbers[0]  # type: ignore[return-value]
 
 
 def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:
@@ -136,11 +142,18 @@ def _boolean(value: Any) -> bool:
     return value
 
 
-def _nonnegative(value: Any) -> float:
+def _volume(value: Any) -> float:
     x = _float(value)
-    if not (math.isfinite(x) and x >= 0.0):
-        raise ValueError("must be finite and >= 0")
+    if not (math.isfinite(x) and 0.0 <= x <= MAX_VOLUME):
+        raise ValueError(f"between 0 and {MAX_VOLUME:g} m³")
     return x
+
+
+def _point(value: Any) -> tuple[float, float, float]:
+    point = _vec3(value)
+    if not all(math.isfinite(x) and abs(x) <= MAX_LENGTH for x in point):
+        raise ValueError(f"each coordinate finite, at most {MAX_LENGTH:g} m in magnitude")
+    return point
 
 
 def _not(what: str) -> Any:
@@ -194,8 +207,8 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             cm=r.get("cm", _coefficient, "a number or [along n0, along n1]", required=False),
             segment_cd=r.get("segment_cd", _coefficients, "an array, one number or pair per segment", required=False),
             segment_cm=r.get("segment_cm", _coefficients, "an array, one number or pair per segment", required=False),
-            volume=r.get("volume", _nonnegative, "a volume [m³], >= 0", required=False),
-            cob=r.get("cob", _vec3, "an array of 3 numbers [m]", required=False),
+            volume=r.get("volume", _volume, f"a volume [m³], 0 to {MAX_VOLUME:g}", required=False),
+            cob=r.get("cob", _point, "an array of 3 numbers [m]", required=False),
             dry=r.get("dry", _boolean, "true or false", required=False, default=False),
             segments=segments,
         )
