@@ -1,6 +1,7 @@
 //! Compiles `tests/c/paper_leg.c` (the leg API: reference torques, losses, error paths) and
-//! `tests/c/robot.c` (the robot API: an arm on a moving vehicle and the paper's leg against the
-//! core's values in `tests/c/robot_expected.h`, error paths, the example of docs/firmware.md)
+//! `tests/c/robot.c` (the robot API: an arm on a moving vehicle, with and without joint losses,
+//! and the paper's leg against the core's values in `tests/c/robot_expected.h`, error paths, the
+//! robot examples of docs/firmware.md)
 //! against `include/uwml.h` and the static library that cargo built for this test run, runs
 //! them, and checks that C sees every struct with the size, alignment and field offsets that
 //! Rust gives it.
@@ -175,6 +176,7 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
         UwmlCurrentF64,
         UwmlJointForcesF64,
         UwmlBaseWrenchF64,
+        UwmlJointEnvironmentF64,
         UwmlRobotF32,
         UwmlTreeJointF32,
         UwmlBodyF32,
@@ -183,6 +185,7 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
         UwmlCurrentF32,
         UwmlJointForcesF32,
         UwmlBaseWrenchF32,
+        UwmlJointEnvironmentF32,
     );
     let expected_offsets = [
         ("UwmlTreeJointF64.origin", offset_of!(UwmlTreeJointF64, origin)),
@@ -197,6 +200,9 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
         ("UwmlRobotSegmentF32.diameter", offset_of!(UwmlRobotSegmentF32, diameter)),
         ("UwmlRobotSegmentF32.cm", offset_of!(UwmlRobotSegmentF32, cm)),
         ("UwmlBaseMotionF32.angular_acceleration", offset_of!(UwmlBaseMotionF32, angular_acceleration)),
+        ("UwmlJointEnvironmentF64.visc", offset_of!(UwmlJointEnvironmentF64, visc)),
+        ("UwmlJointEnvironmentF64.total", offset_of!(UwmlJointEnvironmentF64, total)),
+        ("UwmlJointEnvironmentF32.current", offset_of!(UwmlJointEnvironmentF32, current)),
     ];
     let stdout = check_program("robot", &expected, &expected_offsets);
     assert!(stdout.lines().filter(|l| l.starts_with("ok ")).count() > 100, "the robot program runs its checks");
@@ -205,16 +211,22 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
     assert_eq!(size_of::<UwmlRobotF32>(), 10760);
 }
 
-/// The C example of docs/firmware.md is the one `tests/c/robot.c` compiles and runs.
+/// The robot examples of docs/firmware.md (the robot, its joint losses) are the ones
+/// `tests/c/robot.c` compiles and runs.
 #[test]
-fn firmware_doc_c_robot_example_is_tested() {
+fn firmware_doc_c_robot_examples_are_tested() {
     let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let source = std::fs::read_to_string(crate_dir.join("tests/c/robot.c")).expect("tests/c/robot.c");
-    let (begin, end) = ("/* --- docs/firmware.md: robot */\n", "/* --- end */");
-    let start = source.find(begin).expect("the example's start marker") + begin.len();
-    let example = &source[start..start + source[start..].find(end).expect("the example's end marker")];
     let doc = std::fs::read_to_string(crate_dir.join("../../docs/firmware.md")).expect("docs/firmware.md");
-    assert!(doc.contains(example), "docs/firmware.md does not show tests/c/robot.c's example verbatim:\n{example}");
+    for name in ["robot", "robot losses"] {
+        let (begin, end) = (format!("/* --- docs/firmware.md: {name} */\n"), "/* --- end */");
+        let start = source.find(&begin).expect("the example's start marker") + begin.len();
+        let example = &source[start..start + source[start..].find(end).expect("the example's end marker")];
+        assert!(
+            doc.contains(example),
+            "docs/firmware.md does not show tests/c/robot.c's {name} example verbatim:\n{example}"
+        );
+    }
 }
 
 #[path = "../../uwml-core/benches/common/arm.rs"]

@@ -1,6 +1,7 @@
 //! `tests/c/robot_expected.h` is what uwml-core computes for the robots of `tests/robots/mod.rs`:
-//! their parameters as C initializers and the core's results (`robot_hydro` called directly, in
-//! f64), which `tests/c/robot.c` checks the C ABI against.
+//! their parameters (joint losses included) as C initializers and the core's results
+//! (`robot_hydro` and `loss_torques` called directly, in f64), which `tests/c/robot.c` checks the
+//! C ABI against.
 //!
 //! After a change of the robots or of the core's results:
 //! `UWML_BLESS=1 cargo test -p uwml-ffi --test robot_expected` rewrites the file; review the diff
@@ -13,13 +14,15 @@ use std::path::Path;
 use uwml_core::Water;
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_SECTION_CIRCULAR, UwmlBaseMotionF64, UwmlBaseWrenchF64, UwmlBodyF64,
-    UwmlCurrentF64, UwmlJointForcesF64, UwmlRobotSegmentF64, UwmlTreeJointF64,
+    UwmlCurrentF64, UwmlJointEnvironmentF64, UwmlJointForcesF64, UwmlJointLossParamsF64, UwmlRobotSegmentF64,
+    UwmlTreeJointF64,
 };
 
 mod robots;
 use robots::{
-    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, arm, arm_motion, core_current,
-    core_hydro, core_motion, core_robot, forces64, paper, paper_motion, wrench64,
+    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, arm, arm_conditions, arm_losses,
+    arm_motion, core_current, core_environment, core_hydro, core_loss_states, core_motion, core_robot, environment64,
+    forces64, paper, paper_motion, wrench64,
 };
 
 /// A double as C reads it back exactly: Rust's shortest representation that round-trips.
@@ -118,6 +121,56 @@ fn wrench(w: &UwmlBaseWrenchF64) -> String {
     )
 }
 
+/// A joint's losses, every field.
+fn losses(p: &UwmlJointLossParamsF64) -> String {
+    let (d, o, s) = (&p.drive, &p.oil, &p.seal);
+    format!(
+        "{{.drive = {{.torque_constant = {}, .ratio = {}, .efficiency = {}, .rated_current = {}}},\n     \
+         .oil = {{.k_oil = {}, .exponent = {}, .pressure_sensitivity = {}, .temperature_sensitivity = {},\n             \
+         .reference_pressure = {}, .reference_temperature = {}}},\n     \
+         .seal = {{.c = {}, .s = {}, .d = {}, .stribeck_speed = {}}},\n     \
+         .epsilon = {}, .has_oil = {}, .has_seal = {}}}",
+        num(d.torque_constant),
+        num(d.ratio),
+        num(d.efficiency),
+        num(d.rated_current),
+        num(o.k_oil),
+        num(o.exponent),
+        num(o.pressure_sensitivity),
+        num(o.temperature_sensitivity),
+        num(o.reference_pressure),
+        num(o.reference_temperature),
+        list(&s.c),
+        list(&s.s),
+        list(&s.d),
+        num(s.stribeck_speed),
+        num(p.epsilon),
+        p.has_oil,
+        p.has_seal
+    )
+}
+
+fn environment(e: &[UwmlJointEnvironmentF64]) -> String {
+    let rows: Vec<String> = e
+        .iter()
+        .map(|e| {
+            format!(
+                "    {{.drag = {}, .added_mass = {}, .buoyancy = {}, .gravity = {},\n     .visc = {}, .seal = {}, \
+                 .current = {}, .total = {}}},\n",
+                num(e.drag),
+                num(e.added_mass),
+                num(e.buoyancy),
+                num(e.gravity),
+                num(e.visc),
+                num(e.seal),
+                num(e.current),
+                num(e.total)
+            )
+        })
+        .collect();
+    format!("{{\n{}}}", rows.concat())
+}
+
 /// The parameters of a robot, under the names `PREFIX_JOINT`, `PREFIX_LINK`, `PREFIX_BASE` (if
 /// it has a base body) and `PREFIX_SEGMENT`.
 fn params(out: &mut String, prefix: &str, p: &Params) {
@@ -200,8 +253,39 @@ fn generate() -> String {
     results(&mut out, "ARM_FIXED", "The same state on a fixed, upright base in still water.", &arm, &water, s, None);
 
     out.push_str(
+        "\n/* Joint losses on four of the arm's joints (tests/robots/mod.rs, arm_losses()): ARM_LOSS[k] on\n \
+         * joint ARM_LOSS_JOINT[k], at ARM_LOSS_PRESSURE [Pa] (3000 m of sea water) and ARM_LOSS_TEMPERATURE\n \
+         * [degC]; the environment with them of the arm moving with ARM_MOTION in ARM_CURRENT (its base\n \
+         * wrench is ARM_MOVING_WRENCH: losses act inside the robot). */\n",
+    );
+    let (loss_list, conditions) = (arm_losses(), arm_conditions());
+    writeln!(out, "#define ARM_LOSSES {}", loss_list.len()).unwrap();
+    let joints: Vec<String> = loss_list.iter().map(|(j, _)| j.to_string()).collect();
+    writeln!(out, "static const uint32_t ARM_LOSS_JOINT[ARM_LOSSES] = {{{}}};", joints.join(", ")).unwrap();
+    let loss_params: Vec<String> = loss_list.iter().map(|(_, p)| format!("    {},\n", losses(p))).collect();
+    writeln!(out, "static const UwmlJointLossParamsF64 ARM_LOSS[ARM_LOSSES] = {{\n{}}};", loss_params.concat())
+        .unwrap();
+    writeln!(
+        out,
+        "#define ARM_LOSS_PRESSURE {}\n#define ARM_LOSS_TEMPERATURE {}",
+        num(conditions.0),
+        num(conditions.1)
+    )
+    .unwrap();
+    let data =
+        core_hydro(&core_robot(&arm), &water, &core_motion(Some(&arm_motion)), &core_current(Some(&ARM_CURRENT)), s);
+    let states = core_loss_states::<f64>(&loss_list, conditions);
+    let with_losses = environment64(&core_environment(&data, &states, &qd));
+    writeln!(
+        out,
+        "static const UwmlJointEnvironmentF64 ARM_LOSSES_ENVIRONMENT[ARM_JOINTS] = {};",
+        environment(&with_losses)
+    )
+    .unwrap();
+
+    out.push_str(
         "\n/* The paper's leg: what uwml_robot_paper_* holds, fresh water 1000 kg/m^3, g = 9.81, at\n \
-                  * MODEL.md section 5's state. */\n",
+                  * the state whose torques docs/model.md section 5 publishes. */\n",
     );
     let paper = paper();
     params(&mut out, "PAPER", &paper);

@@ -1,6 +1,6 @@
 /*
  * The C API end to end, as firmware would use it (static storage, no malloc): the paper's leg
- * in double and float against the reference values of the model spec (MODEL.md section 5:
+ * in double and float against the reference values of the model spec (docs/model.md section 5:
  * rho = 1000, g = 9.81, Cd = 2.2, Cm = 0.5), the same leg built from parameters, joint losses,
  * and the error paths. Prints every check; exits non-zero if any fails.
  *
@@ -45,7 +45,7 @@ static void check_error(const char *what, int32_t code, const UwmlError *e, int3
     }
 }
 
-/* MODEL.md section 5: the state and the published torques (7 significant digits). */
+/* docs/model.md section 5: the state and the published torques (7 significant digits). */
 static const double Q[3] = {0.3, -0.4, 0.6};
 static const double QD[3] = {0.8, 0.5, -0.7};
 static const double QDD[3] = {1.0, -2.0, 0.5};
@@ -241,7 +241,8 @@ static void paper_f32(void) {
 
 static void losses(void) {
     /* The default losses at 10 r/min and 10 MPa, 20 degC: 2.85 A (27.4 % of 10.4 A), the
-     * figure the defaults are tuned to (MODEL.md section 7; printed to 3 digits). */
+     * figure the defaults are tuned to (docs/losses.md, "The defaults are illustrative"; printed
+     * to 3 digits). */
     UwmlError err;
     UwmlJointLossParamsF64 params;
     check(uwml_leg3_default_losses_f64(&params) == UWML_OK, "uwml_leg3_default_losses_f64");

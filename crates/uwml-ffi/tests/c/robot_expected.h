@@ -121,8 +121,53 @@ static const UwmlBaseWrenchF64 ARM_FIXED_WRENCH = {
     .total = {4.749300986353444, -3.399379056508926, 1459.787688898017, 5.868842062123016, -47.18722380958051, -4.121142244051546},
 };
 
+/* Joint losses on four of the arm's joints (tests/robots/mod.rs, arm_losses()): ARM_LOSS[k] on
+ * joint ARM_LOSS_JOINT[k], at ARM_LOSS_PRESSURE [Pa] (3000 m of sea water) and ARM_LOSS_TEMPERATURE
+ * [degC]; the environment with them of the arm moving with ARM_MOTION in ARM_CURRENT (its base
+ * wrench is ARM_MOVING_WRENCH: losses act inside the robot). */
+#define ARM_LOSSES 4
+static const uint32_t ARM_LOSS_JOINT[ARM_LOSSES] = {0, 1, 2, 3};
+static const UwmlJointLossParamsF64 ARM_LOSS[ARM_LOSSES] = {
+    {.drive = {.torque_constant = 0.4, .ratio = 160.0, .efficiency = 0.8, .rated_current = 10.4},
+     .oil = {.k_oil = 0.0033234, .exponent = 1.0, .pressure_sensitivity = 2e-8, .temperature_sensitivity = 0.06,
+             .reference_pressure = 0.0, .reference_temperature = 20.0},
+     .seal = {.c = {2.0, 3e-7}, .s = {3.5, 5e-7}, .d = {2.2, 3.4000000000000003e-7}, .stribeck_speed = 0.05},
+     .epsilon = 0.001, .has_oil = 0, .has_seal = 1},
+    {.drive = {.torque_constant = 0.4, .ratio = 160.0, .efficiency = 0.8, .rated_current = 10.4},
+     .oil = {.k_oil = 0.0033234, .exponent = 1.0, .pressure_sensitivity = 2e-8, .temperature_sensitivity = 0.06,
+             .reference_pressure = 0.0, .reference_temperature = 20.0},
+     .seal = {.c = {16.0, 3.7e-6}, .s = {21.0, 6.7e-6}, .d = {2.2, 3.4000000000000003e-7}, .stribeck_speed = 0.05},
+     .epsilon = 0.001, .has_oil = 1, .has_seal = 1},
+    {.drive = {.torque_constant = 0.4, .ratio = 160.0, .efficiency = 0.8, .rated_current = 10.4},
+     .oil = {.k_oil = 0.0002, .exponent = 1.5, .pressure_sensitivity = 2e-8, .temperature_sensitivity = 0.06,
+             .reference_pressure = 0.0, .reference_temperature = 20.0},
+     .seal = {.c = {16.0, 3.7e-6}, .s = {21.0, 6.7e-6}, .d = {2.2, 3.4000000000000003e-7}, .stribeck_speed = 0.05},
+     .epsilon = 0.0, .has_oil = 1, .has_seal = 1},
+    {.drive = {.torque_constant = 0.4, .ratio = 3141.592653589793, .efficiency = 0.8, .rated_current = 10.4},
+     .oil = {.k_oil = 1e-7, .exponent = 2.0, .pressure_sensitivity = 2e-8, .temperature_sensitivity = 0.06,
+             .reference_pressure = 0.0, .reference_temperature = 20.0},
+     .seal = {.c = {16.0, 3.7e-6}, .s = {21.0, 6.7e-6}, .d = {2.2, 3.4000000000000003e-7}, .stribeck_speed = 0.05},
+     .epsilon = 0.001, .has_oil = 1, .has_seal = 0},
+};
+#define ARM_LOSS_PRESSURE 30165750.0
+#define ARM_LOSS_TEMPERATURE 4.0
+static const UwmlJointEnvironmentF64 ARM_LOSSES_ENVIRONMENT[ARM_JOINTS] = {
+    {.drag = -6.794938242466726, .added_mass = -0.580839262229721, .buoyancy = -1.7451046903361007, .gravity = 3.0346974143193837,
+     .visc = -0.0, .seal = -17.2778804006163, .current = 0.3374586015745371, .total = -26.398762595648847},
+    {.drag = 0.9012165116450813, .added_mass = -0.29559817222767865, .buoyancy = -15.107849065954465, .gravity = 28.295172201874696,
+     .visc = 97.49233851721355, .seal = 131.34947254326912, .current = -4.469566622275051, .total = 214.3395803339456},
+    {.drag = 3.575419546776823, .added_mass = -0.2899526582814309, .buoyancy = -5.732977203439533, .gravity = 11.629427384969738,
+     .visc = -177.00844943985766, .seal = -137.578359, .current = 6.14427360234097, .total = -317.0343187548018},
+    {.drag = 8.881784197001252e-16, .added_mass = -2.7755575615628914e-17, .buoyancy = -6.387047900047036, .gravity = 13.872693953905365,
+     .visc = -118.42870201436277, .seal = -0.0, .current = 0.11780320830964336, .total = -124.8157499144098},
+    {.drag = 6.938893903907228e-17, .added_mass = 8.673617379884035e-19, .buoyancy = -3.7296554733501353e-16, .gravity = 2.0296264668928643e-16,
+     .visc = 0.0, .seal = 0.0, .current = 0.0, .total = -3.0270924655795284e-16},
+    {.drag = 0.005385932029004228, .added_mass = 0.0014480042844276337, .buoyancy = 0.20018936064420123, .gravity = -0.22322903378221268,
+     .visc = 0.0, .seal = 0.0, .current = 0.0, .total = 0.20702329695763308},
+};
+
 /* The paper's leg: what uwml_robot_paper_* holds, fresh water 1000 kg/m^3, g = 9.81, at
- * MODEL.md section 5's state. */
+ * the state whose torques docs/model.md section 5 publishes. */
 #define PAPER_JOINTS 3
 #define PAPER_SEGMENTS 2
 static const UwmlTreeJointF64 PAPER_JOINT[PAPER_JOINTS] = {
