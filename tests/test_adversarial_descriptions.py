@@ -341,6 +341,27 @@ def test_an_unknown_urdf_joint_type_is_named(tmp_path: Path) -> None:
     refused(lambda: uwml.Robot.from_urdf(path), "t.urdf", match=r"joint 'wrist' .*type 'spherical'.*revolute")
 
 
+@pytest.mark.parametrize(
+    "parts, match",
+    [
+        ((link("base"), link("a"), joint("j", "nobody", "a")), r"joint 'j': its parent 'nobody' is not a link"),
+        ((link("base"), link("a"), joint("j", "base", "nobody")), r"joint 'j': its child 'nobody' is not a link"),
+        (
+            (link("base"), link("a"), link("b"), joint("j", "base", "a"), joint("k", "b", "a")),
+            r"link 'a' is the child of joints 'j' and 'k'",
+        ),
+        ((link("a"), link("b"), joint("j", "a", "b"), joint("k", "b", "a")), r"links 'a', 'b' form a loop"),
+        ((link("base"), link("a"), '<joint name="j" type="continuous"><child link="a"/></joint>'), r"joint 'j' has no <parent"),
+        ((link("base"), link("a"), '<joint name="j"><parent link="base"/><child link="a"/></joint>'), r"joint 'j' has no type"),
+    ],
+)
+def test_a_urdf_that_is_not_a_tree_names_the_joint_or_link(tmp_path: Path, parts: tuple[str, ...], match: str) -> None:
+    """MuJoCo said 'URDF joint parent or child missing', 'URDF body has multiple parents', 'URDF
+    body not found', naming no joint or link."""
+    path = write(tmp_path, "t.urdf", urdf(*parts))
+    refused(lambda: uwml.Robot.from_urdf(path), "t.urdf", match=match)
+
+
 def test_huge_coordinates_give_a_description_error_not_a_numpy_warning(tmp_path: Path) -> None:
     text = ARM.replace('<origin xyz="0.2 0 0"/>', '<origin xyz="1e308 0 0"/>')
     path = write(tmp_path, "far.urdf", text)

@@ -95,6 +95,16 @@ class _Counts:
 
 
 @dataclass
+class _Edge:
+    """A URDF joint: its name, where it is written, its parent and child links."""
+
+    name: str
+    where: str
+    parent: str | None = None
+    child: str | None = None
+
+
+@dataclass
 class _Element:
     tag: str
     name: str
@@ -118,6 +128,7 @@ class _Scan:
         self.models: dict[str, tuple[str, Path]] = {}
         self.links: set[str] = set()
         self.joints: set[str] = set()
+        self.tree: list[_Edge] = []
         self.memo: dict[tuple[str, bool], _Counts] = {}
         self.active: list[str] = []
 
@@ -218,10 +229,12 @@ class _Scan:
                     f"joint {_quoted(name)} is a {kind} joint; uwml takes revolute, continuous and prismatic joints (fixed ones are fused)",
                 )
             if kind not in _URDF_JOINTS:
-                raise self.fail(
-                    where, f"joint {_quoted(name)} has type {_quoted(kind)}; uwml takes revolute, continuous, prismatic and fixed"
-                )
+                what = f"has type {_quoted(kind)}" if kind else "has no type"
+                raise self.fail(where, f"joint {_quoted(name)} {what}; uwml takes revolute, continuous, prismatic and fixed")
             counts.joints += kind != "fixed"
+            self.tree.append(_Edge(name, where))
+        elif tag in ("parent", "child") and parent == "joint" and len(stack) == 2 and self.tree:
+            setattr(self.tree[-1], tag, attrs.get("link", ""))
         elif tag == "mimic" and parent == "joint" and len(stack) == 2:
             raise self.fail(
                 where,
@@ -230,6 +243,45 @@ class _Scan:
             )
         elif tag in ("visual", "collision") and parent == "link":
             counts.geoms += 1
+
+    def check_tree(self) -> None:
+        """Refuses what MuJoCo reports without a name: a joint's link missing, a link with two
+        parents, links in a loop."""
+        parents: dict[str, _Edge] = {}
+        for edge in self.tree:
+            for role in ("parent", "child"):
+                link = getattr(edge, role)
+                if link is None:
+                    raise self.fail(edge.where, f"joint {_quoted(edge.name)} has no <{role} link=...>")
+                if link not in self.links:
+                    raise self.fail(edge.where, f"joint {_quoted(edge.name)}: its {role} {_quoted(link)} is not a link of this file")
+            child = edge.child or ""
+            if child in parents:
+                first = parents[child]
+                raise self.fail(
+                    edge.where,
+                    f"link {_quoted(child)} is the child of joints {_quoted(first.name)} and {_quoted(edge.name)}; "
+                    "a URDF is a tree: each link has one parent",
+                )
+            parents[child] = edge
+        children: dict[str, list[str]] = {}
+        for edge in self.tree:
+            children.setdefault(edge.parent or "", []).append(edge.child or "")
+        reached: set[str] = set()
+        todo = [link for link in self.links if link not in parents]
+        while todo:
+            link = todo.pop()
+            if link not in reached:
+                reached.add(link)
+                todo += children.get(link, [])
+        looped = sorted(self.links - reached)
+        if looped:
+            what = (
+                f"links {', '.join(map(_quoted, looped))} form a loop"
+                if len(looped) > 1
+                else f"link {_quoted(looped[0])} is its own parent"
+            )
+            raise self.fail(self.source, f"{clipped(what)}; a URDF is a tree")
 
     # --- MJCF ------------------------------------------------------------------------------
 
@@ -318,5 +370,7 @@ def scan(path: str | os.PathLike[str], what: str) -> str:
     error = limits_exceeded(str(path), counts.bodies, counts.joints, counts.geoms, urdf=state.format == "URDF")
     if error is not None:
         raise error
+    if state.format == "URDF":
+        state.check_tree()
     state.check_references()
     return state.format
