@@ -194,7 +194,9 @@ MESH_URDF = """<robot name="m">
 def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
     bad = tmp_path / "bad.urdf"
     bad.write_text('<robot name="x"><link name="a"></robot>')
-    with pytest.raises(uwml.DescriptionError, match=r"bad\.urdf: not a readable URDF file: not well-formed XML \(mismatched tag\) at line 1"):
+    with pytest.raises(
+        uwml.DescriptionError, match=r"bad\.urdf: not a readable URDF file: not well-formed XML \(mismatched tag\) at line 1"
+    ):
         uwml.Robot.from_urdf(bad)
     with pytest.raises(uwml.DescriptionError, match=r"absent\.xml: the MJCF file cannot be read: no such file"):
         uwml.Robot.from_mjcf(tmp_path / "absent.xml")
