@@ -25,6 +25,7 @@ import pytest
 pytest.importorskip("mujoco")
 
 import uwml
+from watchdog import run_with_watchdog
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -164,17 +165,6 @@ def test_a_urdf_link_named_world_with_a_mass_is_refused(tmp_path: Path) -> None:
 def test_a_deeply_nested_hydro_array_is_a_description_error(tmp_path: Path) -> None:
     hydro = write(tmp_path, "deep.toml", "[links.calf]\ncd = " + "[" * 5000 + "]" * 5000 + "\n")
     refused(lambda: uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro), "deep.toml", match="nested too deeply")
-
-
-def run_with_watchdog(code: str, cwd: Path, timeout: float = 30.0) -> subprocess.CompletedProcess[str]:
-    """``code`` in a fresh interpreter, killed (and the test failed) if it has not ended in
-    ``timeout`` seconds: a load that blocks on a named pipe blocks in MuJoCo or in ``open``."""
-    try:
-        return subprocess.run(
-            [sys.executable, "-c", textwrap.dedent(code)], cwd=cwd, capture_output=True, text=True, timeout=timeout, check=False
-        )
-    except subprocess.TimeoutExpired:
-        pytest.fail(f"the load hung (still running after {timeout} s): {code.strip()}")
 
 
 FIFO_CASES = {

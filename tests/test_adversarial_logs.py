@@ -348,3 +348,28 @@ def test_hostile_cells(tmp_path_factory: pytest.TempPathFactory, rows: list[list
     if isinstance(outcome, logs.Log):
         np.testing.assert_array_equal(outcome.q, [[float(c) for c in row[1:4]] for row in rows])
     _contract(path)
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "mkfifo"), reason="named pipes need os.mkfifo")
+@pytest.mark.parametrize("call", ["uwml.read_log('log.csv')", "uwml.read_log('log.parquet')", "main(['torques', 'log.csv'])"])
+def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path, call: str) -> None:
+    """A log that is a named pipe with no writer: the readers and ``uwml torques`` waited forever."""
+    import os
+
+    from watchdog import run_with_watchdog
+
+    os.mkfifo(tmp_path / "log.csv")
+    os.mkfifo(tmp_path / "log.parquet")
+    run = run_with_watchdog(
+        f"""
+        import uwml
+        from uwml.cli import main
+        try:
+            print({call})
+        except ValueError as exc:
+            print(exc)
+        """,
+        tmp_path,
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert "is not a regular file (a named pipe); uwml reads regular files only" in run.stdout + run.stderr

@@ -374,3 +374,25 @@ def test_a_directory_an_empty_file_and_a_missing_one(tmp_path: Path) -> None:
     with pytest.raises(OSError):
         small_robot().save(folder)
     assert folder.is_dir() and sorted(p.name for p in tmp_path.iterdir()) == ["empty.toml", "folder.toml"]
+
+
+@pytest.mark.skipif(not hasattr(__import__("os"), "mkfifo"), reason="named pipes need os.mkfifo")
+def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path) -> None:
+    """A model file that is a named pipe with no writer: ``Robot.load`` waited forever."""
+    import os
+
+    from watchdog import run_with_watchdog
+
+    os.mkfifo(tmp_path / "arm.toml")
+    run = run_with_watchdog(
+        """
+        import uwml
+        try:
+            uwml.Robot.load("arm.toml")
+        except uwml.ModelFileError as exc:
+            print(exc)
+        """,
+        tmp_path,
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip() == "arm.toml: the model file cannot be read: it is not a regular file (a named pipe); uwml reads regular files only"

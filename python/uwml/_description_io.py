@@ -9,72 +9,17 @@ whatever the file holds (``_checks.shown`` quotes values, :func:`clipped` cuts t
 from __future__ import annotations
 
 import os
-import stat
+
+from ._files import clipped, not_regular
+from ._files import read_regular as _read_regular
 
 __all__ = ["DescriptionError", "clipped", "not_regular", "read_regular"]
-
-#: Longest quoted text (a name, a value, a message of MuJoCo's) in a description error.
-_LIMIT = 160
 
 
 class DescriptionError(ValueError):
     """A robot description or hydro file that cannot be mapped: names the file and the element."""
 
 
-def clipped(text: str, limit: int = _LIMIT) -> str:
-    """``text`` cut to ``limit`` characters (saying how long it was), whitespace runs as one space."""
-    text = " ".join(text.split())
-    return text if len(text) <= limit else f"{text[:limit]}... ({len(text)} characters)"
-
-
-def _kind(mode: int) -> str:
-    if stat.S_ISDIR(mode):
-        return "is a directory"
-    what = (
-        "a named pipe"
-        if stat.S_ISFIFO(mode)
-        else "a socket"
-        if stat.S_ISSOCK(mode)
-        else "a device"
-        if stat.S_ISCHR(mode) or stat.S_ISBLK(mode)
-        else "special"
-    )
-    return f"is not a regular file ({what})"
-
-
-def not_regular(path: str | os.PathLike[str]) -> str | None:
-    """Why the existing ``path`` cannot be read as a file (``"is a directory"``, ``"is not a
-    regular file (a named pipe)"``), or None if it is a regular file or does not exist. Follows
-    symbolic links; never opens the path."""
-    try:
-        mode = os.stat(path).st_mode
-    except (OSError, ValueError):
-        return None
-    return None if stat.S_ISREG(mode) else _kind(mode)
-
-
 def read_regular(path: str | os.PathLike[str], what: str) -> bytes:
-    """The bytes of the regular file ``path``, or a :class:`DescriptionError` ``"{path}: the
-    {what} cannot be read: ..."`` (no such file, a directory, a named pipe or device, no
-    permission). Opened without blocking and checked on the open file, so a pipe is refused, not
-    waited on."""
-    source = str(path)
-    prefix = f"{source}: the {what} cannot be read"
-    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_CLOEXEC", 0)
-    try:
-        fd = os.open(path, flags)
-    except FileNotFoundError:
-        raise DescriptionError(f"{prefix}: no such file") from None
-    except (OSError, ValueError) as exc:  # ValueError: a NUL in the path
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise DescriptionError(f"{prefix}: {clipped(reason).lower()}") from None
-    try:
-        mode = os.fstat(fd).st_mode
-        if not stat.S_ISREG(mode):
-            raise DescriptionError(f"{prefix}: it {_kind(mode)}; uwml reads regular files only")
-        with os.fdopen(fd, "rb", closefd=False) as handle:
-            return handle.read()
-    except OSError as exc:
-        raise DescriptionError(f"{prefix}: {clipped(exc.strerror or str(exc)).lower()}") from None
-    finally:
-        os.close(fd)
+    """:func:`uwml._files.read_regular` with a :class:`DescriptionError`."""
+    return _read_regular(path, what, DescriptionError)

@@ -84,6 +84,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import shown
+from ._files import not_regular
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
@@ -329,6 +330,9 @@ def _check_file(path_or_file: Any, source: str) -> None:
         raise ValueError(f"{source}: is a directory, not a file")
     if not os.path.exists(path_or_file):
         raise ValueError(f"{source}: no such file")
+    reason = not_regular(path_or_file)  # a named pipe or device would be waited on, or read forever
+    if reason is not None:
+        raise ValueError(f"{source}: {reason}; uwml reads regular files only")
     if _is_parquet(path_or_file):
         with open(path_or_file, "rb") as handle:
             head = handle.read(4)

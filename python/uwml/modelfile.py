@@ -89,6 +89,7 @@ from typing import Any, TypeVar
 import tomllib
 
 from ._checks import shown
+from ._files import read_regular
 from .environment import JointLosses
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
@@ -490,10 +491,7 @@ def loads(text: str, source: str = "<string>") -> Robot:
 
 def load(path: str | os.PathLike[str]) -> Robot:
     """The robot of the uwml model file at ``path``."""
-    try:
-        data = Path(path).read_bytes()
-    except OSError as exc:
-        raise ModelFileError(f"{path}: cannot be read: {exc.strerror or exc}") from None
+    data = read_regular(path, "model file", ModelFileError)  # a named pipe is refused, not waited on
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
