@@ -360,7 +360,7 @@ def test_water_is_loaded_only_within_its_range(density: float, gravity: float) -
 def test_a_directory_an_empty_file_and_a_missing_one(tmp_path: Path) -> None:
     folder = tmp_path / "folder.toml"
     folder.mkdir()
-    with pytest.raises(uwml.ModelFileError, match=r"folder.toml: cannot be read"):
+    with pytest.raises(uwml.ModelFileError, match=r"folder.toml: the model file cannot be read: it is a directory"):
         uwml.Robot.load(folder)
     empty = tmp_path / "empty.toml"
     empty.write_bytes(b"")

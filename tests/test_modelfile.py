@@ -110,7 +110,7 @@ def test_a_file_without_water_is_in_fresh_water() -> None:
 
 
 def test_a_missing_file_and_a_base_body_for_a_leg(tmp_path: Path) -> None:
-    with pytest.raises(uwml.ModelFileError, match="nowhere.toml: cannot be read"):
+    with pytest.raises(uwml.ModelFileError, match="nowhere.toml: the model file cannot be read: no such file"):
         uwml.Robot.load(tmp_path / "nowhere.toml")
     path = tmp_path / "arm.toml"
     arm_on_rov().save(path)
