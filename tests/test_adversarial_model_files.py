@@ -366,7 +366,7 @@ def test_a_directory_an_empty_file_and_a_missing_one(tmp_path: Path) -> None:
     empty.write_bytes(b"")
     with pytest.raises(uwml.ModelFileError, match=r"empty.toml: top level, key 'format': is missing"):
         uwml.Robot.load(empty)
-    with pytest.raises(uwml.ModelFileError, match=r"missing.toml: cannot be read"):
+    with pytest.raises(uwml.ModelFileError, match=r"missing.toml: the model file cannot be read: no such file"):
         uwml.Robot.load(tmp_path / "missing.toml")
     for path in (folder, empty, tmp_path / "missing.toml"):
         assert from_file(path) is None
