@@ -476,21 +476,32 @@ fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Resul
     Ok(())
 }
 
-/// The evaluation behind `uwml_robot_hydro_*` (`with_losses` false: every joint's loss is zero,
-/// and the joint losses are not evaluated) and `uwml_robot_environment_*` (true): checks, the
-/// core's `robot_hydro_with` and, with losses, `loss_torques`; writes `row` of every joint's
-/// forces and losses to `io.joints` and the base wrench; then reports a non-finite state or
-/// outputs that overflow (`total`: forces plus losses; `current`; `base_wrench`).
+/// Writes joint `i`'s forces and losses to an evaluation's output.
+type WriteJoint<'a, T> = dyn FnMut(usize, &JointForces<T>, &JointLoss<T>) + 'a;
+
+/// Every joint's `(visc, seal, current)` at its loss state and speed: the core's `loss_torques`.
+type LossTorques<T> = fn(&[Option<LossState<T>>; J], &SVector<T, J>) -> (SVector<T, J>, SVector<T, J>, SVector<T, J>);
+
+/// The evaluation behind `uwml_robot_hydro_*` (`losses` None: every joint's loss is zero, and
+/// the joint losses are not evaluated) and `uwml_robot_environment_*` (`loss_torques`): checks,
+/// the core's `robot_hydro_with` and the losses; hands every joint's forces and losses to
+/// `write` (joint index, in order) and writes the base wrench; then reports a non-finite state
+/// or outputs that overflow (`total`: forces plus losses; `current`; `base_wrench`). One
+/// instance per precision, whatever the caller's output type (`write` is dynamic), so that the
+/// two evaluations share its code; the losses' code is linked only with the environment's.
 ///
 /// # Safety
 /// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
 /// the call; the pointers of `io` are null or valid for their `n` elements (`motion`, `current`,
-/// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`.
-unsafe fn evaluate<T: RobotPrecision, F>(
+/// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`;
+/// `joints` says whether `io.joints` is null.
+#[inline(never)]
+unsafe fn evaluate<T: RobotPrecision>(
     robot: *mut T::Robot,
-    io: &Evaluation<T, F>,
-    with_losses: bool,
-    row: impl Fn(&JointForces<T>, &JointLoss<T>) -> F,
+    io: &Evaluation<T, ()>,
+    joints: Result<(), Failure>,
+    losses: Option<LossTorques<T>>,
+    write: &mut WriteJoint<'_, T>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
     let Block { robot, water, form, data, states, .. } = unsafe { block_mut::<T>(robot) }?;
@@ -513,10 +524,12 @@ unsafe fn evaluate<T: RobotPrecision, F>(
         // SAFETY: not null, valid for reads (contract).
         T::current(&unsafe { read_one(io.current, "current") }?)?
     };
-    let joints = if n == 0 { io.joints } else { non_null(io.joints, io.joints_name)? };
+    if n > 0 {
+        joints?;
+    }
     let form = if *form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
     robot_hydro_with(robot, water, None, form, &motion, &current, &q, &qd, &qdd, data);
-    let losses = with_losses.then(|| loss_torques(states, &SVector::from(qd)));
+    let losses = losses.map(|loss_torques| loss_torques(states, &SVector::from(qd)));
     let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
     let loss = |i: usize| {
         let (visc, seal, current) = losses.as_ref()?;
@@ -524,9 +537,7 @@ unsafe fn evaluate<T: RobotPrecision, F>(
     };
     let loss = |i: usize| loss(i).unwrap_or(none);
     for (i, forces) in data.joint_forces().iter().enumerate() {
-        // SAFETY: `i < n` and `joints` is valid for writes of `n` elements (contract; not null
-        // when n > 0).
-        unsafe { joints.add(i).write(row(forces, &loss(i))) };
+        write(i, forces, &loss(i));
     }
     if !io.base_wrench.is_null() {
         // SAFETY: not null, valid for writes (contract).
@@ -548,24 +559,55 @@ unsafe fn evaluate<T: RobotPrecision, F>(
     Ok(())
 }
 
+/// [`evaluate`] writing `row` of every joint's forces and losses to `io.joints`.
+///
 /// # Safety
-/// As [`evaluate`].
+/// As [`evaluate`]; `io.joints` is null or valid for writes of `io.n` elements.
+unsafe fn evaluate_into<T: RobotPrecision, F>(
+    robot: *mut T::Robot,
+    io: &Evaluation<T, F>,
+    losses: Option<LossTorques<T>>,
+    row: impl Fn(&JointForces<T>, &JointLoss<T>) -> F,
+) -> Result<(), Failure> {
+    let (joints, joints_name) = (io.joints, io.joints_name);
+    let common = Evaluation {
+        q: io.q,
+        qd: io.qd,
+        qdd: io.qdd,
+        n: io.n,
+        motion: io.motion,
+        current: io.current,
+        joints: core::ptr::null_mut::<()>(),
+        joints_name,
+        base_wrench: io.base_wrench,
+    };
+    let mut write = |i: usize, forces: &JointForces<T>, loss: &JointLoss<T>| {
+        // SAFETY: `evaluate` calls this for `i` < n only, and only once `joints` was found not
+        // null (when n > 0); it is then valid for writes of n elements (contract).
+        unsafe { joints.add(i).write(row(forces, loss)) };
+    };
+    // SAFETY: forwarded contract.
+    unsafe { evaluate(robot, &common, non_null(joints, joints_name).map(|_| ()), losses, &mut write) }
+}
+
+/// # Safety
+/// As [`evaluate_into`].
 pub(crate) unsafe fn hydro<T: RobotPrecision>(
     robot: *mut T::Robot,
     io: &Evaluation<T, T::JointForces>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate(robot, io, false, |forces, _| T::joint_forces(forces)) }
+    unsafe { evaluate_into(robot, io, None, |forces, _| T::joint_forces(forces)) }
 }
 
 /// # Safety
-/// As [`evaluate`].
+/// As [`evaluate_into`].
 pub(crate) unsafe fn environment<T: RobotPrecision>(
     robot: *mut T::Robot,
     io: &Evaluation<T, T::JointEnvironment>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate(robot, io, true, T::joint_environment) }
+    unsafe { evaluate_into(robot, io, Some(loss_torques), T::joint_environment) }
 }
 
 /// # Safety
