@@ -9,15 +9,13 @@ direction (so drag opposes motion and the motor must supply ``-total`` on top of
 torque).
 """
 
-from ._core import ModelError
-from .descriptions import DescriptionError
 from .environment import EnvironmentTorques, ExtrapolationWarning, JointLosses, LossTorques, hydrostatic_pressure_mpa
+from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
 from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques, Leg
 from .logs import Log, read_log, write_log
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
-from .modelfile import ModelFileError
 from .robot import (
     MAX_ROBOT_JOINTS,
     MAX_SEGMENTS,
@@ -59,6 +57,7 @@ __all__ = [
     "RobotTorques",
     "Seal",
     "Segment",
+    "UwmlError",
     "WalkingGait",
     "Water",
     "hydrostatic_pressure_mpa",

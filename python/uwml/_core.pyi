@@ -31,6 +31,7 @@ __all__ = [
     "ModelError",
     "MujocoCoupling",
     "Robot",
+    "UwmlError",
     "joint_losses",
 ]
 
@@ -57,7 +58,10 @@ TREE_JOINT_WIDTH: int
 BODY_WIDTH: int
 SEGMENT_WIDTH: int
 
-class ModelError(ValueError):
+class UwmlError(ValueError):
+    """The base of every uwml exception: a bad value, model or file."""
+
+class ModelError(UwmlError):
     """A non-physical or malformed model parameter."""
 
 @final

@@ -12,12 +12,9 @@ import os
 
 from ._files import clipped, not_regular
 from ._files import read_regular as _read_regular
+from .errors import DescriptionError
 
 __all__ = ["DescriptionError", "clipped", "not_regular", "read_regular"]
-
-
-class DescriptionError(ValueError):
-    """A robot description or hydro file that cannot be mapped: names the file and the element."""
 
 
 def read_regular(path: str | os.PathLike[str], what: str) -> bytes:

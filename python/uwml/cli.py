@@ -41,6 +41,7 @@ from ._cli_arguments import (
     _positive,
     _seed,
 )
+from .errors import UwmlError
 from .leg import Leg
 from .logs import MAX_ROBOT_JOINTS
 from .model import Water
@@ -54,7 +55,7 @@ __all__ = ["build_parser", "gait_like_motion", "main"]
 CHUNK_ROWS = 100_000
 
 
-class _UsageError(ValueError):
+class _UsageError(UwmlError):
     """A bad combination of options (exit code 2)."""
 
 

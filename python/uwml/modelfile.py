@@ -91,6 +91,7 @@ import tomllib
 from ._checks import shown
 from ._files import read_regular
 from .environment import JointLosses
+from .errors import ModelFileError
 from .losses import Drive, OilDrag, Seal
 from .model import Joint, Link, Segment, Water
 from .robot import Robot
@@ -103,10 +104,6 @@ FORMAT = "uwml-robot"
 VERSION = 1
 
 _T = TypeVar("_T")
-
-
-class ModelFileError(ValueError):
-    """A uwml model file that cannot be read: names the file, the table and the key."""
 
 
 #: The water of a model file or a hydro file must lie in these ranges (SI units; a value outside

@@ -6,6 +6,7 @@ use std::any::Any;
 
 mod arrays;
 mod batch;
+mod errors;
 mod losses;
 mod robot;
 mod single;
@@ -17,14 +18,11 @@ use batch::*;
 pub(crate) use losses::{joint_losses, loss_inputs, parse_losses, unpack_losses};
 
 use numpy::{PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::create_exception;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{Chain, Joint, Link, ModelError, Segment, Water};
-
-create_exception!(_core, UwmlModelError, PyValueError, "A non-physical or malformed model parameter.");
 
 /// Largest number of joints a chain built from Python may have.
 const MAX_JOINTS: usize = 8;
@@ -41,7 +39,7 @@ const LINK_WIDTH: usize = 25;
 const LOSS_WIDTH: usize = 21;
 
 fn model_error(error: ModelError) -> PyErr {
-    UwmlModelError::new_err(error.to_string())
+    errors::ModelError::new_err(error.to_string())
 }
 
 fn next3(values: &mut impl Iterator<Item = f64>) -> Vector3<f64> {
@@ -602,7 +600,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SEGMENT_WIDTH", robot::SEGMENT_WIDTH)?;
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
     m.add("LOSS_WIDTH", LOSS_WIDTH)?;
-    m.add("ModelError", m.py().get_type::<UwmlModelError>())?;
+    m.add("UwmlError", m.py().get_type::<errors::UwmlError>())?;
+    m.add("ModelError", m.py().get_type::<errors::ModelError>())?;
     m.add("MAX_JOINTS", MAX_JOINTS)?;
     m.add("JOINT_WIDTH", JOINT_WIDTH)?;
     m.add("LINK_WIDTH", LINK_WIDTH)?;

@@ -6,7 +6,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::{Drive, JointLoss, JointLosses, ModelError, OilDrag, Seal};
 
-use crate::{LOSS_WIDTH, NonFinite, UwmlModelError, check_conditions, contiguous, contiguous1};
+use crate::errors::ModelError as PyModelError;
+use crate::{LOSS_WIDTH, NonFinite, check_conditions, contiguous, contiguous1};
 
 pub(crate) fn unpack_losses(row: &[f64]) -> Result<Option<JointLosses<f64>>, ModelError> {
     let mut values = row.iter().copied();
@@ -66,7 +67,7 @@ pub(crate) fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyRe
         .chunks_exact(LOSS_WIDTH)
         .enumerate()
         .map(|(joint, row)| {
-            unpack_losses(row).map_err(|e| UwmlModelError::new_err(format!("losses of joint {joint}: {e}")))
+            unpack_losses(row).map_err(|e| PyModelError::new_err(format!("losses of joint {joint}: {e}")))
         })
         .collect()
 }
