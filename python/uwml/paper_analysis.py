@@ -203,12 +203,12 @@ def _error_parts(leg: Leg, gait: Any, seed: int, everything: Any) -> list[dict[s
 
     error = synthetic.PAPER_LIKE_ERROR
     cases = [
-        ("noise only", synthetic.ModelError()),
-        (f"+ unmodelled damping {error.damping:g} N·m·s/rad", synthetic.ModelError(damping=error.damping)),
-        (f"+ water run {1000 * error.water_lag:g} ms late", synthetic.ModelError(water_lag=error.water_lag)),
+        ("noise only", synthetic.ModelDiscrepancy()),
+        (f"+ unmodelled damping {error.damping:g} N·m·s/rad", synthetic.ModelDiscrepancy(damping=error.damping)),
+        (f"+ water run {1000 * error.water_lag:g} ms late", synthetic.ModelDiscrepancy(water_lag=error.water_lag)),
         (
             f"+ Cd falling with speed (Cd at {error.reference_speed:g} rad/s)",
-            synthetic.ModelError(cd_speed=error.cd_speed, reference_speed=error.reference_speed),
+            synthetic.ModelDiscrepancy(cd_speed=error.cd_speed, reference_speed=error.reference_speed),
         ),
     ]
     fits = [

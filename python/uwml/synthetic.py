@@ -61,7 +61,7 @@ __all__ = [
     "PAPER_LIKE_NOISE",
     "PAPER_LIKE_PERIOD",
     "YAW_STEP_FOOT",
-    "ModelError",
+    "ModelDiscrepancy",
     "SineTrajectory",
     "land_water_experiment",
     "paper_like_experiment",
@@ -252,7 +252,7 @@ class SineTrajectory:
 
 
 @dataclass(frozen=True)
-class ModelError:
+class ModelDiscrepancy:
     """What a real land/water experiment has and the identification's model does not.
 
     **Synthetic**, and illustrative: each field is one of the reasons the paper gives (Section
@@ -291,9 +291,9 @@ class ModelError:
         for name, inside, allowed in domains:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
-                raise TypeError(f"ModelError.{name} must be a number, got {value!r}")
+                raise TypeError(f"ModelDiscrepancy.{name} must be a number, got {value!r}")
             if not (np.isfinite(value) and inside(value)):
-                raise ValueError(f"ModelError.{name} must be finite and {allowed}, got {value!r}")
+                raise ValueError(f"ModelDiscrepancy.{name} must be finite and {allowed}, got {value!r}")
 
 
 #: The model error of :func:`paper_like_experiment`: 0.5 N·m·s/rad of unmodelled damping, the
@@ -301,7 +301,10 @@ class ModelError:
 #: (``cd`` at 0.3 rad/s). Chosen, with :data:`PAPER_LIKE_NOISE`, so that the fit's unweighted
 #: COD and reduced χ² come near the paper's 0.826 and 2.425 N·m²; each part's effect on the
 #: recovered coefficients is in ``uwml paper``'s report.
-PAPER_LIKE_ERROR = ModelError(damping=0.5, water_lag=0.05, cd_speed=0.3, reference_speed=0.3)
+PAPER_LIKE_ERROR = ModelDiscrepancy(damping=0.5, water_lag=0.05, cd_speed=0.3, reference_speed=0.3)
+#: The former name of :class:`ModelDiscrepancy`, kept so that old code runs; not in ``__all__``,
+#: so that ``from uwml.synthetic import *`` does not hide :class:`uwml.ModelError` (an exception).
+ModelError = ModelDiscrepancy
 #: Noise on each measured torque of :func:`paper_like_experiment` [N·m].
 PAPER_LIKE_NOISE = 1.08
 #: Period of the gait of :func:`paper_like_experiment` [s]: slow enough that joint 1's
@@ -331,7 +334,7 @@ def land_water_experiment(
     cd: ArrayLike = 2.2,
     cm: ArrayLike = 0.5,
     torque_noise: float = 0.5,
-    model_error: float | ModelError = 0.0,
+    model_error: float | ModelDiscrepancy = 0.0,
     water: Water | None = None,
     seed: np.random.Generator | int | None = None,
     *,
@@ -350,7 +353,7 @@ def land_water_experiment(
       the difference cancels;
     * water: ``τ_water = τ_land − τ_hydro``: the motor also supplies minus the water's torque,
       ``τ_hydro = buoyancy + drag(cd) + added mass(cm)`` (MODEL.md section 4), spoiled by
-      ``model_error`` (:class:`ModelError`: what the identification's model does not contain;
+      ``model_error`` (:class:`ModelDiscrepancy`: what the identification's model does not contain;
       a number is an unmodelled linear damping ``model_error · q̇`` in N·m·s/rad, 0 by default);
     * each measured torque gets independent Gaussian noise of standard deviation
       ``torque_noise`` [N·m] (so their difference has ``√2 · torque_noise``).
@@ -371,8 +374,8 @@ def land_water_experiment(
         None for the segments' own) accepts.
     torque_noise : float
         See above [N·m]; ≥ 0.
-    model_error : float or ModelError
-        See above; a number is ``ModelError(damping=model_error)``.
+    model_error : float or ModelDiscrepancy
+        See above; a number is ``ModelDiscrepancy(damping=model_error)``.
     water : Water, optional
         The fluid; default fresh water (a robot: its own).
     seed : numpy.random.Generator or int or None
@@ -398,10 +401,10 @@ def land_water_experiment(
             raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     if not (np.isfinite(torque_noise) and torque_noise >= 0.0):
         raise ValueError(f"torque_noise must be finite and >= 0, got {torque_noise!r}")
-    if not isinstance(model_error, ModelError):
+    if not isinstance(model_error, ModelDiscrepancy):
         if not (np.isfinite(model_error) and model_error >= 0.0):
-            raise ValueError(f"model_error must be a ModelError or a damping finite and >= 0, got {model_error!r}")
-        model_error = ModelError(damping=float(model_error))
+            raise ValueError(f"model_error must be a ModelDiscrepancy or a damping finite and >= 0, got {model_error!r}")
+        model_error = ModelDiscrepancy(damping=float(model_error))
     generator = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     duration = float(cycles) * float(getattr(gait, "period", 1.0))
     t = float(start_time) + np.arange(round(duration * rate_hz)) / float(rate_hz)
