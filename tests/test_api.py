@@ -2,7 +2,7 @@
 message that names the argument; the paper preset, chains built from Python, the docstring
 example and the command line behave as documented.
 
-Expected numbers come from the numpy reference (``uwml.reference``), from MODEL.md (typed
+Expected numbers come from the numpy reference (``uwml.reference``), from docs/model.md (typed
 here), or from closed-form strip theory worked out in the docstrings below.
 """
 
@@ -348,7 +348,7 @@ def test_leg_of_max_joints_works() -> None:
 
 
 def test_paper_leg_is_table_ii() -> None:
-    """Typed from MODEL.md section 2."""
+    """Typed from docs/model.md section 2."""
     leg = uwml.Leg.paper()
     assert leg.n_joints == 3 and len(leg.joints) == len(leg.links) == 3
     assert repr(leg) == "Leg(n_joints=3)"

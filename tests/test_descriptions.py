@@ -57,7 +57,7 @@ def test_paper_leg_from_descriptions(paper: uwml.Robot, loader, file: str) -> No
 
 
 def test_paper_leg_reference_values(paper: uwml.Robot) -> None:
-    """MODEL.md section 5's table, through the URDF."""
+    """docs/model.md section 5's table, through the URDF."""
     robot = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", DATA / "paper_leg.hydro.toml")
     t = robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
     np.testing.assert_allclose(t.drag, [-24.24084, -5.060505, -0.7383118], rtol=1e-6)
@@ -296,8 +296,9 @@ def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
 
 def test_water_from_the_hydro_file(tmp_path: Path) -> None:
     """``[water]`` sets the robot's water: every evaluation uses it unless given another, and
-    the model file keeps it. Buoyancy is proportional to the density (MODEL.md 9.4), so the
-    sea-water robot's buoyancy is 1025/1000 of the fresh-water one's."""
+    the model file keeps it. Buoyancy is proportional to the density (docs/model.md section 10,
+    "Base motion and current"), so the sea-water robot's buoyancy is 1025/1000 of the fresh-water
+    one's."""
     hydro = tmp_path / "h.toml"
     hydro.write_text((DATA / "paper_leg.hydro.toml").read_text() + "\n[water]\ndensity = 1025.0\ngravity = 9.80665\n")
     sea = uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro)

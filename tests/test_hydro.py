@@ -1,9 +1,9 @@
 """The Rust path (``uwml.Leg.hydro``, ``uwml.Leg.hydro_regressors``) held against the numpy
-reference, the paper's printed equations, the numbers of MODEL.md section 5 and the physics
-of MODEL.md section 3.
+reference, the paper's printed equations, the reference values and the properties of
+docs/model.md section 5.
 
 Nothing expected here is produced by the code under test: the expected values come from
-``uwml.reference`` (an independent numpy implementation), from numbers typed from MODEL.md and
+``uwml.reference`` (an independent numpy implementation), from numbers typed from docs/model.md and
 the paper (Table II, eqs. 8, 9, 17, 21), from forward kinematics written in this file, or from
 relations between two evaluations (homogeneity, linearity, symmetry, conservation).
 
@@ -30,7 +30,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from uwml import reference as ref
 
-# MODEL.md section 2 (Table II) and section 5.
+# docs/model.md sections 2 and 5 (Table II, and the reference values).
 RHO, G = 1000.0, 9.81
 RHO_M = 2700.0
 L2, L3, L2C, L3C = 0.660, 0.714, 0.506, 0.560
@@ -322,7 +322,7 @@ def test_regressors_match_reference(kind: str, seed: int, layout: str) -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# 2. MODEL.md section 5 (typed from MODEL.md)
+# 2. docs/model.md section 5 (typed from it)
 # --------------------------------------------------------------------------------------------
 
 SECTION5_STATE = ([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
@@ -342,7 +342,7 @@ def test_model_section5_reference_values() -> None:
     default = PAPER.hydro(*SECTION5_STATE)
     for key, values in SECTION5.items():
         np.testing.assert_allclose(getattr(default, key), values, rtol=1e-6, atol=0.0, err_msg=key)
-    # The regressor path: total = buoyancy + Cd R_d + Cm R_m (MODEL.md section 4).
+    # The regressor path: total = buoyancy + Cd R_d + Cm R_m (docs/model.md section 4).
     reg = PAPER.hydro_regressors(*SECTION5_STATE)
     np.testing.assert_allclose(2.2 * reg.drag, SECTION5["drag"], rtol=1e-6)
     np.testing.assert_allclose(0.5 * reg.added_mass, SECTION5["added_mass"], rtol=1e-6)
@@ -355,7 +355,7 @@ def test_model_section5_reference_values() -> None:
 
 
 def eq8_joint1_drag(q: np.ndarray, qd: np.ndarray, cd: float, rho: float) -> np.ndarray:
-    """Eq. (8) with the calf arm's typo fixed (``x sin(q2+q3)``, MODEL.md section 6 item 1), in
+    """Eq. (8) with the calf arm's typo fixed (``x sin(q2+q3)``, docs/model.md section 6 item 1), in
     uwml's sign (−τ_d1), written out here: ``v21 = q̇1 x c2``, ``v31 = q̇1 (L2 c2 + x s23)``.
 
     Thigh: ``∫₀^L2 x c2 v21|v21| dx = q̇1|q̇1| c2²|c2| L2⁴/4``. Calf: ``q̇1|q̇1| ∫₀^L3 |a(x)|³ dx``
@@ -449,7 +449,7 @@ def test_buoyancy_equals_eqs_17_and_21(seed: int, density: float, gravity: float
 
 
 # --------------------------------------------------------------------------------------------
-# 4. Invariants of MODEL.md section 3 on the Rust path
+# 4. Properties of docs/model.md section 5 on the Rust path
 # --------------------------------------------------------------------------------------------
 
 
@@ -528,7 +528,7 @@ def test_buoyancy_and_gravity_are_gradients_of_potentials(kind: str, seed: int) 
 
 
 def test_paper_leg_potential_matches_model_section2() -> None:
-    """The forward kinematics of this file on the paper leg give MODEL.md section 2's heights
+    """The forward kinematics of this file on the paper leg give docs/model.md section 2's heights
     (thigh COM at Lc2 u2, calf COM at L2 u2 + Lc3 u3), so the gradient check above is a check
     of the documented geometry, and its gradient is eqs. (17) and (21)."""
     rng = np.random.default_rng(5)

@@ -1,7 +1,7 @@
 """Forward kinematics, the geometric Jacobian, the paper leg's inverse kinematics and the walking gait.
 
 Nothing expected here is produced by the code under test: expected values are the closed form
-of MODEL.md section 2 typed below, a numpy forward kinematics of a general chain written in this
+of docs/model.md section 2 typed below, a numpy forward kinematics of a general chain written in this
 file (Rodrigues rotations), central finite differences, numbers typed from the gait's definition
 (stance speed, height), or relations between evaluations (periodicity, continuity, IK∘FK).
 """
@@ -16,13 +16,13 @@ from hypothesis import strategies as st
 from uwml import _core
 from uwml.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 
-# MODEL.md section 2 (Table II).
+# docs/model.md section 2 (Table II).
 L2, L3 = 0.660, 0.714
 PAPER = uwml.Leg.paper()
 
 
 def closed_form_foot(q: np.ndarray, s: float = L3) -> np.ndarray:
-    """``L2 u2 + s u3`` of MODEL.md section 2, typed from it."""
+    """``L2 u2 + s u3`` of docs/model.md section 2, typed from it."""
     q1, q2, q3 = q[..., 0], q[..., 1], q[..., 2]
     e_r = np.stack([np.cos(q1), np.sin(q1), np.zeros_like(q1)], axis=-1)
     z = np.array([0.0, 0.0, 1.0])

@@ -1,7 +1,7 @@
-"""Tests of the joint-loss functions of the numpy reference (MODEL.md section 7).
+"""Tests of the joint-loss functions of the numpy reference (docs/losses.md, "The models").
 
 The modules are loaded from the source tree (``pure.load``), without the compiled extension.
-Expected values are worked out here by hand from MODEL.md's formulas or from exact identities
+Expected values are worked out here by hand from the formulas of docs/losses.md or from exact identities
 (a 3-4-5 triangle, ``exp(−1)``), never taken from the code under test.
 """
 

@@ -34,10 +34,10 @@ def test_reproduces_its_reference_points(points: tuple[float, float, float, floa
     np.testing.assert_allclose(law.kinematic_viscosity([t1, t2]), [nu1, nu2], rtol=1e-9)
 
 
-def test_vg32_reference_points_and_model_md_claims() -> None:
+def test_vg32_reference_points_and_documented_figures() -> None:
     np.testing.assert_allclose(VG32.kinematic_viscosity([40.0, 100.0]), [32.0, 5.4], rtol=1e-12)
-    # MODEL.md section 7: "about 65 cSt at 25 °C to about 290 cSt at 2 °C". The preset gives
-    # 65.4 and 287.1 cSt.
+    # docs/losses.md, "The deep-sea temperature effect": about 65 cSt at 25 °C and 290 cSt at
+    # 2 °C. The preset gives 65.4 and 287.1 cSt.
     assert float(VG32.kinematic_viscosity(25.0)) == pytest.approx(65.0, rel=0.02)
     assert float(VG32.kinematic_viscosity(2.0)) == pytest.approx(290.0, rel=0.02)
 
@@ -76,7 +76,7 @@ def test_viscosity_ratio() -> None:
 
 def test_barus() -> None:
     assert float(oil.barus_factor(10.0, 20.0)) == pytest.approx(math.exp(0.2), rel=1e-15)
-    # MODEL.md: α ≈ 15-40 GPa⁻¹ gives ×1.2-1.5 at 10 MPa; exactly ×1.16 to ×1.49.
+    # docs/losses.md, "The deep-sea temperature effect": α = 15 to 40 GPa⁻¹ gives ×1.16 to ×1.49 at 10 MPa.
     np.testing.assert_allclose(oil.barus_factor(10.0, 15.0), 1.1618, rtol=1e-4)
     np.testing.assert_allclose(oil.barus_factor(10.0, 40.0), 1.4918, rtol=1e-4)
     np.testing.assert_array_equal(oil.barus_factor([0.0, 5.0], 0.0), [1.0, 1.0])

@@ -257,7 +257,7 @@ def test_joint1_drag_equals_eq8_for_every_state(q: list[float], w: list[float], 
 
 
 def test_paper_equations_section5_state() -> None:
-    """At the section-5 state the printed equations differ from uwml as MODEL.md section 6 says."""
+    """At the section-5 state the printed equations differ from uwml as docs/model.md section 6 says."""
     state = ([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
     paper, ours = ref.paper_equations(*state), ref.hydro(JOINTS, LINKS, *state)
     np.testing.assert_allclose(paper["drag"][0], ours["drag"][0], rtol=1e-12)
@@ -326,7 +326,7 @@ def test_buoyancy_is_conservative(seed: int) -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# Properties of MODEL.md section 3
+# Properties of docs/model.md section 5
 # --------------------------------------------------------------------------------------------
 
 

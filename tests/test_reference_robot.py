@@ -1,18 +1,18 @@
-"""Tests of the whole-robot numpy reference ``python/uwml/reference/robot.py`` (MODEL.md section 9).
+"""Tests of the whole-robot numpy reference ``python/uwml/reference/robot.py`` (docs/model.md section 10).
 
 The package is loaded standalone from its directory (as in ``test_reference.py``), so these tests
 need no compiled extension, except the one against ``uwml.Leg.paper()``. No expected value comes
 from the code under test:
 
 * against the serial-chain reference ``reference.hydro`` (a different algorithm) and the numbers
-  typed from MODEL.md section 5;
+  typed from docs/model.md section 5;
 * analytic special cases written out by hand (a spinning or translating cylinder, a sliding box,
   Froude-Krylov, buoyancy moments, a base spinning about an offset body);
 * a brute force that shares nothing with the reference: body poses by quaternions, slice
   velocities and accelerations by finite differences in time along a trajectory, generalized
   forces as virtual work against complex-step Jacobians of slice positions, and dense composite
   Gauss-Legendre quadrature of the strip forces;
-* the invariants of MODEL.md 9.6 on random trees with random states, base motion and current.
+* the invariants of docs/model.md section 10, "Invariants" on random trees with random states, base motion and current.
 
 The brute force and the invariants (sections 3 and 4) are in
 ``test_reference_robot_invariants.py``; the descriptions and random robots they share are in
@@ -100,7 +100,7 @@ def test_paper_leg_equals_the_chain_reference_and_model_md_section_5():
     expected = ref.hydro(joints, links, q, qd, qdd, cd=2.2, cm=0.5)
     for key in PARTS:
         assert_close(got[key], expected[key], 1e-12, key)
-    # MODEL.md section 5, typed from the table.
+    # docs/model.md section 5, typed from the table.
     one = ref.robot_hydro(joints, links, None, (0.3, -0.4, 0.6), (0.8, 0.5, -0.7), (1.0, -2.0, 0.5), cd=2.2, cm=0.5)
     table = {
         "drag": (-24.24084, -5.060505, -0.7383118),
@@ -221,8 +221,9 @@ def test_cylinder_off_the_base_origin_when_the_base_spins():
     # Added mass on the slice's acceleration (−Ω² d, β d, 0): a centripetal part outwards.
     am = -RHO * CM * A_CYL * L_CYL * np.array([-(omega**2) * d, beta * d, 0.0])
     np.testing.assert_allclose(out["base_added_mass"], [am[0], am[1], 0, 0, 0, d * am[1]], rtol=1e-14, atol=1e-12)
-    # ν̇ convention (MODEL.md 9.2): base origin moving at v = (V, 0, 0) while spinning at Ω
-    # with v̇ = 0 accelerates classically at ω × v = (0, Ω V, 0); a cylinder at the origin sees it.
+    # ν̇ convention (docs/model.md section 10, "Base motion and current"): base origin moving at
+    # v = (V, 0, 0) while spinning at Ω with v̇ = 0 accelerates classically at ω × v = (0, Ω V, 0);
+    # a cylinder at the origin sees it.
     centred = body(segments=(cylinder((0, 0, -L_CYL / 2), (0, 0, 1), L_CYL, D_CYL, CD, CM),))
     out = ref.robot_hydro([], [], centred, [], [], [], velocity=(0.5, 0, 0), angular_velocity=(0, 0, omega), gravity=0.0)
     np.testing.assert_allclose(out["base_added_mass"], [0, -RHO * CM * A_CYL * L_CYL * omega * 0.5, 0, 0, 0, 0], rtol=1e-14, atol=1e-12)

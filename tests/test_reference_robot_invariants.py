@@ -1,8 +1,8 @@
-"""Tests of the whole-robot numpy reference (MODEL.md section 9), continued from
+"""Tests of the whole-robot numpy reference (docs/model.md section 10), continued from
 ``test_reference_robot.py``: a brute force that shares nothing with the reference (body poses by
 quaternions, slice velocities and accelerations by finite differences in time, generalized
 forces as virtual work against complex-step Jacobians, dense quadrature of the strip forces), and
-the invariants of MODEL.md 9.6 on random trees with random states, base motion and current."""
+the invariants of docs/model.md section 10, "Invariants" on random trees with random states, base motion and current."""
 
 from types import ModuleType
 from typing import Any
@@ -194,7 +194,7 @@ def test_random_trees_against_the_brute_force(seed):
 
 
 # --------------------------------------------------------------------------------------------
-# 4. Invariants (MODEL.md 9.6) on random trees
+# 4. Invariants (docs/model.md section 10, "Invariants") on random trees
 # --------------------------------------------------------------------------------------------
 
 TREE_SEEDS = range(10)

@@ -142,7 +142,7 @@ def test_a_serial_chain_as_a_robot_is_the_leg() -> None:
     for name in COMPONENTS:
         scale = np.max(np.abs(getattr(b, name)), axis=1) + 1e-300
         assert_close(getattr(a, name), getattr(b, name), scale, 1e-14, name)
-    # MODEL.md section 5.
+    # docs/model.md section 5.
     t = robot.hydro([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5])
     np.testing.assert_allclose(t.drag, [-24.24084, -5.060505, -0.7383118], rtol=2e-7)
     np.testing.assert_allclose(t.added_mass, [-8.525438, 21.77596, 9.484545], rtol=2e-7)

@@ -2,8 +2,8 @@
 
 The bound docs/losses.md states is measured here, over every latitude and depths from 1 m: the
 uniform sea (ρ = 1025 kg/m³, g = 9.81 m/s²) is below TEOS-10 by at most 0.77 % down to 1000 m
-and 1.92 % down to 6000 m (at the poles). MODEL.md's "about 0.5 % to 1 km" holds up to about
-45° of latitude.
+and 1.92 % down to 6000 m (at the poles). The usual rule of thumb, within about 0.5 % down to 1 km,
+holds up to about 45° of latitude.
 """
 
 import numpy as np

@@ -371,11 +371,11 @@ def test_kirchhoff_conserves_the_energy_and_drag_only_dissipates_it() -> None:
     assert np.all(np.diff(values) <= 1e-12 * values[0]) and values[-1] < 0.9 * values[0]
 
 
-def test_morison_energy_rate_is_model_md_11() -> None:
+def test_morison_energy_rate_is_the_documented_integral() -> None:
     """With Morison's added mass (drag off, still water, no gravity) the energy of a spinning,
-    moving log changes at Σ_k ∫ ρ Cm A v_k (ṅ_k·v) ds (MODEL.md 11), computed here by
-    Gauss-Legendre quadrature from the log's state; dE/dt by central differences of the energy
-    along the RK4 trajectory."""
+    moving log changes at Σ_k ∫ ρ Cm A v_k (ṅ_k·v) ds (docs/simulation.md, "Energy-consistent
+    added mass"), computed here by Gauss-Legendre quadrature from the log's state; dE/dt by
+    central differences of the energy along the RK4 trajectory."""
     model = weightless(log_model(1.5 * RHO * LOG_VOLUME))
     robot = without_drag(uwml.Robot.from_mujoco(model))
     sim = Simulation(model, robot, water=uwml.Water(1000.0, 0.0), integrator="rk4")

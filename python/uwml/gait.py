@@ -1,6 +1,6 @@
 """Inverse kinematics of the paper's leg and a walking foot trajectory with its joint states.
 
-Everything here is for the paper's 3-DOF leg (MODEL.md section 2) in its hip frame, which is the
+Everything here is for the paper's 3-DOF leg (docs/model.md section 2) in its hip frame, which is the
 world frame of :meth:`uwml.Leg.paper`: x forward, z up, origin at the hip (the intersection of
 the yaw and roll axes). The foot is the calf's tip,
 

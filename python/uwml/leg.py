@@ -63,7 +63,7 @@ class HydroTorques:
 
 @dataclass(frozen=True)
 class HydroRegressors:
-    """Regressors of the hydrodynamic torques (MODEL.md section 4).
+    """Regressors of the hydrodynamic torques (docs/model.md section 4).
 
     With ``per="leg"``, ``drag`` and ``added_mass`` are shaped like ``q`` (the torques at Cd = 1
     and Cm = 1 everywhere) and ``total = buoyancy + cd * drag + cm * added_mass``. With
@@ -367,9 +367,9 @@ class Leg:
         row of a batch.
 
         ``added_mass="kirchhoff"``: Kirchhoff's energy-consistent added mass instead of the
-        paper's Morison form (MODEL.md 11; :meth:`uwml.Robot.hydro`), evaluated on the
-        whole-robot path (``Robot.from_leg``); also taken by :meth:`environment`,
-        :meth:`jacobians` and :meth:`hydro_regressors`.
+        paper's Morison form (docs/simulation.md, "Energy-consistent added mass";
+        :meth:`uwml.Robot.hydro`), evaluated on the whole-robot path (``Robot.from_leg``); also
+        taken by :meth:`environment`, :meth:`jacobians` and :meth:`hydro_regressors`.
         """
         if _is_kirchhoff(added_mass):
             robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
@@ -667,6 +667,6 @@ class Leg:
         """World position of a point on a link, shape ``q.shape[:-1] + (3,)``.
 
         Arguments as for :meth:`jacobian`: by default the tip of the last link (the paper leg's
-        foot, ``L2 u2 + L3 u3`` of MODEL.md section 2).
+        foot, ``L2 u2 + L3 u3`` of docs/model.md section 2).
         """
         return self.jacobian(q, link, point)[0]

@@ -1,7 +1,7 @@
 """Joint logs of the land/water experiment: reading, writing, aligning, differentiating.
 
 The paper identifies Cd and Cm by driving the leg along the same trajectory on land and in
-water and taking the difference of the motor torques (docs/model.md, section 4; :mod:`uwml.fit`'s
+water and taking the difference of the motor torques (docs/model.md section 4; :mod:`uwml.fit`'s
 :func:`~uwml.fit.hydro_coefficients`). This module holds such logs.
 
 CSV format

@@ -19,7 +19,7 @@ The defaults are **illustrative**: the paper publishes laws, not parameters. The
 that the paper's laws hold (the oil loss is the more speed-sensitive, the seal loss the more
 pressure-sensitive, breakaway exceeds running friction, both grow with pressure) and the total
 loss current at 10 r/min and 10 MPa is 2.85 A, 27.4 % of the 10.4 A rated current. The oil's
-speed exponent is 1: laminar Couette flow in the gap (MODEL.md section 7).
+speed exponent is 1: laminar Couette flow in the gap (docs/losses.md, "The defaults are illustrative").
 """
 
 from __future__ import annotations
@@ -67,7 +67,7 @@ class OilDrag:
         Torque at ``|ω_m| = 1 rad/s`` at the reference pressure and temperature [N·m·(rad/s)^−n].
     exponent
         Speed exponent n in [1, 2]: 1 for laminar Couette flow in the gap (the default), 1.5 with
-        Taylor vortices (MODEL.md section 7); 1, 1.5 and 2 cost no power function.
+        Taylor vortices (docs/losses.md, "The models"); 1, 1.5 and 2 cost no power function.
     pressure_sensitivity_per_mpa
         a_p [1/MPa]: the Barus pressure-viscosity coefficient α times 1 (laminar) or 0.5 (vortex).
     temperature_sensitivity_per_k

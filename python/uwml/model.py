@@ -3,7 +3,7 @@
 These classes only hold and check numbers; the physics lives in the Rust core (``uwml._core``)
 and, independently, in :mod:`uwml.reference`.
 
-Frames (URDF style, without fixed rotations; MODEL.md sections 3 and 9.1): every link frame is
+Frames (URDF style, without fixed rotations; docs/model.md sections 2 and 10): every link frame is
 parallel to the base frame (the world frame for a fixed, upright base) when all joint positions
 are zero. Joint ``i`` sits at ``origin`` in the frame of its parent (link ``parent``, or the base
 for ``-1``; by default the previous link, so that a list of joints is a serial chain) and moves
@@ -31,7 +31,7 @@ AXIS_TOLERANCE = 1e-6
 #: How far from 1 the computed norm of a normalized vector can be (a few ulps).
 _UNIT_ROUNDING = 4.0 * 2.0**-52
 
-#: The section kinds of a :class:`Segment` (MODEL.md 9.3).
+#: The section kinds of a :class:`Segment` (docs/model.md section 10, "Describing a robot").
 SECTIONS = ("rectangular", "circular")
 #: The joint kinds of a :class:`Joint`.
 JOINT_KINDS = ("revolute", "prismatic")
@@ -161,14 +161,15 @@ class Segment:
 
     A slice at arc length ``s`` in ``[0, length]`` lies at ``start + s * axis``.
 
-    ``section="rectangular"`` (the paper's links; independence principle, MODEL.md 3): ``normals``
+    ``section="rectangular"`` (the paper's links; independence principle, docs/model.md section 3): ``normals``
     are the two principal directions of cross-flow (orthonormal, perpendicular to ``axis``);
     ``widths[k]`` is the frontal width seen by flow along ``normals[k]`` (the drag reference
     width); ``area`` is the cross-section area used for added mass.
 
     ``section="circular"`` (a cylinder; cross-flow principle on the whole normal velocity,
-    MODEL.md 9.3): give ``diameter``; ``area`` defaults to ``π diameter² / 4``; ``normals`` and
-    ``widths`` are not used (they are set to a pair of normals and ``(diameter, diameter)``).
+    docs/model.md section 10, "Describing a robot"): give ``diameter``; ``area`` defaults to
+    ``π diameter² / 4``; ``normals`` and ``widths`` are not used (they are set to a pair of
+    normals and ``(diameter, diameter)``).
 
     ``cd`` and ``cm``: the segment's own drag and added-mass coefficients, used when an evaluation
     is not given coefficients. One number, or (rectangular only) one per normal direction;

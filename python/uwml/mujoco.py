@@ -1,5 +1,5 @@
 """uwml's environment forces inside a MuJoCo simulation, with the added mass in the mass matrix
-(MODEL.md section 11; ``pip install "uwml[mujoco]"``).
+(docs/simulation.md, "Added mass in the mass matrix"; ``pip install "uwml[mujoco]"``).
 
 :class:`Simulation` steps a MuJoCo model of a robot with the forces uwml computes for it: drag
 and added mass along every segment, buoyancy with Froude-Krylov, joint losses at a depth and
@@ -8,7 +8,7 @@ what uwml replaces), MuJoCo keeps everything else: the rigid bodies, gravity, co
 on the seabed), joint limits, actuators.
 
 **Added mass in the mass matrix.** The added-mass force is linear in the accelerations, so the
-environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈`` (MODEL.md 11).
+environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈``.
 Each step evaluates ``τ_env,0`` (uwml at zero joint and base acceleration: drag, buoyancy,
 Froude-Krylov and the velocity part of the added mass; the joint losses below) and ``M_A(q)``; ``M_A`` is added
 to MuJoCo's joint-space inertia between its assembly (``mj_makeM``) and its factorization

@@ -1,4 +1,7 @@
-"""Viscosity of the compensation oil against temperature and pressure (MODEL.md section 7).
+"""Viscosity of the compensation oil against temperature and pressure.
+
+What the deep sea's cold and pressure do to the oil, and so to a joint's losses:
+docs/losses.md, "The deep-sea temperature effect".
 
 Temperature: ASTM D341 in Walther's form, ``log10(log10(ν + 0.7)) = A − B·log10(T)`` with ν the
 kinematic viscosity [cSt = mm²/s] and T the absolute temperature [K]; A and B follow from two

@@ -1,4 +1,4 @@
-"""A whole robot in moving water: a kinematic tree on a moving base, in a current (MODEL.md 9).
+"""A whole robot in moving water: a kinematic tree on a moving base, in a current (docs/model.md section 10).
 
 :class:`Robot` takes :class:`uwml.Joint` (with ``parent`` and ``kind``), :class:`uwml.Link`
 (any number of ``segments``, rectangular or circular) and an optional base body, and gives the
@@ -66,7 +66,8 @@ def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None
     return items
 
 
-#: The forms of the added-mass forces (MODEL.md 11): the paper's Morison form, and Kirchhoff's.
+#: The forms of the added-mass forces: the paper's Morison form, and Kirchhoff's
+#: (docs/simulation.md, "Energy-consistent added mass").
 ADDED_MASS_FORMS = ("morison", "kirchhoff")
 
 
@@ -445,9 +446,10 @@ class Robot:
         added_mass
             ``"morison"`` (default): the paper's form, added mass on the normal components of
             each slice's acceleration. ``"kirchhoff"``: the form derived from the water's kinetic
-            energy (MODEL.md 11; the core's ``AddedMassForm``): the same added-mass matrix,
-            other velocity terms, energy-consistent. Also taken by :meth:`environment`,
-            :meth:`link_wrenches`, :meth:`hydro_regressors` and :meth:`jacobians`.
+            energy (docs/simulation.md, "Energy-consistent added mass"; the core's
+            ``AddedMassForm``): the same added-mass matrix, other velocity terms,
+            energy-consistent. Also taken by :meth:`environment`, :meth:`link_wrenches`,
+            :meth:`hydro_regressors` and :meth:`jacobians`.
 
         Any argument with a sample axis gives results with one; the others are broadcast. One
         state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
@@ -666,7 +668,8 @@ class Robot:
         return wrenches.reshape(shape)
 
     def added_mass_matrix(self, q: ArrayLike, cm: ArrayLike | None = None, water: Water | None = None) -> FloatArray:
-        """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)`` (MODEL.md 9.5).
+        """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)``
+        (docs/model.md section 10, "What is computed").
 
         ``(6 + n_joints)²`` (or one per sample of ``q``), base first (linear, then angular, base
         frame), then the joints: symmetric, positive semi-definite, independent of the base's

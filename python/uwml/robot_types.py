@@ -30,7 +30,7 @@ def _quaternion(value: Any) -> FloatArray:
 
 @dataclass(frozen=True)
 class BaseMotion:
-    """How the base moves at each sample (MODEL.md 9.2).
+    """How the base moves at each sample (docs/model.md section 10, "Base motion and current").
 
     ``orientation``: world from base, a unit quaternion ``(w, x, y, z)`` scalar first (MuJoCo's
     order), or a ``scipy.spatial.transform.Rotation``. ``velocity`` and ``angular_velocity``:
@@ -91,7 +91,8 @@ def _trusted_motion(*arrays: FloatArray) -> BaseMotion:
 
 @dataclass(frozen=True)
 class BaseWrench:
-    """The environment's wrench on the whole robot, per component, at the base (MODEL.md 9.5).
+    """The environment's wrench on the whole robot, per component, at the base (docs/model.md
+    section 10, "What is computed").
 
     Each array is ``(..., 6)``: force ``[0:3]`` [N] and moment ``[3:6]`` [N·m] about the base
     origin, in base-frame components: the generalized force of the base's six degrees of freedom.
@@ -129,7 +130,8 @@ class RobotEnvironment(EnvironmentTorques):
 
 @dataclass(frozen=True)
 class RobotRegressors:
-    """Regressors of a robot's hydrodynamic forces (MODEL.md section 4, for whole robots).
+    """Regressors of a robot's hydrodynamic forces (docs/model.md section 4; for whole robots,
+    docs/model.md section 10, "What is computed").
 
     ``drag[..., j, k, d]`` is the generalized force on joint ``j`` of segment ``k``'s drag along
     its normal direction ``d`` at unit coefficient (a circular segment: all in ``d = 0``), shape

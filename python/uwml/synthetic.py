@@ -352,7 +352,7 @@ def land_water_experiment(
       joint: an arbitrary but deterministic rigid-body-like torque, identical in both runs, that
       the difference cancels;
     * water: ``τ_water = τ_land − τ_hydro``: the motor also supplies minus the water's torque,
-      ``τ_hydro = buoyancy + drag(cd) + added mass(cm)`` (MODEL.md section 4), spoiled by
+      ``τ_hydro = buoyancy + drag(cd) + added mass(cm)`` (docs/model.md section 4), spoiled by
       ``model_error`` (:class:`ModelDiscrepancy`: what the identification's model does not contain;
       a number is an unmodelled linear damping ``model_error · q̇`` in N·m·s/rad, 0 by default);
     * each measured torque gets independent Gaussian noise of standard deviation

@@ -1,5 +1,5 @@
 //! Drag, added-mass, buoyancy and gravity generalized forces of a chain in still water, and
-//! their identification regressors, in one pass (MODEL.md sections 3 and 4).
+//! their identification regressors, in one pass (docs/model.md sections 3 and 4).
 //!
 //! Sign: every torque is exerted by the environment on the joint, in the joint's positive
 //! direction (`M q̈ + c + g = τ_motor + τ_env`).
@@ -116,7 +116,7 @@ impl<T: SimdRealField + Copy, const N: usize> HydroRegressors<T, N> {
     }
 }
 
-/// The exact strip moments of a segment along each normal direction `k` (MODEL.md section 3):
+/// The exact strip moments of a segment along each normal direction `k` (docs/model.md section 3):
 /// drag `(∫ v_k|v_k| ds, ∫ s v_k|v_k| ds)` and added mass `(∫ a_k ds, ∫ s a_k ds)`.
 #[derive(Clone, Copy)]
 struct StripMoments<T: SimdRealField + Copy> {

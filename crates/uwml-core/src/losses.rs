@@ -1,4 +1,4 @@
-//! Joint losses inside an oil-filled, pressure-compensated joint (MODEL.md section 7): the
+//! Joint losses inside an oil-filled, pressure-compensated joint (docs/losses.md, "The models"): the
 //! oil's viscous (churning) drag on the motor side, the output-shaft seal's friction, and the
 //! drive that turns them into a loss current and a loss torque at the joint output.
 //!
@@ -440,10 +440,11 @@ impl<T: RealField + Copy> LossState<T> {
 const MPA: f64 = 1e6;
 
 impl<T: RealField + Copy> Default for OilDrag<T> {
-    /// Illustrative (the paper publishes laws, not parameters): k = 3.3234e-3 N·m·s/rad,
-    /// n = 1 (laminar Couette flow in the gap, which MODEL.md finds for this motor class in
-    /// nearly all cases), a_p = 0.02 /MPa, a_T = 0.06 /K, at 0 MPa and 20 °C. With the default
-    /// seal and drive: 2.85 A of loss current at 10 r/min and 10 MPa (27.4 % of 10.4 A).
+    /// Illustrative (the paper publishes laws, not parameters): k = 3.3234e-3 N·m·s/rad, n = 1
+    /// (laminar Couette flow in the gap, which holds for this motor class in nearly all cases:
+    /// docs/losses.md, "The defaults are illustrative"), a_p = 0.02 /MPa, a_T = 0.06 /K, at 0 MPa
+    /// and 20 °C. With the default seal and drive: 2.85 A of loss current at 10 r/min and 10 MPa
+    /// (27.4 % of 10.4 A).
     fn default() -> Self {
         let c = constant::<T>;
         Self {

@@ -1,4 +1,5 @@
-//! The motion of a robot's base and of the water around it, per evaluation (MODEL.md 9.2).
+//! The motion of a robot's base and of the water around it, per evaluation (docs/model.md section
+//! 10, "Base motion and current").
 //!
 //! Base: orientation `R` (world from base) as a unit quaternion `(w, x, y, z)`, scalar first
 //! (MuJoCo's order); the twist `ν = (v, ω)`, velocity of the base origin and angular velocity,
@@ -48,7 +49,7 @@ fn rotation_of<T: RealField + Copy>([w, x, y, z]: [T; 4]) -> Matrix3<T> {
 }
 
 impl<T: RealField + Copy> BaseMotion<T> {
-    /// A fixed, upright base: the default of MODEL.md sections 1-8.
+    /// A fixed, upright base: the default of docs/model.md sections 2-9.
     #[must_use]
     pub fn fixed() -> Self {
         let zero = Vector3::zeros();

@@ -1,6 +1,6 @@
 //! The immutable, validated description of a whole robot: a kinematic tree of revolute and
 //! prismatic joints on a base that may carry a body of its own, with any number of straight
-//! segments per body (up to a fixed capacity), rectangular or circular (MODEL.md section 9).
+//! segments per body (up to a fixed capacity), rectangular or circular (docs/model.md section 10).
 //!
 //! Frames follow URDF without fixed rotations: every link frame is parallel to the base frame
 //! when all joint positions are zero. Joint `i` sits at `origin` in its parent's frame (link
@@ -56,7 +56,8 @@ pub struct RigidBody<T: SimdRealField + Copy> {
     pub cob: Vector3<T>,
 }
 
-/// The cross-section of a segment, and how the water's force on it is modelled (MODEL.md 9.3).
+/// The cross-section of a segment, and how the water's force on it is modelled (docs/model.md
+/// section 10, "Describing a robot").
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Section<T: SimdRealField + Copy> {
     /// Independence principle: one drag and one added-mass term per principal normal direction

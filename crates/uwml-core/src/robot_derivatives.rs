@@ -1,8 +1,8 @@
-//! Derivatives of a whole robot's environment forces for control (MODEL.md 9, section 7's losses):
-//! the generalized forces on the base (its wrench) and on the joints, their derivatives with
-//! respect to the joint positions and to the velocities (base twist and joint rates), and the
-//! added-mass matrix, by forward-mode dual numbers ([`Dual`]) through the very same
-//! [`robot_hydro`] and [`loss_torques`].
+//! Derivatives of a whole robot's environment forces for control (docs/model.md sections 9 and 10;
+//! the losses of docs/losses.md, "The models"): the generalized forces on the base (its wrench) and
+//! on the joints, their derivatives with respect to the joint positions and to the velocities (base
+//! twist and joint rates), and the added-mass matrix, by forward-mode dual numbers ([`Dual`])
+//! through the very same [`robot_hydro`] and [`loss_torques`].
 //!
 //! Rows are `(W, τ)`: the base wrench's six components (force, moment about the base origin,
 //! base frame) then the joints. Columns of `d_velocity` are `(ν, q̇)`: the base twist (`v`, `ω`,

@@ -1,4 +1,4 @@
-//! Exact strip integrals over one straight segment (MODEL.md sections 3 and 9.3).
+//! Exact strip integrals over one straight segment (docs/model.md sections 3 and 10).
 //!
 //! Along a link, a slice's normal velocity `h(s) = v0 + v1·s` and normal acceleration
 //! `a0 + a1·s` are affine in the arc length `s`, and so is every joint's moment arm. Each
@@ -85,8 +85,9 @@ const GAUSS_LEGENDRE_8: [(f64, f64); 4] = [
 const ELLIPSE_SEMI_AXES: (f64, f64) = (4.0625, 3.9375);
 
 /// `(∫₀ᴸ |p + s r| ds, ∫₀ᴸ s |p + s r| ds, ∫₀ᴸ s² |p + s r| ds)` for vectors `p`, `r`: the moments
-/// of the normal speed along a circular segment (MODEL.md 9.3), to 1e-13 relative in `f64`, at a
-/// fixed cost (both methods below are evaluated and one is selected, so SIMD lanes agree).
+/// of the normal speed along a circular segment (docs/model.md section 10, "The circular strip
+/// integral"), to 1e-13 relative in `f64`, at a fixed cost (both methods below are evaluated and
+/// one is selected, so SIMD lanes agree).
 ///
 /// `|p + s r| = sqrt(A t² + 2B t + C)` with `t = s − L/2` has its two branch points at
 /// `t = (−B ± i|m × r|)/A` (`m = p + r L/2`, the speed at mid-length). Where they lie outside

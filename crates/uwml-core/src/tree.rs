@@ -1,5 +1,5 @@
 //! Drag, added mass, buoyancy (with Froude-Krylov) and gravity on a whole robot: the generalized
-//! force on every joint and the wrench on the base (MODEL.md section 9).
+//! force on every joint and the wrench on the base (docs/model.md section 10).
 //!
 //! One forward pass over the joints (parents before children) gives every link's pose and motion
 //! in base-frame components; each body's own wrench about the base origin follows from its
@@ -208,8 +208,9 @@ impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
         self.joints.get(..self.joint_count).unwrap_or(&[])
     }
 
-    /// The wrench on the base of the last evaluation: force and moment about the base origin,
-    /// base components, of everything the environment exerts on the whole robot (MODEL.md 9.5).
+    /// The wrench on the base of the last evaluation: force and moment about the base origin, base
+    /// components, of everything the environment exerts on the whole robot (docs/model.md section
+    /// 10, "What is computed").
     pub const fn base_wrench(&self) -> &EnvironmentWrench<T> {
         &self.base
     }
@@ -304,13 +305,15 @@ impl<T: SimdRealField + Copy> Frame<T> {
     }
 }
 
-/// How the added-mass forces depend on the velocities (MODEL.md 11). Both share the added-mass
-/// matrix `M_A(q)`, the acceleration part; they differ in the velocity terms.
+/// How the added-mass forces depend on the velocities (docs/simulation.md, "Energy-consistent added
+/// mass"). Both share the added-mass matrix `M_A(q)`, the acceleration part; they differ in the
+/// velocity terms.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum AddedMassForm {
     /// The paper's Morison form: each slice's added mass on the normal components of its
     /// acceleration relative to the water, `−ρ Cm_k A (n_k·a) n_k`. Not derived from the water's
-    /// kinetic energy: with drag off it exchanges energy with the robot at the rate of MODEL.md 11.
+    /// kinetic energy: with drag off it exchanges energy with the robot at the rate of
+    /// docs/simulation.md, "Energy-consistent added mass".
     #[default]
     Morison,
     /// Kirchhoff's form, derived from the water's kinetic energy `T_A = ½ Σ ∫ ρ Cm_k A v_k² ds`:
@@ -592,9 +595,10 @@ fn hydro_in<T: SimdRealField + Copy, const J: usize, const S: usize>(
     }
 }
 
-/// The added-mass matrix over base and joints, `M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)` (MODEL.md 9.5),
-/// `(6 + n)²` entries row-major into `out` (`n = robot.joint_count()`; base first: linear, then
-/// angular, then the joints), at joint positions `q` (the first `n` entries).
+/// The added-mass matrix over base and joints, `M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)` (docs/model.md
+/// section 10, "What is computed"), `(6 + n)²` entries row-major into `out`
+/// (`n = robot.joint_count()`; base first: linear, then angular, then the joints), at joint
+/// positions `q` (the first `n` entries).
 ///
 /// Column `k` is minus the added-mass forces at unit acceleration `k` with every velocity and
 /// the current zero: exact, as the added-mass forces are linear in the accelerations and have no
@@ -681,8 +685,8 @@ fn added_mass_block<T: SimdRealField + Copy, const J: usize, const S: usize>(
     }
 }
 
-/// Regressors of the drag and added-mass forces (MODEL.md section 4 for whole robots): with
-/// `s = robot.segments().len()` and `n = robot.joint_count()`, entry `(row, 2k + d)` of `drag`
+/// Regressors of the drag and added-mass forces (docs/model.md sections 4 and 10, for whole
+/// robots): with `s = robot.segments().len()` and `n = robot.joint_count()`, entry `(row, 2k + d)` of `drag`
 /// (row-major, `(6 + n) × 2s`) is the generalized force on row `row` (the base wrench's six
 /// components first, then the joints) of segment `k`'s drag along its normal direction `d` at
 /// unit coefficient (a circular segment has all of it in `d = 0`, and zeros in `d = 1`); the

@@ -1,5 +1,5 @@
-//! The hydrodynamic torques of the core: MODEL.md reference values, f32 against f64, the
-//! invariants of MODEL.md section 3, and the agreement of the torque and regressor paths.
+//! The hydrodynamic torques of the core: the reference values and the
+//! properties of docs/model.md section 5, f32 against f64, and the agreement of the torque and regressor paths.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{Matrix3, SVector};
@@ -19,7 +19,7 @@ fn assert_close(actual: f64, expected: f64, rel: f64) {
 
 #[test]
 fn model_section_5_reference_values() {
-    // MODEL.md section 5, from an independent brute-force computation (about 1e-7 relative).
+    // docs/model.md section 5, from an independent brute-force computation (about 1e-7 relative).
     let t = paper_torques([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]);
     let expected = [
         (t.drag, [-24.24084, -5.060505, -0.7383118]),
@@ -234,7 +234,7 @@ fn f32_error(states: usize) -> [f64; 3] {
 
 #[test]
 fn f32_core_tracks_f64_within_the_documented_bound() {
-    // Bound documented in docs/model.md ("Precision"): 2e-5 of the largest torque of the kind.
+    // Bound documented in docs/model.md section 7: 2e-5 of the largest torque of the kind.
     let worst = f32_error(20_000);
     println!("f32 vs f64, worst relative error (drag, added mass, buoyancy): {worst:?}");
     for w in worst {

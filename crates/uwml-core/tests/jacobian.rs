@@ -1,5 +1,5 @@
 //! Forward kinematics of a point and the geometric Jacobian: the paper leg's closed form
-//! (MODEL.md section 2), central finite differences, and the velocities of `link_motions`.
+//! (docs/model.md section 2), central finite differences, and the velocities of `link_motions`.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{SVector, Vector3};
@@ -104,7 +104,7 @@ fn a_link_out_of_range_gives_none() {
 
 #[test]
 fn the_paper_foot_is_the_closed_form_of_model_md() {
-    // MODEL.md section 2: foot = L2 u2 + L3 u3, the calf's tip at s = L3 along local -z.
+    // docs/model.md section 2: foot = L2 u2 + L3 u3, the calf's tip at s = L3 along local -z.
     let (l2, l3) = (0.660, 0.714);
     let chain = Chain::<f64, 3>::paper();
     let mut rng = Rng(0x0F0F_0F0F_1234_4321);

@@ -1,6 +1,6 @@
-//! The two added-mass forms against the water's kinetic energy `T_A = ½ xᵀ M_A(q) x`,
-//! `x = (ν, q̇)` (MODEL.md 11), in still water with drag off, on the 7-joint arm of circular and
-//! rectangular segments on a turned, moving hull:
+//! The two added-mass forms against the water's kinetic energy `T_A = ½ xᵀ M_A(q) x`, `x = (ν, q̇)`
+//! (docs/simulation.md, "Energy-consistent added mass"), in still water with drag off, on the
+//! 7-joint arm of circular and rectangular segments on a turned, moving hull:
 //! - Kirchhoff: the power of the added-mass forces is exactly `−dT_A/dt = −(xᵀ M_A ẋ + ½ xᵀ Ṁ_A x)`;
 //! - Morison: the same plus `Σ_k ∫ ρ Cm_k A v_k (ṅ_k·v) ds`, which is not zero, and the two forms
 //!   share their acceleration part (equal at zero velocities).

@@ -1,4 +1,4 @@
-//! Whole robots (MODEL.md section 9): the chain special case, the invariants of section 9.6,
+//! Whole robots (docs/model.md section 10): the chain special case, the invariants (its "Invariants"),
 //! the added-mass matrix, the regressors and jacobians, and the checks at construction. (The
 //! circular strip integrals against dense quadrature are in `strip.rs`.)
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
@@ -47,7 +47,7 @@ fn assert_close(a: f64, b: f64, scale: f64, rel: f64, what: &str) {
 
 #[test]
 fn a_chain_on_a_fixed_base_in_still_water_is_the_chain() {
-    // Sections 1-8 as the special case: the paper's leg and random chains, through the tree
+    // docs/model.md sections 2-9 as the special case: the paper's leg and random chains, through the tree
     // path, agree with the chain path to 1e-14 of each component's largest torque.
     let mut rng = Rng(11);
     let paper = Chain::<f64, 3>::paper();

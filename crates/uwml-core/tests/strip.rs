@@ -1,5 +1,5 @@
 //! The exact strip integrals: special cases with closed forms, and dense quadrature; the
-//! circular sections' speed moments (MODEL.md 9.3) too.
+//! circular sections' speed moments (docs/model.md section 10, "The circular strip integral") too.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::Vector3;
@@ -136,7 +136,8 @@ fn non_finite_inputs_do_not_panic() {
     assert!(!i0.is_finite());
 }
 
-// The circular sections' speed moments (MODEL.md 9.3): the cross-flow drag integral.
+// The circular sections' speed moments (docs/model.md section 10, "The circular strip integral"):
+// the cross-flow drag integral.
 
 /// `(∫ s^k |p + s r| ds)_{k=0,1,2}` by composite 8-point Gauss-Legendre, 16 panels between
 /// breakpoints graded geometrically (ratio 4) about the minimum of the speed, from its miss

@@ -386,7 +386,7 @@ impl Per {
 /// The identification problem of the selected joints, assembled in one pass over the batch:
 /// `J × n × (P + 1)`, joint-major so that each joint's block is contiguous; a row holds the
 /// regressors of the torque on joint `joints[j]` (Cd columns then Cm columns, grouped as `per`
-/// says) and, last, the target `y = −Δτ − τ_buoy` (MODEL.md section 4), where `delta` is the
+/// says) and, last, the target `y = −Δτ − τ_buoy` (docs/model.md section 4), where `delta` is the
 /// measured `τ_water − τ_land`, `n × N`.
 pub(crate) fn design_batch<const N: usize>(
     chain: &Chain<f64, N>,

@@ -2,9 +2,10 @@
 hydrodynamic coefficients Cd and Cm from the land/water experiment (:func:`hydro_coefficients`,
 section "Hydrodynamic coefficients" below).
 
-MODEL.md section 7 and the paper's Section IV: the motor current of a joint is measured with
-the housing dry and no seal (``dry``), oil-filled without the seal (``oil``) and oil-filled with
-the seal (``oil_seal``), at several output speeds and pressures. The differences isolate the
+docs/losses.md, "Identification from the three-configuration experiment", and the paper's
+Section IV: the motor current of a joint is measured with the housing dry and no seal (``dry``),
+oil-filled without the seal (``oil``) and oil-filled with the seal (``oil_seal``), at several
+output speeds and pressures. The differences isolate the
 two losses, ``ΔI_oil(ω, p) = I_oil − I_dry(ω)`` and ``ΔI_seal(ω, p) = I_oil_seal − I_oil``;
 :func:`oil_drag` and :func:`seal` fit :class:`uwml.losses.OilDrag` and :class:`uwml.losses.Seal`
 to them and return a result in the lmfit style (:class:`LossFit`).
@@ -59,7 +60,7 @@ Steady rows use the hard sign (ε = 0): the data are at steady, known-sign speed
 
 Hydrodynamic coefficients
 -------------------------
-:func:`hydro_coefficients` fits MODEL.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
+:func:`hydro_coefficients` fits docs/model.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
 with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.logs`, on the selected joints
 (default joint index 0, the paper's joint 1, hip yaw, whose vertical axis gravity and
 buoyancy do not act about). ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,

@@ -137,7 +137,7 @@ class _Moments:
 
 
 class _HydroDesign:
-    """The identification design of a log (MODEL.md section 4) and its target
+    """The identification design of a log (docs/model.md section 4) and its target
     ``y = −Δτ_motor − τ_buoy`` on the selected joints, assembled by the Rust core in one pass per
     chunk of samples; the chunks are kept while they fit into ``cache_bytes``."""
 

@@ -1,17 +1,18 @@
-"""Independent numpy reference for everything in MODEL.md (vectorized over samples).
+"""Independent numpy reference for the models of docs/model.md and docs/losses.md, vectorized.
 
 This package re-derives, with numpy only and different algorithms, what the Rust core
-(``uwml._core``) computes, so that tests can hold the core to it (MODEL.md section 8):
+(``uwml._core``) computes, so that tests can hold the core to it (docs/model.md section 8):
 
 * :mod:`.chain`: a serial chain of revolute joints in still water on a fixed, upright base
-  (MODEL.md sections 3-5): :func:`hydro`, :func:`regressors`, the paper's leg :func:`paper_leg`
+  (docs/model.md sections 2-5): :func:`hydro`, :func:`regressors`, the paper's leg :func:`paper_leg`
   and the light descriptions :class:`RefJoint`, :class:`RefLink`, :class:`RefSegment`;
-* :mod:`.paper`: the paper's printed equations, :func:`paper_equations` (MODEL.md section 6);
-* :mod:`.losses`: the joint losses of an oil-filled, pressure-compensated joint (MODEL.md
-  section 7): :func:`smooth_sign`, :func:`oil_drag_torque`, :func:`seal_torque`,
-  :func:`loss_current`, :func:`joint_loss_torques`, :func:`hydrostatic_pressure_mpa`;
+* :mod:`.paper`: the paper's printed equations, :func:`paper_equations` (docs/model.md section 6);
+* :mod:`.losses`: the joint losses of an oil-filled, pressure-compensated joint
+  (docs/losses.md, "The models"): :func:`smooth_sign`, :func:`oil_drag_torque`,
+  :func:`seal_torque`, :func:`loss_current`, :func:`joint_loss_torques`,
+  :func:`hydrostatic_pressure_mpa`;
 * :mod:`.robot`: whole robots (trees of revolute and prismatic joints, a moving base with a body
-  of its own, a uniform current, rectangular and circular segments; MODEL.md section 9):
+  of its own, a uniform current, rectangular and circular segments; docs/model.md section 10):
   :func:`robot_hydro`, :func:`robot_added_mass_matrix`, :func:`robot_link_wrenches`.
 
 The package imports only numpy and the standard library, so it can be loaded on its own from its

@@ -1,4 +1,4 @@
-"""Independent numpy reference for uwml's hydrodynamics of a serial chain (MODEL.md sections 3-5).
+"""Independent numpy reference for uwml's hydrodynamics of a serial chain (docs/model.md sections 2-5).
 
 This module re-derives, with numpy only and a different algorithm, what the Rust core
 (``uwml._core``) computes, so that tests can hold the core to it:
@@ -15,7 +15,7 @@ Frames (as in :mod:`uwml.model`): every link frame is parallel to the world fram
 The world pose of link ``i`` is ``T_i = T_{i-1} · Trans(joint_i.origin) · Rot(joint_i.axis, q_i)``
 with ``T_{-1}`` the identity; link ``i``'s geometry is given in its own frame. World z is up and
 gravity points along −z. Every torque is the generalized force exerted *by the environment on
-the joint* (MODEL.md section 1), so drag satisfies ``q̇ · τ_drag ≤ 0``.
+the joint* (docs/model.md section 1), so drag satisfies ``q̇ · τ_drag ≤ 0``.
 
 Joints and links are duck-typed: any objects with the attributes of :class:`uwml.model.Joint`
 and :class:`uwml.model.Link` (``origin``, ``axis``; ``mass``, ``com``, ``volume``, ``cob``,
@@ -35,7 +35,7 @@ from ._inputs import _AXIS_TOLERANCE, Array, Vec3, _number, _states, _vector
 
 __all__ = ["RefJoint", "RefLink", "RefSegment", "hydro", "paper_leg", "regressors"]
 
-# The paper's leg (Table II of Liao et al.; MODEL.md section 2).
+# The paper's leg (Table II of Liao et al.; docs/model.md section 2).
 PAPER_L2 = 0.660
 PAPER_L3 = 0.714
 PAPER_L2C = 0.506
@@ -95,7 +95,7 @@ def paper_leg() -> tuple[tuple[RefJoint, RefJoint, RefJoint], tuple[RefLink, Ref
     Joint 1 is the hip yaw about world z, joints 2 and 3 (hip and knee roll) turn about the local
     −y axis, so that with ``e_r = (cos q1, sin q1, 0)`` the thigh axis is
     ``u2 = cos q2 e_r + sin q2 z`` and the calf axis ``u3 = sin(q2+q3) e_r − cos(q2+q3) z``
-    (MODEL.md section 2). The first normal of each segment is the out-of-plane direction (local
+    (docs/model.md section 2). The first normal of each segment is the out-of-plane direction (local
     +y, width ``D_i1``), the second the in-plane one (width ``D_i2``); ``area = D_i1 · D_i2``.
     Centres of mass and buoyancy coincide; ``volume = mass / 2700``.
 
@@ -404,7 +404,7 @@ def regressors(
     density: float = 1000.0,
     gravity: float = 9.81,
 ) -> dict[str, Array]:
-    """Hydrodynamic regressors of a serial chain (MODEL.md section 4).
+    """Hydrodynamic regressors of a serial chain (docs/model.md section 4).
 
     Parameters
     ----------
@@ -456,7 +456,7 @@ def hydro(
     density: float = 1000.0,
     gravity: float = 9.81,
 ) -> dict[str, Array]:
-    """Hydrodynamic joint torques of a serial chain by strip theory (MODEL.md section 3).
+    """Hydrodynamic joint torques of a serial chain by strip theory (docs/model.md section 3).
 
     Per unit length of link i, along each normal direction ``n_k`` of its segment, drag
     ``−½ ρ Cd_k w_k v_k|v_k| n_k`` and added mass ``−ρ Cm_k A a_k n_k`` (``v_k``, ``a_k``: normal

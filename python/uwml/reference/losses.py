@@ -1,12 +1,12 @@
-"""Joint losses of an oil-filled, pressure-compensated joint (MODEL.md section 7), in numpy.
+"""Joint losses of an oil-filled, pressure-compensated joint (docs/losses.md, "The models"), in numpy.
 
-Written literally from MODEL.md's formulas: the oil's churning torque (:func:`oil_drag_torque`),
-the seal's Stribeck friction (:func:`seal_torque`), the motor current they cost
-(:func:`loss_current`), both as environment torques at the joint (:func:`joint_loss_torques`),
-the smooth sign (:func:`smooth_sign`) and the core's uniform-sea pressure
-(:func:`hydrostatic_pressure_mpa`). The parameters are duck-typed: any objects with the
-attributes of :class:`uwml.losses.OilDrag`, :class:`uwml.losses.Seal` and
-:class:`uwml.losses.Drive` will do.
+Written literally from the formulas of docs/losses.md, "The models": the oil's churning torque
+(:func:`oil_drag_torque`), the seal's Stribeck friction (:func:`seal_torque`), the motor current
+they cost (:func:`loss_current`), both as environment torques at the joint
+(:func:`joint_loss_torques`), the smooth sign (:func:`smooth_sign`) and the core's uniform-sea
+pressure (:func:`hydrostatic_pressure_mpa`). The parameters are duck-typed: any objects with the
+attributes of :class:`uwml.losses.OilDrag`, :class:`uwml.losses.Seal` and :class:`uwml.losses.Drive`
+will do.
 """
 
 from typing import Any
@@ -19,7 +19,7 @@ from ._inputs import Array, _number
 __all__ = ["hydrostatic_pressure_mpa", "joint_loss_torques", "loss_current", "oil_drag_torque", "seal_torque", "smooth_sign"]
 
 # --------------------------------------------------------------------------------------------
-# Joint losses (MODEL.md section 7)
+# Joint losses (docs/losses.md, "The models")
 # --------------------------------------------------------------------------------------------
 
 #: Absolute zero [°C]: temperatures must lie above it.
@@ -89,7 +89,7 @@ def _drive_parameters(drive: Any) -> tuple[float, float, float]:
 
 
 def smooth_sign(x: ArrayLike, epsilon: float) -> Array:
-    """The smooth sign ``sgn_ε(x) = x / sqrt(x² + ε²)`` (MODEL.md section 7).
+    """The smooth sign ``sgn_ε(x) = x / sqrt(x² + ε²)`` (docs/losses.md, "The models").
 
     Odd, strictly inside (−1, 1) for ε > 0, and ``sgn_ε(0) = 0``; ε = 0 gives the hard sign
     ``np.sign`` (again with ``sgn(0) = 0``).
@@ -127,7 +127,7 @@ def oil_drag_torque(
     temperature_c: ArrayLike,
     epsilon: float = 0.0,
 ) -> Array:
-    """Viscous (churning) torque of the compensation oil at the motor shaft (MODEL.md section 7).
+    """Viscous (churning) torque of the compensation oil at the motor shaft (docs/losses.md, "The models").
 
     ``T_oil = K_oil · exp(a_p (p − p_ref)) · exp(−a_T (θ − θ_ref)) · |ω_m|^n · sgn_ε(ω_m)``: the
     torque that drives the oil, in the direction of ``ω_m`` (the motor supplies it).
@@ -168,7 +168,7 @@ def oil_drag_torque(
 
 
 def seal_torque(seal: Any, speed: ArrayLike, pressure_mpa: ArrayLike, epsilon: float = 0.0) -> Array:
-    """Friction torque of the output-shaft dynamic seal at the joint output (MODEL.md section 7).
+    """Friction torque of the output-shaft dynamic seal at the joint output (docs/losses.md, "The models").
 
     ``T_seal = sgn_ε(ω) · [C(p) + (S(p) − C(p)) · exp(−(|ω|/ω_s)²)] + D(p) · ω`` with
     ``C = C0 + C1 p``, ``S = S0 + S1 p``, ``D = D0 + D1 p``: the torque that overcomes the seal,
@@ -246,10 +246,10 @@ def joint_loss_torques(
     temperature_c: ArrayLike,
     epsilon: float = 0.0,
 ) -> dict[str, Array]:
-    """Joint losses as environment torques at the output and as motor current (MODEL.md section 7).
+    """Joint losses as environment torques at the output and as motor current (docs/losses.md, "The models").
 
     The oil is sheared at the motor speed ``ω_m = N ω``; the seal slides at the output speed ω.
-    In section 1's sign (the environment's torque on the joint, so losses oppose motion):
+    In docs/model.md section 1's sign (the environment's torque on the joint, so losses oppose motion):
     ``visc = −N η T_oil(N ω, p, θ)`` and ``seal = −T_seal(ω, p)``; ``current`` is
     ``I_loss = T_oil/K_t + T_seal/(N η K_t)``, the extra motor current they cost.
 
@@ -300,7 +300,7 @@ def joint_loss_torques(
 def hydrostatic_pressure_mpa(depth_m: ArrayLike, sea_density: float = 1025.0, gravity: float = 9.81) -> Array:
     """Gauge pressure of a uniform sea at depth: ``p = ρ g z`` [MPa].
 
-    The core's model (MODEL.md section 7); :func:`uwml.seawater.pressure_at_depth_mpa` gives the
+    The core's model (docs/losses.md, "Pressure from depth"); :func:`uwml.seawater.pressure_at_depth_mpa` gives the
     TEOS-10 value, and docs/losses.md the measured difference.
 
     Parameters

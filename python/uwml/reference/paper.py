@@ -1,7 +1,7 @@
 """The paper's printed equations (Liao et al., eqs. 8-22) for its 3-DOF leg, in uwml's sign.
 
 For side-by-side comparison with :func:`uwml.reference.hydro` on :func:`uwml.reference.paper_leg`
-(MODEL.md section 6, which lists where uwml departs from the printed equations and why).
+(docs/model.md section 6, which lists where uwml departs from the printed equations and why).
 """
 
 import numpy as np
@@ -50,7 +50,7 @@ def paper_equations(
 ) -> dict[str, Array]:
     """The paper's printed eqs. (8)-(22) for its 3-DOF leg with Table II, in uwml's sign.
 
-    For side-by-side comparison with :func:`hydro` (MODEL.md section 6). Returned: ``drag = −τ_d``,
+    For side-by-side comparison with :func:`hydro` (docs/model.md section 6). Returned: ``drag = −τ_d``,
     ``added_mass = −τ_m``, ``buoyancy = τ_f``, ``total = τ_w = τ_f − τ_d − τ_m``. The integrals
     are evaluated by Gauss-Legendre quadrature (24 nodes per piece). The calf is split at the
     root of ``v31``, at the calf's closest approach to the hip ``x0 = −L2 s3`` (where ``r32`` is
@@ -68,7 +68,7 @@ def paper_equations(
       is read ``L2 c2 + x s23`` (the printed ``x cos(q2+q3)`` is a typo: eqs. 7, 9, 17 use sin);
       this is the only change to the printed equations.
     * Eq. (9): ``A_1 = 0``, ``A_2 = D21 D22``, ``A_3 = D31 D32``. Its integrands are printed with
-      ``v21``, ``v31``, without the dot; they are read as ``v̇21``, ``v̇31`` (eq. 4, MODEL.md
+      ``v21``, ``v31``, without the dot; they are read as ``v̇21``, ``v̇31`` (eq. 4, docs/model.md
       section 6 item 2).
     * ``v̇`` is the time derivative of the printed scalar speed:
       ``v̇21 = q̈1 x c2 − q̇1 q̇2 x s2``,
@@ -80,7 +80,7 @@ def paper_equations(
     * Eq. (15): ``½ρCd [D22 ∫₀^L2 x v22|v22| + D32 ∫₀^L3 r32 v32|v32| + D32 ∫₀^L3 r32 cos α v33|v33|]``,
       one ``v|v|`` per joint as printed (superposed, not the total velocity).
     * Eq. (16): ``ρCm [A2 ∫ x v̇22 + A3 ∫ r32 v̇32 + A3 ∫ r32 cos α v̇33]``, the third term read with
-      ``v̇33`` (printed ``v̇32``), as MODEL.md section 6 says.
+      ``v̇33`` (printed ``v̇32``), as docs/model.md section 6 says.
     * Eqs. (19), (20): ``½ρCd D32 [∫ x v33|v33| + ∫ x cos α v32|v32|]`` and
       ``ρCm A3 [∫ x v̇33 + ∫ x cos α v̇32]``.
     * Eqs. (10), (17), (21): ``τ_f1 = 0``,

@@ -1,12 +1,12 @@
-"""Independent numpy reference for whole robots in moving water (MODEL.md section 9).
+"""Independent numpy reference for whole robots in moving water (docs/model.md section 10).
 
 A tree of revolute and prismatic joints on a moving base (which may carry a body of its own), in
-a uniform current, with rectangular and circular strip-theory segments. Written from MODEL.md
-section 9 directly, vectorized over samples; it shares no code with the Rust core nor with the
+a uniform current, with rectangular and circular strip-theory segments. Written from docs/model.md
+section 10 directly, vectorized over samples; it shares no code with the Rust core nor with the
 serial-chain reference (:mod:`.chain`), and uses no recursion over wrenches.
 
-Conventions (MODEL.md 9.1, 9.2)
--------------------------------
+Conventions (docs/model.md section 10)
+--------------------------------------
 * Bodies: the base (body 0) and link ``i`` (body ``i + 1``). Every body frame is parallel to the
   base frame at ``q = 0``. Joint ``i`` sits at ``origin`` in its parent's frame (``parent``:
   ``None`` = the previous link, i.e. ``i − 1``, and the base for ``i = 0``; ``-1`` = the base;
@@ -20,7 +20,7 @@ Conventions (MODEL.md 9.1, 9.2)
   components: the base origin's classical acceleration is ``R (v̇ + ω × v)``, the base's angular
   acceleration ``R ω̇`` (world).
 * Gravity ``g_vec = (0, 0, −g)`` in the world; current ``c`` and ``ċ`` in world components.
-* Sign (MODEL.md 1): every output is what the environment exerts (on a joint: the generalized
+* Sign (docs/model.md section 1): every output is what the environment exerts (on a joint: the generalized
   force in the joint's positive direction).
 
 Method
@@ -37,8 +37,8 @@ Method
    ``ż_j = Ω_parent(j) × z_j`` and ``v(o_j)`` the velocity of the joint point as a point of the
    joint's parent. Both are evaluated at the two ends of each segment (a rigid body's velocity
    and acceleration fields are affine along a straight segment).
-3. **Strip forces** (MODEL.md 3, 9.3) on ``v_rel = v − c``, ``a_rel = a − ċ``. Each body's
-   environment wrench ``(F, M)`` (force, and moment about the base origin, world components) is
+3. **Strip forces** (docs/model.md section 3; docs/model.md section 10, "Describing a robot")
+   on ``v_rel = v − c``, ``a_rel = a − ċ``. Each body's environment wrench ``(F, M)`` (force, and moment about the base origin, world components) is
    integrated over each segment in closed form or by quadrature on moments of the parameter
    ``t = s / L`` in [0, 1]:
 
@@ -75,7 +75,7 @@ Method
    * buoyancy with Froude-Krylov ``ρ V (ċ − g_vec)`` at the centre of buoyancy and gravity
      ``m g_vec`` at the centre of mass.
 4. **Generalized forces as virtual work** of each body's wrench against the explicit joint
-   screws (MODEL.md 9.5): ``τ_j = z_j · Σ_b (M_b − o_j × F_b)`` (revolute) or
+   screws (docs/model.md section 10, "What is computed"): ``τ_j = z_j · Σ_b (M_b − o_j × F_b)`` (revolute) or
    ``τ_j = z_j · Σ_b F_b`` (prismatic) over the bodies ``b`` joint ``j`` moves; the base wrench
    ``W = (Rᵀ Σ_b F_b, Rᵀ Σ_b M_b)`` over all bodies (a body-frame virtual displacement
    ``(δx, δθ)`` of the base moves a point ``p`` by ``R δx + (R δθ) × p``).
@@ -380,8 +380,8 @@ _GL3_WEIGHTS = np.array([5.0, 8.0, 5.0]) / 18.0
 
 
 def _kirchhoff_extra(robot: _Robot, motion: _Motion, kin: _Kinematics, cm: Array, density: float) -> tuple[Array, Array]:
-    """What Kirchhoff's added mass adds to Morison's (MODEL.md 11), per body, world components,
-    moment about the base origin: each slice, with added-mass tensor ``A`` (per unit length
+    """What Kirchhoff's added mass adds to Morison's (docs/simulation.md, "Energy-consistent
+    added mass"), per body, world components, moment about the base origin: each slice, with added-mass tensor ``A`` (per unit length
     ``ρ Cm_k a Σ n_k n_kᵀ``, or ``ρ Cm a (I − u uᵀ)`` for a circular section) turning with its
     body (``Ȧ = Ω A − A Ω``) and relative velocity ``v``, feels ``−Ȧ v`` beyond Morison's
     ``−A v̇``, and the couple ``−v × A v``; integrated by 3-point Gauss-Legendre (exact)."""
@@ -472,7 +472,7 @@ def robot_hydro(
     current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
     added_mass: str = "morison",
 ) -> dict[str, Array]:
-    """Environment forces on a whole robot: joint generalized forces and the base wrench (MODEL.md 9).
+    """Environment forces on a whole robot: joint generalized forces and the base wrench (docs/model.md section 10).
 
     Parameters
     ----------
@@ -503,7 +503,8 @@ def robot_hydro(
     current, current_acceleration : array_like
         Uniform water velocity ``c`` and acceleration ``ċ``, world components: ``(3,)`` or ``(n, 3)``.
     added_mass : {"morison", "kirchhoff"}
-        The paper's Morison form, or Kirchhoff's (MODEL.md 11; :func:`_kirchhoff_extra`).
+        The paper's Morison form, or Kirchhoff's (docs/simulation.md, "Energy-consistent added
+        mass"; :func:`_kirchhoff_extra`).
 
     Returns
     -------
@@ -620,7 +621,8 @@ def robot_added_mass_matrix(
     density: float = 1000.0,
     orientation: ArrayLike = (1.0, 0.0, 0.0, 0.0),
 ) -> Array:
-    """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)`` (MODEL.md 9.5).
+    """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)``
+    (docs/model.md section 10, "What is computed").
 
     Shape ``(6 + N, 6 + N)`` or ``(n, 6 + N, 6 + N)``; rows and columns: base linear (x, y, z,
     base components), base angular (x, y, z), then the joints. Column k is minus the added-mass
