@@ -63,23 +63,25 @@ def _evaluations() -> dict[str, Callable[[], Any]]:
     }
 
 
+def _work(evaluate: Callable[[], Any], start: threading.Barrier, results: list[list[np.ndarray]], errors: list[Exception]) -> None:
+    """One thread's calls, after all threads have started; an exception is kept for the report."""
+    try:
+        start.wait()
+        for _ in range(CALLS):
+            results.append(_arrays(evaluate()))
+    except Exception as error:  # noqa: BLE001 (any failure of any evaluation is reported by main)
+        errors.append(error)
+
+
 def main() -> int:
     failures = []
     for name, evaluate in _evaluations().items():
         expected = _arrays(evaluate())
         results: list[list[list[np.ndarray]]] = [[] for _ in range(THREADS)]
-        errors: list[BaseException] = []
+        errors: list[Exception] = []
         start = threading.Barrier(THREADS)
 
-        def work(slot: int, evaluate: Callable[[], Any] = evaluate) -> None:
-            try:
-                start.wait()
-                for _ in range(CALLS):
-                    results[slot].append(_arrays(evaluate()))
-            except BaseException as error:  # reported below
-                errors.append(error)
-
-        threads = [threading.Thread(target=work, args=(i,)) for i in range(THREADS)]
+        threads = [threading.Thread(target=_work, args=(evaluate, start, results[i], errors)) for i in range(THREADS)]
         for t in threads:
             t.start()
         for t in threads:

@@ -185,7 +185,19 @@ def _arm_with(change: str, value: float) -> uwml.Robot:
     return uwml.Robot(joints, links, base=base)
 
 
-MODEL_VALUES = ["joint.origin", "link.com", "link.cob", "link.mass", "link.volume", "base.com", "base.cob", "base.mass", "base.volume", "segment.start", "segment.length"]
+MODEL_VALUES = [
+    "joint.origin",
+    "link.com",
+    "link.cob",
+    "link.mass",
+    "link.volume",
+    "base.com",
+    "base.cob",
+    "base.mass",
+    "base.volume",
+    "segment.start",
+    "segment.length",
+]
 
 
 @pytest.mark.parametrize("field", MODEL_VALUES)

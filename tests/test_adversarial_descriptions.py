@@ -12,9 +12,6 @@ should be, a description that expands into thousands of bodies).
 from __future__ import annotations
 
 import os
-import subprocess
-import sys
-import textwrap
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -25,9 +22,9 @@ import pytest
 pytest.importorskip("mujoco")
 
 import uwml
-from watchdog import run_with_watchdog
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from watchdog import run_with_watchdog
 
 DATA = Path(__file__).parent / "data"
 MAX_MESSAGE = 500

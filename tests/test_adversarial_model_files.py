@@ -395,4 +395,7 @@ def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path) -> None:
         tmp_path,
     )
     assert run.returncode == 0, run.stderr[-2000:]
-    assert run.stdout.strip() == "arm.toml: the model file cannot be read: it is not a regular file (a named pipe); uwml reads regular files only"
+    assert (
+        run.stdout.strip()
+        == "arm.toml: the model file cannot be read: it is not a regular file (a named pipe); uwml reads regular files only"
+    )

@@ -80,7 +80,10 @@ def test_each_step_sets_the_seal_friction_and_the_loss_damping_of_the_reference_
     and ``dof_damping`` its own plus ``−(τ_oil + D ω)/ω``, from the numpy reference's formulas; a
     sliding joint's constraint force is that level against its motion."""
     path = arm_file(tmp_path, fixed=True)
-    text = path.read_text().replace('<joint name="elbow" type="hinge" axis="0 1 0"/>', '<joint name="elbow" type="hinge" axis="0 1 0" damping="0.7" frictionloss="1.5"/>')
+    text = path.read_text().replace(
+        '<joint name="elbow" type="hinge" axis="0 1 0"/>',
+        '<joint name="elbow" type="hinge" axis="0 1 0" damping="0.7" frictionloss="1.5"/>',
+    )
     path.write_text(text)
     model, robot = model_and_robot(path, HYDRO)
     losses = uwml.JointLosses()
@@ -106,7 +109,9 @@ def test_each_step_sets_the_seal_friction_and_the_loss_damping_of_the_reference_
     forces, _ = sim.environment()
     hydro = sim.robot.hydro(sim.data.qpos, qd, np.zeros(3), water=sim.water)
     np.testing.assert_allclose(sim.data.qfrc_applied, hydro.total, rtol=1e-12, atol=1e-12)
-    env = sim.robot.environment(sim.data.qpos, qd, np.zeros(3), depth=depth, temperature_c=temperature, losses=[losses, losses, None], water=sim.water)
+    env = sim.robot.environment(
+        sim.data.qpos, qd, np.zeros(3), depth=depth, temperature_c=temperature, losses=[losses, losses, None], water=sim.water
+    )
     np.testing.assert_allclose(forces[6:], env.total, rtol=1e-12)  # environment(): losses as forces
 
 
