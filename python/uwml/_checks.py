@@ -3,10 +3,19 @@
 import csv
 import math
 import os
-from typing import IO, Any
+from typing import IO, Any, SupportsFloat, SupportsIndex
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+
+def to_float(value: object) -> float:
+    """``float(value)`` for a value of any type: a TypeError for one that ``float`` does not take
+    (a string, bytes, or anything with ``__float__`` or ``__index__``), a ValueError for text
+    that is not a number."""
+    if isinstance(value, (str, bytes, bytearray, SupportsFloat, SupportsIndex)):
+        return float(value)
+    raise TypeError(f"float() argument must be a string or a real number, not {type(value).__name__!r}")
 
 
 def real_array(value: ArrayLike, name: str, what: str) -> NDArray[np.float64]:

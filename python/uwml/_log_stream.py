@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -69,7 +70,7 @@ def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> 
     yield from _arrow_csv.CsvTable(path, f"{source}: ", "time").batches(names)
 
 
-def _parquet_file(path: str | os.PathLike[str], source: str) -> object:
+def _parquet_file(path: str | os.PathLike[str], source: str) -> Any:  # pyarrow has no type information
     """A ``pyarrow.parquet.ParquetFile``, or a ValueError naming a damaged file."""
     import pyarrow
 
@@ -82,7 +83,8 @@ def _parquet_file(path: str | os.PathLike[str], source: str) -> object:
 def _header(path: str | os.PathLike[str], source: str) -> list[str]:
     _check_file(path, source)
     if _is_parquet(path):
-        return list(_parquet_file(path, source).schema_arrow.names)  # type: ignore[attr-defined]
+        names: list[str] = list(_parquet_file(path, source).schema_arrow.names)
+        return names
     from ._arrow_csv import CsvTable
 
     return CsvTable(path, f"{source}: ", "time").header

@@ -82,8 +82,8 @@ def _fmt(v: object) -> str:
     return "(" + ", ".join(f"{x:.4g}" for x in np.asarray(v, dtype=float)) + ")"
 
 
-def _pair(values: object) -> str:
-    a, b = (float(x) for x in values)  # type: ignore[union-attr]
+def _pair(values: tuple[float, float]) -> str:
+    a, b = values
     return f"{a:g}" if a == b else f"({a:g}, {b:g})"
 
 

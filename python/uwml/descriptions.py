@@ -112,7 +112,7 @@ FloatArray = NDArray[np.float64]
 
 def _mujoco() -> Any:
     try:
-        import mujoco  # type: ignore[import-untyped]
+        import mujoco
     except ImportError:
         raise ImportError('reading URDF and MJCF needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
     return mujoco
@@ -190,8 +190,8 @@ def _segment_copy(segment: Segment, **changes: Any) -> Segment:
         "length": segment.length,
         "section": segment.section,
         "area": segment.area,
-        "cd": segment.cd if segment.section == "rectangular" else segment.cd[0],  # type: ignore[index]
-        "cm": segment.cm if segment.section == "rectangular" else segment.cm[0],  # type: ignore[index]
+        "cd": segment.cd if segment.section == "rectangular" else segment.cd[0],
+        "cm": segment.cm if segment.section == "rectangular" else segment.cm[0],
     }
     if segment.section == "circular":
         fields["diameter"] = segment.diameter
@@ -208,7 +208,7 @@ def _moved(segment: Segment, rotation: FloatArray, offset: FloatArray) -> Segmen
         "axis": _t(rotation @ np.asarray(segment.axis)),
     }
     if segment.section == "rectangular":
-        n0, n1 = segment.normals  # type: ignore[misc]
+        n0, n1 = segment.normals
         changes["normals"] = (_t(rotation @ np.asarray(n0)), _t(rotation @ np.asarray(n1)))
     return _segment_copy(segment, **changes)
 

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import _core
 from ._checks import real_array as _real_array
+from ._checks import to_float
 from .domains import ABSOLUTE_ZERO_C, MAX_DEPTH, MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C
 from .losses import Drive, OilDrag, Seal
 
@@ -58,7 +59,7 @@ def _positive_number(value: object, name: str) -> float:
     real = isinstance(value, numbers.Real) or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu")
     if not real or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be a real number, got {value!r}")
-    x = float(value)  # type: ignore[arg-type]
+    x = to_float(value)
     if not (math.isfinite(x) and x > 0.0):
         raise ValueError(f"{name} must be finite and positive, got {value!r}")
     return x
@@ -289,9 +290,9 @@ def one_state_losses(owner: Any, losses: object, n_joints: int) -> FloatArray | 
     every joint, kept on ``owner`` (its ``_losses_cache``) for the next call with the same object
     (it is frozen), or ``False`` (which the native calls do not take) for anything else, left to
     the general path."""
-    cached = owner._losses_cache
+    cached: tuple[JointLosses, FloatArray] | None = owner._losses_cache
     if cached is not None and cached[0] is losses:
-        return cached[1]  # type: ignore[no-any-return]
+        return cached[1]
     if type(losses) is not JointLosses:
         return False
     packed = pack_leg_losses(losses, n_joints)

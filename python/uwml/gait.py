@@ -39,7 +39,7 @@ def _lengths(lengths: ArrayLike) -> tuple[float, float]:
 def _knee(knee: object) -> Knee:
     if knee not in ("up", "down"):
         raise ValueError(f"knee must be 'up' or 'down', got {knee!r}")
-    return knee  # type: ignore[return-value]
+    return knee
 
 
 def _joint_angles(q: ArrayLike) -> FloatArray:
@@ -155,8 +155,8 @@ def paper_leg_ik(foot: ArrayLike, knee: Knee = "up", lengths: ArrayLike = (PAPER
     return np.stack([q1, q2, q3], axis=-1)
 
 
-def _scalar(value: object, name: str) -> float:
-    array = _real_array(value, name, "a real number")  # type: ignore[arg-type]
+def _scalar(value: ArrayLike, name: str) -> float:
+    array = _real_array(value, name, "a real number")
     if array.ndim != 0:
         raise TypeError(f"{name} must be a real number, got shape {array.shape}")
     number = float(array)

@@ -123,11 +123,11 @@ class HydroFile:
 
 
 def _coefficient(value: Any) -> float | tuple[float, float]:
-    numbers = _pair(value) if isinstance(value, list) else (_float(value),)
-    for x in numbers:
+    coefficient = _pair(value) if isinstance(value, list) else _float(value)
+    for x in coefficient if isinstance(coefficient, tuple) else (coefficient,):
         if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
             raise ValueError(f"each between 0 and {MAX_COEFFICIENT:g}")
-    return numbers if isinstance(value, list) else numbers[0]  # type: ignore[return-value]
+    return coefficient
 
 
 def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:

@@ -6,7 +6,7 @@ import operator
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any, Literal, SupportsIndex
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -301,7 +301,7 @@ class Leg:
             return NotImplemented
         return (self._joints, self._links) == (other._joints, other._links)
 
-    __hash__ = None  # type: ignore[assignment]
+    __hash__ = None  # type: ignore[assignment]  # unhashable on purpose; typeshed types object.__hash__ as a method
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Writes the leg as a uwml model file (a serial chain on a fixed base; :mod:`uwml.modelfile`)."""
@@ -386,10 +386,11 @@ class Leg:
         water = _water(water)
         cd_table = _coefficients(cd, "cd", self.n_joints)
         cm_table = _coefficients(cm, "cm", self.n_joints)
-        drag, added_mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, threads)
-        check_overflow((drag, added_mass), q2.shape[0], qd2, qdd2)
+        # (``added_mass`` names the form argument: the arrays get other names.)
+        drag, mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, threads)
+        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
         return HydroTorques(
-            drag=drag.reshape(shape), added_mass=added_mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
+            drag=drag.reshape(shape), added_mass=mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
         )
 
     def environment(
@@ -579,14 +580,14 @@ class Leg:
             )
         shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
         water = _water(water)
-        buoyancy, gravity, drag, added_mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
-        check_overflow((drag, added_mass), q2.shape[0], qd2, qdd2)
+        buoyancy, gravity, drag, mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
+        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
         extra = drag.shape[2:]
         return HydroRegressors(
             buoyancy=buoyancy.reshape(shape),
             gravity=gravity.reshape(shape),
             drag=drag.reshape(shape + extra),
-            added_mass=added_mass.reshape(shape + extra),
+            added_mass=mass.reshape(shape + extra),
             links_with_segments=self._segment_links(),
         )
 
@@ -608,7 +609,9 @@ class Leg:
         if isinstance(link, (bool, np.bool_)):
             raise TypeError(f"link must be an integer, got {link!r}")
         try:
-            index = operator.index(link)  # type: ignore[arg-type]
+            if not isinstance(link, SupportsIndex):
+                raise TypeError(f"{type(link).__name__!r} object cannot be interpreted as an integer")
+            index = operator.index(link)
         except TypeError:
             raise TypeError(f"link must be an integer, got {type(link).__name__}") from None
         n = self.n_joints

@@ -27,6 +27,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ._checks import to_float
+
 __all__ = ["RPM", "Drive", "OilDrag", "Seal", "rad_s_to_rpm", "rpm_to_rad_s"]
 
 #: One revolution per minute in rad/s.
@@ -45,7 +47,7 @@ def rad_s_to_rpm(speed: float) -> float:
 
 def _number(value: object, name: str, *, low: float | None = None, strict: bool = False, high: float | None = None) -> float:
     try:
-        x = float(value)  # type: ignore[arg-type]
+        x = to_float(value)
     except (TypeError, ValueError):
         raise TypeError(f"{name} must be a number, got {value!r}") from None
     if not math.isfinite(x):

@@ -15,10 +15,12 @@ in its own frame, whose origin is joint ``i``. World z points up, against gravit
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._checks import to_float
 from .domains import MAX_DENSITY, MAX_GRAVITY
 
 Vec3 = tuple[float, float, float]
@@ -53,7 +55,9 @@ CIRCULAR_DEFAULTS = (1.2, 1.0)
 
 def _vec3(value: object, name: str) -> Vec3:
     try:
-        items = tuple(float(v) for v in value)  # type: ignore[union-attr]
+        if not isinstance(value, Iterable):
+            raise TypeError(f"{type(value).__name__!r} object is not iterable")
+        items = tuple(to_float(v) for v in value)
     except TypeError as exc:
         raise TypeError(f"{name} must be a sequence of 3 numbers, got {value!r}") from exc
     except ValueError as exc:
@@ -67,7 +71,7 @@ def _vec3(value: object, name: str) -> Vec3:
 
 def _scalar(value: object, name: str, *, positive: bool) -> float:
     try:
-        x = float(value)  # type: ignore[arg-type]
+        x = to_float(value)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a number, got {value!r}") from exc
     if not math.isfinite(x):
@@ -79,9 +83,11 @@ def _scalar(value: object, name: str, *, positive: bool) -> float:
     return x
 
 
-def _pair(value: object, name: str) -> tuple:
+def _pair(value: object, name: str) -> tuple[object, ...]:
     try:
-        items = tuple(value)  # type: ignore[arg-type]
+        if not isinstance(value, Iterable):
+            raise TypeError(f"{type(value).__name__!r} object is not iterable")
+        items = tuple(value)
     except TypeError:
         raise TypeError(f"{name} must be a pair (two items), got {value!r}") from None
     if len(items) != 2:
@@ -155,7 +161,7 @@ def _coefficient_pair(value: object, name: str, section: str, default: float) ->
     return (_scalar(pair[0], f"{name}[0]", positive=False), _scalar(pair[1], f"{name}[1]", positive=False))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Segment:
     """Hydrodynamic geometry of a straight piece of a link (strip theory), in the link's frame.
 
@@ -175,65 +181,84 @@ class Segment:
     is not given coefficients. One number, or (rectangular only) one per normal direction;
     ``None`` takes the section's documented default (:data:`RECTANGULAR_DEFAULTS`,
     :data:`CIRCULAR_DEFAULTS`).
+
+    Construction validates every value and stores it normalized: ``normals``, ``widths``,
+    ``area``, ``cd`` and ``cm`` always hold their final form (pairs and numbers, the section's
+    defaults filled in), whatever form they were given in; ``diameter`` is None for a
+    rectangular section.
     """
 
     start: Vec3
     axis: Vec3
     length: float
-    normals: tuple[Vec3, Vec3] | None = None
-    widths: tuple[float, float] | None = None
-    area: float | None = None
-    section: str = "rectangular"
-    diameter: float | None = None
-    cd: float | tuple[float, float] | None = None
-    cm: float | tuple[float, float] | None = None
+    normals: tuple[Vec3, Vec3]
+    widths: tuple[float, float]
+    area: float
+    section: str
+    diameter: float | None
+    cd: tuple[float, float]
+    cm: tuple[float, float]
 
-    def __post_init__(self) -> None:
-        if self.section not in SECTIONS:
-            raise ValueError(f"segment.section must be one of {SECTIONS}, got {self.section!r}")
-        object.__setattr__(self, "start", _vec3(self.start, "segment.start"))
-        axis = _unit(self.axis, "segment.axis")
-        object.__setattr__(self, "axis", axis)
-        object.__setattr__(self, "length", _scalar(self.length, "segment.length", positive=True))
-        if self.section == "circular":
-            self._circular(axis)
+    def __init__(
+        self,
+        start: Iterable[float],
+        axis: Iterable[float],
+        length: float,
+        normals: Iterable[Iterable[float]] | None = None,
+        widths: Iterable[float] | None = None,
+        area: float | None = None,
+        section: str = "rectangular",
+        diameter: float | None = None,
+        cd: float | Iterable[float] | None = None,
+        cm: float | Iterable[float] | None = None,
+    ) -> None:
+        if section not in SECTIONS:
+            raise ValueError(f"segment.section must be one of {SECTIONS}, got {section!r}")
+        object.__setattr__(self, "section", section)
+        object.__setattr__(self, "start", _vec3(start, "segment.start"))
+        unit_axis = _unit(axis, "segment.axis")
+        object.__setattr__(self, "axis", unit_axis)
+        object.__setattr__(self, "length", _scalar(length, "segment.length", positive=True))
+        if section == "circular":
+            self._circular(unit_axis, widths, area, diameter)
         else:
-            self._rectangular(axis)
-        cd_default, cm_default = RECTANGULAR_DEFAULTS if self.section == "rectangular" else CIRCULAR_DEFAULTS
-        object.__setattr__(self, "cd", _coefficient_pair(self.cd, "segment.cd", self.section, cd_default))
-        object.__setattr__(self, "cm", _coefficient_pair(self.cm, "segment.cm", self.section, cm_default))
+            self._rectangular(unit_axis, normals, widths, area, diameter)
+        cd_default, cm_default = RECTANGULAR_DEFAULTS if section == "rectangular" else CIRCULAR_DEFAULTS
+        object.__setattr__(self, "cd", _coefficient_pair(cd, "segment.cd", section, cd_default))
+        object.__setattr__(self, "cm", _coefficient_pair(cm, "segment.cm", section, cm_default))
 
-    def _rectangular(self, axis: Vec3) -> None:
-        for name in ("normals", "widths", "area"):
-            if getattr(self, name) is None:
+    def _rectangular(self, axis: Vec3, normals: object, widths: object, area: object, diameter: object) -> None:
+        for name, value in (("normals", normals), ("widths", widths), ("area", area)):
+            if value is None:
                 raise ValueError(f"a rectangular segment needs segment.{name}")
-        if self.diameter is not None:
+        if diameter is not None:
             raise ValueError("segment.diameter is for circular sections; a rectangular segment takes widths and area")
-        normals = _pair(self.normals, "segment.normals")
-        n1 = _unit(normals[0], "segment.normals[0]")
-        n2 = _unit(normals[1], "segment.normals[1]")
+        normal_pair = _pair(normals, "segment.normals")
+        n1 = _unit(normal_pair[0], "segment.normals[0]")
+        n2 = _unit(normal_pair[1], "segment.normals[1]")
         for name, a, b in (("normals[0]·axis", n1, axis), ("normals[1]·axis", n2, axis), ("normals[0]·normals[1]", n1, n2)):
             if abs(_dot(a, b)) > AXIS_TOLERANCE:
                 raise ValueError(f"segment.{name} must be 0 (orthonormal normals perpendicular to the axis), got {_dot(a, b)}")
         object.__setattr__(self, "normals", _exact_frame(axis, n1, n2))
-        widths = _pair(self.widths, "segment.widths")
+        width_pair = _pair(widths, "segment.widths")
         object.__setattr__(
             self,
             "widths",
-            (_scalar(widths[0], "segment.widths[0]", positive=True), _scalar(widths[1], "segment.widths[1]", positive=True)),
+            (_scalar(width_pair[0], "segment.widths[0]", positive=True), _scalar(width_pair[1], "segment.widths[1]", positive=True)),
         )
-        object.__setattr__(self, "area", _scalar(self.area, "segment.area", positive=True))
+        object.__setattr__(self, "area", _scalar(area, "segment.area", positive=True))
+        object.__setattr__(self, "diameter", None)
 
-    def _circular(self, axis: Vec3) -> None:
-        if self.diameter is None:
+    def _circular(self, axis: Vec3, widths: Iterable[float] | None, area: object, diameter: object) -> None:
+        if diameter is None:
             raise ValueError("a circular segment needs segment.diameter")
-        diameter = _scalar(self.diameter, "segment.diameter", positive=True)
-        object.__setattr__(self, "diameter", diameter)
-        area = math.pi * diameter * diameter / 4.0 if self.area is None else _scalar(self.area, "segment.area", positive=True)
-        object.__setattr__(self, "area", area)
-        if self.widths is not None and tuple(self.widths) != (diameter, diameter):
-            raise ValueError(f"segment.widths of a circular segment are (diameter, diameter); got {self.widths!r}")
-        object.__setattr__(self, "widths", (diameter, diameter))
+        d = _scalar(diameter, "segment.diameter", positive=True)
+        object.__setattr__(self, "diameter", d)
+        section_area = math.pi * d * d / 4.0 if area is None else _scalar(area, "segment.area", positive=True)
+        object.__setattr__(self, "area", section_area)
+        if widths is not None and tuple(widths) != (d, d):
+            raise ValueError(f"segment.widths of a circular segment are (diameter, diameter); got {widths!r}")
+        object.__setattr__(self, "widths", (d, d))
         object.__setattr__(self, "normals", _normals_of(axis))
 
 

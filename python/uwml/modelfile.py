@@ -84,7 +84,7 @@ import secrets
 import unicodedata
 from collections.abc import Callable, Sequence
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, Literal, NoReturn, TypeVar, overload
 
 import tomllib
 
@@ -174,8 +174,8 @@ def _segment_lines(segment: Segment) -> list[str]:
         lines.append(f"normals = [{_vector(normals[0])}, {_vector(normals[1])}]")
         lines.append(f"widths = {_vector(segment.widths or (0.0, 0.0))}")
     lines.append(f"area = {_number(segment.area or 0.0)}")
-    lines.append(f"cd = {_vector(segment.cd)}")  # type: ignore[arg-type]
-    lines.append(f"cm = {_vector(segment.cm)}")  # type: ignore[arg-type]
+    lines.append(f"cd = {_vector(segment.cd)}")
+    lines.append(f"cm = {_vector(segment.cm)}")
     return lines
 
 
@@ -272,9 +272,9 @@ class _Reader:
         self.source, self.where, self.error = source, where, error
         if not isinstance(table, dict):
             self.fail(None, f"must be a table, got {type(table).__name__}")
-        self.table: dict[str, Any] = table  # type: ignore[assignment]
+        self.table: dict[str, Any] = table
 
-    def fail(self, key: str | None, message: str) -> None:
+    def fail(self, key: str | None, message: str) -> NoReturn:
         at = self.where if key is None else f"{self.where}, key {shown(key, 40)}"
         raise self.error(f"{self.source}: {at}: {message}")
 
@@ -283,17 +283,25 @@ class _Reader:
             if key not in allowed:
                 self.fail(key, f"is not a key of this table (allowed: {', '.join(allowed)})")
 
-    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: bool = True, default: _T | None = None) -> _T:
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str) -> _T: ...
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False], default: _T) -> _T: ...
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False]) -> _T | None: ...
+
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: bool = True, default: _T | None = None) -> _T | None:
+        """The value of ``key`` converted by ``convert``; a missing key is an error if
+        ``required``, else ``default``."""
         if key not in self.table:
             if required:
                 self.fail(key, f"is missing ({what})")
-            return default  # type: ignore[return-value]
+            return default
         value = self.table[key]
         try:
             return convert(value)
         except (TypeError, ValueError) as exc:
             self.fail(key, f"must be {what}, got {shown(value)} ({_clipped(str(exc))})")
-            raise  # unreachable: fail raises
 
     def build(self, make: Callable[[], _T]) -> _T:
         """``make()``, its ValueError or TypeError (from the model's checks) named here."""
@@ -301,7 +309,6 @@ class _Reader:
             return make()
         except (TypeError, ValueError) as exc:
             self.fail(None, _clipped(str(exc)))
-            raise  # unreachable
 
 
 def _clipped(message: str) -> str:
@@ -355,33 +362,28 @@ def _segment(source: str, where: str, table: object, error: type[ValueError] = M
     r = _Reader(source, where, table, error)
     r.check_keys(_SEGMENT_KEYS)
     section = r.get("section", _text, 'a string, "rectangular" or "circular"')
-    common = {
-        "start": r.get("start", _vec3, "an array of 3 numbers [m]"),
-        "axis": r.get("axis", _vec3, "a unit vector"),
-        "length": r.get("length", _float, "a length [m]"),
-        "cd": r.get("cd", _pair, "[Cd along normal 0, along normal 1]"),
-        "cm": r.get("cm", _pair, "[Cm along normal 0, along normal 1]"),
-    }
+    start = r.get("start", _vec3, "an array of 3 numbers [m]")
+    axis = r.get("axis", _vec3, "a unit vector")
+    length = r.get("length", _float, "a length [m]")
+    cd = r.get("cd", _pair, "[Cd along normal 0, along normal 1]")
+    cm = r.get("cm", _pair, "[Cm along normal 0, along normal 1]")
     if section == "circular":
         diameter = r.get("diameter", _float, "a diameter [m]")
         area = r.get("area", _float, "a section area [m²]")
-        cd, cm = common.pop("cd"), common.pop("cm")
         for key, pair in (("cd", cd), ("cm", cm)):
-            if pair[0] != pair[1]:  # type: ignore[index]
-                r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")  # type: ignore[arg-type]
-        return r.build(lambda: Segment(section="circular", diameter=diameter, area=area, cd=cd[0], cm=cm[0], **common))  # type: ignore[index, arg-type]
+            if pair[0] != pair[1]:
+                r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")
+        return r.build(lambda: Segment(start, axis, length, section="circular", diameter=diameter, area=area, cd=cd[0], cm=cm[0]))
     normals = r.get("normals", _normals, "two unit vectors [[...], [...]]")
     widths = r.get("widths", _pair, "[width along normal 0, along normal 1] [m]")
     area = r.get("area", _float, "a section area [m²]")
-    return r.build(lambda: Segment(section=section, normals=normals, widths=widths, area=area, **common))  # type: ignore[arg-type]
+    return r.build(lambda: Segment(start, axis, length, section=section, normals=normals, widths=widths, area=area, cd=cd, cm=cm))
 
 
 def _body(source: str, where: str, table: object) -> Link:
     r = _Reader(source, where, table)
     r.check_keys(_BODY_KEYS)
-    raw_segments = r.get(
-        "segments", lambda v: v if isinstance(v, list) else _fail_type("an array of tables"), "[[...segments]]", required=False, default=[]
-    )
+    raw_segments: list[object] = r.get("segments", _table_array, "[[...segments]]", required=False, default=[])
     segments = tuple(_segment(source, f"{where}, segments[{i}]", s) for i, s in enumerate(raw_segments))
     name = r.get("name", _text, "a string", required=False)
     mass = r.get("mass", _float, "a mass [kg]")
@@ -405,7 +407,7 @@ def _losses(source: str, where: str, table: object, error: type[ValueError] = Mo
         keys = [f.name for f in dataclasses.fields(kind)]
         part.check_keys(keys)
         values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
-        parts[name] = part.build(lambda kind=kind, values=values: kind(**values))
+        parts[name] = part.build(functools.partial(kind, **values))
     epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]")
     # A part the file does not give is absent (oil, seal), or the default drive.
     return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
@@ -448,8 +450,14 @@ def _water(source: str, where: str, table: object, error: type[ValueError] = Mod
     return r.build(lambda: Water(density=density, gravity=gravity))
 
 
-def _fail_type(what: str) -> Any:
+def _fail_type(what: str) -> NoReturn:
     raise TypeError(f"not {what}")
+
+
+def _table_array(value: Any) -> list[object]:
+    if not isinstance(value, list):
+        _fail_type("an array of tables")
+    return value
 
 
 def loads(text: str, source: str = "<string>") -> Robot:

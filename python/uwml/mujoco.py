@@ -92,7 +92,7 @@ NOSLIP_TOLERANCE = 1e-10
 
 def _mujoco() -> Any:
     try:
-        import mujoco  # type: ignore[import-untyped]
+        import mujoco
     except ImportError:
         raise ImportError('uwml.mujoco needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
     return mujoco
@@ -144,7 +144,8 @@ def _body_inertia(body: Any) -> FloatArray:
     total = sum(volume for volume, _, _ in solids)
     if not solids or total <= 0.0:
         radius = (3.0 * body.volume / (4.0 * math.pi)) ** (1.0 / 3.0) if body.volume > 0.0 else 0.05
-        return np.eye(3) * (0.4 * body.mass * radius**2)
+        sphere: FloatArray = np.eye(3) * (0.4 * body.mass * radius**2)
+        return sphere
     inertia = np.zeros((3, 3))
     for volume, centre, unit in solids:
         mass = body.mass * volume / total
@@ -561,7 +562,8 @@ class Simulation:
             return
         h = m.opt.timestep
         qpos0, qvel0, time0 = d.qpos.copy(), d.qvel.copy(), d.time
-        velocities, accelerations = [], []
+        velocities: list[FloatArray] = []
+        accelerations: list[FloatArray] = []
         for fraction, index in ((0.0, None), (0.5, 0), (0.5, 1), (1.0, 2)):
             velocity = qvel0 if index is None else qvel0 + fraction * h * accelerations[index]
             d.qpos[:] = qpos0

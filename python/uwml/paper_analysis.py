@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .leg import Leg
 
@@ -35,8 +36,9 @@ def gait_like_motion(n_samples: int = 9, period: float = 2.0) -> tuple[np.ndarra
     return t, q, qd, qdd
 
 
-def _rms(x: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.mean(x**2, axis=0))
+def _rms(x: NDArray[np.float64]) -> NDArray[np.float64]:
+    rms: NDArray[np.float64] = np.sqrt(np.mean(x**2, axis=0))
+    return rms
 
 
 def _component_table(t: np.ndarray, q: np.ndarray, qd: np.ndarray, tau: Any) -> list[str]:

@@ -9,8 +9,8 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
-from typing import Any
+from collections.abc import Iterable, Sequence
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -53,17 +53,18 @@ def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None
     """``losses`` (None, one :class:`JointLosses` for every joint, or one or None per joint) as a
     tuple with one entry per joint."""
     if losses is None or isinstance(losses, JointLosses):
-        return (losses,) * n_joints  # type: ignore[return-value]
-    try:
-        items = tuple(losses)  # type: ignore[call-overload]
-    except TypeError:
-        raise TypeError(f"losses must be a uwml.JointLosses, a sequence of them (or None), or None; got {type(losses).__name__}") from None
+        return (losses,) * n_joints
+    if not isinstance(losses, Iterable):
+        raise TypeError(f"losses must be a uwml.JointLosses, a sequence of them (or None), or None; got {type(losses).__name__}")
+    items = tuple(losses)
     if len(items) != n_joints:
         raise ValueError(f"losses must have one entry per joint ({n_joints}), got {len(items)}")
+    checked: list[JointLosses | None] = []
     for index, item in enumerate(items):
         if item is not None and not isinstance(item, JointLosses):
             raise TypeError(f"losses[{index}] must be a uwml.JointLosses or None, got {type(item).__name__}")
-    return items
+        checked.append(item)
+    return tuple(checked)
 
 
 #: The forms of the added-mass forces: the paper's Morison form, and Kirchhoff's
@@ -90,13 +91,29 @@ def _short_path(water: object, base_motion: object) -> tuple[bool, tuple[FloatAr
     return motion is not None, motion
 
 
+class _Inputs(NamedTuple):
+    """The arguments of the native evaluations before ``threads``, checked and laid out."""
+
+    q: FloatArray
+    qd: FloatArray
+    qdd: FloatArray
+    cd: FloatArray
+    cm: FloatArray
+    density: float
+    gravity: float
+    orientation: FloatArray
+    velocity: FloatArray
+    angular_velocity: FloatArray
+    acceleration: FloatArray
+    angular_acceleration: FloatArray
+    current: FloatArray
+    current_acceleration: FloatArray
+
+
 def _segment_row(owner: int, s: Segment) -> list[float]:
     section = 1.0 if s.section == "circular" else 0.0
     diameter = s.diameter if s.diameter is not None else 0.0
-    normals = s.normals if s.normals is not None else ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
-    widths = s.widths if s.widths is not None else (0.0, 0.0)
-    cd, cm = s.cd, s.cm
-    return [float(owner), section, *s.start, *s.axis, s.length, float(s.area or 0.0), *normals[0], *normals[1], *widths, diameter, *cd, *cm]  # type: ignore[misc]
+    return [float(owner), section, *s.start, *s.axis, s.length, s.area, *s.normals[0], *s.normals[1], *s.widths, diameter, *s.cd, *s.cm]
 
 
 def _body_row(body: Link) -> list[float]:
@@ -250,7 +267,7 @@ class Robot:
         mine = (self._joints, self._links, self._base, self._losses, self._water)
         return mine == (other._joints, other._links, other._base, other._losses, other._water)
 
-    __hash__ = None  # type: ignore[assignment]
+    __hash__ = None  # type: ignore[assignment]  # unhashable on purpose; typeshed types object.__hash__ as a method
 
     def save(self, path: str | os.PathLike[str]) -> None:
         """Writes the whole validated model to a uwml model file (TOML, :mod:`uwml.modelfile`),
@@ -333,14 +350,14 @@ class Robot:
         qdd: ArrayLike,
         cd: ArrayLike | None,
         cm: ArrayLike | None,
-        water: Water,
+        water: Water | None,
         base_motion: BaseMotion | None,
         current: ArrayLike,
         current_acceleration: ArrayLike,
-    ) -> tuple[tuple[Any, ...], bool, int]:
+    ) -> tuple[_Inputs, bool, int]:
         """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
         sample axis, and the number of samples."""
-        water = self._the_water(water)
+        the_water = self._the_water(water)
         motion = base_motion if base_motion is not None else BaseMotion()
         if not isinstance(motion, BaseMotion):
             raise TypeError(f"base_motion must be a uwml.BaseMotion or None, got {type(motion).__name__}")
@@ -388,14 +405,14 @@ class Robot:
         def joint_rows(array: FloatArray) -> FloatArray:
             return np.ascontiguousarray(np.broadcast_to(array.reshape(-1, n), (n_samples, n)), dtype=np.float64)
 
-        arguments = (
+        arguments = _Inputs(
             joint_rows(states[0]),
             joint_rows(states[1]),
             joint_rows(states[2]),
             self._coefficients(cd, "cd"),
             self._coefficients(cm, "cm"),
-            water.density,
-            water.gravity,
+            the_water.density,
+            the_water.gravity,
             rows(motion.orientation, 4),
             rows(motion.velocity, 3),
             rows(motion.angular_velocity, 3),
@@ -562,9 +579,18 @@ class Robot:
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
         base_shape = (n_samples, 6) if batched else (6,)
-        joints = [out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11)]
+        drag, mass, buoyancy, gravity, visc, seal, current_a = (out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11))
         base = [a.reshape(base_shape) for a in out[4:8]]
-        return RobotEnvironment(*joints, base=BaseWrench(*base))
+        return RobotEnvironment(
+            drag=drag,
+            added_mass=mass,
+            buoyancy=buoyancy,
+            gravity=gravity,
+            visc=visc,
+            seal=seal,
+            current=current_a,
+            base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
+        )
 
     def jacobians(
         self,

@@ -28,7 +28,7 @@ def _quaternion(value: Any) -> FloatArray:
     return _real_array(value, "orientation", "a quaternion (w, x, y, z), an (n, 4) array of them, or a scipy Rotation")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class BaseMotion:
     """How the base moves at each sample (docs/model.md section 10, "Base motion and current").
 
@@ -43,24 +43,34 @@ class BaseMotion:
     The default is a fixed, upright base.
     """
 
-    orientation: Any = (1.0, 0.0, 0.0, 0.0)
-    velocity: ArrayLike = (0.0, 0.0, 0.0)
-    angular_velocity: ArrayLike = (0.0, 0.0, 0.0)
-    acceleration: ArrayLike = (0.0, 0.0, 0.0)
-    angular_acceleration: ArrayLike = (0.0, 0.0, 0.0)
+    orientation: FloatArray
+    velocity: FloatArray
+    angular_velocity: FloatArray
+    acceleration: FloatArray
+    angular_acceleration: FloatArray
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "orientation", _quaternion(self.orientation))
-        for name in ("velocity", "angular_velocity", "acceleration", "angular_acceleration"):
-            object.__setattr__(self, name, _real_array(getattr(self, name), name, "a 3-vector or an (n, 3) array"))
+    def __init__(
+        self,
+        orientation: Any = (1.0, 0.0, 0.0, 0.0),
+        velocity: ArrayLike = (0.0, 0.0, 0.0),
+        angular_velocity: ArrayLike = (0.0, 0.0, 0.0),
+        acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        angular_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+    ) -> None:
+        given = (velocity, angular_velocity, acceleration, angular_acceleration)
+        arrays = {"orientation": _quaternion(orientation)}
+        for name, value in zip(_MOTION_FIELDS[1:], given, strict=True):
+            arrays[name] = _real_array(value, name, "a 3-vector or an (n, 3) array")
         for name, width in (("orientation", 4), ("velocity", 3), ("angular_velocity", 3), ("acceleration", 3), ("angular_acceleration", 3)):
-            array = getattr(self, name)
+            array = arrays[name]
             if array.ndim not in (1, 2) or array.shape[-1] != width:
                 raise ValueError(f"base_motion.{name} must have shape ({width},) or (n_samples, {width}), got {array.shape}")
             if not np.all(np.isfinite(array)):
                 raise ValueError(f"base_motion.{name} must be finite, got {array.tolist()}")
-        single = all(getattr(self, name).ndim == 1 for name in _MOTION_FIELDS)
-        object.__setattr__(self, "_one", tuple(getattr(self, name) for name in _MOTION_FIELDS) if single else None)
+        for name in _MOTION_FIELDS:
+            object.__setattr__(self, name, arrays[name])
+        single = all(arrays[name].ndim == 1 for name in _MOTION_FIELDS)
+        object.__setattr__(self, "_one", tuple(arrays[name] for name in _MOTION_FIELDS) if single else None)
         with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
             norms = np.linalg.norm(np.atleast_2d(self.orientation), axis=1)
         bad = np.flatnonzero(np.abs(norms - 1.0) > 1e-6)
@@ -169,7 +179,8 @@ class RobotRegressors:
         cd_table, cm_table = table(cd, "cd"), table(cm, "cm")
 
         def apply(columns: FloatArray, coefficients: FloatArray) -> FloatArray:
-            return np.einsum("...jkd,kd->...j", columns, coefficients)
+            forces: FloatArray = np.einsum("...jkd,kd->...j", columns, coefficients)
+            return forces
 
         base = BaseWrench(
             drag=apply(self.base_drag, cd_table),

@@ -90,8 +90,8 @@ def leg_model(leg: Leg | None = None, fluid: str | None = None) -> str:
             extents = np.array([side, side, side])
         else:
             # Drag along n_k uses the extent along the other normal: widths = (along n1, along n0).
-            axes = [np.abs(segment.axis), np.abs(segment.normals[0]), np.abs(segment.normals[1])]  # type: ignore[index]
-            sizes = [segment.length, segment.widths[1], segment.widths[0]]  # type: ignore[index]
+            axes = [np.abs(segment.axis), np.abs(segment.normals[0]), np.abs(segment.normals[1])]
+            sizes = [segment.length, segment.widths[1], segment.widths[0]]
             extents = sum((a * s for a, s in zip(axes, sizes, strict=True)), np.zeros(3))
         a, b, c = extents
         inertia = link.mass / 12.0 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])
@@ -142,10 +142,12 @@ class Run:
         return self.q - self.q_desired
 
     def rms_error(self) -> FloatArray:
-        return np.sqrt(np.mean(self.error[self.window] ** 2, axis=0))
+        rms: FloatArray = np.sqrt(np.mean(self.error[self.window] ** 2, axis=0))
+        return rms
 
     def peak_error(self) -> FloatArray:
-        return np.max(np.abs(self.error[self.window]), axis=0)
+        peak: FloatArray = np.max(np.abs(self.error[self.window]), axis=0)
+        return peak
 
     def positive_work(self) -> float:
         power = np.maximum(self.torque[self.window] * self.qd[self.window], 0.0).sum(axis=1)
@@ -170,7 +172,7 @@ def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | Non
         raise ValueError(f"depth must be between 0 and 11000 m, got {depth!r}")
     if not (math.isfinite(cycles) and 0.0 < cycles <= MAX_CYCLES):
         raise ValueError(f"cycles must be finite and > 0, at most {MAX_CYCLES} (gait cycles), got {cycles!r}")
-    import mujoco  # type: ignore[import-untyped]
+    import mujoco
 
     from . import synthetic
     from .gait import WalkingGait
@@ -183,7 +185,7 @@ def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | Non
     land = mujoco.MjData(model)
     gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
     steps = round(cycles * gait.period / TIMESTEP)
-    time = np.arange(steps + 1) * TIMESTEP
+    time = np.arange(steps + 1, dtype=np.float64) * TIMESTEP
     q_d, qd_d, qdd_d = gait.joint_states(time)
     # Feedforward along the desired trajectory, all at once.
     scale = 1.3 if controller.endswith("_wrong") else 1.0
@@ -249,7 +251,8 @@ class FluidComparison:
     def relative_difference(self, name: str) -> FloatArray:
         """RMS of (model − uwml) per joint over uwml's RMS."""
         difference = getattr(self, name) - self.uwml
-        return np.sqrt(np.mean(difference**2, axis=0)) / self.rms()["uwml"]
+        relative: FloatArray = np.sqrt(np.mean(difference**2, axis=0)) / self.rms()["uwml"]
+        return relative
 
 
 def fluid_models(samples: int = 200) -> FluidComparison:
@@ -333,7 +336,7 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
     kp_arm, kd_arm = rigid[6:] * arm_omega**2, rigid[6:] * 2.0 * arm_omega
     trajectory = SineTrajectory([0.4, 0.3, 0.5, 0.6, 0.4, 0.6, 0.0], period=4.0)
     steps = round(duration / timestep)
-    time = np.arange(steps + 1) * timestep
+    time = np.arange(steps + 1, dtype=np.float64) * timestep
     q_d, qd_d, _ = trajectory.joint_states(time)
     sim.data.qpos[7:], sim.data.qvel[6:] = q_d[0], qd_d[0]
     start = np.array(sim.data.qpos[:3])
@@ -448,7 +451,7 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
         figure.tight_layout()
         figure.savefig(out / "fluid_models.png", dpi=110)
         plt.close(figure)
-        rms = fluid.rms()
+        fluid_rms = fluid.rms()
         lines += [
             "## MuJoCo's fluid models on the same motion",
             "",
@@ -463,7 +466,7 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
         ]
         for name in ("uwml", "box", "ellipsoid"):
             difference = "—" if name == "uwml" else ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
-            lines.append(f"| {name} | {', '.join(f'{x:.2f}' for x in rms[name])} | {difference} |")
+            lines.append(f"| {name} | {', '.join(f'{x:.2f}' for x in fluid_rms[name])} | {difference} |")
         lines += ["", "![uwml and MuJoCo's fluid models](fluid_models.png)", ""]
     if drifts:
         lines += [
@@ -492,7 +495,7 @@ def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> 
     import json
 
     try:
-        import mujoco  # type: ignore[import-untyped]  # noqa: F401
+        import mujoco  # noqa: F401
     except ImportError:
         raise ImportError('uwml simulate needs MuJoCo: pip install "uwml[mujoco]"') from None
     runs = study(depths, CONTROLLERS, cycles, progress_bar)

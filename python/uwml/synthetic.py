@@ -35,9 +35,9 @@ Cd and Cm. With a :class:`uwml.Robot` (any tree) and a :class:`SineTrajectory` (
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,6 +46,8 @@ from . import reference
 from .logs import Log
 from .losses import RPM, Drive, OilDrag, Seal
 from .model import Water
+
+FloatArray = NDArray[np.float64]
 
 if TYPE_CHECKING:
     from .gait import WalkingGait
@@ -102,7 +104,7 @@ def three_configuration_experiment(
     noise_a: float = 0.02,
     dry_current_a: tuple[float, float] = (0.6, 0.3),
     rng: np.random.Generator | int | None = None,
-) -> dict[str, NDArray]:
+) -> dict[str, NDArray[Any]]:
     """Synthetic motor currents of the three-configuration experiment (see the module docstring).
 
     Parameters
@@ -166,7 +168,7 @@ def three_configuration_experiment(
                     rows += [(configuration, speed, pressure, theta, 0)] * int(repeats)
                 rows += [(configuration, speeds.min(), pressure, theta, 1)] * int(startup)
 
-    configuration = np.array([r[0] for r in rows])
+    configurations = np.array([r[0] for r in rows])
     speed_rpm, pressure_mpa, temperature_c = (np.array([r[k] for r in rows], dtype=np.float64) for k in (1, 2, 3))
     is_startup = np.array([r[4] for r in rows], dtype=np.int64)
     # Start-up rows are evaluated at ω → 0⁺: speed 0 with the sign forced to +1.
@@ -176,12 +178,12 @@ def three_configuration_experiment(
     breakaway = seal.s0 + seal.s1_per_mpa * pressure_mpa
     t_seal = np.where(is_startup == 1, breakaway, t_seal_steady)
     current = i0 + i1 * np.abs(omega)
-    current = current + np.where(configuration != "dry", reference.loss_current(drive, t_oil, 0.0), 0.0)
-    current = current + np.where(configuration == "oil_seal", reference.loss_current(drive, 0.0, t_seal), 0.0)
+    current = current + np.where(configurations != "dry", reference.loss_current(drive, t_oil, 0.0), 0.0)
+    current = current + np.where(configurations == "oil_seal", reference.loss_current(drive, 0.0, t_seal), 0.0)
     current = current + generator.normal(0.0, noise_a, size=current.shape)
 
-    columns: dict[str, NDArray] = {
-        "configuration": configuration,
+    columns: dict[str, NDArray[Any]] = {
+        "configuration": configurations,
         "speed_rpm": speed_rpm,
         "pressure_mpa": pressure_mpa,
         "current_a": current,
@@ -281,7 +283,7 @@ class ModelDiscrepancy:
     buoyancy: float = 0.0
 
     def __post_init__(self) -> None:
-        domains = (
+        domains: tuple[tuple[str, Callable[[float], bool], str], ...] = (
             ("damping", lambda x: x >= 0.0, ">= 0 [N·m·s/rad]"),
             ("water_lag", lambda x: x >= 0.0, ">= 0 [s]"),
             ("cd_speed", lambda x: -1.0 < x < 1.0, "in (-1, 1)"),
@@ -292,7 +294,7 @@ class ModelDiscrepancy:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
                 raise TypeError(f"ModelDiscrepancy.{name} must be a number, got {value!r}")
-            if not (np.isfinite(value) and inside(value)):
+            if not (np.isfinite(value) and inside(float(value))):
                 raise ValueError(f"ModelDiscrepancy.{name} must be finite and {allowed}, got {value!r}")
 
 
@@ -437,11 +439,13 @@ def land_water_experiment(
     )
 
 
-def _hydro(leg: Leg | Robot, q: NDArray, qd: NDArray, qdd: NDArray, cd: ArrayLike, cm: ArrayLike, water: Water | None) -> HydroTorques:
+def _hydro(
+    leg: Leg | Robot, q: FloatArray, qd: FloatArray, qdd: FloatArray, cd: ArrayLike, cm: ArrayLike, water: Water | None
+) -> HydroTorques:
     return leg.hydro(q, qd, qdd, cd=cd, cm=cm) if water is None else leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=water)
 
 
-def _motor_torque(gravity: NDArray, qd: NDArray, qdd: NDArray) -> NDArray[np.float64]:
+def _motor_torque(gravity: FloatArray, qd: FloatArray, qdd: FloatArray) -> FloatArray:
     """The motor torque of a run without water: it holds the weight (``gravity``, the weight's
     torque) and drives the illustrative rigid-body and friction terms."""
     return -gravity + LAND_INERTIA * qdd + LAND_VISCOUS * qd + LAND_COULOMB * np.tanh(qd / _COULOMB_SPEED)

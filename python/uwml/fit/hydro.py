@@ -119,7 +119,8 @@ class _Moments:
         return _Moments(self.gram[:, keep][:, :, keep], self.xty[:, keep], self.yty)
 
     def weighted_gram(self, sigma_joint: Array) -> Array:
-        return np.einsum("j,jab->ab", sigma_joint**-2.0, self.gram)
+        gram: Array = np.einsum("j,jab->ab", sigma_joint**-2.0, self.gram)
+        return gram
 
     def solve(self, sigma_joint: Array) -> Array:
         """Weighted least squares from the normal equations, with the columns scaled to unit
@@ -128,12 +129,13 @@ class _Moments:
         rhs = np.einsum("j,ja->a", sigma_joint**-2.0, self.xty)
         scale = np.sqrt(np.diag(gram))
         scale = np.where(scale > 0.0, scale, 1.0)
-        return np.linalg.lstsq(gram / np.outer(scale, scale), rhs / scale, rcond=None)[0] / scale
+        return np.asarray(np.linalg.lstsq(gram / np.outer(scale, scale), rhs / scale, rcond=None)[0], dtype=np.float64) / scale
 
     def residual_squares(self, x: Array) -> Array:
         """``|Xⱼx − yⱼ|²`` per joint, from the moments (an estimate of scale: it loses the
         digits that ``|y|²`` has beyond the residuals')."""
-        return np.clip(self.yty - 2.0 * self.xty @ x + np.einsum("a,jab,b->j", x, self.gram, x), 0.0, None)
+        squares: Array = np.clip(self.yty - 2.0 * self.xty @ x + np.einsum("a,jab,b->j", x, self.gram, x), 0.0, None)
+        return squares
 
 
 class _HydroDesign:
@@ -142,18 +144,24 @@ class _HydroDesign:
     chunk of samples; the chunks are kept while they fit into ``cache_bytes``."""
 
     def __init__(self, leg: Leg, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
-        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
-        self._leg, self._log, self._water, self._per, self._joints = leg, log, water, per, joints
+        self._leg = leg
         n_links = leg.n_joints
-        self.names: list[str] = []
+        names: list[str] = []
         for prefix in ("cd", "cm"):
             if per == "leg":
-                self.names.append(prefix)
+                names.append(prefix)
             elif per == "link":
-                self.names += [f"{prefix}_link{link}" for link in range(n_links)]
+                names += [f"{prefix}_link{link}" for link in range(n_links)]
             else:
-                self.names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
-        size = log.n_samples * len(joints) * (len(self.names) + 1) * 8
+                names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
+        self._setup(log, water, per, joints, cache_bytes, names)
+
+    def _setup(self, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int, names: list[str]) -> None:
+        """What every design keeps: the log, the water, the columns' names, the chunk cache."""
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        self._log, self._water, self._per, self._joints = log, water, per, joints
+        self.names = names
+        size = log.n_samples * len(joints) * (len(names) + 1) * 8
         self._cache: list[Array] | None = [] if size <= cache_bytes else None
         self._cached = False
         self._keep: NDArray[np.bool_] | None = None
@@ -181,9 +189,9 @@ class _HydroDesign:
         log = self._log
         assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
         rows = slice(start, stop)
-        chunk = [np.ascontiguousarray(a[rows]) for a in (log.q, log.qd, log.qdd)]
+        q, qd, qdd = (np.ascontiguousarray(a[rows]) for a in (log.q, log.qd, log.qdd))
         delta = np.ascontiguousarray(log.tau_water[rows] - log.tau_land[rows])
-        return self._leg._chain.hydro_design(*chunk, delta, self._water.density, self._water.gravity, self._joints, self._per)
+        return self._leg._chain.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
 
     def chunks(self) -> Iterator[Array]:
         """The problem chunk by chunk, joint-major ``(J, c, P + 1)``: every column's regressor,
@@ -318,8 +326,7 @@ class _RobotHydroDesign(_HydroDesign):
         self._map = np.zeros((n_segments * 2, len(half)))
         for k, d, column in columns:
             self._map[2 * k + d, column] = 1.0
-        super().__init__(robot, log, water, per, joints, cache_bytes)  # type: ignore[arg-type]
-        self.names = [f"{prefix}{suffix}" for prefix in ("cd", "cm") for suffix in half]
+        self._setup(log, water, per, joints, cache_bytes, [f"{prefix}{suffix}" for prefix in ("cd", "cm") for suffix in half])
         self._rows = max(64, self.REGRESSOR_BYTES // (2 * (6 + robot.n_joints) * max(n_segments, 1) * 2 * 8))
 
     def _chunk_samples(self) -> int:
@@ -365,7 +372,8 @@ def _huber_covariance(gram: Array, residual: Array, scale: float) -> Array | Non
     psi = np.clip(residual, -scale, scale)
     k = 1.0 + (p / n) * mean_slope * (1.0 - mean_slope) / mean_slope**2
     factor = k**2 * float(psi @ psi) / (n - p) / mean_slope**2
-    return factor * np.linalg.inv(gram)
+    covariance: Array = factor * np.asarray(np.linalg.inv(gram), dtype=np.float64)
+    return covariance
 
 
 def hydro_coefficients(
@@ -431,11 +439,11 @@ def hydro_coefficients(
     from ..robot import Robot
 
     leg = Leg.paper() if leg is None else leg
-    is_robot = isinstance(leg, Robot)
-    if not is_robot and not isinstance(leg, Leg):
+    if not isinstance(leg, (Leg, Robot)):
         raise TypeError(f"leg must be a uwml.Leg or a uwml.Robot, got {type(leg).__name__}")
-    what = "the robot" if is_robot else "the leg"
-    water = (leg.water if is_robot else Water()) if water is None else water  # type: ignore[union-attr]
+    what = "the robot" if isinstance(leg, Robot) else "the leg"
+    if water is None:
+        water = leg.water if isinstance(leg, Robot) else Water()
     if per not in ("leg", "link", "direction"):
         raise ValueError(f"per must be 'leg', 'link' or 'direction', got {per!r}")
     expected = leg.n_joints if n_joints is None else int(n_joints)
@@ -455,8 +463,11 @@ def hydro_coefficients(
         given_sigma = np.broadcast_to(np.asarray(sigma, dtype=np.float64), (n_selected,)) if np.ndim(sigma) <= 1 else None
         if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
             raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
-    design_type = _RobotHydroDesign if is_robot else _HydroDesign
-    design = design_type(leg, log, water, per, selected, cache_bytes)  # type: ignore[arg-type]
+    design: _HydroDesign = (
+        _RobotHydroDesign(leg, log, water, per, selected, cache_bytes)
+        if isinstance(leg, Robot)
+        else _HydroDesign(leg, log, water, per, selected, cache_bytes)
+    )
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0
     dropped = tuple(name for name, k in zip(design.names, keep, strict=True) if not k)

@@ -42,11 +42,13 @@ class _Points:
     @property
     def sigma(self) -> Array:
         """Standard errors of the points, ``sqrt(diag(L Lᵀ))``."""
-        return np.sqrt(np.sum(self.cholesky**2, axis=1))
+        sigma: Array = np.sqrt(np.sum(self.cholesky**2, axis=1))
+        return sigma
 
     def whiten(self, x: Array) -> Array:
         """``L⁻¹ x``: uncorrelated, unit-variance residuals from raw ones."""
-        return scipy.linalg.solve_triangular(self.cholesky, x, lower=True)
+        whitened: Array = scipy.linalg.solve_triangular(self.cholesky, x, lower=True)
+        return whitened
 
 
 @dataclass(frozen=True)
@@ -72,8 +74,8 @@ class _Solution:
         """Singular values of the whitened Jacobian, largest first (from ``JᵀJ`` if that is all
         there is: exact down to about 1e-8 of the largest, far below the rank tolerance's use)."""
         if self.jacobian is not None:
-            return np.linalg.svd(self.jacobian, compute_uv=False)
-        return np.sqrt(np.clip(np.linalg.eigvalsh(self.normal_matrix())[::-1], 0.0, None))
+            return np.asarray(np.linalg.svd(self.jacobian, compute_uv=False), dtype=np.float64)
+        return np.asarray(np.sqrt(np.clip(np.linalg.eigvalsh(self.normal_matrix())[::-1], 0.0, None)), dtype=np.float64)
 
     def rank_tolerance(self) -> float:
         """The smallest singular value, relative to the largest, that counts as non-zero: from
@@ -118,7 +120,8 @@ def _fit_statistics(
     centred = z - ones * (ones @ z) / (ones @ ones)
     total = float(centred @ centred)
     neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
-    covar, message = None, solution.message
+    covar: Array | None = None
+    message = solution.message
     singular = solution.singular_values()
     gram = solution.normal_matrix()
     if nfree <= 0:
@@ -127,7 +130,7 @@ def _fit_statistics(
         weakest = names[int(np.argmin(np.diag(gram)))]
         message += f"; the data do not determine every parameter (singular Jacobian; least sensitive: {weakest})"
     else:
-        covar = np.linalg.inv(gram)
+        covar = np.asarray(np.linalg.inv(gram), dtype=np.float64)
         if scale_covar or not known:
             covar = covar * redchi
         covar = transform @ covar @ transform.T

@@ -77,7 +77,11 @@ def validate_loss_data(columns: Mapping[str, ArrayLike]) -> Columns:
     if n_rows == 0:
         raise ValueError("row 2, column 'configuration': no data rows")
 
-    configuration, speed, pressure, current, startup = [], [], [], [], []
+    configuration: list[str] = []
+    speed: list[float] = []
+    pressure: list[float] = []
+    current: list[float] = []
+    startup: list[int] = []
     temperature: list[float] | None = [] if "temperature_c" in cells else None
     for i in range(n_rows):
         row = i + 2
@@ -253,4 +257,5 @@ def _temperatures(data: Columns, default_c: float) -> Array:
 
 
 def _select(data: Columns, configuration: str, startup: bool) -> NDArray[np.bool_]:
-    return (data["configuration"] == configuration) & (data["startup"] == int(startup))
+    selected: NDArray[np.bool_] = (data["configuration"] == configuration) & (data["startup"] == int(startup))
+    return selected

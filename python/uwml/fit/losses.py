@@ -34,8 +34,10 @@ def _oil_points(data: Columns, drive: Drive, temperature_c: float) -> _Points:
     dry, oil = _select(data, "dry", False), _select(data, "oil", False)
     if not np.any(oil):
         raise ValueError("no steady 'oil' rows to fit")
-    dry_keys = [(s,) for s in data["speed_rpm"][dry].tolist()]
-    oil_keys = list(zip(data["speed_rpm"][oil].tolist(), data["pressure_mpa"][oil].tolist(), theta[oil].tolist(), strict=True))
+    dry_keys: list[tuple[float, ...]] = [(s,) for s in data["speed_rpm"][dry].tolist()]
+    oil_keys: list[tuple[float, ...]] = list(
+        zip(data["speed_rpm"][oil].tolist(), data["pressure_mpa"][oil].tolist(), theta[oil].tolist(), strict=True)
+    )
     dry_groups, oil_groups = _groups([(data["current_a"][dry], dry_keys), (data["current_a"][oil], oil_keys)])
     dry_index = {key[0]: k for k, key in enumerate(dry_groups.keys)}
     which_dry = np.array([dry_index[key[0]] for key in oil_groups.keys], dtype=np.int64)
@@ -45,7 +47,7 @@ def _oil_points(data: Columns, drive: Drive, temperature_c: float) -> _Points:
     coordinates = np.array(oil_groups.keys, dtype=np.float64)
     return _Points(
         data=kt * (oil_groups.mean - dry_groups.mean[which_dry]),
-        cholesky=kt * np.linalg.cholesky(covariance),
+        cholesky=kt * np.asarray(np.linalg.cholesky(covariance), dtype=np.float64),
         speed=coordinates[:, 0] * RPM,
         pressure_mpa=coordinates[:, 1],
         temperature_c=coordinates[:, 2],
@@ -111,7 +113,7 @@ def oil_drag(
         reference_pressure_mpa=reference_pressure_mpa,
         reference_temperature_c=theta_ref,
     )
-    fit_temperature = temperature_sensitivity_per_k is None and np.ptp(points.temperature_c) > 0.0
+    fit_temperature = temperature_sensitivity_per_k is None and bool(np.ptp(points.temperature_c) > 0.0)
     names = ("k_oil", "exponent", "pressure_sensitivity_per_mpa") + (("temperature_sensitivity_per_k",) if fit_temperature else ())
 
     omega_m = drive.ratio * points.speed
@@ -322,7 +324,7 @@ def seal(
         """Best ``(C0, C1, S0 − C0, S1 − C1, D0, D1) ≥ 0`` for this ω_s, and its χ²."""
         a, b = design(omega_s) * inverse_sigma[:, None], points.data * inverse_sigma
         # The problem is convex: an unconstrained optimum inside the bounds is the bounded one.
-        x = np.linalg.lstsq(a, b, rcond=None)[0]
+        x = np.asarray(np.linalg.lstsq(a, b, rcond=None)[0], dtype=np.float64)
         if np.any(x < 0.0):
             x = scipy.optimize.lsq_linear(a, b, bounds=(0.0, np.inf), method="bvls").x
         r = a @ x - b
@@ -338,6 +340,7 @@ def seal(
         d_omega_s = sign * (x[2] + x[3] * p) * e * 2.0 * speed**2 / omega_s**3
         return f, np.column_stack([x_design, d_omega_s])
 
+    names: tuple[str, ...]
     if stribeck_speed is None:
         omega_s0 = _stribeck_search(lambda log_omega_s: levels(math.exp(log_omega_s))[1], math.log(low), math.log(high))
         x0 = np.append(levels(omega_s0)[0], omega_s0)

@@ -38,9 +38,10 @@ def _json_floats(values: ArrayLike) -> list[float | None]:
     of a long log has millions of points.)"""
     array = np.asarray(values, dtype=np.float64).ravel()
     finite = np.isfinite(array)
+    numbers: list[float] = array.tolist()
     if finite.all():
-        return array.tolist()
-    return [x if ok else None for x, ok in zip(array.tolist(), finite.tolist(), strict=True)]
+        return list(numbers)
+    return [x if ok else None for x, ok in zip(numbers, finite.tolist(), strict=True)]
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -139,7 +140,12 @@ class FitResult:
         if not self.errorbars:
             raise ValueError("the fit has no error bars")
         t = float(scipy.stats.t.ppf(0.5 + 0.5 * level, self.nfree))
-        return {name: (self.params[name] - t * self.stderr[name], self.params[name] + t * self.stderr[name]) for name in self.var_names}  # type: ignore[operator]
+        intervals = {}
+        for name in self.var_names:
+            value, error = self.params[name], self.stderr[name]
+            assert error is not None  # a fit with error bars has one for every varied parameter
+            intervals[name] = (value - t * error, value + t * error)
+        return intervals
 
     #: What the weighted χ² means when σ was not given (the loss fits weigh every point 1).
     _unknown_sigma_note = " (σ not given: unit weights, as the unweighted value below)"

@@ -238,7 +238,8 @@ def _rodrigues(axis: Array, angle: Array) -> Array:
     """Rotation matrices (m, 3, 3) by ``angle`` (m,) about the unit ``axis`` (3,)."""
     k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
     s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
+    rotations: Array = np.eye(3) + s * k + (1.0 - c) * (k @ k)
+    return rotations
 
 
 @dataclass(frozen=True)
@@ -261,7 +262,8 @@ class _Kinematics:
         """Velocity (m, 3) of the point at world position ``p`` (m, 3) fixed to ``link``."""
         moved = slice(0, link + 1)
         r = p[:, None, :] - self.origins[:, moved]
-        return np.einsum("mj,mjc->mc", self.qd[:, moved], np.cross(self.axes[:, moved], r))
+        velocity: Array = np.einsum("mj,mjc->mc", self.qd[:, moved], np.cross(self.axes[:, moved], r))
+        return velocity
 
     def acceleration(self, p: Array, v: Array, link: int) -> Array:
         """Acceleration (m, 3) of the point at ``p`` with velocity ``v`` fixed to ``link``.
@@ -273,10 +275,11 @@ class _Kinematics:
         z = self.axes[:, moved]
         r = p[:, None, :] - self.origins[:, moved]
         dr = v[:, None, :] - self.origin_velocities[:, moved]
-        terms = self.qdd[:, moved, None] * np.cross(z, r) + self.qd[:, moved, None] * (
+        terms: Array = self.qdd[:, moved, None] * np.cross(z, r) + self.qd[:, moved, None] * (
             np.cross(self.axis_rates[:, moved], r) + np.cross(z, dr)
         )
-        return terms.sum(axis=1)
+        acceleration: Array = terms.sum(axis=1)
+        return acceleration
 
 
 def _kinematics(chain: _Chain, q: Array, qd: Array, qdd: Array) -> _Kinematics:

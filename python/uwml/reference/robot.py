@@ -127,7 +127,8 @@ def _rodrigues(axis: Array, angle: Array) -> Array:
     """Rotation matrices (n, 3, 3) by ``angle`` (n,) about the unit ``axis`` (3,)."""
     k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
     s, c = np.sin(angle)[:, None, None], np.cos(angle)[:, None, None]
-    return np.eye(3) + s * k + (1.0 - c) * (k @ k)
+    rotations: Array = np.eye(3) + s * k + (1.0 - c) * (k @ k)
+    return rotations
 
 
 @dataclass(frozen=True)
@@ -320,7 +321,8 @@ def _body_wrenches(
 
     def project(w: Array) -> Array:
         """The component of ``w`` (n, S, 3) normal to each segment's axis."""
-        return w - np.einsum("nsc,nsc->ns", w, u)[..., None] * u
+        normal: Array = w - np.einsum("nsc,nsc->ns", w, u)[..., None] * u
+        return normal
 
     def collect(force: Array, moment: Array) -> tuple[Array, Array]:
         return np.einsum("nsc,sb->nbc", force, one_hot), np.einsum("nsc,sb->nbc", moment, one_hot)
