@@ -45,7 +45,7 @@ def test_uwml_describe_prints_and_draws(tmp_path: Path, capsys: pytest.CaptureFi
     assert main(["describe"]) == 0
     assert "3 joints, 2 segments" in capsys.readouterr().out
     assert main(["describe", "--robot", str(tmp_path / "missing.toml")]) == 2
-    assert "missing.toml: cannot be read" in capsys.readouterr().err
+    assert "missing.toml: the model file cannot be read: no such file" in capsys.readouterr().err
     assert main(["describe", "--robot", str(tmp_path / "arm.stl")]) == 2
     assert "--robot takes a uwml model file (.toml), a URDF" in capsys.readouterr().err
 
