@@ -373,3 +373,18 @@ def test_a_named_pipe_is_refused_not_waited_on(tmp_path: Path, call: str) -> Non
     )
     assert run.returncode == 0, run.stderr[-2000:]
     assert "is not a regular file (a named pipe); uwml reads regular files only" in run.stdout + run.stderr
+
+
+def test_a_fit_of_values_whose_products_overflow_names_the_log() -> None:
+    """Finite cells near 1e150 and 1e300 (speeds, torques): the fit's sums overflowed with a
+    RuntimeWarning and then said "no coefficient has a regressor"; now a ValueError naming the log."""
+    from uwml import fit
+
+    n = 200
+    rng = np.random.default_rng(0)
+    log = uwml.Log(
+        np.arange(n) * 0.01, rng.uniform(-1, 1, (n, 3)), np.full((n, 3), 1e150), np.zeros((n, 3)),
+        tau_land=np.zeros((n, 3)), tau_water=np.full((n, 3), 1e300), source="big.csv",
+    )  # fmt: skip
+    with pytest.raises(ValueError, match=r"^big\.csv: the regressors' and torques' products overflow"):
+        fit.hydro_coefficients(log)

@@ -214,7 +214,13 @@ class _HydroDesign:
         gram, xty, yty = np.zeros((n_selected, p, p)), np.zeros((n_selected, p)), np.zeros(n_selected)
         for chunk in self.chunks():
             for j, block in enumerate(chunk):
-                g = block.T @ block
+                with np.errstate(over="ignore", invalid="ignore"):  # refused below, with the log named
+                    g = block.T @ block
+                if not np.all(np.isfinite(g)):
+                    raise ValueError(
+                        f"{self._log.source}: the regressors' and torques' products overflow float64 "
+                        f"(values near 1e150 or beyond, far outside any robot's speeds and torques)"
+                    )
                 gram[j] += g[:p, :p]
                 xty[j] += g[:p, p]
                 yty[j] += g[p, p]
