@@ -15,12 +15,12 @@ from __future__ import annotations
 import datetime
 import math
 import re
+import tomllib
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-import tomllib
 import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st

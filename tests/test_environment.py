@@ -308,5 +308,5 @@ def test_the_domains_are_the_cores() -> None:
     assert domains.MAX_PRESSURE == _core.MAX_PRESSURE
     assert domains.ABSOLUTE_ZERO_C == _core.ABSOLUTE_ZERO_C
     assert domains.OIL_TEMPERATURE_RANGE_C == _core.OIL_TEMPERATURE_RANGE_C
-    for name in ("MAX_LENGTH", "MAX_MASS", "MAX_VOLUME", "MAX_AREA", "MAX_COEFFICIENT", "MAX_DENSITY", "MAX_GRAVITY"):
+    for name in ("MAX_ROBOT_JOINTS", "MAX_LENGTH", "MAX_MASS", "MAX_VOLUME", "MAX_AREA", "MAX_COEFFICIENT", "MAX_DENSITY", "MAX_GRAVITY"):
         assert getattr(domains, name) == getattr(_core, name), name

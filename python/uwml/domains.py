@@ -6,6 +6,8 @@ same numbers (``uwml_core::MAX_DEPTH`` and the others); a test holds the two equ
 MAX_DEPTH = 11_000.0
 #: The largest ambient (gauge) pressure taken [Pa]: the deepest ocean's 110 MPa, with margin.
 MAX_PRESSURE = 1.2e8
+#: The most joints of a robot built from Python (``uwml.MAX_ROBOT_JOINTS``), and so of a log.
+MAX_ROBOT_JOINTS = 64
 #: Absolute zero [°C]: temperatures must be above it.
 ABSOLUTE_ZERO_C = -273.15
 #: The oil temperatures [°C] the oil model is meant for: the sea's, from where sea water freezes

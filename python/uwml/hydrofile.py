@@ -74,10 +74,9 @@ from __future__ import annotations
 import math
 import os
 import re
+import tomllib
 from dataclasses import dataclass, field
 from typing import Any
-
-import tomllib
 
 from ._checks import shown
 from ._core import MAX_COEFFICIENT, MAX_LENGTH, MAX_VOLUME

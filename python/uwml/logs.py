@@ -82,9 +82,9 @@ from typing import IO, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from . import _core
 from ._checks import shown
 from ._files import not_regular
+from .domains import MAX_ROBOT_JOINTS
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
@@ -111,8 +111,6 @@ POLYORDER = 3
 UNIFORM_TOLERANCE = 0.01
 #: Largest magnitude of a time stamp [s] (module docstring).
 MAX_TIME_S = 1e10
-#: Most joints of a log: the most a robot has (``uwml.robot.MAX_ROBOT_JOINTS``).
-MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 #: Column families, in the order they are written.
 _FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
 _COLUMN = re.compile(r"^(q|qd|qdd|tau_land|tau_water|tau)(\d+)$")

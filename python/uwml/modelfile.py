@@ -81,12 +81,11 @@ import functools
 import math
 import os
 import secrets
+import tomllib
 import unicodedata
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, Literal, NoReturn, TypeVar, overload
-
-import tomllib
 
 from ._checks import shown
 from ._files import read_regular
