@@ -611,3 +611,28 @@ def test_cli_rejects_bad_arguments(args: list[str], option: str, capsys: pytest.
         uwml.cli.main(args)
     assert exit_info.value.code not in (0, None)
     assert option in capsys.readouterr().err
+
+
+def test_import_uwml_loads_neither_the_reference_nor_matplotlib() -> None:
+    """``import uwml`` is light: the numpy reference (for tests and checks) and matplotlib (for
+    plots) are imported when used; ``uwml.reference`` still works after a bare ``import uwml``."""
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, uwml; loaded = [m for m in ('uwml.reference', 'matplotlib') if m in sys.modules]; "
+        "assert not loaded, loaded; assert uwml.reference.PAPER_L2 == 0.660; print('ok')"
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
+
+
+def test_the_gaits_leg_lengths_are_the_papers() -> None:
+    """The walking gait's own copy of Table II's lengths equals the core's paper leg and the numpy
+    reference's."""
+    from uwml import gait, reference
+
+    leg = uwml.Leg.paper()
+    assert (gait.PAPER_L2, gait.PAPER_L3) == (reference.PAPER_L2, reference.PAPER_L3)
+    assert leg.joints[2].origin == (gait.PAPER_L2, 0.0, 0.0)
+    assert leg.links[2].segment is not None and leg.links[2].segment.length == gait.PAPER_L3

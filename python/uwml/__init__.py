@@ -67,3 +67,13 @@ __all__ = [
     "write_log",
 ]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str) -> object:
+    """``uwml.reference`` after a bare ``import uwml``: the numpy reference is imported on first
+    use, not with the package (it is for tests and checks, and takes a while to import)."""
+    if name == "reference":
+        import importlib
+
+        return importlib.import_module(".reference", __name__)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -18,12 +18,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._checks import real_array as _real_array
-from .reference import PAPER_L2, PAPER_L3
 
 __all__ = ["WalkingGait", "paper_leg_foot", "paper_leg_ik"]
 
 FloatArray = NDArray[np.float64]
 Knee = Literal["up", "down"]
+
+#: The paper leg's thigh and shank lengths [m] (Table II of Liao et al.; docs/model.md section 2),
+#: as the core's ``Leg.paper()`` holds them (a test holds the three equal). Here, not taken from
+#: ``uwml.reference``, so that ``import uwml`` does not load the numpy reference.
+PAPER_L2 = 0.660
+PAPER_L3 = 0.714
 
 #: Feet closer than this to the yaw axis [m] have no defined hip yaw: the IK refuses them.
 AXIS_CLEARANCE = 1e-9
