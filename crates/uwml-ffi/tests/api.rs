@@ -11,26 +11,12 @@ use uwml_core::{
 };
 use uwml_ffi::*;
 
+mod errors;
+use errors::{blank_error, expect_error, parts};
+
 const Q: [f64; 3] = [0.3, -0.4, 0.6];
 const QD: [f64; 3] = [0.8, 0.5, -0.7];
 const QDD: [f64; 3] = [1.0, -2.0, 0.5];
-
-fn blank_error() -> UwmlError {
-    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
-}
-
-/// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
-fn parts(e: &UwmlError) -> (i32, i64, String) {
-    let bytes = e.field.map(|c| c as u8);
-    let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
-    assert_eq!(e.reserved, 0, "reserved is written 0");
-    (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
-}
-
-fn expect_error(code: i32, e: &UwmlError, want: (i32, i64, &str)) {
-    assert_eq!(code, want.0, "returned code");
-    assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
-}
 
 fn zeroed64() -> UwmlLeg3F64 {
     UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] }

@@ -8,28 +8,15 @@ use core::ptr::{null, null_mut};
 use uwml_core::{AddedMassForm, Water};
 use uwml_ffi::*;
 
+mod errors;
+use errors::{blank_error, expect_error, parts};
+
 mod robots;
 use robots::{
     ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_motion, core_current,
     core_hydro, core_hydro_with, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion,
     params32, wrench32, wrench64,
 };
-
-fn blank_error() -> UwmlError {
-    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
-}
-
-/// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
-fn parts(e: &UwmlError) -> (i32, i64, String) {
-    let bytes = e.field.map(|c| c as u8);
-    let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
-    (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
-}
-
-fn expect_error(code: i32, e: &UwmlError, want: (i32, i64, &str)) {
-    assert_eq!(code, want.0, "returned code ({:?})", parts(e));
-    assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
-}
 
 fn zeroed64() -> Box<UwmlRobotF64> {
     Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })

@@ -4,11 +4,13 @@
 //! API with the same losses, every error code and field, null pointers, overflow.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
-use core::ffi::CStr;
 use core::ptr::{null, null_mut};
 
 use uwml_core::{AddedMassForm, Water, pressure_at_depth};
 use uwml_ffi::*;
+
+mod errors;
+use errors::{blank_error, expect_error};
 
 mod robots;
 use robots::{
@@ -17,23 +19,6 @@ use robots::{
     current32, default_losses, environment32, environment64, losses32, motion32, paper_motion, params32, wrench32,
     wrench64,
 };
-
-fn blank_error() -> UwmlError {
-    UwmlError { code: -99, reserved: -99, index: -99, field: [b'x' as _; UWML_ERROR_FIELD_LEN] }
-}
-
-/// (code, index, field) of a filled `UwmlError`; the field must be NUL-terminated.
-fn parts(e: &UwmlError) -> (i32, i64, String) {
-    let bytes = e.field.map(|c| c as u8);
-    let field = CStr::from_bytes_until_nul(&bytes).expect("NUL-terminated field");
-    assert_eq!(e.reserved, 0, "reserved is written 0");
-    (e.code, e.index, field.to_str().expect("UTF-8 field").to_owned())
-}
-
-fn expect_error(code: i32, e: &UwmlError, want: (i32, i64, &str)) {
-    assert_eq!(code, want.0, "returned code ({:?})", parts(e));
-    assert_eq!(parts(e), (want.0, want.1, want.2.to_owned()));
-}
 
 fn expect_ok(code: i32, e: &UwmlError) {
     expect_error(code, e, (UWML_OK, -1, ""));
