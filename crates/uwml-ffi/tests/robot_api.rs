@@ -13,22 +13,11 @@ use errors::{blank_error, expect_error, parts};
 
 mod robots;
 use robots::{
-    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_motion, core_current,
-    core_hydro, core_hydro_with, core_motion, core_robot, current32, forces32, forces64, motion32, paper, paper_motion,
-    params32, wrench32, wrench64,
+    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, WRENCH_SENTINEL64, arm,
+    arm_motion, built32, core_current, core_hydro, core_hydro_with, core_motion, core_robot, count, current32,
+    forces32, forces64, motion32, paper, paper_motion, params32, wrench_bits32, wrench_bits64, wrench32, wrench64,
+    zeroed32, zeroed64,
 };
-
-fn zeroed64() -> Box<UwmlRobotF64> {
-    Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })
-}
-
-fn zeroed32() -> Box<UwmlRobotF32> {
-    Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
-}
-
-fn count(n: usize) -> u32 {
-    u32::try_from(n).unwrap()
-}
 
 fn new64(robot: &mut UwmlRobotF64, p: &Params, density: f64) -> (i32, UwmlError) {
     let mut error = blank_error();
@@ -60,29 +49,6 @@ fn built64(p: &Params) -> Box<UwmlRobotF64> {
     robot
 }
 
-fn built32(p: &Params) -> Box<UwmlRobotF32> {
-    let p = params32(p);
-    let mut robot = zeroed32();
-    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF32);
-    // SAFETY: live locals; the arrays hold their counts of elements.
-    let code = unsafe {
-        uwml_robot_new_f32(
-            &mut *robot,
-            p.joints.as_ptr(),
-            count(p.joints.len()),
-            p.links.as_ptr(),
-            base,
-            p.segments.as_ptr(),
-            count(p.segments.len()),
-            DENSITY as f32,
-            GRAVITY as f32,
-            null_mut(),
-        )
-    };
-    assert_eq!(code, UWML_OK);
-    robot
-}
-
 /// What an evaluation returned and wrote; the outputs start as a sentinel (-7).
 struct Out64 {
     code: i32,
@@ -93,14 +59,6 @@ struct Out64 {
 
 const SENTINEL64: UwmlJointForcesF64 =
     UwmlJointForcesF64 { drag: -7.0, added_mass: -7.0, buoyancy: -7.0, gravity: -7.0, total: -7.0 };
-const WRENCH_SENTINEL64: UwmlBaseWrenchF64 = UwmlBaseWrenchF64 {
-    drag: [-7.0; 6],
-    added_mass: [-7.0; 6],
-    buoyancy: [-7.0; 6],
-    gravity: [-7.0; 6],
-    total: [-7.0; 6],
-};
-
 fn hydro64(
     robot: &mut UwmlRobotF64,
     state: [&[f64]; 3],
@@ -162,16 +120,8 @@ fn forces_bits64(f: &[UwmlJointForcesF64]) -> Vec<[u64; 5]> {
     f.iter().map(|f| [f.drag, f.added_mass, f.buoyancy, f.gravity, f.total].map(f64::to_bits)).collect()
 }
 
-fn wrench_bits64(w: &UwmlBaseWrenchF64) -> [[u64; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f64::to_bits))
-}
-
 fn forces_bits32(f: &[UwmlJointForcesF32]) -> Vec<[u32; 5]> {
     f.iter().map(|f| [f.drag, f.added_mass, f.buoyancy, f.gravity, f.total].map(f32::to_bits)).collect()
-}
-
-fn wrench_bits32(w: &UwmlBaseWrenchF32) -> [[u32; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f32::to_bits))
 }
 
 /// The C API's f64 evaluation of `params` equals the core's, bit for bit.

@@ -14,71 +14,14 @@ use errors::{blank_error, expect_error};
 
 mod robots;
 use robots::{
-    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Params, Real, arm, arm_conditions,
-    arm_losses, arm_motion, core_current, core_environment, core_hydro_with, core_loss_states, core_motion, core_robot,
-    current32, default_losses, environment32, environment64, losses32, motion32, paper_motion, params32, wrench32,
-    wrench64,
+    ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Real, WRENCH_SENTINEL64, arm, arm_conditions,
+    arm_losses, arm_motion, built32, built64, core_current, core_environment, core_hydro_with, core_loss_states,
+    core_motion, core_robot, count, current32, default_losses, environment32, environment64, losses32, motion32,
+    paper_motion, wrench_bits32, wrench_bits64, wrench32, wrench64, zeroed32, zeroed64,
 };
 
 fn expect_ok(code: i32, e: &UwmlError) {
     expect_error(code, e, (UWML_OK, -1, ""));
-}
-
-fn zeroed64() -> Box<UwmlRobotF64> {
-    Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })
-}
-
-fn zeroed32() -> Box<UwmlRobotF32> {
-    Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
-}
-
-fn count(n: usize) -> u32 {
-    u32::try_from(n).unwrap()
-}
-
-fn built64(p: &Params) -> Box<UwmlRobotF64> {
-    let mut robot = zeroed64();
-    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF64);
-    // SAFETY: live locals; the arrays hold their counts of elements.
-    let code = unsafe {
-        uwml_robot_new_f64(
-            &mut *robot,
-            p.joints.as_ptr(),
-            count(p.joints.len()),
-            p.links.as_ptr(),
-            base,
-            p.segments.as_ptr(),
-            count(p.segments.len()),
-            DENSITY,
-            GRAVITY,
-            null_mut(),
-        )
-    };
-    assert_eq!(code, UWML_OK);
-    robot
-}
-
-fn built32(p: &Params) -> Box<UwmlRobotF32> {
-    let p = params32(p);
-    let mut robot = zeroed32();
-    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF32);
-    // SAFETY: live locals; the arrays hold their counts of elements.
-    let code = unsafe {
-        uwml_robot_new_f32(
-            &mut *robot,
-            p.joints.as_ptr(),
-            count(p.joints.len()),
-            p.links.as_ptr(),
-            base,
-            p.segments.as_ptr(),
-            count(p.segments.len()),
-            DENSITY as f32,
-            GRAVITY as f32,
-            null_mut(),
-        )
-    };
-    assert_eq!(code, UWML_OK);
-    robot
 }
 
 fn set_losses64(
@@ -146,14 +89,6 @@ const SENTINEL64: UwmlJointEnvironmentF64 = UwmlJointEnvironmentF64 {
     current: -7.0,
     total: -7.0,
 };
-const WRENCH_SENTINEL64: UwmlBaseWrenchF64 = UwmlBaseWrenchF64 {
-    drag: [-7.0; 6],
-    added_mass: [-7.0; 6],
-    buoyancy: [-7.0; 6],
-    gravity: [-7.0; 6],
-    total: [-7.0; 6],
-};
-
 fn environment_c64(
     robot: &mut UwmlRobotF64,
     state: [&[f64]; 3],
@@ -244,14 +179,6 @@ fn bits32(e: &[UwmlJointEnvironmentF32]) -> Vec<[u32; 8]> {
     e.iter()
         .map(|e| [e.drag, e.added_mass, e.buoyancy, e.gravity, e.visc, e.seal, e.current, e.total].map(f32::to_bits))
         .collect()
-}
-
-fn wrench_bits64(w: &UwmlBaseWrenchF64) -> [[u64; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f64::to_bits))
-}
-
-fn wrench_bits32(w: &UwmlBaseWrenchF32) -> [[u32; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f32::to_bits))
 }
 
 fn arm_states() -> Vec<[Vec<f64>; 3]> {

@@ -6,6 +6,8 @@
 //! core's values for `tests/c/robot.c`).
 #![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
 
+use core::ptr::{null, null_mut};
+
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
     AddedMassForm, BaseMotion, Chain, Coefficients, Current, Drive, JointForces, JointKind, JointLosses, LossState,
@@ -13,12 +15,13 @@ use uwml_core::{
     robot_hydro_with,
 };
 use uwml_ffi::{
-    UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR,
-    UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64,
-    UwmlCurrentF32, UwmlCurrentF64, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlJointEnvironmentF32,
-    UwmlJointEnvironmentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64,
-    UwmlOilParamsF32, UwmlOilParamsF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlSealParamsF32, UwmlSealParamsF64,
-    UwmlTreeJointF32, UwmlTreeJointF64,
+    UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_OK, UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS,
+    UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32,
+    UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlDriveParamsF32,
+    UwmlDriveParamsF64, UwmlJointEnvironmentF32, UwmlJointEnvironmentF64, UwmlJointForcesF32, UwmlJointForcesF64,
+    UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlOilParamsF32, UwmlOilParamsF64, UwmlRobotF32, UwmlRobotF64,
+    UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlSealParamsF32, UwmlSealParamsF64, UwmlTreeJointF32, UwmlTreeJointF64,
+    uwml_robot_new_f32, uwml_robot_new_f64,
 };
 
 pub const J: usize = 16;
@@ -632,4 +635,79 @@ pub fn wrench32(data: &RobotData<f32, J>) -> UwmlBaseWrenchF32 {
         gravity: w.gravity.to_array(),
         total: w.total().to_array(),
     }
+}
+
+// --- building robots through the C API and reading its outputs (robot_api.rs, robot_losses.rs) ---
+
+pub fn zeroed64() -> Box<UwmlRobotF64> {
+    Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })
+}
+
+pub fn zeroed32() -> Box<UwmlRobotF32> {
+    Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
+}
+
+pub fn count(n: usize) -> u32 {
+    u32::try_from(n).unwrap()
+}
+
+pub fn built32(p: &Params) -> Box<UwmlRobotF32> {
+    let p = params32(p);
+    let mut robot = zeroed32();
+    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF32);
+    // SAFETY: live locals; the arrays hold their counts of elements.
+    let code = unsafe {
+        uwml_robot_new_f32(
+            &mut *robot,
+            p.joints.as_ptr(),
+            count(p.joints.len()),
+            p.links.as_ptr(),
+            base,
+            p.segments.as_ptr(),
+            count(p.segments.len()),
+            DENSITY as f32,
+            GRAVITY as f32,
+            null_mut(),
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    robot
+}
+
+pub const WRENCH_SENTINEL64: UwmlBaseWrenchF64 = UwmlBaseWrenchF64 {
+    drag: [-7.0; 6],
+    added_mass: [-7.0; 6],
+    buoyancy: [-7.0; 6],
+    gravity: [-7.0; 6],
+    total: [-7.0; 6],
+};
+
+pub fn wrench_bits64(w: &UwmlBaseWrenchF64) -> [[u64; 6]; 5] {
+    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f64::to_bits))
+}
+
+pub fn wrench_bits32(w: &UwmlBaseWrenchF32) -> [[u32; 6]; 5] {
+    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f32::to_bits))
+}
+
+pub fn built64(p: &Params) -> Box<UwmlRobotF64> {
+    let mut robot = zeroed64();
+    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF64);
+    // SAFETY: live locals; the arrays hold their counts of elements.
+    let code = unsafe {
+        uwml_robot_new_f64(
+            &mut *robot,
+            p.joints.as_ptr(),
+            count(p.joints.len()),
+            p.links.as_ptr(),
+            base,
+            p.segments.as_ptr(),
+            count(p.segments.len()),
+            DENSITY,
+            GRAVITY,
+            null_mut(),
+        )
+    };
+    assert_eq!(code, UWML_OK);
+    robot
 }
