@@ -74,7 +74,7 @@ from . import _core
 from ._checks import shown
 from .environment import JointLosses, check_depths, check_temperatures, pack_leg_losses
 from .model import Water
-from .robot import BaseMotion, Robot
+from .robot import BaseMotion, Robot, _per_joint_losses
 from .robot_types import BaseWrench, RobotEnvironment, _trusted_motion
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
@@ -317,11 +317,7 @@ class Simulation:
         # The joint losses, packed once for the one-state native path.
         self._losses = robot._effective_losses(losses)
         self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
-        effective = self._losses
-        if effective is None or isinstance(effective, JointLosses):
-            self._joint_losses: tuple[JointLosses | None, ...] = (effective,) * robot.n_joints
-        else:
-            self._joint_losses = tuple(effective)
+        self._joint_losses = _per_joint_losses(self._losses, robot.n_joints)
         if any(loss is not None and loss.seal is not None for loss in self._joint_losses):
             # The seal's friction is a MuJoCo friction constraint (module docstring): the noslip
             # solver removes the creep of soft constraints, so that a held joint stays at rest.
