@@ -5,6 +5,7 @@ mod body;
 pub mod derivatives;
 pub mod dual;
 pub mod error;
+mod frames;
 pub mod hydro;
 pub mod jacobian;
 pub mod kinematics;
@@ -15,6 +16,8 @@ pub mod robot;
 pub mod robot_derivatives;
 pub mod strip;
 pub mod tree;
+mod tree_regressors;
+mod wrench;
 
 pub use derivatives::{EnvironmentJacobians, environment_jacobians, hydro_jacobians};
 pub use dual::Dual;

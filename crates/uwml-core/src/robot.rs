@@ -14,6 +14,7 @@
 use nalgebra::{RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
+use crate::frames::BodyFrames;
 use crate::model::{
     AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_coefficient_table,
     check_length, check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
@@ -121,6 +122,8 @@ pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
     segments: [RobotSegment<T>; S],
     joint_count: usize,
     segment_count: usize,
+    /// Every body in its own body frame, for the evaluation.
+    frames: BodyFrames<T, J, S>,
 }
 
 /// Drag and added-mass coefficients per segment and normal direction (`[segment][k]`), to
@@ -262,7 +265,12 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
         }
         robot.joint_count = joints.len();
         robot.segment_count = segments.len();
-        Ok(robot)
+        Ok(robot.with_frames())
+    }
+
+    /// The robot with its body frames computed.
+    fn with_frames(self) -> Self {
+        Self { frames: BodyFrames::new(self.joints(), self.links(), &self.base, self.segments()), ..self }
     }
 
     /// No joints, no segments, an empty base.
@@ -286,6 +294,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             segments: [segment; S],
             joint_count: 0,
             segment_count: 0,
+            frames: BodyFrames::new(&[], &[], &RigidBody::empty(), &[]),
         }
     }
 
@@ -337,7 +346,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
         }
         robot.joint_count = N;
         robot.segment_count = segment_count;
-        Ok(robot)
+        Ok(robot.with_frames())
     }
 }
 
@@ -373,14 +382,9 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
         SegmentCoefficients { cd: self.segments.map(|s| s.cd), cm: self.segments.map(|s| s.cm) }
     }
 
-    /// The full joint array (capacity `J`), for the evaluation.
-    pub(crate) const fn joint_slots(&self) -> &[TreeJoint<T>; J] {
-        &self.joints
-    }
-
-    /// The full link array (capacity `J`), for the evaluation.
-    pub(crate) const fn link_slots(&self) -> &[RigidBody<T>; J] {
-        &self.links
+    /// Every body in its own body frame, for the evaluation.
+    pub(crate) const fn frames(&self) -> &BodyFrames<T, J, S> {
+        &self.frames
     }
 }
 
@@ -460,6 +464,7 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             segments: self.segments.map(|s| s.map_scalars(f)),
             joint_count: self.joint_count,
             segment_count: self.segment_count,
+            frames: self.frames.map_scalars(f, |s| s.map_scalars(f)),
         }
     }
 }

@@ -1,0 +1,216 @@
+//! Every body of a robot in a body frame of its own, computed once when the robot is built: what
+//! the evaluation (`crate::tree`) needs that does not depend on the state.
+//!
+//! Body frame `F_i` is link `i`'s frame turned by a constant rotation `R_i` whose third column is
+//! joint `i`'s axis. There the joint axis is `e_z`: a revolute joint turns `F_i` about z by `q`
+//! (`F_parent ← F_i` is `T_i Rz(q)`, with `T_i` constant), the generalized force on a joint is
+//! the z component of the moment (revolute) or force (prismatic) about its origin, and a body's
+//! geometry is constant. `R_i` is its parent's wherever the axes agree (then `T_i` is the
+//! identity and costs nothing), else the parent's turned as little as the axes allow. The base's
+//! body frame is the base frame itself.
+
+use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
+
+use crate::robot::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
+
+/// Joint `i` and its link, in the body frames `F_parent` and `F_i`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct JointFrame<T: SimdRealField + Copy> {
+    /// `T_i`: `F_parent ← F_i` at `q = 0`; `None` where it is the identity.
+    pub(crate) turn: Option<Matrix3<T>>,
+    /// The joint's origin in `F_parent` [m].
+    pub(crate) origin: Vector3<T>,
+    /// The joint's axis in `F_parent`, `T_i e_z` (the direction of a prismatic joint's slide).
+    pub(crate) axis: Vector3<T>,
+    /// The link's own bulk in `F_i`.
+    pub(crate) bulk: Bulk<T>,
+    /// The volume [m³] and mass [kg] of the link and every link below it.
+    pub(crate) subtree_volume: T,
+    pub(crate) subtree_mass: T,
+}
+
+/// A body's volume and mass, and their first moments `V c_b` [m⁴] and `m c_m` [kg·m] about its
+/// frame's origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bulk<T: SimdRealField + Copy> {
+    pub(crate) volume: T,
+    pub(crate) volume_moment: Vector3<T>,
+    pub(crate) mass: T,
+    pub(crate) mass_moment: Vector3<T>,
+    /// The centre of mass [m].
+    pub(crate) com: Vector3<T>,
+}
+
+/// The body frames of a robot of up to `J` joints and `S` segments.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct BodyFrames<T: SimdRealField + Copy, const J: usize, const S: usize> {
+    pub(crate) joints: [JointFrame<T>; J],
+    /// The base's bulk, in the base frame.
+    pub(crate) base: Bulk<T>,
+    /// The volume and mass of the whole robot, base included.
+    pub(crate) total_volume: T,
+    pub(crate) total_mass: T,
+    /// Every segment in its body's frame (its owner unchanged).
+    pub(crate) segments: [RobotSegment<T>; S],
+}
+
+impl<T: RealField + Copy> Bulk<T> {
+    /// `body` with its centres in the frame whose axes (columns, in the body's coordinates) are
+    /// `frame`.
+    fn new(body: &RigidBody<T>, frame: &Matrix3<T>) -> Self {
+        Self {
+            volume: body.volume,
+            volume_moment: frame.transpose() * body.cob * body.volume,
+            mass: body.mass,
+            mass_moment: frame.transpose() * body.com * body.mass,
+            com: frame.transpose() * body.com,
+        }
+    }
+}
+
+/// An orthonormal frame (columns) whose z column is the unit `axis` and whose x column is the
+/// column of `parent` most perpendicular to it, made perpendicular (exact for axis-aligned axes).
+fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, parent: &Matrix3<T>) -> Matrix3<T> {
+    if parent.column(2).into_owned() == *axis {
+        return *parent;
+    }
+    let mut x = parent.column(0).into_owned();
+    for c in [parent.column(1).into_owned(), parent.column(2).into_owned()] {
+        if c.dot(axis).abs() < x.dot(axis).abs() {
+            x = c;
+        }
+    }
+    let x = (x - axis * x.dot(axis)).normalize();
+    Matrix3::from_columns(&[x, axis.cross(&x), *axis])
+}
+
+/// `segment` in the body frame with axes `frame` (columns, in the body's coordinates).
+fn segment_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> RobotSegment<T> {
+    let local = |v: &Vector3<T>| frame.transpose() * v;
+    RobotSegment {
+        start: local(&segment.start),
+        axis: local(&segment.axis),
+        section: match segment.section {
+            Section::Rectangular { normals, widths } => {
+                Section::Rectangular { normals: normals.map(|n| local(&n)), widths }
+            }
+            circular @ Section::Circular { .. } => circular,
+        },
+        ..*segment
+    }
+}
+
+impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
+    /// The body frames of validated joints, links, base and segments (parents before children).
+    pub(crate) fn new(
+        joints: &[TreeJoint<T>],
+        links: &[RigidBody<T>],
+        base: &RigidBody<T>,
+        segments: &[RobotSegment<T>],
+    ) -> Self {
+        let identity = Matrix3::identity();
+        let no_bulk = Bulk::new(&RigidBody::empty(), &identity);
+        let mut frames = Self {
+            joints: [JointFrame {
+                turn: None,
+                origin: Vector3::zeros(),
+                axis: Vector3::z(),
+                bulk: no_bulk,
+                subtree_volume: T::zero(),
+                subtree_mass: T::zero(),
+            }; J],
+            base: Bulk::new(base, &identity),
+            total_volume: T::zero(),
+            total_mass: T::zero(),
+            segments: [RobotSegment {
+                owner: Owner::Base,
+                start: Vector3::zeros(),
+                axis: Vector3::x(),
+                length: T::one(),
+                area: T::one(),
+                section: Section::Circular { diameter: T::one() },
+                cd: [T::zero(); 2],
+                cm: [T::zero(); 2],
+            }; S],
+        };
+        // Each body frame's axes (columns) in link coordinates: all link frames agree at q = 0.
+        let mut axes = [identity; J];
+        for (i, (joint, link)) in joints.iter().zip(links).enumerate() {
+            let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
+            let own = frame_about(&joint.axis, &parent);
+            let turn = parent.transpose() * own;
+            if let (Some(slot), Some(frame)) = (axes.get_mut(i), frames.joints.get_mut(i)) {
+                *slot = own;
+                *frame = JointFrame {
+                    turn: (turn != identity).then_some(turn),
+                    origin: parent.transpose() * joint.origin,
+                    axis: turn.column(2).into_owned(),
+                    bulk: Bulk::new(link, &own),
+                    subtree_volume: link.volume,
+                    subtree_mass: link.mass,
+                };
+            }
+        }
+        // Subtree sums, children (later joints) first.
+        for i in (0..joints.len()).rev() {
+            let (Some(joint), Some(&frame)) = (joints.get(i), frames.joints.get(i)) else { continue };
+            match joint.parent.and_then(|p| frames.joints.get_mut(p)) {
+                Some(parent) => {
+                    parent.subtree_volume += frame.subtree_volume;
+                    parent.subtree_mass += frame.subtree_mass;
+                }
+                None => {
+                    frames.total_volume += frame.subtree_volume;
+                    frames.total_mass += frame.subtree_mass;
+                }
+            }
+        }
+        frames.total_volume += base.volume;
+        frames.total_mass += base.mass;
+        for (segment, slot) in segments.iter().zip(frames.segments.iter_mut()) {
+            let axes = match segment.owner {
+                Owner::Base => identity,
+                Owner::Link(i) => axes.get(i).copied().unwrap_or(identity),
+            };
+            *slot = segment_in(segment, &axes);
+        }
+        frames
+    }
+}
+
+impl<T: SimdRealField + Copy> Bulk<T> {
+    /// Every number mapped by `f`.
+    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Bulk<U> {
+        Bulk {
+            volume: f(self.volume),
+            volume_moment: self.volume_moment.map(f),
+            mass: f(self.mass),
+            mass_moment: self.mass_moment.map(f),
+            com: self.com.map(f),
+        }
+    }
+}
+
+impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
+    /// Every number mapped by `f` (see `Robot::map_scalars`).
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(
+        &self,
+        f: impl Fn(T) -> U + Copy,
+        segment: impl Fn(&RobotSegment<T>) -> RobotSegment<U>,
+    ) -> BodyFrames<U, J, S> {
+        BodyFrames {
+            joints: self.joints.map(|j| JointFrame {
+                turn: j.turn.map(|m| m.map(f)),
+                origin: j.origin.map(f),
+                axis: j.axis.map(f),
+                bulk: j.bulk.map_scalars(f),
+                subtree_volume: f(j.subtree_volume),
+                subtree_mass: f(j.subtree_mass),
+            }),
+            base: self.base.map_scalars(f),
+            total_volume: f(self.total_volume),
+            total_mass: f(self.total_mass),
+            segments: self.segments.each_ref().map(segment),
+        }
+    }
+}

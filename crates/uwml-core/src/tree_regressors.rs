@@ -1,0 +1,215 @@
+//! The added-mass matrix of a whole robot and the regressors of its drag and added-mass forces
+//! (docs/model.md sections 4 and 10), by the evaluation of `crate::tree`.
+
+use nalgebra::{Matrix3, SimdRealField, Vector3};
+
+use crate::model::{Water, constant};
+use crate::motion::{BaseMotion, Current};
+use crate::robot::{JointKind, Owner, Robot, SegmentCoefficients};
+use crate::tree::{AddedMassForm, RobotData, finite_lanes, robot_hydro, robot_hydro_with, segment_wrenches, used};
+
+/// The added-mass matrix over base and joints, `M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)` (docs/model.md
+/// section 10, "What is computed"), `(6 + n)²` entries row-major into `out`
+/// (`n = robot.joint_count()`; base first: linear, then angular, then the joints), at joint
+/// positions `q` (the first `n` entries).
+///
+/// Column `k` is minus the added-mass forces at unit acceleration `k` with every velocity and
+/// the current zero: exact, as the added-mass forces are linear in the accelerations and have no
+/// other terms there. The matrix is then symmetrized (`½(M + Mᵀ)`: the two triangles differ by
+/// rounding only); it is positive semi-definite. It does not depend on the base's orientation
+/// or motion. `data` is the workspace (overwritten). An `out` shorter than `(6 + n)²` gets what
+/// fits; a non-finite `q` gives NaN. Never fails, never panics.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+) {
+    added_mass_block(robot, water, coefficients, q, data, out, 0);
+}
+
+/// The joints' block of [`robot_added_mass_matrix`], `M_A[6.., 6..]`: the added mass the
+/// joints of a robot on a fixed base feel, `n²` entries row-major into `out`, at a sixth and
+/// less of the cost when the robot has few joints (the base's six columns are not evaluated).
+/// The same numbers as the full matrix's block; never fails, never panics.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_joint_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+) {
+    added_mass_block(robot, water, coefficients, q, data, out, 6);
+}
+
+/// Rows and columns `first..6 + n` of the added-mass matrix (see [`robot_added_mass_matrix`]),
+/// row-major and symmetrized, into `out`.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+fn added_mass_block<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    coefficients: Option<&SegmentCoefficients<T, S>>,
+    q: &[T; J],
+    data: &mut RobotData<T, J>,
+    out: &mut [T],
+    first: usize,
+) {
+    let n = robot.joint_count();
+    let width = (6 + n).saturating_sub(first);
+    let zero = Vector3::zeros();
+    let still = Current { velocity: zero, acceleration: zero };
+    let rest = [T::zero(); J];
+    for k in 0..width {
+        let unit = |i: usize| if i == first + k { T::one() } else { T::zero() };
+        let motion = BaseMotion {
+            rotation: Matrix3::identity(),
+            velocity: zero,
+            angular_velocity: zero,
+            acceleration: Vector3::new(unit(0), unit(1), unit(2)),
+            angular_acceleration: Vector3::new(unit(3), unit(4), unit(5)),
+        };
+        let qdd: [T; J] = core::array::from_fn(|j| unit(j + 6));
+        robot_hydro(robot, water, coefficients, &motion, &still, q, &rest, &qdd, data);
+        let base = data.base_wrench().added_mass.to_array();
+        let column = base.iter().copied().chain(data.joint_forces().iter().map(|f| f.added_mass));
+        for (row, value) in column.skip(first).enumerate() {
+            if let Some(slot) = out.get_mut(row * width + k) {
+                *slot = -value;
+            }
+        }
+    }
+    let half = constant::<T>(0.5);
+    for row in 0..width {
+        for column in row + 1..width {
+            if let (Some(&a), Some(&b)) = (out.get(row * width + column), out.get(column * width + row)) {
+                let mean = (a + b) * half;
+                for index in [row * width + column, column * width + row] {
+                    if let Some(slot) = out.get_mut(index) {
+                        *slot = mean;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Regressors of the drag and added-mass forces (docs/model.md sections 4 and 10, for whole
+/// robots): with `s = robot.segments().len()` and `n = robot.joint_count()`, entry `(row, 2k + d)` of `drag`
+/// (row-major, `(6 + n) × 2s`) is the generalized force on row `row` (the base wrench's six
+/// components first, then the joints) of segment `k`'s drag along its normal direction `d` at
+/// unit coefficient (a circular segment has all of it in `d = 0`, and zeros in `d = 1`); the
+/// same for `added_mass`. So the drag forces at coefficients `cd` are `Σ_{k,d} cd[k][d] ·
+/// drag[row, 2k + d]`, and the hydrodynamic forces are those two sums plus the buoyancy of
+/// [`RobotData::joint_forces`] and [`RobotData::base_wrench`], which this also evaluates into
+/// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+    drag: &mut [T],
+    added_mass: &mut [T],
+) {
+    robot_hydro_regressors_with(
+        robot,
+        water,
+        AddedMassForm::Morison,
+        motion,
+        current,
+        q,
+        qd,
+        qdd,
+        data,
+        drag,
+        added_mass,
+    );
+}
+
+/// [`robot_hydro_regressors`] with the added mass in the given [`AddedMassForm`] (Kirchhoff's
+/// forces are linear in the coefficients too).
+#[allow(clippy::too_many_arguments)]
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn robot_hydro_regressors_with<T: SimdRealField + Copy, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    water: &Water<T>,
+    form: AddedMassForm,
+    motion: &BaseMotion<T>,
+    current: &Current<T>,
+    q: &[T; J],
+    qd: &[T; J],
+    qdd: &[T; J],
+    data: &mut RobotData<T, J>,
+    drag: &mut [T],
+    added_mass: &mut [T],
+) {
+    let zero = [[T::zero(); 2]; S];
+    let none = SegmentCoefficients { cd: zero, cm: zero };
+    robot_hydro_with(robot, water, Some(&none), form, motion, current, q, qd, qdd, data);
+    let n = robot.joint_count();
+    let columns = 2 * robot.segments().len();
+    let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
+    let nan = T::zero() / T::zero();
+    let base = data.base_frame;
+    let frames = robot.frames();
+    let (one, nothing) = (T::one(), T::zero());
+    for (k, segment) in frames.segments.iter().take(robot.segments().len()).enumerate() {
+        let (frame, owner) = match segment.owner {
+            Owner::Base => (&base, None),
+            Owner::Link(i) => match data.frames.get(i) {
+                Some(frame) => (frame, Some(i)),
+                None => continue,
+            },
+        };
+        for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
+            let wrenches = segment_wrenches(frame, segment, unit, unit, water.density(), form);
+            let column = 2 * k + d;
+            for (out, mut wrench) in [(&mut *drag, wrenches.0), (&mut *added_mass, wrenches.1)] {
+                let mut put = |row: usize, value: T| {
+                    if let Some(slot) = out.get_mut(row * columns + column) {
+                        *slot = value.select(finite, nan);
+                    }
+                };
+                // Every joint: zero, unless it moves the segment's body.
+                for j in 0..n {
+                    put(6 + j, T::zero());
+                }
+                // Up the tree from the owner, in each joint's body frame, to the base's.
+                let mut ancestor = owner;
+                while let Some(j) = ancestor {
+                    let (Some(joint), Some(joint_frame), Some(geometry)) =
+                        (robot.joints().get(j), data.frames.get(j), frames.joints.get(j))
+                    else {
+                        break;
+                    };
+                    put(
+                        6 + j,
+                        match joint.kind {
+                            JointKind::Revolute => wrench.moment.z,
+                            JointKind::Prismatic => wrench.force.z,
+                        },
+                    );
+                    let force = joint_frame.in_parent(joint.kind, geometry, &wrench.force);
+                    let moment = joint_frame.in_parent(joint.kind, geometry, &wrench.moment);
+                    wrench.force = force;
+                    wrench.moment = moment + joint_frame.offset.cross(&force);
+                    // Parents come before children: the walk ends.
+                    ancestor = joint.parent.filter(|&p| p < j);
+                }
+                for (row, value) in wrench.to_array().into_iter().enumerate() {
+                    put(row, value);
+                }
+            }
+        }
+    }
+}
