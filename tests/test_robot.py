@@ -20,13 +20,20 @@ EXAMPLES = settings(max_examples=max(5, int(settings.default.max_examples / 4)))
 COMPONENTS = ("drag", "added_mass", "buoyancy", "gravity")
 
 
-def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True) -> uwml.Robot:
+def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True, axes: str = "any") -> uwml.Robot:
     """A random tree of ``n`` joints: random parents, kinds, axes; every body with one or two
-    segments, rectangular or circular, with their own coefficients."""
+    segments, rectangular or circular, with their own coefficients. ``axes="mixed"``: each joint
+    axis along a coordinate axis (either sign) half of the time, so that parents and children
+    share axes or meet at right angles, as in most real robots."""
 
     def unit() -> np.ndarray:
         v = rng.normal(size=3)
         return v / np.linalg.norm(v)
+
+    def joint_axis() -> np.ndarray:
+        if axes == "mixed" and rng.random() < 0.5:
+            return np.eye(3)[rng.integers(0, 3)] * rng.choice([-1.0, 1.0])
+        return unit()
 
     def segments() -> list[uwml.Segment]:
         out = []
@@ -70,7 +77,7 @@ def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True) ->
     joints = [
         uwml.Joint(
             rng.uniform(-0.5, 0.5, 3),
-            unit(),
+            joint_axis(),
             parent=int(rng.integers(-1, i)) if i else -1,
             kind="prismatic" if rng.random() < 0.3 else "revolute",
         )
@@ -127,10 +134,32 @@ def test_core_matches_the_reference_on_random_trees_in_moving_water(seed: int, n
         robot.joints, robot.links, robot.base, q, qd, qdd, cd=cd, cm=cm, density=density, gravity=gravity,
         current=current, current_acceleration=current_acceleration, added_mass=form, **motion,
     )  # fmt: skip
+    assert_matches_reference(result, expected)
+
+
+def assert_matches_reference(result: uwml.RobotTorques, expected: dict[str, np.ndarray]) -> None:
     actual = {name: getattr(result, name) for name in COMPONENTS} | {f"base_{name}": getattr(result.base, name) for name in COMPONENTS}
     scale = np.maximum.reduce([np.max(np.abs(expected[k]), axis=1) for k in actual]) + 1e-300
     for key, value in actual.items():
         assert_close(value, expected[key], scale, RTOL_REFERENCE, key)
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 9), form=st.sampled_from(["morison", "kirchhoff"]))
+def test_core_matches_the_reference_on_random_trees_on_a_base_at_rest_in_still_water(seed: int, n: int, form: str) -> None:
+    """A base at rest (tilted) in still water, where the core skips the products with the zero
+    motion of the base and of the joints' first links; axes along coordinate axes half of the
+    time, where the body frames of parent and child agree or differ by a quarter turn."""
+    rng = np.random.default_rng(seed)
+    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.8), axes="mixed")
+    samples = 20
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    orientation = random_quaternions(rng, 1) if rng.random() < 0.5 else np.array([[1.0, 0.0, 0.0, 0.0]])
+    result = robot.hydro(q, qd, qdd, base_motion=uwml.BaseMotion(orientation=orientation[0]), added_mass=form)
+    expected = ref.robot_hydro(
+        robot.joints, robot.links, robot.base, q, qd, qdd, density=robot.water.density, gravity=robot.water.gravity,
+        orientation=orientation[0], added_mass=form,
+    )  # fmt: skip
+    assert_matches_reference(result, expected)
 
 
 def test_a_serial_chain_as_a_robot_is_the_leg() -> None:

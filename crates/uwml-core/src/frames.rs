@@ -22,6 +22,11 @@ pub(crate) struct JointFrame<T: SimdRealField + Copy> {
     pub(crate) origin: Vector3<T>,
     /// The joint's axis in `F_parent`, `T_i e_z` (the direction of a prismatic joint's slide).
     pub(crate) axis: Vector3<T>,
+    /// How `F_i`, before its joint moves, moves when `F_parent` turns about its z axis at unit
+    /// rate (in those coordinates): angular velocity `Tᵢᵀ e_z`, velocity of the origin (and its
+    /// acceleration per unit angular acceleration) `Tᵢᵀ (e_z × o)`, acceleration of the origin
+    /// per unit angular velocity squared `Tᵢᵀ (e_z × (e_z × o))`.
+    pub(crate) unit_turn: [Vector3<T>; 3],
     /// The link's own bulk in `F_i`.
     pub(crate) bulk: Bulk<T>,
     /// The volume [m³] and mass [kg] of the link and every link below it.
@@ -115,6 +120,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
                 turn: None,
                 origin: Vector3::zeros(),
                 axis: Vector3::z(),
+                unit_turn: [Vector3::zeros(); 3],
                 bulk: no_bulk,
                 subtree_volume: T::zero(),
                 subtree_mass: T::zero(),
@@ -139,12 +145,20 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
             let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
             let own = frame_about(&joint.axis, &parent);
             let turn = parent.transpose() * own;
+            let origin = parent.transpose() * joint.origin;
+            let tangential = Vector3::z().cross(&origin);
+            let before_turn = |v: Vector3<T>| turn.transpose() * v;
             if let (Some(slot), Some(frame)) = (axes.get_mut(i), frames.joints.get_mut(i)) {
                 *slot = own;
                 *frame = JointFrame {
                     turn: (turn != identity).then_some(turn),
-                    origin: parent.transpose() * joint.origin,
+                    origin,
                     axis: turn.column(2).into_owned(),
+                    unit_turn: [
+                        before_turn(Vector3::z()),
+                        before_turn(tangential),
+                        before_turn(Vector3::z().cross(&tangential)),
+                    ],
                     bulk: Bulk::new(link, &own),
                     subtree_volume: link.volume,
                     subtree_mass: link.mass,
@@ -203,6 +217,7 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S
                 turn: j.turn.map(|m| m.map(f)),
                 origin: j.origin.map(f),
                 axis: j.axis.map(f),
+                unit_turn: j.unit_turn.map(|v| v.map(f)),
                 bulk: j.bulk.map_scalars(f),
                 subtree_volume: f(j.subtree_volume),
                 subtree_mass: f(j.subtree_mass),

@@ -42,6 +42,21 @@ pub(crate) struct Frame<T: SimdRealField + Copy> {
     pub(crate) turn: (T, T),
     /// The frame origin in the parent's body frame (a prismatic joint's slide included).
     pub(crate) offset: Vector3<T>,
+    /// What is known of the motion from the robot's structure alone.
+    shape: Shape,
+}
+
+/// What a frame's motion is, known from the robot's structure and whether the base is at rest:
+/// the forward pass then skips the products with zeros.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shape {
+    /// At rest, in still water: the base of a fixed robot.
+    Still,
+    /// Turning about its own z axis through its fixed origin, in still water: `ω = ω_z e_z`,
+    /// `α = α_z e_z`, and the origin at rest (a revolute joint's link on a base at rest).
+    AboutAxis,
+    /// Any motion.
+    General,
 }
 
 /// A subtree's drag and added-mass wrenches about its joint, and the first moments of its volume
@@ -86,6 +101,7 @@ impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
             water_acceleration: zero,
             turn: (T::zero(), T::one()),
             offset: zero,
+            shape: Shape::General,
         };
         let nothing = T::zero();
         Self {
@@ -173,20 +189,36 @@ fn turn_back<T: SimdRealField + Copy>((sin, cos): (T, T), v: &Vector3<T>) -> Vec
 
 impl<T: SimdRealField + Copy> Frame<T> {
     /// The base's own frame, relative to the water.
+    #[inline(always)]
     fn base(motion: &BaseMotion<T>, water: &Water<T>, current: &Current<T>) -> Self {
         let rotation = motion.rotation();
         let (v, w) = motion.twist();
         let (v_dot, w_dot) = motion.twist_derivative();
+        let zero = Vector3::zeros();
+        let gravity = Vector3::new(rotation.m31, rotation.m32, rotation.m33) * -water.gravity();
+        let still = Self {
+            angular_velocity: zero,
+            angular_acceleration: zero,
+            velocity: zero,
+            acceleration: zero,
+            gravity,
+            water_acceleration: zero,
+            turn: (T::zero(), T::one()),
+            offset: zero,
+            shape: Shape::Still,
+        };
+        if [v, w, v_dot, w_dot, *current.velocity(), *current.acceleration()].iter().all(|x| *x == zero) {
+            return still;
+        }
         let water_acceleration = rotate_back(rotation, current.acceleration());
         Self {
             angular_velocity: w,
             angular_acceleration: w_dot,
             velocity: v - rotate_back(rotation, current.velocity()),
             acceleration: v_dot + w.cross(&v) - water_acceleration,
-            gravity: rotate_back(rotation, &Vector3::z()) * -water.gravity(),
             water_acceleration,
-            turn: (T::zero(), T::one()),
-            offset: Vector3::zeros(),
+            shape: Shape::General,
+            ..still
         }
     }
 
@@ -206,37 +238,50 @@ impl<T: SimdRealField + Copy> Frame<T> {
         }
     }
 
-    /// The frame of a child moved by `joint` (whose body frame is `frame`) at `(q, q̇, q̈)`.
+    /// The frame of a child moved by `joint` (whose body frame is `frame`) at `(q, q̇, q̈)`;
+    /// `still_water`: whether the water's acceleration is zero.
     #[inline(always)]
-    fn child(&self, joint: &TreeJoint<T>, frame: &JointFrame<T>, q: T, qd: T, qdd: T) -> Self {
-        let (turn, offset) = match joint.kind {
-            JointKind::Revolute => (q.simd_sin_cos(), frame.origin),
-            JointKind::Prismatic => ((T::zero(), T::one()), frame.origin + frame.axis * q),
+    fn child(&self, joint: &TreeJoint<T>, frame: &JointFrame<T>, [q, qd, qdd]: [T; 3], still_water: bool) -> Self {
+        let revolute = joint.kind == JointKind::Revolute;
+        let (turn, offset) = if revolute {
+            (q.simd_sin_cos(), frame.origin)
+        } else {
+            ((T::zero(), T::one()), frame.origin + frame.axis * q)
         };
-        let (velocity, acceleration) = self.point_motion(&offset);
-        let into = |v: &Vector3<T>| {
-            let v = match &frame.turn {
-                Some(t) => rotate_back(t, v),
-                None => *v,
-            };
-            match joint.kind {
-                JointKind::Revolute => turn_back(turn, &v),
-                JointKind::Prismatic => v,
+        let before_turn = |v: &Vector3<T>| match &frame.turn {
+            Some(t) => rotate_back(t, v),
+            None => *v,
+        };
+        let turned = |v: &Vector3<T>| if revolute { turn_back(turn, v) } else { *v };
+        let into = |v: &Vector3<T>| turned(&before_turn(v));
+        let zero = Vector3::zeros();
+        let (w, alpha, mut velocity, mut acceleration) = match self.shape {
+            Shape::Still => (zero, zero, zero, zero),
+            // The parent turns about its z axis through its fixed origin: the joint's motion is
+            // the unit turn's, scaled by the parent's rates.
+            Shape::AboutAxis if revolute => {
+                let (rate, rate_change) = (self.angular_velocity.z, self.angular_acceleration.z);
+                let [axis, tangential, centripetal] = &frame.unit_turn;
+                (
+                    turned(&(axis * rate)),
+                    turned(&(axis * rate_change)),
+                    turned(&(tangential * rate)),
+                    turned(&(tangential * rate_change + centripetal * (rate * rate))),
+                )
+            }
+            Shape::AboutAxis | Shape::General => {
+                let (velocity, acceleration) = self.point_motion(&offset);
+                (into(&self.angular_velocity), into(&self.angular_acceleration), into(&velocity), into(&acceleration))
             }
         };
-        let (w, alpha) = (into(&self.angular_velocity), into(&self.angular_acceleration));
-        let (mut velocity, mut acceleration) = (into(&velocity), into(&acceleration));
         // ω × e_z = (ω_y, −ω_x, 0).
-        let (angular_velocity, angular_acceleration) = match joint.kind {
-            JointKind::Revolute => {
-                (Vector3::new(w.x, w.y, w.z + qd), Vector3::new(alpha.x + qd * w.y, alpha.y - qd * w.x, alpha.z + qdd))
-            }
-            JointKind::Prismatic => {
-                let twice = qd + qd;
-                velocity.z += qd;
-                acceleration += Vector3::new(twice * w.y, -twice * w.x, qdd);
-                (w, alpha)
-            }
+        let (angular_velocity, angular_acceleration) = if revolute {
+            (Vector3::new(w.x, w.y, w.z + qd), Vector3::new(alpha.x + qd * w.y, alpha.y - qd * w.x, alpha.z + qdd))
+        } else {
+            let twice = qd + qd;
+            velocity.z += qd;
+            acceleration += Vector3::new(twice * w.y, -twice * w.x, qdd);
+            (w, alpha)
         };
         Self {
             angular_velocity,
@@ -244,9 +289,10 @@ impl<T: SimdRealField + Copy> Frame<T> {
             velocity,
             acceleration,
             gravity: into(&self.gravity),
-            water_acceleration: into(&self.water_acceleration),
+            water_acceleration: if still_water { zero } else { into(&self.water_acceleration) },
             turn,
             offset,
+            shape: if self.shape == Shape::Still && revolute { Shape::AboutAxis } else { Shape::General },
         }
     }
 
@@ -423,14 +469,16 @@ pub(crate) fn forward<T: SimdRealField + Copy, const J: usize, const S: usize>(
     frames: &mut [Frame<T>; J],
 ) {
     let n = robot.joint_count();
+    let still_water = base.water_acceleration == Vector3::zeros();
     let per_joint = robot.joints().iter().zip(&robot.frames().joints).zip(q.iter().zip(qd).zip(qdd)).take(n);
     for (i, ((joint, geometry), ((&q, &qd), &qdd))) in per_joint.enumerate() {
         let parent = match joint.parent {
-            Some(p) => frames.get(p).copied().unwrap_or(*base),
-            None => *base,
+            Some(p) => frames.get(p).unwrap_or(base),
+            None => base,
         };
+        let frame = parent.child(joint, geometry, [q, qd, qdd], still_water);
         if let Some(slot) = frames.get_mut(i) {
-            *slot = parent.child(joint, geometry, q, qd, qdd);
+            *slot = frame;
         }
     }
 }
