@@ -12,7 +12,7 @@ use uwml_core::{BaseMotion, Chain, Coefficients, Current, Robot, RobotData, Wate
 #[path = "common/arm.rs"]
 mod arm;
 
-fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
+fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let water = Water::<T>::default();
     let chain = Chain::<T, 3>::paper();
     let coefficients = Coefficients::<T, 3>::default();

@@ -1,6 +1,7 @@
 //! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
 //! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`,
-//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call;
+//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call
+//! (and `robot-leg|robot-leg-moving|robot-arm f64x4`: `robot_hydro` so);
 //! `... [n_calls] robot-leg|robot-leg-moving|robot-arm [f64|f32]`: `robot_hydro` on the paper leg
 //! (fixed base in still water, or on a moving base in a current) and on a 7-joint arm of 14
 //! segments on a moving ROV in a current (`benches/common/arm.rs`).
@@ -13,8 +14,8 @@ use simba::simd::{SimdValue, WideF64x4};
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Current, JointLosses, LossState, Robot, RobotData, Water, environment_torques,
-    hydro_regressors, hydro_torques, link_motions, pressure_at_depth, robot_hydro,
+    BaseMotion, Chain, Coefficients, Current, JointLosses, LossState, Real, Robot, RobotData, Water,
+    environment_torques, hydro_regressors, hydro_torques, link_motions, pressure_at_depth, robot_hydro,
 };
 
 #[path = "../benches/common/arm.rs"]
@@ -69,7 +70,7 @@ fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) 
 
 /// One `robot_hydro` evaluation.
 #[inline(never)]
-fn robot_torques<T: RealField + Copy, const J: usize, const S: usize>(
+fn robot_torques<T: RealField + Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     (motion, current): &(BaseMotion<T>, Current<T>),
     [q, qd, qdd]: &[[T; J]; 3],
@@ -80,7 +81,7 @@ fn robot_torques<T: RealField + Copy, const J: usize, const S: usize>(
 }
 
 /// [`run`] for [`robot_torques`] on `robot`.
-fn run_robot<T: RealField + Copy, const J: usize, const S: usize>(
+fn run_robot<T: RealField + Real, const J: usize, const S: usize>(
     n: usize,
     robot: &Robot<T, J, S>,
     surroundings: (BaseMotion<T>, Current<T>),
@@ -96,7 +97,7 @@ fn run_robot<T: RealField + Copy, const J: usize, const S: usize>(
     format!("{acc}").parse().unwrap_or(f64::NAN)
 }
 
-fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
+fn run_mode<T: RealField + Real>(n: usize, mode: &str) -> f64 {
     let leg = || Robot::<T, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default());
     match mode {
         "robot-leg" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, (BaseMotion::fixed(), Current::still()))),
@@ -107,6 +108,40 @@ fn run_mode<T: RealField + Copy>(n: usize, mode: &str) -> f64 {
         "environment" => run::<T>(n, environment),
         _ => run::<T>(n, torques),
     }
+}
+
+/// One `robot_hydro` evaluation over four lanes: four states per call.
+#[inline(never)]
+fn robot_torques_lanes<const J: usize, const S: usize>(
+    robot: &Robot<WideF64x4, J, S>,
+    (motion, current): &(BaseMotion<WideF64x4>, Current<WideF64x4>),
+    [q, qd, qdd]: &[[WideF64x4; J]; 3],
+    data: &mut RobotData<WideF64x4, J>,
+) -> WideF64x4 {
+    robot_hydro(robot, &Water::<f64>::default().splat(), None, motion, current, q, qd, qdd, data);
+    black_box(data.base_wrench()).drag.force.x
+        + black_box(data.joint_forces()).first().map_or(WideF64x4::splat(0.0), |f| f.drag)
+}
+
+/// [`run_robot`] over four lanes: the sum over the lanes of every call's output.
+fn run_robot_lanes<const J: usize, const S: usize>(
+    n: usize,
+    robot: &Robot<f64, J, S>,
+    (motion, current): (BaseMotion<f64>, Current<f64>),
+) -> f64 {
+    let robot = robot.splat::<WideF64x4>();
+    let surroundings = (BaseMotion::from_lanes(&[motion]), Current::from_lanes(&[current]));
+    let state = |base: f64, step: f64| core::array::from_fn(|i| WideF64x4::splat(base + step * i as f64));
+    let (qd, qdd) = (state(0.8, -0.45), state(1.0, -0.7));
+    let mut data = RobotData::new();
+    let mut acc = WideF64x4::splat(0.0);
+    for i in 0..n {
+        let q = core::array::from_fn(|j| {
+            WideF64x4::from([0.0, 1e-3, 2e-3, 3e-3].map(|d| 0.3 + d + i as f64 * 1e-7 - 0.2 * j as f64))
+        });
+        acc += robot_torques_lanes(black_box(&robot), &surroundings, &[q, qd, qdd], &mut data);
+    }
+    <[f64; 4]>::from(acc).iter().sum()
 }
 
 /// `hydro_torques` over four lanes: four states per call.
@@ -141,7 +176,14 @@ fn main() {
     let start = Instant::now();
     let acc = match precision.as_str() {
         "f32" => run_mode::<f32>(n, &mode),
-        "f64x4" => run_lanes(n),
+        "f64x4" => match mode.as_str() {
+            "robot-leg" => Robot::<f64, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default())
+                .map_or(f64::NAN, |leg| run_robot_lanes(n, &leg, (BaseMotion::fixed(), Current::still()))),
+            "robot-leg-moving" => Robot::<f64, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default())
+                .map_or(f64::NAN, |leg| run_robot_lanes(n, &leg, arm::rov_motion())),
+            "robot-arm" => run_robot_lanes(n, &arm::arm_on_rov::<f64, 7, 15>(), arm::rov_motion()),
+            _ => run_lanes(n),
+        },
         _ => run_mode::<f64>(n, &mode),
     };
     let ns = start.elapsed().as_nanos() as f64 / n as f64;

@@ -55,8 +55,18 @@ pub(crate) struct BodyFrames<T: SimdRealField + Copy, const J: usize, const S: u
     /// The volume and mass of the whole robot, base included.
     pub(crate) total_volume: T,
     pub(crate) total_mass: T,
-    /// Every segment in its body's frame (its owner unchanged).
-    pub(crate) segments: [RobotSegment<T>; S],
+    /// Every segment's directions in its body's frame.
+    pub(crate) segments: [SegmentGeometry<T>; S],
+}
+
+/// A segment's start, axis and (for a rectangular section) normals, in its body's frame; its
+/// other numbers are the segment's own.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct SegmentGeometry<T: SimdRealField + Copy> {
+    pub(crate) start: Vector3<T>,
+    pub(crate) axis: Vector3<T>,
+    /// Zero for a circular section.
+    pub(crate) normals: [Vector3<T>; 2],
 }
 
 impl<T: RealField + Copy> Bulk<T> {
@@ -89,19 +99,16 @@ fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, parent: &Matrix3<T>) -> M
     Matrix3::from_columns(&[x, axis.cross(&x), *axis])
 }
 
-/// `segment` in the body frame with axes `frame` (columns, in the body's coordinates).
-fn segment_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> RobotSegment<T> {
+/// `segment`'s geometry in the body frame with axes `frame` (columns, in the body's coordinates).
+fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> SegmentGeometry<T> {
     let local = |v: &Vector3<T>| frame.transpose() * v;
-    RobotSegment {
+    SegmentGeometry {
         start: local(&segment.start),
         axis: local(&segment.axis),
-        section: match segment.section {
-            Section::Rectangular { normals, widths } => {
-                Section::Rectangular { normals: normals.map(|n| local(&n)), widths }
-            }
-            circular @ Section::Circular { .. } => circular,
+        normals: match segment.section {
+            Section::Rectangular { normals, .. } => normals.map(|n| local(&n)),
+            Section::Circular { .. } => [Vector3::zeros(); 2],
         },
-        ..*segment
     }
 }
 
@@ -128,16 +135,8 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
             base: Bulk::new(base, &identity),
             total_volume: T::zero(),
             total_mass: T::zero(),
-            segments: [RobotSegment {
-                owner: Owner::Base,
-                start: Vector3::zeros(),
-                axis: Vector3::x(),
-                length: T::one(),
-                area: T::one(),
-                section: Section::Circular { diameter: T::one() },
-                cd: [T::zero(); 2],
-                cm: [T::zero(); 2],
-            }; S],
+            segments: [SegmentGeometry { start: Vector3::zeros(), axis: Vector3::x(), normals: [Vector3::zeros(); 2] };
+                S],
         };
         // Each body frame's axes (columns) in link coordinates: all link frames agree at q = 0.
         let mut axes = [identity; J];
@@ -186,7 +185,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
                 Owner::Base => identity,
                 Owner::Link(i) => axes.get(i).copied().unwrap_or(identity),
             };
-            *slot = segment_in(segment, &axes);
+            *slot = geometry_in(segment, &axes);
         }
         frames
     }
@@ -207,11 +206,7 @@ impl<T: SimdRealField + Copy> Bulk<T> {
 
 impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
     /// Every number mapped by `f` (see `Robot::map_scalars`).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(
-        &self,
-        f: impl Fn(T) -> U + Copy,
-        segment: impl Fn(&RobotSegment<T>) -> RobotSegment<U>,
-    ) -> BodyFrames<U, J, S> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> BodyFrames<U, J, S> {
         BodyFrames {
             joints: self.joints.map(|j| JointFrame {
                 turn: j.turn.map(|m| m.map(f)),
@@ -225,7 +220,11 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S
             base: self.base.map_scalars(f),
             total_volume: f(self.total_volume),
             total_mass: f(self.total_mass),
-            segments: self.segments.each_ref().map(segment),
+            segments: self.segments.map(|g| SegmentGeometry {
+                start: g.start.map(f),
+                axis: g.axis.map(f),
+                normals: g.normals.map(|n| n.map(f)),
+            }),
         }
     }
 }

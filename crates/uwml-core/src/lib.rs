@@ -12,6 +12,7 @@ pub mod kinematics;
 pub mod losses;
 pub mod model;
 pub mod motion;
+pub mod real;
 pub mod robot;
 pub mod robot_derivatives;
 pub mod strip;
@@ -36,6 +37,7 @@ pub use model::{
 };
 pub use motion::{BaseMotion, Current};
 pub use nalgebra;
+pub use real::Real;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
 pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians, robot_jacobians_with};
 pub use tree::{

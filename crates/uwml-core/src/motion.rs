@@ -171,3 +171,59 @@ impl<T: SimdRealField + Copy> Current<T> {
         Current { velocity: self.velocity.map(f), acceleration: self.acceleration.map(f) }
     }
 }
+
+/// One SIMD value from up to `L::LANES` scalars, lane `l` from `values[l]`; lanes beyond the
+/// values take the first (zero where there are none).
+fn gather<L: SimdRealField + Copy>(values: impl Iterator<Item = L::Element>) -> L
+where
+    L::Element: SimdRealField + Copy,
+{
+    let mut values = values.take(L::LANES);
+    let mut out = L::splat(values.next().unwrap_or_else(nalgebra::zero));
+    for (lane, value) in values.enumerate() {
+        out.replace(lane + 1, value);
+    }
+    out
+}
+
+impl<L: SimdRealField + Copy> BaseMotion<L>
+where
+    L::Element: SimdRealField + Copy,
+{
+    /// The motions of up to `L::LANES` evaluations side by side, one per SIMD lane (`lanes[l]`
+    /// in lane `l`; lanes beyond those given repeat the first).
+    #[must_use]
+    pub fn from_lanes(lanes: &[BaseMotion<L::Element>]) -> Self {
+        let vector = |field: fn(&BaseMotion<L::Element>) -> &Vector3<L::Element>| {
+            Vector3::from_fn(|row, _| {
+                gather(lanes.iter().map(|m| field(m).get(row).copied().unwrap_or_else(nalgebra::zero)))
+            })
+        };
+        Self {
+            rotation: Matrix3::from_fn(|row, column| {
+                gather(lanes.iter().map(|m| m.rotation.get((row, column)).copied().unwrap_or_else(nalgebra::zero)))
+            }),
+            velocity: vector(|m| &m.velocity),
+            angular_velocity: vector(|m| &m.angular_velocity),
+            acceleration: vector(|m| &m.acceleration),
+            angular_acceleration: vector(|m| &m.angular_acceleration),
+        }
+    }
+}
+
+impl<L: SimdRealField + Copy> Current<L>
+where
+    L::Element: SimdRealField + Copy,
+{
+    /// The currents of up to `L::LANES` evaluations side by side (see
+    /// [`BaseMotion::from_lanes`]).
+    #[must_use]
+    pub fn from_lanes(lanes: &[Current<L::Element>]) -> Self {
+        let vector = |field: fn(&Current<L::Element>) -> &Vector3<L::Element>| {
+            Vector3::from_fn(|row, _| {
+                gather(lanes.iter().map(|c| field(c).get(row).copied().unwrap_or_else(nalgebra::zero)))
+            })
+        };
+        Self { velocity: vector(|c| &c.velocity), acceleration: vector(|c| &c.acceleration) }
+    }
+}

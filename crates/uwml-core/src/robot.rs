@@ -464,8 +464,25 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             segments: self.segments.map(|s| s.map_scalars(f)),
             joint_count: self.joint_count,
             segment_count: self.segment_count,
-            frames: self.frames.map_scalars(f, |s| s.map_scalars(f)),
+            frames: self.frames.map_scalars(f),
         }
+    }
+}
+
+impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+    /// The same robot over a SIMD type, every number splat across the lanes: the evaluation then
+    /// takes one state per lane in one call, with the same operations as for `T`.
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Robot<L, J, S> {
+        self.map_scalars(L::splat)
+    }
+}
+
+impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
+    /// The same coefficients over a SIMD type (see [`Robot::splat`]).
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> SegmentCoefficients<L, S> {
+        self.map_scalars(L::splat)
     }
 }
 

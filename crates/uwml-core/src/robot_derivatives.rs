@@ -16,6 +16,7 @@ use crate::dual::Dual;
 use crate::losses::{LossState, loss_torques};
 use crate::model::Water;
 use crate::motion::{BaseMotion, Current};
+use crate::real::Real;
 use crate::robot::{Robot, SegmentCoefficients};
 use crate::tree::{AddedMassForm, RobotData, robot_added_mass_matrix, robot_hydro_with};
 
@@ -63,7 +64,7 @@ pub struct RobotJacobians<'a, T> {
 /// their sizes get what fits. Never fails, never panics.
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_jacobians<T: RealField + Copy, const J: usize, const S: usize>(
+pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -84,7 +85,7 @@ pub fn robot_jacobians<T: RealField + Copy, const J: usize, const S: usize>(
 /// is the same for both).
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_jacobians_with<T: RealField + Copy, const J: usize, const S: usize>(
+pub fn robot_jacobians_with<T: RealField + Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,

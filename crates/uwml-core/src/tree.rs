@@ -13,10 +13,11 @@
 
 use nalgebra::{Matrix3, SimdBool, SimdRealField, Vector3};
 
-use crate::frames::JointFrame;
+use crate::frames::{JointFrame, SegmentGeometry};
 use crate::kinematics::{dot, rotate, rotate_back};
 use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
+use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
 use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 pub use crate::tree_regressors::{
@@ -241,13 +242,13 @@ impl<T: SimdRealField + Copy> Frame<T> {
     /// The frame of a child moved by `joint` (whose body frame is `frame`) at `(q, q̇, q̈)`;
     /// `still_water`: whether the water's acceleration is zero.
     #[inline(always)]
-    fn child(&self, joint: &TreeJoint<T>, frame: &JointFrame<T>, [q, qd, qdd]: [T; 3], still_water: bool) -> Self {
+    fn child(&self, joint: &TreeJoint<T>, frame: &JointFrame<T>, [q, qd, qdd]: [T; 3], still_water: bool) -> Self
+    where
+        T: Real,
+    {
         let revolute = joint.kind == JointKind::Revolute;
-        let (turn, offset) = if revolute {
-            (q.simd_sin_cos(), frame.origin)
-        } else {
-            ((T::zero(), T::one()), frame.origin + frame.axis * q)
-        };
+        let (turn, offset) =
+            if revolute { (q.sin_cos(), frame.origin) } else { ((T::zero(), T::one()), frame.origin + frame.axis * q) };
         let before_turn = |v: &Vector3<T>| match &frame.turn {
             Some(t) => rotate_back(t, v),
             None => *v,
@@ -326,18 +327,19 @@ pub enum AddedMassForm {
 }
 
 /// A segment's drag and added-mass wrenches about its body's origin, in its body frame (where
-/// `segment` is given), at coefficients `cd`, `cm`, in water of `density`.
+/// `geometry` gives its directions), at coefficients `cd`, `cm`, in water of `density`.
 #[inline(always)]
 pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
     frame: &Frame<T>,
     segment: &RobotSegment<T>,
+    geometry: &SegmentGeometry<T>,
     [cd0, cd1]: [T; 2],
     [cm0, cm1]: [T; 2],
     density: T,
     form: AddedMassForm,
 ) -> (Wrench<T>, Wrench<T>) {
-    let start = segment.start;
-    let u = segment.axis;
+    let start = geometry.start;
+    let u = geometry.axis;
     let (v0, a0) = frame.point_motion(&start);
     let w = &frame.angular_velocity;
     // Relative velocity and acceleration along the segment: affine in s.
@@ -348,7 +350,8 @@ pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
     let half = constant::<T>(0.5);
     let added_mass_scale = -rho * segment.area;
     let (drag, added_mass) = match &segment.section {
-        Section::Rectangular { normals, widths } => {
+        Section::Rectangular { widths, .. } => {
+            let normals = &geometry.normals;
             let mut drag = Wrench::zero();
             let mut added_mass = Wrench::zero();
             for ((n, &width), (cd, cm)) in normals.iter().zip(widths.iter()).zip([(cd0, cm0), (cd1, cm1)]) {
@@ -428,7 +431,7 @@ pub(crate) fn finite_lanes<T: SimdRealField + Copy>(states: &[&[T]]) -> T::SimdB
 /// The added mass is the paper's Morison form; [`robot_hydro_with`] takes the form.
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_hydro<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -445,7 +448,7 @@ pub fn robot_hydro<T: SimdRealField + Copy, const J: usize, const S: usize>(
 /// [`robot_hydro`] with the added mass in the given [`AddedMassForm`].
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_with<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_hydro_with<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -462,7 +465,7 @@ pub fn robot_hydro_with<T: SimdRealField + Copy, const J: usize, const S: usize>
 
 /// The forward pass: every link's frame into `data.frames` (parents first).
 #[inline(always)]
-pub(crate) fn forward<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub(crate) fn forward<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     base: &Frame<T>,
     [q, qd, qdd]: [&[T; J]; 3],
@@ -485,7 +488,7 @@ pub(crate) fn forward<T: SimdRealField + Copy, const J: usize, const S: usize>(
 
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn hydro_in<T: SimdRealField + Copy, const J: usize, const S: usize>(
+fn hydro_in<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -521,7 +524,7 @@ fn hydro_in<T: SimdRealField + Copy, const J: usize, const S: usize>(
         mass_moment: frames.base.mass_moment,
     };
     // Each segment's drag and added mass, on its body, in its body frame.
-    for (k, segment) in frames.segments.iter().take(robot.segments().len()).enumerate() {
+    for (k, (segment, geometry)) in robot.segments().iter().zip(&frames.segments).enumerate() {
         let (cd, cm) = match coefficients {
             Some(c) => (c.cd.get(k).copied().unwrap_or(segment.cd), c.cm.get(k).copied().unwrap_or(segment.cm)),
             None => (segment.cd, segment.cm),
@@ -533,7 +536,7 @@ fn hydro_in<T: SimdRealField + Copy, const J: usize, const S: usize>(
                 _ => continue,
             },
         };
-        let (drag, added_mass) = segment_wrenches(frame, segment, cd, cm, rho, form);
+        let (drag, added_mass) = segment_wrenches(frame, segment, geometry, cd, cm, rho, form);
         body.drag += drag;
         body.added_mass += added_mass;
     }

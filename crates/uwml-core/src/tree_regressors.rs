@@ -1,10 +1,11 @@
 //! The added-mass matrix of a whole robot and the regressors of its drag and added-mass forces
 //! (docs/model.md sections 4 and 10), by the evaluation of `crate::tree`.
 
-use nalgebra::{Matrix3, SimdRealField, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
+use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, SegmentCoefficients};
 use crate::tree::{AddedMassForm, RobotData, finite_lanes, robot_hydro, robot_hydro_with, segment_wrenches, used};
 
@@ -20,7 +21,7 @@ use crate::tree::{AddedMassForm, RobotData, finite_lanes, robot_hydro, robot_hyd
 /// or motion. `data` is the workspace (overwritten). An `out` shorter than `(6 + n)²` gets what
 /// fits; a non-finite `q` gives NaN. Never fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_added_mass_matrix<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -36,7 +37,7 @@ pub fn robot_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S:
 /// less of the cost when the robot has few joints (the base's six columns are not evaluated).
 /// The same numbers as the full matrix's block; never fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_joint_added_mass_matrix<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_joint_added_mass_matrix<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -50,7 +51,7 @@ pub fn robot_joint_added_mass_matrix<T: SimdRealField + Copy, const J: usize, co
 /// Rows and columns `first..6 + n` of the added-mass matrix (see [`robot_added_mass_matrix`]),
 /// row-major and symmetrized, into `out`.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-fn added_mass_block<T: SimdRealField + Copy, const J: usize, const S: usize>(
+fn added_mass_block<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
@@ -109,7 +110,7 @@ fn added_mass_block<T: SimdRealField + Copy, const J: usize, const S: usize>(
 /// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     motion: &BaseMotion<T>,
@@ -140,7 +141,7 @@ pub fn robot_hydro_regressors<T: SimdRealField + Copy, const J: usize, const S: 
 /// forces are linear in the coefficients too).
 #[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_regressors_with<T: SimdRealField + Copy, const J: usize, const S: usize>(
+pub fn robot_hydro_regressors_with<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     water: &Water<T>,
     form: AddedMassForm,
@@ -163,7 +164,7 @@ pub fn robot_hydro_regressors_with<T: SimdRealField + Copy, const J: usize, cons
     let base = data.base_frame;
     let frames = robot.frames();
     let (one, nothing) = (T::one(), T::zero());
-    for (k, segment) in frames.segments.iter().take(robot.segments().len()).enumerate() {
+    for (k, (segment, geometry)) in robot.segments().iter().zip(&frames.segments).enumerate() {
         let (frame, owner) = match segment.owner {
             Owner::Base => (&base, None),
             Owner::Link(i) => match data.frames.get(i) {
@@ -172,7 +173,7 @@ pub fn robot_hydro_regressors_with<T: SimdRealField + Copy, const J: usize, cons
             },
         };
         for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
-            let wrenches = segment_wrenches(frame, segment, unit, unit, water.density(), form);
+            let wrenches = segment_wrenches(frame, segment, geometry, unit, unit, water.density(), form);
             let column = 2 * k + d;
             for (out, mut wrench) in [(&mut *drag, wrenches.0), (&mut *added_mass, wrenches.1)] {
                 let mut put = |row: usize, value: T| {

@@ -9,7 +9,7 @@ mod common;
 use common::{Rng, random_chain, random_coefficients};
 use simba::simd::{SimdValue, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{SVector, Scalar};
-use uwml_core::{Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques};
+use uwml_core::{BaseMotion, Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques};
 
 /// Four states side by side (one per lane) of `N` joints.
 fn lanes<L, const N: usize>(states: &[SVector<L::Element, N>; 4]) -> SVector<L, N>
@@ -139,4 +139,63 @@ fn a_non_finite_state_gives_nan_in_its_lane_only() {
     let nan = SVector::<WideF64x4, 3>::repeat(WideF64x4::splat(f64::NAN));
     let all = hydro_torques(&lane_chain, &lane_water, &lane_coefficients, &nan, &nan, &nan);
     assert!((0..4).all(|l| lane(&all.total(), l).iter().all(|x| x.is_nan())));
+}
+
+/// Whole robots over `WideF64x4` (`Robot::splat`, `BaseMotion::from_lanes`): every lane is the
+/// scalar evaluation of its own state, motion and current, bit for bit (the lanes take the
+/// sines lane by lane, `uwml_core::Real`), whatever its neighbours, in both added-mass forms,
+/// joint forces, base wrench and every body's wrench; a group of fewer than four repeats its
+/// first state.
+#[test]
+fn robot_lanes_are_the_scalar_evaluation_bit_for_bit() {
+    use uwml_core::{AddedMassForm, Current, Robot, RobotData, robot_hydro_with};
+    const J: usize = 9;
+    const S: usize = 20;
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let water = Water::new(1030.0, 9.8).unwrap();
+    let lane_water = water.splat::<WideF64x4>();
+    for n in 1..=J {
+        let robot: Robot<f64, J, S> = common::trees::random_robot(&mut rng, n);
+        let lanes_robot = robot.splat::<WideF64x4>();
+        for form in [AddedMassForm::Morison, AddedMassForm::Kirchhoff] {
+            for used in [4, 3, 1] {
+                let states: Vec<[[f64; J]; 3]> = (0..used).map(|_| common::trees::states(&mut rng, n)).collect();
+                let motions: Vec<_> = (0..used).map(|_| common::trees::random_motion(&mut rng)).collect();
+                let currents: Vec<_> =
+                    (0..used).map(|_| Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap()).collect();
+                let group = |k: usize| -> [WideF64x4; J] {
+                    core::array::from_fn(|j| {
+                        WideF64x4::from([0, 1, 2, 3].map(|l| states[if l < used { l } else { 0 }][k][j]))
+                    })
+                };
+                let (q, qd, qdd) = (group(0), group(1), group(2));
+                let (motion, current) = (BaseMotion::from_lanes(&motions), Current::from_lanes(&currents));
+                let mut lanes = RobotData::new();
+                robot_hydro_with(&lanes_robot, &lane_water, None, form, &motion, &current, &q, &qd, &qdd, &mut lanes);
+                for l in 0..used {
+                    let [q, qd, qdd] = &states[l];
+                    let mut scalar = RobotData::new();
+                    robot_hydro_with(&robot, &water, None, form, &motions[l], &currents[l], q, qd, qdd, &mut scalar);
+                    let bits = |x: f64| x.to_bits();
+                    for (a, b) in lanes.joint_forces().iter().zip(scalar.joint_forces()) {
+                        let lane = [a.drag, a.added_mass, a.buoyancy, a.gravity].map(|x| bits(x.extract(l)));
+                        assert_eq!(lane, [b.drag, b.added_mass, b.buoyancy, b.gravity].map(bits), "n {n} lane {l}");
+                    }
+                    let (a, b) = (lanes.base_wrench(), scalar.base_wrench());
+                    for (x, y) in [a.drag, a.added_mass, a.buoyancy, a.gravity]
+                        .iter()
+                        .flat_map(|w| w.to_array())
+                        .zip([b.drag, b.added_mass, b.buoyancy, b.gravity].iter().flat_map(|w| w.to_array()))
+                    {
+                        assert_eq!(bits(x.extract(l)), bits(y), "n {n} lane {l}: base wrench");
+                    }
+                    for body in core::iter::once(None).chain((0..n).map(Some)) {
+                        let a = lanes.body_wrench(&lanes_robot, body).unwrap().to_array();
+                        let b = scalar.body_wrench(&robot, body).unwrap().to_array();
+                        assert_eq!(a.map(|x| bits(x.extract(l))), b.map(bits), "n {n} lane {l}: body {body:?}");
+                    }
+                }
+            }
+        }
+    }
 }

@@ -6,26 +6,25 @@
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, RigidBody, Robot, RobotData,
-    RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, hydro_jacobians,
+    RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint, Water, hydro_jacobians,
     hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
     robot_joint_added_mass_matrix,
 };
 
 mod common;
+use common::trees::random_motion;
 use common::{Rng, random_chain, random_coefficients};
 
 const J: usize = 12;
 const S: usize = 16;
 type Model = Robot<f64, J, S>;
 
+fn random_robot(rng: &mut Rng, n: usize) -> Model {
+    common::trees::random_robot(rng, n)
+}
+
 fn states(rng: &mut Rng, n: usize) -> [[f64; J]; 3] {
-    let mut out = [[0.0; J]; 3];
-    for (k, scale) in [3.0, 2.0, 5.0].into_iter().enumerate() {
-        for x in out[k].iter_mut().take(n) {
-            *x = scale * rng.next();
-        }
-    }
-    out
+    common::trees::states(rng, n)
 }
 
 fn evaluate(
@@ -115,73 +114,6 @@ fn a_chain_on_a_fixed_base_in_still_water_is_the_chain() {
             }
         }
     }
-}
-
-/// A random robot: `n` joints with random parents, kinds, axes; every body (base too) with
-/// random mass, volume and one or two segments, rectangular or circular.
-fn random_robot(rng: &mut Rng, n: usize) -> Model {
-    let joints: Vec<_> = (0..n)
-        .map(|i| TreeJoint {
-            parent: if i == 0 || rng.next() < -0.5 {
-                None
-            } else {
-                Some(((rng.next() + 1.0) / 2.0 * i as f64) as usize)
-            },
-            kind: if rng.next() < -0.4 { JointKind::Prismatic } else { JointKind::Revolute },
-            origin: rng.vector::<3>(0.5),
-            axis: rng.unit(),
-        })
-        .collect();
-    let body = |rng: &mut Rng| RigidBody {
-        mass: 5.0 + 10.0 * rng.next().abs(),
-        com: rng.vector::<3>(0.4),
-        volume: 0.001 + 0.004 * rng.next().abs(),
-        cob: rng.vector::<3>(0.4),
-    };
-    let links: Vec<_> = (0..n).map(|_| body(rng)).collect();
-    let base = body(rng);
-    let mut segments = Vec::new();
-    for owner in core::iter::once(Owner::Base).chain((0..n).map(Owner::Link)) {
-        for _ in 0..(1 + usize::from(rng.next() > 0.3)) {
-            if segments.len() == S {
-                break;
-            }
-            let axis = rng.unit();
-            let n0 = axis.cross(&rng.unit()).normalize();
-            let circular = rng.next() > 0.0;
-            let (cd, cm) = (0.5 + 2.0 * rng.next().abs(), 0.1 + rng.next().abs());
-            segments.push(RobotSegment {
-                owner,
-                start: rng.vector::<3>(0.2),
-                axis,
-                length: 0.2 + rng.next().abs(),
-                area: 0.01 + 0.02 * rng.next().abs(),
-                section: if circular {
-                    Section::Circular { diameter: 0.05 + 0.1 * rng.next().abs() }
-                } else {
-                    Section::Rectangular {
-                        normals: [n0, axis.cross(&n0)],
-                        widths: [0.05 + 0.1 * rng.next().abs(), 0.05 + 0.2 * rng.next().abs()],
-                    }
-                },
-                cd: if circular { [cd; 2] } else { [cd, 0.5 + 2.0 * rng.next().abs()] },
-                cm: if circular { [cm; 2] } else { [cm, 0.1 + rng.next().abs()] },
-            });
-        }
-    }
-    Model::new(&joints, &links, base, &segments).expect("a valid random robot")
-}
-
-fn random_motion(rng: &mut Rng) -> BaseMotion<f64> {
-    let q = UnitQuaternion::from_scaled_axis(rng.vector::<3>(2.0));
-    BaseMotion::new(
-        [q.w, q.i, q.j, q.k],
-        rng.vector::<3>(1.0),
-        rng.vector::<3>(1.0),
-        rng.vector::<3>(2.0),
-        rng.vector::<3>(2.0),
-    )
-    .unwrap()
 }
 
 fn wrench_scale(w: &EnvironmentWrench<f64>) -> f64 {

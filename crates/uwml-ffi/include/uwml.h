@@ -13,8 +13,8 @@
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  3208 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  1608 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 20296 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 10760 bytes.
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 27400 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14344 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -170,12 +170,12 @@
 /**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 2536
+#define UWML_ROBOT_F64_WORDS 3424
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1344
+#define UWML_ROBOT_F32_WORDS 1792
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.

@@ -74,7 +74,7 @@ pub(crate) struct Evaluation<T: RobotPrecision, F> {
 }
 
 /// The f32 and f64 halves of the robot API.
-pub(crate) trait RobotPrecision: RealField + Copy {
+pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
     /// The caller-allocated opaque robot: one tag word, then the `Block<Self>`.
     type Robot;
     type Joint: Copy;

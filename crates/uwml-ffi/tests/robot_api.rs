@@ -221,8 +221,19 @@ fn the_arm_on_a_moving_vehicle_is_the_core_bit_for_bit() {
     let [q, qd, qdd] = ARM_STATE;
     let moving = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), Some(&ARM_CURRENT));
     let fixed = hydro64(&mut robot, [&q, &qd, &qdd], None, None);
-    for (a, b) in moving.forces.iter().zip(&fixed.forces) {
-        assert!(a.drag != b.drag && a.added_mass != b.added_mass && a.buoyancy != b.buoyancy);
+    for (joint, (a, b)) in moving.forces.iter().zip(&fixed.forces).enumerate() {
+        if joint != 4 {
+            // (The wrist rolls about the line of its links' centres of buoyancy: rounding only.)
+            assert!(a.buoyancy != b.buoyancy, "joint {joint}: {a:?} {b:?}");
+        }
+        if joint == 3 || joint == 4 {
+            // The telescope slides, and the wrist rolls, along circular links on the forearm's
+            // axis: the cross-flow model has no axial force there, nor a moment about that axis,
+            // exactly, however the vehicle moves.
+            assert!([a.drag, a.added_mass, b.drag, b.added_mass] == [0.0; 4], "{a:?} {b:?}");
+        } else {
+            assert!(a.drag != b.drag && a.added_mass != b.added_mass, "joint {joint}: {a:?} {b:?}");
+        }
     }
     assert!(moving.wrench.drag.iter().zip(fixed.wrench.drag).all(|(a, b)| *a != b));
 }

@@ -227,7 +227,7 @@ fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6>> {
 }
 
 /// The whole-robot path on a moving base in a current, and a NaN state.
-fn evaluate_robot<T: RealField + Copy>(robot: &Robot<T, 6, 6>, tally: &mut Tally<T>) {
+fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally: &mut Tally<T>) {
     let water = black_box(Water::<T>::default());
     let (q, qd, qdd): ([T; 6], [T; 6], [T; 6]) =
         (vector::<T, 6>(0.3, -0.2).into(), vector::<T, 6>(0.8, -0.45).into(), vector::<T, 6>(1.0, -0.7).into());
@@ -317,7 +317,7 @@ fn scalars<T: RealField + Copy>(tally: &mut Tally<T>) {
     tally.all_finite([running, breakaway, viscous].iter());
 }
 
-fn for_type<T: RealField + Copy>() -> u32 {
+fn for_type<T: RealField + uwml_core::Real>() -> u32 {
     let mut tally = Tally::<T> { bad: 0, _real: core::marker::PhantomData };
     scalars(&mut tally);
     match chain::<T, 1>() {

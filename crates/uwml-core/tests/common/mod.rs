@@ -4,6 +4,8 @@
 use uwml_core::nalgebra::{SVector, Vector3};
 use uwml_core::{Chain, Coefficients, Joint, Link, Segment};
 
+pub mod trees;
+
 /// xorshift64: deterministic random numbers in [-1, 1) without a dependency.
 pub struct Rng(pub u64);
 impl Rng {

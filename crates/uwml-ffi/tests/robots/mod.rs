@@ -512,7 +512,7 @@ pub fn core_hydro_with<T: Real>(
 }
 
 /// f64 or f32, converted from the f64 parameters as C's `(float)x` does.
-pub trait Real: uwml_core::nalgebra::RealField + Copy {
+pub trait Real: uwml_core::nalgebra::RealField + uwml_core::Real {
     fn narrow(x: f64) -> Self;
 }
 

@@ -1,18 +1,24 @@
-//! The batch loops: samples evaluated into rows of numpy arrays (one state per evaluation).
+//! The batch loops: samples evaluated into rows of numpy arrays (the forces four states per
+//! evaluation, on SIMD lanes; the regressors one).
 
 use std::ops::Range;
 
-use uwml_core::{AddedMassForm, Water, loss_torques, robot_hydro_regressors_with, robot_hydro_with};
+use simba::simd::SimdValue;
+use uwml_core::{
+    AddedMassForm, BaseMotion, Current, JointForces, Water, loss_torques, robot_hydro_regressors_with, robot_hydro_with,
+};
 
-use super::inputs::{LossStates, Losses, SampleError, StateRow, Surroundings};
-use super::{Coefficients, Data, Model};
+use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings};
+use super::{Coefficients, Data, LaneData, LaneModel, Model};
+use crate::batch::Lanes;
 
-/// Evaluates samples `range` into `out`: 4 joint arrays `n`-wide, 4 base arrays 6-wide, and the
-/// bodies' world wrenches about their centres of mass (`(n + 1)·6` wide, base first), unless that
-/// array is empty.
+/// Evaluates samples `range` into `out`, four per evaluation (one per SIMD lane; a last group
+/// of fewer repeats its first sample in the lanes left over): 4 joint arrays `n`-wide, 4 base
+/// arrays 6-wide, and the bodies' world wrenches about their centres of mass (`(n + 1)·6` wide,
+/// base first), unless that array is empty.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn hydro_range(
-    robot: &Model,
+    robot: &LaneModel,
     water: &Water<f64>,
     coefficients: Option<&Coefficients>,
     form: AddedMassForm,
@@ -20,7 +26,7 @@ pub(super) fn hydro_range(
     [q, qd, qdd]: [&[f64]; 3],
     losses: Option<&Losses<'_>>,
     range: &Range<usize>,
-    data: &mut Data,
+    data: &mut LaneData,
     out: [&mut [f64]; 12],
 ) -> Result<(), SampleError> {
     let n = robot.joint_count();
@@ -39,50 +45,89 @@ pub(super) fn hydro_range(
         loss_current,
     ] = out;
     let bodies = (n + 1) * 6;
+    let water = water.splat::<Lanes>();
+    let coefficients = coefficients.map(|c| c.splat::<Lanes>());
     let mut loss_states = LossStates::new();
     let mut row = StateRow::new();
-    let fixed = if surroundings.constant() { Some(surroundings.at(0)?) } else { None };
-    for (k, sample) in range.clone().enumerate() {
-        row.load([q, qd, qdd], sample, n);
-        let (motion, current) = match fixed {
-            Some(both) => both,
-            None => surroundings.at(sample)?,
+    let mut lanes = LaneRow::new();
+    let fixed = if surroundings.constant() {
+        let (motion, current) = surroundings.at(0)?;
+        Some((BaseMotion::from_lanes(&[motion]), Current::from_lanes(&[current])))
+    } else {
+        None
+    };
+    let samples: Vec<usize> = range.clone().collect();
+    for (group, chunk) in samples.chunks(4).enumerate() {
+        lanes.load([q, qd, qdd], chunk, n);
+        let (motion, current) = match &fixed {
+            Some(both) => *both,
+            None => {
+                let mut motions = [BaseMotion::fixed(); 4];
+                let mut currents = [Current::still(); 4];
+                for ((m, c), &sample) in motions.iter_mut().zip(currents.iter_mut()).zip(chunk) {
+                    (*m, *c) = surroundings.at(sample)?;
+                }
+                let used = chunk.len();
+                (
+                    BaseMotion::from_lanes(motions.get(..used).unwrap_or(&motions)),
+                    Current::from_lanes(currents.get(..used).unwrap_or(&currents)),
+                )
+            }
         };
-        robot_hydro_with(robot, water, coefficients, form, &motion, &current, &row.q, &row.qd, &row.qdd, data);
-        let joint_row = |out: &mut [f64], value: &dyn Fn(&uwml_core::JointForces<f64>) -> f64| {
-            if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
-                for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
-                    *slot = value(forces);
+        robot_hydro_with(
+            robot,
+            &water,
+            coefficients.as_ref(),
+            form,
+            &motion,
+            &current,
+            &lanes.q,
+            &lanes.qd,
+            &lanes.qdd,
+            data,
+        );
+        for (lane, &sample) in chunk.iter().enumerate() {
+            let k = group * 4 + lane;
+            let joint_row = |out: &mut [f64], value: &dyn Fn(&JointForces<Lanes>) -> Lanes| {
+                if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
+                    for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
+                        *slot = value(forces).extract(lane);
+                    }
+                }
+            };
+            joint_row(drag, &|f| f.drag);
+            joint_row(added_mass, &|f| f.added_mass);
+            joint_row(buoyancy, &|f| f.buoyancy);
+            joint_row(gravity, &|f| f.gravity);
+            let base = data.base_wrench();
+            for (out, wrench) in [
+                (&mut *base_drag, &base.drag),
+                (&mut *base_added_mass, &base.added_mass),
+                (&mut *base_buoyancy, &base.buoyancy),
+                (&mut *base_gravity, &base.gravity),
+            ] {
+                if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
+                    for (slot, x) in row.iter_mut().zip(wrench.to_array()) {
+                        *slot = x.extract(lane);
+                    }
                 }
             }
-        };
-        joint_row(drag, &|f| f.drag);
-        joint_row(added_mass, &|f| f.added_mass);
-        joint_row(buoyancy, &|f| f.buoyancy);
-        joint_row(gravity, &|f| f.gravity);
-        let base = data.base_wrench();
-        for (out, wrench) in [
-            (&mut *base_drag, &base.drag),
-            (&mut *base_added_mass, &base.added_mass),
-            (&mut *base_buoyancy, &base.buoyancy),
-            (&mut *base_gravity, &base.gravity),
-        ] {
-            if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
-                row.copy_from_slice(&wrench.to_array());
+            if let Some(row) = wrenches.get_mut(k * bodies..(k + 1) * bodies) {
+                for (body, slot) in core::iter::once(None).chain((0..n).map(Some)).zip(row.chunks_exact_mut(6)) {
+                    let wrench = data.body_wrench(robot, body).map(|w| w.to_array());
+                    for (out, x) in slot.iter_mut().zip(wrench.unwrap_or([Lanes::splat(f64::NAN); 6])) {
+                        *out = x.extract(lane);
+                    }
+                }
             }
-        }
-        if let Some(row) = wrenches.get_mut(k * bodies..(k + 1) * bodies) {
-            for (body, slot) in core::iter::once(None).chain((0..n).map(Some)).zip(row.chunks_exact_mut(6)) {
-                let wrench = data.body_wrench(robot, body).map_or([f64::NAN; 6], |w| w.to_array());
-                slot.copy_from_slice(&wrench);
-            }
-        }
-        if let Some(losses) = losses {
-            let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());
-            for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
-                if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
-                    for (slot, x) in row.iter_mut().zip(values.iter()) {
-                        *slot = *x;
+            if let Some(losses) = losses {
+                row.load([q, qd, qdd], sample, n);
+                let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());
+                for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
+                    if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
+                        for (slot, x) in row.iter_mut().zip(values.iter()) {
+                            *slot = *x;
+                        }
                     }
                 }
             }

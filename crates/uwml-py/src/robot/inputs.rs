@@ -7,7 +7,10 @@ use pyo3::prelude::*;
 use uwml_core::{BaseMotion, Current, JointLosses, LossState, ModelError};
 
 use super::MAX_ROBOT_JOINTS;
+use simba::simd::SimdValue;
+
 use super::packed::v3;
+use crate::batch::Lanes;
 use crate::{contiguous, contiguous1, parse_losses};
 
 /// The joint losses of an environment evaluation: per joint, and the pressure [Pa] and
@@ -78,6 +81,34 @@ impl StateRow {
         for (values, out) in states.into_iter().zip([&mut self.q, &mut self.qd, &mut self.qdd]) {
             for (slot, x) in out.iter_mut().zip(values.get(sample * n..(sample + 1) * n).unwrap_or(&[])) {
                 *slot = *x;
+            }
+        }
+    }
+}
+
+/// Up to four samples' joint states side by side, one per SIMD lane (a group of fewer repeats
+/// its first sample). The robot's lanes take each angle's sine lane by lane (`uwml_core::Real`),
+/// so no angle needs reducing first.
+pub(super) struct LaneRow {
+    pub(super) q: [Lanes; MAX_ROBOT_JOINTS],
+    pub(super) qd: [Lanes; MAX_ROBOT_JOINTS],
+    pub(super) qdd: [Lanes; MAX_ROBOT_JOINTS],
+}
+
+impl LaneRow {
+    pub(super) fn new() -> Self {
+        let zero = Lanes::splat(0.0);
+        Self { q: [zero; MAX_ROBOT_JOINTS], qd: [zero; MAX_ROBOT_JOINTS], qdd: [zero; MAX_ROBOT_JOINTS] }
+    }
+
+    /// The rows `samples` (up to four) of the batch `states` (`n` joints).
+    pub(super) fn load(&mut self, states: [&[f64]; 3], samples: &[usize], n: usize) {
+        let first = samples.first().copied().unwrap_or(0);
+        let sample = |lane: usize| samples.get(lane).copied().unwrap_or(first);
+        for (values, out) in states.into_iter().zip([&mut self.q, &mut self.qd, &mut self.qdd]) {
+            for (j, slot) in out.iter_mut().enumerate().take(n) {
+                let at = |lane: usize| values.get(sample(lane) * n + j).copied().unwrap_or(0.0);
+                *slot = Lanes::from([at(0), at(1), at(2), at(3)]);
             }
         }
     }

@@ -3,7 +3,7 @@
 //! with the GIL released (optionally on several threads), writes numpy arrays.
 
 use std::ops::{Deref, DerefMut};
-use std::sync::{Mutex, MutexGuard, TryLockError};
+use std::sync::{Mutex, MutexGuard, OnceLock, TryLockError};
 
 use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -20,6 +20,7 @@ mod inputs;
 mod one;
 mod packed;
 
+use crate::batch::Lanes;
 use crate::single::finite_number;
 use crate::{Array2, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
@@ -48,6 +49,9 @@ pub(crate) const SEGMENT_WIDTH: usize = 23;
 
 type Model = Robot<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
 type Data = RobotData<f64, MAX_ROBOT_JOINTS>;
+/// The robot over SIMD lanes, for the batch: four states per evaluation.
+type LaneModel = Robot<Lanes, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
+type LaneData = RobotData<Lanes, MAX_ROBOT_JOINTS>;
 type Coefficients = SegmentCoefficients<f64, MAX_SEGMENTS>;
 
 /// A whole robot (validated, immutable): `Robot(joints, links, base, segments)` from packed
@@ -57,6 +61,10 @@ pub(crate) struct PyRobot {
     robot: Box<Model>,
     /// A workspace kept for one-thread calls, so that they do not set up a new one.
     data: Mutex<Box<Data>>,
+    /// The robot over SIMD lanes, made at the first batch.
+    lanes: OnceLock<Box<LaneModel>>,
+    /// A lane workspace kept for one-thread batches.
+    lane_data: Mutex<Option<Box<LaneData>>>,
     /// The derivatives' workspace (the robot over dual numbers), made at the first call.
     jacobian_data: Mutex<Option<Box<RobotJacobianData<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>>>>,
 }
@@ -91,7 +99,13 @@ impl PyRobot {
             contiguous(&segments, "segments")?,
         )
         .map_err(model_error)?;
-        Ok(Self { robot: Box::new(robot), data: Mutex::new(Box::new(Data::new())), jacobian_data: Mutex::new(None) })
+        Ok(Self {
+            robot: Box::new(robot),
+            data: Mutex::new(Box::new(Data::new())),
+            lanes: OnceLock::new(),
+            lane_data: Mutex::new(None),
+            jacobian_data: Mutex::new(None),
+        })
     }
 
     /// Number of joints.
@@ -156,7 +170,7 @@ impl PyRobot {
             _ => return Err(PyValueError::new_err("losses, pressure and temperature come together")),
         };
         let loss_width = if losses.is_some() { n } else { 0 };
-        let robot = &*self.robot;
+        let robot = &**self.lanes.get_or_init(|| Box::new(self.robot.splat()));
         let [drag, added_mass, buoyancy, weight] = zeroed::<4>(py, n_samples, n);
         let [base_drag, base_added_mass, base_buoyancy, base_weight] = zeroed::<4>(py, n_samples, 6);
         let wrench_width = if body_wrenches { (n + 1) * 6 } else { 0 };
@@ -180,10 +194,11 @@ impl PyRobot {
         let out = writable(&mut guards)?;
         let coefficients = coefficients.as_ref();
         let losses = losses.as_ref();
-        let shared = &self.data;
+        let shared = &self.lane_data;
         let result = py.detach(|| {
             if threads <= 1 {
-                let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                let mut kept = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                let data = kept.get_or_insert_with(|| Box::new(LaneData::new()));
                 hydro_range(
                     robot,
                     &water,
@@ -193,7 +208,7 @@ impl PyRobot {
                     states,
                     losses,
                     &(0..n_samples),
-                    &mut data,
+                    data,
                     out,
                 )
             } else {
@@ -206,7 +221,7 @@ impl PyRobot {
                     threads,
                     out,
                     |range, out| {
-                        let mut data = Box::new(Data::new());
+                        let mut data = Box::new(LaneData::new());
                         hydro_range(
                             robot,
                             &water,

@@ -1,0 +1,34 @@
+//! The number types an evaluation of a whole robot runs on: `f32`, `f64`, dual numbers for
+//! derivatives, and (with the `wide` feature) four `f64` side by side on SIMD lanes.
+
+use nalgebra::SimdRealField;
+
+use crate::dual::Dual;
+
+/// A number type of the evaluation. Everything but the joint angles' sines and cosines is
+/// nalgebra's `SimdRealField` arithmetic; those are computed here, so that SIMD lanes take the
+/// scalar functions lane by lane: every lane then has exactly the bits of a scalar evaluation
+/// of its state, whatever its neighbours.
+pub trait Real: SimdRealField + Copy {
+    /// `(sin x, cos x)`.
+    #[must_use]
+    fn sin_cos(self) -> (Self, Self) {
+        self.simd_sin_cos()
+    }
+}
+
+impl Real for f32 {}
+
+impl Real for f64 {}
+
+impl<T: nalgebra::RealField + Copy, const M: usize> Real for Dual<T, M> {}
+
+#[cfg(feature = "wide")]
+impl Real for simba::simd::WideF64x4 {
+    /// Lane by lane, by `f64`'s own (`simba`'s vectorized sine differs in the last bits).
+    fn sin_cos(self) -> (Self, Self) {
+        let lanes: [f64; 4] = self.into();
+        let [a, b, c, d] = lanes.map(<f64 as Real>::sin_cos);
+        (Self::from([a.0, b.0, c.0, d.0]), Self::from([a.1, b.1, c.1, d.1]))
+    }
+}
