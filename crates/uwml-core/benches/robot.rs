@@ -7,7 +7,10 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{BaseMotion, Chain, Coefficients, Current, Robot, RobotData, Water, hydro_torques, robot_hydro};
+use uwml_core::{
+    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, Robot, RobotData, Water, hydro_torques,
+    robot_hydro,
+};
 
 #[path = "common/arm.rs"]
 mod arm;
@@ -27,10 +30,31 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let mut data = RobotData::<T, 3>::new();
     c.bench_function(&format!("paper leg, tree path, fixed/{name}"), |b| {
         let fixed = (BaseMotion::fixed(), Current::still());
-        b.iter(|| robot_hydro(black_box(&leg), &water, None, &fixed.0, &fixed.1, black_box(&q), &qd, &qdd, &mut data))
+        b.iter(|| {
+            robot_hydro(
+                black_box(&leg),
+                &Conditions {
+                    water,
+                    motion: fixed.0,
+                    current: fixed.1,
+                    coefficients: None,
+                    form: AddedMassForm::Morison,
+                    losses: None,
+                },
+                [black_box(&q), &qd, &qdd],
+                &mut data,
+            )
+        })
     });
     c.bench_function(&format!("paper leg, tree path, moving base in a current/{name}"), |b| {
-        b.iter(|| robot_hydro(black_box(&leg), &water, None, &motion, &current, black_box(&q), &qd, &qdd, &mut data))
+        b.iter(|| {
+            robot_hydro(
+                black_box(&leg),
+                &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
+                [black_box(&q), &qd, &qdd],
+                &mut data,
+            )
+        })
     });
     let arm = arm::arm_on_rov::<T, 7, 15>();
     let mut data = RobotData::<T, 7>::new();
@@ -38,7 +62,14 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let (q, qd, qdd) =
         (s7([0.3, -0.4, 0.6, 0.2, -0.5, 0.1, 0.05]), s7([0.5, 0.3, -0.4, 0.8, 0.2, -0.6, 0.02]), s7([1.0; 7]));
     c.bench_function(&format!("7-joint arm, 14 segments, on a moving ROV in a current/{name}"), |b| {
-        b.iter(|| robot_hydro(black_box(&arm), &water, None, &motion, &current, black_box(&q), &qd, &qdd, &mut data))
+        b.iter(|| {
+            robot_hydro(
+                black_box(&arm),
+                &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
+                [black_box(&q), &qd, &qdd],
+                &mut data,
+            )
+        })
     });
 }
 

@@ -14,8 +14,9 @@ use simba::simd::{SimdValue, WideF64x4};
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Current, JointLosses, LossState, Real, Robot, RobotData, Water,
-    environment_torques, hydro_regressors, hydro_torques, link_motions, pressure_at_depth, robot_hydro,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, JointLosses, LossState, Real, Robot,
+    RobotData, Water, environment_torques, hydro_regressors, hydro_torques, link_motions, pressure_at_depth,
+    robot_hydro,
 };
 
 #[path = "../benches/common/arm.rs"]
@@ -76,7 +77,19 @@ fn robot_torques<T: RealField + Real, const J: usize, const S: usize>(
     [q, qd, qdd]: &[[T; J]; 3],
     data: &mut RobotData<T, J>,
 ) -> T {
-    robot_hydro(robot, &Water::default(), None, motion, current, q, qd, qdd, data);
+    robot_hydro(
+        robot,
+        &Conditions {
+            water: Water::default(),
+            motion: *motion,
+            current: *current,
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [q, qd, qdd],
+        data,
+    );
     black_box(data.base_wrench()).drag.force.x + black_box(data.joint_forces()).first().map_or(T::zero(), |f| f.drag)
 }
 
@@ -118,7 +131,19 @@ fn robot_torques_lanes<const J: usize, const S: usize>(
     [q, qd, qdd]: &[[WideF64x4; J]; 3],
     data: &mut RobotData<WideF64x4, J>,
 ) -> WideF64x4 {
-    robot_hydro(robot, &Water::<f64>::default().splat(), None, motion, current, q, qd, qdd, data);
+    robot_hydro(
+        robot,
+        &Conditions {
+            water: Water::<f64>::default().splat(),
+            motion: *motion,
+            current: *current,
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [q, qd, qdd],
+        data,
+    );
     black_box(data.base_wrench()).drag.force.x
         + black_box(data.joint_forces()).first().map_or(WideF64x4::splat(0.0), |f| f.drag)
 }

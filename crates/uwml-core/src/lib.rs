@@ -2,6 +2,7 @@
 #![no_std]
 
 mod body;
+pub mod conditions;
 pub mod derivatives;
 pub mod dual;
 pub mod error;
@@ -20,6 +21,7 @@ pub mod tree;
 mod tree_regressors;
 mod wrench;
 
+pub use conditions::Conditions;
 pub use derivatives::{EnvironmentJacobians, environment_jacobians, hydro_jacobians};
 pub use dual::Dual;
 pub use error::{ModelError, Problem};
@@ -39,8 +41,8 @@ pub use motion::{BaseMotion, Current};
 pub use nalgebra;
 pub use real::Real;
 pub use robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
-pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians, robot_jacobians_with};
+pub use robot_derivatives::{DUAL_WIDTH, RobotJacobianData, RobotJacobians, robot_jacobians};
 pub use tree::{
     AddedMassForm, EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro,
-    robot_hydro_regressors, robot_hydro_regressors_with, robot_hydro_with, robot_joint_added_mass_matrix,
+    robot_hydro_regressors, robot_joint_added_mass_matrix,
 };

@@ -11,7 +11,7 @@
 //! Sign: as everywhere in uwml, the returned torques are exerted by the environment on the
 //! joint, so they oppose motion: `ω · τ ≤ 0`.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::{RealField, SVector, SimdRealField};
 
 use crate::error::{ModelError, Problem};
 use crate::hydro::{HydroTorques, hydro_torques};
@@ -264,7 +264,7 @@ pub struct JointLosses<T: RealField + Copy> {
 
 /// The loss of one joint at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct JointLoss<T: RealField + Copy> {
+pub struct JointLoss<T: SimdRealField + Copy> {
     /// Oil drag reflected to the output, `−N η T_oil` [N·m] (environment sign).
     pub visc: T,
     /// Seal friction, `−T_seal` [N·m] (environment sign).
@@ -276,7 +276,7 @@ pub struct JointLoss<T: RealField + Copy> {
 /// A joint's losses at a given pressure and temperature: everything that does not depend on
 /// speed, computed once per change of the conditions.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LossState<T: RealField + Copy> {
+pub struct LossState<T: SimdRealField + Copy> {
     oil_scale: T,
     exponent: T,
     seal_running: T,
@@ -633,9 +633,18 @@ pub fn loss_torques<T: RealField + Copy, const N: usize>(
 }
 
 impl<T: RealField + Copy> LossState<T> {
+    /// The same state over a SIMD type, every number splat across the lanes (see
+    /// `Chain::splat`).
+    #[must_use]
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> LossState<L> {
+        self.map_scalars(L::splat)
+    }
+}
+
+impl<T: SimdRealField + Copy> LossState<T> {
     /// The same state over another scalar type, every number mapped by `f`, which must keep
     /// values (as `Dual::constant` does).
-    pub(crate) fn map_scalars<U: RealField + Copy>(&self, f: impl Fn(T) -> U) -> LossState<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U) -> LossState<U> {
         LossState {
             oil_scale: f(self.oil_scale),
             exponent: f(self.exponent),

@@ -4,6 +4,7 @@
 use nalgebra::SimdRealField;
 
 use crate::dual::Dual;
+use crate::losses::{JointLoss, LossState};
 
 /// A number type of the evaluation. Everything but the joint angles' sines and cosines is
 /// nalgebra's `SimdRealField` arithmetic; those are computed here, so that SIMD lanes take the
@@ -15,13 +16,29 @@ pub trait Real: SimdRealField + Copy {
     fn sin_cos(self) -> (Self, Self) {
         self.simd_sin_cos()
     }
+
+    /// A joint's losses at output speed `speed` ([`LossState::evaluate`]; lane by lane).
+    #[must_use]
+    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self>;
 }
 
-impl Real for f32 {}
+impl Real for f32 {
+    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
+        state.evaluate(speed)
+    }
+}
 
-impl Real for f64 {}
+impl Real for f64 {
+    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
+        state.evaluate(speed)
+    }
+}
 
-impl<T: nalgebra::RealField + Copy, const M: usize> Real for Dual<T, M> {}
+impl<T: nalgebra::RealField + Copy, const M: usize> Real for Dual<T, M> {
+    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
+        state.evaluate(speed)
+    }
+}
 
 #[cfg(feature = "wide")]
 impl Real for simba::simd::WideF64x4 {
@@ -30,5 +47,16 @@ impl Real for simba::simd::WideF64x4 {
         let lanes: [f64; 4] = self.into();
         let [a, b, c, d] = lanes.map(<f64 as Real>::sin_cos);
         (Self::from([a.0, b.0, c.0, d.0]), Self::from([a.1, b.1, c.1, d.1]))
+    }
+
+    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
+        use simba::simd::SimdValue;
+        let lane = |l: usize| state.map_scalars(|x: Self| x.extract(l)).evaluate(speed.extract(l));
+        let [a, b, c, d] = [lane(0), lane(1), lane(2), lane(3)];
+        JointLoss {
+            visc: Self::from([a.visc, b.visc, c.visc, d.visc]),
+            seal: Self::from([a.seal, b.seal, c.seal, d.seal]),
+            current: Self::from([a.current, b.current, c.current, d.current]),
+        }
     }
 }

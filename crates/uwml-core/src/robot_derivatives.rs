@@ -2,7 +2,7 @@
 //! the losses of docs/losses.md, "The models"): the generalized forces on the base (its wrench) and
 //! on the joints, their derivatives with respect to the joint positions and to the velocities (base
 //! twist and joint rates), and the added-mass matrix, by forward-mode dual numbers ([`Dual`])
-//! through the very same [`robot_hydro`] and [`loss_torques`].
+//! through the very same [`robot_hydro`] (its joint losses included).
 //!
 //! Rows are `(W, τ)`: the base wrench's six components (force, moment about the base origin,
 //! base frame) then the joints. Columns of `d_velocity` are `(ν, q̇)`: the base twist (`v`, `ω`,
@@ -10,15 +10,13 @@
 //! directions are taken in passes of that many, so the cost grows with the robot, not with the
 //! capacity.
 
-use nalgebra::{RealField, SVector};
+use nalgebra::RealField;
 
+use crate::conditions::Conditions;
 use crate::dual::Dual;
-use crate::losses::{LossState, loss_torques};
-use crate::model::Water;
-use crate::motion::{BaseMotion, Current};
 use crate::real::Real;
-use crate::robot::{Robot, SegmentCoefficients};
-use crate::tree::{AddedMassForm, RobotData, robot_added_mass_matrix, robot_hydro_with};
+use crate::robot::Robot;
+use crate::tree::{RobotData, robot_added_mass_matrix, robot_hydro};
 
 /// Derivative directions per dual pass.
 pub const DUAL_WIDTH: usize = 8;
@@ -56,55 +54,28 @@ pub struct RobotJacobians<'a, T> {
 }
 
 /// The environment's forces on base and joints, `(W, τ) = hydro (+ joint losses on τ)`, and
-/// their derivatives, into `out` (see [`RobotJacobians`]); arguments as for [`robot_hydro`],
-/// `losses[i]` joint `i`'s [`LossState`] or `None`.
+/// their derivatives, into `out` (see [`RobotJacobians`]); arguments as for [`robot_hydro`] (the
+/// losses those of `conditions`). The added-mass matrix is the same for both added-mass forms.
 ///
 /// The derivatives are exact (up to rounding) for the branch the evaluation takes; at a joint
 /// speed of exactly zero with a hard-sign loss model they are one-sided. Outputs shorter than
 /// their sizes get what fits. Never fails, never panics.
-#[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    coefficients: Option<&SegmentCoefficients<T, S>>,
-    losses: &[Option<LossState<T>>; J],
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
+    conditions: &Conditions<'_, T, J, S>,
+    [q, qd, qdd]: [&[T; J]; 3],
     work: &mut RobotJacobianData<T, J, S>,
     out: RobotJacobians<'_, T>,
 ) {
-    let form = AddedMassForm::Morison;
-    robot_jacobians_with(robot, water, coefficients, form, losses, motion, current, q, qd, qdd, work, out);
-}
-
-/// [`robot_jacobians`] with the added mass in the given [`AddedMassForm`] (the added-mass matrix
-/// is the same for both).
-#[allow(clippy::too_many_arguments)]
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_jacobians_with<T: RealField + Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    coefficients: Option<&SegmentCoefficients<T, S>>,
-    form: AddedMassForm,
-    losses: &[Option<LossState<T>>; J],
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
-    work: &mut RobotJacobianData<T, J, S>,
-    out: RobotJacobians<'_, T>,
-) {
+    let Conditions { water, motion, current, coefficients, form, losses } = *conditions;
     let n = robot.joint_count();
     let m = 6 + n;
     let constant = D::<T>::constant;
     let water_d = water.map_scalars(constant);
     let coefficients_d = coefficients.map(|c| c.map_scalars(constant));
-    let losses_d = losses.map(|state| state.map(|state| state.map_scalars(constant)));
+    let no_losses = [None; J];
+    let losses_d = losses.unwrap_or(&no_losses).map(|state| state.map(|state| state.map_scalars(constant)));
     let current_d = current.map_scalars(constant);
     let motion_d = motion.map_scalars(constant);
     let qdd_d = qdd.map(constant);
@@ -123,22 +94,18 @@ pub fn robot_jacobians_with<T: RealField + Real, const J: usize, const S: usize>
         {
             *slot = seed(n + i, slot.re);
         }
-        robot_hydro_with(
-            &work.robot,
-            &water_d,
-            coefficients_d.as_ref(),
+        let dual_conditions = Conditions {
+            water: water_d,
+            motion: motion_seeded,
+            current: current_d,
+            coefficients: coefficients_d.as_ref(),
             form,
-            &motion_seeded,
-            &current_d,
-            &q_d,
-            &qd_d,
-            &qdd_d,
-            &mut work.dual,
-        );
-        let (visc, seal, _) = loss_torques(&losses_d, &SVector::from(qd_d));
+            losses: Some(&losses_d),
+        };
+        robot_hydro(&work.robot, &dual_conditions, [&q_d, &qd_d, &qdd_d], &mut work.dual);
         let base = work.dual.base_wrench().total().to_array();
-        let joints =
-            work.dual.joint_forces().iter().zip(visc.iter().zip(seal.iter())).map(|(f, (v, s))| f.total() + *v + *s);
+        let losses = work.dual.joint_losses();
+        let joints = work.dual.joint_forces().iter().zip(losses).map(|(f, l)| f.total() + l.visc + l.seal);
         for (row, value) in base.into_iter().chain(joints).enumerate() {
             if start == 0
                 && let Some(slot) = out.value.get_mut(row)
@@ -161,5 +128,5 @@ pub fn robot_jacobians_with<T: RealField + Real, const J: usize, const S: usize>
         }
         start += DUAL_WIDTH;
     }
-    robot_added_mass_matrix(robot, water, coefficients, q, &mut work.real, out.added_mass_matrix);
+    robot_added_mass_matrix(robot, &water, coefficients, q, &mut work.real, out.added_mass_matrix);
 }

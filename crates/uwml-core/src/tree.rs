@@ -13,16 +13,16 @@
 
 use nalgebra::{Matrix3, SimdBool, SimdRealField, Vector3};
 
+use crate::conditions::Conditions;
 use crate::frames::{JointFrame, SegmentGeometry};
 use crate::kinematics::{dot, rotate, rotate_back};
+use crate::losses::JointLoss;
 use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
 use crate::real::Real;
-use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint};
+use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, TreeJoint};
 use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments};
-pub use crate::tree_regressors::{
-    robot_added_mass_matrix, robot_hydro_regressors, robot_hydro_regressors_with, robot_joint_added_mass_matrix,
-};
+pub use crate::tree_regressors::{robot_added_mass_matrix, robot_hydro_regressors, robot_joint_added_mass_matrix};
 pub use crate::wrench::{EnvironmentWrench, JointForces, Wrench};
 
 /// The motion of a body frame (at its joint) relative to the water, in its own components, and
@@ -82,6 +82,7 @@ pub struct RobotData<T: SimdRealField + Copy, const J: usize> {
     base_own: Wrench<T>,
     pub(crate) base_frame: Frame<T>,
     joints: [JointForces<T>; J],
+    losses: [JointLoss<T>; J],
     base: EnvironmentWrench<T>,
     joint_count: usize,
     base_rotation: Matrix3<T>,
@@ -117,6 +118,7 @@ impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
             base_own: Wrench::zero(),
             base_frame: frame,
             joints: [JointForces { drag: nothing, added_mass: nothing, buoyancy: nothing, gravity: nothing }; J],
+            losses: [JointLoss { visc: nothing, seal: nothing, current: nothing }; J],
             base: EnvironmentWrench::zero(),
             joint_count: 0,
             base_rotation: Matrix3::identity(),
@@ -127,6 +129,12 @@ impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
     /// The generalized force on every joint of the last evaluation.
     pub fn joint_forces(&self) -> &[JointForces<T>] {
         self.joints.get(..self.joint_count).unwrap_or(&[])
+    }
+
+    /// Each joint's oil and seal losses in the last evaluation (zero for a joint without, and for
+    /// all when the conditions had none).
+    pub fn joint_losses(&self) -> &[JointLoss<T>] {
+        self.losses.get(..self.joint_count).unwrap_or(&[])
     }
 
     /// The wrench on the base of the last evaluation: force and moment about the base origin, base
@@ -423,44 +431,27 @@ pub(crate) fn finite_lanes<T: SimdRealField + Copy>(states: &[&[T]]) -> T::SimdB
 }
 
 /// Drag, added-mass, buoyancy and gravity forces on every joint of `robot` and the wrench on its
-/// base, at joint state `(q, q̇, q̈)` (the first `robot.joint_count()` entries), base motion
-/// `motion` and `current`, into `data` (read [`RobotData::joint_forces`] and
-/// [`RobotData::base_wrench`]). `coefficients`: `None` for the segments' own.
+/// base, and each joint's oil and seal losses if `conditions` has them, at joint state
+/// `[q, q̇, q̈]` (the first `robot.joint_count()` entries of each), into `data` (read
+/// [`RobotData::joint_forces`], [`RobotData::joint_losses`] and [`RobotData::base_wrench`]).
 ///
 /// Never fails and never panics; a non-finite joint state gives NaN everywhere (in its lane).
-/// The added mass is the paper's Morison form; [`robot_hydro_with`] takes the form.
-#[allow(clippy::too_many_arguments)]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn robot_hydro<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    coefficients: Option<&SegmentCoefficients<T, S>>,
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
+    conditions: &Conditions<'_, T, J, S>,
+    state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
 ) {
-    hydro_in(robot, water, coefficients, AddedMassForm::Morison, motion, current, [q, qd, qdd], data);
-}
-
-/// [`robot_hydro`] with the added mass in the given [`AddedMassForm`].
-#[allow(clippy::too_many_arguments)]
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_with<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    coefficients: Option<&SegmentCoefficients<T, S>>,
-    form: AddedMassForm,
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
-    data: &mut RobotData<T, J>,
-) {
-    hydro_in(robot, water, coefficients, form, motion, current, [q, qd, qdd], data);
+    hydro_in(robot, conditions, state, data);
+    let Some(losses) = conditions.losses else { return };
+    let [_, qd, _] = state;
+    let n = robot.joint_count();
+    for ((slot, loss), &speed) in data.losses.iter_mut().zip(losses).zip(qd).take(n) {
+        if let Some(loss) = loss {
+            *slot = T::joint_loss(loss, speed);
+        }
+    }
 }
 
 /// The forward pass: every link's frame into `data.frames` (parents first).
@@ -486,24 +477,26 @@ pub(crate) fn forward<T: Real, const J: usize, const S: usize>(
     }
 }
 
+/// [`robot_hydro`] without the joint losses (whatever `conditions` holds): they are zero.
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn hydro_in<T: Real, const J: usize, const S: usize>(
+pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    coefficients: Option<&SegmentCoefficients<T, S>>,
-    form: AddedMassForm,
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
+    conditions: &Conditions<'_, T, J, S>,
     state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
 ) {
+    let Conditions { water, motion, current, coefficients, form, .. } = conditions;
+    let form = *form;
     let n = robot.joint_count();
     let [q, qd, qdd] = state;
     let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
     let rho = water.density();
     let frames = robot.frames();
     data.joint_count = n;
+    let nothing = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
+    for slot in data.losses.iter_mut().take(n) {
+        *slot = nothing;
+    }
     data.base_rotation = *motion.rotation();
     data.density = rho;
     let base = Frame::base(motion, water, current);

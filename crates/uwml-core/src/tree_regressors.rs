@@ -3,11 +3,12 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::conditions::Conditions;
 use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
 use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, SegmentCoefficients};
-use crate::tree::{AddedMassForm, RobotData, finite_lanes, robot_hydro, robot_hydro_with, segment_wrenches, used};
+use crate::tree::{AddedMassForm, RobotData, finite_lanes, hydro_in, segment_wrenches, used};
 
 /// The added-mass matrix over base and joints, `M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)` (docs/model.md
 /// section 10, "What is computed"), `(6 + n)²` entries row-major into `out`
@@ -75,7 +76,15 @@ fn added_mass_block<T: Real, const J: usize, const S: usize>(
             angular_acceleration: Vector3::new(unit(3), unit(4), unit(5)),
         };
         let qdd: [T; J] = core::array::from_fn(|j| unit(j + 6));
-        robot_hydro(robot, water, coefficients, &motion, &still, q, &rest, &qdd, data);
+        let conditions = Conditions {
+            water: *water,
+            motion,
+            current: still,
+            coefficients,
+            form: AddedMassForm::Morison,
+            losses: None,
+        };
+        hydro_in(robot, &conditions, [q, &rest, &qdd], data);
         let base = data.base_wrench().added_mass.to_array();
         let column = base.iter().copied().chain(data.joint_forces().iter().map(|f| f.added_mass));
         for (row, value) in column.skip(first).enumerate() {
@@ -108,55 +117,22 @@ fn added_mass_block<T: Real, const J: usize, const S: usize>(
 /// drag[row, 2k + d]`, and the hydrodynamic forces are those two sums plus the buoyancy of
 /// [`RobotData::joint_forces`] and [`RobotData::base_wrench`], which this also evaluates into
 /// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
-#[allow(clippy::too_many_arguments)]
+/// The regressors depend on the conditions' water, motion, current and added-mass form (both
+/// forms' forces are linear in the coefficients); not on its coefficients or losses.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
-    data: &mut RobotData<T, J>,
-    drag: &mut [T],
-    added_mass: &mut [T],
-) {
-    robot_hydro_regressors_with(
-        robot,
-        water,
-        AddedMassForm::Morison,
-        motion,
-        current,
-        q,
-        qd,
-        qdd,
-        data,
-        drag,
-        added_mass,
-    );
-}
-
-/// [`robot_hydro_regressors`] with the added mass in the given [`AddedMassForm`] (Kirchhoff's
-/// forces are linear in the coefficients too).
-#[allow(clippy::too_many_arguments)]
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_regressors_with<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
-    water: &Water<T>,
-    form: AddedMassForm,
-    motion: &BaseMotion<T>,
-    current: &Current<T>,
-    q: &[T; J],
-    qd: &[T; J],
-    qdd: &[T; J],
+    conditions: &Conditions<'_, T, J, S>,
+    state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
     drag: &mut [T],
     added_mass: &mut [T],
 ) {
     let zero = [[T::zero(); 2]; S];
     let none = SegmentCoefficients { cd: zero, cm: zero };
-    robot_hydro_with(robot, water, Some(&none), form, motion, current, q, qd, qdd, data);
+    let (water, form) = (conditions.water, conditions.form);
+    hydro_in(robot, &Conditions { coefficients: Some(&none), ..*conditions }, state, data);
+    let [q, qd, qdd] = state;
     let n = robot.joint_count();
     let columns = 2 * robot.segments().len();
     let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);

@@ -5,7 +5,7 @@
 //! build the same robot in single precision.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing)]
 
-use uwml_core::{Robot, RobotData, Water, robot_hydro};
+use uwml_core::{AddedMassForm, Conditions, Robot, RobotData, Water, robot_hydro};
 
 mod exported {
     include!("exported/arm_on_rov.rs");
@@ -35,8 +35,25 @@ fn the_exported_arm_is_the_arm() {
     let (mut a, mut b) = (RobotData::new(), RobotData::new());
     let water = Water::new(exported::WATER_DENSITY, exported::GRAVITY).unwrap();
     assert_eq!(water, Water::default());
-    robot_hydro(&exported, &water, None, &motion, &current, &q, &qd, &qdd, &mut a);
-    robot_hydro(&by_hand, &Water::default(), None, &motion, &current, &q, &qd, &qdd, &mut b);
+    robot_hydro(
+        &exported,
+        &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
+        [&q, &qd, &qdd],
+        &mut a,
+    );
+    robot_hydro(
+        &by_hand,
+        &Conditions {
+            water: Water::default(),
+            motion,
+            current,
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [&q, &qd, &qdd],
+        &mut b,
+    );
     let scale = b.joint_forces().iter().fold(1.0_f64, |m, f| m.max(f.total().abs()));
     for (x, y) in a.joint_forces().iter().zip(b.joint_forces()) {
         assert!((x.total() - y.total()).abs() <= 1e-12 * scale, "{} vs {}", x.total(), y.total());
@@ -67,8 +84,32 @@ fn the_f32_export_is_the_arm_in_single_precision() {
     let qdd = [1.0, -0.5, 0.3, 0.2, -1.0, 0.7, 0.1];
     let single = |x: &[f64; 7]| x.map(|v| v as f32);
     let (mut a, mut b) = (RobotData::<f32, 7>::new(), RobotData::new());
-    robot_hydro(&exported, &water, None, &motion32, &current32, &single(&q), &single(&qd), &single(&qdd), &mut a);
-    robot_hydro(&by_hand, &Water::default(), None, &motion, &current, &q, &qd, &qdd, &mut b);
+    robot_hydro(
+        &exported,
+        &Conditions {
+            water,
+            motion: motion32,
+            current: current32,
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [&single(&q), &single(&qd), &single(&qdd)],
+        &mut a,
+    );
+    robot_hydro(
+        &by_hand,
+        &Conditions {
+            water: Water::default(),
+            motion,
+            current,
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [&q, &qd, &qdd],
+        &mut b,
+    );
     // Single precision carries ~1e-7 relative per operation; the sums here stay within 1e-4 of
     // the largest force.
     let scale = b.joint_forces().iter().fold(1.0_f64, |m, f| m.max(f.total().abs()));

@@ -10,8 +10,8 @@
 
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
-    AddedMassForm, BaseMotion, Current, Robot, RobotData, SegmentCoefficients, Water, robot_added_mass_matrix,
-    robot_hydro_with,
+    AddedMassForm, BaseMotion, Conditions, Current, Robot, RobotData, SegmentCoefficients, Water,
+    robot_added_mass_matrix, robot_hydro,
 };
 
 #[path = "../benches/common/arm.rs"]
@@ -40,7 +40,19 @@ fn added_mass_power(
     let qd: [f64; N] = core::array::from_fn(|i| x[6 + i]);
     let qdd: [f64; N] = core::array::from_fn(|i| x_dot[6 + i]);
     let mut data = RobotData::new();
-    robot_hydro_with(robot, &Water::default(), Some(&no_drag), form, &motion, &still, q, &qd, &qdd, &mut data);
+    robot_hydro(
+        robot,
+        &Conditions {
+            water: Water::default(),
+            motion,
+            current: still,
+            coefficients: Some(&no_drag),
+            form,
+            losses: None,
+        },
+        [q, &qd, &qdd],
+        &mut data,
+    );
     let base = data.base_wrench().added_mass.to_array();
     let joints = data.joint_forces().iter().map(|f| f.added_mass);
     base.iter().chain(joints.collect::<Vec<_>>().iter()).zip(x).map(|(f, v)| f * v).sum()
@@ -101,16 +113,17 @@ fn kirchhoff_power_is_minus_the_rate_of_the_waters_kinetic_energy_and_morison_is
         let still = Current::new(Vector3::zeros(), Vector3::zeros()).unwrap();
         let qdd: [f64; N] = core::array::from_fn(|i| x_dot[6 + i]);
         let mut data = RobotData::new();
-        robot_hydro_with(
+        robot_hydro(
             &robot,
-            &Water::default(),
-            Some(&no_drag),
-            form,
-            &motion,
-            &still,
-            &q,
-            &[0.0; N],
-            &qdd,
+            &Conditions {
+                water: Water::default(),
+                motion,
+                current: still,
+                coefficients: Some(&no_drag),
+                form,
+                losses: None,
+            },
+            [&q, &[0.0; N], &qdd],
             &mut data,
         );
         let mut all = data.base_wrench().added_mass.to_array().to_vec();
@@ -123,7 +136,7 @@ fn kirchhoff_power_is_minus_the_rate_of_the_waters_kinetic_energy_and_morison_is
 #[test]
 fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     use uwml_core::{
-        RobotJacobianData, RobotJacobians, robot_hydro_regressors_with, robot_jacobians, robot_jacobians_with,
+        AddedMassForm, Conditions, RobotJacobianData, RobotJacobians, robot_hydro_regressors, robot_jacobians,
     };
     let robot = arm::arm_on_rov::<f64, N, 15>();
     let (motion, current) = arm::rov_motion::<f64>();
@@ -132,7 +145,12 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     let qdd = [1.0, -0.5, 0.3, 0.2, -1.0, 0.7, 0.1];
     let water = Water::default();
     let mut data = RobotData::new();
-    robot_hydro_with(&robot, &water, None, AddedMassForm::Kirchhoff, &motion, &current, &q, &qd, &qdd, &mut data);
+    robot_hydro(
+        &robot,
+        &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Kirchhoff, losses: None },
+        [&q, &qd, &qdd],
+        &mut data,
+    );
     let mut forces = data.base_wrench().added_mass.to_array().to_vec();
     forces.extend(data.joint_forces().iter().map(|f| f.added_mass));
     let mut totals = data.base_wrench().total().to_array().to_vec();
@@ -141,8 +159,13 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     let columns = 2 * robot.segments().len();
     let (mut drag, mut added) = (vec![0.0; M * columns], vec![0.0; M * columns]);
     let form = AddedMassForm::Kirchhoff;
-    robot_hydro_regressors_with(
-        &robot, &water, form, &motion, &current, &q, &qd, &qdd, &mut data, &mut drag, &mut added,
+    robot_hydro_regressors(
+        &robot,
+        &Conditions { water, motion, current, coefficients: None, form, losses: None },
+        [&q, &qd, &qdd],
+        &mut data,
+        &mut drag,
+        &mut added,
     );
     let scale = forces.iter().fold(1.0_f64, |m, x| m.max(x.abs()));
     for (row, expected) in forces.iter().enumerate() {
@@ -167,9 +190,28 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
         };
         let none = [None; N];
         if kirchhoff {
-            robot_jacobians_with(&robot, &water, None, form, &none, &motion, &current, &q, &qd, &qdd, &mut work, out);
+            robot_jacobians(
+                &robot,
+                &Conditions { water, motion, current, coefficients: None, form, losses: Some(&none) },
+                [&q, &qd, &qdd],
+                &mut work,
+                out,
+            );
         } else {
-            robot_jacobians(&robot, &water, None, &none, &motion, &current, &q, &qd, &qdd, &mut work, out);
+            robot_jacobians(
+                &robot,
+                &Conditions {
+                    water,
+                    motion,
+                    current,
+                    coefficients: None,
+                    form: AddedMassForm::Morison,
+                    losses: Some(&none),
+                },
+                [&q, &qd, &qdd],
+                &mut work,
+                out,
+            );
         }
         (value, d_velocity, m_a)
     };

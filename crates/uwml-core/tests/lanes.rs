@@ -143,17 +143,21 @@ fn a_non_finite_state_gives_nan_in_its_lane_only() {
 
 /// Whole robots over `WideF64x4` (`Robot::splat`, `BaseMotion::from_lanes`): every lane is the
 /// scalar evaluation of its own state, motion and current, bit for bit (the lanes take the
-/// sines lane by lane, `uwml_core::Real`), whatever its neighbours, in both added-mass forms,
-/// joint forces, base wrench and every body's wrench; a group of fewer than four repeats its
+/// sines and the joint losses lane by lane, `uwml_core::Real`), whatever its neighbours, in both
+/// added-mass forms, joint forces and losses, base wrench and every body's wrench; a group of fewer than four repeats its
 /// first state.
 #[test]
 fn robot_lanes_are_the_scalar_evaluation_bit_for_bit() {
-    use uwml_core::{AddedMassForm, Current, Robot, RobotData, robot_hydro_with};
+    use uwml_core::{AddedMassForm, Conditions, Current, JointLosses, LossState, Robot, RobotData, robot_hydro};
     const J: usize = 9;
     const S: usize = 20;
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     let water = Water::new(1030.0, 9.8).unwrap();
     let lane_water = water.splat::<WideF64x4>();
+    // Losses on every other joint.
+    let loss = JointLosses::<f64>::default().at(2.0e7, 6.0).unwrap();
+    let losses: [Option<LossState<f64>>; J] = core::array::from_fn(|j| (j % 2 == 0).then_some(loss));
+    let lane_losses = losses.map(|l| l.map(|l| l.splat::<WideF64x4>()));
     for n in 1..=J {
         let robot: Robot<f64, J, S> = common::trees::random_robot(&mut rng, n);
         let lanes_robot = robot.splat::<WideF64x4>();
@@ -171,15 +175,43 @@ fn robot_lanes_are_the_scalar_evaluation_bit_for_bit() {
                 let (q, qd, qdd) = (group(0), group(1), group(2));
                 let (motion, current) = (BaseMotion::from_lanes(&motions), Current::from_lanes(&currents));
                 let mut lanes = RobotData::new();
-                robot_hydro_with(&lanes_robot, &lane_water, None, form, &motion, &current, &q, &qd, &qdd, &mut lanes);
+                robot_hydro(
+                    &lanes_robot,
+                    &Conditions {
+                        water: lane_water,
+                        motion,
+                        current,
+                        coefficients: None,
+                        form,
+                        losses: Some(&lane_losses),
+                    },
+                    [&q, &qd, &qdd],
+                    &mut lanes,
+                );
                 for l in 0..used {
                     let [q, qd, qdd] = &states[l];
                     let mut scalar = RobotData::new();
-                    robot_hydro_with(&robot, &water, None, form, &motions[l], &currents[l], q, qd, qdd, &mut scalar);
+                    robot_hydro(
+                        &robot,
+                        &Conditions {
+                            water,
+                            motion: motions[l],
+                            current: currents[l],
+                            coefficients: None,
+                            form,
+                            losses: Some(&losses),
+                        },
+                        [q, qd, qdd],
+                        &mut scalar,
+                    );
                     let bits = |x: f64| x.to_bits();
                     for (a, b) in lanes.joint_forces().iter().zip(scalar.joint_forces()) {
                         let lane = [a.drag, a.added_mass, a.buoyancy, a.gravity].map(|x| bits(x.extract(l)));
                         assert_eq!(lane, [b.drag, b.added_mass, b.buoyancy, b.gravity].map(bits), "n {n} lane {l}");
+                    }
+                    for (a, b) in lanes.joint_losses().iter().zip(scalar.joint_losses()) {
+                        let lane = [a.visc, a.seal, a.current].map(|x| bits(x.extract(l)));
+                        assert_eq!(lane, [b.visc, b.seal, b.current].map(bits), "n {n} lane {l}: losses");
                     }
                     let (a, b) = (lanes.base_wrench(), scalar.base_wrench());
                     for (x, y) in [a.drag, a.added_mass, a.buoyancy, a.gravity]

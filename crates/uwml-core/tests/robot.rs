@@ -5,10 +5,10 @@
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointKind, Owner, RigidBody, Robot, RobotData,
-    RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint, Water, hydro_jacobians,
-    hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
-    robot_joint_added_mass_matrix,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointKind, Owner,
+    RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint,
+    Water, hydro_jacobians, hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
+    robot_jacobians, robot_joint_added_mass_matrix,
 };
 
 mod common;
@@ -35,7 +35,19 @@ fn evaluate(
     [q, qd, qdd]: &[[f64; J]; 3],
 ) -> RobotData<f64, J> {
     let mut data = RobotData::new();
-    robot_hydro(robot, &Water::default(), coefficients, motion, current, q, qd, qdd, &mut data);
+    robot_hydro(
+        robot,
+        &Conditions {
+            water: Water::default(),
+            motion: *motion,
+            current: *current,
+            coefficients,
+            form: AddedMassForm::Morison,
+            losses: None,
+        },
+        [q, qd, qdd],
+        &mut data,
+    );
     data
 }
 
@@ -282,13 +294,15 @@ fn six_virtual_joints_give_the_base_wrench() {
         let mut data = RobotData::<f64, 18>::new();
         robot_hydro(
             &virtual_robot,
-            &Water::default(),
-            None,
-            &BaseMotion::fixed(),
-            &Current::still(),
-            &q,
-            &qd,
-            &qdd,
+            &Conditions {
+                water: Water::default(),
+                motion: BaseMotion::fixed(),
+                current: Current::still(),
+                coefficients: None,
+                form: AddedMassForm::Morison,
+                losses: None,
+            },
+            [&q, &qd, &qdd],
             &mut data,
         );
         let scale = wrench_scale(on_base.base_wrench());
@@ -456,12 +470,15 @@ fn regressors_times_coefficients_are_the_forces() {
         let mut data = RobotData::new();
         robot_hydro_regressors(
             &robot,
-            &Water::default(),
-            &motion,
-            &current,
-            &s[0],
-            &s[1],
-            &s[2],
+            &Conditions {
+                water: Water::default(),
+                motion,
+                current,
+                coefficients: None,
+                form: AddedMassForm::Morison,
+                losses: None,
+            },
+            [&s[0], &s[1], &s[2]],
             &mut data,
             &mut drag,
             &mut added_mass,
@@ -521,14 +538,15 @@ fn jacobians_are_the_slopes_of_the_forces() {
         };
         robot_jacobians(
             &robot,
-            &Water::default(),
-            None,
-            &[None; J],
-            &motion,
-            &current,
-            &s[0],
-            &s[1],
-            &s[2],
+            &Conditions {
+                water: Water::default(),
+                motion,
+                current,
+                coefficients: None,
+                form: AddedMassForm::Morison,
+                losses: Some(&[None; J]),
+            },
+            [&s[0], &s[1], &s[2]],
             &mut work,
             out,
         );
@@ -598,14 +616,15 @@ fn jacobians_are_the_slopes_of_the_forces() {
     };
     robot_jacobians(
         &robot,
-        &Water::default(),
-        None,
-        &[None; J],
-        &BaseMotion::fixed(),
-        &Current::still(),
-        &s[0],
-        &s[1],
-        &s[2],
+        &Conditions {
+            water: Water::default(),
+            motion: BaseMotion::fixed(),
+            current: Current::still(),
+            coefficients: None,
+            form: AddedMassForm::Morison,
+            losses: Some(&[None; J]),
+        },
+        [&s[0], &s[1], &s[2]],
         &mut work,
         out,
     );

@@ -7,11 +7,11 @@
 //! by value, outputs are written at the end, and nothing is written on error (except NaN
 //! forces for a non-finite joint state).
 
-use uwml_core::nalgebra::{RealField, SVector, Vector3};
+use uwml_core::nalgebra::{RealField, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Current, EnvironmentWrench, JointForces, JointKind, JointLoss,
-    JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section, TreeJoint, Water,
-    loss_torques, robot_hydro_with,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointForces, JointKind,
+    JointLoss, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
+    TreeJoint, Water, robot_hydro,
 };
 
 use crate::imp::{Failure, check_conditions, check_overflow, joint_slot, non_null, read_one};
@@ -479,16 +479,13 @@ fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Resul
 /// Writes joint `i`'s forces and losses to an evaluation's output.
 type WriteJoint<'a, T> = dyn FnMut(usize, &JointForces<T>, &JointLoss<T>) + 'a;
 
-/// Every joint's `(visc, seal, current)` at its loss state and speed: the core's `loss_torques`.
-type LossTorques<T> = fn(&[Option<LossState<T>>; J], &SVector<T, J>) -> (SVector<T, J>, SVector<T, J>, SVector<T, J>);
-
-/// The evaluation behind `uwml_robot_hydro_*` (`losses` None: every joint's loss is zero, and
-/// the joint losses are not evaluated) and `uwml_robot_environment_*` (`loss_torques`): checks,
-/// the core's `robot_hydro_with` and the losses; hands every joint's forces and losses to
+/// The evaluation behind `uwml_robot_hydro_*` (`with_losses` false: every joint's loss is
+/// zero, and the joint losses are not evaluated) and `uwml_robot_environment_*`: checks, and
+/// the core's `robot_hydro` with the joints' losses in its conditions; hands every joint's forces and losses to
 /// `write` (joint index, in order) and writes the base wrench; then reports a non-finite state
 /// or outputs that overflow (`total`: forces plus losses; `current`; `base_wrench`). One
 /// instance per precision, whatever the caller's output type (`write` is dynamic), so that the
-/// two evaluations share its code; the losses' code is linked only with the environment's.
+/// two evaluations share its code.
 ///
 /// # Safety
 /// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
@@ -500,7 +497,7 @@ unsafe fn evaluate<T: RobotPrecision>(
     robot: *mut T::Robot,
     io: &Evaluation<T, ()>,
     joints: Result<(), Failure>,
-    losses: Option<LossTorques<T>>,
+    with_losses: bool,
     write: &mut WriteJoint<'_, T>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
@@ -528,14 +525,11 @@ unsafe fn evaluate<T: RobotPrecision>(
         joints?;
     }
     let form = if *form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
-    robot_hydro_with(robot, water, None, form, &motion, &current, &q, &qd, &qdd, data);
-    let losses = losses.map(|loss_torques| loss_torques(states, &SVector::from(qd)));
+    let losses = if with_losses { Some(&*states) } else { None };
+    let conditions = Conditions { water: *water, motion, current, coefficients: None, form, losses };
+    robot_hydro(robot, &conditions, [&q, &qd, &qdd], data);
     let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
-    let loss = |i: usize| {
-        let (visc, seal, current) = losses.as_ref()?;
-        Some(JointLoss { visc: *visc.get(i)?, seal: *seal.get(i)?, current: *current.get(i)? })
-    };
-    let loss = |i: usize| loss(i).unwrap_or(none);
+    let loss = |i: usize| data.joint_losses().get(i).copied().unwrap_or(none);
     for (i, forces) in data.joint_forces().iter().enumerate() {
         write(i, forces, &loss(i));
     }
@@ -566,7 +560,7 @@ unsafe fn evaluate<T: RobotPrecision>(
 unsafe fn evaluate_into<T: RobotPrecision, F>(
     robot: *mut T::Robot,
     io: &Evaluation<T, F>,
-    losses: Option<LossTorques<T>>,
+    with_losses: bool,
     row: impl Fn(&JointForces<T>, &JointLoss<T>) -> F,
 ) -> Result<(), Failure> {
     let (joints, joints_name) = (io.joints, io.joints_name);
@@ -587,7 +581,7 @@ unsafe fn evaluate_into<T: RobotPrecision, F>(
         unsafe { joints.add(i).write(row(forces, loss)) };
     };
     // SAFETY: forwarded contract.
-    unsafe { evaluate(robot, &common, non_null(joints, joints_name).map(|_| ()), losses, &mut write) }
+    unsafe { evaluate(robot, &common, non_null(joints, joints_name).map(|_| ()), with_losses, &mut write) }
 }
 
 /// # Safety
@@ -597,7 +591,7 @@ pub(crate) unsafe fn hydro<T: RobotPrecision>(
     io: &Evaluation<T, T::JointForces>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate_into(robot, io, None, |forces, _| T::joint_forces(forces)) }
+    unsafe { evaluate_into(robot, io, false, |forces, _| T::joint_forces(forces)) }
 }
 
 /// # Safety
@@ -607,7 +601,7 @@ pub(crate) unsafe fn environment<T: RobotPrecision>(
     io: &Evaluation<T, T::JointEnvironment>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate_into(robot, io, Some(loss_torques), T::joint_environment) }
+    unsafe { evaluate_into(robot, io, true, T::joint_environment) }
 }
 
 /// # Safety

@@ -1,6 +1,6 @@
 //! Joint losses of the robot API (`uwml_robot_set_losses_*`, `_clear_losses_*`,
 //! `_set_conditions_*`, `_environment_*`) against the core called directly (bit for bit: the
-//! core's `robot_hydro_with` forces plus its `loss_torques`), the paper's robot against the leg
+//! core's `robot_hydro` with the losses in its conditions), the paper's robot against the leg
 //! API with the same losses, every error code and field, null pointers, overflow.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 

@@ -10,9 +10,9 @@ use core::ptr::{null, null_mut};
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Current, Drive, JointForces, JointKind, JointLosses, LossState,
-    OilDrag, Owner, RigidBody, Robot, RobotData, RobotSegment, Seal, Section, TreeJoint, Water, loss_torques,
-    robot_hydro_with,
+    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, Drive, JointForces, JointKind, JointLosses,
+    LossState, OilDrag, Owner, RigidBody, Robot, RobotData, RobotSegment, Seal, Section, TreeJoint, Water,
+    loss_torques, robot_hydro,
 };
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_OK, UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS,
@@ -283,7 +283,7 @@ pub fn core_loss_states<T: Real>(
     states
 }
 
-/// What `uwml_robot_environment_*` must give: the core's `robot_hydro_with` forces (`data`) and
+/// What `uwml_robot_environment_*` must give: the core's `robot_hydro` forces (`data`) and
 /// its `loss_torques` at the joint speeds `qd`, `total` summed as `EnvironmentTorques::total`
 /// sums it, `(hydro total + visc) + seal`.
 pub fn core_environment<T: Real>(
@@ -507,7 +507,9 @@ pub fn core_hydro_with<T: Real>(
     };
     let (q, qd, qdd) = (padded(state[0]), padded(state[1]), padded(state[2]));
     let mut data = RobotData::new();
-    robot_hydro_with(robot, water, None, form, motion, current, &q, &qd, &qdd, &mut data);
+    let conditions =
+        Conditions { water: *water, motion: *motion, current: *current, coefficients: None, form, losses: None };
+    robot_hydro(robot, &conditions, [&q, &qd, &qdd], &mut data);
     data
 }
 

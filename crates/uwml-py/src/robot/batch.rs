@@ -5,7 +5,8 @@ use std::ops::Range;
 
 use simba::simd::SimdValue;
 use uwml_core::{
-    AddedMassForm, BaseMotion, Current, JointForces, Water, loss_torques, robot_hydro_regressors_with, robot_hydro_with,
+    AddedMassForm, BaseMotion, Conditions, Current, JointForces, Water, loss_torques, robot_hydro,
+    robot_hydro_regressors,
 };
 
 use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings};
@@ -74,18 +75,8 @@ pub(super) fn hydro_range(
                 )
             }
         };
-        robot_hydro_with(
-            robot,
-            &water,
-            coefficients.as_ref(),
-            form,
-            &motion,
-            &current,
-            &lanes.q,
-            &lanes.qd,
-            &lanes.qdd,
-            data,
-        );
+        let conditions = Conditions { water, motion, current, coefficients: coefficients.as_ref(), form, losses: None };
+        robot_hydro(robot, &conditions, [&lanes.q, &lanes.qd, &lanes.qdd], data);
         for (lane, &sample) in chunk.iter().enumerate() {
             let k = group * 4 + lane;
             let joint_row = |out: &mut [f64], value: &dyn Fn(&JointForces<Lanes>) -> Lanes| {
@@ -161,9 +152,8 @@ pub(super) fn regressor_range(
         else {
             continue;
         };
-        robot_hydro_regressors_with(
-            robot, water, form, &motion, &current, &row.q, &row.qd, &row.qdd, data, drag, added_mass,
-        );
+        let conditions = Conditions { water: *water, motion, current, coefficients: None, form, losses: None };
+        robot_hydro_regressors(robot, &conditions, [&row.q, &row.qd, &row.qdd], data, drag, added_mass);
         for (out, value) in [
             (
                 &mut *buoyancy,

@@ -11,7 +11,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{Matrix3, Vector3};
 use uwml_core::{
-    BaseMotion, Current, LossState, Water, robot_added_mass_matrix, robot_hydro_with, robot_joint_added_mass_matrix,
+    BaseMotion, Conditions, Current, LossState, Water, robot_added_mass_matrix, robot_hydro,
+    robot_joint_added_mass_matrix,
 };
 
 use super::inputs::StateRow;
@@ -263,18 +264,9 @@ impl MujocoCoupling {
             }
         }
         let form = added_mass_form(self.kirchhoff);
-        robot_hydro_with(
-            &robot.robot,
-            &self.water,
-            None,
-            form,
-            &motion,
-            &self.current,
-            &row.q,
-            &row.qd,
-            &row.qdd,
-            &mut self.data,
-        );
+        let conditions =
+            Conditions { water: self.water, motion, current: self.current, coefficients: None, form, losses: None };
+        robot_hydro(&robot.robot, &conditions, [&row.q, &row.qd, &row.qdd], &mut self.data);
         // uwml's generalized forces: the base wrench's hydrodynamic part, then the joints'
         // hydrodynamics and motor torques. The joint losses are MuJoCo's: the seal's dry
         // friction a friction constraint, the smooth rest a damping (`write_losses`).

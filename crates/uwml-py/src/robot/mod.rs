@@ -10,8 +10,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::{
-    AddedMassForm, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques,
-    robot_added_mass_matrix, robot_jacobians_with,
+    AddedMassForm, Conditions, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques,
+    robot_added_mass_matrix, robot_jacobians,
 };
 
 mod batch;
@@ -478,20 +478,15 @@ impl PyRobot {
                 row.load(states, sample, n);
                 let (motion, current) = surroundings.at(sample)?;
                 let out = RobotJacobians { value, d_q, d_velocity, added_mass_matrix };
-                robot_jacobians_with(
-                    robot,
-                    &water,
-                    coefficients.as_ref(),
+                let conditions = Conditions {
+                    water,
+                    motion,
+                    current,
+                    coefficients: coefficients.as_ref(),
                     form,
-                    loss_states.at(&losses, sample),
-                    &motion,
-                    &current,
-                    &row.q,
-                    &row.qd,
-                    &row.qdd,
-                    work,
-                    out,
-                );
+                    losses: Some(loss_states.at(&losses, sample)),
+                };
+                robot_jacobians(robot, &conditions, [&row.q, &row.qd, &row.qdd], work, out);
             }
             Ok(())
         });

@@ -5,7 +5,7 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyString, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{AddedMassForm, BaseMotion, Current, Water, robot_hydro_with};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Water, robot_hydro};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -66,7 +66,15 @@ impl OneState {
 
     pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data) {
         let Self { row, water, coefficients, motion, current } = self;
-        robot_hydro_with(robot, water, coefficients.as_ref(), form, motion, current, &row.q, &row.qd, &row.qdd, data);
+        let conditions = Conditions {
+            water: *water,
+            motion: *motion,
+            current: *current,
+            coefficients: coefficients.as_ref(),
+            form,
+            losses: None,
+        };
+        robot_hydro(robot, &conditions, [&row.q, &row.qd, &row.qdd], data);
     }
 }
 
