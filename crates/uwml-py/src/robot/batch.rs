@@ -5,8 +5,7 @@ use std::ops::Range;
 
 use simba::simd::SimdValue;
 use uwml_core::{
-    AddedMassForm, BaseMotion, Conditions, Current, JointForces, Water, loss_torques, robot_hydro,
-    robot_hydro_regressors,
+    AddedMassForm, BaseMotion, Conditions, Current, Water, loss_torques, robot_hydro, robot_hydro_regressors,
 };
 
 use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings};
@@ -77,41 +76,45 @@ pub(super) fn hydro_range(
         };
         let conditions = Conditions { water, motion, current, coefficients: coefficients.as_ref(), form, losses: None };
         robot_hydro(robot, &conditions, [&lanes.q, &lanes.qd, &lanes.qdd], data);
-        for (lane, &sample) in chunk.iter().enumerate() {
-            let k = group * 4 + lane;
-            let joint_row = |out: &mut [f64], value: &dyn Fn(&JointForces<Lanes>) -> Lanes| {
-                if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
-                    for (slot, forces) in row.iter_mut().zip(data.joint_forces()) {
-                        *slot = value(forces).extract(lane);
-                    }
-                }
-            };
-            joint_row(drag, &|f| f.drag);
-            joint_row(added_mass, &|f| f.added_mass);
-            joint_row(buoyancy, &|f| f.buoyancy);
-            joint_row(gravity, &|f| f.gravity);
-            let base = data.base_wrench();
-            for (out, wrench) in [
-                (&mut *base_drag, &base.drag),
-                (&mut *base_added_mass, &base.added_mass),
-                (&mut *base_buoyancy, &base.buoyancy),
-                (&mut *base_gravity, &base.gravity),
-            ] {
-                if let Some(row) = out.get_mut(k * 6..(k + 1) * 6) {
-                    for (slot, x) in row.iter_mut().zip(wrench.to_array()) {
-                        *slot = x.extract(lane);
-                    }
+        // Each output's lanes once, then one row per sample of the group.
+        let first = group * 4;
+        let used = chunk.len();
+        let put = |out: &mut [f64], width: usize, column: usize, value: Lanes| {
+            let lanes: [f64; 4] = value.into();
+            for (lane, x) in lanes.into_iter().enumerate().take(used) {
+                if let Some(slot) = out.get_mut((first + lane) * width + column) {
+                    *slot = x;
                 }
             }
-            if let Some(row) = wrenches.get_mut(k * bodies..(k + 1) * bodies) {
-                for (body, slot) in core::iter::once(None).chain((0..n).map(Some)).zip(row.chunks_exact_mut(6)) {
-                    let wrench = data.body_wrench(robot, body).map(|w| w.to_array());
-                    for (out, x) in slot.iter_mut().zip(wrench.unwrap_or([Lanes::splat(f64::NAN); 6])) {
-                        *out = x.extract(lane);
-                    }
+        };
+        for (j, f) in data.joint_forces().iter().enumerate() {
+            put(drag, n, j, f.drag);
+            put(added_mass, n, j, f.added_mass);
+            put(buoyancy, n, j, f.buoyancy);
+            put(gravity, n, j, f.gravity);
+        }
+        let base = data.base_wrench();
+        for (out, wrench) in [
+            (&mut *base_drag, &base.drag),
+            (&mut *base_added_mass, &base.added_mass),
+            (&mut *base_buoyancy, &base.buoyancy),
+            (&mut *base_gravity, &base.gravity),
+        ] {
+            for (column, x) in wrench.to_array().into_iter().enumerate() {
+                put(out, 6, column, x);
+            }
+        }
+        if !wrenches.is_empty() {
+            for (b, body) in core::iter::once(None).chain((0..n).map(Some)).enumerate() {
+                let wrench = data.body_wrench(robot, body).map_or([Lanes::splat(f64::NAN); 6], |w| w.to_array());
+                for (column, x) in wrench.into_iter().enumerate() {
+                    put(wrenches, bodies, b * 6 + column, x);
                 }
             }
-            if let Some(losses) = losses {
+        }
+        if let Some(losses) = losses {
+            for (lane, &sample) in chunk.iter().enumerate() {
+                let k = first + lane;
                 row.load([q, qd, qdd], sample, n);
                 let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());
                 for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
