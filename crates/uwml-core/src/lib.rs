@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 #![no_std]
 
+mod added_mass;
 mod body;
 pub mod conditions;
 pub mod derivatives;

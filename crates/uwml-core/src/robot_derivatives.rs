@@ -30,14 +30,13 @@ type D<T> = Dual<T, DUAL_WIDTH>;
 pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize> {
     robot: Robot<D<T>, J, S>,
     dual: RobotData<D<T>, J>,
-    real: RobotData<T, J>,
 }
 
 impl<T: RealField + Copy, const J: usize, const S: usize> RobotJacobianData<T, J, S> {
     /// The workspace for `robot` (and only for it).
     #[must_use]
     pub fn new(robot: &Robot<T, J, S>) -> Self {
-        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new(), real: RobotData::new() }
+        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new() }
     }
 }
 
@@ -128,5 +127,5 @@ pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize>(
         }
         start += DUAL_WIDTH;
     }
-    robot_added_mass_matrix(robot, &water, coefficients, q, &mut work.real, out.added_mass_matrix);
+    robot_added_mass_matrix(robot, &water, coefficients, q, out.added_mass_matrix);
 }

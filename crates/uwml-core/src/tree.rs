@@ -13,6 +13,7 @@
 
 use nalgebra::{Matrix3, SimdBool, SimdRealField, Vector3};
 
+pub use crate::added_mass::{robot_added_mass_matrix, robot_joint_added_mass_matrix};
 use crate::conditions::Conditions;
 use crate::frames::{JointFrame, SegmentGeometry};
 use crate::kinematics::{dot, rotate, rotate_back};
@@ -22,7 +23,7 @@ use crate::motion::{BaseMotion, Current};
 use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, TreeJoint};
 use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments};
-pub use crate::tree_regressors::{robot_added_mass_matrix, robot_hydro_regressors, robot_joint_added_mass_matrix};
+pub use crate::tree_regressors::robot_hydro_regressors;
 pub use crate::wrench::{EnvironmentWrench, JointForces, Wrench};
 
 /// The motion of a body frame (at its joint) relative to the water, in its own components, and

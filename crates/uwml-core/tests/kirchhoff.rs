@@ -61,7 +61,7 @@ fn added_mass_power(
 fn matrix(robot: &Robot<f64, N, 15>, q: &[f64; N]) -> [f64; M * M] {
     let no_drag = SegmentCoefficients::<f64, 15>::uniform(0.0, 1.0).unwrap();
     let mut out = [0.0; M * M];
-    robot_added_mass_matrix(robot, &Water::default(), Some(&no_drag), q, &mut RobotData::new(), &mut out);
+    robot_added_mass_matrix(robot, &Water::default(), Some(&no_drag), q, &mut out);
     out
 }
 

@@ -363,9 +363,53 @@ fn a_non_finite_state_gives_nan_and_nothing_else_fails() {
 fn added_mass_matrix<const JJ: usize>(robot: &Robot<f64, JJ, S>, q: &[f64; JJ]) -> Vec<f64> {
     let size = 6 + robot.joint_count();
     let mut out = vec![f64::NAN; size * size];
-    let mut data = RobotData::new();
-    robot_added_mass_matrix(robot, &Water::default(), None, q, &mut data, &mut out);
+    robot_added_mass_matrix(robot, &Water::default(), None, q, &mut out);
     out
+}
+
+/// `M_A` by its definition: column `k` is minus the added-mass forces (base wrench, then joints)
+/// at unit acceleration `k`, every velocity and the current zero.
+fn added_mass_by_columns(robot: &Model, q: &[f64; J]) -> Vec<f64> {
+    let size = 6 + robot.joint_count();
+    let mut out = vec![f64::NAN; size * size];
+    let mut data = RobotData::new();
+    for k in 0..size {
+        let unit = |i: usize| if i == k { 1.0 } else { 0.0 };
+        let zero = Vector3::zeros();
+        let motion = BaseMotion::new(
+            [1.0, 0.0, 0.0, 0.0],
+            zero,
+            zero,
+            Vector3::new(unit(0), unit(1), unit(2)),
+            Vector3::new(unit(3), unit(4), unit(5)),
+        )
+        .unwrap();
+        let qdd: [f64; J] = core::array::from_fn(|j| unit(6 + j));
+        let conditions = Conditions { motion, ..Conditions::new(Water::default()) };
+        robot_hydro(robot, &conditions, [q, &[0.0; J], &qdd], &mut data);
+        let base = data.base_wrench().added_mass.to_array();
+        let column = base.into_iter().chain(data.joint_forces().iter().map(|f| f.added_mass));
+        for (row, value) in column.enumerate() {
+            out[row * size + k] = -value;
+        }
+    }
+    out
+}
+
+#[test]
+fn the_composite_added_inertias_give_the_matrix_of_its_definition() {
+    let mut rng = Rng(77);
+    for _ in 0..40 {
+        let n = 1 + (rng.next().abs() * 9.0) as usize;
+        let robot = random_robot(&mut rng, n.min(J));
+        let q = states(&mut rng, robot.joint_count())[0];
+        let fast = added_mass_matrix(&robot, &q);
+        let by_columns = added_mass_by_columns(&robot, &q);
+        let scale = by_columns.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
+        for (k, (a, b)) in fast.iter().zip(&by_columns).enumerate() {
+            assert_close(*a, *b, scale, 1e-13, &format!("entry {k} of {n} joints"));
+        }
+    }
 }
 
 #[test]
@@ -438,8 +482,7 @@ fn the_joints_block_alone_is_the_full_matrixs_block() {
         let q = states(&mut rng, n)[0];
         let full = added_mass_matrix(&robot, &q);
         let mut block = vec![f64::NAN; n * n + 3];
-        let mut data = RobotData::new();
-        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut data, &mut block);
+        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut block);
         for i in 0..n {
             for j in 0..n {
                 assert_eq!(block[i * n + j].to_bits(), full[(6 + i) * (6 + n) + 6 + j].to_bits(), "({i}, {j})");
@@ -449,7 +492,7 @@ fn the_joints_block_alone_is_the_full_matrixs_block() {
         // A short output gets what fits (unsymmetrized where the mirror entry does not fit), and
         // nothing panics.
         let mut short = vec![f64::NAN; n * n / 2];
-        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut data, &mut short);
+        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut short);
         assert!(short.iter().all(|x| x.is_finite()));
     }
 }

@@ -265,10 +265,10 @@ fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally:
     robot_hydro_regressors(robot, &Conditions { water: water, motion: motion, current: current, coefficients: None, form: AddedMassForm::Morison, losses: None }, [&q, &qd, &qdd], &mut data, &mut drag, &mut added_mass);
     tally.all_finite(drag.iter().chain(added_mass.iter()));
     let mut matrix = [c::<T>(f64::NAN); 100];
-    robot_added_mass_matrix(robot, &water, None, &q, &mut data, &mut matrix);
+    robot_added_mass_matrix(robot, &water, None, &q, &mut matrix);
     tally.all_finite(matrix.iter());
     let mut block = [c::<T>(f64::NAN); 16];
-    robot_joint_added_mass_matrix(robot, &water, None, &q, &mut data, &mut block);
+    robot_joint_added_mass_matrix(robot, &water, None, &q, &mut block);
     tally.all_finite(block.iter());
     tally.expect(block[0] == matrix[66]);
     let (mut value, mut d_q, mut d_velocity, mut m_a) =

@@ -244,18 +244,11 @@ impl MujocoCoupling {
             (row, self.base_motion(py, qvel)?)
         };
         if self.map.free_dof.is_some() {
-            robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.data, &mut self.added_mass);
+            robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.added_mass);
         } else {
             // A fixed base: ν̇ = 0 and the base has no degree of freedom in MuJoCo, so only the
             // joints' block of M_A acts.
-            robot_joint_added_mass_matrix(
-                &robot.robot,
-                &self.water,
-                None,
-                &row.q,
-                &mut self.data,
-                &mut self.joint_added_mass,
-            );
+            robot_joint_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.joint_added_mass);
             for (i, block_row) in self.joint_added_mass.chunks(n.max(1)).enumerate().take(n) {
                 let start = (6 + i) * size + 6;
                 if let Some(slots) = self.added_mass.get_mut(start..start + n) {

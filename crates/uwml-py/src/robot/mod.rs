@@ -519,15 +519,13 @@ impl PyRobot {
         let mut guards = [matrices.readwrite()];
         let [out] = writable(&mut guards)?;
         let robot = &*self.robot;
-        let shared = &self.data;
         py.detach(|| {
-            let mut data = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
             let mut qs = [0.0; MAX_ROBOT_JOINTS];
             for (row, matrix) in values.chunks_exact(n.max(1)).zip(out.chunks_exact_mut(size)) {
                 for (slot, x) in qs.iter_mut().zip(row) {
                     *slot = *x;
                 }
-                robot_added_mass_matrix(robot, &water, coefficients.as_ref(), &qs, &mut data, matrix);
+                robot_added_mass_matrix(robot, &water, coefficients.as_ref(), &qs, matrix);
             }
         });
         drop(guards);
