@@ -5,7 +5,7 @@
 //! joint's torque is therefore a linear combination of two moments of the integrand, which
 //! these functions return exactly, for any inputs, with a fixed amount of work.
 
-use nalgebra::{SimdRealField, Vector3};
+use nalgebra::{SimdBool, SimdRealField, Vector3};
 
 use crate::kinematics::dot;
 use crate::model::constant;
@@ -109,44 +109,57 @@ pub fn circular_speed_moments<T: SimdRealField + Copy>(p: &Vector3<T>, r: &Vecto
     let (a, b) = (dot(r, r), dot(&middle, r));
     let cross = middle.cross(r);
     let cross2 = dot(&cross, &cross);
-    // Gauss-Legendre, in t ∈ [−h, h].
-    let speed = |t: T| {
-        let v = middle + r * t;
-        dot(&v, &v).simd_sqrt()
-    };
-    let (mut g0, mut g1, mut g2) = (T::zero(), T::zero(), T::zero());
-    for (x, w) in GAUSS_LEGENDRE_8 {
-        let (t, w) = (half * constant::<T>(x), half * constant::<T>(w));
-        for t in [-t, t] {
-            let (s, f) = (half + t, w * speed(t));
-            g0 += f;
-            g1 += s * f;
-            g2 += s * s * f;
-        }
-    }
     let (semi_major, semi_minor) = (constant::<T>(ELLIPSE_SEMI_AXES.0), constant::<T>(ELLIPSE_SEMI_AXES.1));
     let outside = b * b / (semi_major * semi_major) + cross2 / (semi_minor * semi_minor);
     let gauss = outside.simd_ge(a * a * half * half);
-    // Closed forms about the minimum of the speed at s = σ, in τ = s − σ.
-    let sqrt_a = a.simd_sqrt();
-    let c = cross2.simd_sqrt() / a;
-    let sigma = half - b / a;
-    let c2 = c * c;
-    // c²·asinh(τ/c) vanishes below rounding once c < ε²·h; dropping it there keeps τ/c finite.
-    let tiny = half * T::simd_default_epsilon() * T::simd_default_epsilon();
-    let kept = c.simd_gt(tiny);
-    let c_safe = c.select(kept, T::one());
-    let c2_kept = c2.select(kept, T::zero());
-    let antiderivatives = |tau: T| {
-        let r2 = tau * tau + c2;
-        let root = r2.simd_sqrt();
-        let g0 = constant::<T>(0.5) * (tau * root + c2_kept * (tau / c_safe).simd_asinh());
-        let cube = r2 * root;
-        (g0, cube * constant::<T>(1.0 / 3.0), constant::<T>(0.25) * (tau * cube - c2 * g0))
+    // Each method only where some lane takes it: the same operations per lane either way.
+    let quadrature = || {
+        // Gauss-Legendre, in t ∈ [−h, h].
+        let speed = |t: T| {
+            let v = middle + r * t;
+            dot(&v, &v).simd_sqrt()
+        };
+        let (mut g0, mut g1, mut g2) = (T::zero(), T::zero(), T::zero());
+        for (x, w) in GAUSS_LEGENDRE_8 {
+            let (t, w) = (half * constant::<T>(x), half * constant::<T>(w));
+            for t in [-t, t] {
+                let (s, f) = (half + t, w * speed(t));
+                g0 += f;
+                g1 += s * f;
+                g2 += s * s * f;
+            }
+        }
+        [g0, g1, g2]
     };
-    let (lo0, lo1, lo2) = antiderivatives(-sigma);
-    let (hi0, hi1, hi2) = antiderivatives(length - sigma);
-    let (j0, j1, j2) = (hi0 - lo0, hi1 - lo1, hi2 - lo2);
-    let closed = [sqrt_a * j0, sqrt_a * (j1 + sigma * j0), sqrt_a * (j2 + sigma * (j1 + j1) + sigma * sigma * j0)];
+    let closed_form = || {
+        // Closed forms about the minimum of the speed at s = σ, in τ = s − σ.
+        let sqrt_a = a.simd_sqrt();
+        let c = cross2.simd_sqrt() / a;
+        let sigma = half - b / a;
+        let c2 = c * c;
+        // c²·asinh(τ/c) vanishes below rounding once c < ε²·h; dropping it there keeps τ/c finite.
+        let tiny = half * T::simd_default_epsilon() * T::simd_default_epsilon();
+        let kept = c.simd_gt(tiny);
+        let c_safe = c.select(kept, T::one());
+        let c2_kept = c2.select(kept, T::zero());
+        let antiderivatives = |tau: T| {
+            let r2 = tau * tau + c2;
+            let root = r2.simd_sqrt();
+            let g0 = constant::<T>(0.5) * (tau * root + c2_kept * (tau / c_safe).simd_asinh());
+            let cube = r2 * root;
+            (g0, cube * constant::<T>(1.0 / 3.0), constant::<T>(0.25) * (tau * cube - c2 * g0))
+        };
+        let (lo0, lo1, lo2) = antiderivatives(-sigma);
+        let (hi0, hi1, hi2) = antiderivatives(length - sigma);
+        let (j0, j1, j2) = (hi0 - lo0, hi1 - lo1, hi2 - lo2);
+        [sqrt_a * j0, sqrt_a * (j1 + sigma * j0), sqrt_a * (j2 + sigma * (j1 + j1) + sigma * sigma * j0)]
+    };
+    if gauss.all() {
+        return quadrature();
+    }
+    if gauss.none() {
+        return closed_form();
+    }
+    let ([g0, g1, g2], closed) = (quadrature(), closed_form());
     [g0.select(gauss, closed[0]), g1.select(gauss, closed[1]), g2.select(gauss, closed[2])]
 }
