@@ -8,8 +8,7 @@ use std::hint::black_box;
 use criterion::{Criterion, criterion_group, criterion_main};
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, Robot, RobotData, Water, hydro_torques,
-    robot_hydro,
+    BaseMotion, Chain, Coefficients, Conditions, Current, Robot, RobotData, Water, hydro_torques, robot_hydro,
 };
 
 #[path = "common/arm.rs"]
@@ -33,14 +32,7 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
         b.iter(|| {
             robot_hydro(
                 black_box(&leg),
-                &Conditions {
-                    water,
-                    motion: fixed.0,
-                    current: fixed.1,
-                    coefficients: None,
-                    form: AddedMassForm::Morison,
-                    losses: None,
-                },
+                &Conditions { motion: fixed.0, current: fixed.1, ..Conditions::new(water) },
                 [black_box(&q), &qd, &qdd],
                 &mut data,
             )
@@ -50,7 +42,7 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
         b.iter(|| {
             robot_hydro(
                 black_box(&leg),
-                &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
+                &Conditions { motion, current, ..Conditions::new(water) },
                 [black_box(&q), &qd, &qdd],
                 &mut data,
             )
@@ -65,7 +57,7 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
         b.iter(|| {
             robot_hydro(
                 black_box(&arm),
-                &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
+                &Conditions { motion, current, ..Conditions::new(water) },
                 [black_box(&q), &qd, &qdd],
                 &mut data,
             )

@@ -79,14 +79,7 @@ fn robot_torques<T: RealField + Real, const J: usize, const S: usize>(
 ) -> T {
     robot_hydro(
         robot,
-        &Conditions {
-            water: Water::default(),
-            motion: *motion,
-            current: *current,
-            coefficients: None,
-            form: AddedMassForm::Morison,
-            losses: None,
-        },
+        &Conditions { motion: *motion, current: *current, ..Conditions::new(Water::default()) },
         [q, qd, qdd],
         data,
     );

@@ -5,7 +5,7 @@
 //! build the same robot in single precision.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing)]
 
-use uwml_core::{AddedMassForm, Conditions, Robot, RobotData, Water, robot_hydro};
+use uwml_core::{Conditions, Robot, RobotData, Water, robot_hydro};
 
 mod exported {
     include!("exported/arm_on_rov.rs");
@@ -35,22 +35,10 @@ fn the_exported_arm_is_the_arm() {
     let (mut a, mut b) = (RobotData::new(), RobotData::new());
     let water = Water::new(exported::WATER_DENSITY, exported::GRAVITY).unwrap();
     assert_eq!(water, Water::default());
-    robot_hydro(
-        &exported,
-        &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
-        [&q, &qd, &qdd],
-        &mut a,
-    );
+    robot_hydro(&exported, &Conditions { motion, current, ..Conditions::new(water) }, [&q, &qd, &qdd], &mut a);
     robot_hydro(
         &by_hand,
-        &Conditions {
-            water: Water::default(),
-            motion,
-            current,
-            coefficients: None,
-            form: AddedMassForm::Morison,
-            losses: None,
-        },
+        &Conditions { motion, current, ..Conditions::new(Water::default()) },
         [&q, &qd, &qdd],
         &mut b,
     );
@@ -86,27 +74,13 @@ fn the_f32_export_is_the_arm_in_single_precision() {
     let (mut a, mut b) = (RobotData::<f32, 7>::new(), RobotData::new());
     robot_hydro(
         &exported,
-        &Conditions {
-            water,
-            motion: motion32,
-            current: current32,
-            coefficients: None,
-            form: AddedMassForm::Morison,
-            losses: None,
-        },
+        &Conditions { motion: motion32, current: current32, ..Conditions::new(water) },
         [&single(&q), &single(&qd), &single(&qdd)],
         &mut a,
     );
     robot_hydro(
         &by_hand,
-        &Conditions {
-            water: Water::default(),
-            motion,
-            current,
-            coefficients: None,
-            form: AddedMassForm::Morison,
-            losses: None,
-        },
+        &Conditions { motion, current, ..Conditions::new(Water::default()) },
         [&q, &qd, &qdd],
         &mut b,
     );

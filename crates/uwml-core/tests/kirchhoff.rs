@@ -42,14 +42,7 @@ fn added_mass_power(
     let mut data = RobotData::new();
     robot_hydro(
         robot,
-        &Conditions {
-            water: Water::default(),
-            motion,
-            current: still,
-            coefficients: Some(&no_drag),
-            form,
-            losses: None,
-        },
+        &Conditions { motion, current: still, coefficients: Some(&no_drag), form, ..Conditions::new(Water::default()) },
         [q, &qd, &qdd],
         &mut data,
     );
@@ -116,12 +109,11 @@ fn kirchhoff_power_is_minus_the_rate_of_the_waters_kinetic_energy_and_morison_is
         robot_hydro(
             &robot,
             &Conditions {
-                water: Water::default(),
                 motion,
                 current: still,
                 coefficients: Some(&no_drag),
                 form,
-                losses: None,
+                ..Conditions::new(Water::default())
             },
             [&q, &[0.0; N], &qdd],
             &mut data,
@@ -147,7 +139,7 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     let mut data = RobotData::new();
     robot_hydro(
         &robot,
-        &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Kirchhoff, losses: None },
+        &Conditions { motion, current, form: AddedMassForm::Kirchhoff, ..Conditions::new(water) },
         [&q, &qd, &qdd],
         &mut data,
     );
@@ -161,7 +153,7 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     let form = AddedMassForm::Kirchhoff;
     robot_hydro_regressors(
         &robot,
-        &Conditions { water, motion, current, coefficients: None, form, losses: None },
+        &Conditions { motion, current, form, ..Conditions::new(water) },
         [&q, &qd, &qdd],
         &mut data,
         &mut drag,
@@ -192,7 +184,7 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
         if kirchhoff {
             robot_jacobians(
                 &robot,
-                &Conditions { water, motion, current, coefficients: None, form, losses: Some(&none) },
+                &Conditions { motion, current, form, losses: Some(&none), ..Conditions::new(water) },
                 [&q, &qd, &qdd],
                 &mut work,
                 out,
@@ -200,14 +192,7 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
         } else {
             robot_jacobians(
                 &robot,
-                &Conditions {
-                    water,
-                    motion,
-                    current,
-                    coefficients: None,
-                    form: AddedMassForm::Morison,
-                    losses: Some(&none),
-                },
+                &Conditions { motion, current, losses: Some(&none), ..Conditions::new(water) },
                 [&q, &qd, &qdd],
                 &mut work,
                 out,

@@ -194,12 +194,11 @@ fn robot_lanes_are_the_scalar_evaluation_bit_for_bit() {
                     robot_hydro(
                         &robot,
                         &Conditions {
-                            water,
                             motion: motions[l],
                             current: currents[l],
-                            coefficients: None,
                             form,
                             losses: Some(&losses),
+                            ..Conditions::new(water)
                         },
                         [q, qd, qdd],
                         &mut scalar,

@@ -5,10 +5,10 @@
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointKind, Owner,
-    RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint,
-    Water, hydro_jacobians, hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors,
-    robot_jacobians, robot_joint_added_mass_matrix,
+    BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointKind, Owner, RigidBody, Robot,
+    RobotData, RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint, Water, hydro_jacobians,
+    hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
+    robot_joint_added_mass_matrix,
 };
 
 mod common;
@@ -37,14 +37,7 @@ fn evaluate(
     let mut data = RobotData::new();
     robot_hydro(
         robot,
-        &Conditions {
-            water: Water::default(),
-            motion: *motion,
-            current: *current,
-            coefficients,
-            form: AddedMassForm::Morison,
-            losses: None,
-        },
+        &Conditions { motion: *motion, current: *current, coefficients, ..Conditions::new(Water::default()) },
         [q, qd, qdd],
         &mut data,
     );
@@ -292,19 +285,7 @@ fn six_virtual_joints_give_the_base_wrench() {
         s_zero[2] = [0.0; J];
         let on_base = evaluate(&robot, None, &motion, &Current::still(), &s_zero);
         let mut data = RobotData::<f64, 18>::new();
-        robot_hydro(
-            &virtual_robot,
-            &Conditions {
-                water: Water::default(),
-                motion: BaseMotion::fixed(),
-                current: Current::still(),
-                coefficients: None,
-                form: AddedMassForm::Morison,
-                losses: None,
-            },
-            [&q, &qd, &qdd],
-            &mut data,
-        );
+        robot_hydro(&virtual_robot, &Conditions::new(Water::default()), [&q, &qd, &qdd], &mut data);
         let scale = wrench_scale(on_base.base_wrench());
         let virtual_forces = data.joint_forces();
         let base = on_base.base_wrench();
@@ -513,14 +494,7 @@ fn regressors_times_coefficients_are_the_forces() {
         let mut data = RobotData::new();
         robot_hydro_regressors(
             &robot,
-            &Conditions {
-                water: Water::default(),
-                motion,
-                current,
-                coefficients: None,
-                form: AddedMassForm::Morison,
-                losses: None,
-            },
+            &Conditions { motion, current, ..Conditions::new(Water::default()) },
             [&s[0], &s[1], &s[2]],
             &mut data,
             &mut drag,
@@ -581,14 +555,7 @@ fn jacobians_are_the_slopes_of_the_forces() {
         };
         robot_jacobians(
             &robot,
-            &Conditions {
-                water: Water::default(),
-                motion,
-                current,
-                coefficients: None,
-                form: AddedMassForm::Morison,
-                losses: Some(&[None; J]),
-            },
+            &Conditions { motion, current, losses: Some(&[None; J]), ..Conditions::new(Water::default()) },
             [&s[0], &s[1], &s[2]],
             &mut work,
             out,
@@ -659,14 +626,7 @@ fn jacobians_are_the_slopes_of_the_forces() {
     };
     robot_jacobians(
         &robot,
-        &Conditions {
-            water: Water::default(),
-            motion: BaseMotion::fixed(),
-            current: Current::still(),
-            coefficients: None,
-            form: AddedMassForm::Morison,
-            losses: Some(&[None; J]),
-        },
+        &Conditions { losses: Some(&[None; J]), ..Conditions::new(Water::default()) },
         [&s[0], &s[1], &s[2]],
         &mut work,
         out,

@@ -80,8 +80,7 @@ fn bad_models_and_motions_are_errors_naming_the_field() {
 #[test]
 fn model_values_beyond_their_bounds_are_refused_and_at_the_bounds_forces_stay_finite() {
     use uwml_core::{
-        AddedMassForm, Conditions, MAX_AREA, MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY, MAX_LENGTH, MAX_MASS,
-        MAX_VOLUME,
+        Conditions, MAX_AREA, MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY, MAX_LENGTH, MAX_MASS, MAX_VOLUME,
     };
     let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() };
     let body = RigidBody { mass: 2.0, com: Vector3::new(0.1, 0.0, 0.0), volume: 0.001, cob: Vector3::zeros() };
@@ -165,12 +164,7 @@ fn model_values_beyond_their_bounds_are_refused_and_at_the_bounds_forces_stay_fi
     let (mut qd, mut qdd) = ([0.0; J], [0.0; J]);
     (q[0], q[1], qd[0], qd[1], qdd[0], qdd[1]) = (0.3, -0.7, 2.0, -1.5, 3.0, 1.0);
     let mut data = RobotData::new();
-    robot_hydro(
-        &robot,
-        &Conditions { water, motion, current, coefficients: None, form: AddedMassForm::Morison, losses: None },
-        [&q, &qd, &qdd],
-        &mut data,
-    );
+    robot_hydro(&robot, &Conditions { motion, current, ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data);
     let joint_forces = data.joint_forces().iter().flat_map(|f| [f.total(), f.gravity]);
     let base = data.base_wrench();
     assert!(joint_forces.chain(base.total().to_array()).chain(base.gravity.to_array()).all(f64::is_finite));

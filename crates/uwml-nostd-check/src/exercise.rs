@@ -240,7 +240,7 @@ fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally:
         return tally.expect(false);
     };
     let mut data = RobotData::<T, 6>::new();
-    robot_hydro(robot, &Conditions { water: water, motion: black_box(motion), current: black_box(current), coefficients: None, form: AddedMassForm::Morison, losses: None }, [&q, &qd, &qdd], &mut data);
+    robot_hydro(robot, &Conditions { motion: black_box(motion), current: black_box(current), ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data);
     for forces in data.joint_forces() {
         tally.all_finite([forces.total(), forces.gravity].iter());
     }
@@ -256,13 +256,13 @@ fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally:
     // Kirchhoff's added mass: the same forces but the added mass's velocity terms.
     let morison = data.base_wrench().total().to_array();
     let form = black_box(AddedMassForm::Kirchhoff);
-    robot_hydro(robot, &Conditions { water: water, motion: motion, current: current, coefficients: None, form: form, losses: None }, [&q, &qd, &qdd], &mut data);
+    robot_hydro(robot, &Conditions { motion, current, form, ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data);
     let kirchhoff = data.base_wrench().total().to_array();
     tally.all_finite(kirchhoff.iter());
     tally.expect(kirchhoff != morison);
     // Regressors, the added-mass matrix and the derivatives (10 = 6 + 4 rows).
     let (mut drag, mut added_mass) = ([c::<T>(f64::NAN); 80], [c::<T>(f64::NAN); 80]);
-    robot_hydro_regressors(robot, &Conditions { water: water, motion: motion, current: current, coefficients: None, form: AddedMassForm::Morison, losses: None }, [&q, &qd, &qdd], &mut data, &mut drag, &mut added_mass);
+    robot_hydro_regressors(robot, &Conditions { motion, current, ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data, &mut drag, &mut added_mass);
     tally.all_finite(drag.iter().chain(added_mass.iter()));
     let mut matrix = [c::<T>(f64::NAN); 100];
     robot_added_mass_matrix(robot, &water, None, &q, &mut matrix);
@@ -276,12 +276,12 @@ fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally:
     let mut work = RobotJacobianData::new(robot);
     let out =
         RobotJacobians { value: &mut value, d_q: &mut d_q, d_velocity: &mut d_velocity, added_mass_matrix: &mut m_a };
-    robot_jacobians(robot, &Conditions { water: water, motion: motion, current: current, coefficients: None, form: AddedMassForm::Morison, losses: Some(&[None; 6]) }, [&q, &qd, &qdd], &mut work, out);
+    robot_jacobians(robot, &Conditions { motion, current, losses: Some(&[None; 6]), ..Conditions::new(water) }, [&q, &qd, &qdd], &mut work, out);
     tally.all_finite(value.iter().chain(d_q.iter()).chain(d_velocity.iter()).chain(m_a.iter()));
     tally.expect(m_a == matrix);
     let mut nan = q;
     nan[1] = c(f64::NAN);
-    robot_hydro(robot, &Conditions { water: water, motion: motion, current: current, coefficients: None, form: AddedMassForm::Morison, losses: None }, [&black_box(nan), &qd, &qdd], &mut data);
+    robot_hydro(robot, &Conditions { motion, current, ..Conditions::new(water) }, [&black_box(nan), &qd, &qdd], &mut data);
     tally.expect(data.joint_forces().iter().all(|f| !f.total().is_finite()));
     tally.expect(data.base_wrench().drag.to_array().iter().all(|x| !x.is_finite()));
 }

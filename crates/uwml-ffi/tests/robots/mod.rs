@@ -507,8 +507,7 @@ pub fn core_hydro_with<T: Real>(
     };
     let (q, qd, qdd) = (padded(state[0]), padded(state[1]), padded(state[2]));
     let mut data = RobotData::new();
-    let conditions =
-        Conditions { water: *water, motion: *motion, current: *current, coefficients: None, form, losses: None };
+    let conditions = Conditions { motion: *motion, current: *current, form, ..Conditions::new(*water) };
     robot_hydro(robot, &conditions, [&q, &qd, &qdd], &mut data);
     data
 }
