@@ -136,7 +136,7 @@ fn aligned_frame<T: RealField + Copy>(axis: &Vector3<T>, segment: &Segment<T>) -
 
 /// An orthonormal frame (columns) whose z column is the unit `axis` and whose x column is the
 /// column of `previous` most perpendicular to it, made perpendicular (exact for axis-aligned axes).
-fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, previous: &Matrix3<T>) -> Matrix3<T> {
+pub(crate) fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, previous: &Matrix3<T>) -> Matrix3<T> {
     let mut x = previous.column(0).into_owned();
     for c in [previous.column(1).into_owned(), previous.column(2).into_owned()] {
         if c.dot(axis).abs() < x.dot(axis).abs() {

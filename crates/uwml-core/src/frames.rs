@@ -11,6 +11,7 @@
 
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
+use crate::body::frame_about;
 use crate::robot::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
 
 /// Joint `i` and its link, in the body frames `F_parent` and `F_i`.
@@ -83,22 +84,6 @@ impl<T: RealField + Copy> Bulk<T> {
     }
 }
 
-/// An orthonormal frame (columns) whose z column is the unit `axis` and whose x column is the
-/// column of `parent` most perpendicular to it, made perpendicular (exact for axis-aligned axes).
-fn frame_about<T: RealField + Copy>(axis: &Vector3<T>, parent: &Matrix3<T>) -> Matrix3<T> {
-    if parent.column(2).into_owned() == *axis {
-        return *parent;
-    }
-    let mut x = parent.column(0).into_owned();
-    for c in [parent.column(1).into_owned(), parent.column(2).into_owned()] {
-        if c.dot(axis).abs() < x.dot(axis).abs() {
-            x = c;
-        }
-    }
-    let x = (x - axis * x.dot(axis)).normalize();
-    Matrix3::from_columns(&[x, axis.cross(&x), *axis])
-}
-
 /// `segment`'s geometry in the body frame with axes `frame` (columns, in the body's coordinates).
 fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> SegmentGeometry<T> {
     let local = |v: &Vector3<T>| frame.transpose() * v;
@@ -142,7 +127,9 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
         let mut axes = [identity; J];
         for (i, (joint, link)) in joints.iter().zip(links).enumerate() {
             let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
-            let own = frame_about(&joint.axis, &parent);
+            // The parent's own axes where its z is this joint's axis: the turn is then none.
+            let own =
+                if parent.column(2).into_owned() == joint.axis { parent } else { frame_about(&joint.axis, &parent) };
             let turn = parent.transpose() * own;
             let origin = parent.transpose() * joint.origin;
             let tangential = Vector3::z().cross(&origin);
