@@ -127,10 +127,11 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
         let mut axes = [identity; J];
         for (i, (joint, link)) in joints.iter().zip(links).enumerate() {
             let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
-            // The parent's own axes where its z is this joint's axis: the turn is then none.
-            let own =
-                if parent.column(2).into_owned() == joint.axis { parent } else { frame_about(&joint.axis, &parent) };
-            let turn = parent.transpose() * own;
+            // The parent's own axes where its z is this joint's axis: the turn is then none
+            // (exactly the identity, not `Pᵀ P` to rounding).
+            let same = parent.column(2).into_owned() == joint.axis;
+            let own = if same { parent } else { frame_about(&joint.axis, &parent) };
+            let turn = if same { identity } else { parent.transpose() * own };
             let origin = parent.transpose() * joint.origin;
             let tangential = Vector3::z().cross(&origin);
             let before_turn = |v: Vector3<T>| turn.transpose() * v;
