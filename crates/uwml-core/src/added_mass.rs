@@ -48,10 +48,10 @@ impl<T: SimdRealField + Copy> Inertia<T> {
     /// `C = −∫ [r]× P [r]×`.
     fn of_segment(segment: &RobotSegment<T>, geometry: &SegmentGeometry<T>, [cm0, cm1]: [T; 2], density: T) -> Self {
         let scale = density * segment.area;
-        let u = geometry.axis;
+        let u = geometry.axis();
         let p = match segment.section {
             Section::Rectangular { .. } => {
-                let [n0, n1] = geometry.normals;
+                let [n0, n1] = geometry.normals();
                 n0 * n0.transpose() * (scale * cm0) + n1 * n1.transpose() * (scale * cm1)
             }
             Section::Circular { .. } => (Matrix3::identity() - u * u.transpose()) * (scale * cm0),

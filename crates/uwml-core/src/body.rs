@@ -494,7 +494,7 @@ impl<T: SimdRealField + Copy> BodySegment<T> {
 
 impl<T: SimdRealField + Copy> SegmentFrame<T> {
     /// Every number mapped by `f`.
-    fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentFrame<U> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentFrame<U> {
         match self {
             Self::Aligned { swapped } => SegmentFrame::Aligned { swapped: *swapped },
             Self::General { axis, normals } => {

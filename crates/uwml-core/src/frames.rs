@@ -11,7 +11,7 @@
 
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
-use crate::body::frame_about;
+use crate::body::{SegmentFrame, frame_about};
 use crate::robot::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
 
 /// Joint `i` and its link, in the body frames `F_parent` and `F_i`.
@@ -65,9 +65,32 @@ pub(crate) struct BodyFrames<T: SimdRealField + Copy, const J: usize, const S: u
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct SegmentGeometry<T: SimdRealField + Copy> {
     pub(crate) start: Vector3<T>,
-    pub(crate) axis: Vector3<T>,
-    /// Zero for a circular section.
-    pub(crate) normals: [Vector3<T>; 2],
+    /// The directions: along the body's axes (the segment along x, its normals along y and z,
+    /// their signs dropped, as they change no force: projections are components), or any (the
+    /// normals zero for a circular section).
+    pub(crate) frame: SegmentFrame<T>,
+    /// `σ = (axis × normals[0]) · normals[1] = ±1`: the moment directions `axis × normals[k]`
+    /// are `σ normals[1]` and `−σ normals[0]`.
+    pub(crate) sign: T,
+}
+
+impl<T: SimdRealField + Copy> SegmentGeometry<T> {
+    /// The segment's unit direction.
+    pub(crate) fn axis(&self) -> Vector3<T> {
+        match &self.frame {
+            SegmentFrame::Aligned { .. } => Vector3::x(),
+            SegmentFrame::General { axis, .. } => *axis,
+        }
+    }
+
+    /// The normal directions (zero for a circular section).
+    pub(crate) fn normals(&self) -> [Vector3<T>; 2] {
+        match &self.frame {
+            SegmentFrame::Aligned { swapped: false } => [Vector3::y(), Vector3::z()],
+            SegmentFrame::Aligned { swapped: true } => [Vector3::z(), Vector3::y()],
+            SegmentFrame::General { normals, .. } => *normals,
+        }
+    }
 }
 
 impl<T: RealField + Copy> Bulk<T> {
@@ -87,13 +110,25 @@ impl<T: RealField + Copy> Bulk<T> {
 /// `segment`'s geometry in the body frame with axes `frame` (columns, in the body's coordinates).
 fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> SegmentGeometry<T> {
     let local = |v: &Vector3<T>| frame.transpose() * v;
+    let (start, axis) = (local(&segment.start), local(&segment.axis));
+    let normals = match segment.section {
+        Section::Rectangular { normals, .. } => normals.map(|n| local(&n)),
+        Section::Circular { .. } => [Vector3::zeros(); 2],
+    };
+    let along = |n: &Vector3<T>, d: &Vector3<T>| *n == *d || *n == -d;
+    let [n0, n1] = normals;
+    let (y, z) = (Vector3::y(), Vector3::z());
+    let aligned = matches!(segment.section, Section::Rectangular { .. }) && axis == Vector3::x();
+    if aligned && along(&n0, &y) && along(&n1, &z) {
+        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: false }, sign: T::one() };
+    }
+    if aligned && along(&n0, &z) && along(&n1, &y) {
+        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: true }, sign: -T::one() };
+    }
     SegmentGeometry {
-        start: local(&segment.start),
-        axis: local(&segment.axis),
-        normals: match segment.section {
-            Section::Rectangular { normals, .. } => normals.map(|n| local(&n)),
-            Section::Circular { .. } => [Vector3::zeros(); 2],
-        },
+        start,
+        frame: SegmentFrame::General { axis, normals },
+        sign: if axis.cross(&n0).dot(&n1) < T::zero() { -T::one() } else { T::one() },
     }
 }
 
@@ -120,8 +155,11 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
             base: Bulk::new(base, &identity),
             total_volume: T::zero(),
             total_mass: T::zero(),
-            segments: [SegmentGeometry { start: Vector3::zeros(), axis: Vector3::x(), normals: [Vector3::zeros(); 2] };
-                S],
+            segments: [SegmentGeometry {
+                start: Vector3::zeros(),
+                frame: SegmentFrame::General { axis: Vector3::x(), normals: [Vector3::zeros(); 2] },
+                sign: T::one(),
+            }; S],
         };
         // Each body frame's axes (columns) in link coordinates: all link frames agree at q = 0.
         let mut axes = [identity; J];
@@ -210,8 +248,8 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S
             total_mass: f(self.total_mass),
             segments: self.segments.map(|g| SegmentGeometry {
                 start: g.start.map(f),
-                axis: g.axis.map(f),
-                normals: g.normals.map(|n| n.map(f)),
+                frame: g.frame.map_scalars(f),
+                sign: f(g.sign),
             }),
         }
     }

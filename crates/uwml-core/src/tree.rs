@@ -348,31 +348,46 @@ pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
     form: AddedMassForm,
 ) -> (Wrench<T>, Wrench<T>) {
     let start = geometry.start;
-    let u = geometry.axis;
+    let u = geometry.axis();
     let (v0, a0) = frame.point_motion(&start);
     let w = &frame.angular_velocity;
     // Relative velocity and acceleration along the segment: affine in s.
-    let v1 = w.cross(&u);
-    let a1 = frame.angular_acceleration.cross(&u) + w.cross(&v1);
+    let v1 = || w.cross(&u);
+    let a1 = |v1: &Vector3<T>| frame.angular_acceleration.cross(&u) + w.cross(v1);
     let length = segment.length;
     let rho = density;
     let half = constant::<T>(0.5);
     let added_mass_scale = -rho * segment.area;
     let (drag, added_mass) = match &segment.section {
-        Section::Rectangular { widths, .. } => {
-            let normals = &geometry.normals;
-            let mut drag = Wrench::zero();
-            let mut added_mass = Wrench::zero();
-            for ((n, &width), (cd, cm)) in normals.iter().zip(widths.iter()).zip([(cd0, cm0), (cd1, cm1)]) {
-                let (d0, d1) = drag_moments(dot(n, &v0), dot(n, &v1), length);
-                let (m0, m1) = added_mass_moments(dot(n, &a0), dot(n, &a1), length);
-                let (drag_scale, mass_scale) = (-half * rho * cd * width, added_mass_scale * cm);
-                let moment_direction = u.cross(n);
-                drag += Wrench { force: n * (drag_scale * d0), moment: moment_direction * (drag_scale * d1) };
-                added_mass += Wrench { force: n * (mass_scale * m0), moment: moment_direction * (mass_scale * m1) };
-                if form == AddedMassForm::Kirchhoff {
+        Section::Rectangular { widths: [width0, width1], .. } => {
+            // Projections on the normals (components where the segment is aligned). With the
+            // moment directions m_k = u × n_k (σ n1 and −σ n0): the normal speed along the
+            // segment is v0_k + s ω·m_k, the normal acceleration a0_k + s (α·m_k + (ω·n_k)(ω·u)).
+            let (directions, sign) = (&geometry.frame, geometry.sign);
+            let [w0, w1] = directions.normal_components(w);
+            let [alpha0, alpha1] = directions.normal_components(&frame.angular_acceleration);
+            let [speed0, speed1] = directions.normal_components(&v0);
+            let [accel0, accel1] = directions.normal_components(&a0);
+            let w_axial = directions.axial_component(w);
+            let (d00, d01) = drag_moments(speed0, sign * w1, length);
+            let (d10, d11) = drag_moments(speed1, -sign * w0, length);
+            let (m00, m01) = added_mass_moments(accel0, sign * alpha1 + w0 * w_axial, length);
+            let (m10, m11) = added_mass_moments(accel1, -sign * alpha0 + w1 * w_axial, length);
+            let (drag0, drag1) = (-half * rho * cd0 * *width0, -half * rho * cd1 * *width1);
+            let (mass0, mass1) = (added_mass_scale * cm0, added_mass_scale * cm1);
+            // Forces along the normals; moments about the start Σ_k m_k ∫ s f_k.
+            let along = |f0: T, f1: T, g0: T, g1: T| Wrench {
+                force: directions.along_normals([f0, f1]),
+                moment: directions.along_normals([-sign * g1, sign * g0]),
+            };
+            let drag = along(drag0 * d00, drag1 * d10, drag0 * d01, drag1 * d11);
+            let mut added_mass = along(mass0 * m00, mass1 * m10, mass0 * m01, mass1 * m11);
+            if form == AddedMassForm::Kirchhoff {
+                let v1 = v1();
+                for (n, mass_scale) in geometry.normals().iter().zip([mass0, mass1]) {
                     // ṅ = ω × n. Extra force density −m[(ṅ·v) n + (n·v) ṅ]; couple −v × p with
                     // p = m (n·v) n: ∫ (n·v)(v × n) times −m, v = v0 + s v1.
+                    let moment_direction = u.cross(n);
                     let n_dot = w.cross(n);
                     let (e0, e1) = added_mass_moments(dot(&n_dot, &v0), dot(&n_dot, &v1), length);
                     let (c0, c1) = added_mass_moments(dot(n, &v0), dot(n, &v1), length);
@@ -386,6 +401,8 @@ pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
             (drag, added_mass)
         }
         Section::Circular { diameter } => {
+            let v1 = v1();
+            let a1 = a1(&v1);
             // Normal parts: v1 = ω × u is normal already.
             let normal = |x: Vector3<T>| x - u * dot(&u, &x);
             let (p0, a0n, a1n) = (normal(v0), normal(a0), normal(a1));

@@ -13,8 +13,8 @@
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  3208 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  1608 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 27784 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14472 bytes.
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 28296 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14728 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -170,12 +170,12 @@
 /**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 3472
+#define UWML_ROBOT_F64_WORDS 3536
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1808
+#define UWML_ROBOT_F32_WORDS 1840
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
