@@ -137,21 +137,26 @@ pub fn circular_speed_moments<T: SimdRealField + Copy>(p: &Vector3<T>, r: &Vecto
         let c = cross2.simd_sqrt() / a;
         let sigma = half - b / a;
         let c2 = c * c;
-        // c²·asinh(τ/c) vanishes below rounding once c < ε²·h; dropping it there keeps τ/c finite.
+        // The two ends' asinh(τ/c) enter only as their difference, ln(P(τ_hi)/P(τ_lo)) with
+        // P(τ) = τ + R (R = sqrt(τ² + c²)), written c²/(R − τ) for τ < 0, where the sum
+        // would cancel: one logarithm, and no division by c. The c² term vanishes below
+        // rounding once c < ε²·h; dropping it there keeps the logarithm finite.
         let tiny = half * T::simd_default_epsilon() * T::simd_default_epsilon();
         let kept = c.simd_gt(tiny);
-        let c_safe = c.select(kept, T::one());
         let c2_kept = c2.select(kept, T::zero());
-        let antiderivatives = |tau: T| {
+        let end = |tau: T| {
             let r2 = tau * tau + c2;
             let root = r2.simd_sqrt();
-            let g0 = constant::<T>(0.5) * (tau * root + c2_kept * (tau / c_safe).simd_asinh());
             let cube = r2 * root;
-            (g0, cube * constant::<T>(1.0 / 3.0), constant::<T>(0.25) * (tau * cube - c2 * g0))
+            let p = (tau + root).select(tau.simd_ge(T::zero()), c2 / (root - tau));
+            (constant::<T>(0.5) * tau * root, cube * constant::<T>(1.0 / 3.0), tau * cube, p)
         };
-        let (lo0, lo1, lo2) = antiderivatives(-sigma);
-        let (hi0, hi1, hi2) = antiderivatives(length - sigma);
-        let (j0, j1, j2) = (hi0 - lo0, hi1 - lo1, hi2 - lo2);
+        let (lo0, lo1, lo_tau_cube, lo_p) = end(-sigma);
+        let (hi0, hi1, hi_tau_cube, hi_p) = end(length - sigma);
+        let log_ratio = (hi_p / lo_p).select(kept, T::one()).simd_ln();
+        let j0 = hi0 - lo0 + constant::<T>(0.5) * c2_kept * log_ratio;
+        let j1 = hi1 - lo1;
+        let j2 = constant::<T>(0.25) * (hi_tau_cube - lo_tau_cube - c2 * j0);
         [sqrt_a * j0, sqrt_a * (j1 + sigma * j0), sqrt_a * (j2 + sigma * (j1 + j1) + sigma * sigma * j0)]
     };
     if gauss.all() {
