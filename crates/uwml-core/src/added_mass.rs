@@ -87,7 +87,8 @@ impl<T: SimdRealField + Copy> Inertia<T> {
 }
 
 /// Every body's added inertia about its origin in its body frame, `[base, link 0, ...]` summed
-/// over subtrees (the composite inertias), and each joint's rotation `F_parent ← F_i` at `q`.
+/// over subtrees (the composite inertias), and each joint's rotation `F_parent ← F_i` and origin
+/// in `F_parent` at `q`.
 /// Returns the base's composite inertia.
 fn composite_inertias<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
@@ -95,7 +96,7 @@ fn composite_inertias<T: Real, const J: usize, const S: usize>(
     coefficients: Option<&SegmentCoefficients<T, S>>,
     q: &[T; J],
     inertias: &mut [Inertia<T>; J],
-    rotations: &mut [Matrix3<T>; J],
+    placements: &mut [(Matrix3<T>, Vector3<T>); J],
 ) -> Inertia<T> {
     let n = robot.joint_count();
     let frames = robot.frames();
@@ -132,8 +133,8 @@ fn composite_inertias<T: Real, const J: usize, const S: usize>(
             Some(t) => t * turn,
             None => turn,
         };
-        if let Some(slot) = rotations.get_mut(i) {
-            *slot = rotation;
+        if let Some(slot) = placements.get_mut(i) {
+            *slot = (rotation, offset);
         }
         let Some(&own) = inertias.get(i) else { continue };
         let moved = own.in_parent(&rotation, &offset);
@@ -210,9 +211,8 @@ fn added_mass_block<T: Real, const J: usize, const S: usize>(
         }
     };
     let mut inertias = [Inertia::zero(); J];
-    let mut rotations = [Matrix3::identity(); J];
-    let base = composite_inertias(robot, water, coefficients, q, &mut inertias, &mut rotations);
-    let frames = robot.frames();
+    let mut placements = [(Matrix3::identity(), Vector3::zeros()); J];
+    let base = composite_inertias(robot, water, coefficients, q, &mut inertias, &mut placements);
     // The base block: the whole robot's composite inertia.
     if first == 0 {
         for r in 0..3 {
@@ -234,13 +234,7 @@ fn added_mass_block<T: Real, const J: usize, const S: usize>(
         };
         put(6 + j, 6 + j, project(joint.kind, &force, &moment));
         let mut at = j;
-        while let (Some(joint), Some(geometry), Some(rotation), Some(&q)) =
-            (robot.joints().get(at), frames.joints.get(at), rotations.get(at), q.get(at))
-        {
-            let offset = match joint.kind {
-                JointKind::Revolute => geometry.origin,
-                JointKind::Prismatic => geometry.origin + geometry.axis * q,
-            };
+        while let (Some(joint), Some((rotation, offset))) = (robot.joints().get(at), placements.get(at)) {
             force = rotation * force;
             moment = rotation * moment + offset.cross(&force);
             match joint.parent.filter(|&p| p < at) {

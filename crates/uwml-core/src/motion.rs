@@ -8,7 +8,7 @@
 //! classical acceleration is `v̇ + ω × v`. Current: a uniform water velocity and acceleration
 //! in world components.
 
-use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
+use nalgebra::{Matrix3, RealField, SMatrix, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
 use crate::model::{AXIS_TOLERANCE, check_vector, constant};
@@ -186,6 +186,19 @@ where
     out
 }
 
+/// The matrix `field` of each of `items`, side by side on the lanes (see [`gather`]).
+fn gather_each<L: SimdRealField + Copy, X, const R: usize, const C: usize>(
+    items: &[X],
+    field: impl Fn(&X) -> &SMatrix<L::Element, R, C>,
+) -> SMatrix<L, R, C>
+where
+    L::Element: SimdRealField + Copy,
+{
+    SMatrix::from_fn(|row, column| {
+        gather(items.iter().map(|x| field(x).get((row, column)).copied().unwrap_or_else(nalgebra::zero)))
+    })
+}
+
 impl<L: SimdRealField + Copy> BaseMotion<L>
 where
     L::Element: SimdRealField + Copy,
@@ -194,19 +207,12 @@ where
     /// in lane `l`; lanes beyond those given repeat the first).
     #[must_use]
     pub fn from_lanes(lanes: &[BaseMotion<L::Element>]) -> Self {
-        let vector = |field: fn(&BaseMotion<L::Element>) -> &Vector3<L::Element>| {
-            Vector3::from_fn(|row, _| {
-                gather(lanes.iter().map(|m| field(m).get(row).copied().unwrap_or_else(nalgebra::zero)))
-            })
-        };
         Self {
-            rotation: Matrix3::from_fn(|row, column| {
-                gather(lanes.iter().map(|m| m.rotation.get((row, column)).copied().unwrap_or_else(nalgebra::zero)))
-            }),
-            velocity: vector(|m| &m.velocity),
-            angular_velocity: vector(|m| &m.angular_velocity),
-            acceleration: vector(|m| &m.acceleration),
-            angular_acceleration: vector(|m| &m.angular_acceleration),
+            rotation: gather_each(lanes, |m| &m.rotation),
+            velocity: gather_each(lanes, |m| &m.velocity),
+            angular_velocity: gather_each(lanes, |m| &m.angular_velocity),
+            acceleration: gather_each(lanes, |m| &m.acceleration),
+            angular_acceleration: gather_each(lanes, |m| &m.angular_acceleration),
         }
     }
 }
@@ -219,11 +225,6 @@ where
     /// [`BaseMotion::from_lanes`]).
     #[must_use]
     pub fn from_lanes(lanes: &[Current<L::Element>]) -> Self {
-        let vector = |field: fn(&Current<L::Element>) -> &Vector3<L::Element>| {
-            Vector3::from_fn(|row, _| {
-                gather(lanes.iter().map(|c| field(c).get(row).copied().unwrap_or_else(nalgebra::zero)))
-            })
-        };
-        Self { velocity: vector(|c| &c.velocity), acceleration: vector(|c| &c.acceleration) }
+        Self { velocity: gather_each(lanes, |c| &c.velocity), acceleration: gather_each(lanes, |c| &c.acceleration) }
     }
 }

@@ -30,18 +30,18 @@ pub use crate::wrench::{EnvironmentWrench, JointForces, Wrench};
 /// where it sits in its parent's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Frame<T: SimdRealField + Copy> {
-    pub(crate) angular_velocity: Vector3<T>,
-    pub(crate) angular_acceleration: Vector3<T>,
+    angular_velocity: Vector3<T>,
+    angular_acceleration: Vector3<T>,
     /// Velocity of the frame origin less the water's.
-    pub(crate) velocity: Vector3<T>,
+    velocity: Vector3<T>,
     /// Classical acceleration of the frame origin less the water's.
-    pub(crate) acceleration: Vector3<T>,
+    acceleration: Vector3<T>,
     /// Gravity's acceleration vector.
-    pub(crate) gravity: Vector3<T>,
+    gravity: Vector3<T>,
     /// The water's acceleration.
-    pub(crate) water_acceleration: Vector3<T>,
+    water_acceleration: Vector3<T>,
     /// `(sin q, cos q)` of a revolute joint's angle; `(0, 1)` for a prismatic joint.
-    pub(crate) turn: (T, T),
+    turn: (T, T),
     /// The frame origin in the parent's body frame (a prismatic joint's slide included).
     pub(crate) offset: Vector3<T>,
     /// What is known of the motion from the robot's structure alone.
@@ -474,7 +474,7 @@ pub fn robot_hydro<T: Real, const J: usize, const S: usize>(
 
 /// The forward pass: every link's frame into `data.frames` (parents first).
 #[inline(always)]
-pub(crate) fn forward<T: Real, const J: usize, const S: usize>(
+fn forward<T: Real, const J: usize, const S: usize>(
     robot: &Robot<T, J, S>,
     base: &Frame<T>,
     [q, qd, qdd]: [&[T; J]; 3],

@@ -56,15 +56,15 @@ pub(super) fn hydro_range(
     } else {
         None
     };
-    let samples: Vec<usize> = range.clone().collect();
-    for (group, chunk) in samples.chunks(4).enumerate() {
-        lanes.load([q, qd, qdd], chunk, n);
+    for (group, first_sample) in range.clone().step_by(4).enumerate() {
+        let chunk = first_sample..(first_sample + 4).min(range.end);
+        lanes.load([q, qd, qdd], &chunk, n);
         let (motion, current) = match &fixed {
             Some(both) => *both,
             None => {
                 let mut motions = [BaseMotion::fixed(); 4];
                 let mut currents = [Current::still(); 4];
-                for ((m, c), &sample) in motions.iter_mut().zip(currents.iter_mut()).zip(chunk) {
+                for ((m, c), sample) in motions.iter_mut().zip(currents.iter_mut()).zip(chunk.clone()) {
                     (*m, *c) = surroundings.at(sample)?;
                 }
                 let used = chunk.len();
@@ -113,7 +113,7 @@ pub(super) fn hydro_range(
             }
         }
         if let Some(losses) = losses {
-            for (lane, &sample) in chunk.iter().enumerate() {
+            for (lane, sample) in chunk.clone().enumerate() {
                 let k = first + lane;
                 row.load([q, qd, qdd], sample, n);
                 let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());

@@ -1,6 +1,8 @@
 //! The per-sample inputs of a batch, checked: joint states, base motion and current (given once
 //! or per sample), joint losses with their conditions; and an error of one sample.
 
+use std::ops::Range;
+
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -102,9 +104,8 @@ impl LaneRow {
     }
 
     /// The rows `samples` (up to four) of the batch `states` (`n` joints).
-    pub(super) fn load(&mut self, states: [&[f64]; 3], samples: &[usize], n: usize) {
-        let first = samples.first().copied().unwrap_or(0);
-        let sample = |lane: usize| samples.get(lane).copied().unwrap_or(first);
+    pub(super) fn load(&mut self, states: [&[f64]; 3], samples: &Range<usize>, n: usize) {
+        let sample = |lane: usize| if lane < samples.len() { samples.start + lane } else { samples.start };
         for (values, out) in states.into_iter().zip([&mut self.q, &mut self.qd, &mut self.qdd]) {
             for (j, slot) in out.iter_mut().enumerate().take(n) {
                 let at = |lane: usize| values.get(sample(lane) * n + j).copied().unwrap_or(0.0);
