@@ -3,7 +3,8 @@
  *
  * Two APIs, each in double (_f64) and float (_f32). See docs/firmware.md.
  *   uwml_leg3_*: hydrodynamic (drag, added mass, buoyancy) and joint-loss (oil drag, seal)
- *     torques of a 3-joint underwater leg (UWML_LEG3_JOINTS), the paper's UWML or your own.
+ *     torques of a 3-joint underwater leg (UWML_LEG3_JOINTS), the paper's UWML or your own;
+ *     a thin wrapper of uwml_robot_*: the leg as a robot, through the same evaluation.
  *   uwml_robot_*: hydrodynamic forces on every joint and the wrench on the base of any robot up
  *     to UWML_ROBOT_MAX_JOINTS (16) revolute or prismatic joints in a tree and
  *     UWML_ROBOT_MAX_SEGMENTS (32) rectangular or circular segments, on a base that may move
@@ -11,8 +12,8 @@
  *
  * Memory: no heap, no globals, no locks. All structs are plain data that the caller allocates,
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
- *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  3208 bytes,
- *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  1608 bytes,
+ *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  6152 bytes,
+ *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  3208 bytes,
  *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 28296 bytes,
  *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14728 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
@@ -150,12 +151,12 @@
 /**
  * Opaque words of `UwmlLeg3F64`: `sizeof(UwmlLeg3F64) = 8 * (1 + UWML_LEG3_F64_WORDS)` bytes.
  */
-#define UWML_LEG3_F64_WORDS 400
+#define UWML_LEG3_F64_WORDS 768
 
 /**
  * Opaque words of `UwmlLeg3F32`: `sizeof(UwmlLeg3F32) = 8 * (1 + UWML_LEG3_F32_WORDS)` bytes.
  */
-#define UWML_LEG3_F32_WORDS 200
+#define UWML_LEG3_F32_WORDS 400
 
 /**
  * The most joints (and links) a robot of the `uwml_robot_*` API may have.

@@ -6,12 +6,13 @@
 
 use core::ffi::c_char;
 
-use uwml_core::nalgebra::{RealField, Vector3};
+use uwml_core::nalgebra::RealField;
 use uwml_core::{
-    Chain, Coefficients, Drive, EnvironmentTorques, HydroTorques, Joint, JointLosses, Link, LossState, ModelError,
-    OilDrag, Problem, Seal, Segment, Water, environment_torques, hydro_torques,
+    BaseMotion, Chain, Coefficients, Current, Drive, Joint, JointForces, JointLoss, JointLosses, Link, ModelError,
+    OilDrag, Problem, Robot, RobotData, Seal, Segment, Water,
 };
 
+use crate::robot::{Model, check_evaluation, environment_total};
 use crate::{
     UWML_ERR_BELOW_ABSOLUTE_ZERO, UWML_ERR_BEYOND_DEEPEST_OCEAN, UWML_ERR_INDEX_OUT_OF_RANGE, UWML_ERR_NEGATIVE,
     UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE, UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER,
@@ -25,28 +26,31 @@ use crate::{
 /// The joints of the C API's leg.
 pub(crate) const N: usize = 3;
 
-/// What lives in the opaque words of `UwmlLeg3F64` / `UwmlLeg3F32`.
+/// What lives in the opaque words of `UwmlLeg3F64` / `UwmlLeg3F32`: the leg as a robot of the
+/// robot API (`crate::robot`), whose evaluation it is, and its parameters.
 #[derive(Clone, Copy)]
 pub(crate) struct Leg<T: RealField + Copy> {
-    pub(crate) chain: Chain<T, N>,
-    pub(crate) water: Water<T>,
-    pub(crate) coefficients: Coefficients<T, N>,
-    /// Each joint's loss model, kept so that a change of conditions can recompute `states`.
-    pub(crate) losses: [Option<JointLosses<T>>; N],
-    /// Each joint's losses at its current pressure and temperature.
-    pub(crate) states: [Option<LossState<T>>; N],
+    /// The leg's validated parameters, kept to rebuild `model.robot` when the coefficients change.
+    chain: Chain<T, N>,
+    /// The leg as a robot: its segments, water and joint losses.
+    pub(crate) model: Model<T, N, N>,
 }
 
-impl<T: RealField + Copy> Leg<T> {
+impl<T: RealField + uwml_core::Real> Leg<T> {
     /// A chain in default water, with the default coefficients and no losses.
-    fn of_chain(chain: Chain<T, N>) -> Self {
-        Self {
-            chain,
-            water: Water::default(),
-            coefficients: Coefficients::default(),
-            losses: [None; N],
-            states: [None; N],
-        }
+    ///
+    /// # Errors
+    /// None for a valid chain (the robot has room for its joints and segments).
+    fn of_chain(chain: Chain<T, N>) -> Result<Self, ModelError> {
+        let robot = Robot::from_chain(&chain, &Coefficients::default())?;
+        Ok(Self { chain, model: Model::new(robot, Water::default()) })
+    }
+
+    /// The same leg with other coefficients (its segments').
+    fn with_coefficients(&self, coefficients: Coefficients<T, N>) -> Result<Self, ModelError> {
+        let mut model = self.model;
+        model.robot = Robot::from_chain(&self.chain, &coefficients)?;
+        Ok(Self { model, ..*self })
     }
 }
 
@@ -119,7 +123,7 @@ pub(crate) unsafe fn report(error: *mut UwmlError, result: Result<(), Failure>) 
 }
 
 /// The f32 and f64 halves of the C API.
-pub(crate) trait Precision: RealField + Copy {
+pub(crate) trait Precision: RealField + Copy + uwml_core::Real {
     /// The caller-allocated opaque leg: one tag word, then the `Leg<Self>`.
     type Leg;
     type JointParams: Copy;
@@ -135,8 +139,10 @@ pub(crate) trait Precision: RealField + Copy {
     /// A parameter that the core rejects.
     fn losses(params: &Self::LossParams) -> Result<JointLosses<Self>, ModelError>;
     fn default_loss_params() -> Self::LossParams;
-    fn environment(torques: &EnvironmentTorques<Self, N>) -> Self::Environment;
-    fn hydro(torques: &HydroTorques<Self, N>) -> Self::Hydro;
+    /// The first three joints' forces and losses (zero where there are fewer).
+    fn environment(forces: &[JointForces<Self>], losses: &[JointLoss<Self>]) -> Self::Environment;
+    /// The first three joints' forces (zero where there are fewer).
+    fn hydro(forces: &[JointForces<Self>]) -> Self::Hydro;
 }
 
 macro_rules! precision {
@@ -230,27 +236,49 @@ macro_rules! precision {
                 }
             }
 
-            fn environment(e: &EnvironmentTorques<$t, N>) -> $environment {
-                let h = &e.hydro;
+            fn environment(forces: &[JointForces<$t>], losses: &[JointLoss<$t>]) -> $environment {
+                let none = JointLoss { visc: 0.0, seal: 0.0, current: 0.0 };
+                let loss = |i: usize| losses.get(i).copied().unwrap_or(none);
+                let joint = |i: usize| {
+                    forces.get(i).copied().unwrap_or(JointForces {
+                        drag: 0.0,
+                        added_mass: 0.0,
+                        buoyancy: 0.0,
+                        gravity: 0.0,
+                    })
+                };
+                let each = |f: &dyn Fn(&JointForces<$t>, &JointLoss<$t>) -> $t| {
+                    core::array::from_fn(|i| f(&joint(i), &loss(i)))
+                };
                 $environment {
-                    drag: h.drag.into(),
-                    added_mass: h.added_mass.into(),
-                    buoyancy: h.buoyancy.into(),
-                    gravity: h.gravity.into(),
-                    visc: e.visc.into(),
-                    seal: e.seal.into(),
-                    current: e.current.into(),
-                    total: e.total().into(),
+                    drag: each(&|f, _| f.drag),
+                    added_mass: each(&|f, _| f.added_mass),
+                    buoyancy: each(&|f, _| f.buoyancy),
+                    gravity: each(&|f, _| f.gravity),
+                    visc: each(&|_, l| l.visc),
+                    seal: each(&|_, l| l.seal),
+                    current: each(&|_, l| l.current),
+                    total: each(&|f, l| environment_total(f, l)),
                 }
             }
 
-            fn hydro(h: &HydroTorques<$t, N>) -> $hydro {
+            fn hydro(forces: &[JointForces<$t>]) -> $hydro {
+                let each = |f: &dyn Fn(&JointForces<$t>) -> $t| {
+                    core::array::from_fn(|i| {
+                        f(&forces.get(i).copied().unwrap_or(JointForces {
+                            drag: 0.0,
+                            added_mass: 0.0,
+                            buoyancy: 0.0,
+                            gravity: 0.0,
+                        }))
+                    })
+                };
                 $hydro {
-                    drag: h.drag.into(),
-                    added_mass: h.added_mass.into(),
-                    buoyancy: h.buoyancy.into(),
-                    gravity: h.gravity.into(),
-                    total: h.total().into(),
+                    drag: each(&|f| f.drag),
+                    added_mass: each(&|f| f.added_mass),
+                    buoyancy: each(&|f| f.buoyancy),
+                    gravity: each(&|f| f.gravity),
+                    total: each(&|f| f.total()),
                 }
             }
         }
@@ -379,15 +407,6 @@ pub(crate) fn check_overflow<T: RealField + Copy>(
     }
 }
 
-fn check_state<T: RealField + Copy>(states: [(&Vector3<T>, &'static str); 3]) -> Result<(), Failure> {
-    for (state, name) in states {
-        if let Some(i) = state.iter().position(|x| !x.is_finite()) {
-            return Err(Failure::new(UWML_ERR_NON_FINITE, name, Some(i)));
-        }
-    }
-    Ok(())
-}
-
 /// The core's domain of the loss conditions (`JointLosses::at`), with the C names of the
 /// arguments: pressure from 0 to 1.2e8 Pa, temperature above absolute zero.
 pub(crate) fn check_conditions<T: RealField + Copy>(pressure: T, temperature: T) -> Result<(), Failure> {
@@ -428,7 +447,7 @@ pub(crate) fn joint_slot(joint_index: u32, count: usize) -> Result<usize, Failur
 pub(crate) unsafe fn paper<T: Precision>(out: *mut T::Leg) -> Result<(), Failure> {
     let out = non_null(out, "out")?;
     // SAFETY: not null, valid for writes (contract).
-    unsafe { store::<T>(out, Leg::of_chain(Chain::paper())) };
+    unsafe { store::<T>(out, Leg::of_chain(Chain::paper())?) };
     Ok(())
 }
 
@@ -445,9 +464,9 @@ pub(crate) unsafe fn new<T: Precision>(
     // SAFETY: forwarded contract.
     let links = unsafe { read_array::<_, N>(links, "links") }?;
     let out = non_null(out, "out")?;
-    let chain = Chain::new(joints.map(|j| T::joint(&j)), links.map(|l| T::link(&l)))?;
+    let leg = Leg::of_chain(Chain::new(joints.map(|j| T::joint(&j)), links.map(|l| T::link(&l)))?)?;
     // SAFETY: not null, valid for writes (contract).
-    unsafe { store::<T>(out, Leg::of_chain(chain)) };
+    unsafe { store::<T>(out, leg) };
     Ok(())
 }
 
@@ -456,7 +475,7 @@ pub(crate) unsafe fn new<T: Precision>(
 pub(crate) unsafe fn set_water<T: Precision>(leg: *mut T::Leg, density: T, gravity: T) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    leg.water = Water::new(density, gravity)?;
+    leg.model.water = Water::new(density, gravity)?;
     Ok(())
 }
 
@@ -465,7 +484,7 @@ pub(crate) unsafe fn set_water<T: Precision>(leg: *mut T::Leg, density: T, gravi
 pub(crate) unsafe fn set_coefficients<T: Precision>(leg: *mut T::Leg, cd: T, cm: T) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    leg.coefficients = Coefficients::uniform(cd, cm)?;
+    *leg = leg.with_coefficients(Coefficients::uniform(cd, cm)?)?;
     Ok(())
 }
 
@@ -485,7 +504,8 @@ pub(crate) unsafe fn set_coefficients_per_direction<T: Precision>(
     let cm = unsafe { read_array::<[T; 2], N>(cm.cast(), "cm") }?;
     let coefficients = Coefficients::per_direction(cd, cm)?;
     // SAFETY: forwarded contract; the reference is this call's only access.
-    unsafe { leg_mut::<T>(leg) }?.coefficients = coefficients;
+    let leg = unsafe { leg_mut::<T>(leg) }?;
+    *leg = leg.with_coefficients(coefficients)?;
     Ok(())
 }
 
@@ -516,11 +536,7 @@ pub(crate) unsafe fn set_losses<T: Precision>(
     let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
     check_conditions(pressure, temperature)?;
     // SAFETY: forwarded contract; the reference is this call's only access.
-    let leg = unsafe { leg_mut::<T>(leg) }?;
-    if let (Some(model), Some(state)) = (leg.losses.get_mut(slot), leg.states.get_mut(slot)) {
-        *model = Some(losses);
-        *state = losses.at(pressure, temperature).ok();
-    }
+    unsafe { leg_mut::<T>(leg) }?.model.set_losses(slot, losses, pressure, temperature);
     Ok(())
 }
 
@@ -529,10 +545,7 @@ pub(crate) unsafe fn set_losses<T: Precision>(
 pub(crate) unsafe fn clear_losses<T: Precision>(leg: *mut T::Leg, joint_index: u32) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    let slot = joint_slot(joint_index, N)?;
-    if let (Some(model), Some(state)) = (leg.losses.get_mut(slot), leg.states.get_mut(slot)) {
-        (*model, *state) = (None, None);
-    }
+    leg.model.clear_losses(joint_slot(joint_index, N)?);
     Ok(())
 }
 
@@ -544,16 +557,11 @@ pub(crate) unsafe fn set_conditions<T: Precision>(
     temperature: T,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
-    let leg = unsafe { leg_mut::<T>(leg) }?;
-    check_conditions(pressure, temperature)?;
-    for (model, state) in leg.losses.iter().zip(leg.states.iter_mut()) {
-        *state = model.and_then(|m| m.at(pressure, temperature).ok());
-    }
-    Ok(())
+    unsafe { leg_mut::<T>(leg) }?.model.set_conditions(pressure, temperature)
 }
 
 /// `(q, q̇, q̈)`.
-type States<T> = (Vector3<T>, Vector3<T>, Vector3<T>);
+type States<T> = [[T; N]; 3];
 
 /// The three joint-state vectors.
 ///
@@ -566,7 +574,14 @@ unsafe fn read_states<T: Precision>(q: *const T, qd: *const T, qdd: *const T) ->
     let qd = unsafe { read_array::<T, N>(qd, "qd") }?;
     // SAFETY: forwarded contract.
     let qdd = unsafe { read_array::<T, N>(qdd, "qdd") }?;
-    Ok((q.into(), qd.into(), qdd.into()))
+    Ok([q, qd, qdd])
+}
+
+/// The robot API's evaluation of the leg, on a fixed base in still water, into a workspace.
+fn evaluate<T: Precision>(leg: &Leg<T>, [q, qd, qdd]: &States<T>, with_losses: bool) -> RobotData<T, N> {
+    let mut data = RobotData::new();
+    leg.model.evaluate([q, qd, qdd], BaseMotion::fixed(), Current::still(), with_losses, &mut data);
+    data
 }
 
 /// # Safety
@@ -582,15 +597,13 @@ pub(crate) unsafe fn hydro<T: Precision>(
     // SAFETY: forwarded contract; the reference is last used before `out` is written.
     let leg = unsafe { leg_ref::<T>(leg) }?;
     // SAFETY: forwarded contract.
-    let (q, qd, qdd) = unsafe { read_states(q, qd, qdd) }?;
+    let state = unsafe { read_states(q, qd, qdd) }?;
     let out = non_null(out, "out")?;
-    let computed = hydro_torques(&leg.chain, &leg.water, &leg.coefficients, &q, &qd, &qdd);
-    let total = computed.total();
-    let torques = T::hydro(&computed);
+    let data = evaluate(leg, &state, false);
     // SAFETY: not null, valid for writes (contract).
-    unsafe { out.write(torques) };
-    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])?;
-    check_overflow(total.iter().copied(), "total")
+    unsafe { out.write(T::hydro(data.joint_forces())) };
+    let [q, qd, qdd] = &state;
+    check_evaluation(&data, [q, qd, qdd], false)
 }
 
 /// # Safety
@@ -606,12 +619,11 @@ pub(crate) unsafe fn environment<T: Precision>(
     // SAFETY: forwarded contract; the reference is last used before `out` is written.
     let leg = unsafe { leg_ref::<T>(leg) }?;
     // SAFETY: forwarded contract.
-    let (q, qd, qdd) = unsafe { read_states(q, qd, qdd) }?;
+    let state = unsafe { read_states(q, qd, qdd) }?;
     let out = non_null(out, "out")?;
-    let torques = environment_torques(&leg.chain, &leg.water, &leg.coefficients, &leg.states, &q, &qd, &qdd);
+    let data = evaluate(leg, &state, true);
     // SAFETY: not null, valid for writes (contract).
-    unsafe { out.write(T::environment(&torques)) };
-    check_state([(&q, "q"), (&qd, "qd"), (&qdd, "qdd")])?;
-    check_overflow(torques.total().iter().copied(), "total")?;
-    check_overflow(torques.current.iter().copied(), "current")
+    unsafe { out.write(T::environment(data.joint_forces(), data.joint_losses())) };
+    let [q, qd, qdd] = &state;
+    check_evaluation(&data, [q, qd, qdd], false)
 }

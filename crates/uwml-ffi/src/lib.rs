@@ -85,9 +85,9 @@ pub const UWML_LEG3_JOINTS: usize = 3;
 /// Bytes of `UwmlError.field`, NUL included.
 pub const UWML_ERROR_FIELD_LEN: usize = 48;
 /// Opaque words of `UwmlLeg3F64`: `sizeof(UwmlLeg3F64) = 8 * (1 + UWML_LEG3_F64_WORDS)` bytes.
-pub const UWML_LEG3_F64_WORDS: usize = 400;
+pub const UWML_LEG3_F64_WORDS: usize = 768;
 /// Opaque words of `UwmlLeg3F32`: `sizeof(UwmlLeg3F32) = 8 * (1 + UWML_LEG3_F32_WORDS)` bytes.
-pub const UWML_LEG3_F32_WORDS: usize = 200;
+pub const UWML_LEG3_F32_WORDS: usize = 400;
 
 const _: () = {
     assert!(offset_of!(UwmlLeg3F64, opaque) == size_of::<u64>());

@@ -29,21 +29,107 @@ pub(crate) const J: usize = 16;
 /// The segment capacity of the C API's robot.
 pub(crate) const S: usize = 32;
 
-/// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`.
-pub(crate) struct Block<T: RealField + Copy> {
-    robot: Robot<T, J, S>,
-    water: Water<T>,
+/// A robot with everything its evaluation takes besides the joint state and a workspace: the
+/// water, the added-mass form and the joints' losses. The robot API's block holds one of up to
+/// `J` joints and `S` segments; the leg API's leg, one of 3 and 3 (the leg API is this API
+/// behind other arguments).
+#[derive(Clone, Copy)]
+pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize> {
+    pub(crate) robot: Robot<T, JM, SM>,
+    pub(crate) water: Water<T>,
     /// How the added-mass forces depend on the velocities (`uwml_robot_set_added_mass_form_*`):
     /// `UWML_ADDED_MASS_KIRCHHOFF` or else Morison's, kept as the C constant so that every bit
     /// pattern of a copied block is a valid value.
     form: i32,
-    /// The workspace and results of the last evaluation.
-    data: RobotData<T, J>,
     /// Each joint's loss model (`uwml_robot_set_losses_*`), kept so that a change of conditions
     /// can recompute `states`; `None` for a joint without losses and beyond the robot's joints.
-    losses: [Option<JointLosses<T>>; J],
+    losses: [Option<JointLosses<T>>; JM],
     /// Each joint's losses at its current pressure and temperature.
-    states: [Option<LossState<T>>; J],
+    states: [Option<LossState<T>>; JM],
+}
+
+/// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`.
+pub(crate) struct Block<T: RealField + Copy> {
+    model: Model<T, J, S>,
+    /// The workspace and results of the last evaluation.
+    data: RobotData<T, J>,
+}
+
+impl<T: RealField + uwml_core::Real, const JM: usize, const SM: usize> Model<T, JM, SM> {
+    /// `robot` in `water`, with Morison's added mass and no joint losses.
+    pub(crate) const fn new(robot: Robot<T, JM, SM>, water: Water<T>) -> Self {
+        Self { robot, water, form: UWML_ADDED_MASS_MORISON, losses: [None; JM], states: [None; JM] }
+    }
+
+    /// Joint `slot`'s losses (a joint of the robot), at `pressure` and `temperature` (checked).
+    pub(crate) fn set_losses(&mut self, slot: usize, losses: JointLosses<T>, pressure: T, temperature: T) {
+        if let (Some(model), Some(state)) = (self.losses.get_mut(slot), self.states.get_mut(slot)) {
+            *model = Some(losses);
+            *state = losses.at(pressure, temperature).ok();
+        }
+    }
+
+    /// Joint `slot` without losses.
+    pub(crate) fn clear_losses(&mut self, slot: usize) {
+        if let (Some(model), Some(state)) = (self.losses.get_mut(slot), self.states.get_mut(slot)) {
+            (*model, *state) = (None, None);
+        }
+    }
+
+    /// Every joint's losses at a new pressure and temperature.
+    ///
+    /// # Errors
+    /// Conditions outside the core's domain; nothing changes.
+    pub(crate) fn set_conditions(&mut self, pressure: T, temperature: T) -> Result<(), Failure> {
+        check_conditions(pressure, temperature)?;
+        for (model, state) in self.losses.iter().zip(self.states.iter_mut()) {
+            *state = model.and_then(|m| m.at(pressure, temperature).ok());
+        }
+        Ok(())
+    }
+
+    /// The core's `robot_hydro` at `state` (the robot's joints first), with the joints' losses
+    /// if `with_losses` (zero otherwise), into `data`.
+    pub(crate) fn evaluate(
+        &self,
+        state: [&[T; JM]; 3],
+        motion: BaseMotion<T>,
+        current: Current<T>,
+        with_losses: bool,
+        data: &mut RobotData<T, JM>,
+    ) {
+        let form =
+            if self.form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
+        let losses = if with_losses { Some(&self.states) } else { None };
+        let conditions = Conditions { water: self.water, motion, current, coefficients: None, form, losses };
+        robot_hydro(&self.robot, &conditions, state, data);
+    }
+}
+
+/// The first `n` values of a state.
+pub(crate) fn used<T>(state: &[T], n: usize) -> &[T] {
+    state.get(..n).unwrap_or(&[])
+}
+
+/// After an evaluation into `data` at `state` (the robot's joints only): a non-finite state
+/// (its first element), else outputs that overflow: `total` (forces plus losses), `current`, and
+/// the base wrench if `base` (the leg API has none).
+pub(crate) fn check_evaluation<T: RealField + Copy, const JM: usize>(
+    data: &RobotData<T, JM>,
+    state: [&[T]; 3],
+    base: bool,
+) -> Result<(), Failure> {
+    let [q, qd, qdd] = state;
+    check_states([(q, "q"), (qd, "qd"), (qdd, "qdd")])?;
+    let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
+    let loss = |i: usize| data.joint_losses().get(i).copied().unwrap_or(none);
+    let forces = data.joint_forces().iter().enumerate();
+    check_overflow(forces.map(|(i, f)| environment_total(f, &loss(i))), "total")?;
+    check_overflow((0..data.joint_forces().len()).map(|i| loss(i).current), "current")?;
+    if base && data.base_wrench().total().to_array().iter().any(|x| !x.is_finite()) {
+        return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
+    }
+    Ok(())
 }
 
 /// The arguments of `uwml_robot_new_*`.
@@ -241,7 +327,7 @@ macro_rules! robot_precision {
 
 /// A joint's environment force, hydrodynamics and losses: `(hydro total + visc) + seal`, in the
 /// order of the core's `EnvironmentTorques::total`.
-fn environment_total<T: RealField + Copy>(f: &JointForces<T>, loss: &JointLoss<T>) -> T {
+pub(crate) fn environment_total<T: RealField + Copy>(f: &JointForces<T>, loss: &JointLoss<T>) -> T {
     f.total() + loss.visc + loss.seal
 }
 
@@ -318,7 +404,7 @@ unsafe fn write_robot<T: RobotPrecision>(
     let robot = result.as_ref().map_err(|e| *e)?;
     // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
     // computed without reading the block.
-    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).model.robot, 1) };
     Ok(())
 }
 
@@ -332,7 +418,7 @@ unsafe fn write_paper<T: RobotPrecision>(block: *mut Block<T>) -> Result<(), Mod
     let robot = result.as_ref().map_err(|e| *e)?;
     // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
     // computed without reading the block.
-    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).robot, 1) };
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).model.robot, 1) };
     Ok(())
 }
 
@@ -349,11 +435,11 @@ unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
     // crate root) and `out` is valid for writes (contract); the field places are computed without
     // reading or referencing the (possibly uninitialized) block.
     unsafe {
-        (&raw mut (*block).water).write(water);
-        (&raw mut (*block).form).write(UWML_ADDED_MASS_MORISON);
+        (&raw mut (*block).model.water).write(water);
+        (&raw mut (*block).model.form).write(UWML_ADDED_MASS_MORISON);
+        (&raw mut (*block).model.losses).write([None; J]);
+        (&raw mut (*block).model.states).write([None; J]);
         (&raw mut (*block).data).write(RobotData::new());
-        (&raw mut (*block).losses).write([None; J]);
-        (&raw mut (*block).states).write([None; J]);
         out.cast::<u64>().write(T::TAG);
     }
 }
@@ -467,7 +553,7 @@ unsafe fn read_state<T: RobotPrecision>(p: *const T, n: usize, name: &'static st
 }
 
 /// `UWML_ERR_NON_FINITE` naming the first non-finite element of a state.
-fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Result<(), Failure> {
+pub(crate) fn check_states<T: RealField + Copy>(states: [(&[T], &'static str); 3]) -> Result<(), Failure> {
     for (state, name) in states {
         if let Some(i) = state.iter().position(|x| !x.is_finite()) {
             return Err(Failure::new(UWML_ERR_NON_FINITE, name, Some(i)));
@@ -501,8 +587,8 @@ unsafe fn evaluate<T: RobotPrecision>(
     write: &mut WriteJoint<'_, T>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let Block { robot, water, form, data, states, .. } = unsafe { block_mut::<T>(robot) }?;
-    let n = robot.joint_count();
+    let Block { model, data } = unsafe { block_mut::<T>(robot) }?;
+    let n = model.robot.joint_count();
     if usize::try_from(io.n).ok() != Some(n) {
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n (the robot's joint count)", None));
     }
@@ -524,33 +610,16 @@ unsafe fn evaluate<T: RobotPrecision>(
     if n > 0 {
         joints?;
     }
-    let form = if *form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
-    let losses = if with_losses { Some(&*states) } else { None };
-    let conditions = Conditions { water: *water, motion, current, coefficients: None, form, losses };
-    robot_hydro(robot, &conditions, [&q, &qd, &qdd], data);
+    model.evaluate([&q, &qd, &qdd], motion, current, with_losses, data);
     let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
-    let loss = |i: usize| data.joint_losses().get(i).copied().unwrap_or(none);
     for (i, forces) in data.joint_forces().iter().enumerate() {
-        write(i, forces, &loss(i));
+        write(i, forces, &data.joint_losses().get(i).copied().unwrap_or(none));
     }
     if !io.base_wrench.is_null() {
         // SAFETY: not null, valid for writes (contract).
         unsafe { io.base_wrench.write(T::base_wrench(data.base_wrench())) };
     }
-    let used = ..n;
-    check_states([
-        (q.get(used).unwrap_or(&[]), "q"),
-        (qd.get(used).unwrap_or(&[]), "qd"),
-        (qdd.get(used).unwrap_or(&[]), "qdd"),
-    ])?;
-    let forces = data.joint_forces().iter().enumerate();
-    check_overflow(forces.map(|(i, f)| environment_total(f, &loss(i))), "total")?;
-    check_overflow((0..n).map(|i| loss(i).current), "current")?;
-    let wrench = data.base_wrench().total().to_array();
-    if wrench.iter().any(|x| !x.is_finite()) {
-        return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
-    }
-    Ok(())
+    check_evaluation(data, [used(&q, n), used(&qd, n), used(&qdd, n)], true)
 }
 
 /// [`evaluate`] writing `row` of every joint's forces and losses to `io.joints`.
@@ -616,15 +685,12 @@ pub(crate) unsafe fn set_losses<T: RobotPrecision>(
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
     let block = unsafe { block_mut::<T>(robot) }?;
-    let slot = joint_slot(joint_index, block.robot.joint_count())?;
+    let slot = joint_slot(joint_index, block.model.robot.joint_count())?;
     // SAFETY: forwarded contract.
     let params = unsafe { read_one(params, "params") }?;
     let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
     check_conditions(pressure, temperature)?;
-    if let (Some(model), Some(state)) = (block.losses.get_mut(slot), block.states.get_mut(slot)) {
-        *model = Some(losses);
-        *state = losses.at(pressure, temperature).ok();
-    }
+    block.model.set_losses(slot, losses, pressure, temperature);
     Ok(())
 }
 
@@ -634,10 +700,8 @@ pub(crate) unsafe fn set_losses<T: RobotPrecision>(
 pub(crate) unsafe fn clear_losses<T: RobotPrecision>(robot: *mut T::Robot, joint_index: u32) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
     let block = unsafe { block_mut::<T>(robot) }?;
-    let slot = joint_slot(joint_index, block.robot.joint_count())?;
-    if let (Some(model), Some(state)) = (block.losses.get_mut(slot), block.states.get_mut(slot)) {
-        (*model, *state) = (None, None);
-    }
+    let slot = joint_slot(joint_index, block.model.robot.joint_count())?;
+    block.model.clear_losses(slot);
     Ok(())
 }
 
@@ -650,12 +714,7 @@ pub(crate) unsafe fn set_conditions<T: RobotPrecision>(
     temperature: T,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let block = unsafe { block_mut::<T>(robot) }?;
-    check_conditions(pressure, temperature)?;
-    for (model, state) in block.losses.iter().zip(block.states.iter_mut()) {
-        *state = model.and_then(|m| m.at(pressure, temperature).ok());
-    }
-    Ok(())
+    unsafe { block_mut::<T>(robot) }?.model.set_conditions(pressure, temperature)
 }
 
 /// # Safety
@@ -666,7 +725,6 @@ pub(crate) unsafe fn set_added_mass_form<T: RobotPrecision>(robot: *mut T::Robot
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "form (UWML_ADDED_MASS_MORISON or _KIRCHHOFF)", None));
     }
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let block = unsafe { block_mut::<T>(robot) }?;
-    block.form = form;
+    unsafe { block_mut::<T>(robot) }?.model.form = form;
     Ok(())
 }

@@ -6,8 +6,8 @@ use core::ptr::{null, null_mut};
 
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{
-    Chain, Coefficients, Drive, EnvironmentTorques, JointLosses, LossState, OilDrag, Seal, Water, environment_torques,
-    hydro_torques, pressure_at_depth,
+    Chain, Coefficients, Conditions, Drive, EnvironmentTorques, HydroTorques, JointLosses, LossState, OilDrag, Real,
+    Robot, RobotData, Seal, Water, environment_torques, pressure_at_depth, robot_hydro,
 };
 use uwml_ffi::*;
 
@@ -56,14 +56,39 @@ fn environment32(leg: &UwmlLeg3F32, q: [f32; 3], qd: [f32; 3], qdd: [f32; 3]) ->
     (code, out)
 }
 
-fn core_environment<T: uwml_core::nalgebra::RealField + Copy>(
+/// The core's evaluation of the leg as a robot (the leg API is the robot API's evaluation),
+/// with `losses`, as the chain API's result type.
+fn core_environment<T: uwml_core::nalgebra::RealField + Real>(
     chain: &Chain<T, 3>,
     water: &Water<T>,
     coefficients: &Coefficients<T, 3>,
     losses: &[Option<LossState<T>>; 3],
     (q, qd, qdd): ([T; 3], [T; 3], [T; 3]),
 ) -> EnvironmentTorques<T, 3> {
-    environment_torques(chain, water, coefficients, losses, &q.into(), &qd.into(), &qdd.into())
+    let robot = Robot::<T, 3, 3>::from_chain(chain, coefficients).unwrap();
+    let mut data = RobotData::new();
+    robot_hydro(&robot, &Conditions { losses: Some(losses), ..Conditions::new(*water) }, [&q, &qd, &qdd], &mut data);
+    let (forces, loss) = (data.joint_forces(), data.joint_losses());
+    let each = |f: &dyn Fn(usize) -> T| Vector3::from_fn(|i, _| f(i));
+    EnvironmentTorques {
+        hydro: HydroTorques {
+            drag: each(&|i| forces[i].drag),
+            added_mass: each(&|i| forces[i].added_mass),
+            buoyancy: each(&|i| forces[i].buoyancy),
+            gravity: each(&|i| forces[i].gravity),
+        },
+        visc: each(&|i| loss[i].visc),
+        seal: each(&|i| loss[i].seal),
+        current: each(&|i| loss[i].current),
+    }
+}
+
+/// [`core_environment`] without losses.
+fn core_hydro<T: uwml_core::nalgebra::RealField + Real>(
+    chain: &Chain<T, 3>,
+    state: ([T; 3], [T; 3], [T; 3]),
+) -> HydroTorques<T, 3> {
+    core_environment(chain, &Water::default(), &Coefficients::default(), &[None; 3], state).hydro
 }
 
 /// Bitwise equality of the C output and the core's, so NaN compares equal to NaN.
@@ -224,6 +249,49 @@ fn paper_preset_is_the_core_bit_for_bit() {
     }
 }
 
+/// The leg API, now the robot API's evaluation, against the chain evaluation it replaced: equal to
+/// 1e-12 of the largest magnitude of each output, with losses set on every joint.
+#[test]
+fn the_leg_is_the_chain_evaluation_to_1e_12() {
+    let mut leg = paper64();
+    let p = default_params64();
+    let (pressure, temperature) = (pressure_at_depth(3000.0, 1025.0, 9.81).unwrap(), 4.0);
+    for joint in 0..3 {
+        assert_eq!(set_losses64(&mut leg, joint, &p, pressure, temperature).0, UWML_OK);
+    }
+    let state = JointLosses::<f64>::default().at(pressure, temperature).unwrap();
+    let chain = Chain::<f64, 3>::paper();
+    for (q, qd, qdd) in states() {
+        let (code, out) = environment64(&leg, q, qd, qdd);
+        assert_eq!(code, UWML_OK);
+        let old = environment_torques(
+            &chain,
+            &Water::default(),
+            &Coefficients::default(),
+            &[Some(state); 3],
+            &q.into(),
+            &qd.into(),
+            &qdd.into(),
+        );
+        let h = &old.hydro;
+        let pairs = [
+            ("drag", out.drag, h.drag),
+            ("added_mass", out.added_mass, h.added_mass),
+            ("buoyancy", out.buoyancy, h.buoyancy),
+            ("gravity", out.gravity, h.gravity),
+            ("visc", out.visc, old.visc),
+            ("seal", out.seal, old.seal),
+            ("total", out.total, old.total()),
+        ];
+        for (name, new, old) in pairs {
+            let scale = old.amax().max(1.0);
+            for (a, b) in new.iter().zip(old.iter()) {
+                assert!((a - b).abs() <= 1e-12 * scale, "{name} at {q:?}, {qd:?}, {qdd:?}: {new:?} vs {old:?}");
+            }
+        }
+    }
+}
+
 #[test]
 fn hydro_is_the_core_bit_for_bit() {
     let leg = paper64();
@@ -233,8 +301,7 @@ fn hydro_is_the_core_bit_for_bit() {
         // SAFETY: live locals of 3 values.
         let code = unsafe { uwml_leg3_hydro_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut out, null_mut()) };
         assert_eq!(code, UWML_OK);
-        let core =
-            hydro_torques(&chain, &Water::default(), &Coefficients::default(), &q.into(), &qd.into(), &qdd.into());
+        let core = core_hydro(&chain, (q, qd, qdd));
         let total: [f64; 3] = core.total().into();
         assert_eq!(out.drag, <[f64; 3]>::from(core.drag));
         assert_eq!(out.added_mass, <[f64; 3]>::from(core.added_mass));
@@ -249,7 +316,7 @@ fn hydro_is_the_core_bit_for_bit() {
     // SAFETY: live locals of 3 values.
     let code = unsafe { uwml_leg3_hydro_f32(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut out, null_mut()) };
     assert_eq!(code, UWML_OK);
-    let core = hydro_torques(&chain, &Water::default(), &Coefficients::default(), &q.into(), &qd.into(), &qdd.into());
+    let core = core_hydro(&chain, (q, qd, qdd));
     assert_eq!(out.total, <[f32; 3]>::from(core.total()));
 }
 

@@ -370,14 +370,6 @@ fn conditions_move_every_joint_and_clearing_removes_one() {
     assert!(out.joints.iter().all(|e| e.visc == 0.0 && e.seal == 0.0 && e.current == 0.0));
 }
 
-/// (value, scale) pairs agree within `rel` of the scale.
-fn assert_close(what: &str, pairs: &[(f64, f64)], rel: f64) {
-    let scale = pairs.iter().fold(1.0_f64, |m, (_, b)| m.max(b.abs()));
-    for (i, (a, b)) in pairs.iter().enumerate() {
-        assert!((a - b).abs() <= rel * scale, "{what}, joint {i}: robot {a} vs leg {b} (scale {scale})");
-    }
-}
-
 #[test]
 fn the_paper_robot_with_the_legs_losses_is_the_leg() {
     let mut robot = zeroed64();
@@ -440,17 +432,15 @@ fn the_paper_robot_with_the_legs_losses_is_the_leg() {
             ] {
                 assert_eq!(robot.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), leg.map(f64::to_bits), "{name}");
             }
-            // Hydrodynamics by the tree and the chain paths: to 1e-14 of the largest.
-            let pairs = |f: fn(&UwmlJointEnvironmentF64) -> f64, leg: [f64; 3]| -> Vec<(f64, f64)> {
-                e.iter().map(f).zip(leg).collect()
-            };
-            assert_close("drag", &pairs(|e| e.drag, env.drag), 1e-14);
-            assert_close("added mass", &pairs(|e| e.added_mass, env.added_mass), 1e-14);
-            assert_close("buoyancy", &pairs(|e| e.buoyancy, env.buoyancy), 1e-14);
-            assert_close("gravity", &pairs(|e| e.gravity, env.gravity), 1e-14);
-            assert_close("total", &pairs(|e| e.total, env.total), 1e-14);
+            // The leg API is the robot API's evaluation: its hydrodynamics bit for bit too.
+            let bits = |f: fn(&UwmlJointEnvironmentF64) -> f64| e.iter().map(|e| f(e).to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(|e| e.drag), env.drag.map(f64::to_bits), "drag");
+            assert_eq!(bits(|e| e.added_mass), env.added_mass.map(f64::to_bits), "added mass");
+            assert_eq!(bits(|e| e.buoyancy), env.buoyancy.map(f64::to_bits), "buoyancy");
+            assert_eq!(bits(|e| e.gravity), env.gravity.map(f64::to_bits), "gravity");
+            assert_eq!(bits(|e| e.total), env.total.map(f64::to_bits), "total");
 
-            // f32: the losses bit for bit, hydrodynamics to the f32 core's precision.
+            // f32: the same, bit for bit.
             let (q, qd, qdd) = (q.map(f32::narrow), qd.map(f32::narrow), qdd.map(f32::narrow));
             let (code, e, _) = environment_c32(&mut robot32, [&q, &qd, &qdd], None, None);
             assert_eq!(code, UWML_OK);
@@ -464,13 +454,11 @@ fn the_paper_robot_with_the_legs_losses_is_the_leg() {
             for (i, joint) in e.iter().enumerate() {
                 assert_eq!(losses(joint), [env.visc[i], env.seal[i], env.current[i]].map(f32::to_bits));
             }
-            let pairs = |f: fn(&UwmlJointEnvironmentF32) -> f32, leg: [f32; 3]| -> Vec<(f64, f64)> {
-                e.iter().map(f).zip(leg).map(|(a, b)| (f64::from(a), f64::from(b))).collect()
-            };
-            assert_close("f32 drag", &pairs(|e| e.drag, env.drag), 2e-6);
-            assert_close("f32 added mass", &pairs(|e| e.added_mass, env.added_mass), 2e-6);
-            assert_close("f32 buoyancy", &pairs(|e| e.buoyancy, env.buoyancy), 2e-6);
-            assert_close("f32 total", &pairs(|e| e.total, env.total), 2e-6);
+            let bits = |f: fn(&UwmlJointEnvironmentF32) -> f32| e.iter().map(|e| f(e).to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(|e| e.drag), env.drag.map(f32::to_bits), "f32 drag");
+            assert_eq!(bits(|e| e.added_mass), env.added_mass.map(f32::to_bits), "f32 added mass");
+            assert_eq!(bits(|e| e.buoyancy), env.buoyancy.map(f32::to_bits), "f32 buoyancy");
+            assert_eq!(bits(|e| e.total), env.total.map(f32::to_bits), "f32 total");
         }
     }
     // The test can fail: at the reference state every joint has losses.
