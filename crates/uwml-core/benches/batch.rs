@@ -27,7 +27,7 @@ fn states<T: RealField + Copy>() -> Vec<[Vector3<T>; 3]> {
         .collect()
 }
 
-fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
+fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let leg = Chain::<T, 3>::paper();
     let (water, coefficients) = (Water::<T>::default(), Coefficients::<T, 3>::default());
     let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();

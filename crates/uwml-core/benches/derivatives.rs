@@ -12,7 +12,7 @@ use uwml_core::{
     pressure_at_depth,
 };
 
-fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
+fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let leg = Chain::<T, 3>::paper();
     let water = Water::<T>::default();
     let coefficients = Coefficients::<T, 3>::default();

@@ -8,7 +8,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use uwml_core::nalgebra::{RealField, Vector3};
 use uwml_core::{Chain, Coefficients, Water, hydro_regressors, hydro_torques};
 
-fn bench_for<T: RealField + Copy>(c: &mut Criterion, name: &str) {
+fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let leg = Chain::<T, 3>::paper();
     let water = Water::<T>::default();
     let coefficients = Coefficients::<T, 3>::default();

@@ -35,18 +35,18 @@ fn kinematics<T: RealField + Copy>((leg, _, _, _): &Model<T>, [q, qd, qdd]: &[Ve
 }
 
 #[inline(never)]
-fn torques<T: RealField + Copy>((leg, water, coefficients, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+fn torques<T: RealField + Real>((leg, water, coefficients, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
     black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
 }
 
 #[inline(never)]
-fn regressors<T: RealField + Copy>((leg, water, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
+fn regressors<T: RealField + Real>((leg, water, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
     black_box(hydro_regressors(leg, water, q, qd, qdd)).drag[2][1].x
 }
 
 /// The paper leg's hydrodynamics plus the default joint losses on all three joints.
 #[inline(never)]
-fn environment<T: RealField + Copy>(
+fn environment<T: RealField + Real>(
     (leg, water, coefficients, losses): &Model<T>,
     [q, qd, qdd]: &[Vector3<T>; 3],
 ) -> T {
@@ -54,7 +54,7 @@ fn environment<T: RealField + Copy>(
 }
 
 /// Sum of one output per call (so nothing is optimized away); q changes every call.
-fn run<T: RealField + Copy>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
+fn run<T: RealField + Real>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
     let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
     let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
     let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default(), losses);

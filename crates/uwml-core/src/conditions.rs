@@ -3,7 +3,7 @@
 //! coefficients than the segments' own, the added-mass form, and the joints' losses at their
 //! depth and temperature.
 
-use nalgebra::{RealField, SimdRealField};
+use nalgebra::SimdRealField;
 
 use crate::losses::LossState;
 use crate::model::Water;
@@ -38,7 +38,7 @@ pub struct Conditions<'a, T: SimdRealField + Copy, const J: usize, const S: usiz
     pub losses: Option<&'a [Option<LossState<T>>; J]>,
 }
 
-impl<T: RealField + Copy, const J: usize, const S: usize> Conditions<'_, T, J, S> {
+impl<T: SimdRealField + Copy, const J: usize, const S: usize> Conditions<'_, T, J, S> {
     /// In `water`: a fixed, upright base in still water, the segments' own coefficients, the
     /// paper's Morison added mass, and no joint losses.
     #[must_use]

@@ -20,6 +20,7 @@ use crate::dual::Dual;
 use crate::hydro::hydro_torques;
 use crate::losses::{LossState, environment_torques};
 use crate::model::{Chain, Coefficients, Water};
+use crate::real::Real;
 
 /// `τ_env` at a joint state and its derivatives.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,7 +59,7 @@ fn jacobian<T: RealField + Copy, const N: usize>(tau: &SVector<Dual<T, N>, N>) -
 /// `M_A(q)`, column `j` being `−added_mass(q, 0, e_j)` (exact: the added-mass torque is linear in
 /// `q̈`, and at `q̇ = 0` it has no other terms), symmetrized (`½(M + Mᵀ)`: the two triangles
 /// differ by rounding only).
-fn added_mass_matrix<T: RealField + Copy, const N: usize>(
+fn added_mass_matrix<T: RealField + Real, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     coefficients: &Coefficients<T, N>,
@@ -83,7 +84,7 @@ fn added_mass_matrix<T: RealField + Copy, const N: usize>(
 /// give NaN, as for the torques. Never fails and never panics. Cost: see the [module](self).
 #[must_use]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn environment_jacobians<T: RealField + Copy, const N: usize>(
+pub fn environment_jacobians<T: RealField + Real, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     coefficients: &Coefficients<T, N>,
@@ -114,7 +115,7 @@ pub fn environment_jacobians<T: RealField + Copy, const N: usize>(
 
 /// [`environment_jacobians`] of the hydrodynamic torques alone (`τ_hydro`, no joint losses).
 #[must_use]
-pub fn hydro_jacobians<T: RealField + Copy, const N: usize>(
+pub fn hydro_jacobians<T: RealField + Real, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     coefficients: &Coefficients<T, N>,

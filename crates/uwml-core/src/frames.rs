@@ -11,8 +11,8 @@
 
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
-use crate::body::{SegmentFrame, frame_about};
 use crate::robot::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
+use crate::segment_frame::{SegmentFrame, frame_about};
 
 /// Joint `i` and its link, in the body frames `F_parent` and `F_i`.
 #[derive(Clone, Copy, Debug, PartialEq)]

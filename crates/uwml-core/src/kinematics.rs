@@ -1,5 +1,5 @@
 //! Forward kinematics of the chain in world coordinates, and the small vector helpers shared
-//! with the body-frame recursion of the torque paths (`crate::body`).
+//! with the body-frame recursion of the whole-robot evaluation (`crate::frames`).
 
 use nalgebra::{Matrix3, RealField, SVector, SimdRealField, Vector3};
 
@@ -17,7 +17,6 @@ macro_rules! for_each_peeled {
         for $pattern in items $body
     }};
 }
-pub(crate) use for_each_peeled;
 
 /// Pose and motion of one link frame (at its joint), in world coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -2,7 +2,6 @@
 #![no_std]
 
 mod added_mass;
-mod body;
 pub mod conditions;
 pub mod derivatives;
 pub mod dual;
@@ -17,6 +16,7 @@ pub mod motion;
 pub mod real;
 pub mod robot;
 pub mod robot_derivatives;
+mod segment_frame;
 pub mod strip;
 pub mod tree;
 mod tree_regressors;

@@ -596,7 +596,7 @@ impl<T: RealField + Copy, const N: usize> EnvironmentTorques<T, N> {
 /// Never fails and never panics.
 #[must_use]
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn environment_torques<T: RealField + Copy, const N: usize>(
+pub fn environment_torques<T: RealField + crate::real::Real, const N: usize>(
     chain: &Chain<T, N>,
     water: &Water<T>,
     coefficients: &Coefficients<T, N>,

@@ -7,8 +7,8 @@
 
 use nalgebra::{RealField, SimdRealField, Vector3};
 
-use crate::body::{Body, bodies};
 use crate::error::{ModelError, Problem};
+use crate::robot::Robot;
 
 /// Tolerance on unit length and on orthogonality of axes and normals at construction.
 pub const AXIS_TOLERANCE: f64 = 1e-6;
@@ -64,8 +64,10 @@ pub struct Link<T: SimdRealField + Copy> {
 pub struct Chain<T: SimdRealField + Copy, const N: usize> {
     joints: [Joint<T>; N],
     links: [Link<T>; N],
-    /// The same chain in body frames, derived once for the torque paths.
-    bodies: [Body<T>; N],
+    /// The same chain as a robot (its joints in series on a fixed base, each link's segment in
+    /// link order, at the default coefficients), derived once: the chain's functions are this
+    /// robot's evaluation.
+    robot: Robot<T, N, N>,
 }
 
 /// The fluid the chain moves in.
@@ -311,9 +313,9 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
         Ok(Self::from_validated(joints, links))
     }
 
-    /// A chain of valid joints and links (validated, or the paper's), with its body frames.
+    /// A chain of valid joints and links (validated, or the paper's), with its robot.
     fn from_validated(joints: [Joint<T>; N], links: [Link<T>; N]) -> Self {
-        Self { joints, links, bodies: bodies(&joints, &links) }
+        Self { joints, links, robot: Robot::serial(&joints, &links, &Coefficients::default()) }
     }
 }
 
@@ -328,9 +330,10 @@ impl<T: SimdRealField + Copy, const N: usize> Chain<T, N> {
         &self.links
     }
 
-    /// The chain in body frames (see `crate::body`).
-    pub(crate) const fn bodies(&self) -> &[Body<T>; N] {
-        &self.bodies
+    /// The chain as a robot of `N` joints and up to `N` segments (each link's, in link order), at
+    /// the default coefficients: what the chain's functions evaluate.
+    pub const fn robot(&self) -> &Robot<T, N, N> {
+        &self.robot
     }
 }
 
@@ -532,7 +535,7 @@ impl<T: RealField + Copy, const N: usize> Chain<T, N> {
         Chain {
             joints: self.joints.map(|j| j.map_scalars(f)),
             links: self.links.map(|l| l.map_scalars(f)),
-            bodies: self.bodies.map(|b| b.map_scalars(f)),
+            robot: self.robot.map_scalars(f),
         }
     }
 }

@@ -49,19 +49,6 @@ fn rotation_of<T: RealField + Copy>([w, x, y, z]: [T; 4]) -> Matrix3<T> {
 }
 
 impl<T: RealField + Copy> BaseMotion<T> {
-    /// A fixed, upright base: the default of docs/model.md sections 2-9.
-    #[must_use]
-    pub fn fixed() -> Self {
-        let zero = Vector3::zeros();
-        Self {
-            rotation: Matrix3::identity(),
-            velocity: zero,
-            angular_velocity: zero,
-            acceleration: zero,
-            angular_acceleration: zero,
-        }
-    }
-
     /// The base at `orientation` (a unit quaternion `(w, x, y, z)`, normalized here), moving with
     /// `velocity` and `angular_velocity` (base components) and their component derivatives.
     ///
@@ -93,6 +80,19 @@ impl<T: RealField + Copy> BaseMotion<T> {
 }
 
 impl<T: SimdRealField + Copy> BaseMotion<T> {
+    /// A fixed, upright base: the default of docs/model.md sections 2-9.
+    #[must_use]
+    pub fn fixed() -> Self {
+        let zero = Vector3::zeros();
+        Self {
+            rotation: Matrix3::identity(),
+            velocity: zero,
+            angular_velocity: zero,
+            acceleration: zero,
+            angular_acceleration: zero,
+        }
+    }
+
     /// World from base.
     pub const fn rotation(&self) -> &Matrix3<T> {
         &self.rotation
@@ -116,12 +116,6 @@ impl<T: RealField + Copy> Default for BaseMotion<T> {
 }
 
 impl<T: RealField + Copy> Current<T> {
-    /// Still water.
-    #[must_use]
-    pub fn still() -> Self {
-        Self { velocity: Vector3::zeros(), acceleration: Vector3::zeros() }
-    }
-
     /// Water moving with `velocity` and `acceleration`, world components.
     ///
     /// # Errors
@@ -135,6 +129,12 @@ impl<T: RealField + Copy> Current<T> {
 }
 
 impl<T: SimdRealField + Copy> Current<T> {
+    /// Still water.
+    #[must_use]
+    pub fn still() -> Self {
+        Self { velocity: Vector3::zeros(), acceleration: Vector3::zeros() }
+    }
+
     /// Velocity, world components.
     pub const fn velocity(&self) -> &Vector3<T> {
         &self.velocity

@@ -40,23 +40,34 @@ impl<T: nalgebra::RealField + Copy, const M: usize> Real for Dual<T, M> {
     }
 }
 
+/// `Real` for a simba SIMD type of four lanes of a scalar `Real`.
 #[cfg(feature = "wide")]
-impl Real for simba::simd::WideF64x4 {
-    /// Lane by lane, by `f64`'s own (`simba`'s vectorized sine differs in the last bits).
-    fn sin_cos(self) -> (Self, Self) {
-        let lanes: [f64; 4] = self.into();
-        let [a, b, c, d] = lanes.map(<f64 as Real>::sin_cos);
-        (Self::from([a.0, b.0, c.0, d.0]), Self::from([a.1, b.1, c.1, d.1]))
-    }
+macro_rules! four_lanes {
+    ($lanes:ty, $scalar:ty) => {
+        impl Real for $lanes {
+            /// Lane by lane, by the scalar's own (`simba`'s vectorized sine differs in the last
+            /// bits).
+            fn sin_cos(self) -> (Self, Self) {
+                let lanes: [$scalar; 4] = self.into();
+                let [a, b, c, d] = lanes.map(<$scalar as Real>::sin_cos);
+                (Self::from([a.0, b.0, c.0, d.0]), Self::from([a.1, b.1, c.1, d.1]))
+            }
 
-    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
-        use simba::simd::SimdValue;
-        let lane = |l: usize| state.map_scalars(|x: Self| x.extract(l)).evaluate(speed.extract(l));
-        let [a, b, c, d] = [lane(0), lane(1), lane(2), lane(3)];
-        JointLoss {
-            visc: Self::from([a.visc, b.visc, c.visc, d.visc]),
-            seal: Self::from([a.seal, b.seal, c.seal, d.seal]),
-            current: Self::from([a.current, b.current, c.current, d.current]),
+            fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
+                use simba::simd::SimdValue;
+                let lane = |l: usize| state.map_scalars(|x: Self| x.extract(l)).evaluate(speed.extract(l));
+                let [a, b, c, d] = [lane(0), lane(1), lane(2), lane(3)];
+                JointLoss {
+                    visc: Self::from([a.visc, b.visc, c.visc, d.visc]),
+                    seal: Self::from([a.seal, b.seal, c.seal, d.seal]),
+                    current: Self::from([a.current, b.current, c.current, d.current]),
+                }
+            }
         }
-    }
+    };
 }
+
+#[cfg(feature = "wide")]
+four_lanes!(simba::simd::WideF64x4, f64);
+#[cfg(feature = "wide")]
+four_lanes!(simba::simd::WideF32x4, f32);

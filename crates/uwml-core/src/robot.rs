@@ -311,11 +311,24 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
         if N > J {
             return Err(ModelError::new("joints", None, Problem::OutOfRange));
         }
+        if chain.links().iter().filter(|link| link.segment.is_some()).count() > S {
+            return Err(ModelError::new("segments", None, Problem::OutOfRange));
+        }
+        Ok(Self::serial(chain.joints(), chain.links(), coefficients))
+    }
+
+    /// [`Robot::from_chain`] of valid joints and links, for a robot with room for them (joints
+    /// and segments beyond its capacity are left out).
+    pub(crate) fn serial<const N: usize>(
+        joints: &[crate::model::Joint<T>; N],
+        links: &[crate::model::Link<T>; N],
+        coefficients: &crate::model::Coefficients<T, N>,
+    ) -> Self {
         let mut robot = Self::empty();
         let mut segment_count = 0;
         let mut free = robot.segments.iter_mut();
-        let per_link = chain.joints().iter().zip(chain.links()).zip(coefficients.cd().iter().zip(coefficients.cm()));
-        for (index, ((joint, link), (cd, cm))) in per_link.enumerate() {
+        let per_link = joints.iter().zip(links).zip(coefficients.cd().iter().zip(coefficients.cm()));
+        for (index, ((joint, link), (cd, cm))) in per_link.enumerate().take(J) {
             if let Some(slot) = robot.joints.get_mut(index) {
                 *slot = TreeJoint {
                     parent: index.checked_sub(1),
@@ -327,10 +340,9 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             if let Some(slot) = robot.links.get_mut(index) {
                 *slot = RigidBody { mass: link.mass, com: link.com, volume: link.volume, cob: link.cob };
             }
-            if let Some(segment) = &link.segment {
-                let Some(slot) = free.next() else {
-                    return Err(ModelError::new("segments", None, Problem::OutOfRange));
-                };
+            if let Some(segment) = &link.segment
+                && let Some(slot) = free.next()
+            {
                 *slot = RobotSegment {
                     owner: Owner::Link(index),
                     start: segment.start,
@@ -344,13 +356,24 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
                 segment_count += 1;
             }
         }
-        robot.joint_count = N;
+        robot.joint_count = N.min(J);
         robot.segment_count = segment_count;
-        Ok(robot.with_frames())
+        robot.with_frames()
     }
 }
 
 impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+    /// The same robot with `table`'s coefficients as its segments' own (segment `k` takes row
+    /// `k`); nothing else changes.
+    #[must_use]
+    pub fn with_coefficients(&self, table: &SegmentCoefficients<T, S>) -> Self {
+        let mut robot = *self;
+        for ((segment, cd), cm) in robot.segments.iter_mut().zip(table.cd).zip(table.cm) {
+            (segment.cd, segment.cm) = (cd, cm);
+        }
+        robot
+    }
+
     /// The joints, as validated.
     pub fn joints(&self) -> &[TreeJoint<T>] {
         self.joints.get(..self.joint_count).unwrap_or(&[])

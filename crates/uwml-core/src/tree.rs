@@ -22,7 +22,7 @@ use crate::model::{Water, constant};
 use crate::motion::{BaseMotion, Current};
 use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, TreeJoint};
-use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments};
+use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments_2};
 pub use crate::tree_regressors::robot_hydro_regressors;
 pub use crate::wrench::{EnvironmentWrench, JointForces, Wrench};
 
@@ -369,8 +369,7 @@ pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
             let [speed0, speed1] = directions.normal_components(&v0);
             let [accel0, accel1] = directions.normal_components(&a0);
             let w_axial = directions.axial_component(w);
-            let (d00, d01) = drag_moments(speed0, sign * w1, length);
-            let (d10, d11) = drag_moments(speed1, -sign * w0, length);
+            let [(d00, d01), (d10, d11)] = drag_moments_2([speed0, speed1], [sign * w1, -sign * w0], length);
             let (m00, m01) = added_mass_moments(accel0, sign * alpha1 + w0 * w_axial, length);
             let (m10, m11) = added_mass_moments(accel1, -sign * alpha0 + w1 * w_axial, length);
             let (drag0, drag1) = (-half * rho * cd0 * *width0, -half * rho * cd1 * *width1);

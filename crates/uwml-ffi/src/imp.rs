@@ -9,7 +9,7 @@ use core::ffi::c_char;
 use uwml_core::nalgebra::RealField;
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, Drive, Joint, JointForces, JointLoss, JointLosses, Link, ModelError,
-    OilDrag, Problem, Robot, RobotData, Seal, Segment, Water,
+    OilDrag, Owner, Problem, RobotData, Seal, Segment, SegmentCoefficients, Water,
 };
 
 use crate::robot::{Model, check_evaluation, environment_total};
@@ -27,30 +27,37 @@ use crate::{
 pub(crate) const N: usize = 3;
 
 /// What lives in the opaque words of `UwmlLeg3F64` / `UwmlLeg3F32`: the leg as a robot of the
-/// robot API (`crate::robot`), whose evaluation it is, and its parameters.
+/// robot API (`crate::robot`), whose evaluation it is.
 #[derive(Clone, Copy)]
 pub(crate) struct Leg<T: RealField + Copy> {
-    /// The leg's validated parameters, kept to rebuild `model.robot` when the coefficients change.
-    chain: Chain<T, N>,
-    /// The leg as a robot: its segments, water and joint losses.
+    /// The leg's robot (each link's segment in link order), water and joint losses.
     pub(crate) model: Model<T, N, N>,
 }
 
 impl<T: RealField + uwml_core::Real> Leg<T> {
     /// A chain in default water, with the default coefficients and no losses.
-    ///
-    /// # Errors
-    /// None for a valid chain (the robot has room for its joints and segments).
-    fn of_chain(chain: Chain<T, N>) -> Result<Self, ModelError> {
-        let robot = Robot::from_chain(&chain, &Coefficients::default())?;
-        Ok(Self { chain, model: Model::new(robot, Water::default()) })
+    fn of_chain(chain: &Chain<T, N>) -> Self {
+        Self { model: Model::new(*chain.robot(), Water::default()) }
     }
 
-    /// The same leg with other coefficients (its segments').
-    fn with_coefficients(&self, coefficients: Coefficients<T, N>) -> Result<Self, ModelError> {
+    /// The same leg with other coefficients (link `i`'s for the segment of link `i`).
+    ///
+    /// # Errors
+    /// None for coefficients that `Coefficients` accepted (they are checked again here).
+    fn with_coefficients(&self, coefficients: &Coefficients<T, N>) -> Result<Self, ModelError> {
+        let (mut cd, mut cm) = ([[T::zero(); 2]; N], [[T::zero(); 2]; N]);
+        let rows = cd.iter_mut().zip(cm.iter_mut());
+        for ((cd, cm), segment) in rows.zip(self.model.robot.segments()) {
+            if let Owner::Link(i) = segment.owner
+                && let (Some(&link_cd), Some(&link_cm)) = (coefficients.cd().get(i), coefficients.cm().get(i))
+            {
+                (*cd, *cm) = (link_cd, link_cm);
+            }
+        }
+        let table = SegmentCoefficients::per_segment(cd, cm)?;
         let mut model = self.model;
-        model.robot = Robot::from_chain(&self.chain, &coefficients)?;
-        Ok(Self { model, ..*self })
+        model.robot = model.robot.with_coefficients(&table);
+        Ok(Self { model })
     }
 }
 
@@ -447,7 +454,7 @@ pub(crate) fn joint_slot(joint_index: u32, count: usize) -> Result<usize, Failur
 pub(crate) unsafe fn paper<T: Precision>(out: *mut T::Leg) -> Result<(), Failure> {
     let out = non_null(out, "out")?;
     // SAFETY: not null, valid for writes (contract).
-    unsafe { store::<T>(out, Leg::of_chain(Chain::paper())?) };
+    unsafe { store::<T>(out, Leg::of_chain(&Chain::paper())) };
     Ok(())
 }
 
@@ -464,7 +471,7 @@ pub(crate) unsafe fn new<T: Precision>(
     // SAFETY: forwarded contract.
     let links = unsafe { read_array::<_, N>(links, "links") }?;
     let out = non_null(out, "out")?;
-    let leg = Leg::of_chain(Chain::new(joints.map(|j| T::joint(&j)), links.map(|l| T::link(&l)))?)?;
+    let leg = Leg::of_chain(&Chain::new(joints.map(|j| T::joint(&j)), links.map(|l| T::link(&l)))?);
     // SAFETY: not null, valid for writes (contract).
     unsafe { store::<T>(out, leg) };
     Ok(())
@@ -484,7 +491,7 @@ pub(crate) unsafe fn set_water<T: Precision>(leg: *mut T::Leg, density: T, gravi
 pub(crate) unsafe fn set_coefficients<T: Precision>(leg: *mut T::Leg, cd: T, cm: T) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    *leg = leg.with_coefficients(Coefficients::uniform(cd, cm)?)?;
+    *leg = leg.with_coefficients(&Coefficients::uniform(cd, cm)?)?;
     Ok(())
 }
 
@@ -505,7 +512,7 @@ pub(crate) unsafe fn set_coefficients_per_direction<T: Precision>(
     let coefficients = Coefficients::per_direction(cd, cm)?;
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    *leg = leg.with_coefficients(coefficients)?;
+    *leg = leg.with_coefficients(&coefficients)?;
     Ok(())
 }
 

@@ -122,7 +122,7 @@ fn losses<T: RealField + Copy, const N: usize>(pressure: T, temperature: T) -> [
 }
 
 /// Every evaluation function at one joint state of one chain.
-fn evaluate<T: RealField + Copy, const N: usize>(chain: &Chain<T, N>, tally: &mut Tally<T>) {
+fn evaluate<T: RealField + uwml_core::Real, const N: usize>(chain: &Chain<T, N>, tally: &mut Tally<T>) {
     let water = black_box(Water::<T>::default());
     let coefficients = black_box(Coefficients::<T, N>::default());
     let (q, qd, qdd) = (black_box(vector(0.3, -0.2)), black_box(vector(0.8, -0.45)), black_box(vector(1.0, -0.7)));
@@ -335,9 +335,9 @@ fn for_type<T: RealField + uwml_core::Real>() -> u32 {
 
 /// The torque paths over SIMD lanes (four states per call, the batch path of the Python
 /// bindings), with a NaN in one lane, which must give NaN in that lane only.
-fn lanes<L: SimdRealField + Copy, const N: usize>(chain: &Chain<L::Element, N>, tally: &mut Tally<L::Element>)
+fn lanes<L: SimdRealField + uwml_core::Real, const N: usize>(chain: &Chain<L::Element, N>, tally: &mut Tally<L::Element>)
 where
-    L::Element: RealField + Copy,
+    L::Element: RealField + uwml_core::Real,
 {
     let (lane_chain, water, coefficients) =
         (chain.splat::<L>(), Water::default().splat::<L>(), Coefficients::<_, N>::default().splat::<L>());
