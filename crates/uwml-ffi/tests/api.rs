@@ -249,10 +249,10 @@ fn paper_preset_is_the_core_bit_for_bit() {
     }
 }
 
-/// The leg API, now the robot API's evaluation, against the chain evaluation it replaced: equal to
-/// 1e-12 of the largest magnitude of each output, with losses set on every joint.
+/// The leg API against the core's chain convenience (`environment_torques`), with losses set on
+/// every joint: one evaluation, so bit for bit.
 #[test]
-fn the_leg_is_the_chain_evaluation_to_1e_12() {
+fn the_leg_is_the_cores_chain_convenience_bit_for_bit() {
     let mut leg = paper64();
     let p = default_params64();
     let (pressure, temperature) = (pressure_at_depth(3000.0, 1025.0, 9.81).unwrap(), 4.0);
@@ -284,10 +284,8 @@ fn the_leg_is_the_chain_evaluation_to_1e_12() {
             ("total", out.total, old.total()),
         ];
         for (name, new, old) in pairs {
-            let scale = old.amax().max(1.0);
-            for (a, b) in new.iter().zip(old.iter()) {
-                assert!((a - b).abs() <= 1e-12 * scale, "{name} at {q:?}, {qd:?}, {qdd:?}: {new:?} vs {old:?}");
-            }
+            let old: [f64; 3] = old.into();
+            assert_eq!(new.map(f64::to_bits), old.map(f64::to_bits), "{name} at {q:?}, {qd:?}, {qdd:?}");
         }
     }
 }
