@@ -1,7 +1,7 @@
 """Throughput of the batch calls ``Leg.hydro`` and ``Leg.environment`` (with the default losses on
 all three joints) on one and on two threads, against the numpy reference; and of ``Robot.hydro``:
 the paper's leg as a robot (fixed, and on a moving base in a current) and the 7-joint arm of 14
-segments on an ROV of :func:`uwml.examples.arm_on_rov` (moving, in a current).
+segments on an ROV of :func:`uwml.robot.examples.arm_on_rov` (moving, in a current).
 
 Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
 the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
@@ -13,7 +13,7 @@ import time
 import numpy as np
 import uwml
 from uwml import reference
-from uwml.examples import arm_on_rov
+from uwml.robot.examples import arm_on_rov
 
 
 def best_of(runs: int, call) -> float:

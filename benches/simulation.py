@@ -1,4 +1,4 @@
-"""The cost of a MuJoCo step with uwml inside (uwml.mujoco.Simulation) against a bare mj_step
+"""The cost of a MuJoCo step with uwml inside (uwml.sim.mujoco.Simulation) against a bare mj_step
 and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tests/data.
 
     python benches/simulation.py [--steps N]
@@ -19,8 +19,8 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import uwml
-from uwml.descriptions import model_and_robot
-from uwml.mujoco import Simulation
+from uwml.robot.files import model_and_robot
+from uwml.sim.mujoco import Simulation
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
 ROBOTS = {"paper leg (fixed base)": ("paper_leg.xml", "paper_leg.hydro.toml"), "arm on a floating hull": ("arm.xml", "arm.hydro.toml")}
@@ -73,11 +73,11 @@ def main() -> None:
         for integrator in ("euler", "rk4"):
             sim = Simulation.from_file(DATA / file, DATA / hydro, integrator=integrator)
             sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
-            rows.append((f"uwml.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps)))
+            rows.append((f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps)))
         # The default joint losses at 3000 m: the seals' friction a MuJoCo constraint, noslip on.
         sim = Simulation.from_file(DATA / file, DATA / hydro, depth=3000.0, losses=uwml.JointLosses())
         sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
-        rows.append(("uwml.mujoco, euler, losses", per_step(sim.step, args.steps)))
+        rows.append(("uwml.sim.mujoco, euler, losses", per_step(sim.step, args.steps)))
         print(f"\n{name}")
         for label, micro in rows:
             print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")

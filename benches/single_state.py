@@ -2,7 +2,7 @@
 time): ``Leg.hydro`` and ``Leg.environment`` on the paper's leg with 1-D states, default
 coefficients and water, against the batch path's cost per state; and ``Robot.hydro`` (the paper's
 leg as a robot, fixed and on a moving base in a current; the 7-joint arm of
-:func:`uwml.examples.arm_on_rov` on a moving ROV in a current).
+:func:`uwml.robot.examples.arm_on_rov` on a moving ROV in a current).
 
 Run: ``python benches/single_state.py [repeats]`` (default 7). Each figure is the best of
 ``repeats`` ``timeit`` runs of 20,000 calls (and the median, for the spread); the batch figures
@@ -15,7 +15,7 @@ import timeit
 
 import numpy as np
 import uwml
-from uwml.examples import arm_on_rov
+from uwml.robot.examples import arm_on_rov
 
 CALLS = 20_000
 BATCH = 100_000

@@ -1,9 +1,12 @@
 """Load uwml's pure-Python modules straight from the source tree, without the compiled extension.
 
-``uwml/__init__.py`` imports the Rust extension, so ``import uwml.fit`` needs a built package.
-The loss modules (``losses``, ``reference``, ``oil``, ``seawater``, ``synthetic``, ``fit``,
-``plot``) do not: :func:`load` imports them as submodules of a bare package ``uwml_pure`` whose
-path is ``python/uwml``, so their relative imports resolve to the sources under test.
+``uwml/__init__.py`` imports the Rust extension, so ``import uwml.sea`` needs a built package.
+The pure modules (``model.losses``, ``model.parts`` and the package ``model``, ``sea.oil``,
+``sea.seawater``, ``sea.conditions``, ``reference``) do not: :func:`load` imports them as
+submodules of a bare package ``uwml_pure`` whose path is ``python/uwml`` (``load("sea.oil")``),
+so their relative imports resolve to the sources under test. ``fit``, ``sim.synthetic`` and
+``viz.plot`` evaluate the joint losses with the Rust core (``uwml.model.joint_losses``): their
+tests import them from the built package.
 """
 
 import importlib
@@ -19,7 +22,8 @@ REFERENCE_DIR = _SOURCE / "reference"
 
 
 def load(name: str) -> ModuleType:
-    """The module ``python/uwml/<name>.py``, imported without running ``uwml/__init__.py``."""
+    """The module ``python/uwml/<name>.py`` (dots for subpackages: ``"sea.oil"`` is
+    ``python/uwml/sea/oil.py``), imported without running ``uwml/__init__.py``."""
     if _PACKAGE not in sys.modules:
         package = ModuleType(_PACKAGE)
         package.__path__ = [str(_SOURCE)]

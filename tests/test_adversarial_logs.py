@@ -22,7 +22,7 @@ import uwml
 from hypothesis import given
 from hypothesis import strategies as st
 from uwml import logs
-from uwml._log_stream import log_chunks
+from uwml.io._log_stream import log_chunks
 
 MAX_MESSAGE = 500
 HEADER = "time,q1,q2,q3"

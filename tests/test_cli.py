@@ -296,7 +296,7 @@ def test_torques_in_chunks_equal_one_chunk(
     """The log read, evaluated and written in chunks (and pyarrow blocks of 4 kB) gives the
     output of one chunk, byte for byte; derivatives estimated across chunk boundaries too (7 rows
     is less than the Savitzky-Golay window of 21)."""
-    from uwml import _arrow_csv
+    from uwml.io import _arrow_csv
 
     path = tmp_path / "trajectory.csv"
     extra = {"qd": experiment.qd, "qdd": experiment.qdd} if derivatives else {}
@@ -324,7 +324,7 @@ def test_torques_bad_cell_half_way_writes_no_file(
     write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), good)
     bad = tmp_path / "bad.csv"
     _replace_cell(good, bad, 350, "qdd2", "")
-    from uwml import _arrow_csv
+    from uwml.io import _arrow_csv
 
     monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", 50)
     monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)

@@ -15,10 +15,10 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from pure import load
+from uwml import fit
+from uwml.model import losses
+from uwml.sim import synthetic
 
-fit = load("fit")
-losses = load("losses")
-synthetic = load("synthetic")
 ref = load("reference")
 
 SEAL, DRIVE = losses.Seal(), losses.Drive()

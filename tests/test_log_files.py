@@ -9,7 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from uwml import _arrow_csv, logs, synthetic
+from uwml import logs, synthetic
+from uwml.io import _arrow_csv
 
 HEADER = "time,q1,q2,q3"
 

@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from pure import load
 
 ref = load("reference")
-losses = load("losses")
+losses = load("model.losses")
 
 RPM = 2.0 * math.pi / 60.0
 OIL, SEAL, DRIVE = losses.OilDrag(), losses.Seal(), losses.Drive()

@@ -8,7 +8,7 @@ from hypothesis import assume, given
 from hypothesis import strategies as st
 from pure import load
 
-oil = load("oil")
+oil = load("sea.oil")
 VG32 = oil.ISO_VG32
 
 

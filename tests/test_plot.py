@@ -6,14 +6,12 @@ import matplotlib
 import numpy as np
 import pytest
 from matplotlib.figure import Figure
-from pure import load
+from uwml import fit
+from uwml.model import losses
+from uwml.sim import synthetic
+from uwml.viz import plot
 
 matplotlib.use("Agg")
-
-plot = load("plot")
-losses = load("losses")
-fit = load("fit")
-synthetic = load("synthetic")
 
 OIL, SEAL, DRIVE = losses.OilDrag(), losses.Seal(), losses.Drive()
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"

@@ -12,7 +12,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from pure import load
 
-seawater = load("seawater")
+seawater = load("sea.seawater")
 ref = load("reference")
 
 LATITUDES = np.linspace(-90.0, 90.0, 37)[:, None]

@@ -7,26 +7,48 @@ exactly by a no_std Rust core and exposed over numpy arrays. Sign convention: ev
 the generalized force exerted by the environment on the joint, in the joint's positive
 direction (so drag opposes motion and the motor must supply ``-total`` on top of the land
 torque).
+
+The package, one idea per subpackage, each importing only those before it: :mod:`uwml.sea` (the
+sea's conditions at a joint: depth, temperature, hydrostatic pressure; sea water, oil),
+:mod:`uwml.model` (joints, links, segments, the water; the joint losses), :mod:`uwml.io` (model
+files, robot descriptions, hydro files, exported code, logs), :mod:`uwml.robot` (:class:`Robot`,
+:class:`Leg` and their results), then :mod:`uwml.fit` (identification), :mod:`uwml.viz` (figures,
+descriptions), :mod:`uwml.sim` (gait, MuJoCo, studies, synthetic experiments) and the command
+line (:mod:`uwml.cli`). :mod:`uwml.reference` is the independent numpy reference (tests and
+checks). The former flat modules (``uwml.leg``, ``uwml.environment``, ...) still import and
+re-export their names.
 """
 
-from .environment import EnvironmentTorques, ExtrapolationWarning, JointLosses, LossTorques, hydrostatic_pressure_mpa
+# The former modules that `import uwml` has always loaded, kept as attributes of the package
+# (each re-exports its names from where they now live: uwml.environment from uwml.sea.conditions
+# and others, uwml.leg from uwml.robot.leg, ...).
+from . import environment as environment
+from . import gait as gait
+from . import leg as leg
+from . import logs as logs
+from . import losses as losses
+from . import robot_types as robot_types
 from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
-from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
-from .leg import MAX_JOINTS, EnvironmentJacobians, HydroRegressors, HydroTorques, Leg
-from .logs import Log, read_log, write_log
-from .losses import Drive, OilDrag, Seal
-from .model import Joint, Link, Segment, Water
-from .robot import (
-    MAX_ROBOT_JOINTS,
-    MAX_SEGMENTS,
-    BaseMotion,
+from .io.logs import Log, read_log, write_log
+from .model.joint_losses import JointLosses, LossTorques
+from .model.losses import Drive, OilDrag, Seal
+from .model.parts import Joint, Link, Segment, Water
+from .robot.base_motion import BaseMotion
+from .robot.leg import MAX_JOINTS, Leg
+from .robot.results import (
     BaseWrench,
-    Robot,
+    EnvironmentJacobians,
+    EnvironmentTorques,
+    HydroRegressors,
+    HydroTorques,
     RobotEnvironment,
     RobotJacobians,
     RobotRegressors,
     RobotTorques,
 )
+from .robot.tree import MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
+from .sea.conditions import ExtrapolationWarning, hydrostatic_pressure_mpa
+from .sim.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 
 __all__ = [
     "MAX_JOINTS",

@@ -1,8 +1,9 @@
-"""Input checks and the CSV reader shared by the pure-Python modules."""
+"""Input checks (arguments, table cells, overflowing outputs) and the CSV reader shared by the modules."""
 
 import csv
 import math
 import os
+from collections.abc import Sequence
 from typing import IO, Any, SupportsFloat, SupportsIndex
 
 import numpy as np
@@ -100,3 +101,27 @@ def shown(value: Any, limit: int = 60) -> str:
     else:
         text = repr(value)
     return text if len(text) <= 3 * limit else text[: 3 * limit] + "..."
+
+
+def check_overflow(
+    outputs: Sequence[NDArray[np.float64]], n_samples: int, velocities: NDArray[np.float64], accelerations: NDArray[np.float64]
+) -> None:
+    """A ValueError naming the first sample whose outputs are not finite although its state is
+    (the states are checked before): forces beyond float64's range, from speeds or accelerations
+    far beyond any robot's. Cheap when nothing overflows (one sum per output array)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        if all(math.isfinite(float(np.sum(a))) for a in outputs):
+            return
+    bad = np.zeros(n_samples, dtype=bool)
+    for a in outputs:
+        bad |= ~np.all(np.isfinite(np.reshape(a, (n_samples, -1))), axis=1)
+    if not bad.any():
+        return  # only the sums overflowed
+    i = int(np.flatnonzero(bad)[0])
+    speed = float(np.max(np.abs(np.reshape(velocities, (n_samples, -1))[i])))
+    acceleration = float(np.max(np.abs(np.reshape(accelerations, (n_samples, -1))[i])))
+    where = f"sample {i}" if n_samples > 1 else "the state"
+    raise ValueError(
+        f"the forces of {where} overflow float64 (joint speeds up to {speed:.3g}, accelerations up to {acceleration:.3g}; "
+        "or the base's motion, the current or the coefficients): the inputs are outside the physics' domain"
+    )

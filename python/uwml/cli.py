@@ -41,12 +41,13 @@ from ._cli_arguments import (
     _positive,
     _seed,
 )
+from .domains import MAX_ROBOT_JOINTS
 from .errors import UwmlError
-from .leg import Leg
-from .logs import MAX_ROBOT_JOINTS
-from .model import Water
-from .paper_analysis import _component_table, _rms, gait_like_motion
-from .simulate import MAX_CYCLES
+from .model.parts import Water
+from .robot.leg import Leg
+from .robot.tree import Robot
+from .sim.paper_analysis import _component_table, _rms, gait_like_motion
+from .sim.studies import MAX_CYCLES
 
 __all__ = ["build_parser", "gait_like_motion", "main"]
 
@@ -86,7 +87,7 @@ def _demo(args: argparse.Namespace) -> int:
 
 
 def _paper(args: argparse.Namespace) -> int:
-    from .paper_analysis import run
+    from .sim.paper_analysis import run
 
     return run(args.out, args.seed)
 
@@ -97,8 +98,8 @@ def _paper(args: argparse.Namespace) -> int:
 
 
 def _torques(args: argparse.Namespace) -> int:
-    from ._log_stream import log_chunks
-    from .environment import JointLosses
+    from .io._log_stream import log_chunks
+    from .model.joint_losses import JointLosses
 
     out = args.out
     _check_output(out, "--out")
@@ -139,7 +140,7 @@ def _torques(args: argparse.Namespace) -> int:
             schema = pyarrow.schema([(name, pyarrow.float64()) for name in names])
             writer = pyarrow.parquet.ParquetWriter(partial, schema)
         else:
-            from ._arrow_csv import CsvColumnsWriter
+            from .io._arrow_csv import CsvColumnsWriter
 
             sys.stdout.flush()
             handle = sys.stdout.buffer if partial is None else open(partial, "wb")  # noqa: SIM115
@@ -187,8 +188,6 @@ def _torques(args: argparse.Namespace) -> int:
 def load_robot(path: str, hydro: str | None = None) -> Any:
     """The robot of a description file given with ``--robot``: a uwml model file (``.toml``), a
     URDF (``.urdf``) or an MJCF (``.xml``, ``.mjcf``), with ``--hydro`` for the last two."""
-    from .robot import Robot
-
     suffix = Path(path).suffix.lower()
     if suffix == ".toml":
         if hydro is not None:
@@ -204,8 +203,7 @@ def load_robot(path: str, hydro: str | None = None) -> Any:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from .export import to_c, to_rust
-    from .robot import Robot
+    from .io.export import to_c, to_rust
 
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
     source = args.robot or "the paper's leg"
@@ -216,8 +214,7 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _describe(args: argparse.Namespace) -> int:
-    from .describe import describe, draw
-    from .robot import Robot
+    from .viz.describe import describe, draw
 
     _check_output(args.plot, "--plot")
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
@@ -240,7 +237,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
     source: Any = args.log if args.log_water is None else (args.log, args.log_water)
     result = fit.hydro_coefficients(source, leg, joints=[j - 1 for j in args.joints], per=args.per, robust=args.robust)
     if args.plot is not None:
-        from . import plot
+        from .viz import plot
 
         plot.hydro_fit_plot(result, args.plot)
     if args.json:
@@ -258,8 +255,8 @@ def _fit_losses(args: argparse.Namespace) -> int:
     import csv
 
     from . import fit
-    from ._arrow_csv import not_utf8_error
-    from .logs import _check_file
+    from .io._arrow_csv import not_utf8_error
+    from .io.logs import _check_file
 
     _check_file(args.csv, args.csv)  # no such file, a directory
     try:
@@ -280,7 +277,7 @@ def _fit_losses(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.csv}: {name} fit: {exc}") from None
     figures = []
     if args.plot is not None:
-        from . import plot
+        from .viz import plot
 
         directory = Path(args.plot)
         directory.mkdir(parents=True, exist_ok=True)
@@ -304,7 +301,7 @@ def _fit_losses(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 
 
-_LOG_FORMAT = """Log format (uwml.logs, docs/identification.md): CSV with a header row; columns
+_LOG_FORMAT = """Log format (uwml.io.logs, docs/identification.md): CSV with a header row; columns
 time [s] (strictly increasing), q1..qN [rad], optionally qd1..qdN [rad/s] and qdd1..qddN
 [rad/s²] (else estimated by a Savitzky-Golay filter, which needs uniform sampling); extra
 columns are ignored. Parquet (.parquet) holds the same columns."""
@@ -369,7 +366,7 @@ current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + se
 --robot (a uwml model file), the robot on a fixed, upright base, and six more columns
 base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its origin).
 Sign: the environment's torque on each joint, in the joint's positive direction. Losses use
-the illustrative defaults of uwml.losses on every joint (uwml.JointLosses()). The paper's leg
+the illustrative defaults of uwml.model.losses on every joint (uwml.JointLosses()). The paper's leg
 moves in sea water (1025 kg/m³), a --robot in its own water (its description's); that water's
 column gives the hydrostatic pressure at --depth.
 
@@ -502,11 +499,11 @@ Output: both fit reports on standard output; with --json only {"oil_drag": summa
         "simulate",
         help="the paper's leg walking in sea water under four controllers, simulated (needs uwml[mujoco])",
         formatter_class=formatter,
-        description="""The paper's control question, simulated (uwml.simulate; MuJoCo with uwml's forces and the
+        description="""The paper's control question, simulated (uwml.sim.studies; MuJoCo with uwml's forces and the
 added mass in the mass matrix): the paper's leg on a fixed stand follows our walking gait in sea
 water at 4 °C at each depth, under PD + the land model's feedforward (land), + uwml's hydrodynamic
 feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last two with Cd and
-Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.simulate).
+Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.sim.studies).
 
 Output: a table of RMS and peak tracking error per joint and the motor's positive work per cycle
 (last cycle), or with --json the runs' summaries as JSON; report.md, tracking.png and
@@ -534,7 +531,7 @@ depth_sweep.png in --out. A progress bar on standard error.""",
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from .simulate import command
+    from .sim.studies import command
 
     return command(args.out, args.depths, args.cycles, args.json)
 

@@ -7,7 +7,7 @@ Section IV: the motor current of a joint is measured with the housing dry and no
 oil-filled without the seal (``oil``) and oil-filled with the seal (``oil_seal``), at several
 output speeds and pressures. The differences isolate the
 two losses, ``ΔI_oil(ω, p) = I_oil − I_dry(ω)`` and ``ΔI_seal(ω, p) = I_oil_seal − I_oil``;
-:func:`oil_drag` and :func:`seal` fit :class:`uwml.losses.OilDrag` and :class:`uwml.losses.Seal`
+:func:`oil_drag` and :func:`seal` fit :class:`uwml.model.losses.OilDrag` and :class:`uwml.model.losses.Seal`
 to them and return a result in the lmfit style (:class:`LossFit`).
 
 CSV format
@@ -61,7 +61,7 @@ Steady rows use the hard sign (ε = 0): the data are at steady, known-sign speed
 Hydrodynamic coefficients
 -------------------------
 :func:`hydro_coefficients` fits docs/model.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
-with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.logs`, on the selected joints
+with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.io.logs`, on the selected joints
 (default joint index 0, the paper's joint 1, hip yaw, whose vertical axis gravity and
 buoyancy do not act about). ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,
 ``cm_link<l>``, ``l`` the 0-based link index), ``per="direction"`` one per link and normal

@@ -6,20 +6,18 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..logs import Log, align_logs, read_log
-from ..model import Water
+from ..io.logs import Log, align_logs, read_log
+from ..model.parts import Water
+from ..robot.leg import Leg
+from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .least_squares import _fit_statistics, _Solution, _uncertainties
 from .results import FitResult, _json_floats
-
-if TYPE_CHECKING:
-    from ..leg import Leg
-    from ..robot import Robot
 
 # --------------------------------------------------------------------------------------------
 # Hydrodynamic coefficients from the land/water experiment
@@ -400,10 +398,10 @@ def hydro_coefficients(
     Parameters
     ----------
     log_or_path : Log, file, or (land, water) pair
-        A log of the whole experiment (``tau_land*`` and ``tau_water*``), as a :class:`uwml.logs.Log`
-        or a file (:func:`uwml.logs.read_log`); or a pair of logs of one environment each
-        (``tau*``), aligned by time (:func:`uwml.logs.align_logs`). Missing velocities and
-        accelerations are estimated (:meth:`uwml.logs.Log.with_derivatives`).
+        A log of the whole experiment (``tau_land*`` and ``tau_water*``), as a :class:`uwml.io.logs.Log`
+        or a file (:func:`uwml.io.logs.read_log`); or a pair of logs of one environment each
+        (``tau*``), aligned by time (:func:`uwml.io.logs.align_logs`). Missing velocities and
+        accelerations are estimated (:meth:`uwml.io.logs.Log.with_derivatives`).
     leg : Leg or Robot, optional
         Default :meth:`uwml.Leg.paper`. A :class:`uwml.Robot` (any tree, from a URDF, MJCF or
         model file) is on a fixed, upright base in still water, as the leg on its test stand;
@@ -441,9 +439,6 @@ def hydro_coefficients(
         bad joints, ``per`` or ``sigma``, or when no coefficient has a regressor on the
         selected joints.
     """
-    from ..leg import Leg
-    from ..robot import Robot
-
     leg = Leg.paper() if leg is None else leg
     if not isinstance(leg, (Leg, Robot)):
         raise TypeError(f"leg must be a uwml.Leg or a uwml.Robot, got {type(leg).__name__}")

@@ -13,7 +13,7 @@ import scipy.optimize
 import scipy.stats
 from numpy.typing import ArrayLike, NDArray
 
-from ..losses import RPM, Drive, OilDrag
+from ..model.losses import RPM, Drive, OilDrag
 from ._types import Array, Columns, PathOrFile
 from .least_squares import _least_squares, _Points, _statistics
 from .loss_data import _DEFAULT_TEMPERATURE_C, _groups, _load, _select, _temperatures
@@ -66,7 +66,7 @@ def oil_drag(
     temperature_c: float = _DEFAULT_TEMPERATURE_C,
     scale_covar: bool = True,
 ) -> OilDragFit:
-    """Fit :class:`uwml.losses.OilDrag` to ``ΔI_oil = I_oil − I_dry(ω)`` (module docstring).
+    """Fit :class:`uwml.model.losses.OilDrag` to ``ΔI_oil = I_oil − I_dry(ω)`` (module docstring).
 
     The model, at motor speed ``ω_m = N ω`` and as torque at the motor shaft,
     ``T_oil = K_t ΔI_oil = K_oil exp(a_p (p − p_ref)) exp(−a_T (θ − θ_ref)) ω_m^n``.
@@ -74,11 +74,11 @@ def oil_drag(
     Parameters
     ----------
     data_or_path : mapping or str or path or text file
-        Columns (as :func:`uwml.synthetic.three_configuration_experiment` returns) or a CSV file.
+        Columns (as :func:`uwml.sim.synthetic.three_configuration_experiment` returns) or a CSV file.
     drive : Drive
         Torque constant K_t and ratio N of the joint (``torque_constant=1`` to fit in amperes).
     temperature_sensitivity_per_k : float, optional
-        Hold a_T [1/K] at this value (e.g. from :func:`uwml.oil.drag_temperature_sensitivity`).
+        Hold a_T [1/K] at this value (e.g. from :func:`uwml.sea.oil.drag_temperature_sensitivity`).
         None: fit it if the data's temperature varies, else hold it at 0 (the data say nothing
         about temperature; the model is then valid at the data's temperature).
     reference_pressure_mpa : float
@@ -238,7 +238,7 @@ def _seal_points(data: Columns, drive: Drive, temperature_c: float) -> _Points:
     )
 
 
-#: The seal's parameters in the order of :class:`uwml.losses.Seal`.
+#: The seal's parameters in the order of :class:`uwml.model.losses.Seal`.
 _SEAL_NAMES = ("c0", "c1_per_mpa", "s0", "s1_per_mpa", "d0", "d1_per_mpa", "stribeck_speed")
 #: Internal parameters ``(C0, C1, S0 − C0, S1 − C1, D0, D1, ω_s)`` → the seal's: ``S = C + excess``.
 _SEAL_TRANSFORM = np.array(
@@ -266,7 +266,7 @@ def seal(
     temperature_c: float = _DEFAULT_TEMPERATURE_C,
     scale_covar: bool = True,
 ) -> SealFit:
-    """Fit :class:`uwml.losses.Seal` to ``ΔI_seal = I_oil_seal − I_oil`` (module docstring).
+    """Fit :class:`uwml.model.losses.Seal` to ``ΔI_seal = I_oil_seal − I_oil`` (module docstring).
 
     The model, as torque at the output, ``N η K_t ΔI_seal = sgn(ω) [C(p) + (S(p) − C(p))
     exp(−(ω/ω_s)²)] + D(p) ω`` for steady rows and ``S(p)`` for start-up rows.
@@ -274,7 +274,7 @@ def seal(
     Parameters
     ----------
     data_or_path : mapping or str or path or text file
-        Columns (as :func:`uwml.synthetic.three_configuration_experiment` returns) or a CSV file.
+        Columns (as :func:`uwml.sim.synthetic.three_configuration_experiment` returns) or a CSV file.
     drive : Drive
         Torque constant K_t, ratio N and efficiency η of the joint.
     stribeck_speed : float, optional

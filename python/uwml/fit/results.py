@@ -4,6 +4,7 @@ and the loss fits' results.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from abc import ABC, abstractmethod
@@ -16,8 +17,8 @@ import scipy.optimize
 import scipy.stats
 from numpy.typing import ArrayLike, NDArray
 
-from .. import reference
-from ..losses import Drive, OilDrag, Seal
+from ..model.joint_losses import JointLosses
+from ..model.losses import Drive, OilDrag, Seal
 from ._types import Array
 
 #: Correlations below this are left out of :meth:`LossFit.fit_report`.
@@ -267,7 +268,7 @@ class FitResult:
 class LossFit(FitResult, ABC):
     """Result of a loss fit, in the style of lmfit's ``MinimizerResult`` / ``ModelResult``.
 
-    Parameters are in the units of :mod:`uwml.losses`; ``data``, ``sigma`` and ``best_fit`` are
+    Parameters are in the units of :mod:`uwml.model.losses`; ``data``, ``sigma`` and ``best_fit`` are
     torques (``unit``): the oil fit's at the motor shaft, the seal fit's at the joint output.
     ``data`` are the fitted loss torques (differences of group means), ``sigma`` their standard
     errors.
@@ -305,27 +306,32 @@ class LossFit(FitResult, ABC):
 
 @dataclass(frozen=True, eq=False)
 class OilDragFit(LossFit):
-    """Result of :func:`oil_drag`; ``model`` is the fitted :class:`uwml.losses.OilDrag`."""
+    """Result of :func:`oil_drag`; ``model`` is the fitted :class:`uwml.model.losses.OilDrag`."""
 
     @property
     def model(self) -> OilDrag:
-        """The fitted :class:`uwml.losses.OilDrag`."""
+        """The fitted :class:`uwml.model.losses.OilDrag`."""
         return OilDrag(**self.params)
 
     def eval(self, speed: ArrayLike, pressure_mpa: ArrayLike, temperature_c: ArrayLike = 20.0) -> Array:
         """``T_oil`` [N·m at the motor shaft] at output speed ``speed`` [rad/s] (motor speed N ω)."""
-        return reference.oil_drag_torque(self.model, self.drive.ratio * np.asarray(speed, dtype=np.float64), pressure_mpa, temperature_c)
+        # The loss current of the oil alone with K_t = 1 is T_oil itself (the core's, hard sign).
+        drive = dataclasses.replace(self.drive, torque_constant=1.0)
+        oil = JointLosses(drive=drive, oil=self.model, seal=None, epsilon=0.0)
+        return oil.torques(speed, pressure_mpa, temperature_c).current
 
 
 @dataclass(frozen=True, eq=False)
 class SealFit(LossFit):
-    """Result of :func:`seal`; ``model`` is the fitted :class:`uwml.losses.Seal`."""
+    """Result of :func:`seal`; ``model`` is the fitted :class:`uwml.model.losses.Seal`."""
 
     @property
     def model(self) -> Seal:
-        """The fitted :class:`uwml.losses.Seal`."""
+        """The fitted :class:`uwml.model.losses.Seal`."""
         return Seal(**self.params)
 
     def eval(self, speed: ArrayLike, pressure_mpa: ArrayLike, temperature_c: ArrayLike = 20.0) -> Array:
         """``T_seal`` [N·m at the output] at output speed ``speed`` [rad/s] (temperature unused)."""
-        return reference.seal_torque(self.model, speed, pressure_mpa)
+        # The core's seal torque, an environment torque (−T_seal), hard sign; no temperature law.
+        seal = JointLosses(drive=self.drive, oil=None, seal=self.model, epsilon=0.0)
+        return -seal.torques(speed, pressure_mpa).seal

@@ -5,7 +5,7 @@ Written literally from the formulas of docs/losses.md, "The models": the oil's c
 they cost (:func:`loss_current`), both as environment torques at the joint
 (:func:`joint_loss_torques`), the smooth sign (:func:`smooth_sign`) and the core's uniform-sea
 pressure (:func:`hydrostatic_pressure_mpa`). The parameters are duck-typed: any objects with the
-attributes of :class:`uwml.losses.OilDrag`, :class:`uwml.losses.Seal` and :class:`uwml.losses.Drive`
+attributes of :class:`uwml.model.losses.OilDrag`, :class:`uwml.model.losses.Seal` and :class:`uwml.model.losses.Drive`
 will do.
 """
 
@@ -40,7 +40,7 @@ def _samples(value: ArrayLike, name: str, *, low: float | None = None, strict: b
 
 
 def _oil_parameters(oil: Any) -> tuple[float, float, float, float, float, float]:
-    """``(k_oil, n, a_p, a_T, p_ref, θ_ref)`` of a duck-typed :class:`uwml.losses.OilDrag`, checked."""
+    """``(k_oil, n, a_p, a_T, p_ref, θ_ref)`` of a duck-typed :class:`uwml.model.losses.OilDrag`, checked."""
     exponent = _number(oil.exponent, "oil.exponent", positive=True)
     if not 1.0 <= exponent <= 2.0:
         raise ValueError(f"oil.exponent must lie in [1, 2], got {exponent}")
@@ -56,7 +56,7 @@ def _oil_parameters(oil: Any) -> tuple[float, float, float, float, float, float]
 
 
 def _seal_parameters(seal: Any) -> tuple[float, float, float, float, float, float, float]:
-    """``(C0, C1, S0, S1, D0, D1, ω_s)`` of a duck-typed :class:`uwml.losses.Seal`, checked."""
+    """``(C0, C1, S0, S1, D0, D1, ω_s)`` of a duck-typed :class:`uwml.model.losses.Seal`, checked."""
     c0 = _number(seal.c0, "seal.c0", positive=False)
     c1 = _number(seal.c1_per_mpa, "seal.c1_per_mpa", positive=False)
     s0 = _number(seal.s0, "seal.s0", positive=False)
@@ -77,7 +77,7 @@ def _seal_parameters(seal: Any) -> tuple[float, float, float, float, float, floa
 
 
 def _drive_parameters(drive: Any) -> tuple[float, float, float]:
-    """``(K_t, N, η)`` of a duck-typed :class:`uwml.losses.Drive`, checked."""
+    """``(K_t, N, η)`` of a duck-typed :class:`uwml.model.losses.Drive`, checked."""
     efficiency = _number(drive.efficiency, "drive.efficiency", positive=True)
     if efficiency > 1.0:
         raise ValueError(f"drive.efficiency must lie in (0, 1], got {efficiency}")
@@ -300,7 +300,7 @@ def joint_loss_torques(
 def hydrostatic_pressure_mpa(depth_m: ArrayLike, sea_density: float = 1025.0, gravity: float = 9.81) -> Array:
     """Gauge pressure of a uniform sea at depth: ``p = ρ g z`` [MPa].
 
-    The core's model (docs/losses.md, "Pressure from depth"); :func:`uwml.seawater.pressure_at_depth_mpa` gives the
+    The core's model (docs/losses.md, "Pressure from depth"); :func:`uwml.sea.seawater.pressure_at_depth_mpa` gives the
     TEOS-10 value, and docs/losses.md the measured difference.
 
     Parameters

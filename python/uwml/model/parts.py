@@ -20,12 +20,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._checks import to_float
-from .domains import MAX_DENSITY, MAX_GRAVITY
+from .._checks import to_float
+from ..domains import MAX_DENSITY, MAX_GRAVITY
+from ..sea.conditions import SEA_WATER_DENSITY
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["CIRCULAR_DEFAULTS", "RECTANGULAR_DEFAULTS", "SECTIONS", "Joint", "Link", "Segment", "Vec3", "Water"]
+__all__ = ["CIRCULAR_DEFAULTS", "FRESH_WATER", "RECTANGULAR_DEFAULTS", "SEA_WATER", "SECTIONS", "Joint", "Link", "Segment", "Vec3", "Water"]
 
 #: Tolerance on unit length and orthogonality of the axes and normals given by users.
 AXIS_TOLERANCE = 1e-6
@@ -346,3 +347,10 @@ class Water:
         for name, limit, unit in (("density", MAX_DENSITY, "kg/m³"), ("gravity", MAX_GRAVITY, "m/s²")):
             if getattr(self, name) > limit:
                 raise ValueError(f"water.{name} must be at most {limit:g} {unit}, got {getattr(self, name)!r}")
+
+
+#: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).
+FRESH_WATER = Water()
+#: The water of :meth:`uwml.Leg.environment` and :meth:`uwml.Leg.jacobians` by default: sea
+#: water, for the hydrodynamics and the pressure at depth alike.
+SEA_WATER = Water(density=SEA_WATER_DENSITY)

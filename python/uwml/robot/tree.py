@@ -9,36 +9,39 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
-from typing import Any, NamedTuple
+from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from . import _core
-from ._checks import real_array as _real_array
-from .environment import JointLosses, check_overflow, loss_conditions, one_state_losses, pack_leg_losses
-from .leg import FRESH_WATER, _threads, _water
-from .model import Joint, Link, Segment, Water
-from .robot_types import (
-    BaseMotion,
-    BaseWrench,
-    RobotEnvironment,
-    RobotJacobians,
-    RobotRegressors,
-    RobotTorques,
+from .. import _core
+from .._checks import check_overflow
+from .._checks import real_array as _real_array
+from ..io import descriptions, modelfile
+from ..model.joint_losses import JointLosses, pack_leg_losses
+from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
+from ..sea.conditions import loss_conditions
+from ._arguments import (
+    _body_row,
+    _Inputs,
+    _kirchhoff,
+    _per_joint_losses,
+    _segment_row,
+    _short_path,
+    _threads,
+    _water,
+    one_state_losses,
+    robot_inputs,
+    segment_coefficients,
 )
+from .base_motion import BaseMotion
+from .results import BaseWrench, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
-    "BaseMotion",
-    "BaseWrench",
     "Robot",
-    "RobotEnvironment",
-    "RobotJacobians",
-    "RobotRegressors",
-    "RobotTorques",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -49,83 +52,12 @@ MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
 
 
-def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None, ...]:
-    """``losses`` (None, one :class:`JointLosses` for every joint, or one or None per joint) as a
-    tuple with one entry per joint."""
-    if losses is None or isinstance(losses, JointLosses):
-        return (losses,) * n_joints
-    if not isinstance(losses, Iterable):
-        raise TypeError(f"losses must be a uwml.JointLosses, a sequence of them (or None), or None; got {type(losses).__name__}")
-    items = tuple(losses)
-    if len(items) != n_joints:
-        raise ValueError(f"losses must have one entry per joint ({n_joints}), got {len(items)}")
-    checked: list[JointLosses | None] = []
-    for index, item in enumerate(items):
-        if item is not None and not isinstance(item, JointLosses):
-            raise TypeError(f"losses[{index}] must be a uwml.JointLosses or None, got {type(item).__name__}")
-        checked.append(item)
-    return tuple(checked)
-
-
-#: The forms of the added-mass forces: the paper's Morison form, and Kirchhoff's
-#: (docs/simulation.md, "Energy-consistent added mass").
-ADDED_MASS_FORMS = ("morison", "kirchhoff")
-
-
-def _kirchhoff(added_mass: object) -> bool:
-    if added_mass not in ADDED_MASS_FORMS:
-        raise ValueError(f"added_mass must be one of {', '.join(ADDED_MASS_FORMS)}, got {added_mass!r}")
-    return added_mass == "kirchhoff"
-
-
-def _short_path(water: object, base_motion: object) -> tuple[bool, tuple[FloatArray, ...] | None]:
-    """Whether a call may try the one-state native path (a :class:`Water`, and no base motion or
-    one of single values), and the base motion's arrays for it (None: a fixed base)."""
-    if not isinstance(water, Water):
-        return False, None
-    if base_motion is None:
-        return True, None
-    if not isinstance(base_motion, BaseMotion):
-        return False, None
-    motion = base_motion._single()
-    return motion is not None, motion
-
-
-class _Inputs(NamedTuple):
-    """The arguments of the native evaluations before ``threads``, checked and laid out."""
-
-    q: FloatArray
-    qd: FloatArray
-    qdd: FloatArray
-    cd: FloatArray
-    cm: FloatArray
-    density: float
-    gravity: float
-    orientation: FloatArray
-    velocity: FloatArray
-    angular_velocity: FloatArray
-    acceleration: FloatArray
-    angular_acceleration: FloatArray
-    current: FloatArray
-    current_acceleration: FloatArray
-
-
-def _segment_row(owner: int, s: Segment) -> list[float]:
-    section = 1.0 if s.section == "circular" else 0.0
-    diameter = s.diameter if s.diameter is not None else 0.0
-    return [float(owner), section, *s.start, *s.axis, s.length, s.area, *s.normals[0], *s.normals[1], *s.widths, diameter, *s.cd, *s.cm]
-
-
-def _body_row(body: Link) -> list[float]:
-    return [body.mass, *body.com, body.volume, *(body.cob or body.com)]
-
-
 class Robot:
     """A robot: joints in a tree, the links they move, and optionally the base's own body.
 
     Joints come in topological order: a joint's ``parent`` is an earlier link, or ``-1`` for the
     base (``None``, the default, means the previous link: a list of joints is a serial chain).
-    Frames, kinds and segments are described in :mod:`uwml.model`. ``base`` is a
+    Frames, kinds and segments are described in :mod:`uwml.model.parts`. ``base`` is a
     :class:`uwml.Link` in the base frame (a vehicle's hull, a walking robot's body), or ``None``
     for a base without volume, mass or segments of its own. ``losses``: the joints' own losses
     (one :class:`uwml.JointLosses` for all, or one or None per joint), used by
@@ -270,42 +202,32 @@ class Robot:
     __hash__ = None  # type: ignore[assignment]  # unhashable on purpose; typeshed types object.__hash__ as a method
 
     def save(self, path: str | os.PathLike[str]) -> None:
-        """Writes the whole validated model to a uwml model file (TOML, :mod:`uwml.modelfile`),
+        """Writes the whole validated model to a uwml model file (TOML, :mod:`uwml.io.modelfile`),
         which :meth:`load` reads back equal to this robot."""
-        from .modelfile import save
-
-        save(self, path)
+        modelfile.save(self, path)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Robot:
         """The robot of a uwml model file (:meth:`save`); errors name the file, the table and the key."""
-        from .modelfile import load
-
-        return load(path)
+        return modelfile.read(path).build(cls)
 
     @classmethod
     def from_urdf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
-        """The robot of a URDF file, with an optional hydro file (:mod:`uwml.descriptions`;
+        """The robot of a URDF file, with an optional hydro file (:mod:`uwml.io.descriptions`;
         needs ``uwml[mujoco]``)."""
-        from .descriptions import from_urdf
-
-        return from_urdf(path, hydro)
+        return descriptions.urdf_parts(path, hydro).build(cls)
 
     @classmethod
     def from_mjcf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Robot:
-        """The robot of an MJCF file, with an optional hydro file (:mod:`uwml.descriptions`;
+        """The robot of an MJCF file, with an optional hydro file (:mod:`uwml.io.descriptions`;
         needs ``uwml[mujoco]``)."""
-        from .descriptions import from_mjcf
-
-        return from_mjcf(path, hydro)
+        return descriptions.mjcf_parts(path, hydro).build(cls)
 
     @classmethod
     def from_mujoco(cls, model: Any, hydro: str | os.PathLike[str] | None = None) -> Robot:
         """The robot of a compiled ``mujoco.MjModel``, with an optional hydro file
-        (:mod:`uwml.descriptions`)."""
-        from .descriptions import from_mujoco
-
-        return from_mujoco(model, hydro)
+        (:mod:`uwml.io.descriptions`)."""
+        return descriptions.mujoco_parts(model, hydro).build(cls)
 
     @property
     def segments(self) -> tuple[Segment, ...]:
@@ -322,26 +244,7 @@ class Robot:
 
     def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
         """``(S, 2)`` per segment and direction, or ``(0, 2)`` for the segments' own."""
-        n = len(self._segments)
-        if value is None:
-            return np.zeros((0, 2))
-        array = _real_array(value, name, "None, a real number, or an array per segment")
-        if array.ndim == 0:
-            table = np.full((n, 2), float(array))
-        elif array.shape == (n,):
-            table = np.repeat(array[:, None], 2, axis=1)
-        elif array.shape == (n, 2):
-            table = np.array(array)
-        else:
-            raise ValueError(
-                f"{name} must be None, a scalar, shape ({n},) per segment, or ({n}, 2) per segment and direction; got shape {array.shape}"
-            )
-        if not np.all(np.isfinite(table)) or np.any(table < 0.0):
-            raise ValueError(f"{name} must be finite and non-negative, got {array.tolist()}")
-        unequal = np.flatnonzero(self._circular & (table[:, 0] != table[:, 1]))
-        if unequal.size:
-            raise ValueError(f"{name}: segment {unequal[0]} is circular and takes one coefficient; got {table[unequal[0]].tolist()}")
-        return np.ascontiguousarray(table)
+        return segment_coefficients(value, name, self._circular)
 
     def _evaluation(
         self,
@@ -356,72 +259,9 @@ class Robot:
         current_acceleration: ArrayLike,
     ) -> tuple[_Inputs, bool, int]:
         """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
-        sample axis, and the number of samples."""
+        sample axis, and the number of samples (:func:`uwml.robot._arguments.robot_inputs`)."""
         the_water = self._the_water(water)
-        motion = base_motion if base_motion is not None else BaseMotion()
-        if not isinstance(motion, BaseMotion):
-            raise TypeError(f"base_motion must be a uwml.BaseMotion or None, got {type(motion).__name__}")
-        n = self.n_joints
-        states = []
-        for name, value in (("q", q), ("qd", qd), ("qdd", qdd)):
-            array = _real_array(value, name, "a rectangular array of real numbers")
-            if array.ndim not in (1, 2) or array.shape[-1] != n:
-                raise ValueError(f"{name} must have shape ({n},) or (n_samples, {n}), got {array.shape}")
-            states.append(array)
-        for name, array in zip(("qd", "qdd"), states[1:]):
-            if array.shape != states[0].shape:
-                raise ValueError(f"{name} must have the same shape as q {states[0].shape}, got {array.shape}")
-        flows = []
-        for name, value in (("current", current), ("current_acceleration", current_acceleration)):
-            array = _real_array(value, name, "a 3-vector or an (n, 3) array")
-            if array.ndim not in (1, 2) or array.shape[-1] != 3:
-                raise ValueError(f"{name} must have shape (3,) or (n_samples, 3), got {array.shape}")
-            if not np.all(np.isfinite(array)):
-                raise ValueError(f"{name} must be finite, got {array.tolist()}")
-            flows.append(array)
-        per_sample = {
-            name: array
-            for name, array in (
-                ("q", states[0]),
-                ("base_motion.orientation", motion.orientation),
-                ("base_motion.velocity", motion.velocity),
-                ("base_motion.angular_velocity", motion.angular_velocity),
-                ("base_motion.acceleration", motion.acceleration),
-                ("base_motion.angular_acceleration", motion.angular_acceleration),
-                ("current", flows[0]),
-                ("current_acceleration", flows[1]),
-            )
-            if array.ndim == 2
-        }
-        counts = {len(a) for a in per_sample.values()}
-        if len(counts) > 1:
-            sizes = ", ".join(f"{k}: {len(v)}" for k, v in per_sample.items())
-            raise ValueError(f"arguments given per sample must agree on the number of samples; got {sizes}")
-        n_samples = counts.pop() if counts else 1
-
-        def rows(array: FloatArray, width: int) -> FloatArray:
-            return np.ascontiguousarray(array.reshape(-1, width), dtype=np.float64)
-
-        def joint_rows(array: FloatArray) -> FloatArray:
-            return np.ascontiguousarray(np.broadcast_to(array.reshape(-1, n), (n_samples, n)), dtype=np.float64)
-
-        arguments = _Inputs(
-            joint_rows(states[0]),
-            joint_rows(states[1]),
-            joint_rows(states[2]),
-            self._coefficients(cd, "cd"),
-            self._coefficients(cm, "cm"),
-            the_water.density,
-            the_water.gravity,
-            rows(motion.orientation, 4),
-            rows(motion.velocity, 3),
-            rows(motion.angular_velocity, 3),
-            rows(motion.acceleration, 3),
-            rows(motion.angular_acceleration, 3),
-            rows(flows[0], 3),
-            rows(flows[1], 3),
-        )
-        return arguments, bool(per_sample), n_samples
+        return robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
 
     def hydro(
         self,

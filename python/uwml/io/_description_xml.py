@@ -1,4 +1,4 @@
-"""A robot description's XML as written, read before MuJoCo reads it (for uwml.descriptions).
+"""A robot description's XML as written, read before MuJoCo reads it (for uwml.io.descriptions).
 
 MuJoCo reads URDF and MJCF well, but some files make it wait forever, take minutes, or change
 what was written without a word. :func:`scan` reads the XML once with the standard library's
@@ -32,9 +32,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from xml.parsers import expat
 
-from ._checks import shown
+from .._checks import shown
+from .._core import MAX_ROBOT_JOINTS, MAX_SEGMENTS
 from ._description_io import DescriptionError, clipped, not_regular, read_regular
-from .robot import MAX_ROBOT_JOINTS, MAX_SEGMENTS
 
 __all__ = ["MAX_DESCRIPTION_BODIES", "MAX_DESCRIPTION_GEOMS", "limits_exceeded", "scan"]
 

@@ -1,12 +1,12 @@
 """A log read in chunks of rows, in bounded memory, for ``uwml torques``.
 
-:func:`log_chunks` checks the log as :func:`uwml.logs.read_log` does and yields it as
-:class:`~uwml.logs.Log` chunks of ``rows`` rows (the last one shorter) with ``qd`` and ``qdd``,
-the same values :meth:`~uwml.logs.Log.with_derivatives` gives the whole log:
+:func:`log_chunks` checks the log as :func:`uwml.io.logs.read_log` does and yields it as
+:class:`~uwml.io.logs.Log` chunks of ``rows`` rows (the last one shorter) with ``qd`` and ``qdd``,
+the same values :meth:`~uwml.io.logs.Log.with_derivatives` gives the whole log:
 
 * A first pass reads the time column alone: the number of rows, time strictly increasing, and,
   when ``qd`` or ``qdd`` are absent, the sampling checks and the median step of
-  :func:`~uwml.logs.estimate_derivatives`. Errors in the header or the time column are raised
+  :func:`~uwml.io.logs.estimate_derivatives`. Errors in the header or the time column are raised
   by the call, before any chunk.
 * A second pass reads the columns block by block (pyarrow's streaming CSV reader, or the row
   groups of a Parquet file). A bad cell raises when its block is reached, naming its row and

@@ -36,7 +36,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 from numpy.typing import NDArray
 
-from ._checks import read_csv_columns, shown
+from .._checks import read_csv_columns, shown
 
 Array = NDArray[np.float64]
 

@@ -1,4 +1,5 @@
-"""Reading a user's file without waiting on it: model files, descriptions, hydro files and logs.
+"""Reading a user's file without waiting on it, and writing one whole or not at all: model files,
+descriptions, hydro files and logs.
 
 A named pipe, a socket or a device where a file should be makes a reader wait forever (a pipe
 with no writer) or read forever (``/dev/zero``); only regular files are read. A path is checked
@@ -9,9 +10,11 @@ without opening it (:func:`not_regular`), or opened without blocking and checked
 from __future__ import annotations
 
 import os
+import secrets
 import stat
+from pathlib import Path
 
-__all__ = ["clipped", "not_regular", "read_regular"]
+__all__ = ["clipped", "not_regular", "read_regular", "write_atomically"]
 
 
 def clipped(text: str, limit: int = 160) -> str:
@@ -68,5 +71,41 @@ def read_regular(path: str | os.PathLike[str], what: str, error: type[ValueError
             return handle.read()
     except OSError as exc:
         raise error(f"{prefix}: {clipped(exc.strerror or str(exc)).lower()}") from None
+    finally:
+        os.close(fd)
+
+
+def write_atomically(path: str | os.PathLike[str], data: bytes) -> None:
+    """Writes ``data`` to ``path``, whole or not at all: to a temporary file in the same folder,
+    synced, and renamed over ``path``; on any failure the temporary file is removed and an
+    existing file at ``path`` is left as it was."""
+    target = Path(os.path.realpath(path))  # through a symbolic link: replace the file it points to
+    temporary = target.with_name(f".{target.name}.{secrets.token_hex(8)}.tmp")
+    # Created with mode 0o666 (less the umask) like any new file; an existing file keeps its mode.
+    fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
+    try:
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        if target.is_file():
+            os.chmod(temporary, target.stat().st_mode & 0o7777)
+        os.replace(temporary, target)
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    _sync_folder(target.parent)
+
+
+def _sync_folder(folder: Path) -> None:
+    """Makes a rename in ``folder`` durable where the system allows it (POSIX; a no-op elsewhere)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
     finally:
         os.close(fd)

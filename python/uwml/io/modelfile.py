@@ -1,0 +1,500 @@
+"""The uwml model file: a robot's whole validated model as readable TOML, read back exactly.
+
+``Robot.save(path)`` writes it, ``Robot.load(path)`` reads it. Here, :func:`dumps` and :func:`save`
+write any robot (:class:`~uwml.io._robot_like.RobotLike`); :func:`parse` and :func:`read` give its
+parts (:class:`ModelParts`), which :mod:`uwml.robot` assembles into a :class:`uwml.Robot`
+(``uwml.robot.files.loads`` and ``load`` return the robot of a string and of a file). Every
+number is written as Python's shortest repr of the float, which reads back to the same float, so
+a saved model loads equal to itself, names too (any text; control characters are escaped, a
+lone surrogate, which UTF-8 cannot hold, is refused). ``save`` writes the whole file to a
+temporary file beside it and renames it over the old one, so a failed save leaves the old file
+as it was. The file is read with the standard library's ``tomllib``; every error names the file,
+the table and the key, and quotes at most a short part of a value. The water must be within
+900-1300 kg/m³ and 9.7-9.9 m/s² (anything else is taken for a unit mistake, as in a hydro file;
+docs/domains.md); another fluid or planet is a :class:`uwml.Water` in code.
+
+Layout (SI units; vectors as arrays of 3 numbers; every link frame parallel to the base frame
+at ``q = 0``, as in :mod:`uwml.model.parts`)::
+
+    format = "uwml-robot"
+    version = 1
+
+    [water]                      # optional: the robot's water (uwml.Water); default fresh water
+    density = 1025.0             # kg/m³, 900 to 1300
+    gravity = 9.81               # m/s², 9.7 to 9.9
+
+    [base]                       # optional: the base's own body, in the base frame
+    mass = 300.0                 # kg
+    com = [0.0, 0.0, -0.05]      # m
+    volume = 0.29                # m³
+    cob = [0.0, 0.0, 0.05]       # m
+
+    [[base.segments]]            # any number, for the base and for every link
+    section = "circular"         # or "rectangular" (then normals, widths, area)
+    start = [-0.9, 0.0, 0.0]
+    axis = [1.0, 0.0, 0.0]
+    length = 1.8
+    diameter = 0.6
+    area = 0.283
+    cd = [0.9, 0.9]              # per normal direction (a circular section's two are equal)
+    cm = [1.0, 1.0]
+
+    [[joints]]                   # in the order of q, parents first
+    name = "shoulder_yaw"        # optional
+    parent = -1                  # an earlier link's index, or -1 for the base
+    kind = "revolute"            # or "prismatic"
+    origin = [0.9, 0.0, -0.3]
+    axis = [0.0, 0.0, 1.0]
+
+    [joints.losses]              # optional: the joint's own losses (uwml.JointLosses)
+    epsilon = 0.001              # smooth-sign width [rad/s]
+    [joints.losses.drive]        # uwml.Drive's fields
+    torque_constant = 0.4
+    ratio = 160.0
+    efficiency = 0.8
+    rated_current = 10.4
+    [joints.losses.oil]          # uwml.OilDrag's fields; absent: no oil drag
+    k_oil = ...
+    [joints.losses.seal]         # uwml.Seal's fields; absent: no seal
+    c0 = 16.0
+
+    [[links]]                    # link i is moved by joint i
+    name = "upper_arm"           # optional
+    mass = 12.0
+    com = [0.075, 0.0, 0.0]
+    volume = 0.004
+    cob = [0.075, 0.0, 0.01]
+
+    [[links.segments]]
+    section = "rectangular"
+    start = [0.0, 0.0, -0.05]
+    axis = [1.0, 0.0, 0.0]
+    length = 0.09
+    normals = [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    widths = [0.05, 0.08]
+    area = 0.004
+    cd = [2.0, 2.1]
+    cm = [1.2, 1.5]
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import functools
+import math
+import os
+import tomllib
+import unicodedata
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal, NoReturn, TypeVar, overload
+
+from .._checks import shown
+from ..errors import ModelFileError
+from ..model.joint_losses import JointLosses
+from ..model.losses import Drive, OilDrag, Seal
+from ..model.parts import Joint, Link, Segment, Water
+from ._files import read_regular, write_atomically
+from ._robot_like import RobotLike
+
+__all__ = ["FORMAT", "VERSION", "ModelFileError", "ModelParts", "dumps", "parse", "read", "save"]
+
+#: The ``format`` key of a uwml model file.
+FORMAT = "uwml-robot"
+#: The version this module writes and reads.
+VERSION = 1
+
+_T = TypeVar("_T")
+
+
+#: The water of a model file or a hydro file must lie in these ranges (SI units; a value outside
+#: is taken for a unit mistake, such as a density in g/cm³ or a gravity in g or ft/s²). Other
+#: fluids or planets: construct :class:`uwml.Water` in code.
+WATER_DENSITY_RANGE = (900.0, 1300.0)
+WATER_GRAVITY_RANGE = (9.7, 9.9)
+_DENSITY_HINT = "fresh water is 1000, sea water about 1025 (a density in g/cm³ or t/m³ is 1000 times too small)"
+_GRAVITY_HINT = "the Earth's is 9.78 to 9.83 (not in g, not in ft/s²)"
+#: The longest message a model file's error quotes from the library's own checks [characters].
+_MESSAGE_LIMIT = 300
+
+
+def _number(x: float) -> str:
+    # repr is the shortest string that reads back to the same float; TOML wants a decimal
+    # point or an exponent, which repr of a float always has.
+    return repr(float(x))
+
+
+def _vector(v: Sequence[float]) -> str:
+    return "[" + ", ".join(_number(x) for x in v) + "]"
+
+
+_ESCAPES = {'"': '\\"', "\\": "\\\\", "\b": "\\b", "\t": "\\t", "\n": "\\n", "\f": "\\f", "\r": "\\r"}
+
+
+def _escaped(c: str) -> str:
+    if c in _ESCAPES:
+        return _ESCAPES[c]
+    # TOML requires U+0000-U+001F and U+007F escaped; the other control and format characters
+    # (C1 controls, text-direction marks, line separators) are escaped too, so the file shows them.
+    if unicodedata.category(c) in ("Cc", "Cf", "Zl", "Zp"):
+        return f"\\u{ord(c):04X}" if ord(c) <= 0xFFFF else f"\\U{ord(c):08X}"
+    return c
+
+
+def _string(text: str, what: str = "a string") -> str:
+    """``text`` as a TOML basic string that reads back exactly; a lone surrogate (which no UTF-8
+    file can hold) is a ValueError naming ``what``."""
+    surrogate = next((c for c in text if "\ud800" <= c <= "\udfff"), None)
+    if surrogate is not None:
+        raise ValueError(
+            f"{what} {shown(text)} cannot be written to a model file: it holds a lone surrogate "
+            f"(U+{ord(surrogate):04X}), which is not a character UTF-8 can encode"
+        )
+    return '"' + "".join(_escaped(c) for c in text) + '"'
+
+
+def _body_lines(body: Link, where: str) -> list[str]:
+    lines = [] if body.name is None else [f"name = {_string(body.name, f'{where}.name')}"]
+    cob = body.cob if body.cob is not None else body.com
+    return [
+        *lines,
+        f"mass = {_number(body.mass)}",
+        f"com = {_vector(body.com)}",
+        f"volume = {_number(body.volume)}",
+        f"cob = {_vector(cob)}",
+    ]
+
+
+def _segment_lines(segment: Segment) -> list[str]:
+    lines = [f"section = {_string(segment.section)}", f"start = {_vector(segment.start)}", f"axis = {_vector(segment.axis)}"]
+    lines.append(f"length = {_number(segment.length)}")
+    if segment.section == "circular":
+        lines.append(f"diameter = {_number(segment.diameter or 0.0)}")
+    else:
+        normals = segment.normals or ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        lines.append(f"normals = [{_vector(normals[0])}, {_vector(normals[1])}]")
+        lines.append(f"widths = {_vector(segment.widths or (0.0, 0.0))}")
+    lines.append(f"area = {_number(segment.area or 0.0)}")
+    lines.append(f"cd = {_vector(segment.cd)}")
+    lines.append(f"cm = {_vector(segment.cm)}")
+    return lines
+
+
+def _losses_lines(losses: JointLosses) -> list[str]:
+    lines = ["", "[joints.losses]", f"epsilon = {_number(losses.epsilon)}"]
+    for name, part in (("drive", losses.drive), ("oil", losses.oil), ("seal", losses.seal)):
+        if part is not None:
+            lines += ["", f"[joints.losses.{name}]"]
+            lines += [f"{f.name} = {_number(getattr(part, f.name))}" for f in dataclasses.fields(part)]
+    return lines
+
+
+def dumps(robot: RobotLike) -> str:
+    """The uwml model file of ``robot``, as a string."""
+    out = [
+        f"# uwml model file: {robot.n_joints} joints, {len(robot.segments)} segments (SI units)",
+        f"format = {_string(FORMAT)}",
+        f"version = {VERSION}",
+    ]
+    for key, value, (low, high), unit, hint in (
+        ("density", robot.water.density, WATER_DENSITY_RANGE, "kg/m³", _DENSITY_HINT),
+        ("gravity", robot.water.gravity, WATER_GRAVITY_RANGE, "m/s²", _GRAVITY_HINT),
+    ):
+        if not low <= value <= high:
+            raise ValueError(
+                f"water.{key} {value:g} {unit} cannot be written to a model file, which holds {low:g} to {high:g} {unit} "
+                f"(docs/domains.md; {hint}): another fluid or planet is a uwml.Water given in code"
+            )
+    out += ["", "[water]", f"density = {_number(robot.water.density)}", f"gravity = {_number(robot.water.gravity)}"]
+    if robot.base is not None:
+        out += ["", "[base]", *_body_lines(robot.base, "base")]
+        for segment in robot.base.segments:
+            out += ["", "[[base.segments]]", *_segment_lines(segment)]
+    for i, (joint, losses) in enumerate(zip(robot.joints, robot.losses)):
+        out += ["", "[[joints]]"]
+        if joint.name is not None:
+            out.append(f"name = {_string(joint.name, f'joints[{i}].name')}")
+        out += [
+            f"parent = {joint.parent}",
+            f"kind = {_string(joint.kind)}",
+            f"origin = {_vector(joint.origin)}",
+            f"axis = {_vector(joint.axis)}",
+        ]
+        if losses is not None:
+            out += _losses_lines(losses)
+    for i, link in enumerate(robot.links):
+        out += ["", "[[links]]", *_body_lines(link, f"links[{i}]")]
+        for segment in link.segments:
+            out += ["", "[[links.segments]]", *_segment_lines(segment)]
+    return "\n".join(out) + "\n"
+
+
+def save(robot: RobotLike, path: str | os.PathLike[str]) -> None:
+    """Writes :func:`dumps` of ``robot`` to ``path`` (UTF-8), whole or not at all: the text is
+    written to a temporary file in the same folder, synced, and renamed over ``path``; on any
+    failure the temporary file is removed and an existing file at ``path`` is left as it was."""
+    write_atomically(path, dumps(robot).encode("utf-8"))
+
+
+class _Reader:
+    """Typed access to one table of the file, with errors naming the file, table and key."""
+
+    def __init__(self, source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> None:
+        self.source, self.where, self.error = source, where, error
+        if not isinstance(table, dict):
+            self.fail(None, f"must be a table, got {type(table).__name__}")
+        self.table: dict[str, Any] = table
+
+    def fail(self, key: str | None, message: str) -> NoReturn:
+        at = self.where if key is None else f"{self.where}, key {shown(key, 40)}"
+        raise self.error(f"{self.source}: {at}: {message}")
+
+    def check_keys(self, allowed: Sequence[str]) -> None:
+        for key in self.table:
+            if key not in allowed:
+                self.fail(key, f"is not a key of this table (allowed: {', '.join(allowed)})")
+
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str) -> _T: ...
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False], default: _T) -> _T: ...
+    @overload
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False]) -> _T | None: ...
+
+    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: bool = True, default: _T | None = None) -> _T | None:
+        """The value of ``key`` converted by ``convert``; a missing key is an error if
+        ``required``, else ``default``."""
+        if key not in self.table:
+            if required:
+                self.fail(key, f"is missing ({what})")
+            return default
+        value = self.table[key]
+        try:
+            return convert(value)
+        except (TypeError, ValueError) as exc:
+            self.fail(key, f"must be {what}, got {shown(value)} ({_clipped(str(exc))})")
+
+    def build(self, make: Callable[[], _T]) -> _T:
+        """``make()``, its ValueError or TypeError (from the model's checks) named here."""
+        try:
+            return make()
+        except (TypeError, ValueError) as exc:
+            self.fail(None, _clipped(str(exc)))
+
+
+def _clipped(message: str) -> str:
+    """A message of the model's own checks, which may quote a whole value (a name), made short."""
+    return message if len(message) <= _MESSAGE_LIMIT else f"{message[:_MESSAGE_LIMIT]}... ({len(message)} characters)"
+
+
+def _float(value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError("not a number")
+    return float(value)
+
+
+def _vec3(value: Any) -> tuple[float, float, float]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise TypeError("not an array of 3 numbers")
+    x, y, z = (_float(v) for v in value)
+    return (x, y, z)
+
+
+def _pair(value: Any) -> tuple[float, float]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise TypeError("not an array of 2 numbers")
+    a, b = (_float(v) for v in value)
+    return (a, b)
+
+
+def _normals(value: Any) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    if not isinstance(value, list) or len(value) != 2:
+        raise TypeError("not an array of 2 vectors")
+    return (_vec3(value[0]), _vec3(value[1]))
+
+
+def _text(value: Any) -> str:
+    if not isinstance(value, str):
+        raise TypeError("not a string")
+    return value
+
+
+def _integer(value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise TypeError("not an integer")
+    return value
+
+
+_SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm")
+_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments")
+
+
+def _segment(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Segment:
+    r = _Reader(source, where, table, error)
+    r.check_keys(_SEGMENT_KEYS)
+    section = r.get("section", _text, 'a string, "rectangular" or "circular"')
+    start = r.get("start", _vec3, "an array of 3 numbers [m]")
+    axis = r.get("axis", _vec3, "a unit vector")
+    length = r.get("length", _float, "a length [m]")
+    cd = r.get("cd", _pair, "[Cd along normal 0, along normal 1]")
+    cm = r.get("cm", _pair, "[Cm along normal 0, along normal 1]")
+    if section == "circular":
+        diameter = r.get("diameter", _float, "a diameter [m]")
+        area = r.get("area", _float, "a section area [m²]")
+        for key, pair in (("cd", cd), ("cm", cm)):
+            if pair[0] != pair[1]:
+                r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")
+        return r.build(lambda: Segment(start, axis, length, section="circular", diameter=diameter, area=area, cd=cd[0], cm=cm[0]))
+    normals = r.get("normals", _normals, "two unit vectors [[...], [...]]")
+    widths = r.get("widths", _pair, "[width along normal 0, along normal 1] [m]")
+    area = r.get("area", _float, "a section area [m²]")
+    return r.build(lambda: Segment(start, axis, length, section=section, normals=normals, widths=widths, area=area, cd=cd, cm=cm))
+
+
+def _body(source: str, where: str, table: object) -> Link:
+    r = _Reader(source, where, table)
+    r.check_keys(_BODY_KEYS)
+    raw_segments: list[object] = r.get("segments", _table_array, "[[...segments]]", required=False, default=[])
+    segments = tuple(_segment(source, f"{where}, segments[{i}]", s) for i, s in enumerate(raw_segments))
+    name = r.get("name", _text, "a string", required=False)
+    mass = r.get("mass", _float, "a mass [kg]")
+    com = r.get("com", _vec3, "an array of 3 numbers [m]")
+    volume = r.get("volume", _float, "a volume [m³]")
+    cob = r.get("cob", _vec3, "an array of 3 numbers [m]")
+    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name))
+
+
+def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:
+    """A joint's losses from a table with ``epsilon`` and the tables ``drive``, ``oil``, ``seal``
+    (each with its dataclass's fields; an absent oil or seal is none, an absent drive the
+    default one)."""
+    r = _Reader(source, where, table, error)
+    r.check_keys(("epsilon", "drive", "oil", "seal"))
+    parts: dict[str, Any] = {}
+    for name, kind in (("drive", Drive), ("oil", OilDrag), ("seal", Seal)):
+        if name not in r.table:
+            continue
+        part = _Reader(source, f"{where}, {name}", r.table[name], error)
+        keys = [f.name for f in dataclasses.fields(kind)]
+        part.check_keys(keys)
+        values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
+        parts[name] = part.build(functools.partial(kind, **values))
+    epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]")
+    # A part the file does not give is absent (oil, seal), or the default drive.
+    return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
+
+
+def _within(low: float, high: float, unit: str, hint: str) -> Callable[[Any], float]:
+    """A converter to a number from ``low`` to ``high``, else a ValueError with ``hint``."""
+
+    def check(value: Any) -> float:
+        x = _float(value)
+        if not (math.isfinite(x) and low <= x <= high):
+            raise ValueError(f"outside {low:g} to {high:g} {unit}; {hint}")
+        return x
+
+    return check
+
+
+def _water(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Water:
+    """The water of a ``[water]`` table of a model file or a hydro file: ``density`` [kg/m³]
+    within :data:`WATER_DENSITY_RANGE` and ``gravity`` [m/s²] within :data:`WATER_GRAVITY_RANGE`,
+    each defaulting to :class:`uwml.Water`'s."""
+    r = _Reader(source, where, table, error)
+    r.check_keys(("density", "gravity"))
+    low, high = WATER_DENSITY_RANGE
+    density = r.get(
+        "density",
+        _within(low, high, "kg/m³", _DENSITY_HINT),
+        f"a density [kg/m³], {low:g} to {high:g}",
+        required=False,
+        default=Water.density,
+    )
+    low, high = WATER_GRAVITY_RANGE
+    gravity = r.get(
+        "gravity",
+        _within(low, high, "m/s²", _GRAVITY_HINT),
+        f"an acceleration [m/s²], {low:g} to {high:g}",
+        required=False,
+        default=Water.gravity,
+    )
+    return r.build(lambda: Water(density=density, gravity=gravity))
+
+
+def _fail_type(what: str) -> NoReturn:
+    raise TypeError(f"not {what}")
+
+
+def _table_array(value: Any) -> list[object]:
+    if not isinstance(value, list):
+        _fail_type("an array of tables")
+    return value
+
+
+_R = TypeVar("_R")
+
+
+@dataclass(frozen=True, eq=False)
+class ModelParts:
+    """The parts of the robot of a model file, read and checked one by one; :meth:`build` puts them
+    together, with the errors of the whole (a parent that is not an earlier link, too many
+    segments, ...) naming the file."""
+
+    joints: tuple[Joint, ...]
+    links: tuple[Link, ...]
+    base: Link | None
+    losses: tuple[JointLosses | None, ...]
+    water: Water | None
+    _top: _Reader
+
+    def build(self, make: Callable[..., _R]) -> _R:
+        """``make(joints, links, base=, losses=, water=)`` (the class :class:`uwml.Robot`); its
+        ValueError or TypeError as a :class:`ModelFileError` naming the file."""
+        return self._top.build(lambda: make(self.joints, self.links, base=self.base, losses=self.losses, water=self.water))
+
+
+def parse(text: str, source: str = "<string>") -> ModelParts:
+    """The robot's parts of a uwml model file given as text (``source`` names it in errors)."""
+    try:
+        document = tomllib.loads(text)
+    except RecursionError:
+        raise ModelFileError(f"{source}: not a model file: arrays or tables nested too deeply to read") from None
+    except (ValueError, TypeError, OverflowError) as exc:  # tomllib.TOMLDecodeError is a ValueError
+        raise ModelFileError(f"{source}: not valid TOML: {_clipped(str(exc))}") from None
+    top = _Reader(source, "top level", document)
+    top.check_keys(("format", "version", "water", "base", "joints", "links"))
+    if top.get("format", _text, f'"{FORMAT}"') != FORMAT:
+        top.fail("format", f'must be "{FORMAT}" (a uwml model file), got {shown(document["format"])}')
+    if top.get("version", _integer, f"the integer {VERSION}") != VERSION:
+        top.fail("version", f"must be {VERSION} (this uwml reads version {VERSION}), got {shown(document['version'])}")
+    as_list = lambda v: v if isinstance(v, list) else _fail_type("an array of tables")
+    joint_tables = top.get("joints", as_list, "an array of tables [[joints]]")
+    link_tables = top.get("links", as_list, "an array of tables [[links]]")
+    joints, losses = [], []
+    for i, table in enumerate(joint_tables):
+        r = _Reader(source, f"joints[{i}]", table)
+        r.check_keys(("name", "parent", "kind", "origin", "axis", "losses"))
+        losses.append(_losses(source, f"joints[{i}], losses", table["losses"]) if "losses" in table else None)
+        name = r.get("name", _text, "a string", required=False)
+        parent = r.get("parent", _integer, "an integer: an earlier link's index, or -1 for the base")
+        kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
+        origin = r.get("origin", _vec3, "an array of 3 numbers [m]")
+        axis = r.get("axis", _vec3, "a unit vector")
+        joints.append(r.build(functools.partial(Joint, origin, axis, parent=parent, kind=kind, name=name)))
+    links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
+    base = _body(source, "base", document["base"]) if "base" in document else None
+    water = _water(source, "water", document["water"]) if "water" in document else None
+    return ModelParts(tuple(joints), tuple(links), base, tuple(losses), water, top)
+
+
+def read(path: str | os.PathLike[str]) -> ModelParts:
+    """The robot's parts of the uwml model file at ``path``."""
+    data = read_regular(path, "model file", ModelFileError)  # a named pipe is refused, not waited on
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise ModelFileError(
+            f"{path}: not UTF-8 text: byte 0x{data[exc.start]:02x} at offset {exc.start} (line {line}) cannot be decoded ({exc.reason})"
+        ) from None
+    return parse(text, str(path))

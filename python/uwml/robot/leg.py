@@ -1,0 +1,520 @@
+"""The leg (any serial chain of revolute joints) and its hydrodynamic torques, computed by the Rust core."""
+
+from __future__ import annotations
+
+import operator
+import os
+from collections.abc import Sequence
+from typing import Literal, SupportsIndex
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _core
+from .._checks import check_overflow
+from .._checks import real_array as _real_array
+from ..model.joint_losses import JointLosses, pack_leg_losses
+from ..model.parts import FRESH_WATER, SEA_WATER, Joint, Link, Segment, Water
+from ..sea.conditions import loss_conditions
+from ._arguments import _coefficients, _kirchhoff, _states, _threads, _water, one_state_losses
+from .results import EnvironmentJacobians, EnvironmentTorques, HydroRegressors, HydroTorques
+from .tree import Robot
+
+__all__ = ["MAX_JOINTS", "Leg"]
+
+FloatArray = NDArray[np.float64]
+#: The native ``Chain.environment``/``Chain.jacobians`` arguments after ``(self)``:
+#: q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature.
+_EnvironmentArguments = tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float, float, FloatArray, FloatArray, FloatArray]
+
+#: Largest number of joints a chain may have.
+MAX_JOINTS: int = _core.MAX_JOINTS
+
+
+def _vec(values: Sequence[float]) -> tuple[float, float, float]:
+    return (float(values[0]), float(values[1]), float(values[2]))
+
+
+def _pack(joints: Sequence[Joint], links: Sequence[Link]) -> tuple[FloatArray, FloatArray]:
+    joint_rows = [[*joint.origin, *joint.axis] for joint in joints]
+    link_rows = []
+    for link in links:
+        row = [link.mass, *link.com, link.volume, *(link.cob or link.com)]
+        s = link.segment
+        if s is None:
+            row += [0.0] * (_core.LINK_WIDTH - len(row))
+        else:
+            row += [1.0, *s.start, *s.axis, s.length, *s.normals[0], *s.normals[1], *s.widths, s.area]
+        link_rows.append(row)
+    return (
+        np.array(joint_rows, dtype=np.float64).reshape(-1, _core.JOINT_WIDTH),
+        np.array(link_rows, dtype=np.float64).reshape(-1, _core.LINK_WIDTH),
+    )
+
+
+def _unpack(joints: FloatArray, links: FloatArray) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
+    joint_list = tuple(Joint(origin=_vec(r[0:3]), axis=_vec(r[3:6])) for r in joints)
+    link_list = []
+    for r in links:
+        segment = None
+        if r[8] != 0.0:
+            segment = Segment(
+                start=_vec(r[9:12]),
+                axis=_vec(r[12:15]),
+                length=float(r[15]),
+                normals=(_vec(r[16:19]), _vec(r[19:22])),
+                widths=(float(r[22]), float(r[23])),
+                area=float(r[24]),
+            )
+        link_list.append(Link(mass=float(r[0]), com=_vec(r[1:4]), volume=float(r[4]), cob=_vec(r[5:8]), segment=segment))
+    return joint_list, tuple(link_list)
+
+
+class Leg:
+    """A serial chain of revolute joints with straight links: the paper's leg, or your own.
+
+    Build one from :class:`uwml.Joint` and :class:`uwml.Link` descriptions (see the module
+    :mod:`uwml.model.parts` for the frame convention), or take :meth:`Leg.paper`. The parameters are
+    validated once, here; evaluation is then done by the Rust core.
+
+    Example: a single horizontal cylinder of 1 m, 0.1 m in diameter, turning about world z::
+
+        import uwml
+        rod = uwml.Leg(
+            joints=[uwml.Joint(origin=(0, 0, 0), axis=(0, 0, 1))],
+            links=[uwml.Link(mass=20.0, com=(0.5, 0, 0), volume=0.00785,
+                             segment=uwml.Segment(start=(0, 0, 0), axis=(1, 0, 0), length=1.0,
+                                                  normals=((0, 1, 0), (0, 0, 1)),
+                                                  widths=(0.1, 0.1), area=0.00785))],
+        )
+        rod.hydro(q=[0.0], qd=[1.0], qdd=[0.0], cd=1.2, cm=1.0).drag
+    """
+
+    #: The last single JointLosses given to :meth:`environment` and its packed table.
+    _losses_cache: tuple[JointLosses, FloatArray] | None = None
+    #: The leg as a ``uwml.Robot``, built on first use (Kirchhoff's added mass takes that path).
+    _as_robot: Robot | None = None
+
+    def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
+        try:
+            joints, links = tuple(joints), tuple(links)
+        except TypeError:
+            raise TypeError(
+                f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
+            ) from None
+        if not all(isinstance(j, Joint) for j in joints):
+            raise TypeError("joints must be uwml.Joint objects")
+        if not all(isinstance(link, Link) for link in links):
+            raise TypeError("links must be uwml.Link objects")
+        if len(joints) != len(links) or not 1 <= len(joints) <= MAX_JOINTS:
+            raise ValueError(f"a leg needs as many links as joints, 1 to {MAX_JOINTS}; got {len(joints)} joints and {len(links)} links")
+        for index, joint in enumerate(joints):
+            if joint.kind != "revolute" or joint.parent not in (None, index - 1):
+                raise ValueError(
+                    f"joints[{index}]: a uwml.Leg is a serial chain of revolute joints (parent = previous link); use uwml.Robot for trees and prismatic joints"
+                )
+        for index, link in enumerate(links):
+            if len(link.segments) > 1 or (link.segment is not None and link.segment.section != "rectangular"):
+                raise ValueError(
+                    f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
+                )
+        self._chain = _core.Chain(*_pack(joints, links))
+        self._joints, self._links = _unpack(*self._chain.packed())
+
+    @classmethod
+    def paper(cls) -> Leg:
+        """The 3-DOF leg of the paper (Table II): hip yaw, hip roll, knee roll."""
+        leg = cls.__new__(cls)
+        leg._chain = _core.Chain.paper()
+        leg._joints, leg._links = _unpack(*leg._chain.packed())
+        return leg
+
+    @property
+    def joints(self) -> tuple[Joint, ...]:
+        """The joints, as validated (axes normalized)."""
+        return self._joints
+
+    @property
+    def links(self) -> tuple[Link, ...]:
+        """The links, as validated."""
+        return self._links
+
+    @property
+    def n_joints(self) -> int:
+        """Number of joints (and links)."""
+        return len(self._joints)
+
+    def __repr__(self) -> str:
+        return f"Leg(n_joints={self.n_joints})"
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Leg):
+            return NotImplemented
+        return (self._joints, self._links) == (other._joints, other._links)
+
+    __hash__ = None  # type: ignore[assignment]  # unhashable on purpose; typeshed types object.__hash__ as a method
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        """Writes the leg as a uwml model file (a serial chain on a fixed base; :mod:`uwml.io.modelfile`)."""
+        Robot.from_leg(self).save(path)
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Leg:
+        """The leg of a uwml model file of a serial chain of revolute joints, each link with at
+        most one rectangular segment (what :meth:`save` writes); other robots load with
+        :meth:`uwml.Robot.load`."""
+        robot = Robot.load(path)
+        joints = [Joint(j.origin, j.axis, parent=None if j.parent == i - 1 else j.parent, kind=j.kind) for i, j in enumerate(robot.joints)]
+        links = [Link(link.mass, link.com, link.volume, cob=link.cob, segments=link.segments) for link in robot.links]
+        if robot.base is not None:
+            raise ValueError(f"{path}: a uwml.Leg has no base body; load this file with uwml.Robot.load")
+        if any(losses is not None for losses in robot.losses):
+            raise ValueError(
+                f"{path}: a uwml.Leg holds no joint losses (give them to Leg.environment); load this file with uwml.Robot.load"
+            )
+        if robot.water != FRESH_WATER:
+            raise ValueError(
+                f"{path}: a uwml.Leg holds no water of its own (give water= to its evaluations); load this file with uwml.Robot.load"
+            )
+        return cls(joints, links)
+
+    def hydro(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        cd: ArrayLike = 2.2,
+        cm: ArrayLike = 0.5,
+        water: Water = FRESH_WATER,
+        threads: int = 1,
+        added_mass: str = "morison",
+    ) -> HydroTorques:
+        """Drag, added-mass, buoyancy (and gravity) torques on every joint.
+
+        Parameters
+        ----------
+        q, qd, qdd
+            Joint positions [rad], velocities [rad/s], accelerations [rad/s²]; shape
+            ``(n_joints,)`` or ``(n_samples, n_joints)``, the same for all three.
+        cd, cm
+            Drag and added-mass coefficients: a scalar (the paper: 2.2 and 0.5), an array
+            ``(n_links,)`` per link, or ``(n_links, 2)`` per link and normal direction (column
+            ``k`` goes with ``segment.normals[k]``; for the paper's leg, 0 = out of the leg plane
+            (yaw), 1 = in the plane (roll)). Links without a segment ignore theirs.
+        water
+            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
+        threads
+            Threads to split a batch over (≥ 1; ``os.cpu_count()`` for every core): the same
+            results, faster for large batches.
+
+        The whole batch is evaluated in one call into Rust, with the GIL released. One state
+        (``q``, ``qd``, ``qdd`` lists, tuples or 1-D float64 arrays, scalar ``cd`` and ``cm``),
+        as a controller or a simulator steps, is read, checked and evaluated in one shorter call
+        (about 2 µs; docs/performance.md), with the same checks and the same bits as that state's
+        row of a batch.
+
+        ``added_mass="kirchhoff"``: Kirchhoff's energy-consistent added mass instead of the
+        paper's Morison form (docs/simulation.md, "Energy-consistent added mass";
+        :meth:`uwml.Robot.hydro`), evaluated on the whole-robot path (``Robot.from_leg``); also
+        taken by :meth:`environment`, :meth:`jacobians` and :meth:`hydro_regressors`.
+        """
+        if _kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            r = robot.hydro(q, qd, qdd, cd=cd_rows, cm=cm_rows, water=_water(water), threads=threads, added_mass="kirchhoff")
+            return HydroTorques(drag=r.drag, added_mass=r.added_mass, buoyancy=r.buoyancy, gravity=r.gravity)
+        if isinstance(water, Water):
+            # One state as plain floats: read, checked and evaluated in one native call (None if
+            # any argument is of another kind or fails a check: the general path then answers).
+            one: HydroTorques | None = self._chain.hydro_one(HydroTorques, q, qd, qdd, cd, cm, water.density, water.gravity, threads)
+            if one is not None:
+                return one
+        threads = _threads(threads)
+        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
+        water = _water(water)
+        cd_table = _coefficients(cd, "cd", self.n_joints)
+        cm_table = _coefficients(cm, "cm", self.n_joints)
+        # (``added_mass`` names the form argument: the arrays get other names.)
+        drag, mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, threads)
+        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
+        return HydroTorques(
+            drag=drag.reshape(shape), added_mass=mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
+        )
+
+    def environment(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike = 2.2,
+        cm: ArrayLike = 0.5,
+        water: Water = SEA_WATER,
+        sea_density: float | None = None,
+        threads: int = 1,
+        added_mass: str = "morison",
+    ) -> EnvironmentTorques:
+        """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call.
+
+        Parameters
+        ----------
+        q, qd, qdd
+            Joint states, as for :meth:`hydro`.
+        depth
+            Depth [m], 0 to 11000 (the deepest ocean), a scalar or one per sample; the ambient
+            pressure is the hydrostatic ``sea_density · g · depth`` (the core's formula; see
+            :mod:`uwml.sea.seawater` for TEOS-10).
+        temperature_c
+            Oil temperature [°C], a scalar or one per sample.
+        losses
+            One :class:`uwml.JointLosses` for every joint, a sequence with one (or None) per
+            joint, or None for none (the hydrodynamics alone).
+        cd, cm, water, threads
+            As for :meth:`hydro` (``water`` is the fluid the links move in), but ``water``
+            defaults to sea water (1025 kg/m³, g = 9.81 m/s²): the deep sea, where the losses at
+            depth are wanted. Pass ``water=uwml.Water()`` for the paper's fresh-water tank.
+        sea_density
+            The density of the water column above [kg/m³] for the pressure: default ``water``'s,
+            so that one water is used for both.
+
+        One state with scalar ``depth``, ``temperature_c`` and ``sea_density`` and ``losses``
+        None or one :class:`uwml.JointLosses` takes the short path of :meth:`hydro`.
+        ``added_mass``: as for :meth:`hydro`.
+        """
+        if _kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            losses_given = [None] * self.n_joints if losses is None else losses
+            r = robot.environment(
+                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
+                water=_water(water), sea_density=sea_density, threads=threads, added_mass="kirchhoff",
+            )  # fmt: skip
+            return EnvironmentTorques(r.drag, r.added_mass, r.buoyancy, r.gravity, r.visc, r.seal, r.current)
+        if isinstance(water, Water):
+            # One state as plain floats, as in hydro.
+            one: EnvironmentTorques | None = self._chain.environment_one(
+                EnvironmentTorques,
+                q,
+                qd,
+                qdd,
+                depth,
+                temperature_c,
+                None if losses is None else self._one_state_losses(losses),
+                cd,
+                cm,
+                water.density,
+                water.gravity,
+                water.density if sea_density is None else sea_density,
+                threads,
+            )
+            if one is not None:
+                return one
+        threads = _threads(threads)
+        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
+        columns = self._chain.environment(*arguments, threads)
+        check_overflow(columns[:2] + columns[4:], arguments[0].shape[0], arguments[1], arguments[2])
+        return EnvironmentTorques(*(c.reshape(shape) for c in columns))
+
+    def _one_state_losses(self, losses: object) -> FloatArray | bool:
+        """``losses`` (not None) for ``Chain.environment_one`` (see :func:`uwml.robot._arguments.one_state_losses`)."""
+        return one_state_losses(self, losses, self.n_joints)
+
+    def _environment_arguments(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike,
+        temperature_c: ArrayLike,
+        losses: JointLosses | Sequence[JointLosses | None] | None,
+        cd: ArrayLike,
+        cm: ArrayLike,
+        water: Water,
+        sea_density: float | None,
+    ) -> tuple[tuple[int, ...], _EnvironmentArguments]:
+        """The arguments of :meth:`environment` (and :meth:`jacobians`), validated: the shape of ``q``
+        and the native call's arguments ``(q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature)``."""
+        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
+        water = _water(water)
+        cd_table = _coefficients(cd, "cd", self.n_joints)
+        cm_table = _coefficients(cm, "cm", self.n_joints)
+        packed = pack_leg_losses(losses, self.n_joints)
+        column = water.density if sea_density is None else sea_density
+        pressure, temperature = loss_conditions(depth, temperature_c, column, water.gravity, q2.shape[0])
+        return shape, (q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
+
+    def jacobians(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        depth: ArrayLike = 0.0,
+        temperature_c: ArrayLike = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        cd: ArrayLike = 2.2,
+        cm: ArrayLike = 0.5,
+        water: Water = SEA_WATER,
+        sea_density: float | None = None,
+        added_mass: str = "morison",
+    ) -> EnvironmentJacobians:
+        """The environment torque of :meth:`environment` and its derivatives, for control.
+
+        Arguments as for :meth:`environment`, but without ``threads`` (the batch runs on one
+        thread). Returns an :class:`EnvironmentJacobians`:
+        ``value`` (``τ_env``: ``environment(...).total`` to 1e-13 of the largest torque, which evaluates four states at a time with a SIMD sine and cosine), ``d_q = ∂τ_env/∂q``,
+        ``d_qd = ∂τ_env/∂q̇`` and ``added_mass_matrix = M_A(q)``, with
+        ``added_mass(q, 0, q̈) = −M_A(q) q̈``. The derivatives are exact (forward-mode dual
+        numbers through the same Rust code, not finite differences); at a joint speed of exactly
+        zero with a hard sign (``epsilon=0``) the losses jump and their slope is not meaningful.
+
+        The whole batch is evaluated in one call into Rust, with the GIL released.
+        ``added_mass``: as for :meth:`hydro`.
+        """
+        if _kirchhoff(added_mass):
+            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
+            losses_given = [None] * self.n_joints if losses is None else losses
+            r = robot.jacobians(
+                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
+                water=_water(water), sea_density=sea_density, added_mass="kirchhoff",
+            )  # fmt: skip
+            return EnvironmentJacobians(
+                value=r.value[..., 6:],
+                d_q=r.d_q[..., 6:, :],
+                d_qd=r.d_velocity[..., 6:, 6:],
+                added_mass_matrix=r.added_mass_matrix[..., 6:, 6:],
+            )
+        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
+        value, d_q, d_qd, added_mass_matrix = self._chain.jacobians(*arguments)
+        check_overflow((value, d_q, d_qd), arguments[0].shape[0], arguments[1], arguments[2])
+        matrix = shape + shape[-1:]
+        return EnvironmentJacobians(
+            value=value.reshape(shape),
+            d_q=d_q.reshape(matrix),
+            d_qd=d_qd.reshape(matrix),
+            added_mass_matrix=added_mass_matrix.reshape(matrix),
+        )
+
+    def hydro_regressors(
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        water: Water = FRESH_WATER,
+        per: Literal["leg", "direction"] = "leg",
+        added_mass: str = "morison",
+    ) -> HydroRegressors:
+        """Regressors such that ``total = buoyancy + cd * drag + cm * added_mass``.
+
+        ``per="leg"`` gives one drag and one added-mass column (the paper's eq. 24);
+        ``per="direction"`` one per link and normal direction (see :class:`HydroRegressors`).
+        """
+        if per not in ("leg", "direction"):
+            raise ValueError(f"per must be 'leg' or 'direction', got {per!r}")
+        if _kirchhoff(added_mass):
+            robot, _, _ = self._kirchhoff_arguments(0.0, 0.0)
+            r = robot.hydro_regressors(q, qd, qdd, water=_water(water), added_mass="kirchhoff")
+            if per == "leg":
+                drag, mass = r.drag.sum(axis=(-2, -1)), r.added_mass.sum(axis=(-2, -1))
+            else:
+                # Segments back to the links that carry them: (..., joints, links, 2).
+                owners = [i for i, link in enumerate(self._links) if link.segment is not None]
+                drag = np.zeros(r.drag.shape[:-2] + (self.n_joints, 2))
+                mass = np.zeros_like(drag)
+                drag[..., owners, :] = r.drag
+                mass[..., owners, :] = r.added_mass
+            return HydroRegressors(
+                buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass, links_with_segments=self._segment_links()
+            )
+        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
+        water = _water(water)
+        buoyancy, gravity, drag, mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
+        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
+        extra = drag.shape[2:]
+        return HydroRegressors(
+            buoyancy=buoyancy.reshape(shape),
+            gravity=gravity.reshape(shape),
+            drag=drag.reshape(shape + extra),
+            added_mass=mass.reshape(shape + extra),
+            links_with_segments=self._segment_links(),
+        )
+
+    def _segment_links(self) -> tuple[int, ...]:
+        """The links that carry a segment."""
+        return tuple(i for i, link in enumerate(self._links) if link.segment is not None)
+
+    def _kirchhoff_arguments(self, cd: ArrayLike, cm: ArrayLike) -> tuple[Robot, FloatArray, FloatArray]:
+        """The leg as a robot, and ``cd``, ``cm`` (:meth:`hydro`'s layouts) per segment."""
+        if self._as_robot is None:
+            self._as_robot = Robot.from_leg(self)
+        owners = [i for i, link in enumerate(self._links) if link.segment is not None]
+        return self._as_robot, _coefficients(cd, "cd", self.n_joints)[owners], _coefficients(cm, "cm", self.n_joints)[owners]
+
+    def _link_index(self, link: object) -> int:
+        """``link`` as an index in ``0..n_joints`` (negative counts from the end)."""
+        if isinstance(link, (bool, np.bool_)):
+            raise TypeError(f"link must be an integer, got {link!r}")
+        try:
+            if not isinstance(link, SupportsIndex):
+                raise TypeError(f"{type(link).__name__!r} object cannot be interpreted as an integer")
+            index = operator.index(link)
+        except TypeError:
+            raise TypeError(f"link must be an integer, got {type(link).__name__}") from None
+        n = self.n_joints
+        if not -n <= index < n:
+            raise ValueError(f"link must be in -{n}..{n - 1} (this leg has {n} links), got {index}")
+        return index % n
+
+    def _default_point(self, link: int) -> tuple[float, float, float]:
+        segment = self._links[link].segment
+        if segment is None:
+            return (0.0, 0.0, 0.0)
+        return _vec([s + segment.length * a for s, a in zip(segment.start, segment.axis)])
+
+    def jacobian(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
+        """World position and geometric Jacobian of a point on a link.
+
+        Parameters
+        ----------
+        q
+            Joint angles [rad], shape ``(..., n_joints)`` (any number of leading axes).
+        link
+            The link carrying the point, ``0 .. n_joints - 1``; negative counts from the end
+            (default ``-1``, the last link).
+        point
+            The point in the link's frame [m], shape ``(3,)``. ``None`` (default): the tip of the
+            link's segment, ``start + length * axis``, if the link has one, else the link frame's
+            origin (its joint). For :meth:`Leg.paper`, link ``-1``'s tip is the foot.
+
+        Returns
+        -------
+        positions, jacobians
+            Shapes ``(..., 3)`` and ``(..., 6, n_joints)``. Column ``j`` of a Jacobian maps
+            ``qd[j]`` to the point's velocity (rows 0-2, ``z_j × (p − o_j)``) and to the link's
+            angular velocity (rows 3-5, ``z_j``); joints after ``link`` have zero columns.
+
+        The batch is evaluated in one call into Rust, with the GIL released.
+        """
+        index = self._link_index(link)
+        if point is None:
+            local = np.array(self._default_point(index))
+        else:
+            local = _real_array(point, "point", "three real numbers")
+            if local.shape != (3,):
+                raise ValueError(f"point must have shape (3,), got {local.shape}")
+            if not np.all(np.isfinite(local)):
+                raise ValueError(f"point must be finite, got {local.tolist()}")
+        angles = _real_array(q, "q", "a rectangular array of real numbers")
+        n = self.n_joints
+        if angles.ndim < 1 or angles.shape[-1] != n:
+            raise ValueError(f"q must have shape (..., {n}), got {angles.shape}")
+        shape = angles.shape[:-1]
+        positions, jacobians = self._chain.point_jacobian(np.ascontiguousarray(angles.reshape(-1, n)), index, np.ascontiguousarray(local))
+        return positions.reshape(shape + (3,)), jacobians.reshape(shape + (6, n))
+
+    def forward_kinematics(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> FloatArray:
+        """World position of a point on a link, shape ``q.shape[:-1] + (3,)``.
+
+        Arguments as for :meth:`jacobian`: by default the tip of the last link (the paper leg's
+        foot, ``L2 u2 + L3 u3`` of docs/model.md section 2).
+        """
+        return self.jacobian(q, link, point)[0]

@@ -1,0 +1,578 @@
+"""uwml's environment forces inside a MuJoCo simulation, with the added mass in the mass matrix
+(docs/simulation.md, "Added mass in the mass matrix"; ``pip install "uwml[mujoco]"``).
+
+:class:`Simulation` steps a MuJoCo model of a robot with the forces uwml computes for it: drag
+and added mass along every segment, buoyancy with Froude-Krylov, joint losses at a depth and
+temperature, in a current. MuJoCo's own fluid model is turned off (its lumped per-body model is
+what uwml replaces), MuJoCo keeps everything else: the rigid bodies, gravity, contacts (a foot
+on the seabed), joint limits, actuators.
+
+**Added mass in the mass matrix.** The added-mass force is linear in the accelerations, so the
+environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈``.
+Each step evaluates ``τ_env,0`` (uwml at zero joint and base acceleration: drag, buoyancy,
+Froude-Krylov and the velocity part of the added mass; the joint losses below) and ``M_A(q)``; ``M_A`` is added
+to MuJoCo's joint-space inertia between its assembly (``mj_makeM``) and its factorization
+(``mj_factorM``), so MuJoCo solves ``(M + M_A) q̈ = τ + τ_env,0`` with its constraints: no
+acceleration is fed back from the last step, and a link lighter than the water it drags along
+is as stable as any other. The position stage is MuJoCo's ``mj_fwdPosition`` run function by
+function with that one addition; the rest is ``mj_forwardSkip`` from the velocity stage.
+``scheme="lagged"`` instead applies ``−M_A q̈`` with the previous step's ``q̈`` as a force, as
+gz-sim and UUV Simulator do: for comparison only (it diverges once ``M_A`` exceeds ``M``).
+
+**Joint losses.** The seal's dry friction has a slope of ``S/ε`` at rest (about 2e4 N·m·s/rad
+for the default seal at depth), which no explicit step of a light joint survives; the oil drag
+is stiff too on a light wrist. So the losses are not forces here: each step sets every joint's
+MuJoCo ``dof_frictionloss`` to the seal's dry-friction level at its speed,
+``C(p) + (S(p) − C(p)) exp(−(ω/ω_s)²)`` (breakaway at rest, running friction in motion), which
+MuJoCo solves as a friction constraint (stable at any step; it holds the joint at rest while the
+load is below the level), and its ``dof_damping`` to the secant damping of the oil drag and the
+seal's viscous term, ``−(τ_oil + D ω)/ω``, which MuJoCo's Euler integrator takes implicitly
+(``LossState::dry_friction_split`` in the core; both added to the model's own values). The
+friction is the hard sign's: the smooth sign's ``ε`` is a regularization for evaluation and
+identification, not part of the simulated physics. MuJoCo's noslip solver is turned on (at least
+``NOSLIP_ITERATIONS``, tolerance at most ``NOSLIP_TOLERANCE``) so that a held joint stays still
+instead of creeping as soft constraints do. So ``data.qfrc_applied`` holds the hydrodynamics and
+the motor torques, ``data.qfrc_constraint`` the seal's friction and ``data.qfrc_passive`` the
+damping, while :meth:`Simulation.environment` returns uwml's whole environment, losses as forces,
+for inspection. With ``mjDSBL_CONSTRAINT`` or ``mjDSBL_FRICTIONLOSS`` set, MuJoCo applies no
+seal friction. ``integrator="rk4"`` takes the damping explicitly (each stage's forward pass):
+for a stiff oil drag on light joints use Euler.
+
+**Coordinates.** uwml's base twist is Fossen's ``ν`` (base frame); MuJoCo's free joint has the
+world-frame velocity of the body origin and the body-frame angular velocity. With ``R`` the
+base's orientation, ``ν = (Rᵀ v_world, ω_body)`` and ``ν̇ = (Rᵀ v̇_world − ω × v, ω̇)``: the
+``−ω × v`` term is passed to uwml as the base's acceleration in ``τ_env,0``, ``M_A`` and the
+forces are mapped to MuJoCo's degrees of freedom with the same ``Rᵀ``. Gravity is MuJoCo's
+(``opt.gravity`` must be ``(0, 0, −g)`` with ``g`` the water's): uwml's gravity component is
+not applied.
+
+**One native call per step.** The arithmetic between ``mj_makeM`` and ``mj_factorM`` (reading
+the state from the data's arrays, the evaluation of ``τ_env,0`` and ``M_A``, the map, the writes
+into ``data.M`` and ``data.qfrc_applied``) is done by ``uwml._core.MujocoCoupling``, which keeps
+views of the data's arrays: a step costs MuJoCo's stages plus about one uwml evaluation and
+``M_A`` (``benches/simulation.py``; docs/simulation.md).
+
+**Integrators.** ``integrator="euler"``: MuJoCo's semi-implicit Euler (``mj_Euler``) after the
+forward pass above, contacts included. ``"rk4"``: the classical Runge-Kutta method on that
+forward pass (positions advanced with ``mj_integratePos``), for smooth motions without contacts,
+where its order matters (the tests compare it with ``scipy.integrate.solve_ivp``): fourth order
+for hinge and slide joints; a free joint's rotation, advanced with velocities averaged over the
+stages as MuJoCo's own RK4 does, is second order.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .. import _core
+from .._checks import shown
+from ..model.joint_losses import JointLosses, pack_leg_losses
+from ..model.parts import Water
+from ..robot._arguments import _per_joint_losses
+from ..robot.base_motion import BaseMotion, _trusted_motion
+from ..robot.files import model_and_robot
+from ..robot.results import BaseWrench, RobotEnvironment
+from ..robot.tree import Robot
+from ..sea.conditions import check_depths, check_temperatures
+
+__all__ = ["SCHEMES", "Simulation", "mjcf_of"]
+
+FloatArray = NDArray[np.float64]
+
+#: How the added mass enters the equations of motion.
+SCHEMES = ("matrix", "lagged")
+INTEGRATORS = ("euler", "rk4")
+#: MuJoCo's noslip solver with joint losses (at least these iterations, at most this tolerance):
+#: a friction constraint then holds a joint at rest (to about 1e-8 rad/s) instead of creeping.
+NOSLIP_ITERATIONS = 50
+NOSLIP_TOLERANCE = 1e-10
+
+
+def _mujoco() -> Any:
+    try:
+        import mujoco
+    except ImportError:
+        raise ImportError('uwml.sim.mujoco needs MuJoCo: pip install "uwml[mujoco]" (or pip install mujoco)') from None
+    return mujoco
+
+
+def _vector3(value: ArrayLike, name: str) -> FloatArray:
+    try:
+        array = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        array = np.full(0, np.nan)
+    if array.shape != (3,) or not np.all(np.isfinite(array)):
+        raise ValueError(f"{name} must be 3 finite numbers [world frame], got {shown(value)}")
+    return array
+
+
+def _number(value: Any, name: str) -> float:
+    """``value`` as one float (a number, or a 0-d array), or a ValueError naming ``name``."""
+    if isinstance(value, (bool, np.bool_)) or value is None or np.ndim(value) != 0:
+        raise ValueError(f"{name} must be one number, got {shown(value)}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be one number, got {shown(value)}") from None
+
+
+def _segment_solid(segment: Any) -> tuple[float, FloatArray, FloatArray]:
+    """A segment as a uniform solid: its volume, centre and unit-mass inertia about the centre."""
+    u = np.asarray(segment.axis, dtype=np.float64)
+    centre = np.asarray(segment.start, dtype=np.float64) + u * (segment.length / 2.0)
+    length = segment.length
+    if segment.section == "circular":
+        radius = segment.diameter / 2.0
+        axial, across = radius**2 / 2.0, (3.0 * radius**2 + length**2) / 12.0
+        inertia = across * (np.eye(3) - np.outer(u, u)) + axial * np.outer(u, u)
+        return math.pi * radius**2 * length, centre, inertia
+    n0, n1 = (np.asarray(n, dtype=np.float64) for n in segment.normals)
+    # Drag along n_k uses the extent along the other normal: widths = (along n1, along n0).
+    a, b, c = length, segment.widths[1], segment.widths[0]
+    frame = np.column_stack([u, n0, n1])
+    inertia = frame @ np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) @ frame.T / 12.0
+    return a * b * c, centre, inertia
+
+
+def _body_inertia(body: Any) -> FloatArray:
+    """A body's inertia about its centre of mass [kg·m²], its mass spread uniformly over its
+    segments' solids (a sphere of its volume, or of 0.05 m radius, without segments)."""
+    com = np.asarray(body.com, dtype=np.float64)
+    solids = [_segment_solid(s) for s in body.segments]
+    total = sum(volume for volume, _, _ in solids)
+    if not solids or total <= 0.0:
+        radius = (3.0 * body.volume / (4.0 * math.pi)) ** (1.0 / 3.0) if body.volume > 0.0 else 0.05
+        sphere: FloatArray = np.eye(3) * (0.4 * body.mass * radius**2)
+        return sphere
+    inertia = np.zeros((3, 3))
+    for volume, centre, unit in solids:
+        mass = body.mass * volume / total
+        d = centre - com
+        inertia += mass * unit + mass * (d @ d * np.eye(3) - np.outer(d, d))
+    return inertia
+
+
+def mjcf_of(robot: Robot, *, floating: bool = False, timestep: float = 1e-3, gravity: float | None = None) -> str:
+    """An MJCF model of ``robot`` for :class:`Simulation`: one body per link in uwml's frames
+    (parallel to the base at ``q = 0``), hinge and slide joints, each body's mass and centre of
+    mass, its inertia that of its mass spread uniformly over its segments' solids (boxes and
+    cylinders; without segments, a sphere of its volume), and its segments as geoms without
+    contacts. ``floating``: the base on a free joint (it then needs a mass). Gravity: the
+    robot's water's."""
+    g = robot.water.gravity if gravity is None else gravity
+    base = robot.base
+    lines = [
+        '<mujoco model="uwml_robot">',
+        f'  <option timestep="{timestep!r}" gravity="0 0 {-g!r}"/>',
+        "  <worldbody>",
+        '    <body name="base">',
+    ]
+    if floating:
+        if base is None or base.mass <= 0.0:
+            raise ValueError("a floating base needs a base body with a mass")
+        lines.append('      <freejoint name="base_free"/>')
+
+    def number(values: Any) -> str:
+        return " ".join(repr(float(x)) for x in values)
+
+    def body_lines(body: Any, indent: str) -> list[str]:
+        out = []
+        if body.mass > 0.0:
+            inertia = _body_inertia(body)
+            full = [inertia[0, 0], inertia[1, 1], inertia[2, 2], inertia[0, 1], inertia[0, 2], inertia[1, 2]]
+            out.append(f'{indent}<inertial pos="{number(body.com)}" mass="{body.mass!r}" fullinertia="{number(full)}"/>')
+        for segment in body.segments:
+            _, centre, _ = _segment_solid(segment)
+            u = np.asarray(segment.axis, dtype=np.float64)
+            if segment.section == "circular":
+                ends = np.concatenate([centre - u * segment.length / 2.0, centre + u * segment.length / 2.0])
+                out.append(
+                    f'{indent}<geom type="cylinder" fromto="{number(ends)}" size="{segment.diameter / 2.0!r}" contype="0" conaffinity="0"/>'
+                )
+            else:
+                n0 = np.asarray(segment.normals[0], dtype=np.float64)
+                size = [segment.length / 2.0, segment.widths[1] / 2.0, segment.widths[0] / 2.0]
+                axes = number(np.concatenate([u, n0]))
+                out.append(
+                    f'{indent}<geom type="box" pos="{number(centre)}" xyaxes="{axes}" size="{number(size)}" contype="0" conaffinity="0"/>'
+                )
+        return out
+
+    if base is not None:
+        lines += body_lines(base, "      ")
+    children: dict[int, list[int]] = {}
+    for i, joint in enumerate(robot.joints):
+        children.setdefault(-1 if joint.parent is None else joint.parent, []).append(i)
+
+    def emit(parent: int, depth: int) -> None:
+        for i in children.get(parent, []):
+            joint, link, pad = robot.joints[i], robot.links[i], "  " * depth
+            lines.append(f'{pad}<body name="{link.name or f"link{i}"}" pos="{number(joint.origin)}">')
+            kind = "slide" if joint.kind == "prismatic" else "hinge"
+            lines.append(f'{pad}  <joint name="{joint.name or f"joint{i}"}" type="{kind}" axis="{number(joint.axis)}"/>')
+            if link.mass <= 0.0:
+                raise ValueError(f"link {i} needs a mass > 0 to move in a simulation")
+            lines.extend(body_lines(link, pad + "  "))
+            emit(i, depth + 1)
+            lines.append(f"{pad}</body>")
+
+    emit(-1, 3)
+    lines += ["    </body>", "  </worldbody>", "</mujoco>"]
+    return "\n".join(lines)
+
+
+class Simulation:
+    """A MuJoCo model stepped with uwml's environment forces (module docstring).
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+        The robot's MuJoCo model (copied: the caller's model is not changed). Its world holds
+        exactly one root body, the robot's base (a free joint: a floating base), as for
+        :func:`uwml.robot.files.from_mujoco`.
+    robot : uwml.Robot, optional
+        The same robot for uwml (default ``uwml.Robot.from_mujoco(model, hydro)``); its joints
+        must be the model's hinge and slide joints in model order.
+    hydro : path, optional
+        A hydro file, when ``robot`` is taken from the model.
+    depth, temperature_c
+        Where the joint losses are evaluated [m, °C] (``Robot.environment``).
+    losses
+        Joint losses (``Robot.environment``'s ``losses``): None for the robot's own.
+    current, current_acceleration
+        The water's velocity [m/s] and acceleration [m/s²], world frame.
+    water
+        Density and gravity; default the robot's. ``model.opt.gravity`` must be ``(0, 0, −g)``.
+    scheme : {"matrix", "lagged"}
+        ``"matrix"``: ``M_A`` in the mass matrix (the default; exact and stable). ``"lagged"``:
+        ``−M_A q̈_previous`` as a force, for comparison.
+    integrator : {"euler", "rk4"}
+        See the module docstring.
+    added_mass : {"morison", "kirchhoff"}
+        The added mass's velocity terms (``Robot.hydro``): the paper's Morison form, or
+        Kirchhoff's, which conserves the energy ``T_rigid + T_A + V`` without drag and losses.
+
+    Attributes
+    ----------
+    model, data
+        The MuJoCo model (fluid model off) and data; set ``data.qpos``, ``data.qvel`` and
+        ``data.ctrl`` as usual (in place: the simulation keeps views of this data's arrays, so
+        both attributes are read-only).
+    robot, water, depth, temperature_c, losses, current, current_acceleration, scheme, integrator, added_mass
+        As given (read-only: each step uses what the simulation was made with; make a new
+        :class:`Simulation` for other conditions).
+    """
+
+    def __init__(
+        self,
+        model: Any,
+        robot: Robot | None = None,
+        hydro: Any = None,
+        *,
+        depth: float = 0.0,
+        temperature_c: float = 20.0,
+        losses: JointLosses | Sequence[JointLosses | None] | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        water: Water | None = None,
+        scheme: str = "matrix",
+        integrator: str = "euler",
+        added_mass: str = "morison",
+    ) -> None:
+        mujoco = _mujoco()
+        if not isinstance(model, mujoco.MjModel):
+            raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
+        if scheme not in SCHEMES:
+            raise ValueError(f"scheme must be one of {', '.join(SCHEMES)}, got {scheme!r}")
+        if integrator not in INTEGRATORS:
+            raise ValueError(f"integrator must be one of {', '.join(INTEGRATORS)}, got {integrator!r}")
+        if robot is None:
+            robot = Robot.from_mujoco(model, hydro)
+        elif not isinstance(robot, Robot):
+            raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
+        self._mj = mujoco
+        self._model = copy.deepcopy(model)
+        self._model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
+        self._model.opt.viscosity = 0.0
+        self._data = mujoco.MjData(self._model)
+        self._robot = robot
+        self._water = robot.water if water is None else water
+        if not isinstance(self._water, Water):
+            raise TypeError(f"water must be a uwml.Water or None, got {type(water).__name__}")
+        gravity = np.asarray(self.model.opt.gravity, dtype=np.float64)
+        if not np.allclose(gravity, (0.0, 0.0, -self.water.gravity), rtol=1e-12, atol=0.0):
+            raise ValueError(
+                f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
+            )
+        self._depth, self._temperature_c = _number(depth, "depth"), _number(temperature_c, "temperature_c")
+        check_depths(np.asarray(self._depth))
+        check_temperatures(np.asarray(self._temperature_c))
+        self._current = _vector3(current, "current")
+        self._current_acceleration = _vector3(current_acceleration, "current_acceleration")
+        if added_mass not in ("morison", "kirchhoff"):
+            raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
+        self._scheme, self._integrator, self._added_mass = scheme, integrator, added_mass
+        # The joint losses, packed once for the one-state native path.
+        self._losses = robot._effective_losses(losses)
+        self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
+        self._joint_losses = _per_joint_losses(self._losses, robot.n_joints)
+        if any(loss is not None and loss.seal is not None for loss in self._joint_losses):
+            # The seal's friction is a MuJoCo friction constraint (module docstring): the noslip
+            # solver removes the creep of soft constraints, so that a held joint stays at rest.
+            opt = self._model.opt
+            opt.noslip_iterations = max(int(opt.noslip_iterations), NOSLIP_ITERATIONS)
+            opt.noslip_tolerance = min(float(opt.noslip_tolerance), NOSLIP_TOLERANCE)
+        self._no_coefficients = np.zeros((0, 2))
+        self._map_degrees_of_freedom()
+        # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
+        mujoco.mj_forward(self.model, self.data)
+        saved = self.data.M.copy()
+        self.data.M[:] = np.arange(1.0, self.model.nM + 1.0)
+        probe = np.zeros((self.model.nv, self.model.nv))
+        mujoco.mj_fullM(self.model, self.data, probe)
+        self.data.M[:] = saved
+        rows, columns = np.nonzero(np.tril(probe))
+        order = np.argsort(probe[rows, columns])
+        rows, columns = rows[order], columns[order]
+        if not np.array_equal(probe[rows, columns], np.arange(1.0, self.model.nM + 1.0)):
+            raise RuntimeError("unexpected layout of MuJoCo's sparse inertia (data.M)")
+        # The per-step arithmetic, native: it keeps views of the data's arrays (module docstring).
+        d = self.data
+        self._coupling = _core.MujocoCoupling(
+            robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
+            self.model.dof_damping, self.model.dof_frictionloss,
+            None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
+            self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._packed_losses,
+            self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
+            tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
+        )  # fmt: skip
+        mujoco.mj_forward(self.model, self.data)
+        try:  # a current so strong that the water's forces overflow is outside the physics
+            self.environment()
+        except ValueError as error:
+            raise ValueError(f"the water's forces at the model's initial state are not finite numbers: {error}") from None
+
+    # Read-only: the native coupling took them at construction, so that a change would be
+    # honoured by environment() and not by step(). Make a new Simulation for other conditions.
+    @property
+    def robot(self) -> Robot:
+        """The uwml robot."""
+        return self._robot
+
+    @property
+    def water(self) -> Water:
+        """The water's density and gravity."""
+        return self._water
+
+    @property
+    def depth(self) -> float:
+        """Where the joint losses are evaluated [m]."""
+        return self._depth
+
+    @property
+    def temperature_c(self) -> float:
+        """The joints' oil temperature [°C]."""
+        return self._temperature_c
+
+    @property
+    def losses(self) -> tuple[JointLosses | None, ...]:
+        """Each joint's losses (None: none), the robot's own unless given others."""
+        return self._joint_losses
+
+    @property
+    def current(self) -> FloatArray:
+        """The water's velocity [m/s], world frame (a copy)."""
+        return self._current.copy()
+
+    @property
+    def current_acceleration(self) -> FloatArray:
+        """The water's acceleration [m/s²], world frame (a copy)."""
+        return self._current_acceleration.copy()
+
+    @property
+    def scheme(self) -> str:
+        """How the added mass enters: ``"matrix"`` or ``"lagged"``."""
+        return self._scheme
+
+    @property
+    def integrator(self) -> str:
+        """``"euler"`` or ``"rk4"``."""
+        return self._integrator
+
+    @property
+    def added_mass(self) -> str:
+        """The added mass's velocity terms: ``"morison"`` or ``"kirchhoff"``."""
+        return self._added_mass
+
+    @property
+    def model(self) -> Any:
+        """The MuJoCo model stepped (a copy of the one given, its fluid model off)."""
+        return self._model
+
+    @property
+    def data(self) -> Any:
+        """The MuJoCo data stepped."""
+        return self._data
+
+    @classmethod
+    def from_file(cls, path: Any, hydro: Any = None, **options: Any) -> Simulation:
+        """The simulation of a URDF or MJCF file (with its hydro file), read as
+        :func:`uwml.robot.files.model_and_robot` reads it (absent visual meshes do not matter);
+        ``options`` as for the constructor."""
+        model, robot = model_and_robot(path, hydro)
+        return cls(model, robot, **options)
+
+    # --- the map between uwml's coordinates and MuJoCo's degrees of freedom -------------------
+
+    def _map_degrees_of_freedom(self) -> None:
+        m, mj = self.model, self._mj
+        roots = [i for i in range(1, m.nbody) if m.body_parentid[i] == 0]
+        if len(roots) != 1:
+            raise ValueError(f"the model's world must hold exactly one root body (the robot's base), got {len(roots)}")
+        self._root = roots[0]
+        free_kind, hinge, slide = (int(k) for k in (mj.mjtJoint.mjJNT_FREE, mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE))
+        free = [j for j in range(m.njnt) if int(m.jnt_type[j]) == free_kind]
+        if free and (len(free) > 1 or m.jnt_bodyid[free[0]] != self._root):
+            raise ValueError("only the root body may have a free joint (the floating base)")
+        ball = int(mj.mjtJoint.mjJNT_BALL)
+        if any(int(kind) == ball for kind in m.jnt_type):
+            raise ValueError("the model has a ball joint: uwml's joints are revolute and prismatic (hinge and slide)")
+        self._free_dof = int(m.jnt_dofadr[free[0]]) if free else None
+        self._free_qpos = int(m.jnt_qposadr[free[0]]) if free else None
+        moving = [j for j in range(m.njnt) if int(m.jnt_type[j]) in (hinge, slide)]
+        robot = self.robot
+        if len(moving) != robot.n_joints:
+            raise ValueError(f"the model has {len(moving)} hinge and slide joints, the robot {robot.n_joints} joints: not the same robot")
+        for i, (j, joint) in enumerate(zip(moving, robot.joints, strict=True)):
+            kind = "revolute" if int(m.jnt_type[j]) == hinge else "prismatic"
+            name = m.joint(j).name
+            if kind != joint.kind or (joint.name is not None and name and name != joint.name):
+                raise ValueError(f"the model's joint {j} ('{name}', {kind}) is not the robot's joint {i} ({joint.name!r}, {joint.kind})")
+        self._joint_dofs = np.array([m.jnt_dofadr[j] for j in moving], dtype=np.int64)
+        self._joint_qpos = np.array([m.jnt_qposadr[j] for j in moving], dtype=np.int64)
+        # The base is the root body's frame unless the root hangs from the world by a joint.
+        self._base_is_world = self._free_dof is None and m.body_jntnum[self._root] > 0
+        self._floating = self._free_dof is not None
+
+    def _base_motion(self) -> BaseMotion:
+        zero = np.zeros(3)
+        if self._base_is_world:
+            return _trusted_motion(np.array([1.0, 0.0, 0.0, 0.0]), zero, zero, zero, zero)
+        orientation = np.array(self.data.xquat[self._root])
+        if not self._floating:
+            return _trusted_motion(orientation, zero, zero, zero, zero)
+        assert self._free_dof is not None
+        rotation = self.data.xmat[self._root].reshape(3, 3)
+        v = rotation.T @ self.data.qvel[self._free_dof : self._free_dof + 3]
+        w = np.array(self.data.qvel[self._free_dof + 3 : self._free_dof + 6])
+        # ν̇ = Rᵀ v̇_world − ω × v: the second term is what zero MuJoCo acceleration means to uwml.
+        minus_w_cross_v = np.array([w[2] * v[1] - w[1] * v[2], w[0] * v[2] - w[2] * v[0], w[1] * v[0] - w[0] * v[1]])
+        return _trusted_motion(orientation, v, w, minus_w_cross_v, zero)
+
+    # --- one forward pass ------------------------------------------------------------------
+
+    def environment(self) -> tuple[FloatArray, FloatArray]:
+        """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
+        generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
+        added-mass matrix. Two native calls (the one-state path of ``Robot.environment`` with
+        the losses packed once, and the added-mass matrix), the same numbers as the public API."""
+        q = np.array(self.data.qpos[self._joint_qpos])
+        qd = np.array(self.data.qvel[self._joint_dofs])
+        motion = self._base_motion()
+        core = self.robot._core
+        result = core.environment_one(
+            RobotEnvironment,
+            BaseWrench,
+            q,
+            qd,
+            np.zeros_like(q),
+            self.depth,
+            self.temperature_c,
+            self._packed_losses,
+            None,
+            None,
+            self.water.density,
+            self.water.gravity,
+            self.water.density,  # the water column above is the robot's water, as in Robot.environment
+            motion._single(),
+            self._current,
+            self._current_acceleration,
+            1,
+            self.added_mass == "kirchhoff",
+        )
+        if result is None:  # a state the short path does not take: the general path answers
+            result = self.robot.environment(
+                q, qd, np.zeros_like(q), depth=self.depth, temperature_c=self.temperature_c, losses=self._losses,
+                water=self.water, base_motion=motion, current=self.current, current_acceleration=self.current_acceleration,
+                added_mass=self.added_mass,
+            )  # fmt: skip
+        # ``total`` is drag + added mass + buoyancy (+ losses on the joints): no gravity.
+        forces = np.concatenate([result.base.total, result.total])
+        size = 6 + self.robot.n_joints
+        return forces, core.added_mass_matrix(q.reshape(1, -1), self._no_coefficients, self.water.density).reshape(size, size)
+
+    def forward(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
+        """MuJoCo's forward dynamics at the data's state with uwml's forces: fills
+        ``data.qacc`` (and everything ``mj_forward`` fills). ``torque``: motor torques on the
+        robot's joints [N·m or N], added to ``data.qfrc_applied``'s uwml part; ``qfrc``: any
+        generalized forces in MuJoCo's coordinates (``(nv,)``, as ``qvel``), added too (thrusters
+        on a free joint: the force in world components, the moment in the body's). A state that
+        is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
+        mj, m, d = self._mj, self.model, self.data
+        mj.mj_fwdKinematics(m, d)
+        mj.mj_makeM(m, d)
+        status = self._coupling.apply(torque)
+        if status == 2:  # a torque the native reader does not take as it is: convert, or refuse
+            motor = np.asarray(torque, dtype=np.float64)
+            if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
+                raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
+            status = self._coupling.apply(np.ascontiguousarray(motor))
+        if status == 1:
+            raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
+        if qfrc is not None:
+            extra = np.asarray(qfrc, dtype=np.float64)
+            if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
+                raise ValueError(f"qfrc must be {m.nv} finite numbers (one per degree of freedom), got shape {extra.shape}")
+            d.qfrc_applied[:] += extra
+        mj.mj_factorM(m, d)
+        mj.mj_collision(m, d)
+        mj.mj_makeConstraint(m, d)
+        mj.mj_island(m, d)
+        mj.mj_transmission(m, d)
+        mj.mj_projectConstraint(m, d)
+        mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
+
+    def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
+        """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
+        generalized forces ``qfrc`` (as :meth:`forward`)."""
+        mj, m, d = self._mj, self.model, self.data
+        if self.integrator == "euler":
+            self.forward(torque, qfrc)
+            if self.scheme == "lagged":
+                self._coupling.remember_acceleration()
+            mj.mj_Euler(m, d)
+            return
+        h = m.opt.timestep
+        qpos0, qvel0, time0 = d.qpos.copy(), d.qvel.copy(), d.time
+        velocities: list[FloatArray] = []
+        accelerations: list[FloatArray] = []
+        for fraction, index in ((0.0, None), (0.5, 0), (0.5, 1), (1.0, 2)):
+            velocity = qvel0 if index is None else qvel0 + fraction * h * accelerations[index]
+            d.qpos[:] = qpos0
+            if index is not None:
+                mj.mj_integratePos(m, d.qpos, velocities[index], fraction * h)
+            d.qvel[:] = velocity
+            d.time = time0 + fraction * h
+            self.forward(torque, qfrc)
+            velocities.append(velocity.copy())
+            accelerations.append(d.qacc.copy())
+        d.qpos[:] = qpos0
+        mj.mj_integratePos(m, d.qpos, (velocities[0] + 2.0 * velocities[1] + 2.0 * velocities[2] + velocities[3]) / 6.0, h)
+        d.qvel[:] = qvel0 + h * (accelerations[0] + 2.0 * accelerations[1] + 2.0 * accelerations[2] + accelerations[3]) / 6.0
+        d.time = time0 + h

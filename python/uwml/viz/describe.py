@@ -1,0 +1,134 @@
+"""What a robot is made of, in words and in a picture: joints, links, segments, volumes, masses and
+the net buoyancy of every body, and a 3-D drawing of the robot at ``q = 0`` with its segments
+(``uwml describe``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..model.parts import Link, Segment, Water
+from ..robot.tree import Robot
+
+__all__ = ["describe", "draw", "frame_origins"]
+
+
+def frame_origins(robot: Robot) -> np.ndarray:
+    """Every link frame's origin (its joint) at ``q = 0`` in the base frame, ``(n_joints, 3)``:
+    frames are parallel to the base there, so a joint's origin adds to its parent's."""
+    origins = np.zeros((robot.n_joints, 3))
+    for i, joint in enumerate(robot.joints):
+        parent = np.zeros(3) if joint.parent is None or joint.parent < 0 else origins[joint.parent]
+        origins[i] = parent + np.asarray(joint.origin)
+    return origins
+
+
+def _bodies(robot: Robot) -> list[tuple[str, Link, np.ndarray]]:
+    """(name, body, frame origin at q = 0) of the base (if it has a body) and every link."""
+    out: list[tuple[str, Link, np.ndarray]] = []
+    if robot.base is not None:
+        out.append(("base", robot.base, np.zeros(3)))
+    out += [(name, link, origin) for name, link, origin in zip(robot.link_names, robot.links, frame_origins(robot))]
+    return out
+
+
+def _section(segment: Segment) -> str:
+    if segment.section == "circular":
+        return f"circular, D {segment.diameter:.4g} m"
+    widths = segment.widths or (0.0, 0.0)
+    return f"rectangular, widths {widths[0]:.4g} × {widths[1]:.4g} m"
+
+
+def describe(robot: Robot, water: Water | None = None) -> str:
+    """A plain-text account of ``robot``: joints, bodies (mass, volume, net buoyancy in
+    ``water``, fresh water by default), and segments with their coefficients."""
+    water = water if water is not None else Water()
+    lines = [
+        f"{robot.n_joints} joints, {len(robot.segments)} segments; water {water.density:g} kg/m³, g = {water.gravity:g} m/s²",
+        "",
+        "joints",
+    ]
+    parent_names = ("base", *robot.link_names)
+    for name, joint in zip(robot.joint_names, robot.joints):
+        parent = parent_names[0 if joint.parent is None or joint.parent < 0 else joint.parent + 1]
+        lines.append(f"  {name:16s} {joint.kind:9s} parent {parent:16s} origin {_fmt(joint.origin)}  axis {_fmt(joint.axis)}")
+    lines += ["", "bodies (net buoyancy = ρ V g − m g, upwards)"]
+    total_mass = total_volume = 0.0
+    for name, body, _ in _bodies(robot):
+        net = (water.density * body.volume - body.mass) * water.gravity
+        total_mass += body.mass
+        total_volume += body.volume
+        lines.append(
+            f"  {name:16s} mass {body.mass:9.4g} kg  volume {body.volume:9.4g} m³  net buoyancy {net:+10.4g} N  "
+            f"COM {_fmt(body.com)}  COB {_fmt(body.cob or body.com)}  segments {len(body.segments)}"
+        )
+    net_total = (water.density * total_volume - total_mass) * water.gravity
+    lines.append(f"  {'all':16s} mass {total_mass:9.4g} kg  volume {total_volume:9.4g} m³  net buoyancy {net_total:+10.4g} N")
+    lines += ["", "segments (in their body's frame)"]
+    index = 0
+    for name, body, _ in _bodies(robot):
+        for segment in body.segments:
+            cd, cm = segment.cd, segment.cm
+            lines.append(
+                f"  {index:3d} {name:16s} {_section(segment):34s} length {segment.length:.4g} m  area {segment.area:.4g} m²  "
+                f"start {_fmt(segment.start)}  axis {_fmt(segment.axis)}  Cd {_pair(cd)}  Cm {_pair(cm)}"
+            )
+            index += 1
+    return "\n".join(lines)
+
+
+def _fmt(v: object) -> str:
+    return "(" + ", ".join(f"{x:.4g}" for x in np.asarray(v, dtype=float)) + ")"
+
+
+def _pair(values: tuple[float, float]) -> str:
+    a, b = values
+    return f"{a:g}" if a == b else f"({a:g}, {b:g})"
+
+
+def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
+    """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up): segments as thick lines
+    (circular blue, rectangular orange, width by their size), joints as black dots with their axes,
+    centres of mass (x) and buoyancy (o). Written to ``path`` (format from the extension)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig = plt.figure(figsize=(7, 6))
+    ax = fig.add_subplot(projection="3d")
+    points = [np.zeros(3)]
+    scale = max((s.length for s in robot.segments), default=0.5)
+    for _, body, origin in _bodies(robot):
+        for segment in body.segments:
+            start = origin + np.asarray(segment.start)
+            end = start + segment.length * np.asarray(segment.axis)
+            size = segment.diameter if segment.section == "circular" else max(segment.widths or (0.0, 0.0))
+            color = "tab:blue" if segment.section == "circular" else "tab:orange"
+            ax.plot(*np.stack([start, end]).T, color=color, linewidth=max(1.5, 40.0 * float(size or 0.0)), solid_capstyle="butt", alpha=0.8)
+            points += [start, end]
+        com, cob = origin + np.asarray(body.com), origin + np.asarray(body.cob or body.com)
+        ax.scatter(*com, marker="x", color="k", s=25)
+        ax.scatter(*cob, marker="o", facecolors="none", edgecolors="tab:green", s=30)
+        points += [com, cob]
+    for origin, joint in zip(frame_origins(robot), robot.joints):
+        tip = origin + 0.15 * scale * np.asarray(joint.axis)
+        ax.scatter(*origin, color="k", s=18)
+        ax.plot(*np.stack([origin, tip]).T, color="k", linewidth=1.0)
+        points.append(origin)
+    cloud = np.asarray(points)
+    centre, half = (cloud.max(axis=0) + cloud.min(axis=0)) / 2, max(float(np.ptp(cloud, axis=0).max()) / 2, 0.1)
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.set_title(
+        title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0 (blue circular, orange rectangular; x COM, o COB)",
+        fontsize=9,
+    )
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
