@@ -115,18 +115,19 @@ def test_environment_adds_losses_to_hydrodynamics():
     every = leg.environment(q[0], qd[0], qdd[0], depth=100.0, losses=joint)
     assert every.visc.shape == (3,) and np.all(every.visc * qd[0] <= 0)
     none = leg.environment(q[0], qd[0], qdd[0], depth=100.0)
-    np.testing.assert_array_equal(none.total, leg.hydro(q[0], qd[0], qdd[0], water=uwml.Water(density=1025.0)).total)
+    np.testing.assert_array_equal(none.total, leg.hydro(q[0], qd[0], qdd[0]).total)
 
 
-def test_environment_defaults_to_one_sea_water_for_the_hydrodynamics_and_the_pressure() -> None:
-    """At depth the links move in the water whose column gives the pressure: by default sea
-    water (1025 kg/m³) for both; ``sea_density`` defaults to ``water``'s density, so a water
-    given is used for both too (it was fresh water for the links and sea water for the pressure)."""
+def test_environment_defaults_to_the_legs_one_water_for_the_hydrodynamics_and_the_pressure() -> None:
+    """At depth the links move in the water whose column gives the pressure: by default the
+    leg's water (a Leg is a Robot: fresh water, 1000 kg/m³, as for every evaluation) for both;
+    ``sea_density`` defaults to ``water``'s density, so a water given is used for both too."""
     leg = uwml.Leg.paper()
     rng = np.random.default_rng(3)
     q, qd, qdd = rng.uniform(-1, 1, (6, 3)), rng.uniform(-1, 1, (6, 3)), rng.uniform(-2, 2, (6, 3))
     joint = uwml.JointLosses(epsilon=1e-2)
-    for water, density in ((None, 1025.0), (uwml.Water(), 1000.0), (uwml.Water(density=1030.0, gravity=9.8), 1030.0)):
+    assert leg.water == uwml.Water()
+    for water, density in ((None, 1000.0), (uwml.Water(density=1025.0), 1025.0), (uwml.Water(density=1030.0, gravity=9.8), 1030.0)):
         kwargs = {} if water is None else {"water": water}
         env = leg.environment(q, qd, qdd, depth=3000.0, temperature_c=4.0, losses=joint, **kwargs)
         gravity = 9.81 if water is None else water.gravity

@@ -1,6 +1,6 @@
 """One state per call: ``Leg.hydro`` and ``Leg.environment`` with 1-D states take a native fast
-path (``Chain.hydro_one`` / ``Chain.environment_one``) for plain arguments, and the general path
-for everything else.
+path (a Leg is a Robot: the robot's ``hydro_one`` / ``environment_one``) for plain arguments, and
+the general path for everything else.
 
 Held here: the fast path gives the same bits as the batch path's row for the same state (at every
 position in a batch of SIMD groups, for every container it takes); it is taken for the plain
@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 import uwml
 from test_hydro import random_chain, random_states
-from uwml.environment import EnvironmentTorques
-from uwml.leg import HydroTorques
+from uwml.robot import BaseWrench, RobotEnvironment, RobotTorques
+from uwml.robot._arguments import one_state_losses
 
 PAPER = uwml.Leg.paper()
 STATE = {"q": [0.1, -0.4, 0.7], "qd": [0.5, -1.0, 2.0], "qdd": [1.0, 3.0, -2.0]}
@@ -25,10 +25,10 @@ ENVIRONMENT_FIELDS = (*HYDRO_FIELDS, "visc", "seal", "current")
 
 
 class _GeneralOnly:
-    """A ``Chain`` whose one-state calls always decline: the general path alone."""
+    """A native robot whose one-state calls always decline: the general path alone."""
 
-    def __init__(self, chain: object) -> None:
-        self._chain = chain
+    def __init__(self, core: object) -> None:
+        self._native = core
 
     def hydro_one(self, *args: object) -> None:
         return None
@@ -37,15 +37,46 @@ class _GeneralOnly:
         return None
 
     def __getattr__(self, name: str) -> object:
-        return getattr(self._chain, name)
+        return getattr(self._native, name)
 
 
 def general_only(leg: uwml.Leg) -> uwml.Leg:
     """``leg`` without the fast path (what ``Leg.hydro`` did before it)."""
     other = uwml.Leg.__new__(uwml.Leg)
     other.__dict__.update(leg.__dict__)
-    other._chain = _GeneralOnly(leg._chain)
+    other._core = _GeneralOnly(leg._core)
     return other
+
+
+STILL = (0.0, 0.0, 0.0)
+
+
+def native_hydro(leg: uwml.Leg, state: list, cd: object, cm: object, density: float, gravity: float, threads: object) -> object:
+    """The native one-state hydro of a leg on its fixed base in still water (None: declined)."""
+    return leg._core.hydro_one(RobotTorques, BaseWrench, *state, cd, cm, density, gravity, None, STILL, STILL, threads, False)
+
+
+def native_environment(leg: uwml.Leg, state: list, depth: object, temperature: object, packed: object, cd: object, cm: object,
+                       density: float, gravity: float, sea_density: object) -> object:  # fmt: skip
+    """The native one-state environment, as :func:`native_hydro`."""
+    return leg._core.environment_one(
+        RobotEnvironment,
+        BaseWrench,
+        *state,
+        depth,
+        temperature,
+        packed,
+        cd,
+        cm,
+        density,
+        gravity,
+        sea_density,
+        None,
+        STILL,
+        STILL,
+        1,
+        False,
+    )
 
 
 def bits(array: np.ndarray) -> bytes:
@@ -94,9 +125,9 @@ def test_one_state_hydro_is_the_batch_row_bit_for_bit(seed: int) -> None:
         forms = [containers(x[s]) for x in (q, qd, qdd)]
         for kind in forms[0]:
             args = [form[kind] for form in forms]
-            assert leg._chain.hydro_one(HydroTorques, *args, cd, cm, water.density, water.gravity, 1) is not None, kind
+            assert native_hydro(leg, args, cd, cm, water.density, water.gravity, 1) is not None, kind
             one = leg.hydro(*args, cd=cd, cm=cm, water=water)
-            assert type(one) is HydroTorques
+            assert type(one) is RobotTorques
             assert_same_bits(one, batch, HYDRO_FIELDS, s, f"state {s} as {kind}")
         # A batch of that one state, 1-D (the general path), too.
         assert_same_bits(
@@ -128,23 +159,11 @@ def test_one_state_environment_is_the_batch_row_bit_for_bit(seed: int) -> None:
         for kind in forms[0]:
             args = [form[kind] for form in forms]
             one = leg.environment(*args, depth=float(depth[s]), temperature_c=float(temperature[s]), **options)
-            assert type(one) is EnvironmentTorques
+            assert type(one) is RobotEnvironment
             assert_same_bits(one, batch, ENVIRONMENT_FIELDS, s, f"state {s} as {kind}")
-        packed = None if losses is None else leg._one_state_losses(losses)
-        fast = leg._chain.environment_one(
-            EnvironmentTorques,
-            q[s],
-            qd[s],
-            qdd[s],
-            float(depth[s]),
-            float(temperature[s]),
-            packed,
-            cd,
-            cm,
-            water.density,
-            water.gravity,
-            sea_density,
-            1,
+        packed = None if losses is None else one_state_losses(leg, losses, n)
+        fast = native_environment(
+            leg, [q[s], qd[s], qdd[s]], float(depth[s]), float(temperature[s]), packed, cd, cm, water.density, water.gravity, sea_density
         )
         assert fast is not None
 
@@ -153,16 +172,18 @@ def test_the_fast_results_are_ordinary_results() -> None:
     """Built without ``__init__``, the result objects are still the dataclasses: fields, repr,
     equality, the derived sums, fresh writable arrays."""
     one = PAPER.hydro(**STATE)
-    assert vars(one).keys() == set(HYDRO_FIELDS)
+    assert vars(one).keys() == {*HYDRO_FIELDS, "base"}
     assert np.array_equal(one.total, one.drag + one.added_mass + one.buoyancy)
-    assert repr(one).startswith("HydroTorques(drag=array(")
+    assert repr(one).startswith("RobotTorques(drag=array(")
     for name in HYDRO_FIELDS:
         array = getattr(one, name)
-        assert array.flags.c_contiguous and array.flags.writeable and array.flags.owndata
+        assert array.flags.c_contiguous and array.flags.writeable
+        # Fresh: no field shares memory with another (they may be views of one fresh buffer).
+        assert not any(np.shares_memory(array, getattr(one, other)) for other in HYDRO_FIELDS if other != name)
     with pytest.raises(AttributeError):
         one.drag = np.zeros(3)  # type: ignore[misc]
     env = PAPER.environment(**STATE, depth=100.0, losses=uwml.JointLosses())
-    assert vars(env).keys() == set(ENVIRONMENT_FIELDS)
+    assert vars(env).keys() == {*ENVIRONMENT_FIELDS, "base"}
     assert np.array_equal(env.total, env.hydro + env.visc + env.seal)
     general = general_only(PAPER).environment(**STATE, depth=100.0, losses=uwml.JointLosses())
     assert_same_bits(env, general, ENVIRONMENT_FIELDS, None, "environment")
@@ -211,9 +232,7 @@ def test_other_kinds_give_the_general_paths_numbers(override: dict, taken: bool)
     assert fast == outcome(lambda: general_only(PAPER).hydro(**arguments), HYDRO_FIELDS)
     assert not isinstance(fast[0], type) or override.get("q") is MISALIGNED
     state = [arguments[k] for k in ("q", "qd", "qdd")]
-    native = PAPER._chain.hydro_one(
-        HydroTorques, *state, arguments.get("cd", 2.2), arguments.get("cm", 0.5), 1000.0, 9.81, arguments.get("threads", 1)
-    )
+    native = native_hydro(PAPER, state, arguments.get("cd", 2.2), arguments.get("cm", 0.5), 1000.0, 9.81, arguments.get("threads", 1))
     assert (native is not None) == taken
 
 
@@ -236,19 +255,10 @@ def test_other_environment_kinds_give_the_general_paths_numbers(override: dict, 
     one = PAPER.environment(**arguments)
     assert_same_bits(one, general_only(PAPER).environment(**arguments), ENVIRONMENT_FIELDS, None, str(override))
     losses = arguments.get("losses")
-    packed = None if losses is None else PAPER._one_state_losses(losses)
-    native = PAPER._chain.environment_one(
-        EnvironmentTorques,
-        *(arguments[k] for k in ("q", "qd", "qdd")),
-        arguments["depth"],
-        arguments["temperature_c"],
-        packed,
-        2.2,
-        0.5,
-        1000.0,
-        9.81,
-        arguments.get("sea_density", 1025.0),
-        1,
+    packed = None if losses is None else one_state_losses(PAPER, losses, 3)
+    state = [arguments[k] for k in ("q", "qd", "qdd")]
+    native = native_environment(
+        PAPER, state, arguments["depth"], arguments["temperature_c"], packed, 2.2, 0.5, 1000.0, 9.81, arguments.get("sea_density", 1000.0)
     )
     assert (native is not None) == taken
 
@@ -256,11 +266,11 @@ def test_other_environment_kinds_give_the_general_paths_numbers(override: dict, 
 def test_losses_are_packed_once_per_object() -> None:
     leg = uwml.Leg.paper()
     losses = uwml.JointLosses()
-    first = leg._one_state_losses(losses)
-    assert leg._one_state_losses(losses) is first and not first.flags.writeable
+    first = one_state_losses(leg, losses, 3)
+    assert one_state_losses(leg, losses, 3) is first and not first.flags.writeable
     other = uwml.JointLosses(seal=None)
-    assert leg._one_state_losses(other) is not first
-    assert leg._one_state_losses([losses] * 3) is False
+    assert one_state_losses(leg, other, 3) is not first
+    assert one_state_losses(leg, [losses] * 3, 3) is False
     # Another object of other values gives other torques; the first again gives the first.
     a = leg.environment(**STATE, depth=10.0, losses=losses)
     b = leg.environment(**STATE, depth=10.0, losses=other)
@@ -308,7 +318,6 @@ BAD_HYDRO = [
     pytest.param({"cm": 1.0 + 1.0j}, TypeError, "cm", id="cm complex"),
     pytest.param({"cm": None}, (TypeError, ValueError), "cm", id="cm None"),
     pytest.param({"water": 1000.0}, TypeError, "water", id="water float"),
-    pytest.param({"water": None}, TypeError, "water", id="water None"),
     pytest.param({"water": (1000.0, 9.81)}, TypeError, "water", id="water tuple"),
     pytest.param({"threads": 0}, ValueError, "threads", id="threads 0"),
     pytest.param({"threads": True}, ValueError, "threads", id="threads bool"),

@@ -43,7 +43,7 @@ from ._cli_arguments import (
 )
 from .domains import MAX_ROBOT_JOINTS
 from .errors import UwmlError
-from .model.parts import Water
+from .model.parts import SEA_WATER, Water
 from .robot.leg import Leg
 from .robot.tree import Robot
 from .sim.paper_analysis import _component_table, _rms, gait_like_motion
@@ -114,6 +114,8 @@ def _torques(args: argparse.Namespace) -> int:
     # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
     cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
     cm = args.cm if args.cm is not None else (0.5 if args.robot is None else None)
+    # The water: the paper's leg at depth moves in sea water; a robot in its own.
+    water = SEA_WATER if args.robot is None else None
     # The log is checked (header, time column) here, and read chunk by chunk below.
     n, n_joints, chunks = log_chunks(args.log, leg.n_joints if args.joints is None else args.joints, rows=CHUNK_ROWS)
     if n_joints != leg.n_joints:
@@ -147,7 +149,9 @@ def _torques(args: argparse.Namespace) -> int:
             writer = CsvColumnsWriter(handle, names)
         for log in chunks:
             assert log.qd is not None and log.qdd is not None
-            tau = leg.environment(log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm)
+            tau = leg.environment(
+                log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm, water=water
+            )
             blocks = [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
             columns = [log.time] + [block[:, k] for block in blocks for k in range(block.shape[1])]
             if parquet:

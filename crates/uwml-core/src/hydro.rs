@@ -12,7 +12,9 @@ use crate::conditions::Conditions;
 use crate::model::{Chain, Coefficients, Water};
 use crate::real::Real;
 use crate::robot::SegmentCoefficients;
+use crate::robot::Owner;
 use crate::tree::{JointForces, RobotData, finite_lanes, hydro_in};
+use crate::tree_regressors::{Column, regressor_columns};
 
 /// The environment's generalized forces on every joint [N·m].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -164,8 +166,9 @@ fn each<T: SimdRealField + Copy, const N: usize>(
 }
 
 /// Regressors of the hydrodynamic torques at joint state `(q, q̇, q̈)`, one column per link
-/// and normal direction: the chain's evaluation at unit coefficients on that link and direction
-/// alone. For the torques at given coefficients, [`hydro_torques`] is faster.
+/// and normal direction: the chain's robot's regressors ([`crate::tree::robot_hydro_regressors`]),
+/// each segment's columns given to the link that carries it. For the torques at given
+/// coefficients, [`hydro_torques`] is faster.
 ///
 /// Never fails and never panics; non-finite states give NaN.
 #[must_use]
@@ -177,36 +180,32 @@ pub fn hydro_regressors<T: Real, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> HydroRegressors<T, N> {
-    let zero = [[T::zero(); 2]; N];
-    let statics = evaluate(chain, water, &SegmentCoefficients { cd: zero, cm: zero }, [q, qd, qdd]);
+    let robot = chain.robot();
+    let mut data = RobotData::new();
+    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
     let zeros = SVector::<T, N>::zeros();
     let (mut drag, mut added_mass) = ([[zeros; 2]; N], [[zeros; 2]; N]);
-    let mut segment = 0;
-    for ((link, drag), added_mass) in chain.links().iter().zip(drag.iter_mut()).zip(added_mass.iter_mut()) {
-        if link.segment.is_none() {
-            continue;
-        }
-        for (direction, (drag, added_mass)) in drag.iter_mut().zip(added_mass.iter_mut()).enumerate() {
-            let mut unit = SegmentCoefficients { cd: zero, cm: zero };
-            if let (Some(cd), Some(cm)) = (unit.cd.get_mut(segment), unit.cm.get_mut(segment))
-                && let (Some(cd), Some(cm)) = (cd.get_mut(direction), cm.get_mut(direction))
-            {
-                (*cd, *cm) = (T::one(), T::one());
-            }
-            let data = evaluate(chain, water, &unit, [q, qd, qdd]);
-            (*drag, *added_mass) = (each(&data, |f| f.drag), each(&data, |f| f.added_mass));
-        }
-        segment += 1;
-    }
-    let regressors = HydroRegressors {
-        buoyancy: each(&statics, |f| f.buoyancy),
-        gravity: each(&statics, |f| f.gravity),
-        drag,
-        added_mass,
-    };
-    // NaN in every column of a non-finite state's lanes, the columns of links without a segment too.
+    let conditions = Conditions::new(*water);
+    // Non-finite lanes: NaN in every column, those of links without a segment too.
     let finite = finite_lanes(&[q.as_slice(), qd.as_slice(), qdd.as_slice()]);
-    if finite.all() { regressors } else { regressors.map(|v| v.map(|x| x.select(finite, T::zero() / T::zero()))) }
+    let nan = T::zero() / T::zero();
+    if !finite.all() {
+        for column in drag.iter_mut().chain(added_mass.iter_mut()).flatten() {
+            *column = column.map(|x| x.select(finite, nan));
+        }
+    }
+    regressor_columns(robot, &conditions, [&state(q), &state(qd), &state(qdd)], &mut data, |kind, row, column, value| {
+        let (Some(joint), Some(segment)) = (row.checked_sub(6), robot.segments().get(column / 2)) else { return };
+        let Owner::Link(link) = segment.owner else { return };
+        let out = match kind {
+            Column::Drag => &mut drag,
+            Column::AddedMass => &mut added_mass,
+        };
+        if let Some(slot) = out.get_mut(link).and_then(|l| l.get_mut(column % 2)).and_then(|c| c.get_mut(joint)) {
+            *slot = value;
+        }
+    });
+    HydroRegressors { buoyancy: each(&data, |f| f.buoyancy), gravity: each(&data, |f| f.gravity), drag, added_mass }
 }
 
 /// Drag, added-mass, buoyancy and gravity torques at joint state `(q, q̇, q̈)`: the chain's

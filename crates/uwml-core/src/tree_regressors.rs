@@ -26,13 +26,43 @@ pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize>(
     drag: &mut [T],
     added_mass: &mut [T],
 ) {
+    let columns = 2 * robot.segments().len();
+    regressor_columns(robot, conditions, state, data, |kind, row, column, value| {
+        let out = match kind {
+            Column::Drag => &mut *drag,
+            Column::AddedMass => &mut *added_mass,
+        };
+        if let Some(slot) = out.get_mut(row * columns + column) {
+            *slot = value;
+        }
+    });
+}
+
+/// Which regressor an entry belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Column {
+    Drag,
+    AddedMass,
+}
+
+/// The regressors of [`robot_hydro_regressors`], entry by entry: `put(kind, row, column, value)`
+/// for every row (the base wrench's six components, then the joints) of every column
+/// (`2k + d`: segment `k`, normal direction `d`), NaN in a non-finite state's lanes. Evaluates
+/// `data` at zero coefficients (buoyancy and gravity) first.
+#[inline(always)]
+pub(crate) fn regressor_columns<T: Real, const J: usize, const S: usize>(
+    robot: &Robot<T, J, S>,
+    conditions: &Conditions<'_, T, J, S>,
+    state: [&[T; J]; 3],
+    data: &mut RobotData<T, J>,
+    mut put_entry: impl FnMut(Column, usize, usize, T),
+) {
     let zero = [[T::zero(); 2]; S];
     let none = SegmentCoefficients { cd: zero, cm: zero };
     let (water, form) = (conditions.water, conditions.form);
     hydro_in(robot, &Conditions { coefficients: Some(&none), ..*conditions }, state, data);
     let [q, qd, qdd] = state;
     let n = robot.joint_count();
-    let columns = 2 * robot.segments().len();
     let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
     let nan = T::zero() / T::zero();
     let base = data.base_frame;
@@ -49,12 +79,8 @@ pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize>(
         for (d, unit) in [[one, nothing], [nothing, one]].into_iter().enumerate() {
             let wrenches = segment_wrenches(frame, segment, geometry, unit, unit, water.density(), form);
             let column = 2 * k + d;
-            for (out, mut wrench) in [(&mut *drag, wrenches.0), (&mut *added_mass, wrenches.1)] {
-                let mut put = |row: usize, value: T| {
-                    if let Some(slot) = out.get_mut(row * columns + column) {
-                        *slot = value.select(finite, nan);
-                    }
-                };
+            for (kind, mut wrench) in [(Column::Drag, wrenches.0), (Column::AddedMass, wrenches.1)] {
+                let mut put = |row: usize, value: T| put_entry(kind, row, column, value.select(finite, nan));
                 // Every joint: zero, unless it moves the segment's body.
                 for j in 0..n {
                     put(6 + j, T::zero());

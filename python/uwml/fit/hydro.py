@@ -442,9 +442,11 @@ def hydro_coefficients(
     leg = Leg.paper() if leg is None else leg
     if not isinstance(leg, (Leg, Robot)):
         raise TypeError(f"leg must be a uwml.Leg or a uwml.Robot, got {type(leg).__name__}")
-    what = "the robot" if isinstance(leg, Robot) else "the leg"
+    # A Leg is a Robot; it keeps the leg's design (columns per leg, link or direction).
+    whole_robot = not isinstance(leg, Leg)
+    what = "the robot" if whole_robot else "the leg"
     if water is None:
-        water = leg.water if isinstance(leg, Robot) else Water()
+        water = leg.water
     if per not in ("leg", "link", "direction"):
         raise ValueError(f"per must be 'leg', 'link' or 'direction', got {per!r}")
     expected = leg.n_joints if n_joints is None else int(n_joints)
@@ -465,9 +467,9 @@ def hydro_coefficients(
         if given_sigma is None or not np.all(np.isfinite(given_sigma)) or np.any(given_sigma <= 0.0):
             raise ValueError(f"sigma must be a positive number or one per selected joint ({n_selected}), got {sigma!r}")
     design: _HydroDesign = (
-        _RobotHydroDesign(leg, log, water, per, selected, cache_bytes)
-        if isinstance(leg, Robot)
-        else _HydroDesign(leg, log, water, per, selected, cache_bytes)
+        _HydroDesign(leg, log, water, per, selected, cache_bytes)
+        if isinstance(leg, Leg)
+        else _RobotHydroDesign(leg, log, water, per, selected, cache_bytes)
     )
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0

@@ -215,7 +215,8 @@ def dumps(robot: RobotLike) -> str:
         if joint.name is not None:
             out.append(f"name = {_string(joint.name, f'joints[{i}].name')}")
         out += [
-            f"parent = {joint.parent}",
+            # A joint without a parent follows the previous link (a uwml.Joint's default).
+            f"parent = {i - 1 if joint.parent is None else joint.parent}",
             f"kind = {_string(joint.kind)}",
             f"origin = {_vector(joint.origin)}",
             f"axis = {_vector(joint.axis)}",

@@ -11,21 +11,17 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _core
-from .._checks import check_overflow
 from .._checks import real_array as _real_array
-from ..model.joint_losses import JointLosses, pack_leg_losses
-from ..model.parts import FRESH_WATER, SEA_WATER, Joint, Link, Segment, Water
-from ..sea.conditions import loss_conditions
-from ._arguments import _coefficients, _kirchhoff, _states, _threads, _water, one_state_losses
-from .results import EnvironmentJacobians, EnvironmentTorques, HydroRegressors, HydroTorques
+from ..model.joint_losses import JointLosses
+from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
+from ._arguments import _coefficients
+from .base_motion import BaseMotion
+from .results import EnvironmentJacobians, HydroRegressors, RobotEnvironment, RobotTorques
 from .tree import Robot
 
 __all__ = ["MAX_JOINTS", "Leg"]
 
 FloatArray = NDArray[np.float64]
-#: The native ``Chain.environment``/``Chain.jacobians`` arguments after ``(self)``:
-#: q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature.
-_EnvironmentArguments = tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, float, float, FloatArray, FloatArray, FloatArray]
 
 #: Largest number of joints a chain may have.
 MAX_JOINTS: int = _core.MAX_JOINTS
@@ -70,8 +66,14 @@ def _unpack(joints: FloatArray, links: FloatArray) -> tuple[tuple[Joint, ...], t
     return joint_list, tuple(link_list)
 
 
-class Leg:
+class Leg(Robot):
     """A serial chain of revolute joints with straight links: the paper's leg, or your own.
+
+    A ``Leg`` is a :class:`uwml.Robot` (its joints in series on a fixed base, at most one
+    rectangular segment per link), evaluated by the same code; what it adds is the leg's way of
+    giving coefficients (per link: a scalar, ``(n_links,)`` or ``(n_links, 2)``; the paper's
+    2.2 and 0.5 by default), the leg's regressor and Jacobian layouts (joint space), and the
+    chain's kinematics (:meth:`jacobian`, :meth:`forward_kinematics`).
 
     Build one from :class:`uwml.Joint` and :class:`uwml.Link` descriptions (see the module
     :mod:`uwml.model.parts` for the frame convention), or take :meth:`Leg.paper`. The parameters are
@@ -89,11 +91,6 @@ class Leg:
         )
         rod.hydro(q=[0.0], qd=[1.0], qdd=[0.0], cd=1.2, cm=1.0).drag
     """
-
-    #: The last single JointLosses given to :meth:`environment` and its packed table.
-    _losses_cache: tuple[JointLosses, FloatArray] | None = None
-    #: The leg as a ``uwml.Robot``, built on first use (Kirchhoff's added mass takes that path).
-    _as_robot: Robot | None = None
 
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
         try:
@@ -118,31 +115,33 @@ class Leg:
                 raise ValueError(
                     f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
                 )
-        self._chain = _core.Chain(*_pack(joints, links))
-        self._joints, self._links = _unpack(*self._chain.packed())
+        self._from_chain(_core.Chain(*_pack(joints, links)))
+
+    def _from_chain(self, chain: _core.Chain) -> None:
+        """This leg from a validated native chain: its parameters as validated (axes normalized),
+        the robot they make, and the chain itself for the kinematics."""
+        self._chain = chain
+        self._leg_joints, self._leg_links = _unpack(*chain.packed())
+        super().__init__(self._leg_joints, self._leg_links)
+        #: The links that carry a segment, in segment order.
+        self._owners = tuple(i for i, link in enumerate(self._leg_links) if link.segment is not None)
 
     @classmethod
     def paper(cls) -> Leg:
         """The 3-DOF leg of the paper (Table II): hip yaw, hip roll, knee roll."""
         leg = cls.__new__(cls)
-        leg._chain = _core.Chain.paper()
-        leg._joints, leg._links = _unpack(*leg._chain.packed())
+        leg._from_chain(_core.Chain.paper())
         return leg
 
     @property
     def joints(self) -> tuple[Joint, ...]:
         """The joints, as validated (axes normalized)."""
-        return self._joints
+        return self._leg_joints
 
     @property
     def links(self) -> tuple[Link, ...]:
         """The links, as validated."""
-        return self._links
-
-    @property
-    def n_joints(self) -> int:
-        """Number of joints (and links)."""
-        return len(self._joints)
+        return self._leg_links
 
     def __repr__(self) -> str:
         return f"Leg(n_joints={self.n_joints})"
@@ -150,13 +149,7 @@ class Leg:
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Leg):
             return NotImplemented
-        return (self._joints, self._links) == (other._joints, other._links)
-
-    __hash__ = None  # type: ignore[assignment]  # unhashable on purpose; typeshed types object.__hash__ as a method
-
-    def save(self, path: str | os.PathLike[str]) -> None:
-        """Writes the leg as a uwml model file (a serial chain on a fixed base; :mod:`uwml.io.modelfile`)."""
-        Robot.from_leg(self).save(path)
+        return (self._leg_joints, self._leg_links) == (other._leg_joints, other._leg_links)
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Leg:
@@ -178,18 +171,29 @@ class Leg:
             )
         return cls(joints, links)
 
+    def _per_segment(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
+        """A leg's ``cd`` or ``cm`` (None, a scalar, per link or per link and direction) as the
+        robot's (None, a scalar, or per segment and direction)."""
+        if value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
+            return value
+        return _coefficients(value, name, self.n_joints)[list(self._owners)]
+
     def hydro(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        cd: ArrayLike = 2.2,
-        cm: ArrayLike = 0.5,
-        water: Water = FRESH_WATER,
+        cd: ArrayLike | None = 2.2,
+        cm: ArrayLike | None = 0.5,
+        water: Water | None = None,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         threads: int = 1,
         added_mass: str = "morison",
-    ) -> HydroTorques:
-        """Drag, added-mass, buoyancy (and gravity) torques on every joint.
+    ) -> RobotTorques:
+        """Drag, added-mass, buoyancy (and gravity) torques on every joint (and the wrench on the
+        base): :meth:`uwml.Robot.hydro` with the leg's coefficients.
 
         Parameters
         ----------
@@ -200,45 +204,27 @@ class Leg:
             Drag and added-mass coefficients: a scalar (the paper: 2.2 and 0.5), an array
             ``(n_links,)`` per link, or ``(n_links, 2)`` per link and normal direction (column
             ``k`` goes with ``segment.normals[k]``; for the paper's leg, 0 = out of the leg plane
-            (yaw), 1 = in the plane (roll)). Links without a segment ignore theirs.
+            (yaw), 1 = in the plane (roll)). Links without a segment ignore theirs. ``None``: each
+            segment's own.
         water
-            Density and gravity (default: 1000 kg/m³, 9.81 m/s²).
+            Density and gravity; default the robot's (:attr:`water`: fresh water, 1000 kg/m³,
+            9.81 m/s², the one default water of every evaluation).
+        base_motion, current, current_acceleration, added_mass
+            As for :meth:`uwml.Robot.hydro` (default a fixed base in still water, the paper's
+            Morison added mass; ``"kirchhoff"``: the energy-consistent form).
         threads
             Threads to split a batch over (≥ 1; ``os.cpu_count()`` for every core): the same
             results, faster for large batches.
 
         The whole batch is evaluated in one call into Rust, with the GIL released. One state
         (``q``, ``qd``, ``qdd`` lists, tuples or 1-D float64 arrays, scalar ``cd`` and ``cm``),
-        as a controller or a simulator steps, is read, checked and evaluated in one shorter call
-        (about 2 µs; docs/performance.md), with the same checks and the same bits as that state's
-        row of a batch.
-
-        ``added_mass="kirchhoff"``: Kirchhoff's energy-consistent added mass instead of the
-        paper's Morison form (docs/simulation.md, "Energy-consistent added mass";
-        :meth:`uwml.Robot.hydro`), evaluated on the whole-robot path (``Robot.from_leg``); also
-        taken by :meth:`environment`, :meth:`jacobians` and :meth:`hydro_regressors`.
+        as a controller or a simulator steps, is read, checked and evaluated in one shorter call,
+        with the same checks and the same bits as that state's row of a batch.
         """
-        if _kirchhoff(added_mass):
-            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
-            r = robot.hydro(q, qd, qdd, cd=cd_rows, cm=cm_rows, water=_water(water), threads=threads, added_mass="kirchhoff")
-            return HydroTorques(drag=r.drag, added_mass=r.added_mass, buoyancy=r.buoyancy, gravity=r.gravity)
-        if isinstance(water, Water):
-            # One state as plain floats: read, checked and evaluated in one native call (None if
-            # any argument is of another kind or fails a check: the general path then answers).
-            one: HydroTorques | None = self._chain.hydro_one(HydroTorques, q, qd, qdd, cd, cm, water.density, water.gravity, threads)
-            if one is not None:
-                return one
-        threads = _threads(threads)
-        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
-        water = _water(water)
-        cd_table = _coefficients(cd, "cd", self.n_joints)
-        cm_table = _coefficients(cm, "cm", self.n_joints)
-        # (``added_mass`` names the form argument: the arrays get other names.)
-        drag, mass, buoyancy, gravity = self._chain.hydro(q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, threads)
-        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
-        return HydroTorques(
-            drag=drag.reshape(shape), added_mass=mass.reshape(shape), buoyancy=buoyancy.reshape(shape), gravity=gravity.reshape(shape)
-        )
+        return super().hydro(
+            q, qd, qdd, cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, base_motion=base_motion,
+            current=current, current_acceleration=current_acceleration, threads=threads, added_mass=added_mass,
+        )  # fmt: skip
 
     def environment(
         self,
@@ -248,14 +234,18 @@ class Leg:
         depth: ArrayLike = 0.0,
         temperature_c: ArrayLike = 20.0,
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike = 2.2,
-        cm: ArrayLike = 0.5,
-        water: Water = SEA_WATER,
+        cd: ArrayLike | None = 2.2,
+        cm: ArrayLike | None = 0.5,
+        water: Water | None = None,
+        base_motion: BaseMotion | None = None,
+        current: ArrayLike = (0.0, 0.0, 0.0),
+        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
         sea_density: float | None = None,
         threads: int = 1,
         added_mass: str = "morison",
-    ) -> EnvironmentTorques:
-        """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call.
+    ) -> RobotEnvironment:
+        """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call:
+        :meth:`uwml.Robot.environment` with the leg's coefficients.
 
         Parameters
         ----------
@@ -270,80 +260,20 @@ class Leg:
         losses
             One :class:`uwml.JointLosses` for every joint, a sequence with one (or None) per
             joint, or None for none (the hydrodynamics alone).
-        cd, cm, water, threads
-            As for :meth:`hydro` (``water`` is the fluid the links move in), but ``water``
-            defaults to sea water (1025 kg/m³, g = 9.81 m/s²): the deep sea, where the losses at
-            depth are wanted. Pass ``water=uwml.Water()`` for the paper's fresh-water tank.
+        cd, cm, water, base_motion, current, current_acceleration, threads, added_mass
+            As for :meth:`hydro`. ``water`` is the fluid the links move in, the robot's (fresh
+            water) unless given: pass ``water=uwml.Water(density=1025.0)`` for sea water.
         sea_density
             The density of the water column above [kg/m³] for the pressure: default ``water``'s,
             so that one water is used for both.
-
-        One state with scalar ``depth``, ``temperature_c`` and ``sea_density`` and ``losses``
-        None or one :class:`uwml.JointLosses` takes the short path of :meth:`hydro`.
-        ``added_mass``: as for :meth:`hydro`.
         """
-        if _kirchhoff(added_mass):
-            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
-            losses_given = [None] * self.n_joints if losses is None else losses
-            r = robot.environment(
-                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
-                water=_water(water), sea_density=sea_density, threads=threads, added_mass="kirchhoff",
-            )  # fmt: skip
-            return EnvironmentTorques(r.drag, r.added_mass, r.buoyancy, r.gravity, r.visc, r.seal, r.current)
-        if isinstance(water, Water):
-            # One state as plain floats, as in hydro.
-            one: EnvironmentTorques | None = self._chain.environment_one(
-                EnvironmentTorques,
-                q,
-                qd,
-                qdd,
-                depth,
-                temperature_c,
-                None if losses is None else self._one_state_losses(losses),
-                cd,
-                cm,
-                water.density,
-                water.gravity,
-                water.density if sea_density is None else sea_density,
-                threads,
-            )
-            if one is not None:
-                return one
-        threads = _threads(threads)
-        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
-        columns = self._chain.environment(*arguments, threads)
-        check_overflow(columns[:2] + columns[4:], arguments[0].shape[0], arguments[1], arguments[2])
-        return EnvironmentTorques(*(c.reshape(shape) for c in columns))
+        return super().environment(
+            q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses,
+            cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, base_motion=base_motion, current=current,
+            current_acceleration=current_acceleration, sea_density=sea_density, threads=threads, added_mass=added_mass,
+        )  # fmt: skip
 
-    def _one_state_losses(self, losses: object) -> FloatArray | bool:
-        """``losses`` (not None) for ``Chain.environment_one`` (see :func:`uwml.robot._arguments.one_state_losses`)."""
-        return one_state_losses(self, losses, self.n_joints)
-
-    def _environment_arguments(
-        self,
-        q: ArrayLike,
-        qd: ArrayLike,
-        qdd: ArrayLike,
-        depth: ArrayLike,
-        temperature_c: ArrayLike,
-        losses: JointLosses | Sequence[JointLosses | None] | None,
-        cd: ArrayLike,
-        cm: ArrayLike,
-        water: Water,
-        sea_density: float | None,
-    ) -> tuple[tuple[int, ...], _EnvironmentArguments]:
-        """The arguments of :meth:`environment` (and :meth:`jacobians`), validated: the shape of ``q``
-        and the native call's arguments ``(q, qd, qdd, cd, cm, density, gravity, losses, pressure, temperature)``."""
-        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
-        water = _water(water)
-        cd_table = _coefficients(cd, "cd", self.n_joints)
-        cm_table = _coefficients(cm, "cm", self.n_joints)
-        packed = pack_leg_losses(losses, self.n_joints)
-        column = water.density if sea_density is None else sea_density
-        pressure, temperature = loss_conditions(depth, temperature_c, column, water.gravity, q2.shape[0])
-        return shape, (q2, qd2, qdd2, cd_table, cm_table, water.density, water.gravity, packed, pressure, temperature)
-
-    def jacobians(
+    def jacobians(  # type: ignore[override]  # the joint-space block of the robot's (a leg's base is fixed)
         self,
         q: ArrayLike,
         qd: ArrayLike,
@@ -351,103 +281,62 @@ class Leg:
         depth: ArrayLike = 0.0,
         temperature_c: ArrayLike = 20.0,
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike = 2.2,
-        cm: ArrayLike = 0.5,
-        water: Water = SEA_WATER,
+        cd: ArrayLike | None = 2.2,
+        cm: ArrayLike | None = 0.5,
+        water: Water | None = None,
         sea_density: float | None = None,
         added_mass: str = "morison",
     ) -> EnvironmentJacobians:
-        """The environment torque of :meth:`environment` and its derivatives, for control.
+        """The environment torque of :meth:`environment` and its derivatives, for control: the
+        joint-space block of :meth:`uwml.Robot.jacobians` (a leg's base is fixed).
 
         Arguments as for :meth:`environment`, but without ``threads`` (the batch runs on one
-        thread). Returns an :class:`EnvironmentJacobians`:
-        ``value`` (``τ_env``: ``environment(...).total`` to 1e-13 of the largest torque, which evaluates four states at a time with a SIMD sine and cosine), ``d_q = ∂τ_env/∂q``,
+        thread). Returns an :class:`EnvironmentJacobians`: ``value`` (``τ_env``,
+        ``environment(...).total`` to 1e-13 of the largest torque), ``d_q = ∂τ_env/∂q``,
         ``d_qd = ∂τ_env/∂q̇`` and ``added_mass_matrix = M_A(q)``, with
         ``added_mass(q, 0, q̈) = −M_A(q) q̈``. The derivatives are exact (forward-mode dual
         numbers through the same Rust code, not finite differences); at a joint speed of exactly
         zero with a hard sign (``epsilon=0``) the losses jump and their slope is not meaningful.
-
-        The whole batch is evaluated in one call into Rust, with the GIL released.
-        ``added_mass``: as for :meth:`hydro`.
         """
-        if _kirchhoff(added_mass):
-            robot, cd_rows, cm_rows = self._kirchhoff_arguments(cd, cm)
-            losses_given = [None] * self.n_joints if losses is None else losses
-            r = robot.jacobians(
-                q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses_given, cd=cd_rows, cm=cm_rows,
-                water=_water(water), sea_density=sea_density, added_mass="kirchhoff",
-            )  # fmt: skip
-            return EnvironmentJacobians(
-                value=r.value[..., 6:],
-                d_q=r.d_q[..., 6:, :],
-                d_qd=r.d_velocity[..., 6:, 6:],
-                added_mass_matrix=r.added_mass_matrix[..., 6:, 6:],
-            )
-        shape, arguments = self._environment_arguments(q, qd, qdd, depth, temperature_c, losses, cd, cm, water, sea_density)
-        value, d_q, d_qd, added_mass_matrix = self._chain.jacobians(*arguments)
-        check_overflow((value, d_q, d_qd), arguments[0].shape[0], arguments[1], arguments[2])
-        matrix = shape + shape[-1:]
+        r = super().jacobians(
+            q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses,
+            cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, sea_density=sea_density,
+            added_mass=added_mass,
+        )  # fmt: skip
         return EnvironmentJacobians(
-            value=value.reshape(shape),
-            d_q=d_q.reshape(matrix),
-            d_qd=d_qd.reshape(matrix),
-            added_mass_matrix=added_mass_matrix.reshape(matrix),
+            value=r.value[..., 6:],
+            d_q=r.d_q[..., 6:, :],
+            d_qd=r.d_velocity[..., 6:, 6:],
+            added_mass_matrix=r.added_mass_matrix[..., 6:, 6:],
         )
 
-    def hydro_regressors(
+    def hydro_regressors(  # type: ignore[override]  # the leg's layouts (per leg, per link and direction)
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        water: Water = FRESH_WATER,
+        water: Water | None = None,
         per: Literal["leg", "direction"] = "leg",
         added_mass: str = "morison",
     ) -> HydroRegressors:
-        """Regressors such that ``total = buoyancy + cd * drag + cm * added_mass``.
+        """Regressors such that ``total = buoyancy + cd * drag + cm * added_mass``: the joint rows
+        of :meth:`uwml.Robot.hydro_regressors`, by link.
 
         ``per="leg"`` gives one drag and one added-mass column (the paper's eq. 24);
         ``per="direction"`` one per link and normal direction (see :class:`HydroRegressors`).
         """
         if per not in ("leg", "direction"):
             raise ValueError(f"per must be 'leg' or 'direction', got {per!r}")
-        if _kirchhoff(added_mass):
-            robot, _, _ = self._kirchhoff_arguments(0.0, 0.0)
-            r = robot.hydro_regressors(q, qd, qdd, water=_water(water), added_mass="kirchhoff")
-            if per == "leg":
-                drag, mass = r.drag.sum(axis=(-2, -1)), r.added_mass.sum(axis=(-2, -1))
-            else:
-                # Segments back to the links that carry them: (..., joints, links, 2).
-                owners = [i for i, link in enumerate(self._links) if link.segment is not None]
-                drag = np.zeros(r.drag.shape[:-2] + (self.n_joints, 2))
-                mass = np.zeros_like(drag)
-                drag[..., owners, :] = r.drag
-                mass[..., owners, :] = r.added_mass
-            return HydroRegressors(
-                buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass, links_with_segments=self._segment_links()
-            )
-        shape, q2, qd2, qdd2 = _states(q, qd, qdd, self.n_joints)
-        water = _water(water)
-        buoyancy, gravity, drag, mass = self._chain.regressors(q2, qd2, qdd2, water.density, water.gravity, per == "direction")
-        check_overflow((drag, mass), q2.shape[0], qd2, qdd2)
-        extra = drag.shape[2:]
-        return HydroRegressors(
-            buoyancy=buoyancy.reshape(shape),
-            gravity=gravity.reshape(shape),
-            drag=drag.reshape(shape + extra),
-            added_mass=mass.reshape(shape + extra),
-            links_with_segments=self._segment_links(),
-        )
-
-    def _segment_links(self) -> tuple[int, ...]:
-        """The links that carry a segment."""
-        return tuple(i for i, link in enumerate(self._links) if link.segment is not None)
-
-    def _kirchhoff_arguments(self, cd: ArrayLike, cm: ArrayLike) -> tuple[Robot, FloatArray, FloatArray]:
-        """The leg as a robot, and ``cd``, ``cm`` (:meth:`hydro`'s layouts) per segment."""
-        if self._as_robot is None:
-            self._as_robot = Robot.from_leg(self)
-        owners = [i for i, link in enumerate(self._links) if link.segment is not None]
-        return self._as_robot, _coefficients(cd, "cd", self.n_joints)[owners], _coefficients(cm, "cm", self.n_joints)[owners]
+        r = super().hydro_regressors(q, qd, qdd, water=water, added_mass=added_mass)
+        if per == "leg":
+            drag, mass = r.drag.sum(axis=(-2, -1)), r.added_mass.sum(axis=(-2, -1))
+        else:
+            # Segments back to the links that carry them: (..., joints, links, 2).
+            drag = np.zeros(r.drag.shape[:-2] + (self.n_joints, 2))
+            mass = np.zeros_like(drag)
+            drag[..., list(self._owners), :] = r.drag
+            mass[..., list(self._owners), :] = r.added_mass
+        return HydroRegressors(buoyancy=r.buoyancy, gravity=r.gravity, drag=drag, added_mass=mass, links_with_segments=self._owners)
 
     def _link_index(self, link: object) -> int:
         """``link`` as an index in ``0..n_joints`` (negative counts from the end)."""

@@ -5,7 +5,7 @@ and its fit, the joint-loss budget, the figures and ``report.md``."""
 from __future__ import annotations
 
 import time
-from dataclasses import fields, replace
+from dataclasses import fields, is_dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -68,8 +68,11 @@ _COMPONENTS = (("total", "total"), ("drag", "drag"), ("added_mass", "added mass"
 
 
 def _every(tau: Any, step: int) -> Any:
-    """Every ``step``-th sample of a torque result."""
-    return replace(tau, **{f.name: getattr(tau, f.name)[::step] for f in fields(tau)})
+    """Every ``step``-th sample of a torque result (and of the base wrench it holds)."""
+    return replace(
+        tau,
+        **{f.name: _every(value, step) if is_dataclass(value) else value[::step] for f in fields(tau) for value in [getattr(tau, f.name)]},
+    )
 
 
 def _torque_figure(t: np.ndarray, tau: Any, path: Path) -> None:
