@@ -11,8 +11,8 @@ use nalgebra::{SVector, SimdBool, SimdRealField};
 use crate::conditions::Conditions;
 use crate::model::{Chain, Coefficients, Water};
 use crate::real::Real;
-use crate::robot::SegmentCoefficients;
 use crate::robot::Owner;
+use crate::robot::SegmentCoefficients;
 use crate::tree::{JointForces, RobotData, finite_lanes, hydro_in};
 use crate::tree_regressors::{Column, regressor_columns};
 
@@ -194,17 +194,23 @@ pub fn hydro_regressors<T: Real, const N: usize>(
             *column = column.map(|x| x.select(finite, nan));
         }
     }
-    regressor_columns(robot, &conditions, [&state(q), &state(qd), &state(qdd)], &mut data, |kind, row, column, value| {
-        let (Some(joint), Some(segment)) = (row.checked_sub(6), robot.segments().get(column / 2)) else { return };
-        let Owner::Link(link) = segment.owner else { return };
-        let out = match kind {
-            Column::Drag => &mut drag,
-            Column::AddedMass => &mut added_mass,
-        };
-        if let Some(slot) = out.get_mut(link).and_then(|l| l.get_mut(column % 2)).and_then(|c| c.get_mut(joint)) {
-            *slot = value;
-        }
-    });
+    regressor_columns(
+        robot,
+        &conditions,
+        [&state(q), &state(qd), &state(qdd)],
+        &mut data,
+        |kind, row, column, value| {
+            let (Some(joint), Some(segment)) = (row.checked_sub(6), robot.segments().get(column / 2)) else { return };
+            let Owner::Link(link) = segment.owner else { return };
+            let out = match kind {
+                Column::Drag => &mut drag,
+                Column::AddedMass => &mut added_mass,
+            };
+            if let Some(slot) = out.get_mut(link).and_then(|l| l.get_mut(column % 2)).and_then(|c| c.get_mut(joint)) {
+                *slot = value;
+            }
+        },
+    );
     HydroRegressors { buoyancy: each(&data, |f| f.buoyancy), gravity: each(&data, |f| f.gravity), drag, added_mass }
 }
 

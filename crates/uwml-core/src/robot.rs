@@ -417,7 +417,9 @@ impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
     /// # Errors
     /// A coefficient that is negative or not finite.
     pub fn uniform(cd: T, cm: T) -> Result<Self, ModelError> {
-        Self::per_segment([[cd; 2]; S], [[cm; 2]; S])
+        // One check of each value, not one per entry: the same errors (segment 0 named first).
+        check_coefficient_table(&[[cd; 2]], &[[cm; 2]], ["segment.cd", "segment.cm"])?;
+        Ok(Self { cd: [[cd; 2]; S], cm: [[cm; 2]; S] })
     }
 
     /// Coefficients per segment and normal direction, `[segment][k]` (a circular segment uses

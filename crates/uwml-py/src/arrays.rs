@@ -44,12 +44,7 @@ pub(crate) fn check_conditions(pressure: &[f64], temperature: &[f64]) -> Result<
     Ok(())
 }
 
-impl NonFinite {
-    /// The same error with its sample counted from `start` earlier.
-    pub(crate) fn shifted(self, start: usize) -> Self {
-        Self { sample: self.sample + start, ..self }
-    }
-}
+impl NonFinite {}
 
 impl From<NonFinite> for PyErr {
     fn from(e: NonFinite) -> Self {

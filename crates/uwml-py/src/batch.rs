@@ -1,18 +1,14 @@
-//! The batch kernels of the chain (`uwml.Leg`) bindings: the samples of a batch (`States`),
-//! four of them at a time on SIMD lanes, and the loops that evaluate hydrodynamics, environment
-//! torques, derivatives, regressors and design matrices over them, writing rows of the output
-//! arrays. Called by the `Chain` methods (`crate::PyChain`) and the one-state paths
-//! (`crate::single`), with the GIL released.
-
-use std::ops::Range;
+//! The batch kernels of the chain bindings (`uwml.Leg`'s kinematics and its fit's design): the
+//! samples of a batch (`States`), four of them at a time on SIMD lanes, and the loops that
+//! evaluate point Jacobians and design matrices over them, writing rows of the output arrays.
+//! Called by the `Chain` methods (`crate::PyChain`), with the GIL released.
 
 use numpy::PyArray;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{SVector, SimdValue, Vector3};
 use uwml_core::{
-    Chain, Coefficients, HydroRegressors, HydroTorques, JointLosses, LossState, ModelError, Water,
-    environment_jacobians, hydro_regressors, hydro_torques, loss_torques, point_jacobian,
+    Chain, Coefficients, HydroRegressors, HydroTorques, Water, hydro_regressors, hydro_torques, point_jacobian,
 };
 
 use crate::NonFinite;
@@ -22,9 +18,6 @@ use crate::NonFinite;
 pub(crate) fn vector<const N: usize>(values: &[f64]) -> Option<SVector<f64, N>> {
     <[f64; N]>::try_from(values).ok().map(SVector::from)
 }
-
-/// One sample's `(q, q̇, q̈)`.
-pub(crate) type State<const N: usize> = (SVector<f64, N>, SVector<f64, N>, SVector<f64, N>);
 
 /// A 2-D float64 numpy array.
 pub(crate) type Array2<'py> = Bound<'py, PyArray<f64, numpy::Ix2>>;
@@ -47,46 +40,6 @@ impl<'a> States<'a> {
         }
         Ok(())
     }
-
-    /// The samples `range` (of `n` joints each).
-    pub(crate) fn range(&self, range: &Range<usize>, n: usize) -> Self {
-        let rows = |values: &'a [f64]| values.get(range.start * n..range.end * n).unwrap_or(&[]);
-        States { q: rows(self.q), qd: rows(self.qd), qdd: rows(self.qdd) }
-    }
-
-    /// Every sample's `(q, q̇, q̈)`, after [`States::check_finite`].
-    pub(crate) fn each<const N: usize>(&self) -> impl Iterator<Item = State<N>> + '_ {
-        let rows = self.q.chunks_exact(N).zip(self.qd.chunks_exact(N)).zip(self.qdd.chunks_exact(N));
-        rows.filter_map(|((q, qd), qdd)| Some((vector(q)?, vector(qd)?, vector(qdd)?)))
-    }
-}
-
-/// Writes `values` into an output row (a plain loop: N is small, no call to memcpy).
-#[inline]
-pub(crate) fn write_row<const N: usize>(row: &mut [f64], values: &SVector<f64, N>) {
-    for (slot, value) in row.iter_mut().zip(values.iter()) {
-        *slot = *value;
-    }
-}
-
-pub(crate) fn coefficients<const N: usize>(cd: &[f64], cm: &[f64]) -> Result<Coefficients<f64, N>, ModelError> {
-    let mut cd_array = [[0.0; 2]; N];
-    let mut cm_array = [[0.0; 2]; N];
-    for (slot, pair) in cd_array.iter_mut().zip(cd.chunks_exact(2)) {
-        slot.copy_from_slice(pair);
-    }
-    for (slot, pair) in cm_array.iter_mut().zip(cm.chunks_exact(2)) {
-        slot.copy_from_slice(pair);
-    }
-    Coefficients::per_direction(cd_array, cm_array)
-}
-
-/// Torque arrays of a batch, each `n_samples × N`, row-major.
-pub(crate) struct TorqueBatch {
-    pub(crate) drag: Vec<f64>,
-    pub(crate) added_mass: Vec<f64>,
-    pub(crate) buoyancy: Vec<f64>,
-    pub(crate) gravity: Vec<f64>,
 }
 
 /// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64).
@@ -147,188 +100,6 @@ impl<'a> States<'a> {
             evaluate(&angle_lanes(q), &lanes(qd), &lanes(qdd)).into_iter().take(q.len() / N)
         })
     }
-}
-
-/// Drag, added-mass, buoyancy and gravity torques of a batch into `out` (each `n_samples × N`),
-/// four samples per evaluation.
-pub(crate) fn hydro_into<const N: usize>(
-    chain: &Chain<f64, N>,
-    water: &Water<f64>,
-    coefficients: &Coefficients<f64, N>,
-    states: &States<'_>,
-    out: [&mut [f64]; 4],
-) -> Result<(), NonFinite> {
-    states.check_finite::<N>()?;
-    hydro_rows(chain, water, coefficients, states, out);
-    Ok(())
-}
-
-/// [`hydro_into`] after [`States::check_finite`].
-pub(crate) fn hydro_rows<const N: usize>(
-    chain: &Chain<f64, N>,
-    water: &Water<f64>,
-    coefficients: &Coefficients<f64, N>,
-    states: &States<'_>,
-    out: [&mut [f64]; 4],
-) {
-    hydro_lane_rows(&chain.splat(), water, coefficients, states, out);
-}
-
-/// [`hydro_rows`] with the chain already over lanes (`Chain::splat`).
-pub(crate) fn hydro_lane_rows<const N: usize>(
-    chain: &Chain<Lanes, N>,
-    water: &Water<f64>,
-    coefficients: &Coefficients<f64, N>,
-    states: &States<'_>,
-    [drag, added_mass, buoyancy, gravity]: [&mut [f64]; 4],
-) {
-    let (water, coefficients) = (water.splat(), coefficients.splat());
-    let torques = states
-        .each_in_lanes::<N, _>(|q, qd, qdd| unpack_torques(&hydro_torques(chain, &water, &coefficients, q, qd, qdd)));
-    let rows = drag
-        .chunks_exact_mut(N)
-        .zip(added_mass.chunks_exact_mut(N))
-        .zip(buoyancy.chunks_exact_mut(N).zip(gravity.chunks_exact_mut(N)));
-    for (tau, ((drag, added_mass), (buoyancy, gravity))) in torques.zip(rows) {
-        write_row(drag, &tau.drag);
-        write_row(added_mass, &tau.added_mass);
-        write_row(buoyancy, &tau.buoyancy);
-        write_row(gravity, &tau.gravity);
-    }
-}
-
-/// Hydrodynamic and loss torques of a batch: drag, added mass, buoyancy, gravity, visc, seal,
-/// current, each `n_samples × N` (`chain` over lanes: `Chain::splat`).
-pub(crate) fn environment_into<const N: usize>(
-    chain: &Chain<Lanes, N>,
-    water: &Water<f64>,
-    coefficients: &Coefficients<f64, N>,
-    losses: &[Option<JointLosses<f64>>],
-    states: &States<'_>,
-    conditions: (&[f64], &[f64]),
-    [drag, added_mass, buoyancy, gravity, visc, seal, current]: [&mut [f64]; 7],
-) -> Result<(), NonFinite> {
-    // Every input checked first (the states, then pressure and temperature sample by sample);
-    // then the hydrodynamics exactly as `Leg.hydro` has them (four samples per evaluation), and
-    // the losses of each loaded joint at its speed, as `environment_torques` adds them.
-    states.check_finite::<N>()?;
-    for (sample, (&p, &t)) in conditions.0.iter().zip(conditions.1).enumerate() {
-        for (argument, value) in [("pressure", p), ("temperature", t)] {
-            if !value.is_finite() {
-                return Err(NonFinite { argument, sample, joint: 0, value });
-            }
-        }
-    }
-    hydro_lane_rows(chain, water, coefficients, states, [drag, added_mass, buoyancy, gravity]);
-    let mut joint_losses = [None; N];
-    for (slot, l) in joint_losses.iter_mut().zip(losses) {
-        *slot = *l;
-    }
-    let mut current_conditions = (f64::NAN, f64::NAN);
-    let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
-    let rows = visc.chunks_exact_mut(N).zip(seal.chunks_exact_mut(N)).zip(current.chunks_exact_mut(N));
-    let per_sample = states.qd.chunks_exact(N).filter_map(vector).zip(conditions.0.iter().zip(conditions.1));
-    for ((qd, (&p, &t)), ((visc, seal), current)) in per_sample.zip(rows) {
-        if current_conditions != (p, t) {
-            current_conditions = (p, t);
-            loss_states = joint_losses.map(|l| l.and_then(|l| l.at(p, t).ok()));
-        }
-        let (v, s, c) = loss_torques(&loss_states, &qd);
-        for (row, values) in [(visc, v), (seal, s), (current, c)] {
-            write_row(row, &values);
-        }
-    }
-    Ok(())
-}
-
-/// Environment torques and their derivatives over a batch: `value` (`n_samples × N`), and
-/// `d_q`, `d_qd` and the added-mass matrix (each `n_samples × N × N`, row-major: `[sample][i][j]`).
-/// Pressure and temperature as for [`environment_batch`].
-pub(crate) fn environment_jacobian_batch<const N: usize>(
-    chain: &Chain<f64, N>,
-    water: &Water<f64>,
-    coefficients: &Coefficients<f64, N>,
-    losses: &[Option<JointLosses<f64>>],
-    states: &States<'_>,
-    conditions: (&[f64], &[f64]),
-) -> Result<[Vec<f64>; 4], NonFinite> {
-    let n_samples = conditions.0.len();
-    let mut out = [
-        Vec::with_capacity(n_samples * N),
-        Vec::with_capacity(n_samples * N * N),
-        Vec::with_capacity(n_samples * N * N),
-        Vec::with_capacity(n_samples * N * N),
-    ];
-    let mut joint_losses = [None; N];
-    for (slot, l) in joint_losses.iter_mut().zip(losses) {
-        *slot = *l;
-    }
-    let mut current_conditions = (f64::NAN, f64::NAN);
-    let mut loss_states: [Option<LossState<f64>>; N] = [None; N];
-    states.check_finite::<N>()?;
-    for (sample, ((q, qd, qdd), (&p, &t))) in states.each::<N>().zip(conditions.0.iter().zip(conditions.1)).enumerate()
-    {
-        for (argument, value) in [("pressure", p), ("temperature", t)] {
-            if !value.is_finite() {
-                return Err(NonFinite { argument, sample, joint: 0, value });
-            }
-        }
-        if current_conditions != (p, t) {
-            current_conditions = (p, t);
-            loss_states = joint_losses.map(|l| l.and_then(|l| l.at(p, t).ok()));
-        }
-        let j = environment_jacobians(chain, water, coefficients, &loss_states, &q, &qd, &qdd);
-        let [value, d_q, d_qd, added_mass_matrix] = &mut out;
-        value.extend(j.value.iter());
-        // The transposes' column-major order is the matrices' row-major order.
-        for (column, matrix) in [(d_q, j.d_q), (d_qd, j.d_qd), (added_mass_matrix, j.added_mass_matrix)] {
-            column.extend(matrix.transpose().iter());
-        }
-    }
-    Ok(out)
-}
-
-/// Regressor arrays of a batch: buoyancy and gravity `n × N`; drag and added mass either
-/// `n × N` (summed over links and directions) or `n × N × N × 2` (`[sample][joint][link][k]`).
-pub(crate) fn regressor_batch<const N: usize>(
-    chain: &Chain<f64, N>,
-    water: &Water<f64>,
-    states: &States<'_>,
-    n_samples: usize,
-    per_direction: bool,
-) -> Result<TorqueBatch, NonFinite> {
-    let columns = if per_direction { N * N * 2 } else { N };
-    let mut out = TorqueBatch {
-        drag: Vec::with_capacity(n_samples * columns),
-        added_mass: Vec::with_capacity(n_samples * columns),
-        buoyancy: Vec::with_capacity(n_samples * N),
-        gravity: Vec::with_capacity(n_samples * N),
-    };
-    states.check_finite::<N>()?;
-    let (chain, water) = (chain.splat::<Lanes>(), water.splat());
-    for r in states.each_in_lanes::<N, _>(|q, qd, qdd| unpack_regressors(&hydro_regressors(&chain, &water, q, qd, qdd)))
-    {
-        out.buoyancy.extend(r.buoyancy.iter());
-        out.gravity.extend(r.gravity.iter());
-        if per_direction {
-            for joint in 0..N {
-                out.drag.extend(joint_row(&r.drag, joint));
-                out.added_mass.extend(joint_row(&r.added_mass, joint));
-            }
-        } else {
-            out.drag.extend(r.drag_uniform().iter());
-            out.added_mass.extend(r.added_mass_uniform().iter());
-        }
-    }
-    Ok(out)
-}
-
-/// Joint `joint`'s entries of per-link, per-direction regressor columns, in `[link][k]` order.
-pub(crate) fn joint_row<const N: usize>(
-    columns: &[[SVector<f64, N>; 2]; N],
-    joint: usize,
-) -> impl Iterator<Item = f64> + '_ {
-    columns.iter().flatten().map(move |c| c.get(joint).copied().unwrap_or(f64::NAN))
 }
 
 /// Positions `n × 3` and Jacobians `n × 6 × N` (row-major) of a point on link `link` (< N).

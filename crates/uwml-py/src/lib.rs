@@ -2,8 +2,6 @@
 //! crate converts arrays, dispatches on the number of joints, and loops over samples with the
 //! GIL released. The friendly, validated API is the Python package `uwml`.
 
-use std::any::Any;
-
 mod arrays;
 mod batch;
 mod errors;
@@ -15,12 +13,11 @@ pub(crate) use arrays::{
     NonFinite, check_conditions, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed,
 };
 use batch::*;
-pub(crate) use losses::{joint_losses, loss_inputs, parse_losses, unpack_losses};
+pub(crate) use losses::{joint_losses, parse_losses};
 
-use numpy::{PyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::PyType;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{Chain, Joint, Link, ModelError, Segment, Water};
 
@@ -139,56 +136,15 @@ macro_rules! dispatch {
 #[pyclass(frozen, module = "uwml._core", name = "Chain")]
 struct PyChain {
     chain: AnyChain,
-    /// The chain over SIMD lanes (`Chain<Lanes, N>`), made once for the one-state calls.
-    lanes: Box<dyn Any + Send + Sync>,
 }
 
 impl PyChain {
-    fn from_chain(chain: AnyChain) -> Self {
-        let lanes = dispatch!(&chain, c => Box::new(c.splat::<Lanes>()) as Box<dyn Any + Send + Sync>);
-        Self { chain, lanes }
+    const fn from_chain(chain: AnyChain) -> Self {
+        Self { chain }
     }
-
-    /// `chain` (this chain) over SIMD lanes.
-    fn lanes<const N: usize>(&self, chain: &Chain<f64, N>) -> std::borrow::Cow<'_, Chain<Lanes, N>> {
-        match self.lanes.downcast_ref() {
-            Some(lanes) => std::borrow::Cow::Borrowed(lanes),
-            None => std::borrow::Cow::Owned(chain.splat()),
-        }
-    }
-}
-
-/// What every batch evaluation needs, checked and borrowed from the numpy arrays.
-struct BatchInputs<'a> {
-    n: usize,
-    n_samples: usize,
-    water: Water<f64>,
-    states: States<'a>,
-    cd: &'a [f64],
-    cm: &'a [f64],
 }
 
 impl PyChain {
-    fn batch_inputs<'a>(
-        &self,
-        [q, qd, qdd]: [&'a PyReadonlyArray2<'_, f64>; 3],
-        [cd, cm]: [&'a PyReadonlyArray2<'_, f64>; 2],
-        density: f64,
-        gravity: f64,
-    ) -> PyResult<BatchInputs<'a>> {
-        let n = self.n_joints();
-        let n_samples = self.check_states(q, qd, qdd)?;
-        check_coefficient_shapes(cd, cm, n)?;
-        Ok(BatchInputs {
-            n,
-            n_samples,
-            water: water(density, gravity)?,
-            states: States { q: contiguous(q, "q")?, qd: contiguous(qd, "qd")?, qdd: contiguous(qdd, "qdd")? },
-            cd: contiguous(cd, "cd")?,
-            cm: contiguous(cm, "cm")?,
-        })
-    }
-
     fn n_joints(&self) -> usize {
         dispatch!(&self.chain, c => c.joints().len())
     }
@@ -212,15 +168,6 @@ impl PyChain {
         }
         Ok(shape.first().copied().unwrap_or(0))
     }
-}
-
-fn check_coefficient_shapes(cd: &PyReadonlyArray2<'_, f64>, cm: &PyReadonlyArray2<'_, f64>, n: usize) -> PyResult<()> {
-    for (name, c) in [("cd", cd), ("cm", cm)] {
-        if c.shape() != [n, 2] {
-            return Err(PyValueError::new_err(format!("{name} must have shape ({n}, 2), got {:?}", c.shape())));
-        }
-    }
-    Ok(())
 }
 
 /// Loss conditions the one-state paths take: depth from 0 to the deepest ocean, a positive sea
@@ -289,213 +236,6 @@ impl PyChain {
         Ok((to_numpy(py, joints, (n, JOINT_WIDTH))?, to_numpy(py, links, (n, LINK_WIDTH))?))
     }
 
-    /// Drag, added-mass, buoyancy and gravity torques, each `(n_samples, N)`.
-    #[allow(clippy::too_many_arguments)]
-    fn hydro<'py>(
-        &self,
-        py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        cd: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        threads: usize,
-    ) -> PyResult<Vec<Array2<'py>>> {
-        let BatchInputs { n, n_samples, water, states, cd, cm } =
-            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
-        let chain = self.chain;
-        let arrays = zeroed::<4>(py, n_samples, n);
-        let mut guards = arrays.each_ref().map(|a| a.readwrite());
-        let out = writable(&mut guards)?;
-        py.detach(|| -> Result<(), PyErrSend> {
-            dispatch!(&chain, c => {
-                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                in_parallel(n_samples, [n; _], threads, out, |range, out| {
-                    hydro_into(c, &water, &coefficients, &states.range(range, n), out)
-                }, NonFinite::shifted)
-                .map_err(PyErrSend::State)
-            })
-        })
-        .map_err(PyErr::from)?;
-        drop(guards);
-        Ok(arrays.into())
-    }
-
-    /// One state's torques as a `result_type` (`uwml.HydroTorques`) of `(N,)` arrays, the same
-    /// bits as that state's row of `hydro`; or None when an argument is not of a plain kind or
-    /// fails a check (the caller's general path then takes the call): states as lists, tuples
-    /// or 1-D float64 arrays of N finite values, scalar `cd` and `cm`, `threads` an int ≥ 1.
-    /// Evaluated with the GIL held (one state costs less than releasing it).
-    #[allow(clippy::too_many_arguments)]
-    fn hydro_one<'py>(
-        &self,
-        result_type: &Bound<'py, PyType>,
-        q: &Bound<'py, PyAny>,
-        qd: &Bound<'py, PyAny>,
-        qdd: &Bound<'py, PyAny>,
-        cd: &Bound<'py, PyAny>,
-        cm: &Bound<'py, PyAny>,
-        density: &Bound<'py, PyAny>,
-        gravity: &Bound<'py, PyAny>,
-        threads: &Bound<'py, PyAny>,
-    ) -> PyResult<Option<Bound<'py, PyAny>>> {
-        if !single::threads_ok(threads) {
-            return Ok(None);
-        }
-        dispatch!(&self.chain, c => match single::Common::read([q, qd, qdd], [cd, cm], [density, gravity]) {
-            Some(common) => single::hydro(&self.lanes(c), result_type, &common),
-            None => Ok(None),
-        })
-    }
-
-    /// One state's environment torques as a `result_type` (`uwml.EnvironmentTorques`) of `(N,)`
-    /// arrays, the same bits as that state's row of `environment` at pressure `sea_density ·
-    /// gravity · depth`; or None as for `hydro_one` (also for a depth, temperature or
-    /// sea_density that is not a finite Python float or int, a negative depth, a sea_density
-    /// ≤ 0, or `losses` neither None nor a valid packed `(N, LOSS_WIDTH)` float64 array).
-    #[allow(clippy::too_many_arguments)]
-    fn environment_one<'py>(
-        &self,
-        result_type: &Bound<'py, PyType>,
-        q: &Bound<'py, PyAny>,
-        qd: &Bound<'py, PyAny>,
-        qdd: &Bound<'py, PyAny>,
-        depth: &Bound<'py, PyAny>,
-        temperature: &Bound<'py, PyAny>,
-        losses: &Bound<'py, PyAny>,
-        cd: &Bound<'py, PyAny>,
-        cm: &Bound<'py, PyAny>,
-        density: &Bound<'py, PyAny>,
-        gravity: &Bound<'py, PyAny>,
-        sea_density: &Bound<'py, PyAny>,
-        threads: &Bound<'py, PyAny>,
-    ) -> PyResult<Option<Bound<'py, PyAny>>> {
-        if !single::threads_ok(threads) {
-            return Ok(None);
-        }
-        dispatch!(&self.chain, c => match single::Common::read([q, qd, qdd], [cd, cm], [density, gravity]) {
-            Some(common) => single::environment(&self.lanes(c), result_type, &common, [depth, temperature, sea_density], losses),
-            None => Ok(None),
-        })
-    }
-
-    /// Environment torques with joint losses: `(drag, added_mass, buoyancy, gravity, visc,
-    /// seal, current)`, each `(n_samples, N)`; `losses` packed `(N, LOSS_WIDTH)`, pressure [Pa]
-    /// and temperature [°C] per sample.
-    #[allow(clippy::too_many_arguments)]
-    fn environment<'py>(
-        &self,
-        py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        cd: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        losses: PyReadonlyArray2<'py, f64>,
-        pressure: PyReadonlyArray1<'py, f64>,
-        temperature: PyReadonlyArray1<'py, f64>,
-        threads: usize,
-    ) -> PyResult<Vec<Array2<'py>>> {
-        let BatchInputs { n, n_samples, water, states, cd, cm } =
-            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
-        let (losses, (pressure, temperature)) = loss_inputs(&losses, [&pressure, &temperature], n, n_samples)?;
-        let chain = self.chain;
-        let arrays = zeroed::<7>(py, n_samples, n);
-        let mut guards = arrays.each_ref().map(|a| a.readwrite());
-        let out = writable(&mut guards)?;
-        py.detach(|| -> Result<(), PyErrSend> {
-            dispatch!(&chain, c => {
-                let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                let lanes = c.splat();
-                in_parallel(n_samples, [n; _], threads, out, |range, out| {
-                    let conditions =
-                        (pressure.get(range.clone()).unwrap_or(&[]), temperature.get(range.clone()).unwrap_or(&[]));
-                    environment_into(&lanes, &water, &coefficients, &losses, &states.range(range, n), conditions, out)
-                }, NonFinite::shifted)
-                .map_err(PyErrSend::State)
-            })
-        })
-        .map_err(PyErr::from)?;
-        drop(guards);
-        Ok(arrays.into())
-    }
-
-    /// Environment torques and their derivatives: `(value (n_samples, N), d_q (n_samples, N, N),
-    /// d_qd (n_samples, N, N), added_mass_matrix (n_samples, N, N))`, entry `[s, i, j]` of a
-    /// matrix being `∂τ_i/∂q_j` (or `∂τ_i/∂q̇_j`, or `M_A[i, j]`); arguments as for `environment`.
-    #[allow(clippy::too_many_arguments)]
-    fn jacobians<'py>(
-        &self,
-        py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        cd: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        losses: PyReadonlyArray2<'py, f64>,
-        pressure: PyReadonlyArray1<'py, f64>,
-        temperature: PyReadonlyArray1<'py, f64>,
-    ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        let BatchInputs { n, n_samples, water, states, cd, cm } =
-            self.batch_inputs([&q, &qd, &qdd], [&cd, &cm], density, gravity)?;
-        let (losses, conditions) = loss_inputs(&losses, [&pressure, &temperature], n, n_samples)?;
-        let chain = self.chain;
-        let [value, d_q, d_qd, added_mass_matrix] = py
-            .detach(|| -> Result<[Vec<f64>; 4], PyErrSend> {
-                dispatch!(&chain, c => {
-                    let coefficients = coefficients(cd, cm).map_err(PyErrSend::Model)?;
-                    environment_jacobian_batch(c, &water, &coefficients, &losses, &states, conditions)
-                        .map_err(PyErrSend::State)
-                })
-            })
-            .map_err(PyErr::from)?;
-        let mut out = vec![to_numpy(py, value, (n_samples, n))?.into_any()];
-        for matrices in [d_q, d_qd, added_mass_matrix] {
-            out.push(to_numpy(py, matrices, (n_samples, n, n))?.into_any());
-        }
-        Ok(out)
-    }
-
-    /// Regressors: `(buoyancy, gravity, drag, added_mass)`; drag and added mass are
-    /// `(n_samples, N)` at unit coefficients, or `(n_samples, N, N, 2)` per link and direction.
-    #[allow(clippy::too_many_arguments)]
-    fn regressors<'py>(
-        &self,
-        py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        per_direction: bool,
-    ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-        let n = self.n_joints();
-        let n_samples = self.check_states(&q, &qd, &qdd)?;
-        let water = water(density, gravity)?;
-        let states = States { q: contiguous(&q, "q")?, qd: contiguous(&qd, "qd")?, qdd: contiguous(&qdd, "qdd")? };
-        let chain = self.chain;
-        let batch =
-            py.detach(|| dispatch!(&chain, c => regressor_batch(c, &water, &states, n_samples, per_direction)))?;
-        let mut out = vec![
-            to_numpy(py, batch.buoyancy, (n_samples, n))?.into_any(),
-            to_numpy(py, batch.gravity, (n_samples, n))?.into_any(),
-        ];
-        for columns in [batch.drag, batch.added_mass] {
-            out.push(if per_direction {
-                to_numpy(py, columns, (n_samples, n, n, 2))?.into_any()
-            } else {
-                to_numpy(py, columns, (n_samples, n))?.into_any()
-            });
-        }
-        Ok(out)
-    }
-
     /// The identification problem of the joints `joints` in one pass: `(len(joints), n_samples,
     /// P + 1)`, each row the regressors of one joint's torque (Cd columns then Cm columns;
     /// `per`: "leg" P = 2, "link" P = 2N, "direction" P = 4N, link-major then direction) and,
@@ -559,21 +299,6 @@ impl PyChain {
         let chain = self.chain;
         let (positions, jacobians) = py.detach(|| dispatch!(&chain, c => jacobian_batch(c, q, link, &point)))?;
         Ok((to_numpy(py, positions, (n_samples, 3))?, to_numpy(py, jacobians, (n_samples, 6, n))?))
-    }
-}
-
-/// Errors raised while detached from the interpreter, turned into Python exceptions after.
-enum PyErrSend {
-    Model(ModelError),
-    State(NonFinite),
-}
-
-impl From<PyErrSend> for PyErr {
-    fn from(e: PyErrSend) -> Self {
-        match e {
-            PyErrSend::Model(e) => model_error(e),
-            PyErrSend::State(e) => e.into(),
-        }
     }
 }
 

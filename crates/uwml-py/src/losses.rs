@@ -72,23 +72,6 @@ pub(crate) fn parse_losses(losses: &PyReadonlyArray2<'_, f64>, n: usize) -> PyRe
         .collect()
 }
 
-/// An environment batch's joint losses (packed `(N, LOSS_WIDTH)`) and its per-sample pressure and
-/// temperature, checked.
-pub(crate) type LossInputs<'a> = (Vec<Option<JointLosses<f64>>>, (&'a [f64], &'a [f64]));
-
-pub(crate) fn loss_inputs<'a>(
-    losses: &PyReadonlyArray2<'_, f64>,
-    [pressure, temperature]: [&'a PyReadonlyArray1<'_, f64>; 2],
-    n: usize,
-    n_samples: usize,
-) -> PyResult<LossInputs<'a>> {
-    let losses = parse_losses(losses, n)?;
-    let conditions =
-        (contiguous1(pressure, "pressure", n_samples)?, contiguous1(temperature, "temperature", n_samples)?);
-    check_conditions(conditions.0, conditions.1)?;
-    Ok((losses, conditions))
-}
-
 /// Oil, seal and current of one joint's losses over a batch (speed [rad/s], pressure [Pa],
 /// temperature [°C], all 1-D of one length). `losses`: packed (1, LOSS_WIDTH), or None for
 /// the core's defaults.

@@ -5,7 +5,7 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyString, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Water, robot_hydro};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, SegmentCoefficients, Water, robot_hydro};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -19,7 +19,9 @@ pub(super) type MotionArrays<'py> =
 pub(super) struct OneState {
     pub(super) row: StateRow,
     pub(super) water: Water<f64>,
-    pub(super) coefficients: Option<Coefficients>,
+    /// One drag and one added-mass coefficient for every segment (checked), or `None` for the
+    /// segments' own.
+    pub(super) coefficients: Option<(f64, f64)>,
     pub(super) motion: BaseMotion<f64>,
     pub(super) current: Current<f64>,
 }
@@ -42,7 +44,8 @@ impl OneState {
         };
         let coefficients = match (coefficient(cd)?, coefficient(cm)?) {
             (None, None) => None,
-            (Some(cd), Some(cm)) => Some(Coefficients::uniform(cd, cm).ok()?),
+            // Checked on a table of one segment: the same checks, without filling the robot's.
+            (Some(cd), Some(cm)) => SegmentCoefficients::<f64, 1>::uniform(cd, cm).ok().map(|_| Some((cd, cm)))?,
             _ => return None,
         };
         let vector = |value: &Bound<'_, PyAny>| {
@@ -66,11 +69,14 @@ impl OneState {
 
     pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data) {
         let Self { row, water, coefficients, motion, current } = self;
+        // The table is made here, once, not carried in `Self` (it is as large as the robot's
+        // segment capacity); the values were checked by `read`.
+        let table = coefficients.and_then(|(cd, cm)| Coefficients::uniform(cd, cm).ok());
         let conditions = Conditions {
             water: *water,
             motion: *motion,
             current: *current,
-            coefficients: coefficients.as_ref(),
+            coefficients: table.as_ref(),
             form,
             losses: None,
         };
