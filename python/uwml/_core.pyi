@@ -1,16 +1,19 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
 from collections.abc import Sequence
-from typing import Self, TypeVar, final
+from typing import Self, TypeAlias, TypeVar, final
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .model.parts import Joint, Link, Segment
+
+_Vec3: TypeAlias = tuple[float, float, float]
+#: A chain segment's parts: start, axis, length, normals, widths, area.
+_SegmentParts: TypeAlias = tuple[_Vec3, _Vec3, float, tuple[_Vec3, _Vec3], tuple[float, float], float]
+
 __all__ = [
     "ABSOLUTE_ZERO_C",
-    "BODY_WIDTH",
-    "JOINT_WIDTH",
-    "LINK_WIDTH",
     "LOSS_WIDTH",
     "MAX_AREA",
     "MAX_COEFFICIENT",
@@ -25,8 +28,6 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
-    "SEGMENT_WIDTH",
-    "TREE_JOINT_WIDTH",
     "Chain",
     "ModelError",
     "MujocoCoupling",
@@ -49,14 +50,9 @@ MAX_DENSITY: float
 MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
-JOINT_WIDTH: int
-LINK_WIDTH: int
 LOSS_WIDTH: int
 MAX_ROBOT_JOINTS: int
 MAX_SEGMENTS: int
-TREE_JOINT_WIDTH: int
-BODY_WIDTH: int
-SEGMENT_WIDTH: int
 
 class UwmlError(ValueError):
     """The base of every uwml exception: a bad value, model or file."""
@@ -66,12 +62,12 @@ class ModelError(UwmlError):
 
 @final
 class Chain:
-    def __new__(cls, joints: NDArray[np.float64], links: NDArray[np.float64]) -> Self: ...
+    def __new__(cls, joints: Sequence[Joint], links: Sequence[Link]) -> Self: ...
     @staticmethod
     def paper() -> Chain: ...
     @property
     def n_joints(self) -> int: ...
-    def packed(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+    def parts(self) -> tuple[list[tuple[_Vec3, _Vec3]], list[tuple[float, _Vec3, float, _Vec3, _SegmentParts | None]]]: ...
     def hydro_design(
         self,
         q: NDArray[np.float64],
@@ -89,9 +85,7 @@ class Chain:
 
 @final
 class Robot:
-    def __new__(
-        cls, joints: NDArray[np.float64], links: NDArray[np.float64], base: NDArray[np.float64], segments: NDArray[np.float64]
-    ) -> Self: ...
+    def __new__(cls, joints: Sequence[Joint], links: Sequence[Link], base: Link, segments: Sequence[tuple[int, Segment]]) -> Self: ...
     @property
     def n_joints(self) -> int: ...
     def hydro(

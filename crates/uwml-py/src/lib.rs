@@ -6,6 +6,7 @@ mod arrays;
 mod batch;
 mod errors;
 mod losses;
+mod parts;
 mod robot;
 mod single;
 
@@ -14,20 +15,17 @@ pub(crate) use arrays::{
 };
 use batch::*;
 pub(crate) use losses::{joint_losses, parse_losses};
+use parts::{LegJointSpec, LegLinkSpec, joint_tuple, link_tuple};
 
 use numpy::{PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{Chain, Joint, Link, ModelError, Segment, Water};
+use uwml_core::{Chain, Joint, Link, ModelError, Water};
 
 /// Largest number of joints a chain built from Python may have.
 const MAX_JOINTS: usize = 8;
-/// Floats per joint in the packed layout: origin (3), axis (3).
-const JOINT_WIDTH: usize = 6;
-/// Floats per link in the packed layout: mass, com (3), volume, cob (3), has_segment (0/1),
-/// segment start (3), axis (3), length, normals (2×3), widths (2), area.
-const LINK_WIDTH: usize = 25;
 
 /// Floats per joint's losses in the packed layout: has_oil (0/1), k_oil, exponent,
 /// pressure_sensitivity [1/Pa], temperature_sensitivity [1/K], reference_pressure [Pa],
@@ -39,67 +37,22 @@ fn model_error(error: ModelError) -> PyErr {
     errors::ModelError::new_err(error.to_string())
 }
 
-fn next3(values: &mut impl Iterator<Item = f64>) -> Vector3<f64> {
-    let mut next = || values.next().unwrap_or(f64::NAN);
-    Vector3::new(next(), next(), next())
-}
-
-fn unpack_joint(row: &[f64]) -> Joint<f64> {
-    let mut values = row.iter().copied();
-    Joint { origin: next3(&mut values), axis: next3(&mut values) }
-}
-
-fn unpack_link(row: &[f64]) -> Link<f64> {
-    let mut values = row.iter().copied();
-    let scalar = |values: &mut std::iter::Copied<std::slice::Iter<'_, f64>>| values.next().unwrap_or(f64::NAN);
-    let mass = scalar(&mut values);
-    let com = next3(&mut values);
-    let volume = scalar(&mut values);
-    let cob = next3(&mut values);
-    let has_segment = scalar(&mut values) != 0.0;
-    let start = next3(&mut values);
-    let axis = next3(&mut values);
-    let length = scalar(&mut values);
-    let normals = [next3(&mut values), next3(&mut values)];
-    let widths = [scalar(&mut values), scalar(&mut values)];
-    let area = scalar(&mut values);
-    let segment = has_segment.then_some(Segment { start, axis, length, normals, widths, area });
-    Link { mass, com, volume, cob, segment }
-}
-
-fn pack_link(link: &Link<f64>) -> Vec<f64> {
-    let mut row = Vec::with_capacity(LINK_WIDTH);
-    row.push(link.mass);
-    row.extend(link.com.iter());
-    row.push(link.volume);
-    row.extend(link.cob.iter());
-    match &link.segment {
-        Some(s) => {
-            row.push(1.0);
-            row.extend(s.start.iter());
-            row.extend(s.axis.iter());
-            row.push(s.length);
-            row.extend(s.normals.iter().flat_map(|n| n.iter().copied()));
-            row.extend(s.widths);
-            row.push(s.area);
-        }
-        None => row.resize(LINK_WIDTH, 0.0),
-    }
-    row
-}
-
-fn build<const N: usize>(joints: &[f64], links: &[f64]) -> Result<Chain<f64, N>, ModelError> {
+/// The chain of `joints` and `links` (exactly `N` of each: checked by the caller).
+fn build<const N: usize>(joints: &[LegJointSpec], links: &[LegLinkSpec]) -> Result<Chain<f64, N>, ModelError> {
     let mut joint_array = [Joint { origin: Vector3::zeros(), axis: Vector3::z() }; N];
-    for (joint, row) in joint_array.iter_mut().zip(joints.chunks_exact(JOINT_WIDTH)) {
-        *joint = unpack_joint(row);
+    for (joint, spec) in joint_array.iter_mut().zip(joints) {
+        *joint = spec.chain_joint();
     }
     let empty = Link { mass: 0.0, com: Vector3::zeros(), volume: 0.0, cob: Vector3::zeros(), segment: None };
     let mut link_array = [empty; N];
-    for (link, row) in link_array.iter_mut().zip(links.chunks_exact(LINK_WIDTH)) {
-        *link = unpack_link(row);
+    for (link, spec) in link_array.iter_mut().zip(links) {
+        *link = spec.chain_link();
     }
     Chain::new(joint_array, link_array)
 }
+
+/// A chain's joints and links as Python tuples (`PyChain::parts`).
+type Parts<'py> = (Vec<Bound<'py, PyTuple>>, Vec<Bound<'py, PyTuple>>);
 
 /// A validated chain with its number of joints known at compile time inside. Built once per
 /// `Leg`, so the size difference between variants does not matter.
@@ -187,20 +140,18 @@ fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
 
 #[pymethods]
 impl PyChain {
+    /// The chain of a leg's `uwml.Joint`s (their `origin` and `axis`) and `uwml.Link`s (body and
+    /// one `segment` or None).
     #[new]
-    fn new(joints: PyReadonlyArray2<'_, f64>, links: PyReadonlyArray2<'_, f64>) -> PyResult<Self> {
-        let n = joints.shape().first().copied().unwrap_or(0);
-        if !(1..=MAX_JOINTS).contains(&n) {
-            return Err(PyValueError::new_err(format!("a chain must have 1 to {MAX_JOINTS} joints, got {n}")));
-        }
-        if joints.shape() != [n, JOINT_WIDTH] || links.shape() != [n, LINK_WIDTH] {
+    fn new(joints: Vec<LegJointSpec>, links: Vec<LegLinkSpec>) -> PyResult<Self> {
+        let n = joints.len();
+        if !(1..=MAX_JOINTS).contains(&n) || links.len() != n {
             return Err(PyValueError::new_err(format!(
-                "packed joints must have shape ({n}, {JOINT_WIDTH}) and links ({n}, {LINK_WIDTH}), got {:?} and {:?}",
-                joints.shape(),
-                links.shape()
+                "a chain must have 1 to {MAX_JOINTS} joints and as many links, got {n} and {}",
+                links.len()
             )));
         }
-        let (j, l) = (contiguous(&joints, "joints")?, contiguous(&links, "links")?);
+        let (j, l) = (joints.as_slice(), links.as_slice());
         let chain = match n {
             1 => AnyChain::N1(build(j, l).map_err(model_error)?),
             2 => AnyChain::N2(build(j, l).map_err(model_error)?),
@@ -226,14 +177,14 @@ impl PyChain {
         self.n_joints()
     }
 
-    /// The validated parameters, packed as `(joints (N, 6), links (N, 25))`.
-    fn packed<'py>(&self, py: Python<'py>) -> PyResult<(Array2<'py>, Array2<'py>)> {
-        let n = self.n_joints();
-        let (joints, links): (Vec<f64>, Vec<f64>) = dispatch!(&self.chain, c => (
-            c.joints().iter().flat_map(|j| j.origin.iter().chain(j.axis.iter()).copied().collect::<Vec<_>>()).collect(),
-            c.links().iter().flat_map(pack_link).collect(),
-        ));
-        Ok((to_numpy(py, joints, (n, JOINT_WIDTH))?, to_numpy(py, links, (n, LINK_WIDTH))?))
+    /// The validated parameters: `(joints, links)`, each joint `(origin, axis)` and each link
+    /// `(mass, com, volume, cob, segment)` (`segment` None or `(start, axis, length, normals,
+    /// widths, area)`), as `uwml.Leg` rebuilds its `Joint`s and `Link`s.
+    fn parts<'py>(&self, py: Python<'py>) -> PyResult<Parts<'py>> {
+        dispatch!(&self.chain, c => Ok((
+            c.joints().iter().map(|j| joint_tuple(py, j)).collect::<PyResult<Vec<_>>>()?,
+            c.links().iter().map(|l| link_tuple(py, l)).collect::<PyResult<Vec<_>>>()?,
+        )))
     }
 
     /// The identification problem of the joints `joints` in one pass: `(len(joints), n_samples,
@@ -320,15 +271,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ABSOLUTE_ZERO_C", uwml_core::ABSOLUTE_ZERO_C)?;
     m.add("OIL_TEMPERATURE_RANGE_C", (uwml_core::OIL_TEMPERATURE_RANGE_C[0], uwml_core::OIL_TEMPERATURE_RANGE_C[1]))?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
-    m.add("TREE_JOINT_WIDTH", robot::TREE_JOINT_WIDTH)?;
-    m.add("BODY_WIDTH", robot::BODY_WIDTH)?;
-    m.add("SEGMENT_WIDTH", robot::SEGMENT_WIDTH)?;
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
     m.add("LOSS_WIDTH", LOSS_WIDTH)?;
     m.add("UwmlError", m.py().get_type::<errors::UwmlError>())?;
     m.add("ModelError", m.py().get_type::<errors::ModelError>())?;
     m.add("MAX_JOINTS", MAX_JOINTS)?;
-    m.add("JOINT_WIDTH", JOINT_WIDTH)?;
-    m.add("LINK_WIDTH", LINK_WIDTH)?;
     Ok(())
 }

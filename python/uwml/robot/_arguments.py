@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._checks import real_array as _real_array
 from ..model.joint_losses import JointLosses, pack_leg_losses
-from ..model.parts import Link, Segment, Water
+from ..model.parts import Water
 from .base_motion import BaseMotion
 
 FloatArray = NDArray[np.float64]
@@ -140,16 +140,6 @@ class _Inputs(NamedTuple):
     angular_acceleration: FloatArray
     current: FloatArray
     current_acceleration: FloatArray
-
-
-def _segment_row(owner: int, s: Segment) -> list[float]:
-    section = 1.0 if s.section == "circular" else 0.0
-    diameter = s.diameter if s.diameter is not None else 0.0
-    return [float(owner), section, *s.start, *s.axis, s.length, s.area, *s.normals[0], *s.normals[1], *s.widths, diameter, *s.cd, *s.cm]
-
-
-def _body_row(body: Link) -> list[float]:
-    return [body.mass, *body.com, body.volume, *(body.cob or body.com)]
 
 
 def segment_coefficients(value: ArrayLike | None, name: str, circular: NDArray[np.bool_]) -> FloatArray:

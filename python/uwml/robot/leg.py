@@ -5,7 +5,7 @@ from __future__ import annotations
 import operator
 import os
 from collections.abc import Sequence
-from typing import Literal, SupportsIndex
+from typing import Any, Literal, SupportsIndex
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -31,38 +31,16 @@ def _vec(values: Sequence[float]) -> tuple[float, float, float]:
     return (float(values[0]), float(values[1]), float(values[2]))
 
 
-def _pack(joints: Sequence[Joint], links: Sequence[Link]) -> tuple[FloatArray, FloatArray]:
-    joint_rows = [[*joint.origin, *joint.axis] for joint in joints]
-    link_rows = []
-    for link in links:
-        row = [link.mass, *link.com, link.volume, *(link.cob or link.com)]
-        s = link.segment
-        if s is None:
-            row += [0.0] * (_core.LINK_WIDTH - len(row))
-        else:
-            row += [1.0, *s.start, *s.axis, s.length, *s.normals[0], *s.normals[1], *s.widths, s.area]
-        link_rows.append(row)
-    return (
-        np.array(joint_rows, dtype=np.float64).reshape(-1, _core.JOINT_WIDTH),
-        np.array(link_rows, dtype=np.float64).reshape(-1, _core.LINK_WIDTH),
-    )
-
-
-def _unpack(joints: FloatArray, links: FloatArray) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
-    joint_list = tuple(Joint(origin=_vec(r[0:3]), axis=_vec(r[3:6])) for r in joints)
+def _from_parts(joints: list[Any], links: list[Any]) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
+    """The validated ``Joint``s and ``Link``s of a native chain's :meth:`parts`."""
+    joint_list = tuple(Joint(origin=origin, axis=axis) for origin, axis in joints)
     link_list = []
-    for r in links:
+    for mass, com, volume, cob, parts in links:
         segment = None
-        if r[8] != 0.0:
-            segment = Segment(
-                start=_vec(r[9:12]),
-                axis=_vec(r[12:15]),
-                length=float(r[15]),
-                normals=(_vec(r[16:19]), _vec(r[19:22])),
-                widths=(float(r[22]), float(r[23])),
-                area=float(r[24]),
-            )
-        link_list.append(Link(mass=float(r[0]), com=_vec(r[1:4]), volume=float(r[4]), cob=_vec(r[5:8]), segment=segment))
+        if parts is not None:
+            start, axis, length, normals, widths, area = parts
+            segment = Segment(start=start, axis=axis, length=length, normals=normals, widths=widths, area=area)
+        link_list.append(Link(mass=mass, com=com, volume=volume, cob=cob, segment=segment))
     return joint_list, tuple(link_list)
 
 
@@ -115,13 +93,13 @@ class Leg(Robot):
                 raise ValueError(
                     f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
                 )
-        self._from_chain(_core.Chain(*_pack(joints, links)))
+        self._from_chain(_core.Chain(joints, links))
 
     def _from_chain(self, chain: _core.Chain) -> None:
         """This leg from a validated native chain: its parameters as validated (axes normalized),
         the robot they make, and the chain itself for the kinematics."""
         self._chain = chain
-        self._leg_joints, self._leg_links = _unpack(*chain.packed())
+        self._leg_joints, self._leg_links = _from_parts(*chain.parts())
         super().__init__(self._leg_joints, self._leg_links)
         #: The links that carry a segment, in segment order.
         self._owners = tuple(i for i, link in enumerate(self._leg_links) if link.segment is not None)

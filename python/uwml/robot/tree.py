@@ -23,11 +23,9 @@ from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
 from ..sea.conditions import loss_conditions
 from ._arguments import (
-    _body_row,
     _Inputs,
     _kirchhoff,
     _per_joint_losses,
-    _segment_row,
     _short_path,
     _threads,
     _water,
@@ -118,14 +116,8 @@ class Robot:
         owned = [(-1, s) for s in base_body.segments] + [(i, s) for i, link in enumerate(links) for s in link.segments]
         if len(owned) > MAX_SEGMENTS:
             raise ValueError(f"a robot may have up to {MAX_SEGMENTS} segments, got {len(owned)}")
-        joint_rows = [[float(p), 1.0 if j.kind == "prismatic" else 0.0, *j.origin, *j.axis] for p, j in zip(parents, joints)]
-        self._core = _core.Robot(
-            np.array(joint_rows, dtype=np.float64).reshape(-1, _core.TREE_JOINT_WIDTH),
-            np.array([_body_row(link) for link in links], dtype=np.float64).reshape(-1, _core.BODY_WIDTH),
-            np.array([_body_row(base_body)], dtype=np.float64),
-            np.array([_segment_row(o, s) for o, s in owned], dtype=np.float64).reshape(-1, _core.SEGMENT_WIDTH),
-        )
         self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind, name=j.name) for p, j in zip(parents, joints))
+        self._core = _core.Robot(self._joints, links, base_body, owned)
         for what, items in (("joint", joints), ("link", links)):
             names = [item.name for item in items if item.name is not None]
             repeated = sorted({name for name in names if names.count(name) > 1})

@@ -6,14 +6,19 @@ use std::ops::Range;
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use uwml_core::nalgebra::Vector3;
 use uwml_core::{BaseMotion, Current, JointLosses, LossState, ModelError};
 
 use super::MAX_ROBOT_JOINTS;
 use simba::simd::SimdValue;
 
-use super::packed::v3;
 use crate::batch::Lanes;
 use crate::{contiguous, contiguous1, parse_losses};
+
+/// The first three values (NaN for missing ones) as a vector.
+fn v3(x: &[f64]) -> Vector3<f64> {
+    Vector3::from_iterator(x.iter().copied().chain(core::iter::repeat(f64::NAN)).take(3))
+}
 
 /// The joint losses of an environment evaluation: per joint, and the pressure [Pa] and
 /// temperature [°C] of every sample (checked finite).

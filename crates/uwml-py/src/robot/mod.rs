@@ -18,16 +18,15 @@ mod batch;
 mod coupling;
 mod inputs;
 mod one;
-mod packed;
 
 use crate::batch::Lanes;
+use crate::parts::{BodySpec, JointSpec, SegmentSpec};
 use crate::single::finite_number;
 use crate::{Array2, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
 pub(crate) use coupling::MujocoCoupling;
 use inputs::{LossStates, Losses, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
 use one::{OneState, one_result};
-use packed::build;
 
 /// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
 fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
@@ -38,15 +37,6 @@ fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
 pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
 /// Largest number of segments of a robot built from Python.
 pub(crate) const MAX_SEGMENTS: usize = 256;
-/// Floats per joint in the packed layout: parent (−1 for the base), kind (0 revolute,
-/// 1 prismatic), origin (3), axis (3).
-pub(crate) const TREE_JOINT_WIDTH: usize = 8;
-/// Floats per body: mass, com (3), volume, cob (3).
-pub(crate) const BODY_WIDTH: usize = 8;
-/// Floats per segment: owner (−1 base, else link), section (0 rectangular, 1 circular),
-/// start (3), axis (3), length, area, normals (2×3), widths (2), diameter, cd (2), cm (2).
-pub(crate) const SEGMENT_WIDTH: usize = 23;
-
 type Model = Robot<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
 type Data = RobotData<f64, MAX_ROBOT_JOINTS>;
 /// The robot over SIMD lanes, for the batch: four states per evaluation.
@@ -71,34 +61,32 @@ pub(crate) struct PyRobot {
 
 #[pymethods]
 impl PyRobot {
+    /// The robot of its `uwml.Joint`s (each `parent` resolved, `-1` for the base), its links'
+    /// and base's bodies (`uwml.Link`s: mass, com, volume, cob) and its segments as `(owner,
+    /// uwml.Segment)` pairs (`owner` `-1` for the base).
     #[new]
     fn new(
-        joints: PyReadonlyArray2<'_, f64>,
-        links: PyReadonlyArray2<'_, f64>,
-        base: PyReadonlyArray2<'_, f64>,
-        segments: PyReadonlyArray2<'_, f64>,
+        joints: Vec<JointSpec>,
+        links: Vec<BodySpec>,
+        base: BodySpec,
+        segments: Vec<(i64, SegmentSpec)>,
     ) -> PyResult<Self> {
-        let n = joints.shape().first().copied().unwrap_or(0);
-        let s = segments.shape().first().copied().unwrap_or(0);
-        if n > MAX_ROBOT_JOINTS || s > MAX_SEGMENTS {
+        let (n, s) = (joints.len(), segments.len());
+        if n > MAX_ROBOT_JOINTS || s > MAX_SEGMENTS || links.len() != n {
             return Err(PyValueError::new_err(format!(
-                "a robot may have up to {MAX_ROBOT_JOINTS} joints and {MAX_SEGMENTS} segments, got {n} and {s}"
+                "a robot may have up to {MAX_ROBOT_JOINTS} joints (and as many links) and {MAX_SEGMENTS} segments, got {n} joints, {} links and {s} segments",
+                links.len()
             )));
         }
-        let expected = [[n, TREE_JOINT_WIDTH], [n, BODY_WIDTH], [1, BODY_WIDTH], [s, SEGMENT_WIDTH]];
-        let given = [joints.shape(), links.shape(), base.shape(), segments.shape()];
-        if given.iter().zip(expected.iter()).any(|(g, e)| *g != e.as_slice()) {
-            return Err(PyValueError::new_err(format!(
-                "packed robot arrays must have shapes {expected:?}, got {given:?}"
-            )));
-        }
-        let robot = build(
-            contiguous(&joints, "joints")?,
-            contiguous(&links, "links")?,
-            contiguous(&base, "base")?,
-            contiguous(&segments, "segments")?,
-        )
-        .map_err(model_error)?;
+        let tree = joints.iter().enumerate().map(|(i, j)| j.tree_joint(i)).collect::<Result<Vec<_>, _>>();
+        let pieces = segments
+            .iter()
+            .enumerate()
+            .map(|(k, (owner, s))| s.robot_segment(*owner, k))
+            .collect::<Result<Vec<_>, _>>();
+        let bodies: Vec<_> = links.iter().map(BodySpec::rigid_body).collect();
+        let robot = Model::new(&tree.map_err(model_error)?, &bodies, base.rigid_body(), &pieces.map_err(model_error)?)
+            .map_err(model_error)?;
         Ok(Self {
             robot: Box::new(robot),
             data: Mutex::new(Box::new(Data::new())),

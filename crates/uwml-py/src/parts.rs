@@ -1,0 +1,183 @@
+//! The model's parts as the Python package hands them over: its own `uwml.Joint`, `uwml.Link`
+//! and `uwml.Segment` objects (validated dataclasses), read attribute by attribute into the
+//! core's types. No packed rows: the names are the dataclasses' fields.
+
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+use uwml_core::nalgebra::Vector3;
+use uwml_core::{JointKind, ModelError, Owner, Problem, RigidBody, RobotSegment, Section, TreeJoint};
+
+/// A `uwml.Joint` of a robot, its parent resolved (`-1`: the base).
+#[derive(FromPyObject)]
+pub(crate) struct JointSpec {
+    parent: i64,
+    kind: String,
+    origin: [f64; 3],
+    axis: [f64; 3],
+}
+
+/// A `uwml.Link` (or a robot's base) as a rigid body: its segments are read separately.
+#[derive(FromPyObject)]
+pub(crate) struct BodySpec {
+    mass: f64,
+    com: [f64; 3],
+    volume: f64,
+    cob: [f64; 3],
+}
+
+/// A `uwml.Segment`.
+#[derive(FromPyObject)]
+pub(crate) struct SegmentSpec {
+    start: [f64; 3],
+    axis: [f64; 3],
+    length: f64,
+    area: f64,
+    section: String,
+    normals: ([f64; 3], [f64; 3]),
+    widths: (f64, f64),
+    diameter: Option<f64>,
+    cd: (f64, f64),
+    cm: (f64, f64),
+}
+
+/// A body index from Python: `-1` for the base, else a link's (checked against the joints by the
+/// core).
+fn owner_index(value: i64, field: &'static str, index: usize) -> Result<Option<usize>, ModelError> {
+    if value == -1 {
+        return Ok(None);
+    }
+    usize::try_from(value).map(Some).map_err(|_| ModelError { field, index: Some(index), problem: Problem::OutOfRange })
+}
+
+impl JointSpec {
+    /// The core's joint `index`.
+    pub(crate) fn tree_joint(&self, index: usize) -> Result<TreeJoint<f64>, ModelError> {
+        let kind = match self.kind.as_str() {
+            "revolute" => JointKind::Revolute,
+            "prismatic" => JointKind::Prismatic,
+            _ => return Err(ModelError { field: "joint.kind", index: Some(index), problem: Problem::OutOfRange }),
+        };
+        Ok(TreeJoint {
+            parent: owner_index(self.parent, "joint.parent", index)?,
+            kind,
+            origin: self.origin.into(),
+            axis: self.axis.into(),
+        })
+    }
+}
+
+/// A `uwml.Joint` of a leg: its origin and axis (the parent is the previous link).
+#[derive(FromPyObject)]
+pub(crate) struct LegJointSpec {
+    origin: [f64; 3],
+    axis: [f64; 3],
+}
+
+impl LegJointSpec {
+    pub(crate) fn chain_joint(&self) -> uwml_core::Joint<f64> {
+        uwml_core::Joint { origin: self.origin.into(), axis: self.axis.into() }
+    }
+}
+
+impl BodySpec {
+    pub(crate) fn rigid_body(&self) -> RigidBody<f64> {
+        RigidBody { mass: self.mass, com: self.com.into(), volume: self.volume, cob: self.cob.into() }
+    }
+}
+
+impl SegmentSpec {
+    /// The core's segment `index`, carried by body `owner` (`-1`: the base).
+    pub(crate) fn robot_segment(&self, owner: i64, index: usize) -> Result<RobotSegment<f64>, ModelError> {
+        let section = match self.section.as_str() {
+            "rectangular" => Section::Rectangular {
+                normals: [self.normals.0.into(), self.normals.1.into()],
+                widths: [self.widths.0, self.widths.1],
+            },
+            "circular" => Section::Circular { diameter: self.diameter.unwrap_or(f64::NAN) },
+            _ => return Err(ModelError { field: "segment.section", index: Some(index), problem: Problem::OutOfRange }),
+        };
+        Ok(RobotSegment {
+            owner: owner_index(owner, "segment.owner", index)?.map_or(Owner::Base, Owner::Link),
+            start: self.start.into(),
+            axis: self.axis.into(),
+            length: self.length,
+            area: self.area,
+            section,
+            cd: [self.cd.0, self.cd.1],
+            cm: [self.cm.0, self.cm.1],
+        })
+    }
+
+    /// The chain's segment (a leg's link has at most one, rectangular).
+    pub(crate) fn chain_segment(&self) -> uwml_core::Segment<f64> {
+        uwml_core::Segment {
+            start: self.start.into(),
+            axis: self.axis.into(),
+            length: self.length,
+            normals: [self.normals.0.into(), self.normals.1.into()],
+            widths: [self.widths.0, self.widths.1],
+            area: self.area,
+        }
+    }
+}
+
+/// A `uwml.Link` of a leg: its body and its one segment, if any (`segment`).
+#[derive(FromPyObject)]
+pub(crate) struct LegLinkSpec {
+    mass: f64,
+    com: [f64; 3],
+    volume: f64,
+    cob: [f64; 3],
+    segment: Option<SegmentSpec>,
+}
+
+impl LegLinkSpec {
+    pub(crate) fn chain_link(&self) -> uwml_core::Link<f64> {
+        uwml_core::Link {
+            mass: self.mass,
+            com: self.com.into(),
+            volume: self.volume,
+            cob: self.cob.into(),
+            segment: self.segment.as_ref().map(SegmentSpec::chain_segment),
+        }
+    }
+}
+
+/// `v` as a Python tuple of three floats.
+fn triple<'py>(py: Python<'py>, v: &Vector3<f64>) -> PyResult<Bound<'py, PyTuple>> {
+    PyTuple::new(py, [v.x, v.y, v.z])
+}
+
+/// A chain joint as the tuple `(origin, axis)`.
+pub(crate) fn joint_tuple<'py>(py: Python<'py>, joint: &uwml_core::Joint<f64>) -> PyResult<Bound<'py, PyTuple>> {
+    PyTuple::new(py, [triple(py, &joint.origin)?, triple(py, &joint.axis)?])
+}
+
+/// A chain link as the tuple `(mass, com, volume, cob, segment)`, `segment` None or
+/// `(start, axis, length, (normal0, normal1), (width0, width1), area)`.
+pub(crate) fn link_tuple<'py>(py: Python<'py>, link: &uwml_core::Link<f64>) -> PyResult<Bound<'py, PyTuple>> {
+    let segment = match &link.segment {
+        None => py.None().into_bound(py),
+        Some(s) => {
+            let normals = PyTuple::new(py, [triple(py, &s.normals[0])?, triple(py, &s.normals[1])?])?;
+            let widths = PyTuple::new(py, s.widths)?;
+            let items: [Bound<'py, PyAny>; 6] = [
+                triple(py, &s.start)?.into_any(),
+                triple(py, &s.axis)?.into_any(),
+                s.length.into_pyobject(py)?.into_any(),
+                normals.into_any(),
+                widths.into_any(),
+                s.area.into_pyobject(py)?.into_any(),
+            ];
+            PyTuple::new(py, items)?.into_any()
+        }
+    };
+    let items: [Bound<'py, PyAny>; 5] = [
+        link.mass.into_pyobject(py)?.into_any(),
+        triple(py, &link.com)?.into_any(),
+        link.volume.into_pyobject(py)?.into_any(),
+        triple(py, &link.cob)?.into_any(),
+        segment,
+    ];
+    PyTuple::new(py, items)
+}
