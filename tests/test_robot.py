@@ -624,3 +624,19 @@ def test_the_leg_takes_kirchhoffs_added_mass_too() -> None:
     np.testing.assert_allclose(one.added_mass, leg.hydro(q, qd, qdd, added_mass="kirchhoff").added_mass, rtol=1e-12, atol=1e-12)
     with pytest.raises(ValueError, match="added_mass must be one of morison, kirchhoff"):
         leg.hydro(q, qd, qdd, added_mass="Kirchhoff")
+
+
+def test_one_coefficient_given_takes_the_segments_own_for_the_other() -> None:
+    """``cd`` per segment with ``cm`` None (and the reverse): the other is each segment's own, as
+    when both are None (the native batch once refused it, asking for both tables)."""
+    leg = uwml.Leg.paper()
+    robot = uwml.Robot(leg.joints, leg.links)
+    state = ([0.1, -0.4, 0.7], [0.5, -1.0, 2.0], [1.0, 3.0, -2.0])
+    own_cd = np.array([s.cd for s in robot.segments])
+    own_cm = np.array([s.cm for s in robot.segments])
+    both = robot.hydro(*state, cd=own_cd * 1.5, cm=own_cm)
+    np.testing.assert_array_equal(robot.hydro(*state, cd=own_cd * 1.5).total, both.total)
+    both = robot.hydro(*state, cd=own_cd, cm=own_cm * 0.5)
+    np.testing.assert_array_equal(robot.hydro(*state, cm=own_cm * 0.5).total, both.total)
+    # The leg's per-link layout, too: link 0 has no segment.
+    np.testing.assert_array_equal(leg.hydro(*state, cd=[9.0, 3.3, 3.3]).total, robot.hydro(*state, cd=3.3).total)

@@ -316,7 +316,6 @@ BAD_HYDRO = [
     pytest.param({"cd": np.ones(2)}, ValueError, "cd", id="cd 2 per link"),
     pytest.param({"cd": "big"}, TypeError, "cd", id="cd string"),
     pytest.param({"cm": 1.0 + 1.0j}, TypeError, "cm", id="cm complex"),
-    pytest.param({"cm": None}, (TypeError, ValueError), "cm", id="cm None"),
     pytest.param({"water": 1000.0}, TypeError, "water", id="water float"),
     pytest.param({"water": (1000.0, 9.81)}, TypeError, "water", id="water tuple"),
     pytest.param({"threads": 0}, ValueError, "threads", id="threads 0"),

@@ -14,9 +14,9 @@ from .. import _core
 from .._checks import real_array as _real_array
 from ..model.joint_losses import JointLosses
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
-from ._arguments import _coefficients
+from ._arguments import _coefficients, _Inputs
 from .base_motion import BaseMotion
-from .results import EnvironmentJacobians, HydroRegressors, RobotEnvironment, RobotTorques
+from .results import EnvironmentJacobians, HydroRegressors
 from .tree import Robot
 
 __all__ = ["MAX_JOINTS", "Leg"]
@@ -48,10 +48,13 @@ class Leg(Robot):
     """A serial chain of revolute joints with straight links: the paper's leg, or your own.
 
     A ``Leg`` is a :class:`uwml.Robot` (its joints in series on a fixed base, at most one
-    rectangular segment per link), evaluated by the same code; what it adds is the leg's way of
-    giving coefficients (per link: a scalar, ``(n_links,)`` or ``(n_links, 2)``; the paper's
-    2.2 and 0.5 by default), the leg's regressor and Jacobian layouts (joint space), and the
-    chain's kinematics (:meth:`jacobian`, :meth:`forward_kinematics`).
+    rectangular segment per link), evaluated by the same code: :meth:`hydro`, :meth:`environment`
+    and the rest are the robot's. What it adds: ``cd`` and ``cm`` per link (a scalar, an array
+    ``(n_links,)`` per link, or ``(n_links, 2)`` per link and normal direction, column ``k`` with
+    ``segment.normals[k]``; for the paper's leg 0 = out of the leg plane (yaw), 1 = in the plane
+    (roll); links without a segment ignore theirs; None, the default: each segment's own, the
+    paper's 2.2 and 0.5 unless a segment says otherwise), the leg's regressor and Jacobian layouts
+    (joint space), and the chain's kinematics (:meth:`jacobian`, :meth:`forward_kinematics`).
 
     Build one from :class:`uwml.Joint` and :class:`uwml.Link` descriptions (see the module
     :mod:`uwml.model.parts` for the frame convention), or take :meth:`Leg.paper`. The parameters are
@@ -156,100 +159,24 @@ class Leg(Robot):
             return value
         return _coefficients(value, name, self.n_joints)[list(self._owners)]
 
-    def hydro(
+    def _evaluation(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        cd: ArrayLike | None = 2.2,
-        cm: ArrayLike | None = 0.5,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        threads: int = 1,
-        added_mass: str = "morison",
-    ) -> RobotTorques:
-        """Drag, added-mass, buoyancy (and gravity) torques on every joint (and the wrench on the
-        base): :meth:`uwml.Robot.hydro` with the leg's coefficients.
+        cd: ArrayLike | None,
+        cm: ArrayLike | None,
+        water: Water | None,
+        base_motion: BaseMotion | None,
+        current: ArrayLike,
+        current_acceleration: ArrayLike,
+    ) -> tuple[_Inputs, bool, int]:
+        """The robot's general path, with the leg's coefficient layouts mapped to its segments."""
+        cd, cm = self._per_segment(cd, "cd"), self._per_segment(cm, "cm")
+        return super()._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
 
-        Parameters
-        ----------
-        q, qd, qdd
-            Joint positions [rad], velocities [rad/s], accelerations [rad/s²]; shape
-            ``(n_joints,)`` or ``(n_samples, n_joints)``, the same for all three.
-        cd, cm
-            Drag and added-mass coefficients: a scalar (the paper: 2.2 and 0.5), an array
-            ``(n_links,)`` per link, or ``(n_links, 2)`` per link and normal direction (column
-            ``k`` goes with ``segment.normals[k]``; for the paper's leg, 0 = out of the leg plane
-            (yaw), 1 = in the plane (roll)). Links without a segment ignore theirs. ``None``: each
-            segment's own.
-        water
-            Density and gravity; default the robot's (:attr:`water`: fresh water, 1000 kg/m³,
-            9.81 m/s², the one default water of every evaluation).
-        base_motion, current, current_acceleration, added_mass
-            As for :meth:`uwml.Robot.hydro` (default a fixed base in still water, the paper's
-            Morison added mass; ``"kirchhoff"``: the energy-consistent form).
-        threads
-            Threads to split a batch over (≥ 1; ``os.cpu_count()`` for every core): the same
-            results, faster for large batches.
-
-        The whole batch is evaluated in one call into Rust, with the GIL released. One state
-        (``q``, ``qd``, ``qdd`` lists, tuples or 1-D float64 arrays, scalar ``cd`` and ``cm``),
-        as a controller or a simulator steps, is read, checked and evaluated in one shorter call,
-        with the same checks and the same bits as that state's row of a batch.
-        """
-        return super().hydro(
-            q, qd, qdd, cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, base_motion=base_motion,
-            current=current, current_acceleration=current_acceleration, threads=threads, added_mass=added_mass,
-        )  # fmt: skip
-
-    def environment(
-        self,
-        q: ArrayLike,
-        qd: ArrayLike,
-        qdd: ArrayLike,
-        depth: ArrayLike = 0.0,
-        temperature_c: ArrayLike = 20.0,
-        losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike | None = 2.2,
-        cm: ArrayLike | None = 0.5,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        sea_density: float | None = None,
-        threads: int = 1,
-        added_mass: str = "morison",
-    ) -> RobotEnvironment:
-        """The environment torque of every joint, ``τ_hydro + τ_visc + τ_seal``, in one call:
-        :meth:`uwml.Robot.environment` with the leg's coefficients.
-
-        Parameters
-        ----------
-        q, qd, qdd
-            Joint states, as for :meth:`hydro`.
-        depth
-            Depth [m], 0 to 11000 (the deepest ocean), a scalar or one per sample; the ambient
-            pressure is the hydrostatic ``sea_density · g · depth`` (the core's formula; see
-            :mod:`uwml.sea.seawater` for TEOS-10).
-        temperature_c
-            Oil temperature [°C], a scalar or one per sample.
-        losses
-            One :class:`uwml.JointLosses` for every joint, a sequence with one (or None) per
-            joint, or None for none (the hydrodynamics alone).
-        cd, cm, water, base_motion, current, current_acceleration, threads, added_mass
-            As for :meth:`hydro`. ``water`` is the fluid the links move in, the robot's (fresh
-            water) unless given: pass ``water=uwml.Water(density=1025.0)`` for sea water.
-        sea_density
-            The density of the water column above [kg/m³] for the pressure: default ``water``'s,
-            so that one water is used for both.
-        """
-        return super().environment(
-            q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses,
-            cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, base_motion=base_motion, current=current,
-            current_acceleration=current_acceleration, sea_density=sea_density, threads=threads, added_mass=added_mass,
-        )  # fmt: skip
+    def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
+        return super()._coefficients(self._per_segment(value, name), name)
 
     def jacobians(  # type: ignore[override]  # the joint-space block of the robot's (a leg's base is fixed)
         self,
@@ -259,8 +186,8 @@ class Leg(Robot):
         depth: ArrayLike = 0.0,
         temperature_c: ArrayLike = 20.0,
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike | None = 2.2,
-        cm: ArrayLike | None = 0.5,
+        cd: ArrayLike | None = None,
+        cm: ArrayLike | None = None,
         water: Water | None = None,
         sea_density: float | None = None,
         added_mass: str = "morison",
@@ -278,8 +205,7 @@ class Leg(Robot):
         """
         r = super().jacobians(
             q, qd, qdd, depth=depth, temperature_c=temperature_c, losses=losses,
-            cd=self._per_segment(cd, "cd"), cm=self._per_segment(cm, "cm"), water=water, sea_density=sea_density,
-            added_mass=added_mass,
+            cd=cd, cm=cm, water=water, sea_density=sea_density, added_mass=added_mass,
         )  # fmt: skip
         return EnvironmentJacobians(
             value=r.value[..., 6:],

@@ -253,6 +253,10 @@ class Robot:
         """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
         sample axis, and the number of samples (:func:`uwml.robot._arguments.robot_inputs`)."""
         the_water = self._the_water(water)
+        if (cd is None) != (cm is None):
+            # One given: the other is the segments' own.
+            own = np.array([s.cd for s in self._segments], dtype=np.float64), np.array([s.cm for s in self._segments], dtype=np.float64)
+            cd, cm = (own[0], cm) if cd is None else (cd, own[1])
         return robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
 
     def hydro(
