@@ -640,3 +640,15 @@ def test_one_coefficient_given_takes_the_segments_own_for_the_other() -> None:
     np.testing.assert_array_equal(robot.hydro(*state, cm=own_cm * 0.5).total, both.total)
     # The leg's per-link layout, too: link 0 has no segment.
     np.testing.assert_array_equal(leg.hydro(*state, cd=[9.0, 3.3, 3.3]).total, robot.hydro(*state, cd=3.3).total)
+
+
+def test_a_leg_is_a_robot_that_does_not_load_descriptions() -> None:
+    """A Leg is a Robot (its evaluations are the robot's), but a description loads as a Robot:
+    the inherited loaders say so instead of failing inside the description reader."""
+    leg = uwml.Leg.paper()
+    assert isinstance(leg, uwml.Robot)
+    for load in (uwml.Leg.from_urdf, uwml.Leg.from_mjcf, uwml.Leg.from_mujoco):
+        with pytest.raises(TypeError, match=r"loads as a uwml\.Robot"):
+            load("anything")  # type: ignore[arg-type]
+    state = ([0.1, -0.4, 0.7], [0.5, -1.0, 2.0], [1.0, 3.0, -2.0])
+    np.testing.assert_array_equal(leg.hydro(*state).total, uwml.Robot(leg.joints, leg.links).hydro(*state).total)

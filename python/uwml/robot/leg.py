@@ -27,6 +27,13 @@ FloatArray = NDArray[np.float64]
 MAX_JOINTS: int = _core.MAX_JOINTS
 
 
+#: Why a Leg does not load descriptions.
+_DESCRIPTIONS = (
+    "a uwml.Leg is built from its Joints and Links (or Leg.paper()); a URDF, MJCF or MuJoCo model loads as a uwml.Robot "
+    "(uwml.Robot.from_urdf, from_mjcf, from_mujoco)"
+)
+
+
 def _vec(values: Sequence[float]) -> tuple[float, float, float]:
     return (float(values[0]), float(values[1]), float(values[2]))
 
@@ -151,6 +158,21 @@ class Leg(Robot):
                 f"{path}: a uwml.Leg holds no water of its own (give water= to its evaluations); load this file with uwml.Robot.load"
             )
         return cls(joints, links)
+
+    @classmethod
+    def from_urdf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Leg:
+        """Not for a leg: a description loads as a :class:`uwml.Robot` (``uwml.Robot.from_urdf``)."""
+        raise TypeError(_DESCRIPTIONS)
+
+    @classmethod
+    def from_mjcf(cls, path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> Leg:
+        """Not for a leg: as :meth:`from_urdf`."""
+        raise TypeError(_DESCRIPTIONS)
+
+    @classmethod
+    def from_mujoco(cls, model: Any, hydro: str | os.PathLike[str] | None = None) -> Leg:
+        """Not for a leg: as :meth:`from_urdf`."""
+        raise TypeError(_DESCRIPTIONS)
 
     def _per_segment(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
         """A leg's ``cd`` or ``cm`` (None, a scalar, per link or per link and direction) as the
