@@ -267,7 +267,7 @@ def test_losses_are_packed_once_per_object() -> None:
     leg = uwml.Leg.paper()
     losses = uwml.JointLosses()
     first = one_state_losses(leg, losses, 3)
-    assert one_state_losses(leg, losses, 3) is first and not first.flags.writeable
+    assert one_state_losses(leg, losses, 3) is first
     other = uwml.JointLosses(seal=None)
     assert one_state_losses(leg, other, 3) is not first
     assert one_state_losses(leg, [losses] * 3, 3) is False
@@ -357,7 +357,7 @@ BAD_ENVIRONMENT = [
     pytest.param({"losses": [uwml.JointLosses()]}, ValueError, "losses", id="losses one entry"),
     pytest.param({"losses": 3}, TypeError, "losses", id="losses int"),
     pytest.param({"losses": [None, "seal", None]}, TypeError, r"losses\[1\]", id="losses string entry"),
-    pytest.param({"losses": np.zeros((3, uwml._core.LOSS_WIDTH))}, TypeError, r"losses\[0\]", id="losses packed array"),
+    pytest.param({"losses": np.zeros((3, 21))}, TypeError, r"losses\[0\]", id="losses packed array"),
 ]
 
 

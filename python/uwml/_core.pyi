@@ -6,6 +6,7 @@ from typing import Self, TypeAlias, TypeVar, final
 import numpy as np
 from numpy.typing import NDArray
 
+from .model.joint_losses import JointLosses
 from .model.parts import Joint, Link, Segment
 
 _Vec3: TypeAlias = tuple[float, float, float]
@@ -14,7 +15,6 @@ _SegmentParts: TypeAlias = tuple[_Vec3, _Vec3, float, tuple[_Vec3, _Vec3], tuple
 
 __all__ = [
     "ABSOLUTE_ZERO_C",
-    "LOSS_WIDTH",
     "MAX_AREA",
     "MAX_COEFFICIENT",
     "MAX_DENSITY",
@@ -29,6 +29,7 @@ __all__ = [
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
     "Chain",
+    "Losses",
     "ModelError",
     "MujocoCoupling",
     "Robot",
@@ -50,7 +51,6 @@ MAX_DENSITY: float
 MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
-LOSS_WIDTH: int
 MAX_ROBOT_JOINTS: int
 MAX_SEGMENTS: int
 
@@ -59,6 +59,12 @@ class UwmlError(ValueError):
 
 class ModelError(UwmlError):
     """A non-physical or malformed model parameter."""
+
+@final
+class Losses:
+    def __new__(cls, per_joint: Sequence[JointLosses | None]) -> Self: ...
+    @property
+    def n_joints(self) -> int: ...
 
 @final
 class Chain:
@@ -106,7 +112,7 @@ class Robot:
         current_acceleration: NDArray[np.float64],
         threads: int,
         body_wrenches: bool,
-        losses: NDArray[np.float64] | None = None,
+        losses: Losses | None = None,
         pressure: NDArray[np.float64] | None = None,
         temperature: NDArray[np.float64] | None = None,
         kirchhoff: bool = False,
@@ -182,7 +188,7 @@ class Robot:
         angular_acceleration: NDArray[np.float64],
         current: NDArray[np.float64],
         current_acceleration: NDArray[np.float64],
-        losses: NDArray[np.float64],
+        losses: Losses,
         pressure: NDArray[np.float64],
         temperature: NDArray[np.float64],
         kirchhoff: bool = False,
@@ -208,7 +214,7 @@ class MujocoCoupling:
         joint_dofs: Sequence[int],
         free_dof: int | None,
         mass_pairs: NDArray[np.int64],
-        losses: NDArray[np.float64] | None,
+        losses: Losses | None,
         depth: float,
         temperature: float,
         density: float,
@@ -223,7 +229,7 @@ class MujocoCoupling:
     def remember_acceleration(self) -> None: ...
 
 def joint_losses(
-    losses: NDArray[np.float64] | None,
+    losses: Losses | None,
     speed: NDArray[np.float64],
     pressure: NDArray[np.float64],
     temperature: NDArray[np.float64],

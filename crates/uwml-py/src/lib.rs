@@ -14,7 +14,7 @@ pub(crate) use arrays::{
     NonFinite, check_conditions, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed,
 };
 use batch::*;
-pub(crate) use losses::{joint_losses, parse_losses};
+pub(crate) use losses::{PyLosses, joint_losses, parse_losses};
 use parts::{LegJointSpec, LegLinkSpec, joint_tuple, link_tuple};
 
 use numpy::{PyArray, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
@@ -26,12 +26,6 @@ use uwml_core::{Chain, Joint, Link, ModelError, Water};
 
 /// Largest number of joints a chain built from Python may have.
 const MAX_JOINTS: usize = 8;
-
-/// Floats per joint's losses in the packed layout: has_oil (0/1), k_oil, exponent,
-/// pressure_sensitivity [1/Pa], temperature_sensitivity [1/K], reference_pressure [Pa],
-/// reference_temperature [°C], has_seal (0/1), c0, c1, s0, s1, d0, d1 (per Pa for c1, s1, d1),
-/// stribeck_speed, torque_constant, ratio, efficiency, rated_current, epsilon, has_losses (0/1).
-const LOSS_WIDTH: usize = 21;
 
 fn model_error(error: ModelError) -> PyErr {
     errors::ModelError::new_err(error.to_string())
@@ -258,6 +252,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyChain>()?;
     m.add_class::<robot::PyRobot>()?;
     m.add_class::<robot::MujocoCoupling>()?;
+    m.add_class::<PyLosses>()?;
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
     m.add("MAX_DEPTH", uwml_core::MAX_DEPTH)?;
     m.add("MAX_PRESSURE", uwml_core::MAX_PRESSURE)?;
@@ -272,7 +267,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("OIL_TEMPERATURE_RANGE_C", (uwml_core::OIL_TEMPERATURE_RANGE_C[0], uwml_core::OIL_TEMPERATURE_RANGE_C[1]))?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
-    m.add("LOSS_WIDTH", LOSS_WIDTH)?;
     m.add("UwmlError", m.py().get_type::<errors::UwmlError>())?;
     m.add("ModelError", m.py().get_type::<errors::ModelError>())?;
     m.add("MAX_JOINTS", MAX_JOINTS)?;

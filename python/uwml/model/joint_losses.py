@@ -1,8 +1,8 @@
 """A joint's losses as the Rust core evaluates them: :class:`JointLosses` bundles one joint's
 :class:`~uwml.model.losses.Drive` with its optional :class:`~uwml.model.losses.OilDrag` and
 :class:`~uwml.model.losses.Seal`, and evaluates them (:meth:`JointLosses.torques`); the robots'
-evaluations (:meth:`uwml.Leg.environment`, :meth:`uwml.Robot.environment`) take them packed
-(:func:`pack_leg_losses`).
+evaluations (:meth:`uwml.Leg.environment`, :meth:`uwml.Robot.environment`) take them read and
+validated by the core once per set (:func:`pack_leg_losses`, a native ``Losses``).
 """
 
 from __future__ import annotations
@@ -63,38 +63,6 @@ class JointLosses:
             raise ValueError(f"epsilon must be finite and >= 0, got {self.epsilon!r}")
         object.__setattr__(self, "epsilon", epsilon)
 
-    def packed(self) -> list[float]:
-        """The core's packed layout (SI: pressures in Pa)."""
-        o, s, d = self.oil, self.seal, self.drive
-        oil = (
-            [0.0] * 7
-            if o is None
-            else [
-                1.0,
-                o.k_oil,
-                o.exponent,
-                o.pressure_sensitivity_per_mpa / _MPA,
-                o.temperature_sensitivity_per_k,
-                o.reference_pressure_mpa * _MPA,
-                o.reference_temperature_c,
-            ]
-        )
-        seal = (
-            [0.0] * 8
-            if s is None
-            else [
-                1.0,
-                s.c0,
-                s.c1_per_mpa / _MPA,
-                s.s0,
-                s.s1_per_mpa / _MPA,
-                s.d0,
-                s.d1_per_mpa / _MPA,
-                s.stribeck_speed,
-            ]
-        )
-        return [*oil, *seal, d.torque_constant, d.ratio, d.efficiency, d.rated_current, self.epsilon, 1.0]
-
     def torques(self, speed: ArrayLike, pressure_mpa: ArrayLike = 0.0, temperature_c: ArrayLike = 20.0) -> LossTorques:
         """Losses at output speed [rad/s], ambient pressure [MPa] and oil temperature [°C].
 
@@ -121,15 +89,15 @@ class JointLosses:
         check_temperatures(temperature_b)
         shape = speed_b.shape
         flat = [np.ascontiguousarray(a.ravel()) for a in (speed_b, pressure_b * _MPA, temperature_b)]
-        packed = np.array([self.packed()], dtype=np.float64)
-        visc, seal, current = _core.joint_losses(packed, *flat)
+        visc, seal, current = _core.joint_losses(_core.Losses([self]), *flat)
         check_overflow((visc, seal, current), len(flat[0]), flat[0], np.zeros_like(flat[0]))
         return LossTorques(visc=visc.reshape(shape), seal=seal.reshape(shape), current=current.reshape(shape))
 
 
-def pack_leg_losses(losses: JointLosses | Sequence[JointLosses | None] | None, n_joints: int) -> FloatArray:
-    """Per-joint packed losses ``(n_joints, LOSS_WIDTH)``: one ``JointLosses`` for every joint,
-    a sequence with one entry (or None) per joint, or None for no losses."""
+def pack_leg_losses(losses: JointLosses | Sequence[JointLosses | None] | None, n_joints: int) -> _core.Losses:
+    """Per-joint losses for the native evaluations (``uwml._core.Losses``: each joint's
+    ``JointLosses`` read and validated by the core once): one ``JointLosses`` for every joint, a
+    sequence with one entry (or None) per joint, or None for no losses."""
     if losses is None or isinstance(losses, JointLosses):
         per_joint: list[JointLosses | None] = [losses] * n_joints
     else:
@@ -141,12 +109,7 @@ def pack_leg_losses(losses: JointLosses | Sequence[JointLosses | None] | None, n
             ) from None
         if len(per_joint) != n_joints:
             raise ValueError(f"losses must have one entry per joint ({n_joints}), got {len(per_joint)}")
-    rows = []
     for i, item in enumerate(per_joint):
-        if item is None:
-            rows.append([0.0] * _core.LOSS_WIDTH)
-        elif isinstance(item, JointLosses):
-            rows.append(item.packed())
-        else:
+        if item is not None and not isinstance(item, JointLosses):
             raise TypeError(f"losses[{i}] must be a uwml.JointLosses or None, got {type(item).__name__}")
-    return np.array(rows, dtype=np.float64).reshape(n_joints, _core.LOSS_WIDTH)
+    return _core.Losses(per_joint)

@@ -1,6 +1,6 @@
 """The checks and layouts of the robots' arguments, shared by :class:`uwml.Leg` and
 :class:`uwml.Robot`: joint states, coefficients, threads, the water, the added-mass form, the
-joint losses (per joint, and packed for a one-state call), and a robot's rows for the core."""
+joint losses (per joint, and read by the core once for a one-state call)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .. import _core
 from .._checks import real_array as _real_array
 from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.parts import Water
@@ -94,20 +95,19 @@ def _per_joint_losses(losses: object, n_joints: int) -> tuple[JointLosses | None
     return tuple(checked)
 
 
-def one_state_losses(owner: Any, losses: object, n_joints: int) -> FloatArray | bool:
-    """``losses`` (not None) for a one-state native call: one :class:`JointLosses` packed for
-    every joint, kept on ``owner`` (its ``_losses_cache``) for the next call with the same object
-    (it is frozen), or ``False`` (which the native calls do not take) for anything else, left to
-    the general path."""
-    cached: tuple[JointLosses, FloatArray] | None = owner._losses_cache
+def one_state_losses(owner: Any, losses: object, n_joints: int) -> _core.Losses | bool:
+    """``losses`` (not None) for a one-state native call: one :class:`JointLosses` for every
+    joint, read by the core once and kept on ``owner`` (its ``_losses_cache``) for the next call
+    with the same object (it is frozen), or ``False`` (which the native calls do not take) for
+    anything else, left to the general path."""
+    cached: tuple[JointLosses, _core.Losses] | None = owner._losses_cache
     if cached is not None and cached[0] is losses:
         return cached[1]
     if type(losses) is not JointLosses:
         return False
-    packed = pack_leg_losses(losses, n_joints)
-    packed.flags.writeable = False
-    owner._losses_cache = (losses, packed)
-    return packed
+    compiled = pack_leg_losses(losses, n_joints)
+    owner._losses_cache = (losses, compiled)
+    return compiled
 
 
 def _short_path(water: object, base_motion: object) -> tuple[bool, tuple[FloatArray, ...] | None]:

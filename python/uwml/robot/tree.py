@@ -79,8 +79,8 @@ class Robot:
         result.total, result.base.total   # joint torques; base force and moment
     """
 
-    #: The last ``JointLosses`` packed for a one-state call, and its packing.
-    _losses_cache: tuple[JointLosses, FloatArray] | None = None
+    #: The last ``JointLosses`` of a one-state call, and the core's reading of it.
+    _losses_cache: tuple[JointLosses, _core.Losses] | None = None
 
     def __init__(
         self,
@@ -406,11 +406,11 @@ class Robot:
                 return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        packed = pack_leg_losses(losses, self.n_joints)
+        compiled = pack_leg_losses(losses, self.n_joints)
         the_water = self._the_water(water)
         column = the_water.density if sea_density is None else sea_density
         pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
-        out = self._core.hydro(*arguments, threads, False, packed, pressure, temperature, kirchhoff=kirchhoff)
+        out = self._core.hydro(*arguments, threads, False, compiled, pressure, temperature, kirchhoff=kirchhoff)
         check_overflow((out[0], out[1], out[4], out[5], out[9], out[10], out[11]), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         joint_shape = (n_samples, n) if batched else (n,)
@@ -450,11 +450,11 @@ class Robot:
         kirchhoff = _kirchhoff(added_mass)
         losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        packed = pack_leg_losses(losses, self.n_joints)
+        compiled = pack_leg_losses(losses, self.n_joints)
         the_water = self._the_water(water)
         column = the_water.density if sea_density is None else sea_density
         pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
-        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, packed, pressure, temperature, kirchhoff=kirchhoff)
+        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, compiled, pressure, temperature, kirchhoff=kirchhoff)
         check_overflow((value, d_q, d_velocity), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         m = 6 + n

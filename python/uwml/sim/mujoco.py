@@ -318,9 +318,9 @@ class Simulation:
         if added_mass not in ("morison", "kirchhoff"):
             raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
         self._scheme, self._integrator, self._added_mass = scheme, integrator, added_mass
-        # The joint losses, packed once for the one-state native path.
+        # The joint losses, read by the core once for the one-state native path.
         self._losses = robot._effective_losses(losses)
-        self._packed_losses = pack_leg_losses(self._losses, robot.n_joints)
+        self._compiled_losses = pack_leg_losses(self._losses, robot.n_joints)
         self._joint_losses = _per_joint_losses(self._losses, robot.n_joints)
         if any(loss is not None and loss.seal is not None for loss in self._joint_losses):
             # The seal's friction is a MuJoCo friction constraint (module docstring): the noslip
@@ -348,7 +348,7 @@ class Simulation:
             robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
             self.model.dof_damping, self.model.dof_frictionloss,
             None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
-            self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._packed_losses,
+            self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._compiled_losses,
             self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
             tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
         )  # fmt: skip
@@ -481,7 +481,7 @@ class Simulation:
         """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
         generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
         added-mass matrix. Two native calls (the one-state path of ``Robot.environment`` with
-        the losses packed once, and the added-mass matrix), the same numbers as the public API."""
+        the losses read by the core once, and the added-mass matrix), the same numbers as the public API."""
         q = np.array(self.data.qpos[self._joint_qpos])
         qd = np.array(self.data.qvel[self._joint_dofs])
         motion = self._base_motion()
@@ -494,7 +494,7 @@ class Simulation:
             np.zeros_like(q),
             self.depth,
             self.temperature_c,
-            self._packed_losses,
+            self._compiled_losses,
             None,
             None,
             self.water.density,

@@ -87,7 +87,7 @@ fn values<'a>(array: &'a numpy::PyReadonlyArrayDyn<'_, f64>, name: &str, n: usiz
 impl MujocoCoupling {
     /// The coupling of `robot` to one `MjData`'s arrays (checked here; the Python caller builds
     /// the map). `mass_pairs`: `(nM, 2)` degrees of freedom of each entry of `data.M`;
-    /// `losses`: packed `(N, LOSS_WIDTH)` or None, evaluated at the pressure of `depth` in
+    /// `losses`: a `Losses` of `N` joints or None, evaluated at the pressure of `depth` in
     /// water of `sea_density` and at `temperature`.
     #[new]
     #[allow(clippy::too_many_arguments)]
@@ -108,7 +108,7 @@ impl MujocoCoupling {
         joint_dofs: Vec<usize>,
         free_dof: Option<usize>,
         mass_pairs: PyReadonlyArray2<'_, i64>,
-        losses: Option<PyReadonlyArray2<'_, f64>>,
+        losses: Option<PyRef<'_, crate::PyLosses>>,
         depth: f64,
         temperature: f64,
         density: f64,
@@ -169,9 +169,9 @@ impl MujocoCoupling {
             return Err(PyValueError::new_err("depth (>= 0), temperature and sea_density (> 0) must be finite"));
         }
         let mut states = [None; MAX_ROBOT_JOINTS];
-        if let Some(packed) = &losses {
+        if let Some(compiled) = &losses {
             let pressure = sea_density * water.gravity() * depth;
-            for (slot, joint) in states.iter_mut().zip(parse_losses(packed, n)?) {
+            for (slot, joint) in states.iter_mut().zip(parse_losses(compiled, n)?) {
                 *slot = joint.map(|l| l.at(pressure, temperature)).transpose().map_err(crate::model_error)?;
             }
         }

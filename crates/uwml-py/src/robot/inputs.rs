@@ -218,9 +218,9 @@ impl<'a> Surroundings<'a> {
     }
 }
 
-/// Packed joint losses `(n, LOSS_WIDTH)` and the pressure and temperature of every sample.
+/// The joint losses of `n` joints and the pressure and temperature of every sample.
 pub(super) fn check_losses<'a>(
-    losses: &PyReadonlyArray2<'_, f64>,
+    losses: &crate::PyLosses,
     pressure: &'a PyReadonlyArray1<'_, f64>,
     temperature: &'a PyReadonlyArray1<'_, f64>,
     n: usize,
@@ -228,7 +228,7 @@ pub(super) fn check_losses<'a>(
 ) -> PyResult<Losses<'a>> {
     let mut joints = [None; MAX_ROBOT_JOINTS];
     for (slot, l) in joints.iter_mut().zip(parse_losses(losses, n)?) {
-        *slot = l;
+        *slot = *l;
     }
     let pressure = contiguous1(pressure, "pressure", n_samples)?;
     let temperature = contiguous1(temperature, "temperature", n_samples)?;

@@ -22,7 +22,7 @@ mod one;
 use crate::batch::Lanes;
 use crate::parts::{BodySpec, JointSpec, SegmentSpec};
 use crate::single::finite_number;
-use crate::{Array2, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
+use crate::{Array2, PyLosses, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
 pub(crate) use coupling::MujocoCoupling;
 use inputs::{LossStates, Losses, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
@@ -126,7 +126,7 @@ impl PyRobot {
         current_acceleration: PyReadonlyArray2<'py, f64>,
         threads: usize,
         body_wrenches: bool,
-        losses: Option<PyReadonlyArray2<'py, f64>>,
+        losses: Option<PyRef<'py, PyLosses>>,
         pressure: Option<PyReadonlyArray1<'py, f64>>,
         temperature: Option<PyReadonlyArray1<'py, f64>>,
         kirchhoff: bool,
@@ -269,7 +269,7 @@ impl PyRobot {
     }
 
     /// [`PyRobot::hydro_one`] with the joint losses of `Robot.environment`: `depth` ≥ 0,
-    /// `temperature`, `sea_density` > 0 numbers, `losses` None or packed `(N, LOSS_WIDTH)`;
+    /// `temperature`, `sea_density` > 0 numbers, `losses` None or a `Losses` of `N` joints;
     /// a `result_type` (`uwml.RobotEnvironment`) or `None`, as there.
     #[allow(clippy::too_many_arguments)]
     #[pyo3(signature = (result_type, base_type, q, qd, qdd, depth, temperature, losses, cd, cm, density, gravity, sea_density, motion, current, current_acceleration, threads, kirchhoff=false))]
@@ -309,11 +309,10 @@ impl PyRobot {
         }
         let mut joints = [None; MAX_ROBOT_JOINTS];
         if !losses.is_none() {
-            let Ok(packed) = losses.cast::<numpy::PyArray2<f64>>() else { return Ok(None) };
-            let Ok(packed) = packed.try_readonly() else { return Ok(None) };
-            let Ok(parsed) = parse_losses(&packed, n) else { return Ok(None) };
+            let Ok(compiled) = losses.cast::<PyLosses>() else { return Ok(None) };
+            let Ok(parsed) = parse_losses(compiled.get(), n) else { return Ok(None) };
             for (slot, l) in joints.iter_mut().zip(parsed) {
-                *slot = l;
+                *slot = *l;
             }
         }
         // The batch path's pressure and loss states, so that the bits are its.
@@ -417,7 +416,7 @@ impl PyRobot {
         angular_acceleration: PyReadonlyArray2<'py, f64>,
         current: PyReadonlyArray2<'py, f64>,
         current_acceleration: PyReadonlyArray2<'py, f64>,
-        losses: PyReadonlyArray2<'py, f64>,
+        losses: PyRef<'py, PyLosses>,
         pressure: PyReadonlyArray1<'py, f64>,
         temperature: PyReadonlyArray1<'py, f64>,
         kirchhoff: bool,
