@@ -4,9 +4,7 @@
 use std::ops::Range;
 
 use simba::simd::SimdValue;
-use uwml_core::{
-    AddedMassForm, BaseMotion, Conditions, Current, Water, loss_torques, robot_hydro, robot_hydro_regressors,
-};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Water, robot_hydro, robot_hydro_regressors};
 
 use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings};
 use super::{Coefficients, Data, LaneData, LaneModel, Model};
@@ -48,7 +46,6 @@ pub(super) fn hydro_range(
     let water = water.splat::<Lanes>();
     let coefficients = coefficients.map(|c| c.splat::<Lanes>());
     let mut loss_states = LossStates::new();
-    let mut row = StateRow::new();
     let mut lanes = LaneRow::new();
     let fixed = if surroundings.constant() {
         let (motion, current) = surroundings.at(0)?;
@@ -115,12 +112,18 @@ pub(super) fn hydro_range(
         if let Some(losses) = losses {
             for (lane, sample) in chunk.clone().enumerate() {
                 let k = first + lane;
-                row.load([q, qd, qdd], sample, n);
-                let (v, f, c) = loss_torques(loss_states.at(losses, sample), &row.qd.into());
-                for (out, values) in [(&mut *visc, v), (&mut *seal, f), (&mut *loss_current, c)] {
-                    if let Some(row) = out.get_mut(k * n..(k + 1) * n) {
-                        for (slot, x) in row.iter_mut().zip(values.iter()) {
-                            *slot = *x;
+                let speeds = qd.get(sample * n..(sample + 1) * n).unwrap_or(&[]);
+                // The robot's joints only (the outputs are zero where a joint has no losses):
+                // each joint's loss at its speed, as the core's `loss_torques` evaluates it.
+                let states = loss_states.at(losses, sample);
+                for (j, (state, &speed)) in states.iter().zip(speeds).enumerate() {
+                    let Some(state) = state else { continue };
+                    let loss = state.evaluate(speed);
+                    for (out, x) in
+                        [(&mut *visc, loss.visc), (&mut *seal, loss.seal), (&mut *loss_current, loss.current)]
+                    {
+                        if let Some(slot) = out.get_mut(k * n + j) {
+                            *slot = x;
                         }
                     }
                 }

@@ -10,7 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::{
-    AddedMassForm, Conditions, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients, loss_torques,
+    AddedMassForm, Conditions, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients,
     robot_added_mass_matrix, robot_jacobians,
 };
 
@@ -25,7 +25,7 @@ use crate::single::finite_number;
 use crate::{Array2, PyLosses, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
 pub(crate) use coupling::MujocoCoupling;
-use inputs::{LossStates, Losses, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
+use inputs::{LossStates, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
 use one::{OneState, one_result};
 
 /// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
@@ -307,20 +307,35 @@ impl PyRobot {
         if !crate::usual_conditions(depth, temperature, sea_density, sea_density * one.water.gravity() * depth) {
             return Ok(None);
         }
-        let mut joints = [None; MAX_ROBOT_JOINTS];
-        if !losses.is_none() {
+        let compiled = if losses.is_none() {
+            None
+        } else {
             let Ok(compiled) = losses.cast::<PyLosses>() else { return Ok(None) };
-            let Ok(parsed) = parse_losses(compiled.get(), n) else { return Ok(None) };
-            for (slot, l) in joints.iter_mut().zip(parsed) {
-                *slot = *l;
-            }
-        }
-        // The batch path's pressure and loss states, so that the bits are its.
-        let (pressure, temperature) = ([sea_density * one.water.gravity() * depth], [temperature]);
-        let conditions = Losses { joints, pressure: &pressure, temperature: &temperature };
+            Some(compiled)
+        };
+        let parsed = match &compiled {
+            Some(compiled) => match parse_losses(compiled.get(), n) {
+                Ok(parsed) => parsed,
+                Err(_) => return Ok(None),
+            },
+            None => &[],
+        };
         let mut data = self.one_state_workspace();
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
-        let (visc, seal, loss_current) = loss_torques(LossStates::new().at(&conditions, 0), &one.row.qd.into());
+        // The batch path's pressure and loss states (the same operations), so that the bits are
+        // its; the robot's joints only.
+        let pressure = sea_density * one.water.gravity() * depth;
+        let (mut visc, mut seal, mut loss_current) =
+            ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
+        for (j, (losses, &speed)) in parsed.iter().zip(one.row.qd.iter()).enumerate() {
+            let Some(state) = losses.and_then(|l| l.at(pressure, temperature).ok()) else { continue };
+            let loss = state.evaluate(speed);
+            for (out, x) in [(&mut visc, loss.visc), (&mut seal, loss.seal), (&mut loss_current, loss.current)] {
+                if let Some(slot) = out.get_mut(j) {
+                    *slot = x;
+                }
+            }
+        }
         if !one::finite(&data, &[visc.as_slice(), seal.as_slice(), loss_current.as_slice()]) {
             return Ok(None);
         }
