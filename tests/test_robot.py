@@ -2,8 +2,9 @@
 on random trees, base motions and currents, against ``uwml.Leg`` on serial chains, and checked
 for its inputs: shapes, broadcasting, orientations, errors that name the argument.
 
-Expected values come from the reference (an independent numpy implementation), from ``uwml.Leg``
-(the chain path of the core, a different algorithm), or from numbers written here.
+Expected values come from the reference (an independent numpy implementation) or from numbers
+written here; ``uwml.Leg`` (a Robot too, through the chain convenience of the core) must give the
+robot's values.
 """
 
 import numpy as np

@@ -51,8 +51,9 @@ fn assert_close(a: f64, b: f64, scale: f64, rel: f64, what: &str) {
 
 #[test]
 fn a_chain_on_a_fixed_base_in_still_water_is_the_chain() {
-    // docs/model.md sections 2-9 as the special case: the paper's leg and random chains, through the tree
-    // path, agree with the chain path to 1e-14 of each component's largest torque.
+    // docs/model.md sections 2-9 as the special case: the paper's leg and random chains as robots
+    // agree with the chain convenience (`hydro_torques`, the same evaluation of the chain's own
+    // robot) to 1e-14 of each component's largest torque: a chain's robot is built as this one.
     let mut rng = Rng(11);
     let paper = Chain::<f64, 3>::paper();
     let paper_coefficients = Coefficients::uniform(2.2, 0.5).unwrap();
