@@ -88,6 +88,8 @@ FloatArray = NDArray[np.float64]
 #: How the added mass enters the equations of motion.
 SCHEMES = ("matrix", "lagged")
 INTEGRATORS = ("euler", "rk4")
+#: The fractions of a step at which the classical Runge-Kutta method evaluates.
+_RK4_FRACTIONS = (0.0, 0.5, 0.5, 1.0)
 #: MuJoCo's noslip solver with joint losses (at least these iterations, at most this tolerance):
 #: a friction constraint then holds a joint at rest (to about 1e-8 rad/s) instead of creeping.
 NOSLIP_ITERATIONS = 50
@@ -558,21 +560,17 @@ class Simulation:
                 self._coupling.remember_acceleration()
             mj.mj_Euler(m, d)
             return
-        h = m.opt.timestep
-        qpos0, qvel0, time0 = d.qpos.copy(), d.qvel.copy(), d.time
-        velocities: list[FloatArray] = []
-        accelerations: list[FloatArray] = []
-        for fraction, index in ((0.0, None), (0.5, 0), (0.5, 1), (1.0, 2)):
-            velocity = qvel0 if index is None else qvel0 + fraction * h * accelerations[index]
-            d.qpos[:] = qpos0
-            if index is not None:
-                mj.mj_integratePos(m, d.qpos, velocities[index], fraction * h)
-            d.qvel[:] = velocity
+        # The classical Runge-Kutta method; the stages' velocities, accelerations and averages are
+        # kept by the native coupling (the same operations as the numpy code they replace).
+        h, time0, coupling = m.opt.timestep, d.time, self._coupling
+        coupling.rk4_begin()
+        for stage, fraction in enumerate(_RK4_FRACTIONS):
+            # qpos back to the start, qvel the stage's; the previous stage's velocity.
+            previous = coupling.rk4_stage(stage, h)
+            if previous is not None:
+                mj.mj_integratePos(m, d.qpos, previous, fraction * h)
             d.time = time0 + fraction * h
             self.forward(torque, qfrc)
-            velocities.append(velocity.copy())
-            accelerations.append(d.qacc.copy())
-        d.qpos[:] = qpos0
-        mj.mj_integratePos(m, d.qpos, (velocities[0] + 2.0 * velocities[1] + 2.0 * velocities[2] + velocities[3]) / 6.0, h)
-        d.qvel[:] = qvel0 + h * (accelerations[0] + 2.0 * accelerations[1] + 2.0 * accelerations[2] + accelerations[3]) / 6.0
+            coupling.rk4_keep(stage)
+        mj.mj_integratePos(m, d.qpos, coupling.rk4_finish(h), h)
         d.time = time0 + h

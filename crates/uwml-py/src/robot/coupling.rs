@@ -6,7 +6,7 @@
 //! into `qfrc_applied`. The Python class keeps every check and the map's construction; this is
 //! only the per-step arithmetic, so that a step costs about the evaluation and `M_A`.
 
-use numpy::{PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{Matrix3, Vector3};
@@ -16,6 +16,7 @@ use uwml_core::{
 };
 
 use super::inputs::StateRow;
+use super::rk4::Rk4;
 use super::{Data, MAX_ROBOT_JOINTS, PyRobot, added_mass_form};
 use crate::parse_losses;
 use crate::single::fill_values;
@@ -70,6 +71,8 @@ pub(crate) struct MujocoCoupling {
     /// evaluated (into `joint_added_mass`, `n²`) and the base's rows and columns stay zero.
     added_mass: Vec<f64>,
     joint_added_mass: Vec<f64>,
+    /// The Runge-Kutta step under way (`integrator="rk4"`), made on its first use.
+    rk4: Option<Rk4>,
 }
 
 /// `array`'s values, C-contiguous, with at least `n` of them.
@@ -207,6 +210,7 @@ impl MujocoCoupling {
             lagged: lagged.then(|| vec![0.0; size]),
             added_mass: vec![0.0; size * size],
             joint_added_mass: vec![0.0; n * n],
+            rk4: None,
         })
     }
 
@@ -304,6 +308,42 @@ impl MujocoCoupling {
             }
         }
         Ok(0)
+    }
+
+    /// A Runge-Kutta step begins at the data's `qpos` and `qvel` (see `Rk4`).
+    fn rk4_begin(&mut self, py: Python<'_>) -> PyResult<()> {
+        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
+        let nv = qvel.len();
+        self.rk4.get_or_insert_with(|| Rk4::new(py, nv)).begin(qpos, qvel)
+    }
+
+    /// Stage `stage` (0-3) of a step of `h`: `data.qpos` back to the start, `data.qvel` the
+    /// stage's velocity; the previous stage's velocity (None at stage 0), for `mj_integratePos`.
+    fn rk4_stage<'py>(&mut self, py: Python<'py>, stage: usize, h: f64) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
+        match self.rk4.as_mut() {
+            Some(rk4) => rk4.stage(py, stage, h, qpos, qvel),
+            None => Err(PyValueError::new_err("rk4_begin must come first")),
+        }
+    }
+
+    /// Keeps stage `stage`'s acceleration (`data.qacc` after its forward pass).
+    fn rk4_keep(&mut self, py: Python<'_>, stage: usize) -> PyResult<()> {
+        let qacc = self.views.qacc.bind(py);
+        match self.rk4.as_mut() {
+            Some(rk4) => rk4.keep(stage, qacc),
+            None => Err(PyValueError::new_err("rk4_begin must come first")),
+        }
+    }
+
+    /// The step's end: `data.qpos` back to the start, `data.qvel` the step's; the weighted
+    /// velocity, for `mj_integratePos` over `h`.
+    fn rk4_finish<'py>(&mut self, py: Python<'py>, h: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
+        match self.rk4.as_mut() {
+            Some(rk4) => rk4.finish(py, h, qpos, qvel),
+            None => Err(PyValueError::new_err("rk4_begin must come first")),
+        }
     }
 
     /// For the lagged scheme: keep `(ν̇, q̈)` of the step just computed (`data.qacc` in uwml's

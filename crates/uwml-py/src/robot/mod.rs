@@ -18,6 +18,7 @@ mod batch;
 mod coupling;
 mod inputs;
 mod one;
+mod rk4;
 
 use crate::batch::Lanes;
 use crate::parts::{BodySpec, JointSpec, SegmentSpec};
