@@ -121,22 +121,6 @@ impl<T: SimdRealField + Copy, const N: usize> HydroRegressors<T, N> {
     }
 }
 
-/// The chain's coefficients as its robot's segments' (each link's segment, in link order).
-#[inline(always)]
-fn segment_coefficients<T: SimdRealField + Copy, const N: usize>(
-    chain: &Chain<T, N>,
-    coefficients: &Coefficients<T, N>,
-) -> SegmentCoefficients<T, N> {
-    let zero = [T::zero(); 2];
-    let mut table = SegmentCoefficients { cd: [zero; N], cm: [zero; N] };
-    let with_segment = chain.links().iter().zip(coefficients.cd().iter().zip(coefficients.cm()));
-    let per_segment = with_segment.filter(|(link, _)| link.segment.is_some()).map(|(_, c)| c);
-    for ((cd, cm), (&link_cd, &link_cm)) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(per_segment) {
-        (*cd, *cm) = (link_cd, link_cm);
-    }
-    table
-}
-
 /// The robot evaluation of the chain at `(q, q̇, q̈)` with the segments' coefficients `table`.
 #[inline(always)]
 fn evaluate<T: Real, const N: usize>(
@@ -228,7 +212,7 @@ pub fn hydro_torques<T: Real, const N: usize>(
     qd: &SVector<T, N>,
     qdd: &SVector<T, N>,
 ) -> HydroTorques<T, N> {
-    let data = evaluate(chain, water, &segment_coefficients(chain, coefficients), [q, qd, qdd]);
+    let data = evaluate(chain, water, &chain.robot().link_coefficients(coefficients), [q, qd, qdd]);
     HydroTorques {
         drag: each(&data, |f| f.drag),
         added_mass: each(&data, |f| f.added_mass),

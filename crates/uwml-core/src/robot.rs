@@ -374,6 +374,27 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
         robot
     }
 
+    /// Per-link coefficients (`per_link`, validated) as this robot's segment table: each segment
+    /// on link `i` takes link `i`'s; a segment on the base, or on a link beyond `per_link`, its
+    /// own. A chain's coefficients for its robot ([`crate::Chain::robot`]).
+    #[must_use]
+    pub fn link_coefficients<const N: usize>(
+        &self,
+        per_link: &crate::model::Coefficients<T, N>,
+    ) -> SegmentCoefficients<T, S> {
+        let mut table = SegmentCoefficients { cd: [[T::zero(); 2]; S], cm: [[T::zero(); 2]; S] };
+        for ((cd, cm), segment) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(&self.segments) {
+            (*cd, *cm) = match segment.owner {
+                Owner::Link(i) => match (per_link.cd().get(i), per_link.cm().get(i)) {
+                    (Some(&link_cd), Some(&link_cm)) => (link_cd, link_cm),
+                    _ => (segment.cd, segment.cm),
+                },
+                Owner::Base => (segment.cd, segment.cm),
+            };
+        }
+        table
+    }
+
     /// The joints, as validated.
     pub fn joints(&self) -> &[TreeJoint<T>] {
         self.joints.get(..self.joint_count).unwrap_or(&[])

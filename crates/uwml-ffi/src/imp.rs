@@ -9,7 +9,7 @@ use core::ffi::c_char;
 use uwml_core::nalgebra::RealField;
 use uwml_core::{
     BaseMotion, Chain, Coefficients, Current, Drive, Joint, JointForces, JointLoss, JointLosses, Link, ModelError,
-    OilDrag, Owner, Problem, RobotData, Seal, Segment, SegmentCoefficients, Water,
+    OilDrag, Problem, RobotData, Seal, Segment, Water,
 };
 
 use crate::robot::{Model, check_evaluation, environment_total};
@@ -41,23 +41,10 @@ impl<T: RealField + uwml_core::Real> Leg<T> {
     }
 
     /// The same leg with other coefficients (link `i`'s for the segment of link `i`).
-    ///
-    /// # Errors
-    /// None for coefficients that `Coefficients` accepted (they are checked again here).
-    fn with_coefficients(&self, coefficients: &Coefficients<T, N>) -> Result<Self, ModelError> {
-        let (mut cd, mut cm) = ([[T::zero(); 2]; N], [[T::zero(); 2]; N]);
-        let rows = cd.iter_mut().zip(cm.iter_mut());
-        for ((cd, cm), segment) in rows.zip(self.model.robot.segments()) {
-            if let Owner::Link(i) = segment.owner
-                && let (Some(&link_cd), Some(&link_cm)) = (coefficients.cd().get(i), coefficients.cm().get(i))
-            {
-                (*cd, *cm) = (link_cd, link_cm);
-            }
-        }
-        let table = SegmentCoefficients::per_segment(cd, cm)?;
+    fn with_coefficients(&self, coefficients: &Coefficients<T, N>) -> Self {
         let mut model = self.model;
-        model.robot = model.robot.with_coefficients(&table);
-        Ok(Self { model })
+        model.robot = model.robot.with_coefficients(&model.robot.link_coefficients(coefficients));
+        Self { model }
     }
 }
 
@@ -491,7 +478,7 @@ pub(crate) unsafe fn set_water<T: Precision>(leg: *mut T::Leg, density: T, gravi
 pub(crate) unsafe fn set_coefficients<T: Precision>(leg: *mut T::Leg, cd: T, cm: T) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    *leg = leg.with_coefficients(&Coefficients::uniform(cd, cm)?)?;
+    *leg = leg.with_coefficients(&Coefficients::uniform(cd, cm)?);
     Ok(())
 }
 
@@ -512,7 +499,7 @@ pub(crate) unsafe fn set_coefficients_per_direction<T: Precision>(
     let coefficients = Coefficients::per_direction(cd, cm)?;
     // SAFETY: forwarded contract; the reference is this call's only access.
     let leg = unsafe { leg_mut::<T>(leg) }?;
-    *leg = leg.with_coefficients(&coefficients)?;
+    *leg = leg.with_coefficients(&coefficients);
     Ok(())
 }
 

@@ -14,8 +14,7 @@ from .. import _core
 from .._checks import real_array as _real_array
 from ..model.joint_losses import JointLosses
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
-from ._arguments import _coefficients, _Inputs
-from .base_motion import BaseMotion
+from ._arguments import _coefficients
 from .results import EnvironmentJacobians, HydroRegressors
 from .tree import Robot
 
@@ -174,31 +173,12 @@ class Leg(Robot):
         """Not for a leg: as :meth:`from_urdf`."""
         raise TypeError(_DESCRIPTIONS)
 
-    def _per_segment(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
+    def _segment_values(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
         """A leg's ``cd`` or ``cm`` (None, a scalar, per link or per link and direction) as the
-        robot's (None, a scalar, or per segment and direction)."""
+        robot's (None, a scalar, or per segment and direction), for the robot's general path."""
         if value is None or (isinstance(value, (int, float)) and not isinstance(value, bool)):
             return value
         return _coefficients(value, name, self.n_joints)[list(self._owners)]
-
-    def _evaluation(
-        self,
-        q: ArrayLike,
-        qd: ArrayLike,
-        qdd: ArrayLike,
-        cd: ArrayLike | None,
-        cm: ArrayLike | None,
-        water: Water | None,
-        base_motion: BaseMotion | None,
-        current: ArrayLike,
-        current_acceleration: ArrayLike,
-    ) -> tuple[_Inputs, bool, int]:
-        """The robot's general path, with the leg's coefficient layouts mapped to its segments."""
-        cd, cm = self._per_segment(cd, "cd"), self._per_segment(cm, "cm")
-        return super()._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-
-    def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
-        return super()._coefficients(self._per_segment(value, name), name)
 
     def jacobians(  # type: ignore[override]  # the joint-space block of the robot's (a leg's base is fixed)
         self,

@@ -129,6 +129,9 @@ class Robot:
         self._losses = _per_joint_losses(losses, len(joints))
         self._water = FRESH_WATER if water is None else _water(water)
         self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
+        #: The segments' own coefficients, ``(S, 2)`` each: for an evaluation given only one of them.
+        self._own_cd = np.array([s.cd for s in self._segments], dtype=np.float64).reshape(-1, 2)
+        self._own_cm = np.array([s.cm for s in self._segments], dtype=np.float64).reshape(-1, 2)
 
     @classmethod
     def from_leg(cls, leg: Any) -> Robot:
@@ -234,9 +237,15 @@ class Robot:
     def __repr__(self) -> str:
         return f"Robot(n_joints={self.n_joints}, n_segments={len(self._segments)}, base={'body' if self._base is not None else None})"
 
+    def _segment_values(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
+        """``cd`` or ``cm`` as an evaluation was given it, in the robot's layout (None, a scalar,
+        per segment or per segment and direction): as given here; a :class:`uwml.Leg` takes them
+        per link."""
+        return value
+
     def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
         """``(S, 2)`` per segment and direction, or ``(0, 2)`` for the segments' own."""
-        return segment_coefficients(value, name, self._circular)
+        return segment_coefficients(self._segment_values(value, name), name, self._circular)
 
     def _evaluation(
         self,
@@ -253,10 +262,10 @@ class Robot:
         """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
         sample axis, and the number of samples (:func:`uwml.robot._arguments.robot_inputs`)."""
         the_water = self._the_water(water)
+        cd, cm = self._segment_values(cd, "cd"), self._segment_values(cm, "cm")
         if (cd is None) != (cm is None):
             # One given: the other is the segments' own.
-            own = np.array([s.cd for s in self._segments], dtype=np.float64), np.array([s.cm for s in self._segments], dtype=np.float64)
-            cd, cm = (own[0], cm) if cd is None else (cd, own[1])
+            cd, cm = (self._own_cd, cm) if cd is None else (cd, self._own_cm)
         return robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
 
     def hydro(

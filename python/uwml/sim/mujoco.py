@@ -565,11 +565,12 @@ class Simulation:
         h, time0, coupling = m.opt.timestep, d.time, self._coupling
         coupling.rk4_begin()
         for stage, fraction in enumerate(_RK4_FRACTIONS):
+            offset = fraction * h
             # qpos back to the start, qvel the stage's; the previous stage's velocity.
-            previous = coupling.rk4_stage(stage, h)
+            previous = coupling.rk4_stage(stage, offset)
             if previous is not None:
-                mj.mj_integratePos(m, d.qpos, previous, fraction * h)
-            d.time = time0 + fraction * h
+                mj.mj_integratePos(m, d.qpos, previous, offset)
+            d.time = time0 + offset
             self.forward(torque, qfrc)
             coupling.rk4_keep(stage)
         mj.mj_integratePos(m, d.qpos, coupling.rk4_finish(h), h)

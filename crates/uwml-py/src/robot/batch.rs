@@ -6,7 +6,7 @@ use std::ops::Range;
 use simba::simd::SimdValue;
 use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Water, robot_hydro, robot_hydro_regressors};
 
-use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings};
+use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings, write_joint_losses};
 use super::{Coefficients, Data, LaneData, LaneModel, Model};
 use crate::batch::Lanes;
 
@@ -113,20 +113,8 @@ pub(super) fn hydro_range(
             for (lane, sample) in chunk.clone().enumerate() {
                 let k = first + lane;
                 let speeds = qd.get(sample * n..(sample + 1) * n).unwrap_or(&[]);
-                // The robot's joints only (the outputs are zero where a joint has no losses):
-                // each joint's loss at its speed, as the core's `loss_torques` evaluates it.
-                let states = loss_states.at(losses, sample);
-                for (j, (state, &speed)) in states.iter().zip(speeds).enumerate() {
-                    let Some(state) = state else { continue };
-                    let loss = state.evaluate(speed);
-                    for (out, x) in
-                        [(&mut *visc, loss.visc), (&mut *seal, loss.seal), (&mut *loss_current, loss.current)]
-                    {
-                        if let Some(slot) = out.get_mut(k * n + j) {
-                            *slot = x;
-                        }
-                    }
-                }
+                let states = loss_states.at(losses, sample).iter().copied();
+                write_joint_losses(states, speeds, [&mut *visc, &mut *seal, &mut *loss_current], k * n);
             }
         }
     }

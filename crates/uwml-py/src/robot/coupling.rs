@@ -317,12 +317,18 @@ impl MujocoCoupling {
         self.rk4.get_or_insert_with(|| Rk4::new(py, nv)).begin(qpos, qvel)
     }
 
-    /// Stage `stage` (0-3) of a step of `h`: `data.qpos` back to the start, `data.qvel` the
-    /// stage's velocity; the previous stage's velocity (None at stage 0), for `mj_integratePos`.
-    fn rk4_stage<'py>(&mut self, py: Python<'py>, stage: usize, h: f64) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
+    /// Stage `stage` (0-3), `offset` (its fraction of the step times the step) into the step:
+    /// `data.qpos` back to the start, `data.qvel` the stage's velocity; the previous stage's
+    /// velocity (None at stage 0), for `mj_integratePos` over `offset`.
+    fn rk4_stage<'py>(
+        &mut self,
+        py: Python<'py>,
+        stage: usize,
+        offset: f64,
+    ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
         let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
         match self.rk4.as_mut() {
-            Some(rk4) => rk4.stage(py, stage, h, qpos, qvel),
+            Some(rk4) => rk4.stage(py, stage, offset, qpos, qvel),
             None => Err(PyValueError::new_err("rk4_begin must come first")),
         }
     }

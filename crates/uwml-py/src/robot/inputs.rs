@@ -143,6 +143,27 @@ impl LossStates {
     }
 }
 
+/// Each joint's loss at its speed (`states`, `speeds`: the robot's joints, in order) into
+/// `visc`, `seal` and `current` from index `start` on, where the joint has losses: what the core's
+/// `loss_torques` evaluates, without its fixed-size vectors. The outputs are left as they are
+/// (zero) for a joint without.
+pub(super) fn write_joint_losses(
+    states: impl IntoIterator<Item = Option<LossState<f64>>>,
+    speeds: &[f64],
+    [visc, seal, current]: [&mut [f64]; 3],
+    start: usize,
+) {
+    for (j, (state, &speed)) in states.into_iter().zip(speeds).enumerate() {
+        let Some(state) = state else { continue };
+        let loss = state.evaluate(speed);
+        for (out, x) in [(&mut *visc, loss.visc), (&mut *seal, loss.seal), (&mut *current, loss.current)] {
+            if let Some(slot) = out.get_mut(start + j) {
+                *slot = x;
+            }
+        }
+    }
+}
+
 /// An input error of one sample, raised as a ValueError once the GIL is back.
 pub(super) struct SampleError {
     pub(super) sample: usize,

@@ -26,7 +26,9 @@ use crate::single::finite_number;
 use crate::{Array2, PyLosses, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
 use batch::{hydro_range, regressor_range};
 pub(crate) use coupling::MujocoCoupling;
-use inputs::{LossStates, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states};
+use inputs::{
+    LossStates, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states, write_joint_losses,
+};
 use one::{OneState, one_result};
 
 /// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
@@ -328,15 +330,8 @@ impl PyRobot {
         let pressure = sea_density * one.water.gravity() * depth;
         let (mut visc, mut seal, mut loss_current) =
             ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
-        for (j, (losses, &speed)) in parsed.iter().zip(one.row.qd.iter()).enumerate() {
-            let Some(state) = losses.and_then(|l| l.at(pressure, temperature).ok()) else { continue };
-            let loss = state.evaluate(speed);
-            for (out, x) in [(&mut visc, loss.visc), (&mut seal, loss.seal), (&mut loss_current, loss.current)] {
-                if let Some(slot) = out.get_mut(j) {
-                    *slot = x;
-                }
-            }
-        }
+        let states = parsed.iter().map(|losses| losses.and_then(|l| l.at(pressure, temperature).ok()));
+        write_joint_losses(states, &one.row.qd, [&mut visc, &mut seal, &mut loss_current], 0);
         if !one::finite(&data, &[visc.as_slice(), seal.as_slice(), loss_current.as_slice()]) {
             return Ok(None);
         }

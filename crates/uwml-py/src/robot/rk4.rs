@@ -7,9 +7,6 @@
 use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 
-/// The stages' fractions of the step.
-pub(super) const FRACTIONS: [f64; 4] = [0.0, 0.5, 0.5, 1.0];
-
 /// One Runge-Kutta step under way.
 pub(super) struct Rk4 {
     /// `qpos` and `qvel` at the step's start.
@@ -61,18 +58,19 @@ impl Rk4 {
         Ok(())
     }
 
-    /// Stage `stage` (0-3) of a step of `h`: `qpos` back to the start, `qvel` the stage's
-    /// velocity `qvel0 + (fraction h) a_{stage−1}`. Returns the previous stage's velocity, with
-    /// which the caller advances `qpos` by `fraction h` (`None` for the first stage).
+    /// Stage `stage` (0-3), `offset` (the stage's fraction of the step times the step) into the
+    /// step: `qpos` back to the start, `qvel` the stage's velocity `qvel0 + offset a_{stage−1}`.
+    /// Returns the previous stage's velocity, with which the caller advances `qpos` by `offset`
+    /// (`None` for the first stage).
     pub(super) fn stage<'py>(
         &mut self,
         py: Python<'py>,
         stage: usize,
-        h: f64,
+        offset: f64,
         qpos: &Bound<'py, PyArrayDyn<f64>>,
         qvel: &Bound<'py, PyArrayDyn<f64>>,
     ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
-        let (Some(&fraction), Some(velocity)) = (FRACTIONS.get(stage), self.velocities.get(stage)) else {
+        let Some(velocity) = self.velocities.get(stage) else {
             return Err(pyo3::exceptions::PyValueError::new_err(format!("stage must be 0 to 3, got {stage}")));
         };
         let velocity = velocity.bind(py);
@@ -82,9 +80,8 @@ impl Rk4 {
             match stage.checked_sub(1).and_then(|k| self.accelerations.get(k)) {
                 // qvel0 + fraction * h * a, as numpy evaluates it: (fraction * h) first.
                 Some(acceleration) => {
-                    let scale = fraction * h;
                     for ((slot, &v), &a) in out.iter_mut().zip(&self.qvel0).zip(acceleration) {
-                        *slot = v + scale * a;
+                        *slot = v + offset * a;
                     }
                 }
                 None => out.copy_from_slice(&self.qvel0),
