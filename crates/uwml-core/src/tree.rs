@@ -483,14 +483,14 @@ fn forward<T: Real, const J: usize, const S: usize>(
     let still_water = base.water_acceleration == Vector3::zeros();
     let per_joint = robot.joints().iter().zip(&robot.frames().joints).zip(q.iter().zip(qd).zip(qdd)).take(n);
     for (i, ((joint, geometry), ((&q, &qd), &qdd))) in per_joint.enumerate() {
+        // Parents come first: the parent is read from the frames before `i`, the child written
+        // in place.
+        let Some((done, [slot, ..])) = frames.split_at_mut_checked(i) else { continue };
         let parent = match joint.parent {
-            Some(p) => frames.get(p).unwrap_or(base),
+            Some(p) => done.get(p).unwrap_or(base),
             None => base,
         };
-        let frame = parent.child(joint, geometry, [q, qd, qdd], still_water);
-        if let Some(slot) = frames.get_mut(i) {
-            *slot = frame;
-        }
+        *slot = parent.child(joint, geometry, [q, qd, qdd], still_water);
     }
 }
 
@@ -510,22 +510,22 @@ pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
     let rho = water.density();
     let frames = robot.frames();
     data.joint_count = n;
-    let nothing = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
     for slot in data.losses.iter_mut().take(n) {
-        *slot = nothing;
+        slot.visc = T::zero();
+        slot.seal = T::zero();
+        slot.current = T::zero();
     }
     data.base_rotation = *motion.rotation();
     data.density = rho;
     let base = Frame::base(motion, water, current);
     data.base_frame = base;
     forward(robot, &base, state, &mut data.frames);
+    // Field by field: a whole `Subtree` value would be built aside and copied in.
     for (subtree, geometry) in data.subtree.iter_mut().zip(&frames.joints).take(n) {
-        *subtree = Subtree {
-            drag: Wrench::zero(),
-            added_mass: Wrench::zero(),
-            volume_moment: geometry.bulk.volume_moment,
-            mass_moment: geometry.bulk.mass_moment,
-        };
+        subtree.drag = Wrench::zero();
+        subtree.added_mass = Wrench::zero();
+        subtree.volume_moment = geometry.bulk.volume_moment;
+        subtree.mass_moment = geometry.bulk.mass_moment;
     }
     let mut total = Subtree {
         drag: Wrench::zero(),
@@ -556,8 +556,9 @@ pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
     }
     // Backward: subtrees summed into their parents; each joint's generalized force.
     for i in (0..n).rev() {
-        let (Some(joint), Some(frame), Some(geometry), Some(&subtree)) =
-            (robot.joints().get(i), data.frames.get(i), frames.joints.get(i), data.subtree.get(i))
+        // The subtree is read in place and its parent (before it) written.
+        let (Some(joint), Some(frame), Some(geometry), Some((before, [subtree, ..]))) =
+            (robot.joints().get(i), data.frames.get(i), frames.joints.get(i), data.subtree.split_at_mut_checked(i))
         else {
             continue;
         };
@@ -586,7 +587,7 @@ pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
             let force = up(&w.force);
             Wrench { force, moment: up(&w.moment) + frame.offset.cross(&force) }
         };
-        let parent = match joint.parent.filter(|&p| p < i).and_then(|p| data.subtree.get_mut(p)) {
+        let parent = match joint.parent.and_then(|p| before.get_mut(p)) {
             Some(parent) => parent,
             None => &mut total,
         };
