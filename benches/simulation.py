@@ -3,7 +3,8 @@ and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tes
 
     python benches/simulation.py [--steps N]
 
-Prints microseconds per step (median of 5 runs of N steps) and the ratios to a bare mj_step, for
+Prints microseconds per step (median of 5 runs of N steps) and the ratios to a bare mj_step (and
+uwml's RK4 step against MuJoCo's own RK4 step, which also makes four forward passes), for
 the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints), without joint
 losses and (Euler) with the default ones at 3000 m. Timings on a
 shared machine are noisy: compare ratios from one run.
@@ -12,6 +13,7 @@ shared machine are noisy: compare ratios from one run.
 from __future__ import annotations
 
 import argparse
+import copy
 import statistics
 import time
 from pathlib import Path
@@ -65,6 +67,12 @@ def main() -> None:
         bare = mujoco.MjData(model)
         bare.qvel[:] = rng.uniform(-0.5, 0.5, model.nv)
         rows.append(("bare mj_step", per_step(lambda m=model, d=bare: mujoco.mj_step(m, d), args.steps)))
+        # MuJoCo's own RK4: four forward passes a step, as uwml's rk4 (compare its row with this).
+        rk4_model = copy.copy(model)
+        rk4_model.opt.integrator = mujoco.mjtIntegrator.mjINT_RK4
+        rk4_data = mujoco.MjData(rk4_model)
+        rk4_data.qvel[:] = bare.qvel
+        rk4_bare = per_step(lambda m=rk4_model, d=rk4_data: mujoco.mj_step(m, d), args.steps // 4)
         for label, ellipsoid in (("MuJoCo fluid, inertia box", False), ("MuJoCo fluid, ellipsoid", True)):
             fluid = with_fluid(DATA / file, ellipsoid)
             data = mujoco.MjData(fluid)
@@ -81,6 +89,8 @@ def main() -> None:
         print(f"\n{name}")
         for label, micro in rows:
             print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")
+        rk4 = next(micro for label, micro in rows if label.endswith("rk4"))
+        print(f"  {'bare mj_step, MuJoCo RK4':28s} {rk4_bare:9.1f} µs   {rk4_bare / rows[0][1]:6.1f} ×   (uwml's rk4: {rk4 / rk4_bare:.1f} × this)")
 
 
 if __name__ == "__main__":

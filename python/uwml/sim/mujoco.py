@@ -11,11 +11,13 @@ on the seabed), joint limits, actuators.
 environment splits exactly into ``τ_env(q, q̇, q̈) = τ_env,0(q, q̇) − M_A(q) q̈``.
 Each step evaluates ``τ_env,0`` (uwml at zero joint and base acceleration: drag, buoyancy,
 Froude-Krylov and the velocity part of the added mass; the joint losses below) and ``M_A(q)``; ``M_A`` is added
-to MuJoCo's joint-space inertia between its assembly (``mj_makeM``) and its factorization
-(``mj_factorM``), so MuJoCo solves ``(M + M_A) q̈ = τ + τ_env,0`` with its constraints: no
-acceleration is fed back from the last step, and a link lighter than the water it drags along
-is as stable as any other. The position stage is MuJoCo's ``mj_fwdPosition`` run function by
-function with that one addition; the rest is ``mj_forwardSkip`` from the velocity stage.
+to MuJoCo's joint-space inertia after its position stage (``mj_fwdPosition``), which is then
+factored again (``mj_factorM``) and the constraints projected with it again
+(``mj_projectConstraint``), so MuJoCo solves ``(M + M_A) q̈ = τ + τ_env,0`` with its
+constraints: no acceleration is fed back from the last step, and a link lighter than the water
+it drags along is as stable as any other. The rest is ``mj_forwardSkip`` from the velocity
+stage. (Factoring twice costs less, for the robots of the benchmark, than calling the position
+stage's functions one by one from Python.)
 ``scheme="lagged"`` instead applies ``−M_A q̈`` with the previous step's ``q̈`` as a force, as
 gz-sim and UUV Simulator do: for comparison only (it diverges once ``M_A`` exceeds ``M``).
 
@@ -46,7 +48,7 @@ forces are mapped to MuJoCo's degrees of freedom with the same ``Rᵀ``. Gravity
 (``opt.gravity`` must be ``(0, 0, −g)`` with ``g`` the water's): uwml's gravity component is
 not applied.
 
-**One native call per step.** The arithmetic between ``mj_makeM`` and ``mj_factorM`` (reading
+**One native call per step.** The arithmetic between the position stage and ``mj_factorM`` (reading
 the state from the data's arrays, the evaluation of ``τ_env,0`` and ``M_A``, the map, the writes
 into ``data.M`` and ``data.qfrc_applied``) is done by ``uwml._core.MujocoCoupling``, which keeps
 views of the data's arrays: a step costs MuJoCo's stages plus about one uwml evaluation and
@@ -527,14 +529,16 @@ class Simulation:
         on a free joint: the force in world components, the moment in the body's). A state that
         is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
         mj, m, d = self._mj, self.model, self.data
-        mj.mj_fwdKinematics(m, d)
-        mj.mj_makeM(m, d)
-        status = self._coupling.apply(torque)
+        coupling = self._coupling
+        if self._compiled_losses is not None:  # the friction constraints take the levels
+            coupling.write_joint_losses()
+        mj.mj_fwdPosition(m, d)
+        status = coupling.apply(torque)
         if status == 2:  # a torque the native reader does not take as it is: convert, or refuse
             motor = np.asarray(torque, dtype=np.float64)
             if motor.shape != (self.robot.n_joints,) or not np.all(np.isfinite(motor)):
                 raise ValueError(f"torque must be {self.robot.n_joints} finite numbers (one per joint), got {torque!r}")
-            status = self._coupling.apply(np.ascontiguousarray(motor))
+            status = coupling.apply(np.ascontiguousarray(motor))
         if status == 1:
             raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
         if qfrc is not None:
@@ -543,10 +547,6 @@ class Simulation:
                 raise ValueError(f"qfrc must be {m.nv} finite numbers (one per degree of freedom), got shape {extra.shape}")
             d.qfrc_applied[:] += extra
         mj.mj_factorM(m, d)
-        mj.mj_collision(m, d)
-        mj.mj_makeConstraint(m, d)
-        mj.mj_island(m, d)
-        mj.mj_transmission(m, d)
         mj.mj_projectConstraint(m, d)
         mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
 

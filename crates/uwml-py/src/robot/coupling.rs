@@ -1,5 +1,6 @@
-//! `uwml._core.MujocoCoupling`: what `uwml.mujoco.Simulation` does between MuJoCo's `mj_makeM`
-//! and `mj_factorM`, in one native call per step. It reads the state from the `MjData`'s own
+//! `uwml._core.MujocoCoupling`: what `uwml.mujoco.Simulation` does after MuJoCo's position stage
+//! and before the mass matrix is factored again, in one native call per step (and the joint
+//! losses, written before the position stage). It reads the state from the `MjData`'s own
 //! arrays (numpy views kept from the start), evaluates the robot's environment (hydrodynamics
 //! and joint losses) at zero MuJoCo acceleration and the added-mass matrix `M_A`, maps both to
 //! MuJoCo's degrees of freedom, adds `M_A` into MuJoCo's sparse inertia and writes the forces
@@ -17,22 +18,23 @@ use uwml_core::{
 
 use super::inputs::StateRow;
 use super::rk4::Rk4;
+use super::view::View;
 use super::{Data, MAX_ROBOT_JOINTS, PyRobot, added_mass_form};
 use crate::parse_losses;
 use crate::single::fill_values;
 
 /// The `MjData` arrays the coupling reads and writes (kept for the coupling's life).
 struct Views {
-    qpos: Py<PyArrayDyn<f64>>,
-    qvel: Py<PyArrayDyn<f64>>,
-    qacc: Py<PyArrayDyn<f64>>,
-    xquat: Py<PyArrayDyn<f64>>,
-    xmat: Py<PyArrayDyn<f64>>,
-    mass_matrix: Py<PyArrayDyn<f64>>,
-    qfrc_applied: Py<PyArrayDyn<f64>>,
+    qpos: View,
+    qvel: View,
+    qacc: View,
+    xquat: View,
+    xmat: View,
+    mass_matrix: View,
+    qfrc_applied: View,
     /// The `MjModel`'s `dof_damping` and `dof_frictionloss`: the joint losses go there.
-    dof_damping: Py<PyArrayDyn<f64>>,
-    dof_frictionloss: Py<PyArrayDyn<f64>>,
+    dof_damping: View,
+    dof_frictionloss: View,
 }
 
 /// Where uwml's coordinates `(ν, q̇)` sit among MuJoCo's degrees of freedom.
@@ -73,6 +75,12 @@ pub(crate) struct MujocoCoupling {
     joint_added_mass: Vec<f64>,
     /// The Runge-Kutta step under way (`integrator="rk4"`), made on its first use.
     rk4: Option<Rk4>,
+    /// `qpos` and `qvel` as last read, and any other array's numbers (kept to copy into without
+    /// allocating).
+    qpos: Vec<f64>,
+    qvel: Vec<f64>,
+    scratch: Vec<f64>,
+    scratch2: Vec<f64>,
 }
 
 /// `array`'s values, C-contiguous, with at least `n` of them.
@@ -183,22 +191,23 @@ impl MujocoCoupling {
             let all = values(&array, name, nv)?;
             Ok(joint_dofs.iter().map(|&d| all.get(d).copied().unwrap_or(0.0)).collect())
         };
+        let views = Views {
+            qpos: View::new(&qpos, "data.qpos")?,
+            qvel: View::new(&qvel, "data.qvel")?,
+            qacc: View::new(&qacc, "data.qacc")?,
+            xquat: View::new(&xquat, "data.xquat")?,
+            xmat: View::new(&xmat, "data.xmat")?,
+            mass_matrix: View::new(&mass_matrix, "data.M")?,
+            qfrc_applied: View::new(&qfrc_applied, "data.qfrc_applied")?,
+            dof_damping: View::new(&dof_damping, "model.dof_damping")?,
+            dof_frictionloss: View::new(&dof_frictionloss, "model.dof_frictionloss")?,
+        };
         let (own_damping, own_frictionloss) =
             (own(&dof_damping, "dof_damping")?, own(&dof_frictionloss, "dof_frictionloss")?);
         let size = 6 + n;
         Ok(Self {
             robot: robot.unbind(),
-            views: Views {
-                qpos: qpos.unbind(),
-                qvel: qvel.unbind(),
-                qacc: qacc.unbind(),
-                xquat: xquat.unbind(),
-                xmat: xmat.unbind(),
-                mass_matrix: mass_matrix.unbind(),
-                qfrc_applied: qfrc_applied.unbind(),
-                dof_damping: dof_damping.unbind(),
-                dof_frictionloss: dof_frictionloss.unbind(),
-            },
+            views,
             map: DofMap { uwml_of_dof, joint_qpos, joint_dofs, free_dof, root, mass_pairs: mass_entries },
             data: Box::new(Data::new()),
             losses: states,
@@ -211,18 +220,41 @@ impl MujocoCoupling {
             added_mass: vec![0.0; size * size],
             joint_added_mass: vec![0.0; n * n],
             rk4: None,
+            qpos: Vec::with_capacity(nq),
+            qvel: Vec::with_capacity(nv),
+            scratch: Vec::new(),
+            scratch2: Vec::new(),
         })
     }
 
-    /// One step's coupling, after `mj_makeM`: `M_A` added into `data.M` (unless lagged), the
+    /// The joint losses at the data's joint speeds into the model's `dof_damping` and
+    /// `dof_frictionloss` (see `write_losses`), before MuJoCo's position stage, whose friction
+    /// constraints take those levels. Nothing when no joint has losses, or when a speed is not
+    /// finite (`apply` then reports the state).
+    fn write_joint_losses(&mut self, py: Python<'_>) -> PyResult<()> {
+        if self.losses.iter().all(Option::is_none) {
+            return Ok(());
+        }
+        self.views.qvel.copy_into(py, &mut self.qvel)?;
+        let mut speeds = [0.0; MAX_ROBOT_JOINTS];
+        for (slot, &dof) in speeds.iter_mut().zip(&self.map.joint_dofs) {
+            *slot = self.qvel.get(dof).copied().unwrap_or(f64::NAN);
+        }
+        let speeds = speeds.get(..self.map.joint_dofs.len()).unwrap_or_default();
+        if !speeds.iter().all(|x| x.is_finite()) {
+            return Ok(());
+        }
+        self.write_losses(py, speeds)
+    }
+
+    /// One step's coupling, after MuJoCo's position stage: `M_A` added into `data.M` (unless lagged), the
     /// environment's forces (plus `torque` on the joints, if given) written to
     /// `data.qfrc_applied`. Returns 0 when done, 1 when the state (`qpos`, `qvel`) is not finite
     /// (nothing written), 2 when `torque` is not a list, tuple or float64 array of N finite
     /// numbers (nothing written: the caller converts or refuses it).
     #[pyo3(signature = (torque=None))]
     fn apply(&mut self, py: Python<'_>, torque: Option<&Bound<'_, PyAny>>) -> PyResult<u8> {
-        let robot = self.robot.get();
-        let n = robot.robot.joint_count();
+        let n = self.robot.get().robot.joint_count();
         let size = 6 + n;
         let mut motor = [0.0; MAX_ROBOT_JOINTS];
         if let Some(torque) = torque
@@ -230,23 +262,22 @@ impl MujocoCoupling {
         {
             return Ok(2);
         }
-        let (row, motion) = {
-            let qpos = self.views.qpos.bind(py).try_readonly()?;
-            let qvel = self.views.qvel.bind(py).try_readonly()?;
-            let (qpos, qvel) = (values(&qpos, "qpos", 0)?, values(&qvel, "qvel", 0)?);
-            if !(qpos.iter().all(|x| x.is_finite()) && qvel.iter().all(|x| x.is_finite())) {
-                return Ok(1);
+        self.views.qpos.copy_into(py, &mut self.qpos)?;
+        self.views.qvel.copy_into(py, &mut self.qvel)?;
+        if !(self.qpos.iter().all(|x| x.is_finite()) && self.qvel.iter().all(|x| x.is_finite())) {
+            return Ok(1);
+        }
+        let mut row = StateRow::new();
+        for (i, (&p, &d)) in self.map.joint_qpos.iter().zip(&self.map.joint_dofs).enumerate() {
+            if let (Some(q), Some(qd), Some(&x), Some(&v)) =
+                (row.q.get_mut(i), row.qd.get_mut(i), self.qpos.get(p), self.qvel.get(d))
+            {
+                (*q, *qd) = (x, v);
             }
-            let mut row = StateRow::new();
-            for (i, (&p, &d)) in self.map.joint_qpos.iter().zip(&self.map.joint_dofs).enumerate() {
-                if let (Some(q), Some(qd), Some(&x), Some(&v)) =
-                    (row.q.get_mut(i), row.qd.get_mut(i), qpos.get(p), qvel.get(d))
-                {
-                    (*q, *qd) = (x, v);
-                }
-            }
-            (row, self.base_motion(py, qvel)?)
-        };
+        }
+        let pose = self.root_pose(py)?;
+        let motion = self.base_motion(pose.as_ref(), &self.qvel)?;
+        let robot = self.robot.get();
         if self.map.free_dof.is_some() {
             robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.added_mass);
         } else {
@@ -266,7 +297,7 @@ impl MujocoCoupling {
         robot_hydro(&robot.robot, &conditions, [&row.q, &row.qd, &row.qdd], &mut self.data);
         // uwml's generalized forces: the base wrench's hydrodynamic part, then the joints'
         // hydrodynamics and motor torques. The joint losses are MuJoCo's: the seal's dry
-        // friction a friction constraint, the smooth rest a damping (`write_losses`).
+        // friction a friction constraint, the smooth rest a damping (`write_joint_losses`).
         let mut forces = [0.0; 6 + MAX_ROBOT_JOINTS];
         for (slot, value) in forces.iter_mut().zip(self.data.base_wrench().total().to_array()) {
             *slot = value;
@@ -276,7 +307,6 @@ impl MujocoCoupling {
                 *slot = joint.total() + m;
             }
         }
-        self.write_losses(py, &row.qd)?;
         if let Some(previous) = &self.lagged {
             for (r, slot) in forces.iter_mut().take(size).enumerate() {
                 let row = self.added_mass.get(r * size..(r + 1) * size).unwrap_or_default();
@@ -285,36 +315,39 @@ impl MujocoCoupling {
         }
         // MuJoCo's coordinates: the free joint's linear velocity is world-frame, uwml's ν base
         // frame, so its rows and columns turn by R (MuJoCo's = T · uwml's, T = diag(R, I, I)).
-        let rotation = self.rotation(py)?;
+        let rotation = pose.map_or_else(Matrix3::identity, |(rotation, _)| rotation);
         if self.map.free_dof.is_some() {
             turn_rows(&rotation, &mut forces, 1);
             turn_rows(&rotation, &mut self.added_mass, size);
             turn_columns(&rotation, &mut self.added_mass, size);
         }
-        let mut qfrc = self.views.qfrc_applied.bind(py).try_readwrite()?;
-        let qfrc = qfrc.as_slice_mut().map_err(|_| PyValueError::new_err("data.qfrc_applied must be contiguous"))?;
-        for (slot, u) in qfrc.iter_mut().zip(&self.map.uwml_of_dof) {
-            *slot = u.and_then(|u| forces.get(u)).copied().unwrap_or(0.0);
-        }
+        self.scratch.clear();
+        self.scratch.extend(self.map.uwml_of_dof.iter().map(|u| u.and_then(|u| forces.get(u)).copied().unwrap_or(0.0)));
+        self.views.qfrc_applied.write(py, &self.scratch)?;
         if self.lagged.is_none() {
-            let mut mass = self.views.mass_matrix.bind(py).try_readwrite()?;
-            let mass = mass.as_slice_mut().map_err(|_| PyValueError::new_err("data.M must be contiguous"))?;
-            for (slot, &(r, c)) in mass.iter_mut().zip(&self.map.mass_pairs) {
+            self.views.mass_matrix.copy_into(py, &mut self.scratch)?;
+            for (slot, &(r, c)) in self.scratch.iter_mut().zip(&self.map.mass_pairs) {
                 let (ur, uc) =
                     (self.map.uwml_of_dof.get(r).copied().flatten(), self.map.uwml_of_dof.get(c).copied().flatten());
                 if let (Some(ur), Some(uc)) = (ur, uc) {
                     *slot += self.added_mass.get(ur * size + uc).copied().unwrap_or(0.0);
                 }
             }
+            self.views.mass_matrix.write(py, &self.scratch)?;
         }
         Ok(0)
     }
 
     /// A Runge-Kutta step begins at the data's `qpos` and `qvel` (see `Rk4`).
     fn rk4_begin(&mut self, py: Python<'_>) -> PyResult<()> {
-        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
-        let nv = qvel.len();
-        self.rk4.get_or_insert_with(|| Rk4::new(py, nv)).begin(qpos, qvel)
+        let nv = self.views.qvel.len();
+        if self.rk4.is_none() {
+            self.rk4 = Some(Rk4::new(py, nv)?);
+        }
+        match self.rk4.as_mut() {
+            Some(rk4) => rk4.begin(py, &self.views.qpos, &self.views.qvel),
+            None => Ok(()),
+        }
     }
 
     /// Stage `stage` (0-3), `offset` (its fraction of the step times the step) into the step:
@@ -326,18 +359,16 @@ impl MujocoCoupling {
         stage: usize,
         offset: f64,
     ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
-        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
         match self.rk4.as_mut() {
-            Some(rk4) => rk4.stage(py, stage, offset, qpos, qvel),
+            Some(rk4) => rk4.stage(py, stage, offset, &self.views.qpos, &self.views.qvel),
             None => Err(PyValueError::new_err("rk4_begin must come first")),
         }
     }
 
     /// Keeps stage `stage`'s acceleration (`data.qacc` after its forward pass).
     fn rk4_keep(&mut self, py: Python<'_>, stage: usize) -> PyResult<()> {
-        let qacc = self.views.qacc.bind(py);
         match self.rk4.as_mut() {
-            Some(rk4) => rk4.keep(stage, qacc),
+            Some(rk4) => rk4.keep(py, stage, &self.views.qacc),
             None => Err(PyValueError::new_err("rk4_begin must come first")),
         }
     }
@@ -345,9 +376,8 @@ impl MujocoCoupling {
     /// The step's end: `data.qpos` back to the start, `data.qvel` the step's; the weighted
     /// velocity, for `mj_integratePos` over `h`.
     fn rk4_finish<'py>(&mut self, py: Python<'py>, h: f64) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let (qpos, qvel) = (self.views.qpos.bind(py), self.views.qvel.bind(py));
         match self.rk4.as_mut() {
-            Some(rk4) => rk4.finish(py, h, qpos, qvel),
+            Some(rk4) => rk4.finish(py, h, &self.views.qpos, &self.views.qvel),
             None => Err(PyValueError::new_err("rk4_begin must come first")),
         }
     }
@@ -355,11 +385,12 @@ impl MujocoCoupling {
     /// For the lagged scheme: keep `(ν̇, q̈)` of the step just computed (`data.qacc` in uwml's
     /// coordinates, with `ν̇ = Rᵀ v̇_world − ω × v`), to subtract `M_A` times it next step.
     fn remember_acceleration(&mut self, py: Python<'_>) -> PyResult<()> {
-        let rotation = self.rotation(py)?;
-        let qacc = self.views.qacc.bind(py).try_readonly()?;
-        let qvel = self.views.qvel.bind(py).try_readonly()?;
-        let (qacc, qvel) = (values(&qacc, "qacc", 0)?, values(&qvel, "qvel", 0)?);
-        let motion = self.base_motion(py, qvel)?;
+        let pose = self.root_pose(py)?;
+        let rotation = pose.map_or_else(Matrix3::identity, |(rotation, _)| rotation);
+        self.views.qvel.copy_into(py, &mut self.qvel)?;
+        self.views.qacc.copy_into(py, &mut self.scratch)?;
+        let motion = self.base_motion(pose.as_ref(), &self.qvel)?;
+        let qacc = &self.scratch;
         let Some(previous) = self.lagged.as_mut() else { return Ok(()) };
         previous.fill(0.0);
         for (d, u) in self.map.uwml_of_dof.iter().enumerate() {
@@ -386,16 +417,13 @@ impl MujocoCoupling {
     /// plus the secant damping of the oil drag and the seal's viscous term
     /// (`LossState::dry_friction_split`). MuJoCo solves the friction as a constraint (it sticks
     /// at rest, stably at any step) and its Euler integrator the damping implicitly.
-    fn write_losses(&self, py: Python<'_>, qd: &[f64]) -> PyResult<()> {
+    fn write_losses(&mut self, py: Python<'_>, qd: &[f64]) -> PyResult<()> {
         if self.losses.iter().all(Option::is_none) {
             return Ok(());
         }
-        let mut damping = self.views.dof_damping.bind(py).try_readwrite()?;
-        let damping =
-            damping.as_slice_mut().map_err(|_| PyValueError::new_err("model.dof_damping must be contiguous"))?;
-        let mut friction = self.views.dof_frictionloss.bind(py).try_readwrite()?;
-        let friction =
-            friction.as_slice_mut().map_err(|_| PyValueError::new_err("model.dof_frictionloss must be contiguous"))?;
+        let (damping, friction) = (&mut self.scratch, &mut self.scratch2);
+        self.views.dof_damping.copy_into(py, damping)?;
+        self.views.dof_frictionloss.copy_into(py, friction)?;
         let joints =
             self.map.joint_dofs.iter().zip(&self.losses).zip(self.own_damping.iter().zip(&self.own_frictionloss));
         for (i, ((&dof, state), (&own_damping, &own_friction))) in joints.enumerate() {
@@ -405,34 +433,36 @@ impl MujocoCoupling {
                 (*d, *f) = (own_damping + split.damping, own_friction + split.friction);
             }
         }
-        Ok(())
+        self.views.dof_damping.write(py, damping)?;
+        self.views.dof_frictionloss.write(py, friction)
     }
 
-    /// World from base: the root body's `xmat` (identity when the base is the world frame).
-    fn rotation(&self, py: Python<'_>) -> PyResult<Matrix3<f64>> {
-        let Some(root) = self.map.root else { return Ok(Matrix3::identity()) };
-        let xmat = self.views.xmat.bind(py).try_readonly()?;
-        let m = values(&xmat, "xmat", 9 * (root + 1))?.get(9 * root..9 * root + 9).unwrap_or_default();
-        Ok(Matrix3::from_row_slice(m))
+    /// The root body's orientation, world from base, as `xmat` and as `xquat` (`None` when the
+    /// base is the world frame).
+    fn root_pose(&mut self, py: Python<'_>) -> PyResult<Option<(Matrix3<f64>, [f64; 4])>> {
+        let Some(root) = self.map.root else { return Ok(None) };
+        self.views.xmat.copy_into(py, &mut self.scratch)?;
+        let at = |k: usize| self.scratch.get(9 * root + k).copied().unwrap_or(f64::NAN);
+        let rotation = Matrix3::from_fn(|r, c| at(3 * r + c));
+        self.views.xquat.copy_into(py, &mut self.scratch)?;
+        let quaternion = [0, 1, 2, 3].map(|k| self.scratch.get(4 * root + k).copied().unwrap_or(f64::NAN));
+        Ok(Some((rotation, quaternion)))
     }
 
-    /// The base's motion for uwml: the root's orientation; on a free joint `v = Rᵀ v_world`,
-    /// `ω` (MuJoCo's is body-frame already) and `ν̇ = −ω × v`, what zero MuJoCo acceleration means.
-    fn base_motion(&self, py: Python<'_>, qvel: &[f64]) -> PyResult<BaseMotion<f64>> {
-        let Some(root) = self.map.root else { return Ok(BaseMotion::fixed()) };
-        let xquat = self.views.xquat.bind(py).try_readonly()?;
-        let quaternion = values(&xquat, "xquat", 4 * (root + 1))?.get(4 * root..4 * root + 4).unwrap_or_default();
-        let orientation = [0, 1, 2, 3].map(|k| quaternion.get(k).copied().unwrap_or(f64::NAN));
+    /// The base's motion for uwml at the root's `pose` ([`Self::root_pose`]) and velocities
+    /// `qvel`: the root's orientation; on a free joint `v = Rᵀ v_world`, `ω` (MuJoCo's is
+    /// body-frame already) and `ν̇ = −ω × v`, what zero MuJoCo acceleration means.
+    fn base_motion(&self, pose: Option<&(Matrix3<f64>, [f64; 4])>, qvel: &[f64]) -> PyResult<BaseMotion<f64>> {
+        let Some((rotation, orientation)) = pose else { return Ok(BaseMotion::fixed()) };
         let zero = Vector3::zeros();
         let (v, w) = match self.map.free_dof {
             Some(free) => {
                 let at = |k: usize| qvel.get(free + k).copied().unwrap_or(f64::NAN);
-                let rotation = self.rotation(py)?;
                 (rotation.transpose() * Vector3::new(at(0), at(1), at(2)), Vector3::new(at(3), at(4), at(5)))
             }
             None => (zero, zero),
         };
-        BaseMotion::new(orientation, v, w, -w.cross(&v), zero).map_err(crate::model_error)
+        BaseMotion::new(*orientation, v, w, -w.cross(&v), zero).map_err(crate::model_error)
     }
 }
 

@@ -19,6 +19,7 @@ mod coupling;
 mod inputs;
 mod one;
 mod rk4;
+mod view;
 
 use crate::batch::Lanes;
 use crate::parts::{BodySpec, JointSpec, SegmentSpec};

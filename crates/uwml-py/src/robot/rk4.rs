@@ -4,58 +4,52 @@
 //! stage, `mj_integratePos`) stay with the Python caller; the arithmetic between them is here, in
 //! the operations (and so with the bits) of the numpy code it replaces.
 
-use numpy::{PyArray1, PyArrayDyn, PyArrayMethods};
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
+
+use super::view::View;
 
 /// One Runge-Kutta step under way.
 pub(super) struct Rk4 {
     /// `qpos` and `qvel` at the step's start.
     qpos0: Vec<f64>,
     qvel0: Vec<f64>,
-    /// Each stage's velocity (numpy arrays, handed to `mj_integratePos` as they are) and
-    /// acceleration.
-    velocities: [Py<PyArray1<f64>>; 4],
+    /// Each stage's velocity (numpy arrays, handed to `mj_integratePos` as they are, with their
+    /// views; and the same numbers here) and acceleration.
+    velocities: [(Py<PyArray1<f64>>, View); 4],
+    velocity_values: [Vec<f64>; 4],
     accelerations: [Vec<f64>; 4],
     /// The step's weighted velocity, `(v0 + 2 v1 + 2 v2 + v3) / 6`.
-    average: Py<PyArray1<f64>>,
+    average: (Py<PyArray1<f64>>, View),
+    /// Scratch: a velocity as numbers.
+    scratch: Vec<f64>,
 }
 
-/// `array`'s values (an `MjData` array: C-contiguous).
-fn read(array: &Bound<'_, PyArrayDyn<f64>>) -> PyResult<Vec<f64>> {
-    Ok(array.try_readonly()?.as_slice()?.to_vec())
-}
-
-/// `values` into `array`.
-fn write(array: &Bound<'_, PyArrayDyn<f64>>, values: &[f64]) -> PyResult<()> {
-    let mut out = array.try_readwrite()?;
-    for (slot, &x) in out.as_slice_mut()?.iter_mut().zip(values) {
-        *slot = x;
-    }
-    Ok(())
+/// A zero array of `nv` numbers and its view.
+fn array(py: Python<'_>, nv: usize) -> PyResult<(Py<PyArray1<f64>>, View)> {
+    let array = PyArray1::<f64>::zeros(py, nv, false);
+    let view = View::new(&array.to_dyn().clone(), "a Runge-Kutta stage's velocity")?;
+    Ok((array.unbind(), view))
 }
 
 impl Rk4 {
     /// Empty buffers for `nv` degrees of freedom.
-    pub(super) fn new(py: Python<'_>, nv: usize) -> Self {
-        let array = || PyArray1::<f64>::zeros(py, nv, false).unbind();
-        Self {
+    pub(super) fn new(py: Python<'_>, nv: usize) -> PyResult<Self> {
+        Ok(Self {
             qpos0: Vec::new(),
             qvel0: vec![0.0; nv],
-            velocities: [array(), array(), array(), array()],
+            velocities: [array(py, nv)?, array(py, nv)?, array(py, nv)?, array(py, nv)?],
+            velocity_values: [vec![0.0; nv], vec![0.0; nv], vec![0.0; nv], vec![0.0; nv]],
             accelerations: [vec![0.0; nv], vec![0.0; nv], vec![0.0; nv], vec![0.0; nv]],
-            average: array(),
-        }
+            average: array(py, nv)?,
+            scratch: Vec::with_capacity(nv),
+        })
     }
 
     /// The step's start: `qpos` and `qvel` now.
-    pub(super) fn begin(
-        &mut self,
-        qpos: &Bound<'_, PyArrayDyn<f64>>,
-        qvel: &Bound<'_, PyArrayDyn<f64>>,
-    ) -> PyResult<()> {
-        self.qpos0 = read(qpos)?;
-        self.qvel0 = read(qvel)?;
-        Ok(())
+    pub(super) fn begin(&mut self, py: Python<'_>, qpos: &View, qvel: &View) -> PyResult<()> {
+        qpos.copy_into(py, &mut self.qpos0)?;
+        qvel.copy_into(py, &mut self.qvel0)
     }
 
     /// Stage `stage` (0-3), `offset` (the stage's fraction of the step times the step) into the
@@ -67,39 +61,31 @@ impl Rk4 {
         py: Python<'py>,
         stage: usize,
         offset: f64,
-        qpos: &Bound<'py, PyArrayDyn<f64>>,
-        qvel: &Bound<'py, PyArrayDyn<f64>>,
+        qpos: &View,
+        qvel: &View,
     ) -> PyResult<Option<Bound<'py, PyArray1<f64>>>> {
-        let Some(velocity) = self.velocities.get(stage) else {
+        let (Some((_, view)), Some(velocity)) = (self.velocities.get(stage), self.velocity_values.get_mut(stage))
+        else {
             return Err(pyo3::exceptions::PyValueError::new_err(format!("stage must be 0 to 3, got {stage}")));
         };
-        let velocity = velocity.bind(py);
-        {
-            let mut out = velocity.try_readwrite()?;
-            let out = out.as_slice_mut()?;
-            match stage.checked_sub(1).and_then(|k| self.accelerations.get(k)) {
-                // qvel0 + fraction * h * a, as numpy evaluates it: (fraction * h) first.
-                Some(acceleration) => {
-                    for ((slot, &v), &a) in out.iter_mut().zip(&self.qvel0).zip(acceleration) {
-                        *slot = v + offset * a;
-                    }
-                }
-                None => out.copy_from_slice(&self.qvel0),
-            }
+        velocity.clear();
+        match stage.checked_sub(1).and_then(|k| self.accelerations.get(k)) {
+            // qvel0 + fraction * h * a, as numpy evaluates it: (fraction * h) first.
+            Some(acceleration) => velocity.extend(self.qvel0.iter().zip(acceleration).map(|(&v, &a)| v + offset * a)),
+            None => velocity.extend_from_slice(&self.qvel0),
         }
-        write(qpos, &self.qpos0)?;
-        write(qvel, velocity.try_readonly()?.as_slice()?)?;
-        Ok(stage.checked_sub(1).and_then(|k| self.velocities.get(k)).map(|v| v.bind(py).clone()))
+        view.write(py, velocity)?;
+        qpos.write(py, &self.qpos0)?;
+        qvel.write(py, velocity)?;
+        Ok(stage.checked_sub(1).and_then(|k| self.velocities.get(k)).map(|(v, _)| v.bind(py).clone()))
     }
 
     /// Keeps stage `stage`'s acceleration (`qacc` after its forward pass).
-    pub(super) fn keep(&mut self, stage: usize, qacc: &Bound<'_, PyArrayDyn<f64>>) -> PyResult<()> {
-        let qacc = qacc.try_readonly()?;
-        if let Some(slot) = self.accelerations.get_mut(stage) {
-            slot.clear();
-            slot.extend_from_slice(qacc.as_slice()?);
+    pub(super) fn keep(&mut self, py: Python<'_>, stage: usize, qacc: &View) -> PyResult<()> {
+        match self.accelerations.get_mut(stage) {
+            Some(slot) => qacc.copy_into(py, slot),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// The step's end: `qpos` back to the start, `qvel` = `qvel0 + h (a0 + 2 a1 + 2 a2 + a3) / 6`.
@@ -109,28 +95,25 @@ impl Rk4 {
         &mut self,
         py: Python<'py>,
         h: f64,
-        qpos: &Bound<'py, PyArrayDyn<f64>>,
-        qvel: &Bound<'py, PyArrayDyn<f64>>,
+        qpos: &View,
+        qvel: &View,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let average = self.average.bind(py);
-        {
-            let velocities = self.velocities.each_ref().map(|v| v.bind(py).try_readonly());
-            let [v0, v1, v2, v3] = velocities;
-            let (v0, v1, v2, v3) = (v0?, v1?, v2?, v3?);
-            let (v0, v1, v2, v3) = (v0.as_slice()?, v1.as_slice()?, v2.as_slice()?, v3.as_slice()?);
-            let mut out = average.try_readwrite()?;
-            for (i, slot) in out.as_slice_mut()?.iter_mut().enumerate() {
-                let at = |v: &[f64]| v.get(i).copied().unwrap_or(0.0);
-                *slot = (at(v0) + 2.0 * at(v1) + 2.0 * at(v2) + at(v3)) / 6.0;
-            }
-        }
+        let [v0, v1, v2, v3] = &self.velocity_values;
+        let at = |v: &[f64], i: usize| v.get(i).copied().unwrap_or(0.0);
+        self.scratch.clear();
+        self.scratch
+            .extend((0..self.qvel0.len()).map(|i| (at(v0, i) + 2.0 * at(v1, i) + 2.0 * at(v2, i) + at(v3, i)) / 6.0));
+        let (average, average_view) = &self.average;
+        average_view.write(py, &self.scratch)?;
         let [a0, a1, a2, a3] = &self.accelerations;
         let at = |v: &[f64], i: usize| v.get(i).copied().unwrap_or(0.0);
-        let velocity: Vec<f64> = (0..self.qvel0.len())
-            .map(|i| at(&self.qvel0, i) + h * (at(a0, i) + 2.0 * at(a1, i) + 2.0 * at(a2, i) + at(a3, i)) / 6.0)
-            .collect();
-        write(qpos, &self.qpos0)?;
-        write(qvel, &velocity)?;
-        Ok(average.clone())
+        self.scratch.clear();
+        self.scratch.extend(
+            (0..self.qvel0.len())
+                .map(|i| at(&self.qvel0, i) + h * (at(a0, i) + 2.0 * at(a1, i) + 2.0 * at(a2, i) + at(a3, i)) / 6.0),
+        );
+        qpos.write(py, &self.qpos0)?;
+        qvel.write(py, &self.scratch)?;
+        Ok(average.bind(py).clone())
     }
 }
