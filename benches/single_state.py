@@ -44,10 +44,10 @@ def main() -> None:
             "environment(..., losses=JointLosses()), 1-D arrays",
             lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0, losses=losses),
         ),
-        # The general path, for comparison: per-link coefficients are not taken by the fast path.
-        ("hydro(q, qd, qdd, cd=[per link]) (general path)", lambda: leg.hydro(qa, qda, qdda, cd=cd_per_link)),
+        # Per-link coefficients (the one-state path takes arrays too).
+        ("hydro(q, qd, qdd, cd=[per link])", lambda: leg.hydro(qa, qda, qdda, cd=cd_per_link)),
         (
-            "environment(..., cd=[per link]) (general path)",
+            "environment(..., cd=[per link])",
             lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0, cd=cd_per_link),
         ),
     ]:

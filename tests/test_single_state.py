@@ -17,6 +17,7 @@ import uwml
 from test_hydro import random_chain, random_states
 from uwml.robot import BaseWrench, RobotEnvironment, RobotTorques
 from uwml.robot._arguments import one_state_losses
+from uwml.robot.examples import arm_on_rov
 
 PAPER = uwml.Leg.paper()
 STATE = {"q": [0.1, -0.4, 0.7], "qd": [0.5, -1.0, 2.0], "qdd": [1.0, 3.0, -2.0]}
@@ -30,19 +31,19 @@ class _GeneralOnly:
     def __init__(self, core: object) -> None:
         self._native = core
 
-    def hydro_one(self, *args: object) -> None:
+    def hydro_one(self, *args: object, **options: object) -> None:
         return None
 
-    def environment_one(self, *args: object) -> None:
+    def environment_one(self, *args: object, **options: object) -> None:
         return None
 
     def __getattr__(self, name: str) -> object:
         return getattr(self._native, name)
 
 
-def general_only(leg: uwml.Leg) -> uwml.Leg:
-    """``leg`` without the fast path (what ``Leg.hydro`` did before it)."""
-    other = uwml.Leg.__new__(uwml.Leg)
+def general_only(leg: uwml.Robot) -> uwml.Robot:
+    """``leg`` (or any robot) without the fast path (what ``Leg.hydro`` did before it)."""
+    other = type(leg).__new__(type(leg))
     other.__dict__.update(leg.__dict__)
     other._core = _GeneralOnly(leg._core)
     return other
@@ -52,8 +53,11 @@ STILL = (0.0, 0.0, 0.0)
 
 
 def native_hydro(leg: uwml.Leg, state: list, cd: object, cm: object, density: float, gravity: float, threads: object) -> object:
-    """The native one-state hydro of a leg on its fixed base in still water (None: declined)."""
-    return leg._core.hydro_one(RobotTorques, BaseWrench, *state, cd, cm, density, gravity, None, STILL, STILL, threads, False)
+    """The native one-state hydro of a leg on its fixed base in still water, coefficient arrays per
+    link (None: declined)."""
+    return leg._core.hydro_one(
+        RobotTorques, BaseWrench, *state, cd, cm, density, gravity, None, STILL, STILL, threads, False, per_link=True
+    )
 
 
 def native_environment(leg: uwml.Leg, state: list, depth: object, temperature: object, packed: object, cd: object, cm: object,
@@ -76,6 +80,7 @@ def native_environment(leg: uwml.Leg, state: list, depth: object, temperature: o
         STILL,
         1,
         False,
+        per_link=True,
     )
 
 
@@ -205,8 +210,14 @@ DECLINED = [
     pytest.param({"q": [np.float32(0.1), 0.2, 0.3]}, False, id="float32 scalars"),
     pytest.param({"q": [0, 1, -2]}, True, id="ints"),
     pytest.param({"q": [np.float64(0.1), 2, 0.3]}, True, id="float64 scalars and an int"),
-    pytest.param({"cd": [1.0, 2.0, 3.0]}, False, id="cd per link"),
-    pytest.param({"cm": np.full((3, 2), 0.7)}, False, id="cm per direction"),
+    pytest.param({"cd": [1.0, 2.0, 3.0]}, True, id="cd per link"),
+    pytest.param({"cd": (1.0, 2.0, 3.0)}, True, id="cd per link, tuple"),
+    pytest.param({"cd": np.array([1.0, 2.0, 3.0])}, True, id="cd per link, array"),
+    pytest.param({"cm": np.full((3, 2), 0.7)}, True, id="cm per direction"),
+    pytest.param({"cm": [[0.5, 0.6], (0.7, 0.8), np.array([0.9, 1.0])]}, True, id="cm pairs"),
+    pytest.param({"cd": np.full((3, 2), 0.7)[:, ::-1]}, True, id="cd per direction, strided"),
+    pytest.param({"cd": np.ones((3, 2), dtype=np.float32)}, False, id="cd per direction float32"),
+    pytest.param({"cd": [1.0, np.float32(2.0), 3.0]}, False, id="cd per link, a float32"),
     pytest.param({"cd": np.float32(1.5)}, False, id="cd float32"),
     pytest.param({"cd": 2}, True, id="cd int"),
     pytest.param({"threads": np.int64(2)}, False, id="threads numpy int"),
@@ -314,6 +325,11 @@ BAD_HYDRO = [
     pytest.param({"cm": math.inf}, ValueError, "cm", id="cm inf"),
     pytest.param({"cm": -1}, ValueError, "cm", id="cm negative int"),
     pytest.param({"cd": np.ones(2)}, ValueError, "cd", id="cd 2 per link"),
+    pytest.param({"cd": [1.0, -2.0, 3.0]}, ValueError, "cd", id="cd per link, one negative"),
+    pytest.param({"cm": [[0.5, 0.6], [0.7, math.nan], [0.9, 1.0]]}, ValueError, "cm", id="cm pairs, a NaN"),
+    pytest.param({"cd": [[1.0, 2.0], [1.0], [1.0, 1.0]]}, (TypeError, ValueError), "cd", id="cd pairs ragged"),
+    pytest.param({"cd": np.ones((3, 3))}, ValueError, "cd", id="cd three per link"),
+    pytest.param({"cm": [0.5, 0.5, "x"]}, (TypeError, ValueError), "cm", id="cm per link, a string"),
     pytest.param({"cd": "big"}, TypeError, "cd", id="cd string"),
     pytest.param({"cm": 1.0 + 1.0j}, TypeError, "cm", id="cm complex"),
     pytest.param({"water": 1000.0}, TypeError, "water", id="water float"),
@@ -368,3 +384,64 @@ def test_bad_one_state_environment_raises_as_the_general_path(override: dict, er
         PAPER.environment(**arguments)
     general = _raised(lambda: general_only(PAPER).environment(**arguments))
     assert type(fast.value) is type(general) and str(fast.value) == str(general)
+
+
+# --------------------------------------------------------------------------------------------
+# Coefficient arrays on a robot: per segment, per segment and direction
+# --------------------------------------------------------------------------------------------
+
+ARM = arm_on_rov()
+ARM_MOTION = uwml.BaseMotion(velocity=(0.5, 0.1, -0.2), angular_velocity=(0.02, 0.05, -0.1))
+
+
+def test_a_robots_one_state_coefficient_arrays_are_the_batch_row_bit_for_bit() -> None:
+    """Per segment, per segment and direction (a circular segment's two alike), one given and the
+    other the segments' own: the native one-state call takes them, with the batch row's bits."""
+    rng = np.random.default_rng(7)
+    n, s = ARM.n_joints, len(ARM.segments)
+    circular = np.array([segment.section == "circular" for segment in ARM.segments])
+    per_direction = rng.uniform(0.2, 2.5, (s, 2))
+    per_direction[circular, 1] = per_direction[circular, 0]
+    options = {"base_motion": ARM_MOTION, "current": (0.3, -0.1, 0.0)}
+    q, qd, qdd = random_states(rng, 5, n)
+    for cd, cm in [
+        (rng.uniform(0.5, 3.0, s).tolist(), rng.uniform(0.1, 1.5, s)),
+        (per_direction, per_direction.tolist()),
+        (None, rng.uniform(0.1, 1.5, s)),
+        (tuple(rng.uniform(0.5, 3.0, s)), None),
+    ]:
+        batch = ARM.hydro(q, qd, qdd, cd=cd, cm=cm, **options)
+        for k in range(5):
+            one = ARM.hydro(q[k].tolist(), qd[k].tolist(), qdd[k].tolist(), cd=cd, cm=cm, **options)
+            assert_same_bits(one, batch, HYDRO_FIELDS, k, f"state {k}")
+            assert bits(one.base.total) == bits(batch.base.total[k])
+        motion = ARM_MOTION._one  # the arrays the native call takes for a motion of single values
+        native = ARM._core.hydro_one(
+            RobotTorques, BaseWrench, q[0], qd[0], qdd[0], cd, cm, 1000.0, 9.81, motion, (0.3, -0.1, 0.0), STILL, 1, False
+        )
+        assert native is not None
+
+
+@pytest.mark.parametrize(
+    "cd",
+    [
+        pytest.param("unequal circular", id="a circular segment's two directions differ"),
+        pytest.param("per link", id="one per link on a robot"),
+        pytest.param("negative", id="a negative entry"),
+    ],
+)
+def test_a_robots_bad_coefficient_arrays_raise_as_the_general_path(cd: str) -> None:
+    s = len(ARM.segments)
+    table = np.full((s, 2), 1.0)
+    if cd == "unequal circular":
+        first = next(i for i, segment in enumerate(ARM.segments) if segment.section == "circular")
+        table[first] = (1.0, 2.0)
+        value: object = table
+    elif cd == "per link":
+        value = [1.0] * ARM.n_joints
+    else:
+        value = [1.0] * (s - 1) + [-1.0]
+    q = [0.1] * ARM.n_joints
+    fast = _raised(lambda: ARM.hydro(q, q, q, cd=value))
+    general = _raised(lambda: general_only(ARM).hydro(q, q, q, cd=value))
+    assert type(fast) is type(general) is ValueError and str(fast) == str(general) and "cd" in str(fast)

@@ -133,6 +133,7 @@ class Robot:
         current_acceleration: object,
         threads: object,
         kirchhoff: bool = False,
+        per_link: bool = False,
     ) -> _Result | None: ...
     def environment_one(
         self,
@@ -154,6 +155,7 @@ class Robot:
         current_acceleration: object,
         threads: object,
         kirchhoff: bool = False,
+        per_link: bool = False,
     ) -> _Result | None: ...
     def regressors(
         self,

@@ -452,6 +452,34 @@ impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
         check_coefficient_table(&cd, &cm, ["segment.cd", "segment.cm"])?;
         Ok(Self { cd, cm })
     }
+
+    /// The coefficients of `robot`'s segments, as its segments give them (checked when it was
+    /// built); zero beyond its segments.
+    #[must_use]
+    pub fn own<const J: usize>(robot: &Robot<T, J, S>) -> Self {
+        let mut table = Self { cd: [[T::zero(); 2]; S], cm: [[T::zero(); 2]; S] };
+        for ((cd, cm), segment) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(robot.segments()) {
+            (*cd, *cm) = (segment.cd, segment.cm);
+        }
+        table
+    }
+
+    /// Segment `segment`'s coefficients, per normal direction.
+    ///
+    /// # Errors
+    /// A coefficient that is negative, not finite or too large, or a segment beyond `S`, naming
+    /// the segment; then nothing changes.
+    pub fn set(&mut self, segment: usize, cd: [T; 2], cm: [T; 2]) -> Result<(), ModelError> {
+        check_coefficient_table(&[cd], &[cm], ["segment.cd", "segment.cm"])
+            .map_err(|error| ModelError { index: Some(segment), ..error })?;
+        match (self.cd.get_mut(segment), self.cm.get_mut(segment)) {
+            (Some(cd_slot), Some(cm_slot)) => {
+                (*cd_slot, *cm_slot) = (cd, cm);
+                Ok(())
+            }
+            _ => Err(ModelError::new("segment.cd", Some(segment), Problem::OutOfRange)),
+        }
+    }
 }
 
 impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {

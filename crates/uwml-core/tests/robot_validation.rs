@@ -169,3 +169,41 @@ fn model_values_beyond_their_bounds_are_refused_and_at_the_bounds_forces_stay_fi
     let base = data.base_wrench();
     assert!(joint_forces.chain(base.total().to_array()).chain(base.gravity.to_array()).all(f64::is_finite));
 }
+
+#[test]
+fn a_coefficient_table_starts_from_the_segments_own_and_refuses_bad_entries_naming_the_segment() {
+    let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() };
+    let body = RigidBody::empty();
+    let segment = RobotSegment {
+        owner: Owner::Link(0),
+        start: Vector3::zeros(),
+        axis: Vector3::x(),
+        length: 1.0,
+        area: 0.01,
+        section: Section::Rectangular { widths: [0.1, 0.2], normals: [Vector3::y(), Vector3::z()] },
+        cd: [1.2, 1.4],
+        cm: [0.8, 0.9],
+    };
+    let other = RobotSegment { cd: [2.0; 2], cm: [0.5; 2], ..segment };
+    let robot = Model::new(&[joint], &[body], body, &[segment, other]).unwrap();
+    let mut table = SegmentCoefficients::own(&robot);
+    assert_eq!(
+        (table.cd()[0], table.cm()[0], table.cd()[1], table.cm()[1]),
+        ([1.2, 1.4], [0.8, 0.9], [2.0; 2], [0.5; 2])
+    );
+    assert_eq!(table.cd()[2..], [[0.0; 2]; S - 2]);
+    table.set(1, [3.0, 3.5], [0.25; 2]).unwrap();
+    assert_eq!((table.cd()[1], table.cm()[1], table.cd()[0]), ([3.0, 3.5], [0.25; 2], [1.2, 1.4]));
+    let before = table;
+    for (cd, cm, field, problem) in [
+        ([-1.0, 1.0], [1.0; 2], "segment.cd", Problem::Negative),
+        ([1.0; 2], [1.0, f64::NAN], "segment.cm", Problem::NonFinite),
+        ([2.0 * uwml_core::MAX_COEFFICIENT, 1.0], [1.0; 2], "segment.cd", Problem::TooLarge),
+    ] {
+        let error = table.set(1, cd, cm).unwrap_err();
+        assert_eq!((error.field, error.index, error.problem), (field, Some(1), problem));
+    }
+    let error = table.set(S, [1.0; 2], [1.0; 2]).unwrap_err();
+    assert_eq!((error.field, error.index, error.problem), ("segment.cd", Some(S), Problem::OutOfRange));
+    assert_eq!(table, before);
+}

@@ -173,6 +173,8 @@ class Leg(Robot):
         """Not for a leg: as :meth:`from_urdf`."""
         raise TypeError(_DESCRIPTIONS)
 
+    _COEFFICIENTS_BY_LINK = True
+
     def _segment_values(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
         """A leg's ``cd`` or ``cm`` (None, a scalar, per link or per link and direction) as the
         robot's (None, a scalar, or per segment and direction), for the robot's general path."""

@@ -127,6 +127,9 @@ class Robot:
         self._base = base
         self._segments = tuple(s for _, s in owned)
         self._losses = _per_joint_losses(losses, len(joints))
+        # The joints' own losses as an evaluation takes them: one object when they all share one.
+        first = self._losses[0] if self._losses else None
+        self._own_losses = first if all(item is first for item in self._losses) else self._losses
         self._water = FRESH_WATER if water is None else _water(water)
         self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
         #: The segments' own coefficients, ``(S, 2)`` each: for an evaluation given only one of them.
@@ -183,10 +186,7 @@ class Robot:
         self, losses: JointLosses | Sequence[JointLosses | None] | None
     ) -> JointLosses | Sequence[JointLosses | None] | None:
         """``losses`` if given, else the joints' own: one object when they all share one."""
-        if losses is not None:
-            return losses
-        first = self._losses[0] if self._losses else None
-        return first if all(item is first for item in self._losses) else self._losses
+        return self._own_losses if losses is None else losses
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Robot):
@@ -236,6 +236,10 @@ class Robot:
 
     def __repr__(self) -> str:
         return f"Robot(n_joints={self.n_joints}, n_segments={len(self._segments)}, base={'body' if self._base is not None else None})"
+
+    # Whether ``cd`` and ``cm`` arrays are per link (each segment taking its link's), not per
+    # segment: a :class:`uwml.Leg`'s layout (see :meth:`_segment_values`).
+    _COEFFICIENTS_BY_LINK = False
 
     def _segment_values(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
         """``cd`` or ``cm`` as an evaluation was given it, in the robot's layout (None, a scalar,
@@ -337,6 +341,7 @@ class Robot:
                 current_acceleration,
                 threads,
                 kirchhoff,
+                per_link=self._COEFFICIENTS_BY_LINK,
             )
             if one is not None:
                 return one
@@ -410,6 +415,7 @@ class Robot:
                 current_acceleration,
                 threads,
                 kirchhoff,
+                per_link=self._COEFFICIENTS_BY_LINK,
             )
             if one is not None:
                 return one

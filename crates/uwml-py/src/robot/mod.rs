@@ -30,7 +30,7 @@ pub(crate) use coupling::MujocoCoupling;
 use inputs::{
     LossStates, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states, write_joint_losses,
 };
-use one::{OneState, one_result};
+use one::{Layout, OneState, one_result};
 
 /// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
 fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
@@ -238,13 +238,15 @@ impl PyRobot {
 
     /// One state, for a controller or a simulator stepping one state at a time: `q`, `qd`,
     /// `qdd` lists, tuples or 1-D float64 arrays of N finite numbers; `cd`, `cm` None (the
-    /// segments' own) or finite non-negative numbers; `motion` None (a fixed, upright base) or
+    /// segments' own) or finite non-negative numbers, one for all, or one per segment (per link
+    /// with `per_link`, each segment taking its link's) or per segment and direction, as lists,
+    /// tuples or float64 arrays; `motion` None (a fixed, upright base) or
     /// the five 1-D arrays of a `uwml.BaseMotion`; `current`, `current_acceleration` like the
     /// states, of 3. Returns a `result_type` (`uwml.RobotTorques`) with a `base_type`
     /// (`uwml.BaseWrench`), the same bits as the batch path; or `None` when any argument is of
     /// another kind or fails a check (the general path then answers, with its errors).
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (result_type, base_type, q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads, kirchhoff=false))]
+    #[pyo3(signature = (result_type, base_type, q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads, kirchhoff=false, per_link=false))]
     fn hydro_one<'py>(
         &self,
         result_type: &Bound<'py, PyType>,
@@ -261,9 +263,10 @@ impl PyRobot {
         current_acceleration: &Bound<'py, PyAny>,
         threads: &Bound<'py, PyAny>,
         kirchhoff: bool,
+        per_link: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
-        let Some(one) = OneState::read(self.robot.joint_count(), arguments) else { return Ok(None) };
+        let Some(one) = OneState::read(&self.robot, layout(per_link), arguments) else { return Ok(None) };
         let mut data = self.one_state_workspace();
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
         if !one::finite(&data, &[]) {
@@ -276,7 +279,7 @@ impl PyRobot {
     /// `temperature`, `sea_density` > 0 numbers, `losses` None or a `Losses` of `N` joints;
     /// a `result_type` (`uwml.RobotEnvironment`) or `None`, as there.
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (result_type, base_type, q, qd, qdd, depth, temperature, losses, cd, cm, density, gravity, sea_density, motion, current, current_acceleration, threads, kirchhoff=false))]
+    #[pyo3(signature = (result_type, base_type, q, qd, qdd, depth, temperature, losses, cd, cm, density, gravity, sea_density, motion, current, current_acceleration, threads, kirchhoff=false, per_link=false))]
     fn environment_one<'py>(
         &self,
         result_type: &Bound<'py, PyType>,
@@ -297,11 +300,12 @@ impl PyRobot {
         current_acceleration: &Bound<'py, PyAny>,
         threads: &Bound<'py, PyAny>,
         kirchhoff: bool,
+        per_link: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let n = self.robot.joint_count();
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
         let (Some(one), Some(depth), Some(temperature), Some(sea_density)) = (
-            OneState::read(n, arguments),
+            OneState::read(&self.robot, layout(per_link), arguments),
             finite_number(depth),
             finite_number(temperature),
             finite_number(sea_density),
@@ -593,4 +597,9 @@ impl DerefMut for OneStateWorkspace<'_> {
             Self::New(data) => data,
         }
     }
+}
+
+/// How a one-state call's coefficient arrays are laid out.
+fn layout(per_link: bool) -> Layout {
+    if per_link { Layout::Links } else { Layout::Segments }
 }

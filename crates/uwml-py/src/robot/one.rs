@@ -1,11 +1,12 @@
 //! One state per call: the Python arguments read and checked in one pass, one evaluation, the
 //! result object built directly (see `crate::single`).
 
+use numpy::{PyArray2, PyArrayDescrMethods, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyString, PyType};
+use pyo3::types::{PyList, PyString, PyTuple, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, SegmentCoefficients, Water, robot_hydro};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Owner, Section, Water, robot_hydro};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -19,18 +20,106 @@ pub(super) type MotionArrays<'py> =
 pub(super) struct OneState {
     pub(super) row: StateRow,
     pub(super) water: Water<f64>,
-    /// One drag and one added-mass coefficient for every segment (checked), or `None` for the
-    /// segments' own.
-    pub(super) coefficients: Option<(f64, f64)>,
+    /// The coefficients of every segment and direction (checked), or `None` for the segments'
+    /// own.
+    pub(super) coefficients: Option<Box<Coefficients>>,
     pub(super) motion: BaseMotion<f64>,
     pub(super) current: Current<f64>,
 }
 
+/// What a `cd` or `cm` array's entries are for: the robot's segments (`uwml.Robot`), or its
+/// links, each segment taking its link's (`uwml.Leg`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Layout {
+    Segments,
+    Links,
+}
+
+/// A coefficient argument, `[item][direction]` for `items` items: a number for all; one per item
+/// (a list, tuple or 1-D float64 array), both directions alike; or one per item and direction
+/// (a list or tuple of pairs, or an `(items, 2)` float64 array). Finite numbers, or `None` (not
+/// taken here: the general path answers, with its checks).
+fn coefficient_values(value: &Bound<'_, PyAny>, items: usize) -> Option<Vec<[f64; 2]>> {
+    if let Some(x) = finite_number(value) {
+        return Some(vec![[x, x]; items]);
+    }
+    if let Ok(array) = value.cast::<PyArray2<f64>>() {
+        if array.shape() != [items, 2] || !array.is_aligned() || array.dtype().is_native_byteorder() == Some(false) {
+            return None;
+        }
+        let at = |i: usize, k: usize| array.get_owned([i, k]).filter(|x| x.is_finite());
+        return (0..items).map(|i| Some([at(i, 0)?, at(i, 1)?])).collect();
+    }
+    let mut single = vec![0.0; items];
+    if fill_values(value, &mut single).is_some() {
+        return Some(single.into_iter().map(|x| [x, x]).collect());
+    }
+    let pairs: Vec<Bound<'_, PyAny>> = if let Ok(list) = value.cast_exact::<PyList>() {
+        list.iter().collect()
+    } else if let Ok(tuple) = value.cast_exact::<PyTuple>() {
+        tuple.iter().collect()
+    } else {
+        return None;
+    };
+    if pairs.len() != items {
+        return None;
+    }
+    pairs
+        .iter()
+        .map(|item| {
+            let mut pair = [0.0; 2];
+            fill_values(item, &mut pair).map(|()| pair)
+        })
+        .collect()
+}
+
+/// `cd` and `cm` (either None: the segments' own) as a table of every segment's, read by
+/// `layout`; `Some(None)` when both are None; `None` when either is not taken here or fails a
+/// check (a circular segment takes one coefficient).
+fn coefficient_table(
+    robot: &Model,
+    layout: Layout,
+    cd: &Bound<'_, PyAny>,
+    cm: &Bound<'_, PyAny>,
+) -> Option<Option<Box<Coefficients>>> {
+    if cd.is_none() && cm.is_none() {
+        return Some(None);
+    }
+    let items = match layout {
+        Layout::Segments => robot.segments().len(),
+        Layout::Links => robot.joint_count(),
+    };
+    let read = |value: &Bound<'_, PyAny>| {
+        if value.is_none() { Some(None) } else { coefficient_values(value, items).map(Some) }
+    };
+    let (cd, cm) = (read(cd)?, read(cm)?);
+    let mut table = Box::new(Coefficients::own(robot));
+    for (k, segment) in robot.segments().iter().enumerate() {
+        let item = match (layout, segment.owner) {
+            (Layout::Segments, _) => k,
+            (Layout::Links, Owner::Link(i)) => i,
+            (Layout::Links, Owner::Base) => return None,
+        };
+        let given = |values: &Option<Vec<[f64; 2]>>, own: [f64; 2]| match values {
+            Some(values) => values.get(item).copied().filter(|[a, b]| a == b || !circular(segment)),
+            None => Some(own),
+        };
+        table.set(k, given(&cd, segment.cd)?, given(&cm, segment.cm)?).ok()?;
+    }
+    Some(Some(table))
+}
+
+/// Whether `segment` has a circular section (one coefficient for every direction).
+fn circular(segment: &uwml_core::RobotSegment<f64>) -> bool {
+    matches!(segment.section, Section::Circular { .. })
+}
+
 impl OneState {
     /// `None` unless every argument (in the order of `hydro_one`'s) is of a kind taken there
-    /// and passes its check.
-    pub(super) fn read(n: usize, arguments: [&Bound<'_, PyAny>; 11]) -> Option<Self> {
+    /// and passes its check; `cd` and `cm` arrays laid out by `layout`.
+    pub(super) fn read(robot: &Model, layout: Layout, arguments: [&Bound<'_, PyAny>; 11]) -> Option<Self> {
         let [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads] = arguments;
+        let n = robot.joint_count();
         let mut row = StateRow::new();
         fill_values(q, row.q.get_mut(..n)?)?;
         fill_values(qd, row.qd.get_mut(..n)?)?;
@@ -39,15 +128,7 @@ impl OneState {
             return None;
         }
         let water = Water::new(finite_number(density)?, finite_number(gravity)?).ok()?;
-        let coefficient = |c: &Bound<'_, PyAny>| -> Option<Option<f64>> {
-            if c.is_none() { Some(None) } else { finite_number(c).filter(|x| *x >= 0.0).map(Some) }
-        };
-        let coefficients = match (coefficient(cd)?, coefficient(cm)?) {
-            (None, None) => None,
-            // Checked on a table of one segment: the same checks, without filling the robot's.
-            (Some(cd), Some(cm)) => SegmentCoefficients::<f64, 1>::uniform(cd, cm).ok().map(|_| Some((cd, cm)))?,
-            _ => return None,
-        };
+        let coefficients = coefficient_table(robot, layout, cd, cm)?;
         let vector = |value: &Bound<'_, PyAny>| {
             let mut out = [0.0; 3];
             fill_values(value, &mut out).map(|()| Vector3::from(out))
@@ -69,14 +150,11 @@ impl OneState {
 
     pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data) {
         let Self { row, water, coefficients, motion, current } = self;
-        // The table is made here, once, not carried in `Self` (it is as large as the robot's
-        // segment capacity); the values were checked by `read`.
-        let table = coefficients.and_then(|(cd, cm)| Coefficients::uniform(cd, cm).ok());
         let conditions = Conditions {
             water: *water,
             motion: *motion,
             current: *current,
-            coefficients: table.as_ref(),
+            coefficients: coefficients.as_deref(),
             form,
             losses: None,
         };
