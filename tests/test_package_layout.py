@@ -558,10 +558,12 @@ def test_the_former_modules_import_without_warnings() -> None:
 
 
 def test_the_top_level_namespace_is_unchanged() -> None:
+    """Every name it had, and the ones added since on purpose (the lumped model of
+    docs/model.md section 12.1: ``LumpedModel``, ``MAX_LUMPED_BODIES``)."""
     assert uwml.__all__ == [
-        "MAX_JOINTS", "MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "DescriptionError", "Drive",
-        "EnvironmentJacobians", "EnvironmentTorques", "ExtrapolationWarning", "HydroRegressors", "HydroTorques", "Joint",
-        "JointLosses", "Leg", "Link", "Log", "LossTorques", "ModelError", "ModelFileError", "OilDrag", "Robot",
+        "MAX_JOINTS", "MAX_LUMPED_BODIES", "MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "DescriptionError",
+        "Drive", "EnvironmentJacobians", "EnvironmentTorques", "ExtrapolationWarning", "HydroRegressors", "HydroTorques", "Joint",
+        "JointLosses", "Leg", "Link", "Log", "LossTorques", "LumpedModel", "ModelError", "ModelFileError", "OilDrag", "Robot",
         "RobotEnvironment", "RobotJacobians", "RobotRegressors", "RobotTorques", "Seal", "Segment", "UwmlError",
         "WalkingGait", "Water", "hydrostatic_pressure_mpa", "paper_leg_foot", "paper_leg_ik", "read_log", "write_log",
     ]  # fmt: skip

@@ -32,6 +32,7 @@ from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
 from .io.logs import Log, read_log, write_log
 from .model.joint_losses import JointLosses, LossTorques
 from .model.losses import Drive, OilDrag, Seal
+from .model.lumped import LumpedModel
 from .model.parts import Joint, Link, Segment, Water
 from .robot.base_motion import BaseMotion
 from .robot.leg import MAX_JOINTS, Leg
@@ -46,12 +47,13 @@ from .robot.results import (
     RobotRegressors,
     RobotTorques,
 )
-from .robot.tree import MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
+from .robot.tree import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
 from .sea.conditions import ExtrapolationWarning, hydrostatic_pressure_mpa
 from .sim.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 
 __all__ = [
     "MAX_JOINTS",
+    "MAX_LUMPED_BODIES",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
     "BaseMotion",
@@ -69,6 +71,7 @@ __all__ = [
     "Link",
     "Log",
     "LossTorques",
+    "LumpedModel",
     "ModelError",
     "ModelFileError",
     "OilDrag",

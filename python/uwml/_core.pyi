@@ -22,6 +22,7 @@ __all__ = [
     "MAX_GRAVITY",
     "MAX_JOINTS",
     "MAX_LENGTH",
+    "MAX_LUMPED_BODIES",
     "MAX_MASS",
     "MAX_PRESSURE",
     "MAX_ROBOT_JOINTS",
@@ -52,6 +53,7 @@ MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
 MAX_ROBOT_JOINTS: int
+MAX_LUMPED_BODIES: int
 MAX_SEGMENTS: int
 
 class UwmlError(ValueError):

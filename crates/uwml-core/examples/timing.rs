@@ -71,8 +71,8 @@ fn run<T: RealField + Real>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) 
 
 /// One `robot_hydro` evaluation.
 #[inline(never)]
-fn robot_torques<T: RealField + Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+fn robot_torques<T: RealField + Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     (motion, current): &(BaseMotion<T>, Current<T>),
     [q, qd, qdd]: &[[T; J]; 3],
     data: &mut RobotData<T, J>,
@@ -87,9 +87,9 @@ fn robot_torques<T: RealField + Real, const J: usize, const S: usize>(
 }
 
 /// [`run`] for [`robot_torques`] on `robot`.
-fn run_robot<T: RealField + Real, const J: usize, const S: usize>(
+fn run_robot<T: RealField + Real, const J: usize, const S: usize, const B: usize>(
     n: usize,
-    robot: &Robot<T, J, S>,
+    robot: &Robot<T, J, S, B>,
     surroundings: (BaseMotion<T>, Current<T>),
 ) -> f64 {
     let state = |base: f64, step: f64| core::array::from_fn(|i| convert::<f64, T>(base + step * i as f64));
@@ -109,6 +109,7 @@ fn run_mode<T: RealField + Real>(n: usize, mode: &str) -> f64 {
         "robot-leg" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, (BaseMotion::fixed(), Current::still()))),
         "robot-leg-moving" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, arm::rov_motion())),
         "robot-arm" => run_robot(n, &arm::arm_on_rov::<T, 7, 15>(), arm::rov_motion()),
+        "robot-arm-hull" => run_robot(n, &arm::with_hull(&arm::arm_on_rov::<T, 7, 15>()), arm::rov_motion()),
         "kinematics" => run::<T>(n, kinematics),
         "regressors" => run::<T>(n, regressors),
         "environment" => run::<T>(n, environment),

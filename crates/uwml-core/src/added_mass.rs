@@ -10,6 +10,7 @@
 use nalgebra::{Matrix3, SimdRealField, Vector3};
 
 use crate::frames::SegmentGeometry;
+use crate::lumped::LumpedFrame;
 use crate::model::{Water, constant};
 use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, SegmentCoefficients};
@@ -64,6 +65,17 @@ impl<T: SimdRealField + Copy> Inertia<T> {
         Self { a: p * l1, b: -(p * skew(&first)), c: -q }
     }
 
+    /// A lumped model's added mass about its body frame's origin (its `M_A` about `P`, moved).
+    fn of_lumped(model: &LumpedFrame<T>) -> Self {
+        let m = &model.added_mass;
+        let about_point = Self {
+            a: m.fixed_view::<3, 3>(0, 0).into_owned(),
+            b: m.fixed_view::<3, 3>(0, 3).into_owned(),
+            c: m.fixed_view::<3, 3>(3, 3).into_owned(),
+        };
+        about_point.in_parent(&Matrix3::identity(), &model.point)
+    }
+
     /// This inertia (of a child frame whose axes are `rotation` and whose origin is `offset` in
     /// the parent's frame) about the parent's origin in its components: `Xᵀ I X`.
     fn in_parent(&self, rotation: &Matrix3<T>, offset: &Vector3<T>) -> Self {
@@ -90,8 +102,8 @@ impl<T: SimdRealField + Copy> Inertia<T> {
 /// over subtrees (the composite inertias), and each joint's rotation `F_parent ← F_i` and origin
 /// in `F_parent` at `q`.
 /// Returns the base's composite inertia.
-fn composite_inertias<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+fn composite_inertias<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
     q: &[T; J],
@@ -108,6 +120,17 @@ fn composite_inertias<T: Real, const J: usize, const S: usize>(
         let cm = coefficients.and_then(|c| c.cm().get(k).copied()).unwrap_or(segment.cm);
         let own = Inertia::of_segment(segment, geometry, cm, water.density());
         match segment.owner {
+            Owner::Base => base.add(&own),
+            Owner::Link(i) => {
+                if let Some(slot) = inertias.get_mut(i) {
+                    slot.add(&own);
+                }
+            }
+        }
+    }
+    for (owner, model) in robot.lumped().iter() {
+        let own = Inertia::of_lumped(model);
+        match *owner {
             Owner::Base => base.add(&own),
             Owner::Link(i) => {
                 if let Some(slot) = inertias.get_mut(i) {
@@ -157,8 +180,8 @@ fn composite_inertias<T: Real, const J: usize, const S: usize>(
 /// depend on the base's orientation or motion, nor on the added-mass form. An `out` shorter than `(6 + n)²` gets what fits; a non-finite `q` gives NaN. Never
 /// fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_added_mass_matrix<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub fn robot_added_mass_matrix<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
     q: &[T; J],
@@ -171,8 +194,8 @@ pub fn robot_added_mass_matrix<T: Real, const J: usize, const S: usize>(
 /// joints of a robot on a fixed base feel, `n²` entries row-major into `out`. The same numbers
 /// as the full matrix's block; never fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_joint_added_mass_matrix<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub fn robot_joint_added_mass_matrix<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
     q: &[T; J],
@@ -184,8 +207,8 @@ pub fn robot_joint_added_mass_matrix<T: Real, const J: usize, const S: usize>(
 /// Rows and columns `first..6 + n` of the added-mass matrix (see [`robot_added_mass_matrix`]),
 /// row-major, into `out`.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-fn added_mass_block<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+fn added_mass_block<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     coefficients: Option<&SegmentCoefficients<T, S>>,
     q: &[T; J],

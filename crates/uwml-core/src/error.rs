@@ -30,6 +30,10 @@ pub enum Problem {
     /// [`MAX_DENSITY`](crate::MAX_DENSITY), [`MAX_GRAVITY`](crate::MAX_GRAVITY)): a unit
     /// mistake, or a value whose forces would overflow.
     TooLarge,
+    /// A matrix that must be symmetric is not (beyond rounding, `1e-9` of its largest entry).
+    NotSymmetric,
+    /// A matrix (or a matrix's symmetric part) that must be positive semi-definite is not.
+    NotPositiveSemidefinite,
 }
 
 /// A non-physical or malformed model parameter, found at construction.
@@ -57,6 +61,7 @@ impl fmt::Display for ModelError {
             // A robot's segments are numbered on their own (a chain's segment is its link's).
             let owner = match self.field {
                 field if field.starts_with("joint") => "joint",
+                field if field.starts_with("lumped") => "lumped model",
                 "segment.owner" | "segment.section" | "segment.cd" | "segment.cm" | "segment.diameter" => "segment",
                 _ => "link",
             };
@@ -78,6 +83,11 @@ impl fmt::Display for ModelError {
             }
             Problem::BeyondDeepestOcean => "must be at most 11000 m (the deepest ocean)",
             Problem::TooLarge => too_large(self.field),
+            Problem::NotSymmetric => "must be symmetric",
+            Problem::NotPositiveSemidefinite if self.field.ends_with("damping") => {
+                "must have a positive semi-definite symmetric part (no direction in which it feeds energy in)"
+            }
+            Problem::NotPositiveSemidefinite => "must be positive semi-definite (no direction of negative energy)",
         };
         write!(f, "{} {allowed}", self.field)
     }
@@ -85,7 +95,9 @@ impl fmt::Display for ModelError {
 
 /// The bound a field broke ([`Problem::TooLarge`]), in words.
 fn too_large(field: &str) -> &'static str {
-    if field.ends_with(".mass") {
+    if field.starts_with("lumped.") && field != "lumped.point" {
+        "must be at most 1e12 in magnitude (each entry)"
+    } else if field.ends_with(".mass") {
         "must be at most 1e9 kg"
     } else if field.ends_with(".volume") {
         "must be at most 1e6 m^3"

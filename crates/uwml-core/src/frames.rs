@@ -132,6 +132,23 @@ fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T
     }
 }
 
+/// Each link's body-frame axes (columns) in the link's coordinates (validated joints, parents
+/// first): all link frames agree at `q = 0`; a link's are its parent's where its joint's axis is
+/// the parent's z (then the turn is exactly the identity, not `Pᵀ P` to rounding), else the
+/// parent's turned as little as the axis allows.
+pub(crate) fn link_axes<T: RealField + Copy, const J: usize>(joints: &[TreeJoint<T>]) -> [Matrix3<T>; J] {
+    let identity = Matrix3::identity();
+    let mut axes = [identity; J];
+    for (i, joint) in joints.iter().enumerate() {
+        let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
+        let own = if parent.column(2).into_owned() == joint.axis { parent } else { frame_about(&joint.axis, &parent) };
+        if let Some(slot) = axes.get_mut(i) {
+            *slot = own;
+        }
+    }
+    axes
+}
+
 impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
     /// The body frames of validated joints, links, base and segments (parents before children).
     pub(crate) fn new(
@@ -161,20 +178,16 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
                 sign: T::one(),
             }; S],
         };
-        // Each body frame's axes (columns) in link coordinates: all link frames agree at q = 0.
-        let mut axes = [identity; J];
+        let axes = link_axes::<T, J>(joints);
         for (i, (joint, link)) in joints.iter().zip(links).enumerate() {
             let parent = joint.parent.and_then(|p| axes.get(p).copied()).unwrap_or(identity);
-            // The parent's own axes where its z is this joint's axis: the turn is then none
-            // (exactly the identity, not `Pᵀ P` to rounding).
+            let own = axes.get(i).copied().unwrap_or(identity);
             let same = parent.column(2).into_owned() == joint.axis;
-            let own = if same { parent } else { frame_about(&joint.axis, &parent) };
             let turn = if same { identity } else { parent.transpose() * own };
             let origin = parent.transpose() * joint.origin;
             let tangential = Vector3::z().cross(&origin);
             let before_turn = |v: Vector3<T>| turn.transpose() * v;
-            if let (Some(slot), Some(frame)) = (axes.get_mut(i), frames.joints.get_mut(i)) {
-                *slot = own;
+            if let Some(frame) = frames.joints.get_mut(i) {
                 *frame = JointFrame {
                     turn: (turn != identity).then_some(turn),
                     origin,

@@ -11,10 +11,11 @@
 //! A [`Robot`] holds up to `J` joints and `S` segments in fixed arrays: it needs no allocation,
 //! and its evaluation costs what its actual joints and segments cost, not its capacity.
 
-use nalgebra::{RealField, SimdRealField, Vector3};
+use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
-use crate::frames::BodyFrames;
+use crate::frames::{BodyFrames, link_axes};
+use crate::lumped::{Lumped, LumpedBody, LumpedFrame};
 use crate::model::{
     AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_coefficient_table,
     check_length, check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
@@ -115,7 +116,7 @@ pub struct RobotSegment<T: SimdRealField + Copy> {
 
 /// A validated robot of up to `J` joints (each moving its own link) and `S` segments.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
+pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize = 0> {
     joints: [TreeJoint<T>; J],
     links: [RigidBody<T>; J],
     base: RigidBody<T>,
@@ -124,6 +125,8 @@ pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize> {
     segment_count: usize,
     /// Every body in its own body frame, for the evaluation.
     frames: BodyFrames<T, J, S>,
+    /// The bodies' lumped models (docs/model.md section 12.1), in their body frames.
+    lumped: Lumped<T, B>,
 }
 
 /// Drag and added-mass coefficients per segment and normal direction (`[segment][k]`), to
@@ -228,7 +231,7 @@ impl<T: RealField + Copy> RobotSegment<T> {
     }
 }
 
-impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
     /// Validates and builds a robot from its joints, the links they move (same length), the
     /// base's own body, and the segments of all bodies.
     ///
@@ -295,7 +298,42 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             joint_count: 0,
             segment_count: 0,
             frames: BodyFrames::new(&[], &[], &RigidBody::empty(), &[]),
+            lumped: Lumped::none(),
         }
+    }
+
+    /// The robot with lumped models (docs/model.md section 12.1) on some of its bodies, at most
+    /// one per body and `B` in all (they replace any it had).
+    ///
+    /// # Errors
+    /// More than `B` models (`"lumped"`, out of range); a model's owner that is not a link of the
+    /// robot, or a body given two (`"lumped.owner"`, out of range); and every check of a
+    /// [`LumpedBody`]: finite entries at
+    /// most [`crate::MAX_LUMPED`] in magnitude, a reference point within [`crate::MAX_LENGTH`], a
+    /// symmetric positive semi-definite added-mass matrix, a linear damping whose symmetric part
+    /// is positive semi-definite, and non-negative quadratic damping, naming the field and the
+    /// model's index in `bodies`.
+    pub fn with_lumped(&self, bodies: &[LumpedBody<T>]) -> Result<Self, ModelError> {
+        if bodies.len() > B {
+            return Err(ModelError::new("lumped", None, Problem::OutOfRange));
+        }
+        let mut lumped = Lumped::none();
+        let link_axes = link_axes::<T, J>(self.joints());
+        for (index, body) in bodies.iter().enumerate() {
+            let body = body.validated(index, self.joint_count)?;
+            let axes = match body.owner {
+                Owner::Base => Some(Matrix3::identity()),
+                Owner::Link(i) => link_axes.get(i).copied().filter(|_| i < self.joint_count),
+            };
+            let placed = match axes {
+                Some(axes) if !lumped.has(body.owner) => lumped.push(body.owner, LumpedFrame::new(&body, &axes)),
+                _ => false,
+            };
+            if !placed {
+                return Err(ModelError::new("lumped.owner", Some(index), Problem::OutOfRange));
+            }
+        }
+        Ok(Self { lumped, ..*self })
     }
 
     /// A serial chain as a robot on a fixed base without a body of its own: joint `i`'s parent is
@@ -362,7 +400,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
     }
 }
 
-impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
     /// The same robot with `table`'s coefficients as its segments' own (segment `k` takes row
     /// `k`); nothing else changes.
     #[must_use]
@@ -430,6 +468,11 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
     pub(crate) const fn frames(&self) -> &BodyFrames<T, J, S> {
         &self.frames
     }
+
+    /// The bodies' lumped models, in their body frames.
+    pub(crate) const fn lumped(&self) -> &Lumped<T, B> {
+        &self.lumped
+    }
 }
 
 impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
@@ -456,7 +499,7 @@ impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
     /// The coefficients of `robot`'s segments, as its segments give them (checked when it was
     /// built); zero beyond its segments.
     #[must_use]
-    pub fn own<const J: usize>(robot: &Robot<T, J, S>) -> Self {
+    pub fn own<const J: usize, const B: usize>(robot: &Robot<T, J, S, B>) -> Self {
         let mut table = Self { cd: [[T::zero(); 2]; S], cm: [[T::zero(); 2]; S] };
         for ((cd, cm), segment) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(robot.segments()) {
             (*cd, *cm) = (segment.cd, segment.cm);
@@ -522,10 +565,10 @@ impl<T: SimdRealField + Copy> RigidBody<T> {
     }
 }
 
-impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
     /// The same robot over another scalar type, every number mapped by `f`, which must keep
     /// values (as `Dual::constant` does): nothing is validated again.
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Robot<U, J, S> {
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Robot<U, J, S, B> {
         Robot {
             joints: self.joints.map(|j| TreeJoint {
                 parent: j.parent,
@@ -539,15 +582,16 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
             joint_count: self.joint_count,
             segment_count: self.segment_count,
             frames: self.frames.map_scalars(f),
+            lumped: self.lumped.map_scalars(f),
         }
     }
 }
 
-impl<T: RealField + Copy, const J: usize, const S: usize> Robot<T, J, S> {
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
     /// The same robot over a SIMD type, every number splat across the lanes: the evaluation then
     /// takes one state per lane in one call, with the same operations as for `T`.
     #[must_use]
-    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Robot<L, J, S> {
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Robot<L, J, S, B> {
         self.map_scalars(L::splat)
     }
 }

@@ -27,15 +27,15 @@ type D<T> = Dual<T, DUAL_WIDTH>;
 /// [`RobotJacobianData::new`]) and the evaluations' data. Large for a large capacity (the
 /// robot's every number `DUAL_WIDTH + 1` times): keep one, on the heap where stacks are small.
 #[derive(Clone, Debug)]
-pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize> {
-    robot: Robot<D<T>, J, S>,
+pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize, const B: usize = 0> {
+    robot: Robot<D<T>, J, S, B>,
     dual: RobotData<D<T>, J>,
 }
 
-impl<T: RealField + Copy, const J: usize, const S: usize> RobotJacobianData<T, J, S> {
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> RobotJacobianData<T, J, S, B> {
     /// The workspace for `robot` (and only for it).
     #[must_use]
-    pub fn new(robot: &Robot<T, J, S>) -> Self {
+    pub fn new(robot: &Robot<T, J, S, B>) -> Self {
         Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new() }
     }
 }
@@ -60,11 +60,11 @@ pub struct RobotJacobians<'a, T> {
 /// speed of exactly zero with a hard-sign loss model they are one-sided. Outputs shorter than
 /// their sizes get what fits. Never fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     conditions: &Conditions<'_, T, J, S>,
     [q, qd, qdd]: [&[T; J]; 3],
-    work: &mut RobotJacobianData<T, J, S>,
+    work: &mut RobotJacobianData<T, J, S, B>,
     out: RobotJacobians<'_, T>,
 ) {
     let Conditions { water, motion, current, coefficients, form, losses } = *conditions;

@@ -149,7 +149,11 @@ impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
     /// last evaluation, every component (gravity included), as force and moment about the
     /// body's centre of mass, in WORLD components: what a simulator applies to that body.
     /// `None` for a link that does not exist.
-    pub fn body_wrench<const S: usize>(&self, robot: &Robot<T, J, S>, body: Option<usize>) -> Option<Wrench<T>> {
+    pub fn body_wrench<const S: usize, const B: usize>(
+        &self,
+        robot: &Robot<T, J, S, B>,
+        body: Option<usize>,
+    ) -> Option<Wrench<T>> {
         let frames = robot.frames();
         let (own, frame, bulk) = match body {
             None => (self.base_own, &self.base_frame, &frames.base),
@@ -306,6 +310,15 @@ impl<T: SimdRealField + Copy> Frame<T> {
         }
     }
 
+    /// The twist relative to the water `(v, ω)` of the material point at `r` and its components'
+    /// derivative `(v̇, α)` (`v̇ = a − ω × v`, `a` the point's acceleration relative to the water).
+    #[inline(always)]
+    fn twist_at(&self, r: &Vector3<T>) -> [Vector3<T>; 4] {
+        let (v, a) = self.point_motion(r);
+        let w = self.angular_velocity;
+        [v, w, a - w.cross(&v), self.angular_acceleration]
+    }
+
     /// Velocity and acceleration (relative to the water) of the material point at `r`.
     #[inline(always)]
     fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
@@ -454,8 +467,8 @@ pub(crate) fn finite_lanes<T: SimdRealField + Copy>(states: &[&[T]]) -> T::SimdB
 ///
 /// Never fails and never panics; a non-finite joint state gives NaN everywhere (in its lane).
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub fn robot_hydro<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     conditions: &Conditions<'_, T, J, S>,
     state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
@@ -473,8 +486,8 @@ pub fn robot_hydro<T: Real, const J: usize, const S: usize>(
 
 /// The forward pass: every link's frame into `data.frames` (parents first).
 #[inline(always)]
-fn forward<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+fn forward<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     base: &Frame<T>,
     [q, qd, qdd]: [&[T; J]; 3],
     frames: &mut [Frame<T>; J],
@@ -496,8 +509,8 @@ fn forward<T: Real, const J: usize, const S: usize>(
 
 /// [`robot_hydro`] without the joint losses (whatever `conditions` holds): they are zero.
 #[inline(always)]
-pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     conditions: &Conditions<'_, T, J, S>,
     state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
@@ -547,6 +560,19 @@ pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize>(
             },
         };
         let (drag, added_mass) = segment_wrenches(frame, segment, geometry, cd, cm, rho, form);
+        body.drag += drag;
+        body.added_mass += added_mass;
+    }
+    // Each lumped model's damping and added mass, on its body (docs/model.md section 12.1).
+    for (owner, model) in robot.lumped().iter() {
+        let (frame, body) = match *owner {
+            Owner::Base => (&base, &mut total),
+            Owner::Link(i) => match (data.frames.get(i), data.subtree.get_mut(i)) {
+                (Some(frame), Some(body)) => (frame, body),
+                _ => continue,
+            },
+        };
+        let (drag, added_mass) = model.wrenches(frame.twist_at(&model.point));
         body.drag += drag;
         body.added_mass += added_mass;
     }

@@ -16,10 +16,12 @@ use crate::tree::{RobotData, finite_lanes, hydro_in, segment_wrenches, used};
 /// [`RobotData::joint_forces`] and [`RobotData::base_wrench`], which this also evaluates into
 /// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
 /// The regressors depend on the conditions' water, motion, current and added-mass form (both
-/// forms' forces are linear in the coefficients); not on its coefficients or losses.
+/// forms' forces are linear in the coefficients); not on its coefficients or losses. A robot's
+/// lumped models (docs/model.md section 12.1) have no columns here: their forces are in `data`'s
+/// drag and added mass (evaluated at zero segment coefficients), to be added to the sums.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     conditions: &Conditions<'_, T, J, S>,
     state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,
@@ -50,8 +52,8 @@ pub(crate) enum Column {
 /// (`2k + d`: segment `k`, normal direction `d`), NaN in a non-finite state's lanes. Evaluates
 /// `data` at zero coefficients (buoyancy and gravity) first.
 #[inline(always)]
-pub(crate) fn regressor_columns<T: Real, const J: usize, const S: usize>(
-    robot: &Robot<T, J, S>,
+pub(crate) fn regressor_columns<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     conditions: &Conditions<'_, T, J, S>,
     state: [&[T; J]; 3],
     data: &mut RobotData<T, J>,

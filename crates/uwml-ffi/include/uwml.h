@@ -15,7 +15,7 @@
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  6152 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  3208 bytes,
  *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 28296 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14728 bytes.
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14736 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -139,6 +139,17 @@
 #define UWML_ERR_TOO_LARGE 14
 
 /**
+ * A matrix that must be symmetric (a lumped model's added mass) is not.
+ */
+#define UWML_ERR_NOT_SYMMETRIC 15
+
+/**
+ * A matrix that must be positive semi-definite (a lumped model's added mass, the symmetric part
+ * of its linear damping) is not.
+ */
+#define UWML_ERR_NOT_POSITIVE_SEMIDEFINITE 16
+
+/**
  * The number of joints (and links) of the leg of this API.
  */
 #define UWML_LEG3_JOINTS 3
@@ -176,7 +187,7 @@
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1840
+#define UWML_ROBOT_F32_WORDS 1841
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.

@@ -15,12 +15,12 @@ use uwml_core::{
 use crate::robot::{Model, check_evaluation, environment_total};
 use crate::{
     UWML_ERR_BELOW_ABSOLUTE_ZERO, UWML_ERR_BEYOND_DEEPEST_OCEAN, UWML_ERR_INDEX_OUT_OF_RANGE, UWML_ERR_NEGATIVE,
-    UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE, UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER,
-    UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE, UWML_ERR_OVERFLOW, UWML_ERR_TOO_LARGE, UWML_ERR_UNINITIALIZED,
-    UWML_ERROR_FIELD_LEN, UWML_OK, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlEnvironment3F32, UwmlEnvironment3F64,
-    UwmlError, UwmlHydro3F32, UwmlHydro3F64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlJointParamsF32,
-    UwmlJointParamsF64, UwmlLeg3F32, UwmlLeg3F64, UwmlLinkParamsF32, UwmlLinkParamsF64, UwmlOilParamsF32,
-    UwmlOilParamsF64, UwmlSealParamsF32, UwmlSealParamsF64,
+    UWML_ERR_NON_FINITE, UWML_ERR_NON_POSITIVE, UWML_ERR_NOT_PERPENDICULAR, UWML_ERR_NOT_POSITIVE_SEMIDEFINITE,
+    UWML_ERR_NOT_SYMMETRIC, UWML_ERR_NOT_UNIT, UWML_ERR_NULL_POINTER, UWML_ERR_OUT_OF_ORDER, UWML_ERR_OUT_OF_RANGE,
+    UWML_ERR_OVERFLOW, UWML_ERR_TOO_LARGE, UWML_ERR_UNINITIALIZED, UWML_ERROR_FIELD_LEN, UWML_OK, UwmlDriveParamsF32,
+    UwmlDriveParamsF64, UwmlEnvironment3F32, UwmlEnvironment3F64, UwmlError, UwmlHydro3F32, UwmlHydro3F64,
+    UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlJointParamsF32, UwmlJointParamsF64, UwmlLeg3F32, UwmlLeg3F64,
+    UwmlLinkParamsF32, UwmlLinkParamsF64, UwmlOilParamsF32, UwmlOilParamsF64, UwmlSealParamsF32, UwmlSealParamsF64,
 };
 
 /// The joints of the C API's leg.
@@ -78,6 +78,8 @@ impl Failure {
             Problem::BelowAbsoluteZero => UWML_ERR_BELOW_ABSOLUTE_ZERO,
             Problem::BeyondDeepestOcean => UWML_ERR_BEYOND_DEEPEST_OCEAN,
             Problem::TooLarge => UWML_ERR_TOO_LARGE,
+            Problem::NotSymmetric => UWML_ERR_NOT_SYMMETRIC,
+            Problem::NotPositiveSemidefinite => UWML_ERR_NOT_POSITIVE_SEMIDEFINITE,
         };
         Self::new(code, error.field, error.index.or(joint))
     }

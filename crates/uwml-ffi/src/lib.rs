@@ -79,6 +79,11 @@ pub const UWML_ERR_OVERFLOW: i32 = 13;
 /// density beyond 1e5 kg/m³ or gravity beyond 1e3 m/s²): a unit mistake, or forces that would
 /// overflow.
 pub const UWML_ERR_TOO_LARGE: i32 = 14;
+/// A matrix that must be symmetric (a lumped model's added mass) is not.
+pub const UWML_ERR_NOT_SYMMETRIC: i32 = 15;
+/// A matrix that must be positive semi-definite (a lumped model's added mass, the symmetric part
+/// of its linear damping) is not.
+pub const UWML_ERR_NOT_POSITIVE_SEMIDEFINITE: i32 = 16;
 
 /// The number of joints (and links) of the leg of this API.
 pub const UWML_LEG3_JOINTS: usize = 3;
@@ -106,7 +111,7 @@ pub const UWML_ROBOT_MAX_SEGMENTS: usize = 32;
 /// Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
 pub const UWML_ROBOT_F64_WORDS: usize = 3536;
 /// Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
-pub const UWML_ROBOT_F32_WORDS: usize = 1840;
+pub const UWML_ROBOT_F32_WORDS: usize = 1841;
 /// `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
 pub const UWML_BASE: i32 = -1;
 /// `UwmlTreeJoint*.kind`: turns its link about the axis by q [rad]; the force is a torque [N·m].
@@ -497,6 +502,8 @@ pub extern "C" fn uwml_error_message(code: i32) -> *const c_char {
         UWML_ERR_BEYOND_DEEPEST_OCEAN => c"beyond the deepest ocean",
         UWML_ERR_OVERFLOW => c"forces overflow",
         UWML_ERR_TOO_LARGE => c"too large",
+        UWML_ERR_NOT_SYMMETRIC => c"not symmetric",
+        UWML_ERR_NOT_POSITIVE_SEMIDEFINITE => c"not positive semi-definite",
         _ => c"unknown error",
     };
     message.as_ptr()

@@ -10,9 +10,9 @@
 use core::hint::black_box;
 
 use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
-use uwml_core::nalgebra::{RealField, SVector, Vector3, convert};
+use uwml_core::nalgebra::{Matrix6, RealField, SVector, Vector3, Vector6, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
-use uwml_core::{AddedMassForm, BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, OilDrag, Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_joint_added_mass_matrix, robot_hydro_regressors, robot_jacobians, smooth_sign, Conditions};
+use uwml_core::{AddedMassForm, BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, LumpedBody, OilDrag, Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_joint_added_mass_matrix, robot_hydro_regressors, robot_jacobians, smooth_sign, Conditions};
 
 /// Counts unexpected results.
 struct Tally<T> {
@@ -183,8 +183,8 @@ fn evaluate<T: RealField + uwml_core::Real, const N: usize>(chain: &Chain<T, N>,
 }
 
 /// A tree of four joints (one prismatic, two from the base) with rectangular and circular
-/// segments on a base body.
-fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6>> {
+/// segments on a base body, and lumped models (docs/model.md section 12.1) on the base and a link.
+fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6, 2>> {
     let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
     let joint = |parent, kind, origin, axis| TreeJoint { parent, kind, origin, axis };
     let joints = [
@@ -216,11 +216,25 @@ fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6>> {
         circular(Owner::Link(1), v(0.0, 0.0, -1.0)),
         circular(Owner::Link(3), v(0.0, 0.6, 0.8)),
     ];
-    Robot::new(&joints, &[body(4.0), body(3.0), body(2.0), body(1.0)], body(50.0), &segments).ok()
+    let diagonal = |d: [f64; 6]| Matrix6::from_diagonal(&Vector6::from(d.map(c::<T>)));
+    let mut added_mass = diagonal([40.0, 60.0, 80.0, 2.0, 3.0, 4.0]);
+    added_mass[(1, 5)] = c(1.5);
+    added_mass[(5, 1)] = c(1.5);
+    let hull = LumpedBody {
+        owner: Owner::Base,
+        point: v(0.0, 0.0, 0.05),
+        added_mass,
+        linear_damping: diagonal([20.0, 30.0, 40.0, 1.0, 1.5, 2.0]),
+        quadratic_damping: [100.0, 140.0, 170.0, 2.0, 3.0, 4.0].map(c::<T>),
+    };
+    let can = LumpedBody { owner: Owner::Link(3), point: v(0.1, 0.0, 0.0), ..hull };
+    Robot::new(&joints, &[body(4.0), body(3.0), body(2.0), body(1.0)], body(50.0), &segments)
+        .and_then(|robot| robot.with_lumped(&[hull, can]))
+        .ok()
 }
 
 /// The whole-robot path on a moving base in a current, and a NaN state.
-fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6>, tally: &mut Tally<T>) {
+fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6, 2>, tally: &mut Tally<T>) {
     let water = black_box(Water::<T>::default());
     let (q, qd, qdd): ([T; 6], [T; 6], [T; 6]) =
         (vector::<T, 6>(0.3, -0.2).into(), vector::<T, 6>(0.8, -0.45).into(), vector::<T, 6>(1.0, -0.7).into());

@@ -266,6 +266,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ABSOLUTE_ZERO_C", uwml_core::ABSOLUTE_ZERO_C)?;
     m.add("OIL_TEMPERATURE_RANGE_C", (uwml_core::OIL_TEMPERATURE_RANGE_C[0], uwml_core::OIL_TEMPERATURE_RANGE_C[1]))?;
     m.add("MAX_SEGMENTS", robot::MAX_SEGMENTS)?;
+    m.add("MAX_LUMPED_BODIES", robot::MAX_LUMPED_BODIES)?;
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
     m.add("UwmlError", m.py().get_type::<errors::UwmlError>())?;
     m.add("ModelError", m.py().get_type::<errors::ModelError>())?;

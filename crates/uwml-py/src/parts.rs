@@ -4,8 +4,8 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use uwml_core::nalgebra::Vector3;
-use uwml_core::{JointKind, ModelError, Owner, Problem, RigidBody, RobotSegment, Section, TreeJoint};
+use uwml_core::nalgebra::{Matrix6, Vector3};
+use uwml_core::{JointKind, LumpedBody, ModelError, Owner, Problem, RigidBody, RobotSegment, Section, TreeJoint};
 
 /// A `uwml.Joint` of a robot, its parent resolved (`-1`: the base).
 #[derive(FromPyObject)]
@@ -23,6 +23,16 @@ pub(crate) struct BodySpec {
     com: [f64; 3],
     volume: f64,
     cob: [f64; 3],
+    lumped: Option<LumpedSpec>,
+}
+
+/// A `uwml.LumpedModel` (its reference point resolved by the `uwml.Link` that carries it).
+#[derive(FromPyObject)]
+pub(crate) struct LumpedSpec {
+    point: [f64; 3],
+    added_mass: [[f64; 6]; 6],
+    linear_damping: [[f64; 6]; 6],
+    quadratic_damping: [f64; 6],
 }
 
 /// A `uwml.Segment`.
@@ -82,6 +92,21 @@ impl LegJointSpec {
 impl BodySpec {
     pub(crate) fn rigid_body(&self) -> RigidBody<f64> {
         RigidBody { mass: self.mass, com: self.com.into(), volume: self.volume, cob: self.cob.into() }
+    }
+
+    /// The core's lumped model of this body, carried by `owner`, if it has one.
+    pub(crate) fn lumped_body(&self, owner: Owner) -> Option<LumpedBody<f64>> {
+        let spec = self.lumped.as_ref()?;
+        let matrix = |rows: &[[f64; 6]; 6]| {
+            Matrix6::from_fn(|r, c| rows.get(r).and_then(|row| row.get(c)).copied().unwrap_or(0.0))
+        };
+        Some(LumpedBody {
+            owner,
+            point: spec.point.into(),
+            added_mass: matrix(&spec.added_mass),
+            linear_damping: matrix(&spec.linear_damping),
+            quadratic_damping: spec.quadratic_damping,
+        })
     }
 }
 

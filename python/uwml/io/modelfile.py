@@ -39,6 +39,12 @@ at ``q = 0``, as in :mod:`uwml.model.parts`)::
     cd = [0.9, 0.9]              # per normal direction (a circular section's two are equal)
     cm = [1.0, 1.0]
 
+    [base.lumped]                # optional, for the base and for every link: Fossen's lumped
+    point = [0.0, 0.0, 0.05]     # model (uwml.LumpedModel, docs/model.md section 12.1), about
+    added_mass = [[...6...], ...]      # `point`, body axes: 6 rows of 6 (x, y, z, roll, pitch,
+    linear_damping = [[...6...], ...]  # yaw); magnitudes (SNAME's X_u̇ is −added_mass[0][0])
+    quadratic_damping = [...6...]
+
     [[joints]]                   # in the order of q, parents first
     name = "shoulder_yaw"        # optional
     parent = -1                  # an earlier link's index, or -1 for the base
@@ -93,6 +99,7 @@ from .._checks import shown
 from ..errors import ModelFileError
 from ..model.joint_losses import JointLosses
 from ..model.losses import Drive, OilDrag, Seal
+from ..model.lumped import LumpedModel
 from ..model.parts import Joint, Link, Segment, Water
 from ._files import read_regular, write_atomically
 from ._robot_like import RobotLike
@@ -165,6 +172,20 @@ def _body_lines(body: Link, where: str) -> list[str]:
     ]
 
 
+def _lumped_lines(lumped: LumpedModel) -> list[str]:
+    point = lumped.point if lumped.point is not None else (0.0, 0.0, 0.0)
+
+    def matrix(rows: Any) -> str:
+        return "[" + ", ".join(_vector(row) for row in rows) + "]"
+
+    return [
+        f"point = {_vector(point)}",
+        f"added_mass = {matrix(lumped.added_mass)}",
+        f"linear_damping = {matrix(lumped.linear_damping)}",
+        f"quadratic_damping = {_vector(lumped.quadratic_damping)}",  # type: ignore[arg-type]
+    ]
+
+
 def _segment_lines(segment: Segment) -> list[str]:
     lines = [f"section = {_string(segment.section)}", f"start = {_vector(segment.start)}", f"axis = {_vector(segment.axis)}"]
     lines.append(f"length = {_number(segment.length)}")
@@ -208,6 +229,8 @@ def dumps(robot: RobotLike) -> str:
     out += ["", "[water]", f"density = {_number(robot.water.density)}", f"gravity = {_number(robot.water.gravity)}"]
     if robot.base is not None:
         out += ["", "[base]", *_body_lines(robot.base, "base")]
+        if robot.base.lumped is not None:
+            out += ["", "[base.lumped]", *_lumped_lines(robot.base.lumped)]
         for segment in robot.base.segments:
             out += ["", "[[base.segments]]", *_segment_lines(segment)]
     for i, (joint, losses) in enumerate(zip(robot.joints, robot.losses)):
@@ -225,6 +248,8 @@ def dumps(robot: RobotLike) -> str:
             out += _losses_lines(losses)
     for i, link in enumerate(robot.links):
         out += ["", "[[links]]", *_body_lines(link, f"links[{i}]")]
+        if link.lumped is not None:
+            out += ["", "[links.lumped]", *_lumped_lines(link.lumped)]
         for segment in link.segments:
             out += ["", "[[links.segments]]", *_segment_lines(segment)]
     return "\n".join(out) + "\n"
@@ -327,7 +352,32 @@ def _integer(value: Any) -> int:
 
 
 _SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm")
-_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments")
+_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped")
+_LUMPED_KEYS = ("point", "added_mass", "linear_damping", "quadratic_damping")
+
+
+def _six(value: Any) -> tuple[float, ...]:
+    if not isinstance(value, list) or len(value) != 6:
+        raise TypeError("not an array of 6 numbers")
+    return tuple(_float(v) for v in value)
+
+
+def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
+    if not isinstance(value, list) or len(value) != 6:
+        raise TypeError("not an array of 6 rows")
+    return tuple(_six(row) for row in value)
+
+
+def _lumped(source: str, where: str, table: object) -> LumpedModel:
+    r = _Reader(source, where, table)
+    r.check_keys(_LUMPED_KEYS)
+    point = r.get("point", _vec3, "an array of 3 numbers [m]")
+    zero: tuple[tuple[float, ...], ...] = tuple((0.0,) * 6 for _ in range(6))
+    no_quadratic: tuple[float, ...] = (0.0,) * 6
+    added_mass = r.get("added_mass", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
+    damping = r.get("linear_damping", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
+    quadratic = r.get("quadratic_damping", _six, "6 numbers", required=False, default=no_quadratic)
+    return r.build(lambda: LumpedModel(point, added_mass, damping, quadratic))
 
 
 def _segment(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Segment:
@@ -362,7 +412,9 @@ def _body(source: str, where: str, table: object) -> Link:
     com = r.get("com", _vec3, "an array of 3 numbers [m]")
     volume = r.get("volume", _float, "a volume [m³]")
     cob = r.get("cob", _vec3, "an array of 3 numbers [m]")
-    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name))
+    raw_lumped = r.get("lumped", lambda table: table, "a table", required=False)
+    lumped = None if raw_lumped is None else _lumped(source, f"{where}, lumped", raw_lumped)
+    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name, lumped=lumped))
 
 
 def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:

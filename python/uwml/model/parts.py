@@ -23,6 +23,7 @@ import numpy as np
 from .._checks import to_float
 from ..domains import MAX_DENSITY, MAX_GRAVITY
 from ..sea.conditions import SEA_WATER_DENSITY
+from .lumped import LumpedModel
 
 Vec3 = tuple[float, float, float]
 
@@ -297,7 +298,9 @@ class Link:
 
     ``cob`` defaults to ``com`` (as the paper assumes). Give one segment as ``segment=`` or any
     number as ``segments=(...)``; ``segments`` always holds them all (``segment`` is the single
-    one, or ``None`` when there are none or several).
+    one, or ``None`` when there are none or several). ``lumped``: Fossen's lumped model of the
+    body (:class:`uwml.LumpedModel`, docs/model.md section 12.1), for what is not slender; its
+    reference point defaults to ``cob``.
     """
 
     mass: float
@@ -308,6 +311,7 @@ class Link:
     segments: tuple[Segment, ...] = field(default=())
     #: A name (a URDF link's, an MJCF body's), or None.
     name: str | None = None
+    lumped: LumpedModel | None = None
 
     def __post_init__(self) -> None:
         _check_name(self.name, "link.name")
@@ -331,6 +335,10 @@ class Link:
             segments = (self.segment,)
         object.__setattr__(self, "segments", segments)
         object.__setattr__(self, "segment", segments[0] if len(segments) == 1 else None)
+        if self.lumped is not None:
+            if not isinstance(self.lumped, LumpedModel):
+                raise TypeError(f"link.lumped must be a uwml.LumpedModel or None, got {type(self.lumped).__name__}")
+            object.__setattr__(self, "lumped", self.lumped.at(self.cob if self.cob is not None else self.com))
 
 
 @dataclass(frozen=True)

@@ -73,7 +73,10 @@ Method
      ``a⊥``): ``F = d (ā_0 + ā_1)/2``, ``M = d [p_0 × (ā_0 + ā_1)/2 + e × (ā_0/6 + ā_1/3)]``,
      ``d = −ρ Cm A L``;
    * buoyancy with Froude-Krylov ``ρ V (ċ − g_vec)`` at the centre of buoyancy and gravity
-     ``m g_vec`` at the centre of mass.
+     ``m g_vec`` at the centre of mass;
+   * a body's lumped model (docs/model.md section 12.1; :mod:`.lumped`): Fossen's wrench at its
+     point ``P`` from the relative twist at ``P`` in body components, its damping added to the
+     body's drag and its added-mass terms to the body's added mass, whatever the added-mass form.
 4. **Generalized forces as virtual work** of each body's wrench against the explicit joint
    screws (docs/model.md section 10, "What is computed"): ``τ_j = z_j · Σ_b (M_b − o_j × F_b)`` (revolute) or
    ``τ_j = z_j · Σ_b F_b`` (prismatic) over the bodies ``b`` joint ``j`` moves; the base wrench
@@ -82,7 +85,8 @@ Method
 5. **Added-mass matrix** ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)``: added mass is linear in the
    accelerations, so column k is exactly minus the added-mass generalized forces at unit
    acceleration k with every velocity, the current and its acceleration zero. Its symmetry is
-   therefore a property to test, not a construction.
+   therefore a property to test, not a construction. A lumped body's ``−M_A ν̇_r`` enters the
+   same way, so it adds ``J_Pᵀ M_A J_P`` (``J_P``: generalized velocity to twist at ``P``).
 
 Descriptions are duck-typed: joints need ``origin``, ``axis`` and optionally ``parent`` (default
 ``None``) and ``kind`` (default ``"revolute"``); links and the base need ``mass``, ``com``,
@@ -90,7 +94,9 @@ Descriptions are duck-typed: joints need ``origin``, ``axis`` and optionally ``p
 ``None``); segments need ``start``, ``axis``, ``length``, ``section`` (default
 ``"rectangular"``), for rectangular ones ``normals``, ``widths``, ``area``, for circular ones
 ``diameter`` (``area`` defaults to ``π D²/4``), and ``cd``, ``cm`` (a number or a pair) unless
-coefficients are passed. :mod:`uwml.model`'s ``Joint``, ``Link``, ``Segment`` all fit.
+coefficients are passed. A body may have ``lumped`` (None or absent: none), with ``point``,
+``added_mass``, ``linear_damping``, ``quadratic_damping`` (:class:`uwml.LumpedModel`).
+:mod:`uwml.model`'s ``Joint``, ``Link``, ``Segment`` all fit.
 """
 
 # No ``from __future__ import annotations``: dataclasses with string annotations look their module
@@ -103,6 +109,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._inputs import Array, _number
+from .lumped import _lumped_wrenches
 from .robot_inputs import BoolArray, IndexArray, _coefficients, _Motion, _motion, _Robot, _robot, _sampled
 
 __all__ = ["robot_added_mass_matrix", "robot_hydro", "robot_link_wrenches"]
@@ -364,6 +371,10 @@ def _body_wrenches(
         force = 0.5 * (bar0 + bar1)
         moment = np.cross(p0, force) + np.cross(e, bar0 / 6.0 + bar1 / 3.0)
         out["added_mass"] = collect(force, moment)
+    if len(robot.lumped_body):
+        # Fossen's lumped models (docs/model.md section 12.1; :mod:`.lumped`), on the same bodies.
+        for part, (force, moment) in _lumped_wrenches(robot, motion, kin, parts).items():
+            out[part] = (out[part][0] + force, out[part][1] + moment)
     g_vec = np.array([0.0, 0.0, -gravity])
     if "buoyancy" in parts:
         cob = kin.positions + np.einsum("nbij,bj->nbi", kin.rotations, robot.cobs)
@@ -506,7 +517,9 @@ def robot_hydro(
         Uniform water velocity ``c`` and acceleration ``ċ``, world components: ``(3,)`` or ``(n, 3)``.
     added_mass : {"morison", "kirchhoff"}
         The paper's Morison form, or Kirchhoff's (docs/simulation.md, "Energy-consistent added
-        mass"; :func:`_kirchhoff_extra`).
+        mass"; :func:`_kirchhoff_extra`), for the segments; a lumped model (docs/model.md
+        section 12.1) is Fossen's in either case (its damping in ``drag``, ``M_A ν̇_r`` and
+        ``C_A(ν_r) ν_r`` in ``added_mass``).
 
     Returns
     -------
@@ -582,9 +595,10 @@ def robot_link_wrenches(
     """The environment's total wrench on each body, about the body's centre of mass, world components.
 
     Arguments as :func:`robot_hydro`. Returns ``(N + 1, 6)`` or ``(n, N + 1, 6)``: per body (the
-    base first, then the links) ``[F, M]``, the sum of drag, added mass, buoyancy (with
-    Froude-Krylov) and gravity, ``M`` about that body's COM (the base origin for a base of
-    ``None``, whose row is zero), in world components.
+    base first, then the links) ``[F, M]``, the sum of drag, added mass (the segments' in
+    Morison's form, and the lumped model's), buoyancy (with Froude-Krylov) and gravity, ``M``
+    about that body's COM (the base origin for a base of ``None``, whose row is zero), in world
+    components.
     """
     robot, motion, kin, density, gravity = _prepare(
         joints,
@@ -630,8 +644,8 @@ def robot_added_mass_matrix(
     base components), base angular (x, y, z), then the joints. Column k is minus the added-mass
     generalized forces (:func:`robot_hydro`'s ``base_added_mass`` and ``added_mass``) at unit
     acceleration k, every velocity, the current and its acceleration zero: exact, since added
-    mass is linear in the accelerations. ``cm``, ``density`` and ``orientation`` as in
-    :func:`robot_hydro`.
+    mass is linear in the accelerations; a lumped body (docs/model.md section 12.1) adds
+    ``J_Pᵀ M_A J_P`` that way. ``cm``, ``density`` and ``orientation`` as in :func:`robot_hydro`.
     """
     robot = _robot(joints, links, base)
     n_joints = robot.n_joints

@@ -1,6 +1,7 @@
 """The inputs of the whole-robot reference (:mod:`uwml.reference.robot`), checked and packed into
 arrays: the robot description (joints, bodies, segments, coefficients) and the base motion and
-current of every sample. numpy and the standard library only, like the rest of the reference."""
+current of every sample. numpy and the standard library only, like the rest of the reference.
+A body's lumped model (docs/model.md section 12.1) is packed beside its segments."""
 
 # No ``from __future__ import annotations``: see uwml.reference.chain.
 import math
@@ -49,6 +50,11 @@ class _Robot:
     seg_circular: BoolArray  # (S,)
     seg_cd: Array  # (S, 2), NaN where the segment has no coefficient of its own
     seg_cm: Array  # (S, 2)
+    lumped_body: IndexArray  # (L,) body index of each lumped model (docs/model.md section 12.1)
+    lumped_point: Array  # (L, 3) its reference point P in the body's frame
+    lumped_mass: Array  # (L, 6, 6) M_A about P, body components
+    lumped_linear: Array  # (L, 6, 6) D_L
+    lumped_quadratic: Array  # (L, 6) d_i
 
     @property
     def n_joints(self) -> int:
@@ -117,6 +123,29 @@ def _segment_arrays(segment: Any, name: str) -> dict[str, Any]:
     }
 
 
+def _lumped_arrays(lumped: Any, name: str, cob: Array) -> dict[str, Array]:
+    """A body's lumped model (docs/model.md section 12.1), duck-typed: ``point`` (None: the body's
+    centre of buoyancy), ``added_mass`` (6×6, symmetric), ``linear_damping`` (6×6),
+    ``quadratic_damping`` (6, each ≥ 0); a missing field is zero."""
+    point = getattr(lumped, "point", None)
+    out = {"point": cob if point is None else _vector(point, f"{name}.point")}
+    for key, shape in (("added_mass", (6, 6)), ("linear_damping", (6, 6)), ("quadratic_damping", (6,))):
+        value = getattr(lumped, key, None)
+        try:
+            a = np.zeros(shape) if value is None else np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{name}.{key} must be an array of numbers, got {value!r}") from exc
+        if a.shape != shape or not np.all(np.isfinite(a)):
+            raise ValueError(f"{name}.{key} must be finite, of shape {shape}, got {value!r}")
+        out[key] = a
+    mass = out["added_mass"]
+    if np.any(np.abs(mass - mass.T) > 1e-9 * float(np.max(np.abs(mass)))):
+        raise ValueError(f"{name}.added_mass must be symmetric, got {mass.tolist()}")
+    if np.any(out["quadratic_damping"] < 0.0):
+        raise ValueError(f"{name}.quadratic_damping must be >= 0, got {out['quadratic_damping'].tolist()}")
+    return out
+
+
 def _segments_of(body: Any) -> tuple[Any, ...]:
     segments = getattr(body, "segments", None)
     if segments is None:
@@ -150,6 +179,7 @@ def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Ro
 
     bodies: list[tuple[str, Any]] = [("base", base)] + [(f"links[{i}]", link) for i, link in enumerate(links)]
     masses, coms, volumes, cobs, segments = [], [], [], [], []
+    lumped: list[tuple[int, dict[str, Array]]] = []
     for b, (name, body) in enumerate(bodies):
         if body is None:
             if b > 0:
@@ -165,6 +195,9 @@ def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Ro
         volumes.append(_number(body.volume, f"{name}.volume", positive=False))
         cob = getattr(body, "cob", None)
         cobs.append(com if cob is None else _vector(cob, f"{name}.cob"))
+        model = getattr(body, "lumped", None)
+        if model is not None:
+            lumped.append((b, _lumped_arrays(model, f"{name}.lumped", cobs[-1])))
         for k, segment in enumerate(_segments_of(body)):
             segments.append((b, _segment_arrays(segment, f"{name}.segments[{k}]")))
 
@@ -191,6 +224,11 @@ def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Ro
         seg_circular=np.array([s["circular"] for _, s in segments], dtype=bool),
         seg_cd=stack("cd", (2,)),
         seg_cm=stack("cm", (2,)),
+        lumped_body=np.array([b for b, _ in lumped], dtype=np.intp),
+        lumped_point=np.array([m["point"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 3),
+        lumped_mass=np.array([m["added_mass"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6, 6),
+        lumped_linear=np.array([m["linear_damping"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6, 6),
+        lumped_quadratic=np.array([m["quadratic_damping"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6),
     )
 
 

@@ -102,6 +102,8 @@ class Leg(Robot):
                 raise ValueError(
                     f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
                 )
+            if link.lumped is not None:
+                raise ValueError(f"links[{index}]: a uwml.Leg link has no lumped model (uwml.LumpedModel); use uwml.Robot for bluff bodies")
         self._from_chain(_core.Chain(joints, links))
 
     def _from_chain(self, chain: _core.Chain) -> None:

@@ -37,6 +37,7 @@ from .base_motion import BaseMotion
 from .results import BaseWrench, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
 
 __all__ = [
+    "MAX_LUMPED_BODIES",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
     "Robot",
@@ -48,6 +49,8 @@ FloatArray = NDArray[np.float64]
 MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 #: Largest number of segments (all bodies together) of a :class:`Robot`.
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
+#: The most lumped models (:class:`uwml.LumpedModel`) a robot may carry, on all its bodies.
+MAX_LUMPED_BODIES: int = _core.MAX_LUMPED_BODIES
 
 
 class Robot:
@@ -116,6 +119,9 @@ class Robot:
         owned = [(-1, s) for s in base_body.segments] + [(i, s) for i, link in enumerate(links) for s in link.segments]
         if len(owned) > MAX_SEGMENTS:
             raise ValueError(f"a robot may have up to {MAX_SEGMENTS} segments, got {len(owned)}")
+        lumped = sum(body.lumped is not None for body in (base_body, *links))
+        if lumped > MAX_LUMPED_BODIES:
+            raise ValueError(f"a robot may carry up to {MAX_LUMPED_BODIES} lumped models (one per body), got {lumped}")
         self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind, name=j.name) for p, j in zip(parents, joints))
         self._core = _core.Robot(self._joints, links, base_body, owned)
         for what, items in (("joint", joints), ("link", links)):
@@ -126,6 +132,7 @@ class Robot:
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
+        self._has_lumped = lumped > 0
         self._losses = _per_joint_losses(losses, len(joints))
         # The joints' own losses as an evaluation takes them: one object when they all share one.
         first = self._losses[0] if self._losses else None
@@ -495,7 +502,13 @@ class Robot:
     ) -> RobotRegressors:
         """Regressors of the drag and added-mass forces, one column per segment and normal
         direction, on the joints and on the base (:class:`RobotRegressors`). Arguments as for
-        :meth:`hydro`."""
+        :meth:`hydro`. Not for a robot with lumped models (:class:`uwml.LumpedModel`), whose
+        columns are not available yet: refused."""
+        if self._has_lumped:
+            raise ValueError(
+                "hydro_regressors: this robot's bodies carry lumped models (uwml.LumpedModel), whose regressors are not available "
+                "yet; the segments' columns alone would leave their forces out"
+            )
         kirchhoff = _kirchhoff(added_mass)
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)

@@ -2,8 +2,10 @@
 //! `examples/timing.rs`): a 7-joint manipulator of 14 segments on an ROV, and its motion.
 #![allow(dead_code, clippy::indexing_slicing, clippy::panic)]
 
-use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{BaseMotion, Current, JointKind, Owner, RigidBody, Robot, RobotSegment, Section, TreeJoint};
+use uwml_core::nalgebra::{Matrix6, RealField, Vector3, Vector6, convert};
+use uwml_core::{
+    BaseMotion, Current, JointKind, LumpedBody, Owner, RigidBody, Robot, RobotSegment, Section, TreeJoint,
+};
 
 fn c<T: RealField + Copy>(x: f64) -> T {
     convert(x)
@@ -103,4 +105,24 @@ pub fn rov_motion<T: RealField + Copy>() -> (BaseMotion<T>, Current<T>) {
             .unwrap_or_else(|e| panic!("a valid motion: {e}"));
     let current = Current::new(v(0.3, 0.1, 0.0), v(0.0, 0.0, 0.0)).unwrap_or_else(|e| panic!("a valid current: {e}"));
     (motion, current)
+}
+
+/// `robot` with Fossen's lumped model (docs/model.md section 12.1) on its hull, the base: a
+/// 300 kg work-class hull's added mass (with a surge-pitch coupling) and damping, about its
+/// centre, in the proportions of the BlueROV2 model of von Benzon et al. (2022), scaled up.
+pub fn with_hull<T: RealField + Copy, const J: usize, const S: usize>(robot: &Robot<T, J, S>) -> Robot<T, J, S, 1> {
+    let diagonal = |d: [f64; 6]| Matrix6::from_diagonal(&Vector6::from(d.map(c::<T>)));
+    let mut added_mass = diagonal([190.0, 360.0, 420.0, 12.0, 30.0, 25.0]);
+    added_mass[(0, 4)] = c(8.0);
+    added_mass[(4, 0)] = c(8.0);
+    let hull = LumpedBody {
+        owner: Owner::Base,
+        point: v(0.0, 0.0, 0.05),
+        added_mass,
+        linear_damping: diagonal([120.0, 150.0, 160.0, 20.0, 30.0, 25.0]),
+        quadratic_damping: [420.0, 600.0, 700.0, 30.0, 60.0, 50.0].map(c::<T>),
+    };
+    let robot = Robot::<T, J, S, 1>::new(robot.joints(), robot.links(), *robot.base(), robot.segments())
+        .unwrap_or_else(|e| panic!("the arm: {e}"));
+    robot.with_lumped(&[hull]).unwrap_or_else(|e| panic!("the hull: {e}"))
 }

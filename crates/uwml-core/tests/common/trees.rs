@@ -18,7 +18,7 @@ pub fn states<const J: usize>(rng: &mut Rng, n: usize) -> [[f64; J]; 3] {
 
 /// A random robot: `n` joints with random parents, kinds, axes; every body (base too) with
 /// random mass, volume and one or two segments, rectangular or circular.
-pub fn random_robot<const J: usize, const S: usize>(rng: &mut Rng, n: usize) -> Robot<f64, J, S> {
+pub fn random_robot<const J: usize, const S: usize, const B: usize>(rng: &mut Rng, n: usize) -> Robot<f64, J, S, B> {
     let joints: Vec<_> = (0..n)
         .map(|i| TreeJoint {
             parent: if i == 0 || rng.next() < -0.5 {

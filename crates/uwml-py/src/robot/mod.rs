@@ -10,7 +10,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
 use uwml_core::{
-    AddedMassForm, Conditions, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients,
+    AddedMassForm, Conditions, Owner, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients,
     robot_added_mass_matrix, robot_jacobians,
 };
 
@@ -41,10 +41,12 @@ fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
 pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
 /// Largest number of segments of a robot built from Python.
 pub(crate) const MAX_SEGMENTS: usize = 256;
-type Model = Robot<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
+/// The most lumped models (docs/model.md section 12.1) a robot may carry, on all its bodies.
+pub(crate) const MAX_LUMPED_BODIES: usize = 16;
+type Model = Robot<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS, MAX_LUMPED_BODIES>;
 type Data = RobotData<f64, MAX_ROBOT_JOINTS>;
 /// The robot over SIMD lanes, for the batch: four states per evaluation.
-type LaneModel = Robot<Lanes, MAX_ROBOT_JOINTS, MAX_SEGMENTS>;
+type LaneModel = Robot<Lanes, MAX_ROBOT_JOINTS, MAX_SEGMENTS, MAX_LUMPED_BODIES>;
 type LaneData = RobotData<Lanes, MAX_ROBOT_JOINTS>;
 type Coefficients = SegmentCoefficients<f64, MAX_SEGMENTS>;
 
@@ -60,7 +62,7 @@ pub(crate) struct PyRobot {
     /// A lane workspace kept for one-thread batches.
     lane_data: Mutex<Option<Box<LaneData>>>,
     /// The derivatives' workspace (the robot over dual numbers), made at the first call.
-    jacobian_data: Mutex<Option<Box<RobotJacobianData<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS>>>>,
+    jacobian_data: Mutex<Option<Box<RobotJacobianData<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS, MAX_LUMPED_BODIES>>>>,
 }
 
 #[pymethods]
@@ -89,7 +91,13 @@ impl PyRobot {
             .map(|(k, (owner, s))| s.robot_segment(*owner, k))
             .collect::<Result<Vec<_>, _>>();
         let bodies: Vec<_> = links.iter().map(BodySpec::rigid_body).collect();
+        let lumped: Vec<_> = base
+            .lumped_body(Owner::Base)
+            .into_iter()
+            .chain(links.iter().enumerate().filter_map(|(i, link)| link.lumped_body(Owner::Link(i))))
+            .collect();
         let robot = Model::new(&tree.map_err(model_error)?, &bodies, base.rigid_body(), &pieces.map_err(model_error)?)
+            .and_then(|robot| if lumped.is_empty() { Ok(robot) } else { robot.with_lumped(&lumped) })
             .map_err(model_error)?;
         Ok(Self {
             robot: Box::new(robot),

@@ -1,0 +1,278 @@
+//! Fossen's lumped hydrodynamic model of a bluff body: a vehicle's hull, a battery can, a gripper
+//! (docs/model.md section 12.1). Strip theory (section 3) is for slender segments and has no force
+//! along a segment's axis; a body that is not slender carries an added-mass matrix, a linear
+//! damping matrix and quadratic damping about a reference point instead (or beside its strips).
+//!
+//! With `ν_r = (v_P − Rᵀc, ω)` the body's twist relative to the water at `P`, in the body's
+//! components, the body feels at `P`
+//! `W = −M_A ν̇_r − C_A(ν_r) ν_r − D_L ν_r − D_Q(ν_r) ν_r`, where `ν̇_r` is the time derivative
+//! of `ν_r`'s components and `C_A(ν) ν = (ω × p, v × p + ω × h)` with `(p, h) = M_A ν` (Fossen's
+//! added-mass Coriolis-centripetal term): the added-mass part conserves `½ ν_rᵀ M_A ν_r` in still
+//! water. The damping is reported with the drag, the rest with the added mass.
+
+use nalgebra::{Matrix3, Matrix6, RealField, SimdRealField, Vector3, Vector6};
+
+use crate::error::{ModelError, Problem};
+use crate::model::{check_at_most, check_finite, check_non_negative, check_point, constant};
+use crate::robot::Owner;
+use crate::wrench::Wrench;
+
+/// The largest magnitude of an entry of a lumped model's matrices and quadratic damping (in its
+/// SI units: kg, kg·m, kg·m², N·s/m, ...). A hull of a million tonnes is far below it; the bound
+/// keeps every force of a finite state finite.
+pub const MAX_LUMPED: f64 = 1e12;
+
+/// Fossen's lumped model of one body (docs/model.md section 12.1), in the body's frame, about the
+/// reference point `point`. Every matrix is ordered `(x, y, z, roll, pitch, yaw)`, linear first.
+///
+/// The entries are magnitudes as they act: the added mass `M_A` is positive on its diagonal
+/// (SNAME's `X_u̇` is `−M_A[0][0]`), and so are the damping's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LumpedBody<T: SimdRealField + Copy> {
+    /// The body it belongs to.
+    pub owner: Owner,
+    /// The reference point `P`, in the body's frame [m].
+    pub point: Vector3<T>,
+    /// `M_A` about `P`: symmetric, positive semi-definite [kg, kg·m, kg·m²].
+    pub added_mass: Matrix6<T>,
+    /// `D_L` about `P`, whose symmetric part is positive semi-definite [N·s/m, N·s, N·m·s].
+    pub linear_damping: Matrix6<T>,
+    /// `d_i ≥ 0` of the quadratic damping `−d_i |ν_i| ν_i`, per component [kg/m, kg·m²].
+    pub quadratic_damping: [T; 6],
+}
+
+impl<T: RealField + Copy> LumpedBody<T> {
+    /// No added mass, no damping, at the body's origin.
+    #[must_use]
+    pub fn none(owner: Owner) -> Self {
+        Self {
+            owner,
+            point: Vector3::zeros(),
+            added_mass: Matrix6::zeros(),
+            linear_damping: Matrix6::zeros(),
+            quadratic_damping: [T::zero(); 6],
+        }
+    }
+
+    /// Validated (lumped model `index` of a robot of `joint_count` joints), `M_A` made exactly
+    /// symmetric (the mean of it and its transpose).
+    pub(crate) fn validated(self, index: usize, joint_count: usize) -> Result<Self, ModelError> {
+        let i = Some(index);
+        if let Owner::Link(link) = self.owner
+            && link >= joint_count
+        {
+            return Err(ModelError::new("lumped.owner", i, Problem::OutOfRange));
+        }
+        let point = check_point(self.point, "lumped.point", i)?;
+        let added_mass = check_matrix(&self.added_mass, "lumped.added_mass", i)?;
+        let linear_damping = check_matrix(&self.linear_damping, "lumped.linear_damping", i)?;
+        let half = constant::<T>(0.5);
+        let added_mass = (added_mass + added_mass.transpose()) * half;
+        if !nearly_symmetric(&self.added_mass) {
+            return Err(ModelError::new("lumped.added_mass", i, Problem::NotSymmetric));
+        }
+        if !positive_semidefinite(&added_mass) {
+            return Err(ModelError::new("lumped.added_mass", i, Problem::NotPositiveSemidefinite));
+        }
+        if !positive_semidefinite(&((linear_damping + linear_damping.transpose()) * half)) {
+            return Err(ModelError::new("lumped.linear_damping", i, Problem::NotPositiveSemidefinite));
+        }
+        let mut quadratic_damping = self.quadratic_damping;
+        for d in &mut quadratic_damping {
+            *d = check_at_most(
+                check_non_negative(*d, "lumped.quadratic_damping", i)?,
+                MAX_LUMPED,
+                "lumped.quadratic_damping",
+                i,
+            )?;
+        }
+        Ok(Self { owner: self.owner, point, added_mass, linear_damping, quadratic_damping })
+    }
+}
+
+/// Every entry finite and at most [`MAX_LUMPED`] in magnitude.
+fn check_matrix<T: RealField + Copy>(
+    m: &Matrix6<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Matrix6<T>, ModelError> {
+    for &x in m.iter() {
+        check_at_most(check_finite(x, field, index)?, MAX_LUMPED, field, index)?;
+    }
+    Ok(*m)
+}
+
+/// Symmetric to rounding: `|m_ij − m_ji| ≤ 1e-9 max |m|`.
+fn nearly_symmetric<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
+    let scale = m.iter().fold(T::zero(), |s, x| s.max(x.abs()));
+    let tolerance = scale * constant(1e-9);
+    (m - m.transpose()).iter().all(|x| x.abs() <= tolerance)
+}
+
+/// Whether the symmetric `m` is positive semi-definite, to rounding: an `LDLᵀ` factorization in
+/// which a pivot may be zero (within `1e-10` of the largest diagonal entry) only where the rest of
+/// its column is too.
+fn positive_semidefinite<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
+    let scale = m.diagonal().iter().fold(T::zero(), |s, x| s.max(x.abs()));
+    let tolerance = scale * constant(1e-10);
+    let mut a = *m;
+    let at = |a: &Matrix6<T>, i: usize, j: usize| a.get((i, j)).copied().unwrap_or_else(T::zero);
+    for k in 0..6 {
+        let pivot = at(&a, k, k);
+        if pivot < -tolerance {
+            return false;
+        }
+        if pivot <= tolerance {
+            // A direction of (nearly) zero energy: it may not couple to any other.
+            let zero_column = (k + 1..6).all(|i| {
+                let bound = (tolerance * at(&a, i, i).max(T::zero())).sqrt() + tolerance;
+                at(&a, i, k).abs() <= bound
+            });
+            if !zero_column {
+                return false;
+            }
+            continue;
+        }
+        for i in k + 1..6 {
+            let factor = at(&a, i, k) / pivot;
+            for j in k + 1..6 {
+                let value = at(&a, i, j) - factor * at(&a, k, j);
+                if let Some(slot) = a.get_mut((i, j)) {
+                    *slot = value;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// The lumped models of a robot's bodies (up to `B`), each in its body's frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Lumped<T: SimdRealField + Copy, const B: usize> {
+    models: [(Owner, LumpedFrame<T>); B],
+    /// How many are used (small, so that a robot without room for any grows by nothing).
+    count: u16,
+}
+
+impl<T: SimdRealField + Copy, const B: usize> Lumped<T, B> {
+    /// None.
+    pub(crate) fn none() -> Self {
+        let zero = LumpedFrame {
+            point: Vector3::zeros(),
+            rotation: None,
+            added_mass: Matrix6::zeros(),
+            linear_damping: Matrix6::zeros(),
+            quadratic_damping: [T::zero(); 6],
+        };
+        Self { models: [(Owner::Base, zero); B], count: 0 }
+    }
+
+    /// Each model and its body.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = &(Owner, LumpedFrame<T>)> {
+        self.models.iter().take(usize::from(self.count))
+    }
+
+    /// Whether `owner` has one.
+    pub(crate) fn has(&self, owner: Owner) -> bool {
+        self.iter().any(|(o, _)| *o == owner)
+    }
+
+    /// `model` on `owner`; `false` when full.
+    pub(crate) fn push(&mut self, owner: Owner, model: LumpedFrame<T>) -> bool {
+        match (self.models.get_mut(usize::from(self.count)), self.count.checked_add(1)) {
+            (Some(slot), Some(count)) => {
+                *slot = (owner, model);
+                self.count = count;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Every number mapped by `f`.
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Lumped<U, B> {
+        Lumped { models: self.models.map(|(owner, model)| (owner, model.map_scalars(f))), count: self.count }
+    }
+}
+
+/// A lumped model in its body's body frame `F` (`crate::frames`), for the evaluation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct LumpedFrame<T: SimdRealField + Copy> {
+    /// `P` in `F` [m].
+    pub(crate) point: Vector3<T>,
+    /// `F ← body` (the body's axes into `F`'s), where it is not the identity.
+    rotation: Option<Matrix3<T>>,
+    /// `M_A` and `D_L` in `F`'s components, about `P`.
+    pub(crate) added_mass: Matrix6<T>,
+    linear_damping: Matrix6<T>,
+    /// In the body's own axes (a diagonal there is not one in `F`).
+    quadratic_damping: [T; 6],
+}
+
+/// `[[R, 0], [0, R]] m [[R, 0], [0, R]]ᵀ`.
+fn turned<T: RealField + Copy>(m: &Matrix6<T>, rotation: &Matrix3<T>) -> Matrix6<T> {
+    let mut t = Matrix6::zeros();
+    t.fixed_view_mut::<3, 3>(0, 0).copy_from(rotation);
+    t.fixed_view_mut::<3, 3>(3, 3).copy_from(rotation);
+    t * m * t.transpose()
+}
+
+impl<T: RealField + Copy> LumpedFrame<T> {
+    /// `body` (validated) in the body frame whose axes (columns) in the body's coordinates are
+    /// `axes`.
+    pub(crate) fn new(body: &LumpedBody<T>, axes: &Matrix3<T>) -> Self {
+        let rotation = axes.transpose();
+        let identity = *axes == Matrix3::identity();
+        Self {
+            point: rotation * body.point,
+            rotation: (!identity).then_some(rotation),
+            added_mass: if identity { body.added_mass } else { turned(&body.added_mass, &rotation) },
+            linear_damping: if identity { body.linear_damping } else { turned(&body.linear_damping, &rotation) },
+            quadratic_damping: body.quadratic_damping,
+        }
+    }
+}
+
+impl<T: SimdRealField + Copy> LumpedFrame<T> {
+    /// Every number mapped by `f`.
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> LumpedFrame<U> {
+        LumpedFrame {
+            point: self.point.map(f),
+            rotation: self.rotation.map(|r| r.map(f)),
+            added_mass: self.added_mass.map(f),
+            linear_damping: self.linear_damping.map(f),
+            quadratic_damping: self.quadratic_damping.map(f),
+        }
+    }
+
+    /// The damping and added-mass wrenches about `F`'s origin, in its components, for the twist
+    /// `(v, ω)` of `P` relative to the water and its components' derivative `(v̇, α)`.
+    #[inline(always)]
+    pub(crate) fn wrenches(&self, [v, w, v_dot, alpha]: [Vector3<T>; 4]) -> (Wrench<T>, Wrench<T>) {
+        let six = |a: &Vector3<T>, b: &Vector3<T>| Vector6::new(a.x, a.y, a.z, b.x, b.y, b.z);
+        let halves = |x: &Vector6<T>| (Vector3::new(x[0], x[1], x[2]), Vector3::new(x[3], x[4], x[5]));
+        let nu = six(&v, &w);
+        let momentum = self.added_mass * nu;
+        let (p, h) = halves(&momentum);
+        let inertial = self.added_mass * six(&v_dot, &alpha);
+        let (f_inertial, m_inertial) = halves(&inertial);
+        let added_mass =
+            Wrench { force: -(f_inertial + w.cross(&p)), moment: -(m_inertial + v.cross(&p) + w.cross(&h)) };
+        let (f_linear, m_linear) = halves(&(self.linear_damping * nu));
+        // The quadratic damping in the body's own axes.
+        let (v_own, w_own) = match &self.rotation {
+            Some(r) => (r.transpose() * v, r.transpose() * w),
+            None => (v, w),
+        };
+        let [d0, d1, d2, d3, d4, d5] = self.quadratic_damping;
+        let quadratic = |d: T, x: T| d * x.simd_abs() * x;
+        let f_own = Vector3::new(quadratic(d0, v_own.x), quadratic(d1, v_own.y), quadratic(d2, v_own.z));
+        let m_own = Vector3::new(quadratic(d3, w_own.x), quadratic(d4, w_own.y), quadratic(d5, w_own.z));
+        let (f_quadratic, m_quadratic) = match &self.rotation {
+            Some(r) => (r * f_own, r * m_own),
+            None => (f_own, m_own),
+        };
+        let damping = Wrench { force: -(f_linear + f_quadratic), moment: -(m_linear + m_quadratic) };
+        (damping.moved_from(&self.point), added_mass.moved_from(&self.point))
+    }
+}

@@ -1,0 +1,351 @@
+//! Fossen's lumped model of a body (docs/model.md section 12.1) in the whole-robot evaluation:
+//! the invariants of section 12.3 that hold at one state (the added mass does no work but
+//! `−d/dt ½ νᵀ M_A ν`; a body moving with the water feels nothing; the damping's closed form per
+//! axis; rotating the world changes nothing in body components), the cross-check with strip
+//! theory (a lumped `M_A` equal to a slender segment's gives that segment's added-mass matrix and
+//! forces), lanes against scalars, and the checks at construction. The whole evaluation is held
+//! against the independent numpy reference in the Python tests.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
+
+mod common;
+
+use common::Rng;
+use common::trees::{random_motion, random_robot, states};
+use simba::simd::{SimdValue, WideF64x4};
+use uwml_core::nalgebra::{Matrix6, UnitQuaternion, Vector3, Vector6};
+use uwml_core::{
+    BaseMotion, Conditions, Current, JointKind, LumpedBody, Owner, Problem, RigidBody, Robot, RobotData, RobotSegment,
+    Section, TreeJoint, Water, robot_added_mass_matrix, robot_hydro,
+};
+
+const J: usize = 12;
+const S: usize = 16;
+type Model = Robot<f64, J, S, 4>;
+
+/// A random symmetric positive semi-definite matrix, `A Aᵀ` (rank `rank`) at scale `scale`.
+fn random_psd(rng: &mut Rng, rank: usize, scale: f64) -> Matrix6<f64> {
+    let mut m = Matrix6::zeros();
+    for _ in 0..rank {
+        let a: Vector6<f64> = rng.vector(scale.sqrt());
+        m += a * a.transpose();
+    }
+    m
+}
+
+/// A random lumped model on `owner`: `M_A`, a linear damping whose symmetric part is positive
+/// semi-definite (plus a skew part), quadratic damping.
+fn random_lumped(rng: &mut Rng, owner: Owner) -> LumpedBody<f64> {
+    let skew = {
+        let a: Matrix6<f64> = Matrix6::from_fn(|_, _| rng.next());
+        a - a.transpose()
+    };
+    LumpedBody {
+        owner,
+        point: rng.vector(0.3),
+        added_mass: random_psd(rng, 6, 20.0),
+        linear_damping: random_psd(rng, 4, 10.0) + skew,
+        quadratic_damping: core::array::from_fn(|_| 5.0 * rng.next().abs()),
+    }
+}
+
+fn evaluate(
+    robot: &Model,
+    motion: &BaseMotion<f64>,
+    current: &Current<f64>,
+    state: &[[f64; J]; 3],
+) -> RobotData<f64, J> {
+    let mut data = RobotData::new();
+    let conditions = Conditions { motion: *motion, current: *current, ..Conditions::new(Water::default()) };
+    robot_hydro(robot, &conditions, [&state[0], &state[1], &state[2]], &mut data);
+    data
+}
+
+/// A base and nothing else (one fixed-in-place joint-less robot), with `lumped` on the base.
+fn base_only(lumped: LumpedBody<f64>) -> Model {
+    Model::new(&[], &[], RigidBody::empty(), &[]).unwrap().with_lumped(&[lumped]).unwrap()
+}
+
+fn six(w: &uwml_core::Wrench<f64>) -> Vector6<f64> {
+    let [a, b, c, d, e, f] = w.to_array();
+    Vector6::new(a, b, c, d, e, f)
+}
+
+#[test]
+fn the_added_mass_of_a_lumped_base_does_no_work_but_its_energy_rate() {
+    // Still water: the power of the added-mass wrench is −ν_Pᵀ M_A ν̇_P (Fossen's C_A does no
+    // work), with ν_P = (v + ω × P, ω) and ν̇_P = (v̇ + ω̇ × P, ω̇) for P fixed in the base.
+    let mut rng = Rng(3);
+    for _ in 0..20 {
+        let lumped = LumpedBody {
+            linear_damping: Matrix6::zeros(),
+            quadratic_damping: [0.0; 6],
+            ..random_lumped(&mut rng, Owner::Base)
+        };
+        let robot = base_only(lumped);
+        let motion = random_motion(&mut rng);
+        let ((v, w), (v_dot, w_dot)) = (motion.twist(), motion.twist_derivative());
+        let data = evaluate(&robot, &motion, &Current::still(), &[[0.0; J]; 3]);
+        let wrench = data.base_wrench().added_mass;
+        let power = wrench.force.dot(&v) + wrench.moment.dot(&w);
+        let p = lumped.point;
+        let nu = Vector6::from_iterator((v + w.cross(&p)).iter().chain(w.iter()).copied());
+        let nu_dot = Vector6::from_iterator((v_dot + w_dot.cross(&p)).iter().chain(w_dot.iter()).copied());
+        let expected = -(nu.transpose() * lumped.added_mass * nu_dot)[0];
+        let scale = 1.0 + (nu.norm() * lumped.added_mass.norm() * (nu.norm() + nu_dot.norm()));
+        assert!((power - expected).abs() <= 1e-12 * scale, "{power} vs {expected}");
+        assert_eq!(data.base_wrench().drag.to_array(), [0.0; 6]);
+    }
+}
+
+#[test]
+fn the_damping_has_its_closed_form_on_each_axis_and_balances_a_force_at_the_terminal_speed() {
+    // D_L = diag(d), D_Q = diag(q), a speed u along axis k only: the damping is −(d_k u + q_k u²)
+    // on that axis and nothing elsewhere; a force F is balanced at u = (−d + √(d² + 4qF)) / 2q.
+    let d = [40.0, 60.0, 80.0, 5.0, 6.0, 7.0];
+    let q = [100.0, 140.0, 170.0, 2.0, 3.0, 4.0];
+    let lumped = LumpedBody {
+        owner: Owner::Base,
+        point: Vector3::zeros(),
+        added_mass: Matrix6::from_diagonal(&Vector6::new(5.0, 7.0, 9.0, 0.1, 0.2, 0.3)),
+        linear_damping: Matrix6::from_diagonal(&Vector6::from(d)),
+        quadratic_damping: q,
+    };
+    let robot = base_only(lumped);
+    let force = 75.0;
+    for k in 0..6 {
+        let u = (-d[k] + (d[k] * d[k] + 4.0 * q[k] * force).sqrt()) / (2.0 * q[k]);
+        let mut twist = [0.0; 6];
+        twist[k] = u;
+        let (v, w) = (Vector3::new(twist[0], twist[1], twist[2]), Vector3::new(twist[3], twist[4], twist[5]));
+        // Steady in the body's components, as a body at its terminal speed is (ν̇ = 0).
+        let motion = BaseMotion::new([1.0, 0.0, 0.0, 0.0], v, w, Vector3::zeros(), Vector3::zeros()).unwrap();
+        let drag = six(&evaluate(&robot, &motion, &Current::still(), &[[0.0; J]; 3]).base_wrench().drag);
+        for (i, value) in drag.iter().enumerate() {
+            let expected = if i == k { -force } else { 0.0 };
+            assert!((value - expected).abs() <= 1e-12 * force, "axis {k}, component {i}: {value}");
+        }
+    }
+}
+
+#[test]
+fn a_body_moving_with_the_water_feels_no_damping_and_no_added_mass() {
+    let mut rng = Rng(5);
+    for _ in 0..10 {
+        let lumped = random_lumped(&mut rng, Owner::Base);
+        let robot = base_only(lumped);
+        let rotation = UnitQuaternion::from_scaled_axis(rng.vector::<3>(2.0));
+        let body_velocity: Vector3<f64> = rng.vector(1.5);
+        let motion = BaseMotion::new(
+            [rotation.w, rotation.i, rotation.j, rotation.k],
+            body_velocity,
+            Vector3::zeros(),
+            Vector3::zeros(),
+            Vector3::zeros(),
+        )
+        .unwrap();
+        let current = Current::new(rotation * body_velocity, Vector3::zeros()).unwrap();
+        let data = evaluate(&robot, &motion, &current, &[[0.0; J]; 3]);
+        let base = data.base_wrench();
+        for value in base.drag.to_array().iter().chain(&base.added_mass.to_array()) {
+            assert!(value.abs() <= 1e-12, "{value}");
+        }
+    }
+}
+
+/// A robot of random joints with lumped models on the base and on some links.
+fn random_lumped_robot(rng: &mut Rng, n: usize) -> Model {
+    let robot: Model = random_robot(rng, n);
+    let mut bodies = vec![random_lumped(rng, Owner::Base)];
+    bodies.extend((0..n).filter(|i| i % 2 == 0).map(|i| random_lumped(rng, Owner::Link(i))));
+    robot.with_lumped(&bodies).unwrap()
+}
+
+#[test]
+fn turning_the_world_turns_nothing_in_the_bodies() {
+    // The base's orientation, the current and its acceleration turned together: the joint forces
+    // and the base wrench (base components) stay (buoyancy and gravity turn with gravity, which
+    // stays: they are left out).
+    let mut rng = Rng(9);
+    for n in [1, 3, 5] {
+        let robot = random_lumped_robot(&mut rng, n);
+        let state = states::<J>(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector(0.5), rng.vector(0.5)).unwrap();
+        let turn = UnitQuaternion::from_scaled_axis(rng.vector::<3>(2.0));
+        let orientation = turn * UnitQuaternion::from_matrix(motion.rotation());
+        let ((v, w), (v_dot, w_dot)) = (motion.twist(), motion.twist_derivative());
+        let turned_motion =
+            BaseMotion::new([orientation.w, orientation.i, orientation.j, orientation.k], v, w, v_dot, w_dot).unwrap();
+        let turned_current = Current::new(turn * current.velocity(), turn * current.acceleration()).unwrap();
+        let (a, b) =
+            (evaluate(&robot, &motion, &current, &state), evaluate(&robot, &turned_motion, &turned_current, &state));
+        for (x, y) in a.joint_forces().iter().zip(b.joint_forces()) {
+            let scale = 1.0 + x.drag.abs() + x.added_mass.abs();
+            assert!((x.drag - y.drag).abs() <= 1e-9 * scale && (x.added_mass - y.added_mass).abs() <= 1e-9 * scale);
+        }
+        for (x, y) in
+            [(a.base_wrench().drag, b.base_wrench().drag), (a.base_wrench().added_mass, b.base_wrench().added_mass)]
+        {
+            let (x, y) = (six(&x), six(&y));
+            assert!((x - y).amax() <= 1e-9 * (1.0 + x.amax()), "{x} vs {y}");
+        }
+    }
+}
+
+#[test]
+fn a_lumped_added_mass_equal_to_a_slender_segments_gives_its_matrix_and_forces() {
+    // A rectangular segment along x from `start`, length L, normals y and z: per length
+    // m_k = ρ A cm_k along normal k; about its midpoint M_A = diag(0, m_y L, m_z L, 0, m_z L³/12,
+    // m_y L³/12). With its drag off, the same added-mass matrix and, at zero velocity, the same
+    // added-mass forces.
+    let mut rng = Rng(13);
+    let water = Water::default();
+    let (length, area, cm) = (0.6, 0.004, [0.7, 1.3]);
+    let start = Vector3::new(0.05, -0.02, 0.01);
+    let joints = [
+        TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::new(0.1, 0.0, 0.2), axis: Vector3::z() },
+        TreeJoint {
+            parent: Some(0),
+            kind: JointKind::Revolute,
+            origin: Vector3::new(0.3, 0.0, 0.0),
+            axis: Vector3::y(),
+        },
+    ];
+    let links = [RigidBody::empty(); 2];
+    let segment = RobotSegment {
+        owner: Owner::Link(1),
+        start,
+        axis: Vector3::x(),
+        length,
+        area,
+        section: Section::Rectangular { normals: [Vector3::y(), Vector3::z()], widths: [0.05, 0.08] },
+        cd: [0.0; 2],
+        cm,
+    };
+    let strips = Model::new(&joints, &links, RigidBody::empty(), &[segment]).unwrap();
+    let (my, mz) = (water.density() * area * cm[0], water.density() * area * cm[1]);
+    let l3 = length * length * length / 12.0;
+    let lumped = LumpedBody {
+        owner: Owner::Link(1),
+        point: start + Vector3::x() * (length / 2.0),
+        added_mass: Matrix6::from_diagonal(&Vector6::new(0.0, my * length, mz * length, 0.0, mz * l3, my * l3)),
+        linear_damping: Matrix6::zeros(),
+        quadratic_damping: [0.0; 6],
+    };
+    let lumped_robot = Model::new(&joints, &links, RigidBody::empty(), &[]).unwrap().with_lumped(&[lumped]).unwrap();
+    for _ in 0..10 {
+        let mut state = states::<J>(&mut rng, 2);
+        state[1] = [0.0; J];
+        let (mut a, mut b) = ([0.0; 64], [0.0; 64]);
+        robot_added_mass_matrix(&strips, &water, None, &state[0], &mut a);
+        robot_added_mass_matrix(&lumped_robot, &water, None, &state[0], &mut b);
+        let scale = a.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() <= 1e-12 * scale, "{x} vs {y}");
+        }
+        // At rest in still water with accelerations: the same added-mass forces.
+        let motion =
+            BaseMotion::new([1.0, 0.0, 0.0, 0.0], Vector3::zeros(), Vector3::zeros(), rng.vector(1.0), rng.vector(1.0))
+                .unwrap();
+        let (x, y) = (
+            evaluate(&strips, &motion, &Current::still(), &state),
+            evaluate(&lumped_robot, &motion, &Current::still(), &state),
+        );
+        for (f, g) in x.joint_forces().iter().zip(y.joint_forces()) {
+            assert!((f.added_mass - g.added_mass).abs() <= 1e-12 * (1.0 + f.added_mass.abs()));
+        }
+        let (f, g) = (six(&x.base_wrench().added_mass), six(&y.base_wrench().added_mass));
+        assert!((f - g).amax() <= 1e-12 * (1.0 + f.amax()), "{f} vs {g}");
+    }
+}
+
+#[test]
+fn four_states_on_lanes_are_the_scalar_evaluations_bit_for_bit() {
+    let mut rng = Rng(17);
+    let robot = random_lumped_robot(&mut rng, 4);
+    let lanes_robot = robot.splat::<WideF64x4>();
+    let motions: [BaseMotion<f64>; 4] = core::array::from_fn(|_| random_motion(&mut rng));
+    let currents: [Current<f64>; 4] = core::array::from_fn(|_| Current::new(rng.vector(0.5), rng.vector(0.5)).unwrap());
+    let state: [[[f64; J]; 3]; 4] = core::array::from_fn(|_| states::<J>(&mut rng, 4));
+    let gather = |k: usize| -> [WideF64x4; J] { core::array::from_fn(|j| WideF64x4::from(state.map(|s| s[k][j]))) };
+    let (q, qd, qdd) = (gather(0), gather(1), gather(2));
+    let conditions = Conditions {
+        motion: BaseMotion::from_lanes(&motions),
+        current: Current::from_lanes(&currents),
+        ..Conditions::new(Water::default().splat())
+    };
+    let mut data = RobotData::<WideF64x4, J>::new();
+    robot_hydro(&lanes_robot, &conditions, [&q, &qd, &qdd], &mut data);
+    for l in 0..4 {
+        let scalar = evaluate(&robot, &motions[l], &currents[l], &state[l]);
+        for (x, y) in data.joint_forces().iter().zip(scalar.joint_forces()) {
+            assert_eq!((x.drag.extract(l), x.added_mass.extract(l)), (y.drag, y.added_mass));
+        }
+        let (x, y) = (data.base_wrench().drag.to_array(), scalar.base_wrench().drag.to_array());
+        assert_eq!(x.map(|v| v.extract(l)), y);
+    }
+}
+
+#[test]
+fn bad_lumped_models_are_refused_naming_the_model_and_the_field() {
+    let robot = Model::new(
+        &[TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() }],
+        &[RigidBody::empty()],
+        RigidBody::empty(),
+        &[],
+    )
+    .unwrap();
+    let good = LumpedBody::none(Owner::Link(0));
+    let refused = |bodies: &[LumpedBody<f64>]| {
+        let e = robot.with_lumped(bodies).unwrap_err();
+        (e.field, e.index, e.problem)
+    };
+    let mut asymmetric = Matrix6::identity();
+    asymmetric[(0, 1)] = 0.5;
+    let mut indefinite = Matrix6::identity();
+    indefinite[(2, 2)] = -1e-3;
+    // Symmetric with a positive diagonal, yet indefinite: a coupling larger than the diagonal.
+    let mut coupled = Matrix6::identity();
+    coupled[(0, 4)] = 2.0;
+    coupled[(4, 0)] = 2.0;
+    let mut feeding = Matrix6::zeros();
+    feeding[(1, 1)] = -2.0;
+    let cases = [
+        (LumpedBody { owner: Owner::Link(1), ..good }, ("lumped.owner", Some(0), Problem::OutOfRange)),
+        (LumpedBody { added_mass: asymmetric, ..good }, ("lumped.added_mass", Some(0), Problem::NotSymmetric)),
+        (
+            LumpedBody { added_mass: indefinite, ..good },
+            ("lumped.added_mass", Some(0), Problem::NotPositiveSemidefinite),
+        ),
+        (LumpedBody { added_mass: coupled, ..good }, ("lumped.added_mass", Some(0), Problem::NotPositiveSemidefinite)),
+        (
+            LumpedBody { linear_damping: feeding, ..good },
+            ("lumped.linear_damping", Some(0), Problem::NotPositiveSemidefinite),
+        ),
+        (
+            LumpedBody { quadratic_damping: [0.0, 0.0, -1.0, 0.0, 0.0, 0.0], ..good },
+            ("lumped.quadratic_damping", Some(0), Problem::Negative),
+        ),
+        (LumpedBody { point: Vector3::new(f64::NAN, 0.0, 0.0), ..good }, ("lumped.point", Some(0), Problem::NonFinite)),
+        (
+            LumpedBody { added_mass: Matrix6::identity() * 1e13, ..good },
+            ("lumped.added_mass", Some(0), Problem::TooLarge),
+        ),
+    ];
+    for (body, expected) in cases {
+        assert_eq!(refused(&[body]), expected);
+    }
+    // Two on one body; the second named.
+    assert_eq!(refused(&[good, good]), ("lumped.owner", Some(1), Problem::OutOfRange));
+    let message = robot.with_lumped(&[LumpedBody { added_mass: indefinite, ..good }]).unwrap_err().to_string();
+    assert_eq!(
+        message,
+        "lumped model 0: lumped.added_mass must be positive semi-definite (no direction of negative energy)"
+    );
+    // A positive semi-definite matrix of lower rank, and one symmetric to rounding, are taken.
+    let mut rng = Rng(21);
+    let singular = random_psd(&mut rng, 2, 30.0);
+    let mut rounded = singular;
+    rounded[(0, 3)] += 1e-14;
+    robot.with_lumped(&[LumpedBody { added_mass: rounded, ..good }]).unwrap();
+}

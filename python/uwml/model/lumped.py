@@ -1,0 +1,127 @@
+"""Fossen's lumped hydrodynamic model of a bluff body: a vehicle's hull, a battery can, a gripper
+(docs/model.md section 12.1).
+
+Strip theory (segments) is for slender parts and has no force along a segment's axis. A body that
+is not slender carries a :class:`LumpedModel` instead, or beside its strips: an added-mass matrix,
+a linear damping matrix and quadratic damping about a reference point ``P``, all in the body's
+frame and relative to the water. With ``ν_r = (v_P − Rᵀc, ω)`` the body's twist relative to the
+water at ``P`` in the body's components, the body feels at ``P``
+
+    W = −M_A ν̇_r − C_A(ν_r) ν_r − D_L ν_r − D_Q(ν_r) ν_r,
+
+``C_A`` Fossen's added-mass Coriolis-centripetal matrix, ``D_Q(ν) ν = (d_i |ν_i| ν_i)``.
+
+**Signs.** uwml takes magnitudes as they act: the added mass and damping on the diagonal are
+positive numbers. SNAME's hydrodynamic derivatives are their negatives: ``X_u̇ = −M_A[0, 0]``,
+``X_u = −D_L[0, 0]``, ``X_u|u| = −d_0``. Entries are ordered ``(x, y, z, roll, pitch, yaw)``,
+linear first; units kg, kg·m and kg·m² for ``M_A``, N·s/m, N·s and N·m·s for ``D_L``, kg/m and
+kg·m² for the quadratic damping.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+Vec3 = tuple[float, float, float]
+
+__all__ = ["MAX_LUMPED", "LumpedModel"]
+
+#: The largest magnitude of an entry of a lumped model (the core's ``MAX_LUMPED``).
+MAX_LUMPED = 1e12
+
+Matrix6 = tuple[tuple[float, ...], ...]
+
+
+def _matrix6(value: object, name: str) -> Matrix6:
+    try:
+        array = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a 6×6 matrix of numbers, got {value!r}") from None
+    if array.shape != (6, 6):
+        raise ValueError(f"{name} must be a 6×6 matrix, got shape {array.shape}")
+    bad = np.argwhere(~np.isfinite(array))
+    if bad.size:
+        r, c = bad[0]
+        raise ValueError(f"{name}[{r}][{c}] must be finite, got {array[r, c]}")
+    big = np.argwhere(np.abs(array) > MAX_LUMPED)
+    if big.size:
+        r, c = big[0]
+        raise ValueError(f"{name}[{r}][{c}] must be at most {MAX_LUMPED:g} in magnitude, got {array[r, c]}")
+    return tuple(tuple(float(x) for x in row) for row in array)
+
+
+def _semidefinite(matrix: np.ndarray) -> tuple[bool, float]:
+    """Whether the symmetric ``matrix`` is positive semi-definite to rounding, and its smallest
+    eigenvalue."""
+    eigenvalues = np.linalg.eigvalsh(matrix)
+    scale = float(np.max(np.abs(np.diag(matrix)))) if matrix.size else 0.0
+    return bool(eigenvalues[0] >= -1e-10 * scale), float(eigenvalues[0])
+
+
+@dataclass(frozen=True)
+class LumpedModel:
+    """Fossen's lumped model of one body (see the module), in the body's frame.
+
+    ``point``: the reference point ``P`` [m] (None: the body's centre of buoyancy, resolved when
+    the model is given to a :class:`uwml.Link`). ``added_mass``: ``M_A`` about ``P``, 6×6,
+    symmetric and positive semi-definite. ``linear_damping``: ``D_L`` about ``P``, 6×6, its
+    symmetric part positive semi-definite. ``quadratic_damping``: the six ``d_i ≥ 0``. Each
+    defaults to zero.
+    """
+
+    point: Vec3 | None = None
+    added_mass: ArrayLike = field(default_factory=lambda: np.zeros((6, 6)))
+    linear_damping: ArrayLike = field(default_factory=lambda: np.zeros((6, 6)))
+    quadratic_damping: ArrayLike = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        if self.point is not None:
+            try:
+                point = np.array(self.point, dtype=np.float64)
+            except (TypeError, ValueError):
+                raise TypeError(f"lumped.point must be 3 numbers, got {self.point!r}") from None
+            if point.shape != (3,) or not np.all(np.isfinite(point)):
+                raise ValueError(f"lumped.point must be 3 finite numbers, got {self.point!r}")
+            object.__setattr__(self, "point", (float(point[0]), float(point[1]), float(point[2])))
+        added_mass = _matrix6(self.added_mass, "lumped.added_mass")
+        array = np.array(added_mass)
+        asymmetry = np.abs(array - array.T)
+        if np.any(asymmetry > 1e-9 * max(float(np.max(np.abs(array))), 0.0)):
+            r, c = np.unravel_index(int(np.argmax(asymmetry)), asymmetry.shape)
+            raise ValueError(f"lumped.added_mass must be symmetric: [{r}][{c}] = {array[r, c]} but [{c}][{r}] = {array[c, r]}")
+        symmetric = 0.5 * (array + array.T)
+        ok, smallest = _semidefinite(symmetric)
+        if not ok:
+            raise ValueError(
+                f"lumped.added_mass must be positive semi-definite (no direction of negative energy); its smallest eigenvalue is {smallest:.6g}"
+            )
+        object.__setattr__(self, "added_mass", tuple(tuple(float(x) for x in row) for row in symmetric))
+        damping = _matrix6(self.linear_damping, "lumped.linear_damping")
+        array = np.array(damping)
+        ok, smallest = _semidefinite(0.5 * (array + array.T))
+        if not ok:
+            raise ValueError(
+                "lumped.linear_damping must have a positive semi-definite symmetric part (no direction in which it feeds energy in); "
+                f"its smallest eigenvalue is {smallest:.6g}"
+            )
+        object.__setattr__(self, "linear_damping", damping)
+        try:
+            quadratic = tuple(float(x) for x in np.asarray(self.quadratic_damping, dtype=np.float64).reshape(-1))
+        except (TypeError, ValueError):
+            raise TypeError(f"lumped.quadratic_damping must be 6 numbers, got {self.quadratic_damping!r}") from None
+        if len(quadratic) != 6:
+            raise ValueError(f"lumped.quadratic_damping must be 6 numbers, got {len(quadratic)}")
+        for index, d in enumerate(quadratic):
+            if not math.isfinite(d) or d < 0.0:
+                raise ValueError(f"lumped.quadratic_damping[{index}] must be finite and non-negative, got {d}")
+            if d > MAX_LUMPED:
+                raise ValueError(f"lumped.quadratic_damping[{index}] must be at most {MAX_LUMPED:g}, got {d}")
+        object.__setattr__(self, "quadratic_damping", quadratic)
+
+    def at(self, point: Vec3) -> LumpedModel:
+        """This model with ``point`` as its reference point where it has none."""
+        return self if self.point is not None else LumpedModel(point, self.added_mass, self.linear_damping, self.quadratic_damping)

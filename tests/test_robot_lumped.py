@@ -1,0 +1,151 @@
+"""Fossen's lumped model of a body (``uwml.LumpedModel``, docs/model.md section 12.1) through
+``uwml.Robot`` (the Rust core) held against the independent numpy reference on random trees with
+lumped models on random bodies, beside their segments, in moving water; its added-mass matrix;
+the model file's round trip; the checks of ``LumpedModel``; and what is not available yet for a
+robot with lumped models (regressors), refused rather than answered wrongly.
+"""
+
+import dataclasses
+
+import numpy as np
+import pytest
+import uwml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from test_robot import RTOL_REFERENCE, assert_close, assert_matches_reference, motion_arguments, random_robot
+from uwml import reference as ref
+
+EXAMPLES = settings(max_examples=max(5, int(settings.default.max_examples / 4)))
+
+
+def random_lumped(rng: np.random.Generator) -> uwml.LumpedModel:
+    """A lumped model with a full (random, positive semi-definite) added mass, a linear damping
+    with a positive semi-definite symmetric part and a skew part, and quadratic damping."""
+    a = rng.normal(size=(6, 6)) * rng.uniform(0.5, 5.0)
+    skew = rng.normal(size=(6, 6))
+    damping = rng.normal(size=(6, 4))
+    return uwml.LumpedModel(
+        point=rng.uniform(-0.3, 0.3, 3) if rng.random() < 0.7 else None,
+        added_mass=a @ a.T,
+        linear_damping=damping @ damping.T + (skew - skew.T),
+        quadratic_damping=rng.uniform(0.0, 20.0, 6),
+    )
+
+
+def with_lumped(robot: uwml.Robot, rng: np.random.Generator) -> uwml.Robot:
+    """``robot`` with a lumped model on its base (if it has a body) and on about half its links."""
+    links = [dataclasses.replace(link, lumped=random_lumped(rng)) if rng.random() < 0.5 else link for link in robot.links]
+    base = None if robot.base is None else dataclasses.replace(robot.base, lumped=random_lumped(rng))
+    return uwml.Robot(robot.joints, links, base=base)
+
+
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 8), form=st.sampled_from(["morison", "kirchhoff"]))
+def test_core_matches_the_reference_with_lumped_models_in_moving_water(seed: int, n: int, form: str) -> None:
+    rng = np.random.default_rng(seed)
+    robot = with_lumped(random_robot(rng, n, base_body=bool(rng.random() < 0.8)), rng)
+    samples = 12
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    motion = motion_arguments(rng, samples)
+    current, current_acceleration = rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+    result = robot.hydro(
+        q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current, current_acceleration=current_acceleration,
+        added_mass=form,
+    )  # fmt: skip
+    expected = ref.robot_hydro(
+        robot.joints, robot.links, robot.base, q, qd, qdd, current=current, current_acceleration=current_acceleration,
+        added_mass=form, **motion,
+    )  # fmt: skip
+    assert_matches_reference(result, expected)
+    # One state at a time (the native one-state path) gives the batch's rows.
+    one = robot.hydro(q[0], qd[0], qdd[0], base_motion=uwml.BaseMotion(**{k: v[0] for k, v in motion.items()}),
+                      current=current[0], current_acceleration=current_acceleration[0], added_mass=form)  # fmt: skip
+    np.testing.assert_array_equal(one.total, result.total[0])
+
+
+@EXAMPLES
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 6))
+def test_added_mass_matrix_and_link_wrenches_with_lumped_models_match_the_reference(seed: int, n: int) -> None:
+    rng = np.random.default_rng(seed)
+    robot = with_lumped(random_robot(rng, n), rng)
+    samples = 5
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    matrices = robot.added_mass_matrix(q)
+    expected = ref.robot_added_mass_matrix(robot.joints, robot.links, robot.base, q)
+    scale = np.max(np.abs(expected).reshape(samples, -1), axis=1)
+    assert_close(matrices, expected, scale, RTOL_REFERENCE, "added-mass matrix")
+    np.testing.assert_array_equal(matrices, np.swapaxes(matrices, 1, 2))
+    assert np.all(np.linalg.eigvalsh(matrices) >= -1e-12 * scale[:, None])
+    motion = motion_arguments(rng, samples)
+    current = rng.normal(size=(samples, 3))
+    wrenches = robot.link_wrenches(q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current)
+    expected_wrenches = ref.robot_link_wrenches(robot.joints, robot.links, robot.base, q, qd, qdd, current=current, **motion)
+    assert_close(wrenches, expected_wrenches, np.max(np.abs(expected_wrenches).reshape(samples, -1), axis=1), RTOL_REFERENCE, "wrenches")
+
+
+def test_a_lumped_models_point_defaults_to_its_bodys_centre_of_buoyancy() -> None:
+    model = uwml.LumpedModel(added_mass=np.eye(6))
+    assert model.point is None
+    link = uwml.Link(2.0, (0.1, 0.0, 0.0), 0.001, cob=(0.0, 0.2, 0.0), lumped=model)
+    assert link.lumped is not None and link.lumped.point == (0.0, 0.2, 0.0)
+    assert uwml.Link(2.0, (0.1, 0.0, 0.0), 0.001, lumped=model).lumped.point == (0.1, 0.0, 0.0)  # cob is com
+    kept = uwml.Link(2.0, (0.1, 0.0, 0.0), 0.001, lumped=uwml.LumpedModel(point=(1.0, 2.0, 3.0)))
+    assert kept.lumped is not None and kept.lumped.point == (1.0, 2.0, 3.0)
+
+
+def test_a_robot_with_lumped_models_round_trips_through_its_model_file(tmp_path) -> None:
+    rng = np.random.default_rng(4)
+    robot = with_lumped(random_robot(rng, 4), rng)
+    path = tmp_path / "robot.toml"
+    robot.save(path)
+    assert "[base.lumped]" in path.read_text() and "quadratic_damping" in path.read_text()
+    loaded = uwml.Robot.load(path)
+    assert loaded == robot
+    q = rng.uniform(-1, 1, (3, 4))
+    np.testing.assert_array_equal(loaded.hydro(q, q, q).total, robot.hydro(q, q, q).total)
+
+
+@pytest.mark.parametrize(
+    "arguments, message",
+    [
+        ({"added_mass": np.eye(5)}, r"lumped.added_mass must be a 6×6 matrix, got shape \(5, 5\)"),
+        ({"added_mass": np.triu(np.ones((6, 6)))}, r"lumped.added_mass must be symmetric: \[0\]\[1\] = 1.0 but \[1\]\[0\] = 0.0"),
+        ({"added_mass": np.diag([1.0, 1.0, -1.0, 1.0, 1.0, 1.0])}, r"lumped.added_mass must be positive semi-definite .* -1"),
+        ({"added_mass": np.ones((6, 6)) + np.diag([0, 0, 0, 0, 0, -2.0])}, r"lumped.added_mass must be positive semi-definite"),
+        ({"linear_damping": -np.eye(6)}, r"lumped.linear_damping must have a positive semi-definite symmetric part"),
+        ({"linear_damping": np.full((6, 6), np.nan)}, r"lumped.linear_damping\[0\]\[0\] must be finite"),
+        ({"added_mass": np.eye(6) * 1e13}, r"lumped.added_mass\[0\]\[0\] must be at most 1e\+12"),
+        ({"quadratic_damping": [1, 1, 1, 1, 1]}, r"lumped.quadratic_damping must be 6 numbers, got 5"),
+        ({"quadratic_damping": [1, 1, -1, 1, 1, 1]}, r"lumped.quadratic_damping\[2\] must be finite and non-negative"),
+        ({"point": (0.0, np.inf, 0.0)}, r"lumped.point must be 3 finite numbers"),
+    ],
+)
+def test_bad_lumped_models_are_refused_naming_the_entry(arguments: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        uwml.LumpedModel(**arguments)
+
+
+def test_a_link_takes_only_a_lumped_model() -> None:
+    with pytest.raises(TypeError, match="link.lumped must be a uwml.LumpedModel or None, got dict"):
+        uwml.Link(1.0, (0, 0, 0), 0.0, lumped={"added_mass": np.eye(6)})
+
+
+def test_too_many_lumped_models_are_refused() -> None:
+    n = uwml.MAX_LUMPED_BODIES + 1
+    links = [uwml.Link(1.0, (0.1, 0, 0), 0.0, lumped=uwml.LumpedModel()) for _ in range(n)]
+    joints = [uwml.Joint((0.1, 0, 0), (0, 0, 1)) for _ in range(n)]
+    with pytest.raises(ValueError, match=f"up to {n - 1} lumped models"):
+        uwml.Robot(joints, links)
+
+
+def test_regressors_of_a_robot_with_lumped_models_are_refused_not_wrong() -> None:
+    rng = np.random.default_rng(2)
+    robot = with_lumped(random_robot(rng, 2), rng)
+    with pytest.raises(ValueError, match="lumped"):
+        robot.hydro_regressors([0.1, 0.2], [0.0, 0.0], [0.0, 0.0])
+
+
+def test_a_leg_refuses_a_lumped_model_rather_than_dropping_it() -> None:
+    paper = uwml.Leg.paper()
+    links = [*paper.links[:2], dataclasses.replace(paper.links[2], lumped=uwml.LumpedModel(added_mass=np.eye(6)))]
+    with pytest.raises(ValueError, match=r"links\[2\]: a uwml.Leg link has no lumped model"):
+        uwml.Leg(paper.joints, links)
