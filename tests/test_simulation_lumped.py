@@ -14,8 +14,8 @@ import uwml
 
 mujoco = pytest.importorskip("mujoco")
 
-from test_simulation import energy, weightless, without_drag  # noqa: E402
-from uwml.sim.mujoco import Simulation, mjcf_of  # noqa: E402
+from test_simulation import energy, weightless, without_drag
+from uwml.sim.mujoco import Simulation, mjcf_of
 
 DATA = Path(__file__).parent / "data"
 WATER = uwml.Water(1000.0, 9.81)
