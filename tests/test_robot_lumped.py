@@ -12,6 +12,7 @@ import pytest
 import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
 from test_robot import RTOL_REFERENCE, assert_close, assert_matches_reference, motion_arguments, random_robot
 from uwml import reference as ref
 
@@ -24,8 +25,10 @@ def random_lumped(rng: np.random.Generator) -> uwml.LumpedModel:
     a = rng.normal(size=(6, 6)) * rng.uniform(0.5, 5.0)
     skew = rng.normal(size=(6, 6))
     damping = rng.normal(size=(6, 4))
+    axes = Rotation.random(random_state=rng).as_matrix() if rng.random() < 0.5 else np.eye(3)
     return uwml.LumpedModel(
         point=rng.uniform(-0.3, 0.3, 3) if rng.random() < 0.7 else None,
+        axes=axes,
         added_mass=a @ a.T,
         linear_damping=damping @ damping.T + (skew - skew.T),
         quadratic_damping=rng.uniform(0.0, 20.0, 6),
@@ -117,6 +120,9 @@ def test_a_robot_with_lumped_models_round_trips_through_its_model_file(tmp_path)
         ({"quadratic_damping": [1, 1, 1, 1, 1]}, r"lumped.quadratic_damping must be 6 numbers, got 5"),
         ({"quadratic_damping": [1, 1, -1, 1, 1, 1]}, r"lumped.quadratic_damping\[2\] must be finite and non-negative"),
         ({"point": (0.0, np.inf, 0.0)}, r"lumped.point must be 3 finite numbers"),
+        ({"axes": np.diag([1.0, 1.0, -1.0])}, r"lumped.axes must be a rotation"),
+        ({"axes": 2.0 * np.eye(3)}, r"lumped.axes must be a rotation"),
+        ({"axes": np.eye(4)}, r"lumped.axes must be a 3×3 rotation matrix"),
     ],
 )
 def test_bad_lumped_models_are_refused_naming_the_entry(arguments: dict, message: str) -> None:

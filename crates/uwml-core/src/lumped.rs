@@ -13,7 +13,9 @@
 use nalgebra::{Matrix3, Matrix6, RealField, SimdRealField, Vector3, Vector6};
 
 use crate::error::{ModelError, Problem};
-use crate::model::{check_at_most, check_finite, check_non_negative, check_point, constant};
+use crate::model::{
+    AXIS_TOLERANCE, check_at_most, check_finite, check_non_negative, check_point, check_unit, constant,
+};
 use crate::robot::Owner;
 use crate::wrench::Wrench;
 
@@ -22,8 +24,9 @@ use crate::wrench::Wrench;
 /// keeps every force of a finite state finite.
 pub const MAX_LUMPED: f64 = 1e12;
 
-/// Fossen's lumped model of one body (docs/model.md section 12.1), in the body's frame, about the
-/// reference point `point`. Every matrix is ordered `(x, y, z, roll, pitch, yaw)`, linear first.
+/// Fossen's lumped model of one body (docs/model.md section 12.1), about the reference point
+/// `point` of the body's frame, in the axes `axes` (the identity: the body's own). Every matrix is
+/// ordered `(x, y, z, roll, pitch, yaw)`, linear first.
 ///
 /// The entries are magnitudes as they act: the added mass `M_A` is positive on its diagonal
 /// (SNAME's `X_u̇` is `−M_A[0][0]`), and so are the damping's.
@@ -33,6 +36,10 @@ pub struct LumpedBody<T: SimdRealField + Copy> {
     pub owner: Owner,
     /// The reference point `P`, in the body's frame [m].
     pub point: Vector3<T>,
+    /// The model's axes (columns) in the body's frame, a rotation: its matrices and quadratic
+    /// damping are in these axes (a description's body frame turned from uwml's link frame; a
+    /// hull's principal axes).
+    pub axes: Matrix3<T>,
     /// `M_A` about `P`: symmetric, positive semi-definite [kg, kg·m, kg·m²].
     pub added_mass: Matrix6<T>,
     /// `D_L` about `P`, whose symmetric part is positive semi-definite [N·s/m, N·s, N·m·s].
@@ -48,6 +55,7 @@ impl<T: RealField + Copy> LumpedBody<T> {
         Self {
             owner,
             point: Vector3::zeros(),
+            axes: Matrix3::identity(),
             added_mass: Matrix6::zeros(),
             linear_damping: Matrix6::zeros(),
             quadratic_damping: [T::zero(); 6],
@@ -64,6 +72,7 @@ impl<T: RealField + Copy> LumpedBody<T> {
             return Err(ModelError::new("lumped.owner", i, Problem::OutOfRange));
         }
         let point = check_point(self.point, "lumped.point", i)?;
+        let axes = check_rotation(&self.axes, "lumped.axes", i)?;
         let added_mass = check_matrix(&self.added_mass, "lumped.added_mass", i)?;
         let linear_damping = check_matrix(&self.linear_damping, "lumped.linear_damping", i)?;
         let half = constant::<T>(0.5);
@@ -86,8 +95,29 @@ impl<T: RealField + Copy> LumpedBody<T> {
                 i,
             )?;
         }
-        Ok(Self { owner: self.owner, point, added_mass, linear_damping, quadratic_damping })
+        Ok(Self { owner: self.owner, point, axes, added_mass, linear_damping, quadratic_damping })
     }
+}
+
+/// A rotation within [`AXIS_TOLERANCE`] (unit, perpendicular columns, right-handed), made exact
+/// (Gram-Schmidt on its first two columns, the third their cross product).
+fn check_rotation<T: RealField + Copy>(
+    m: &Matrix3<T>,
+    field: &'static str,
+    index: Option<usize>,
+) -> Result<Matrix3<T>, ModelError> {
+    let [x, y, z] = [0, 1, 2].map(|c| m.column(c).into_owned());
+    let (x, y, z) = (check_unit(x, field, index)?, check_unit(y, field, index)?, check_unit(z, field, index)?);
+    let tolerance = constant::<T>(AXIS_TOLERANCE);
+    if x.dot(&y).abs() > tolerance || x.dot(&z).abs() > tolerance || y.dot(&z).abs() > tolerance {
+        return Err(ModelError::new(field, index, Problem::NotPerpendicular));
+    }
+    if (x.cross(&y) - z).amax() > tolerance {
+        // Orthonormal but left-handed: a reflection, not a rotation.
+        return Err(ModelError::new(field, index, Problem::OutOfRange));
+    }
+    let y = (y - x * x.dot(&y)).normalize();
+    Ok(Matrix3::from_columns(&[x, y, x.cross(&y)]))
 }
 
 /// Every entry finite and at most [`MAX_LUMPED`] in magnitude.
@@ -200,12 +230,12 @@ impl<T: SimdRealField + Copy, const B: usize> Lumped<T, B> {
 pub(crate) struct LumpedFrame<T: SimdRealField + Copy> {
     /// `P` in `F` [m].
     pub(crate) point: Vector3<T>,
-    /// `F ← body` (the body's axes into `F`'s), where it is not the identity.
+    /// `F ← model` (the model's axes into `F`'s), where it is not the identity.
     rotation: Option<Matrix3<T>>,
     /// `M_A` and `D_L` in `F`'s components, about `P`.
     pub(crate) added_mass: Matrix6<T>,
     linear_damping: Matrix6<T>,
-    /// In the body's own axes (a diagonal there is not one in `F`).
+    /// In the model's own axes (a diagonal there is not one in `F`).
     quadratic_damping: [T; 6],
 }
 
@@ -221,10 +251,12 @@ impl<T: RealField + Copy> LumpedFrame<T> {
     /// `body` (validated) in the body frame whose axes (columns) in the body's coordinates are
     /// `axes`.
     pub(crate) fn new(body: &LumpedBody<T>, axes: &Matrix3<T>) -> Self {
-        let rotation = axes.transpose();
-        let identity = *axes == Matrix3::identity();
+        // F ← body, then F ← the model's axes.
+        let into_frame = axes.transpose();
+        let rotation = into_frame * body.axes;
+        let identity = rotation == Matrix3::identity();
         Self {
-            point: rotation * body.point,
+            point: into_frame * body.point,
             rotation: (!identity).then_some(rotation),
             added_mass: if identity { body.added_mass } else { turned(&body.added_mass, &rotation) },
             linear_damping: if identity { body.linear_damping } else { turned(&body.linear_damping, &rotation) },
@@ -259,7 +291,7 @@ impl<T: SimdRealField + Copy> LumpedFrame<T> {
         let added_mass =
             Wrench { force: -(f_inertial + w.cross(&p)), moment: -(m_inertial + v.cross(&p) + w.cross(&h)) };
         let (f_linear, m_linear) = halves(&(self.linear_damping * nu));
-        // The quadratic damping in the body's own axes.
+        // The quadratic damping in the model's own axes.
         let (v_own, w_own) = match &self.rotation {
             Some(r) => (r.transpose() * v, r.transpose() * w),
             None => (v, w),

@@ -12,7 +12,7 @@ mod common;
 use common::Rng;
 use common::trees::{random_motion, random_robot, states};
 use simba::simd::{SimdValue, WideF64x4};
-use uwml_core::nalgebra::{Matrix6, UnitQuaternion, Vector3, Vector6};
+use uwml_core::nalgebra::{Matrix3, Matrix6, UnitQuaternion, Vector3, Vector6};
 use uwml_core::{
     BaseMotion, Conditions, Current, JointKind, LumpedBody, Owner, Problem, RigidBody, Robot, RobotData, RobotSegment,
     Section, TreeJoint, Water, robot_added_mass_matrix, robot_hydro,
@@ -42,6 +42,7 @@ fn random_lumped(rng: &mut Rng, owner: Owner) -> LumpedBody<f64> {
     LumpedBody {
         owner,
         point: rng.vector(0.3),
+        axes: *UnitQuaternion::from_scaled_axis(rng.vector::<3>(2.0)).to_rotation_matrix().matrix(),
         added_mass: random_psd(rng, 6, 20.0),
         linear_damping: random_psd(rng, 4, 10.0) + skew,
         quadratic_damping: core::array::from_fn(|_| 5.0 * rng.next().abs()),
@@ -90,6 +91,11 @@ fn the_added_mass_of_a_lumped_base_does_no_work_but_its_energy_rate() {
         let p = lumped.point;
         let nu = Vector6::from_iterator((v + w.cross(&p)).iter().chain(w.iter()).copied());
         let nu_dot = Vector6::from_iterator((v_dot + w_dot.cross(&p)).iter().chain(w_dot.iter()).copied());
+        // In the model's axes: ν_model = blockdiag(Aᵀ, Aᵀ) ν.
+        let mut into_model = Matrix6::zeros();
+        into_model.fixed_view_mut::<3, 3>(0, 0).copy_from(&lumped.axes.transpose());
+        into_model.fixed_view_mut::<3, 3>(3, 3).copy_from(&lumped.axes.transpose());
+        let (nu, nu_dot) = (into_model * nu, into_model * nu_dot);
         let expected = -(nu.transpose() * lumped.added_mass * nu_dot)[0];
         let scale = 1.0 + (nu.norm() * lumped.added_mass.norm() * (nu.norm() + nu_dot.norm()));
         assert!((power - expected).abs() <= 1e-12 * scale, "{power} vs {expected}");
@@ -106,6 +112,7 @@ fn the_damping_has_its_closed_form_on_each_axis_and_balances_a_force_at_the_term
     let lumped = LumpedBody {
         owner: Owner::Base,
         point: Vector3::zeros(),
+        axes: Matrix3::identity(),
         added_mass: Matrix6::from_diagonal(&Vector6::new(5.0, 7.0, 9.0, 0.1, 0.2, 0.3)),
         linear_damping: Matrix6::from_diagonal(&Vector6::from(d)),
         quadratic_damping: q,
@@ -228,6 +235,7 @@ fn a_lumped_added_mass_equal_to_a_slender_segments_gives_its_matrix_and_forces()
     let lumped = LumpedBody {
         owner: Owner::Link(1),
         point: start + Vector3::x() * (length / 2.0),
+        axes: Matrix3::identity(),
         added_mass: Matrix6::from_diagonal(&Vector6::new(0.0, my * length, mz * length, 0.0, mz * l3, my * l3)),
         linear_damping: Matrix6::zeros(),
         quadratic_damping: [0.0; 6],
@@ -330,6 +338,11 @@ fn bad_lumped_models_are_refused_naming_the_model_and_the_field() {
         (
             LumpedBody { added_mass: Matrix6::identity() * 1e13, ..good },
             ("lumped.added_mass", Some(0), Problem::TooLarge),
+        ),
+        (LumpedBody { axes: Matrix3::identity() * 2.0, ..good }, ("lumped.axes", Some(0), Problem::NotUnit)),
+        (
+            LumpedBody { axes: Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, -1.0)), ..good },
+            ("lumped.axes", Some(0), Problem::OutOfRange),
         ),
     ];
     for (body, expected) in cases {

@@ -10,7 +10,7 @@
 use core::hint::black_box;
 
 use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
-use uwml_core::nalgebra::{Matrix6, RealField, SVector, Vector3, Vector6, convert};
+use uwml_core::nalgebra::{Matrix3, Matrix6, RealField, SVector, Vector3, Vector6, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
 use uwml_core::{AddedMassForm, BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, LumpedBody, OilDrag, Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_joint_added_mass_matrix, robot_hydro_regressors, robot_jacobians, smooth_sign, Conditions};
 
@@ -223,6 +223,7 @@ fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6, 2>> {
     let hull = LumpedBody {
         owner: Owner::Base,
         point: v(0.0, 0.0, 0.05),
+        axes: Matrix3::identity(),
         added_mass,
         linear_damping: diagonal([20.0, 30.0, 40.0, 1.0, 1.5, 2.0]),
         quadratic_damping: [100.0, 140.0, 170.0, 2.0, 3.0, 4.0].map(c::<T>),

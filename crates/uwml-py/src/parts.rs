@@ -4,7 +4,7 @@
 
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
-use uwml_core::nalgebra::{Matrix6, Vector3};
+use uwml_core::nalgebra::{Matrix3, Matrix6, Vector3};
 use uwml_core::{JointKind, LumpedBody, ModelError, Owner, Problem, RigidBody, RobotSegment, Section, TreeJoint};
 
 /// A `uwml.Joint` of a robot, its parent resolved (`-1`: the base).
@@ -30,6 +30,7 @@ pub(crate) struct BodySpec {
 #[derive(FromPyObject)]
 pub(crate) struct LumpedSpec {
     point: [f64; 3],
+    axes: [[f64; 3]; 3],
     added_mass: [[f64; 6]; 6],
     linear_damping: [[f64; 6]; 6],
     quadratic_damping: [f64; 6],
@@ -103,6 +104,7 @@ impl BodySpec {
         Some(LumpedBody {
             owner,
             point: spec.point.into(),
+            axes: Matrix3::from_fn(|r, c| spec.axes.get(r).and_then(|row| row.get(c)).copied().unwrap_or(0.0)),
             added_mass: matrix(&spec.added_mass),
             linear_damping: matrix(&spec.linear_damping),
             quadratic_damping: spec.quadratic_damping,

@@ -4,6 +4,7 @@ primitives as segments and volume, moved into the link's frame, with a hydro fil
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Any
@@ -11,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..model.lumped import LumpedModel
 from ..model.parts import Segment
 from ._description_io import DescriptionError, quoted
 from .hydrofile import HydroLink
@@ -44,6 +46,8 @@ class _Body:
     volume: float = 0.0
     cob_moment: FloatArray = field(default_factory=lambda: np.zeros(3))
     segments: list[Segment] = field(default_factory=list)
+    #: Its lumped model (hydro file), in the link's frame.
+    lumped: LumpedModel | None = None
 
 
 def _with_coefficients(segment: Segment, cd: Any, cm: Any, where: str) -> Segment:
@@ -140,6 +144,12 @@ def _body(
     body = _Body(name=name, mass=float(model.body_mass[i]), com=rotation @ model.body_ipos[i] + offset)
     if entry is not None and entry.dry:
         return body
+    if entry is not None and entry.lumped is not None:
+        # From the description's body frame into the link's: the point moved, the axes turned.
+        lumped = entry.lumped
+        point = None if lumped.point is None else _t(rotation @ np.asarray(lumped.point) + offset)
+        axes = rotation @ np.asarray(lumped.axes, dtype=np.float64)
+        body.lumped = dataclasses.replace(lumped, point=point, axes=axes)
     segments: list[Segment] = []
     volume, moment = 0.0, np.zeros(3)
     first = int(model.body_geomadr[i])
@@ -159,7 +169,7 @@ def _body(
         geom_offset = rotation @ model.geom_pos[g] + offset
         volume += v
         moment += v * geom_offset
-        if segment is not None:
+        if segment is not None and (entry is None or entry.strips):
             segments.append(_moved(segment, geom_rotation, geom_offset))
     if entry is not None:
         segments += [_moved(s, rotation, offset) for s in entry.segments]

@@ -445,8 +445,17 @@ def _mapped(model: Any, file: HydroFile, source: str, hydro_source: str) -> Desc
         volume = sum(x.volume for x in bodies)
         cob = _t(sum((x.cob_moment for x in bodies), np.zeros(3)) / volume) if volume > 0.0 else None
         segments = tuple(s for x in bodies for s in x.segments)
+        lumped = [x for x in bodies if x.lumped is not None]
+        if len(lumped) > 1:
+            names = ", ".join(_table("links", x.name) for x in lumped)
+            raise DescriptionError(
+                f"{hydro_source}: {names} give lumped models to bodies fused into one link ({quoted(body_name[b])}); "
+                "a link takes one lumped model: give it once, on one of them"
+            )
         try:
-            return Link(mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None)
+            return Link(
+                mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None, lumped=lumped[0].lumped if lumped else None
+            )
         except (TypeError, ValueError) as exc:
             raise DescriptionError(f"{source}: link {quoted(body_name[b])}{with_hydro(b)}: {clipped(str(exc))}") from None
 

@@ -47,9 +47,15 @@ def _literal(x: float, precision: str, suffix: str = "") -> str:
     return text + suffix
 
 
-def _check(precision: str) -> None:
+def _check(precision: str, robot: RobotLike) -> None:
     if precision not in PRECISIONS:
         raise ValueError(f"precision must be one of {PRECISIONS}, got {shown(precision)}")
+    bodies = ([robot.base] if robot.base is not None else []) + list(robot.links)
+    if any(getattr(body, "lumped", None) is not None for body in bodies):
+        raise ValueError(
+            "this robot's bodies carry lumped models (uwml.LumpedModel, docs/model.md section 12.1), which the firmware "
+            "export does not write yet: exporting without them would give the firmware other forces"
+        )
 
 
 # Names (a URDF's or MJCF's) and the source's path are untrusted text: they go only into
@@ -99,7 +105,7 @@ def to_rust(robot: RobotLike, precision: str = "f64", source: str | None = None)
     """Rust constants `N_JOINTS`, `N_SEGMENTS`, `JOINTS`, `LINKS`, `BASE`, `SEGMENTS` of
     `uwml_core`'s plain types for ``robot`` (``precision`` "f64" or "f32"), and its water,
     `WATER_DENSITY` and `GRAVITY`."""
-    _check(precision)
+    _check(precision, robot)
     p, t = precision, precision
     owned = _owned(robot)
     out = [
@@ -164,7 +170,7 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
     ``PREFIX_N_SEGMENTS``, ``PREFIX_JOINTS``, ``PREFIX_LINKS``, ``PREFIX_BASE`` (a pointer, NULL
     without a base body) and ``PREFIX_SEGMENTS``, for ``uwml_robot_new_f64`` (or ``_f32``), and
     the robot's water, ``PREFIX_WATER_DENSITY`` and ``PREFIX_GRAVITY``."""
-    _check(precision)
+    _check(precision, robot)
     if not isinstance(prefix, str) or not _C_PREFIX.fullmatch(prefix) or not prefix.isupper():
         raise ValueError(f"prefix must be an upper-case C identifier (ASCII: A-Z, 0-9, _, not first a digit), got {shown(prefix)}")
     p = precision

@@ -15,6 +15,15 @@ frames)::
     [links.camera]
     dry = true                # no segments, no volume (a link out of the water, or to ignore)
 
+    [links.vehicle]           # a bluff body: Fossen's lumped model (uwml.LumpedModel, docs/model.md
+    strips = false            # section 12.1) instead of strips from its collision geometry (which
+                              # still gives its volume); strips = true keeps both
+    [links.vehicle.lumped]    # the keys of a model file's lumped table (uwml.io.modelfile), in the
+    point = [0.0, 0.0, 0.02]  # link's description frame; point defaults to the link's centre of
+    added_mass = [[6.36, 0, 0, 0, 0, 0], ...]   # buoyancy. Magnitudes: SNAME's X_u̇ = −6.36
+    linear_damping = [[13.7, 0, 0, 0, 0, 0], ...]
+    quadratic_damping = [141.0, 217.0, 190.0, 1.19, 0.47, 1.5]
+
     [links.hull]              # a link drawn as a mesh: give its volume and segments
     volume = 0.29
     cob = [0.0, 0.0, 0.05]
@@ -81,13 +90,14 @@ from typing import Any
 from .._checks import shown
 from .._core import MAX_COEFFICIENT, MAX_LENGTH, MAX_SEGMENTS, MAX_VOLUME
 from ..model.joint_losses import JointLosses
+from ..model.lumped import LumpedModel
 from ..model.parts import Segment, Water
 from ._description_io import DescriptionError, clipped, read_regular
-from .modelfile import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _pair, _Reader, _segment, _vec3, _water
+from .modelfile import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _vec3, _water
 
 __all__ = ["WATER_DENSITY_RANGE", "WATER_GRAVITY_RANGE", "DescriptionError", "HydroFile", "HydroLink", "read_hydro"]
 
-_LINK_KEYS = ("cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments")
+_LINK_KEYS = ("cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "strips", "lumped")
 
 
 @dataclass(frozen=True)
@@ -102,6 +112,11 @@ class HydroLink:
     cob: tuple[float, float, float] | None = None
     dry: bool = False
     segments: tuple[Segment, ...] = field(default=())
+    #: Whether the link's collision geometry gives strip segments (false: its volume only, for a
+    #: body described by its lumped model, so that nothing is counted twice).
+    strips: bool = True
+    #: Fossen's lumped model, in the link's description frame.
+    lumped: LumpedModel | None = None
 
     @property
     def describes_geometry(self) -> bool:
@@ -209,9 +224,11 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             cob=r.get("cob", _point, "an array of 3 numbers [m]", required=False),
             dry=r.get("dry", _boolean, "true or false", required=False, default=False),
             segments=segments,
+            strips=r.get("strips", _boolean, "true or false", required=False, default=True),
+            lumped=None if "lumped" not in r.table else _lumped(source, f"{where}, lumped", r.table["lumped"], DescriptionError),
         )
         if entry.dry:
-            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm"):
+            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm", "strips", "lumped"):
                 if key in r.table:
                     r.fail(key, "a dry link has no segments and no volume: remove this key or dry = true")
         if entry.cob is not None and entry.volume is None:

@@ -41,9 +41,10 @@ at ``q = 0``, as in :mod:`uwml.model.parts`)::
 
     [base.lumped]                # optional, for the base and for every link: Fossen's lumped
     point = [0.0, 0.0, 0.05]     # model (uwml.LumpedModel, docs/model.md section 12.1), about
-    added_mass = [[...6...], ...]      # `point`, body axes: 6 rows of 6 (x, y, z, roll, pitch,
-    linear_damping = [[...6...], ...]  # yaw); magnitudes (SNAME's X_u̇ is −added_mass[0][0])
-    quadratic_damping = [...6...]
+    axes = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]  # `point`, in `axes` (a rotation, optional; its
+    added_mass = [[...6...], ...]      # columns the model's axes in the body frame): 6 rows of 6
+    linear_damping = [[...6...], ...]  # (x, y, z, roll, pitch, yaw); magnitudes (SNAME's X_u̇
+    quadratic_damping = [...6...]      # is −added_mass[0][0])
 
     [[joints]]                   # in the order of q, parents first
     name = "shoulder_yaw"        # optional
@@ -178,8 +179,10 @@ def _lumped_lines(lumped: LumpedModel) -> list[str]:
     def matrix(rows: Any) -> str:
         return "[" + ", ".join(_vector(row) for row in rows) + "]"
 
+    axes = [] if lumped.axes == ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0)) else [f"axes = {matrix(lumped.axes)}"]
     return [
         f"point = {_vector(point)}",
+        *axes,
         f"added_mass = {matrix(lumped.added_mass)}",
         f"linear_damping = {matrix(lumped.linear_damping)}",
         f"quadratic_damping = {_vector(lumped.quadratic_damping)}",  # type: ignore[arg-type]
@@ -353,7 +356,13 @@ def _integer(value: Any) -> int:
 
 _SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm")
 _BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped")
-_LUMPED_KEYS = ("point", "added_mass", "linear_damping", "quadratic_damping")
+_LUMPED_KEYS = ("point", "axes", "added_mass", "linear_damping", "quadratic_damping")
+
+
+def _matrix3(value: Any) -> tuple[tuple[float, ...], ...]:
+    if not isinstance(value, list) or len(value) != 3:
+        raise TypeError("not an array of 3 rows")
+    return tuple(_vec3(row) for row in value)
 
 
 def _six(value: Any) -> tuple[float, ...]:
@@ -368,16 +377,18 @@ def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
     return tuple(_six(row) for row in value)
 
 
-def _lumped(source: str, where: str, table: object) -> LumpedModel:
-    r = _Reader(source, where, table)
+def _lumped(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> LumpedModel:
+    r = _Reader(source, where, table, error)
     r.check_keys(_LUMPED_KEYS)
-    point = r.get("point", _vec3, "an array of 3 numbers [m]")
+    point = r.get("point", _vec3, "an array of 3 numbers [m]", required=False)
+    identity: tuple[tuple[float, ...], ...] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+    axes = r.get("axes", _matrix3, "3 rows of 3 numbers (a rotation)", required=False, default=identity)
     zero: tuple[tuple[float, ...], ...] = tuple((0.0,) * 6 for _ in range(6))
     no_quadratic: tuple[float, ...] = (0.0,) * 6
     added_mass = r.get("added_mass", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
     damping = r.get("linear_damping", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
     quadratic = r.get("quadratic_damping", _six, "6 numbers", required=False, default=no_quadratic)
-    return r.build(lambda: LumpedModel(point, added_mass, damping, quadratic))
+    return r.build(lambda: LumpedModel(point, added_mass, damping, quadratic, axes=axes))
 
 
 def _segment(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Segment:

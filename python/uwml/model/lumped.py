@@ -20,6 +20,7 @@ kg·m² for the quadratic damping.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
@@ -54,6 +55,19 @@ def _matrix6(value: object, name: str) -> Matrix6:
     return tuple(tuple(float(x) for x in row) for row in array)
 
 
+def _rotation(value: object) -> tuple[tuple[float, ...], ...]:
+    """A rotation matrix within 1e-6 (unit, perpendicular, right-handed columns), kept as given."""
+    try:
+        array = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"lumped.axes must be a 3×3 rotation matrix, got {value!r}") from None
+    if array.shape != (3, 3) or not np.all(np.isfinite(array)):
+        raise ValueError(f"lumped.axes must be a 3×3 rotation matrix of finite numbers, got {value!r}")
+    if np.max(np.abs(array.T @ array - np.eye(3))) > 1e-6 or np.linalg.det(array) < 0.0:
+        raise ValueError(f"lumped.axes must be a rotation (orthonormal columns, right-handed, within 1e-6), got {array.tolist()}")
+    return tuple(tuple(float(x) for x in row) for row in array)
+
+
 def _semidefinite(matrix: np.ndarray) -> tuple[bool, float]:
     """Whether the symmetric ``matrix`` is positive semi-definite to rounding, and its smallest
     eigenvalue."""
@@ -67,7 +81,9 @@ class LumpedModel:
     """Fossen's lumped model of one body (see the module), in the body's frame.
 
     ``point``: the reference point ``P`` [m] (None: the body's centre of buoyancy, resolved when
-    the model is given to a :class:`uwml.Link`). ``added_mass``: ``M_A`` about ``P``, 6×6,
+    the model is given to a :class:`uwml.Link`). ``axes``: the model's axes in the body's frame,
+    a 3×3 rotation whose columns are its x, y, z (default the identity: the body's own axes); the
+    matrices and the quadratic damping are in these axes. ``added_mass``: ``M_A`` about ``P``, 6×6,
     symmetric and positive semi-definite. ``linear_damping``: ``D_L`` about ``P``, 6×6, its
     symmetric part positive semi-definite. ``quadratic_damping``: the six ``d_i ≥ 0``. Each
     defaults to zero.
@@ -77,6 +93,7 @@ class LumpedModel:
     added_mass: ArrayLike = field(default_factory=lambda: np.zeros((6, 6)))
     linear_damping: ArrayLike = field(default_factory=lambda: np.zeros((6, 6)))
     quadratic_damping: ArrayLike = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+    axes: ArrayLike = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 
     def __post_init__(self) -> None:
         if self.point is not None:
@@ -87,6 +104,7 @@ class LumpedModel:
             if point.shape != (3,) or not np.all(np.isfinite(point)):
                 raise ValueError(f"lumped.point must be 3 finite numbers, got {self.point!r}")
             object.__setattr__(self, "point", (float(point[0]), float(point[1]), float(point[2])))
+        object.__setattr__(self, "axes", _rotation(self.axes))
         added_mass = _matrix6(self.added_mass, "lumped.added_mass")
         array = np.array(added_mass)
         asymmetry = np.abs(array - array.T)
@@ -124,4 +142,4 @@ class LumpedModel:
 
     def at(self, point: Vec3) -> LumpedModel:
         """This model with ``point`` as its reference point where it has none."""
-        return self if self.point is not None else LumpedModel(point, self.added_mass, self.linear_damping, self.quadratic_damping)
+        return self if self.point is not None else dataclasses.replace(self, point=point)

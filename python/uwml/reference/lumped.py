@@ -2,13 +2,15 @@
 docs/model.md section 12.1). numpy only, like the rest of the reference.
 
 A body may carry, beside or instead of its strips, an added-mass matrix ``M_A``, a linear damping
-matrix ``D_L`` and quadratic damping ``d`` about a reference point ``P`` fixed to it, all in the
-body's frame, entries ordered ``(x, y, z, roll, pitch, yaw)``. With ``R`` the body's rotation
-(world from body), ``v_P`` and ``a_P`` the velocity and classical acceleration of the material
+matrix ``D_L`` and quadratic damping ``d`` about a reference point ``P`` fixed to it (in the
+body's frame), the matrices in the model's axes ``A`` (a rotation, body from model; the identity
+unless given), entries ordered ``(x, y, z, roll, pitch, yaw)``. With ``R`` the model's axes'
+rotation (world from model: the body's rotation times ``A``), ``v_P`` and ``a_P`` the velocity
+and classical acceleration of the material
 point ``P`` (world), ``ω`` and ``α`` the body's angular velocity and acceleration (world), and
 ``c``, ``ċ`` the current (world):
 
-* the relative twist at ``P`` in body components: ``ν_r = (Rᵀ(v_P − c), Rᵀω)``;
+* the relative twist at ``P`` in the model's components: ``ν_r = (Rᵀ(v_P − c), Rᵀω)``;
 * the time derivative of those six components: ``ν̇_r = (Rᵀ(a_P − ċ) − ω_b × ν_r[0:3], Rᵀα)``,
   ``ω_b = Rᵀω`` (``d/dt Rᵀ = −[ω_b]× Rᵀ``; the angular part's ``−ω_b × ω_b`` vanishes);
 * the wrench at ``P`` in body components, ``W = −M_A ν̇_r − C_A(ν_r) ν_r − D_L ν_r − D_Q(ν_r) ν_r``,
@@ -70,13 +72,15 @@ def _lumped_wrenches(robot: _Robot, motion: _Motion, kin: "_Kinematics", parts: 
     about the base origin on each body, world components: ``(F, M)``, each (n, B, 3)."""
     n_bodies = robot.n_bodies
     bodies = robot.lumped_body
-    rot = kin.rotations[:, bodies]  # (n, L, 3, 3) world from body
-    point = kin.positions[:, bodies] + np.einsum("nlab,lb->nla", rot, robot.lumped_point)
+    body_rotation = kin.rotations[:, bodies]  # (n, L, 3, 3) world from body
+    point = kin.positions[:, bodies] + np.einsum("nlab,lb->nla", body_rotation, robot.lumped_point)
+    rot = np.einsum("nlab,lbc->nlac", body_rotation, robot.lumped_axes)  # world from the model's axes
     velocity = kin.velocity(point, bodies)
     omega, alpha = _body_rates(robot, motion, kin, bodies)
 
     def body(w: Array) -> Array:
-        """Body components ``Rᵀ w`` of world vectors (n, L, 3)."""
+        """Components ``(R A)ᵀ w`` of world vectors (n, L, 3) in the model's axes (``A``: body from
+        model; the body's own axes where ``A`` is the identity)."""
         out: Array = np.einsum("nlab,nla->nlb", rot, w)
         return out
 

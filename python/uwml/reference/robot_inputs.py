@@ -52,6 +52,7 @@ class _Robot:
     seg_cm: Array  # (S, 2)
     lumped_body: IndexArray  # (L,) body index of each lumped model (docs/model.md section 12.1)
     lumped_point: Array  # (L, 3) its reference point P in the body's frame
+    lumped_axes: Array  # (L, 3, 3) the model's axes in the body's frame (body from model)
     lumped_mass: Array  # (L, 6, 6) M_A about P, body components
     lumped_linear: Array  # (L, 6, 6) D_L
     lumped_quadratic: Array  # (L, 6) d_i
@@ -125,10 +126,16 @@ def _segment_arrays(segment: Any, name: str) -> dict[str, Any]:
 
 def _lumped_arrays(lumped: Any, name: str, cob: Array) -> dict[str, Array]:
     """A body's lumped model (docs/model.md section 12.1), duck-typed: ``point`` (None: the body's
-    centre of buoyancy), ``added_mass`` (6×6, symmetric), ``linear_damping`` (6×6),
-    ``quadratic_damping`` (6, each ≥ 0); a missing field is zero."""
+    centre of buoyancy), ``axes`` (a 3×3 rotation, body from model; None or missing: the
+    identity), ``added_mass`` (6×6, symmetric), ``linear_damping`` (6×6), ``quadratic_damping``
+    (6, each ≥ 0), the last three in the model's axes; a missing field is zero."""
     point = getattr(lumped, "point", None)
     out = {"point": cob if point is None else _vector(point, f"{name}.point")}
+    axes = getattr(lumped, "axes", None)
+    rotation = np.eye(3) if axes is None else np.asarray(axes, dtype=np.float64)
+    if rotation.shape != (3, 3) or not np.all(np.isfinite(rotation)) or np.max(np.abs(rotation.T @ rotation - np.eye(3))) > 1e-6:
+        raise ValueError(f"{name}.axes must be a 3×3 rotation, got {axes!r}")
+    out["axes"] = rotation
     for key, shape in (("added_mass", (6, 6)), ("linear_damping", (6, 6)), ("quadratic_damping", (6,))):
         value = getattr(lumped, key, None)
         try:
@@ -226,6 +233,7 @@ def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Ro
         seg_cm=stack("cm", (2,)),
         lumped_body=np.array([b for b, _ in lumped], dtype=np.intp),
         lumped_point=np.array([m["point"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 3),
+        lumped_axes=np.array([m["axes"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 3, 3),
         lumped_mass=np.array([m["added_mass"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6, 6),
         lumped_linear=np.array([m["linear_damping"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6, 6),
         lumped_quadratic=np.array([m["quadratic_damping"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 6),

@@ -42,7 +42,7 @@ def _section(segment: Segment) -> str:
 
 def describe(robot: Robot, water: Water | None = None) -> str:
     """A plain-text account of ``robot``: joints, bodies (mass, volume, net buoyancy in
-    ``water``, fresh water by default), and segments with their coefficients."""
+    ``water``, fresh water by default), segments with their coefficients, and lumped models."""
     water = water if water is not None else Water()
     lines = [
         f"{robot.n_joints} joints, {len(robot.segments)} segments; water {water.density:g} kg/m³, g = {water.gravity:g} m/s²",
@@ -75,6 +75,19 @@ def describe(robot: Robot, water: Water | None = None) -> str:
                 f"start {_fmt(segment.start)}  axis {_fmt(segment.axis)}  Cd {_pair(cd)}  Cm {_pair(cm)}"
             )
             index += 1
+    lumped = [(name, body.lumped) for name, body, _ in _bodies(robot) if body.lumped is not None]
+    if lumped:
+        lines += ["", "lumped models (docs/model.md section 12.1; magnitudes: SNAME's X_u̇ = −M_A[0][0])"]
+    for name, model in lumped:
+        added, damping = np.asarray(model.added_mass), np.asarray(model.linear_damping)
+        coupled = (
+            " (and off-diagonal terms)" if np.any(added - np.diag(np.diag(added))) or np.any(damping - np.diag(np.diag(damping))) else ""
+        )
+        turned = "" if np.array_equal(np.asarray(model.axes), np.eye(3)) else " in turned axes"
+        lines.append(
+            f"  {name:16s} at {_fmt(model.point)}{turned}  M_A diag {_fmt(np.diag(added))}  D_L diag {_fmt(np.diag(damping))}  "
+            f"D_Q {_fmt(model.quadratic_damping)}{coupled}"
+        )
     return "\n".join(lines)
 
 

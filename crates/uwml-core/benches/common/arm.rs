@@ -2,7 +2,7 @@
 //! `examples/timing.rs`): a 7-joint manipulator of 14 segments on an ROV, and its motion.
 #![allow(dead_code, clippy::indexing_slicing, clippy::panic)]
 
-use uwml_core::nalgebra::{Matrix6, RealField, Vector3, Vector6, convert};
+use uwml_core::nalgebra::{Matrix3, Matrix6, RealField, Vector3, Vector6, convert};
 use uwml_core::{
     BaseMotion, Current, JointKind, LumpedBody, Owner, RigidBody, Robot, RobotSegment, Section, TreeJoint,
 };
@@ -118,6 +118,7 @@ pub fn with_hull<T: RealField + Copy, const J: usize, const S: usize>(robot: &Ro
     let hull = LumpedBody {
         owner: Owner::Base,
         point: v(0.0, 0.0, 0.05),
+        axes: Matrix3::identity(),
         added_mass,
         linear_damping: diagonal([120.0, 150.0, 160.0, 20.0, 30.0, 25.0]),
         quadratic_damping: [420.0, 600.0, 700.0, 30.0, 60.0, 50.0].map(c::<T>),
