@@ -102,7 +102,7 @@ pub mod uwml_core {
     pub enum Section<T> { Circular { diameter: T }, Rectangular { normals: [Vector3<T>; 2], widths: [T; 2] } }
     pub struct RobotSegment<T> {
         pub owner: Owner, pub start: Vector3<T>, pub axis: Vector3<T>, pub length: T, pub area: T,
-        pub section: Section<T>, pub cd: [T; 2], pub cm: [T; 2],
+        pub section: Section<T>, pub cd: [T; 2], pub cm: [T; 2], pub cd_axial: T, pub axial_area: T,
     }
 }
 """

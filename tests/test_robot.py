@@ -21,11 +21,12 @@ EXAMPLES = settings(max_examples=max(5, int(settings.default.max_examples / 4)))
 COMPONENTS = ("drag", "added_mass", "buoyancy", "gravity")
 
 
-def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True, axes: str = "any") -> uwml.Robot:
+def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True, axes: str = "any", axial: bool = False) -> uwml.Robot:
     """A random tree of ``n`` joints: random parents, kinds, axes; every body with one or two
     segments, rectangular or circular, with their own coefficients. ``axes="mixed"``: each joint
     axis along a coordinate axis (either sign) half of the time, so that parents and children
-    share axes or meet at right angles, as in most real robots."""
+    share axes or meet at right angles, as in most real robots. ``axial``: about half the segments
+    with an axial drag (docs/model.md section 12.2), half of those with their own area."""
 
     def unit() -> np.ndarray:
         v = rng.normal(size=3)
@@ -53,6 +54,7 @@ def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True, ax
                         diameter=rng.uniform(0.03, 0.2),
                         cd=rng.uniform(0.5, 2),
                         cm=rng.uniform(0.2, 1.5),
+                        cd_axial=rng.uniform(0.1, 1.0) if axial and rng.random() < 0.5 else 0.0,
                     )
                 )
             else:
@@ -66,6 +68,8 @@ def random_robot(rng: np.random.Generator, n: int, *, base_body: bool = True, ax
                         area=rng.uniform(0.005, 0.05),
                         cd=tuple(rng.uniform(0.5, 2.5, 2)),
                         cm=tuple(rng.uniform(0.1, 1.5, 2)),
+                        cd_axial=rng.uniform(0.1, 1.0) if axial and rng.random() < 0.5 else 0.0,
+                        axial_area=rng.uniform(0.001, 0.05) if rng.random() < 0.5 else None,
                     )
                 )
         return out
@@ -114,7 +118,7 @@ def test_core_matches_the_reference_on_random_trees_in_moving_water(seed: int, n
     """Both added-mass forms: the reference computes Kirchhoff's terms otherwise (a turning
     added-mass tensor per slice, by Gauss-Legendre quadrature; the core: closed-form moments)."""
     rng = np.random.default_rng(seed)
-    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.8))
+    robot = random_robot(rng, n, base_body=bool(rng.random() < 0.8), axial=bool(rng.random() < 0.5))
     samples = 20
     q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
     motion = motion_arguments(rng, samples)

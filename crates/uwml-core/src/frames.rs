@@ -72,6 +72,9 @@ pub(crate) struct SegmentGeometry<T: SimdRealField + Copy> {
     /// `σ = (axis × normals[0]) · normals[1] = ±1`: the moment directions `axis × normals[k]`
     /// are `σ normals[1]` and `−σ normals[0]`.
     pub(crate) sign: T,
+    /// Whether the segment has an axial drag (docs/model.md section 12.2): known when the robot
+    /// is built, so that the evaluation of the others skips it at no cost.
+    pub(crate) axial: bool,
 }
 
 impl<T: SimdRealField + Copy> SegmentGeometry<T> {
@@ -111,6 +114,7 @@ impl<T: RealField + Copy> Bulk<T> {
 fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T>) -> SegmentGeometry<T> {
     let local = |v: &Vector3<T>| frame.transpose() * v;
     let (start, axis) = (local(&segment.start), local(&segment.axis));
+    let axial = segment.cd_axial != T::zero() && segment.axial_area != T::zero();
     let normals = match segment.section {
         Section::Rectangular { normals, .. } => normals.map(|n| local(&n)),
         Section::Circular { .. } => [Vector3::zeros(); 2],
@@ -120,15 +124,16 @@ fn geometry_in<T: RealField + Copy>(segment: &RobotSegment<T>, frame: &Matrix3<T
     let (y, z) = (Vector3::y(), Vector3::z());
     let aligned = matches!(segment.section, Section::Rectangular { .. }) && axis == Vector3::x();
     if aligned && along(&n0, &y) && along(&n1, &z) {
-        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: false }, sign: T::one() };
+        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: false }, sign: T::one(), axial };
     }
     if aligned && along(&n0, &z) && along(&n1, &y) {
-        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: true }, sign: -T::one() };
+        return SegmentGeometry { start, frame: SegmentFrame::Aligned { swapped: true }, sign: -T::one(), axial };
     }
     SegmentGeometry {
         start,
         frame: SegmentFrame::General { axis, normals },
         sign: if axis.cross(&n0).dot(&n1) < T::zero() { -T::one() } else { T::one() },
+        axial,
     }
 }
 
@@ -176,6 +181,7 @@ impl<T: RealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S> {
                 start: Vector3::zeros(),
                 frame: SegmentFrame::General { axis: Vector3::x(), normals: [Vector3::zeros(); 2] },
                 sign: T::one(),
+                axial: false,
             }; S],
         };
         let axes = link_axes::<T, J>(joints);
@@ -263,6 +269,7 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize> BodyFrames<T, J, S
                 start: g.start.map(f),
                 frame: g.frame.map_scalars(f),
                 sign: f(g.sign),
+                axial: g.axial,
             }),
         }
     }

@@ -17,6 +17,8 @@ pub mod motion;
 pub mod real;
 pub mod robot;
 pub mod robot_derivatives;
+mod segment_coefficients;
+mod segment_forces;
 mod segment_frame;
 pub mod strip;
 pub mod tree;

@@ -17,9 +17,10 @@ use crate::error::{ModelError, Problem};
 use crate::frames::{BodyFrames, link_axes};
 use crate::lumped::{Lumped, LumpedBody, LumpedFrame};
 use crate::model::{
-    AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_coefficient_table,
-    check_length, check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
+    AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_length,
+    check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
 };
+pub use crate::segment_coefficients::SegmentCoefficients;
 
 /// How a joint moves its link.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -112,6 +113,13 @@ pub struct RobotSegment<T: SimdRealField + Copy> {
     pub cd: [T; 2],
     /// Added-mass coefficients, zero or positive.
     pub cm: [T; 2],
+    /// Axial drag coefficient (docs/model.md section 12.2), zero or positive: the force
+    /// `−½ ρ cd_axial A_axial |u·v| (u·v) u` along the axis, at the midpoint. Zero: none (strips
+    /// have no force along their axis).
+    pub cd_axial: T,
+    /// The axial drag's reference area `A_axial` [m²], zero or positive (a description's default:
+    /// the section area).
+    pub axial_area: T,
 }
 
 /// A validated robot of up to `J` joints (each moving its own link) and `S` segments.
@@ -127,14 +135,6 @@ pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize, const 
     frames: BodyFrames<T, J, S>,
     /// The bodies' lumped models (docs/model.md section 12.1), in their body frames.
     lumped: Lumped<T, B>,
-}
-
-/// Drag and added-mass coefficients per segment and normal direction (`[segment][k]`), to
-/// evaluate a robot with other coefficients than its segments' own.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SegmentCoefficients<T: SimdRealField + Copy, const S: usize> {
-    pub(crate) cd: [[T; 2]; S],
-    pub(crate) cm: [[T; 2]; S],
 }
 
 impl<T: RealField + Copy> TreeJoint<T> {
@@ -227,6 +227,13 @@ impl<T: RealField + Copy> RobotSegment<T> {
             section,
             cd: [check_coefficient(cd0, "segment.cd", i)?, check_coefficient(cd1, "segment.cd", i)?],
             cm: [check_coefficient(cm0, "segment.cm", i)?, check_coefficient(cm1, "segment.cm", i)?],
+            cd_axial: check_coefficient(self.cd_axial, "segment.cd_axial", i)?,
+            axial_area: check_at_most(
+                check_non_negative(self.axial_area, "segment.axial_area", i)?,
+                MAX_AREA,
+                "segment.axial_area",
+                i,
+            )?,
         })
     }
 }
@@ -289,6 +296,8 @@ impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<
             section: Section::Circular { diameter: T::one() },
             cd: [T::zero(); 2],
             cm: [T::zero(); 2],
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
         };
         Self {
             joints: [joint; J],
@@ -390,6 +399,8 @@ impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<
                     section: Section::Rectangular { normals: segment.normals, widths: segment.widths },
                     cd: *cd,
                     cm: *cm,
+                    cd_axial: T::zero(),
+                    axial_area: T::zero(),
                 };
                 segment_count += 1;
             }
@@ -475,68 +486,6 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Ro
     }
 }
 
-impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
-    /// One drag and one added-mass coefficient for every segment and direction.
-    ///
-    /// # Errors
-    /// A coefficient that is negative or not finite.
-    pub fn uniform(cd: T, cm: T) -> Result<Self, ModelError> {
-        // One check of each value, not one per entry: the same errors (segment 0 named first).
-        check_coefficient_table(&[[cd; 2]], &[[cm; 2]], ["segment.cd", "segment.cm"])?;
-        Ok(Self { cd: [[cd; 2]; S], cm: [[cm; 2]; S] })
-    }
-
-    /// Coefficients per segment and normal direction, `[segment][k]` (a circular segment uses
-    /// entry 0).
-    ///
-    /// # Errors
-    /// A coefficient that is negative or not finite, naming the segment.
-    pub fn per_segment(cd: [[T; 2]; S], cm: [[T; 2]; S]) -> Result<Self, ModelError> {
-        check_coefficient_table(&cd, &cm, ["segment.cd", "segment.cm"])?;
-        Ok(Self { cd, cm })
-    }
-
-    /// The coefficients of `robot`'s segments, as its segments give them (checked when it was
-    /// built); zero beyond its segments.
-    #[must_use]
-    pub fn own<const J: usize, const B: usize>(robot: &Robot<T, J, S, B>) -> Self {
-        let mut table = Self { cd: [[T::zero(); 2]; S], cm: [[T::zero(); 2]; S] };
-        for ((cd, cm), segment) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(robot.segments()) {
-            (*cd, *cm) = (segment.cd, segment.cm);
-        }
-        table
-    }
-
-    /// Segment `segment`'s coefficients, per normal direction.
-    ///
-    /// # Errors
-    /// A coefficient that is negative, not finite or too large, or a segment beyond `S`, naming
-    /// the segment; then nothing changes.
-    pub fn set(&mut self, segment: usize, cd: [T; 2], cm: [T; 2]) -> Result<(), ModelError> {
-        check_coefficient_table(&[cd], &[cm], ["segment.cd", "segment.cm"])
-            .map_err(|error| ModelError { index: Some(segment), ..error })?;
-        match (self.cd.get_mut(segment), self.cm.get_mut(segment)) {
-            (Some(cd_slot), Some(cm_slot)) => {
-                (*cd_slot, *cm_slot) = (cd, cm);
-                Ok(())
-            }
-            _ => Err(ModelError::new("segment.cd", Some(segment), Problem::OutOfRange)),
-        }
-    }
-}
-
-impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {
-    /// Drag coefficients `[segment][k]`.
-    pub const fn cd(&self) -> &[[T; 2]; S] {
-        &self.cd
-    }
-
-    /// Added-mass coefficients `[segment][k]`.
-    pub const fn cm(&self) -> &[[T; 2]; S] {
-        &self.cm
-    }
-}
-
 impl<T: SimdRealField + Copy> RobotSegment<T> {
     /// Every number mapped by `f` (which must keep values, as `Dual::constant` does).
     fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> RobotSegment<U> {
@@ -554,6 +503,8 @@ impl<T: SimdRealField + Copy> RobotSegment<T> {
             },
             cd: self.cd.map(f),
             cm: self.cm.map(f),
+            cd_axial: f(self.cd_axial),
+            axial_area: f(self.axial_area),
         }
     }
 }
@@ -593,20 +544,5 @@ impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<
     #[must_use]
     pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Robot<L, J, S, B> {
         self.map_scalars(L::splat)
-    }
-}
-
-impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
-    /// The same coefficients over a SIMD type (see [`Robot::splat`]).
-    #[must_use]
-    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> SegmentCoefficients<L, S> {
-        self.map_scalars(L::splat)
-    }
-}
-
-impl<T: SimdRealField + Copy, const S: usize> SegmentCoefficients<T, S> {
-    /// The same coefficients over another scalar type (see [`Robot::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> SegmentCoefficients<U, S> {
-        SegmentCoefficients { cd: self.cd.map(|c| c.map(f)), cm: self.cm.map(|c| c.map(f)) }
     }
 }

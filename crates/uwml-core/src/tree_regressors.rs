@@ -4,7 +4,8 @@
 use crate::conditions::Conditions;
 use crate::real::Real;
 use crate::robot::{JointKind, Owner, Robot, SegmentCoefficients};
-use crate::tree::{RobotData, finite_lanes, hydro_in, segment_wrenches, used};
+use crate::segment_forces::segment_wrenches;
+use crate::tree::{RobotData, finite_lanes, hydro_in, used};
 
 /// Regressors of the drag and added-mass forces (docs/model.md sections 4 and 10, for whole
 /// robots): with `s = robot.segments().len()` and `n = robot.joint_count()`, entry `(row, 2k + d)` of `drag`
@@ -17,8 +18,9 @@ use crate::tree::{RobotData, finite_lanes, hydro_in, segment_wrenches, used};
 /// `data`. Outputs shorter than `(6 + n) · 2s` get what fits. Never fails, never panics.
 /// The regressors depend on the conditions' water, motion, current and added-mass form (both
 /// forms' forces are linear in the coefficients); not on its coefficients or losses. A robot's
-/// lumped models (docs/model.md section 12.1) have no columns here: their forces are in `data`'s
-/// drag and added mass (evaluated at zero segment coefficients), to be added to the sums.
+/// lumped models (docs/model.md section 12.1) and its segments' axial drag (12.2) have no columns
+/// here: their forces are in `data`'s drag and added mass (evaluated at zero segment
+/// coefficients), to be added to the sums.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
 pub fn robot_hydro_regressors<T: Real, const J: usize, const S: usize, const B: usize>(
     robot: &Robot<T, J, S, B>,

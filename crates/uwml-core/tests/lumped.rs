@@ -228,6 +228,8 @@ fn a_lumped_added_mass_equal_to_a_slender_segments_gives_its_matrix_and_forces()
         section: Section::Rectangular { normals: [Vector3::y(), Vector3::z()], widths: [0.05, 0.08] },
         cd: [0.0; 2],
         cm,
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let strips = Model::new(&joints, &links, RigidBody::empty(), &[segment]).unwrap();
     let (my, mz) = (water.density() * area * cm[0], water.density() * area * cm[1]);

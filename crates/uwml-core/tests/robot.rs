@@ -502,6 +502,9 @@ fn regressors_times_coefficients_are_the_forces() {
             &mut added_mass,
         );
         let statics = (data.base_wrench().buoyancy, data.joint_forces().iter().map(|f| f.buoyancy).collect::<Vec<_>>());
+        // The axial drag has no columns: it is the drag of `data`, evaluated at zero coefficients.
+        let (axial_base, axial_joints) =
+            (data.base_wrench().drag.to_array(), data.joint_forces().iter().map(|f| f.drag).collect::<Vec<_>>());
         let coefficients = robot.coefficients();
         let expected = evaluate(&robot, None, &motion, &current, &s);
         let scale = wrench_scale(expected.base_wrench());
@@ -512,11 +515,17 @@ fn regressors_times_coefficients_are_the_forces() {
         };
         let base = expected.base_wrench();
         for (row, (d, m)) in base.drag.to_array().iter().zip(base.added_mass.to_array()).enumerate() {
-            assert_close(apply(&drag, coefficients.cd(), row), *d, scale, 1e-12, "base drag");
+            assert_close(apply(&drag, coefficients.cd(), row) + axial_base[row], *d, scale, 1e-12, "base drag");
             assert_close(apply(&added_mass, coefficients.cm(), row), m, scale, 1e-12, "base added mass");
         }
         for (j, forces) in expected.joint_forces().iter().enumerate() {
-            assert_close(apply(&drag, coefficients.cd(), 6 + j), forces.drag, scale, 1e-12, "joint drag");
+            assert_close(
+                apply(&drag, coefficients.cd(), 6 + j) + axial_joints[j],
+                forces.drag,
+                scale,
+                1e-12,
+                "joint drag",
+            );
             assert_close(
                 apply(&added_mass, coefficients.cm(), 6 + j),
                 forces.added_mass,

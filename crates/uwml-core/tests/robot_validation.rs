@@ -34,6 +34,8 @@ fn bad_models_and_motions_are_errors_naming_the_field() {
         section: Section::Circular { diameter: 0.1 },
         cd: [1.2; 2],
         cm: [1.0; 2],
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let error = Model::new(&[joint], &[body], body, &[segment]).unwrap_err();
     assert_eq!((error.field, error.index), ("segment.owner", Some(0)));
@@ -93,6 +95,8 @@ fn model_values_beyond_their_bounds_are_refused_and_at_the_bounds_forces_stay_fi
         section: Section::Circular { diameter: 0.1 },
         cd: [1.2; 2],
         cm: [1.0; 2],
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let refused = |joints: &[TreeJoint<f64>], links: &[RigidBody<f64>], base, segments: &[RobotSegment<f64>]| {
         let error = Model::new(joints, links, base, segments).unwrap_err();
@@ -183,6 +187,8 @@ fn a_coefficient_table_starts_from_the_segments_own_and_refuses_bad_entries_nami
         section: Section::Rectangular { widths: [0.1, 0.2], normals: [Vector3::y(), Vector3::z()] },
         cd: [1.2, 1.4],
         cm: [0.8, 0.9],
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let other = RobotSegment { cd: [2.0; 2], cm: [0.5; 2], ..segment };
     let robot = Model::new(&[joint], &[body], body, &[segment, other]).unwrap();

@@ -14,8 +14,8 @@
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  6152 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  3208 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 28296 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 14736 bytes.
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 29032 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 15120 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -182,12 +182,12 @@
 /**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 3536
+#define UWML_ROBOT_F64_WORDS 3628
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1841
+#define UWML_ROBOT_F32_WORDS 1889
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
@@ -889,6 +889,16 @@ typedef struct UwmlRobotSegmentF64 {
      * Added-mass coefficients per normal, zero or positive; circular: `cm[0] == cm[1]`.
      */
     double cm[2];
+    /**
+     * Axial drag coefficient, zero or positive (docs/model.md section 12.2): the force
+     * `−½ ρ cd_axial axial_area |u·v| (u·v) u` along the axis; zero (as a zeroed struct has
+     * it): none.
+     */
+    double cd_axial;
+    /**
+     * The axial drag's reference area [m²], zero or positive (typically the section area).
+     */
+    double axial_area;
 } UwmlRobotSegmentF64;
 
 /**
@@ -1135,6 +1145,14 @@ typedef struct UwmlRobotSegmentF32 {
      * Added-mass coefficients per normal; circular: `cm[0] == cm[1]`.
      */
     float cm[2];
+    /**
+     * Axial drag coefficient (zero: none).
+     */
+    float cd_axial;
+    /**
+     * The axial drag's reference area [m²].
+     */
+    float axial_area;
 } UwmlRobotSegmentF32;
 
 /**

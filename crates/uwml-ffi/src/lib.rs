@@ -109,9 +109,9 @@ pub const UWML_ROBOT_MAX_JOINTS: usize = 16;
 /// The most segments a robot of the `uwml_robot_*` API may have (on all bodies together).
 pub const UWML_ROBOT_MAX_SEGMENTS: usize = 32;
 /// Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
-pub const UWML_ROBOT_F64_WORDS: usize = 3536;
+pub const UWML_ROBOT_F64_WORDS: usize = 3628;
 /// Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
-pub const UWML_ROBOT_F32_WORDS: usize = 1841;
+pub const UWML_ROBOT_F32_WORDS: usize = 1889;
 /// `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
 pub const UWML_BASE: i32 = -1;
 /// `UwmlTreeJoint*.kind`: turns its link about the axis by q [rad]; the force is a torque [N·m].

@@ -268,6 +268,8 @@ macro_rules! robot_precision {
                     section,
                     cd: p.cd,
                     cm: p.cm,
+                    cd_axial: p.cd_axial,
+                    axial_area: p.axial_area,
                 })
             }
 
@@ -514,6 +516,8 @@ pub(crate) unsafe fn new<T: RobotPrecision>(out: *mut T::Robot, params: &Params<
         section: Section::Circular { diameter: T::zero() },
         cd: [T::zero(); 2],
         cm: [T::zero(); 2],
+        cd_axial: T::zero(),
+        axial_area: T::zero(),
     }; S];
     for (index, (slot, segment)) in pieces.iter_mut().zip(segments).enumerate() {
         *slot = T::segment(segment, index)?;

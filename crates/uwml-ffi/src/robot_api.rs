@@ -92,6 +92,12 @@ pub struct UwmlRobotSegmentF64 {
     pub cd: [f64; 2],
     /// Added-mass coefficients per normal, zero or positive; circular: `cm[0] == cm[1]`.
     pub cm: [f64; 2],
+    /// Axial drag coefficient, zero or positive (docs/model.md section 12.2): the force
+    /// `−½ ρ cd_axial axial_area |u·v| (u·v) u` along the axis; zero (as a zeroed struct has
+    /// it): none.
+    pub cd_axial: f64,
+    /// The axial drag's reference area [m²], zero or positive (typically the section area).
+    pub axial_area: f64,
 }
 
 /// The base's orientation and motion at one instant (docs/model.md section 10, "Base motion and
@@ -236,6 +242,10 @@ pub struct UwmlRobotSegmentF32 {
     pub cd: [f32; 2],
     /// Added-mass coefficients per normal; circular: `cm[0] == cm[1]`.
     pub cm: [f32; 2],
+    /// Axial drag coefficient (zero: none).
+    pub cd_axial: f32,
+    /// The axial drag's reference area [m²].
+    pub axial_area: f32,
 }
 
 /// `UwmlBaseMotionF64` in f32.

@@ -151,6 +151,8 @@ fn robot_params() -> (Vec<UwmlTreeJointF64>, Vec<UwmlBodyF64>, UwmlBodyF64, Vec<
         diameter: 0.06,
         cd: [1.2, 1.2],
         cm: [1.0, 1.0],
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let segments = vec![
         segment(UWML_BASE, UWML_SECTION_RECTANGULAR),

@@ -396,6 +396,8 @@ fn a_robot_at_full_capacity() {
         diameter: 0.035,
         cd: [1.2; 2],
         cm: [1.0; 2],
+        cd_axial: 0.0,
+        axial_area: 0.0,
     };
     let segments: Vec<_> =
         (0..16).flat_map(|i| [segment(i, UWML_SECTION_RECTANGULAR), segment(i, UWML_SECTION_CIRCULAR)]).collect();

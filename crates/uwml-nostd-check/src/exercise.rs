@@ -203,6 +203,8 @@ fn robot<T: RealField + Copy>() -> Option<Robot<T, 6, 6, 2>> {
         section: Section::Circular { diameter: c(0.08) },
         cd: [c(1.2); 2],
         cm: [c(1.0); 2],
+        cd_axial: T::zero(),
+        axial_area: T::zero(),
     };
     let rectangular = |owner| RobotSegment {
         section: Section::Rectangular { normals: [v(0.0, 1.0, 0.0), v(0.0, 0.0, 1.0)], widths: [c(0.1), c(0.2)] },

@@ -49,6 +49,8 @@ pub(crate) struct SegmentSpec {
     diameter: Option<f64>,
     cd: (f64, f64),
     cm: (f64, f64),
+    cd_axial: f64,
+    axial_area: f64,
 }
 
 /// A body index from Python: `-1` for the base, else a link's (checked against the joints by the
@@ -132,6 +134,8 @@ impl SegmentSpec {
             section,
             cd: [self.cd.0, self.cd.1],
             cm: [self.cm.0, self.cm.1],
+            cd_axial: self.cd_axial,
+            axial_area: self.axial_area,
         })
     }
 

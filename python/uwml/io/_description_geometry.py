@@ -74,6 +74,8 @@ def _segment_copy(segment: Segment, **changes: Any) -> Segment:
         "area": segment.area,
         "cd": segment.cd if segment.section == "rectangular" else segment.cd[0],
         "cm": segment.cm if segment.section == "rectangular" else segment.cm[0],
+        "cd_axial": segment.cd_axial,
+        "axial_area": segment.axial_area,
     }
     if segment.section == "circular":
         fields["diameter"] = segment.diameter
@@ -187,6 +189,8 @@ def _body(
                 raise DescriptionError(
                     f"{where}, key '{key}': must have one entry per segment of the link ({len(segments)}), got {len(per_segment)}"
                 )
+        if entry.cd_axial is not None:
+            segments = [_segment_copy(segment, cd_axial=entry.cd_axial) for segment in segments]
         coefficients = []
         for index, segment in enumerate(segments):
             cd = entry.segment_cd[index] if entry.segment_cd is not None else entry.cd

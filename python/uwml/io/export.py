@@ -143,7 +143,8 @@ def to_rust(robot: RobotLike, precision: str = "f64", source: str | None = None)
         out.append(
             f"    RobotSegment {{ owner: {owner_text}, start: {_rust_vector(s.start, p)}, axis: {_rust_vector(s.axis, p)}, "
             f"length: {_literal(s.length, p)}, area: {_literal(s.area or 0.0, p)}, section: {section}, "
-            f"cd: {_rust_pair(s.cd, p)}, cm: {_rust_pair(s.cm, p)} }},"
+            f"cd: {_rust_pair(s.cd, p)}, cm: {_rust_pair(s.cm, p)}, cd_axial: {_literal(s.cd_axial, p)}, "
+            f"axial_area: {_literal(s.axial_area, p)} }},"
         )
     out.append("];")
     out += [
@@ -217,7 +218,8 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
             f"    {{ .owner = {owner_text}, .section = {section}, .start = {_c_array(s.start, p)}, .axis = {_c_array(s.axis, p)}, "
             f".length = {_literal(s.length, p, suffix)}, .area = {_literal(s.area or 0.0, p, suffix)}, "
             f".normals = {{{_c_array(normals[0], p)}, {_c_array(normals[1], p)}}}, .widths = {_c_array(widths, p)}, "
-            f".diameter = {_literal(s.diameter or 0.0, p, suffix)}, .cd = {_c_array(s.cd, p)}, .cm = {_c_array(s.cm, p)} }},"
+            f".diameter = {_literal(s.diameter or 0.0, p, suffix)}, .cd = {_c_array(s.cd, p)}, .cm = {_c_array(s.cm, p)}, "
+            f".cd_axial = {_literal(s.cd_axial, p, suffix)}, .axial_area = {_literal(s.axial_area, p, suffix)} }},"
         )
     out += [
         "};",

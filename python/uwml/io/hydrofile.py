@@ -9,6 +9,7 @@ frames)::
     [links.thigh]
     cd = 2.2                  # every segment of this link: one number, or [along n0, along n1]
     cm = [0.5, 0.6]
+    cd_axial = 0.1            # every segment's axial drag (docs/model.md section 12.2; default none)
     volume = 0.00713          # m³, displaced volume (instead of the primitives' sum)
     cob = [0.506, 0.0, 0.0]   # m, centre of buoyancy (default: the primitives' centroid, or the COM)
 
@@ -97,7 +98,7 @@ from .modelfile import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses
 
 __all__ = ["WATER_DENSITY_RANGE", "WATER_GRAVITY_RANGE", "DescriptionError", "HydroFile", "HydroLink", "read_hydro"]
 
-_LINK_KEYS = ("cd", "cm", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "strips", "lumped")
+_LINK_KEYS = ("cd", "cm", "cd_axial", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "strips", "lumped")
 
 
 @dataclass(frozen=True)
@@ -106,6 +107,8 @@ class HydroLink:
 
     cd: float | tuple[float, float] | None = None
     cm: float | tuple[float, float] | None = None
+    #: Every segment's axial drag coefficient (docs/model.md section 12.2), its area the section's.
+    cd_axial: float | None = None
     segment_cd: tuple[float | tuple[float, float], ...] | None = None
     segment_cm: tuple[float | tuple[float, float], ...] | None = None
     volume: float | None = None
@@ -141,6 +144,13 @@ def _coefficient(value: Any) -> float | tuple[float, float]:
         if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
             raise ValueError(f"each between 0 and {MAX_COEFFICIENT:g}")
     return coefficient
+
+
+def _axial(value: Any) -> float:
+    x = _float(value)
+    if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
+        raise ValueError(f"between 0 and {MAX_COEFFICIENT:g}")
+    return x
 
 
 def _coefficients(value: Any) -> tuple[float | tuple[float, float], ...]:
@@ -218,6 +228,7 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
         entry = HydroLink(
             cd=r.get("cd", _coefficient, "a number or [along n0, along n1]", required=False),
             cm=r.get("cm", _coefficient, "a number or [along n0, along n1]", required=False),
+            cd_axial=r.get("cd_axial", _axial, f"a number, 0 to {MAX_COEFFICIENT:g}", required=False),
             segment_cd=r.get("segment_cd", _coefficients, "an array, one number or pair per segment", required=False),
             segment_cm=r.get("segment_cm", _coefficients, "an array, one number or pair per segment", required=False),
             volume=r.get("volume", _volume, f"a volume [m³], 0 to {MAX_VOLUME:g}", required=False),
@@ -228,7 +239,7 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             lumped=None if "lumped" not in r.table else _lumped(source, f"{where}, lumped", r.table["lumped"], DescriptionError),
         )
         if entry.dry:
-            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm", "strips", "lumped"):
+            for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm", "cd_axial", "strips", "lumped"):
                 if key in r.table:
                     r.fail(key, "a dry link has no segments and no volume: remove this key or dry = true")
         if entry.cob is not None and entry.volume is None:

@@ -38,6 +38,8 @@ at ``q = 0``, as in :mod:`uwml.model.parts`)::
     area = 0.283
     cd = [0.9, 0.9]              # per normal direction (a circular section's two are equal)
     cm = [1.0, 1.0]
+    cd_axial = 0.8               # optional: axial drag (docs/model.md section 12.2), along the
+    axial_area = 0.283           # axis; its area defaults to the section area
 
     [base.lumped]                # optional, for the base and for every link: Fossen's lumped
     point = [0.0, 0.0, 0.05]     # model (uwml.LumpedModel, docs/model.md section 12.1), about
@@ -201,6 +203,11 @@ def _segment_lines(segment: Segment) -> list[str]:
     lines.append(f"area = {_number(segment.area or 0.0)}")
     lines.append(f"cd = {_vector(segment.cd)}")
     lines.append(f"cm = {_vector(segment.cm)}")
+    # The axial drag (docs/model.md section 12.2), when there is one; its area unless the default.
+    if segment.cd_axial != 0.0:
+        lines.append(f"cd_axial = {_number(segment.cd_axial)}")
+    if segment.axial_area != segment.area:
+        lines.append(f"axial_area = {_number(segment.axial_area)}")
     return lines
 
 
@@ -354,7 +361,7 @@ def _integer(value: Any) -> int:
     return value
 
 
-_SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm")
+_SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm", "cd_axial", "axial_area")
 _BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped")
 _LUMPED_KEYS = ("point", "axes", "added_mass", "linear_damping", "quadratic_damping")
 
@@ -400,17 +407,46 @@ def _segment(source: str, where: str, table: object, error: type[ValueError] = M
     length = r.get("length", _float, "a length [m]")
     cd = r.get("cd", _pair, "[Cd along normal 0, along normal 1]")
     cm = r.get("cm", _pair, "[Cm along normal 0, along normal 1]")
+    cd_axial = r.get("cd_axial", _float, "an axial drag coefficient", required=False, default=0.0)
+    axial_area = r.get("axial_area", _float, "an area [m²]", required=False)
     if section == "circular":
         diameter = r.get("diameter", _float, "a diameter [m]")
         area = r.get("area", _float, "a section area [m²]")
         for key, pair in (("cd", cd), ("cm", cm)):
             if pair[0] != pair[1]:
                 r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")
-        return r.build(lambda: Segment(start, axis, length, section="circular", diameter=diameter, area=area, cd=cd[0], cm=cm[0]))
+        return r.build(
+            lambda: Segment(
+                start,
+                axis,
+                length,
+                section="circular",
+                diameter=diameter,
+                area=area,
+                cd=cd[0],
+                cm=cm[0],
+                cd_axial=cd_axial,
+                axial_area=axial_area,
+            )
+        )
     normals = r.get("normals", _normals, "two unit vectors [[...], [...]]")
     widths = r.get("widths", _pair, "[width along normal 0, along normal 1] [m]")
     area = r.get("area", _float, "a section area [m²]")
-    return r.build(lambda: Segment(start, axis, length, section=section, normals=normals, widths=widths, area=area, cd=cd, cm=cm))
+    return r.build(
+        lambda: Segment(
+            start,
+            axis,
+            length,
+            section=section,
+            normals=normals,
+            widths=widths,
+            area=area,
+            cd=cd,
+            cm=cm,
+            cd_axial=cd_axial,
+            axial_area=axial_area,
+        )
+    )
 
 
 def _body(source: str, where: str, table: object) -> Link:

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._checks import to_float
-from ..domains import MAX_DENSITY, MAX_GRAVITY
+from ..domains import MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY
 from ..sea.conditions import SEA_WATER_DENSITY
 from .lumped import LumpedModel
 
@@ -184,6 +184,10 @@ class Segment:
     ``None`` takes the section's documented default (:data:`RECTANGULAR_DEFAULTS`,
     :data:`CIRCULAR_DEFAULTS`).
 
+    ``cd_axial``: the optional axial drag (docs/model.md section 12.2), ``−½ ρ cd_axial
+    axial_area |u·v| (u·v) u`` along the axis at the midpoint (strips have no force along their
+    axis); 0 (default): none. ``axial_area`` [m²]: its reference area, default the section area.
+
     Construction validates every value and stores it normalized: ``normals``, ``widths``,
     ``area``, ``cd`` and ``cm`` always hold their final form (pairs and numbers, the section's
     defaults filled in), whatever form they were given in; ``diameter`` is None for a
@@ -200,6 +204,8 @@ class Segment:
     diameter: float | None
     cd: tuple[float, float]
     cm: tuple[float, float]
+    cd_axial: float
+    axial_area: float
 
     def __init__(
         self,
@@ -213,6 +219,8 @@ class Segment:
         diameter: float | None = None,
         cd: float | Iterable[float] | None = None,
         cm: float | Iterable[float] | None = None,
+        cd_axial: float = 0.0,
+        axial_area: float | None = None,
     ) -> None:
         if section not in SECTIONS:
             raise ValueError(f"segment.section must be one of {SECTIONS}, got {section!r}")
@@ -228,6 +236,12 @@ class Segment:
         cd_default, cm_default = RECTANGULAR_DEFAULTS if section == "rectangular" else CIRCULAR_DEFAULTS
         object.__setattr__(self, "cd", _coefficient_pair(cd, "segment.cd", section, cd_default))
         object.__setattr__(self, "cm", _coefficient_pair(cm, "segment.cm", section, cm_default))
+        axial = _scalar(cd_axial, "segment.cd_axial", positive=False)
+        if axial > MAX_COEFFICIENT:
+            raise ValueError(f"segment.cd_axial must be at most {MAX_COEFFICIENT:g} (measured coefficients are of order 1), got {axial}")
+        object.__setattr__(self, "cd_axial", axial)
+        reference = self.area if axial_area is None else _scalar(axial_area, "segment.axial_area", positive=False)
+        object.__setattr__(self, "axial_area", reference)
 
     def _rectangular(self, axis: Vec3, normals: object, widths: object, area: object, diameter: object) -> None:
         for name, value in (("normals", normals), ("widths", widths), ("area", area)):

@@ -356,6 +356,12 @@ def _body_wrenches(
             pc, ec = p0[:, circular], e[:, circular]
             force[:, circular] += i0 * w0 + i1 * w1
             moment[:, circular] += np.cross(pc, i0 * w0 + i1 * w1) + np.cross(ec, i1 * w0 + i2 * w1)
+        # Axial drag (docs/model.md section 12.2): −½ ρ cd_ax A_ax |u·v| (u·v) u at the midpoint,
+        # u·v the mean of the two ends' (it is the same at every slice).
+        along = 0.5 * (np.einsum("nsc,nsc->ns", u, rel0) + np.einsum("nsc,nsc->ns", u, rel1))
+        axial = (-0.5 * density * robot.seg_cd_axial * robot.seg_axial_area * np.abs(along) * along)[..., None] * u
+        force += axial
+        moment += np.cross(p0 + 0.5 * e, axial)
         out["drag"] = collect(force, moment)
     if "added_mass" in parts:
         acc = kin.acceleration(ends, velocity, bodies) - motion.current_acceleration[:, None, :]

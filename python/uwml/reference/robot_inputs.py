@@ -50,6 +50,8 @@ class _Robot:
     seg_circular: BoolArray  # (S,)
     seg_cd: Array  # (S, 2), NaN where the segment has no coefficient of its own
     seg_cm: Array  # (S, 2)
+    seg_cd_axial: Array  # (S,) axial drag coefficient (docs/model.md section 12.2), 0: none
+    seg_axial_area: Array  # (S,) its reference area
     lumped_body: IndexArray  # (L,) body index of each lumped model (docs/model.md section 12.1)
     lumped_point: Array  # (L, 3) its reference point P in the body's frame
     lumped_axes: Array  # (L, 3, 3) the model's axes in the body's frame (body from model)
@@ -121,6 +123,11 @@ def _segment_arrays(segment: Any, name: str) -> dict[str, Any]:
         "circular": circular,
         "cd": _own_coefficient(getattr(segment, "cd", None), f"{name}.cd", circular),
         "cm": _own_coefficient(getattr(segment, "cm", None), f"{name}.cm", circular),
+        # Axial drag (docs/model.md section 12.2): none unless given; its area defaults to the section's.
+        "cd_axial": _number(getattr(segment, "cd_axial", 0.0) or 0.0, f"{name}.cd_axial", positive=False),
+        "axial_area": area
+        if getattr(segment, "axial_area", None) is None
+        else _number(segment.axial_area, f"{name}.axial_area", positive=False),
     }
 
 
@@ -231,6 +238,8 @@ def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Ro
         seg_circular=np.array([s["circular"] for _, s in segments], dtype=bool),
         seg_cd=stack("cd", (2,)),
         seg_cm=stack("cm", (2,)),
+        seg_cd_axial=stack("cd_axial", ()),
+        seg_axial_area=stack("axial_area", ()),
         lumped_body=np.array([b for b, _ in lumped], dtype=np.intp),
         lumped_point=np.array([m["point"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 3),
         lumped_axes=np.array([m["axes"] for _, m in lumped], dtype=np.float64).reshape(len(lumped), 3, 3),

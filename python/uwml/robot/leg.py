@@ -102,6 +102,8 @@ class Leg(Robot):
                 raise ValueError(
                     f"links[{index}]: a uwml.Leg link has at most one rectangular segment; use uwml.Robot for several segments or circular sections"
                 )
+            if any(segment.cd_axial != 0.0 for segment in link.segments):
+                raise ValueError(f"links[{index}]: a uwml.Leg segment has no axial drag; use uwml.Robot for segments with cd_axial")
             if link.lumped is not None:
                 raise ValueError(f"links[{index}]: a uwml.Leg link has no lumped model (uwml.LumpedModel); use uwml.Robot for bluff bodies")
         self._from_chain(_core.Chain(joints, links))

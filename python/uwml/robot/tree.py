@@ -132,7 +132,15 @@ class Robot:
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
-        self._has_lumped = lumped > 0
+        # What the regressors' segment columns leave out (refused there rather than answered wrong).
+        self._without_columns = tuple(
+            what
+            for what, present in (
+                ("lumped models (uwml.LumpedModel)", lumped > 0),
+                ("axial drag (Segment.cd_axial)", any(segment.cd_axial != 0.0 for _, segment in owned)),
+            )
+            if present
+        )
         self._losses = _per_joint_losses(losses, len(joints))
         # The joints' own losses as an evaluation takes them: one object when they all share one.
         first = self._losses[0] if self._losses else None
@@ -502,11 +510,11 @@ class Robot:
     ) -> RobotRegressors:
         """Regressors of the drag and added-mass forces, one column per segment and normal
         direction, on the joints and on the base (:class:`RobotRegressors`). Arguments as for
-        :meth:`hydro`. Not for a robot with lumped models (:class:`uwml.LumpedModel`), whose
-        columns are not available yet: refused."""
-        if self._has_lumped:
+        :meth:`hydro`. Not for a robot with lumped models (:class:`uwml.LumpedModel`) or axial
+        drag, whose columns are not available yet: refused."""
+        if self._without_columns:
             raise ValueError(
-                "hydro_regressors: this robot's bodies carry lumped models (uwml.LumpedModel), whose regressors are not available "
+                f"hydro_regressors: this robot has {' and '.join(self._without_columns)}, whose regressors are not available "
                 "yet; the segments' columns alone would leave their forces out"
             )
         kirchhoff = _kirchhoff(added_mass)

@@ -66,6 +66,8 @@ pub fn arm_on_rov<T: RealField + Copy, const J: usize, const S: usize>() -> Robo
         section: Section::Circular { diameter: c(0.6) },
         cd: [c(0.9); 2],
         cm: [c(1.0); 2],
+        cd_axial: T::zero(),
+        axial_area: T::zero(),
     }; 15];
     for (i, &length) in lengths.iter().enumerate() {
         let diameter = 0.12 - 0.01 * i as f64;
@@ -78,6 +80,8 @@ pub fn arm_on_rov<T: RealField + Copy, const J: usize, const S: usize>() -> Robo
             section: Section::Circular { diameter: c(diameter) },
             cd: [c(1.2); 2],
             cm: [c(1.0); 2],
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
         };
         segments[2 + 2 * i] = RobotSegment {
             owner: Owner::Link(i),
@@ -88,6 +92,8 @@ pub fn arm_on_rov<T: RealField + Copy, const J: usize, const S: usize>() -> Robo
             section: Section::Rectangular { normals: [v(0.0, 1.0, 0.0), v(0.0, 0.0, 1.0)], widths: [c(0.05), c(0.08)] },
             cd: [c(2.0), c(2.1)],
             cm: [c(1.2), c(1.5)],
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
         };
     }
     let hull = RigidBody { mass: c(300.0), com: v(0.0, 0.0, -0.05), volume: c(0.29), cob: v(0.0, 0.0, 0.05) };

@@ -65,6 +65,8 @@ pub fn random_robot<const J: usize, const S: usize, const B: usize>(rng: &mut Rn
                 },
                 cd: if circular { [cd; 2] } else { [cd, 0.5 + 2.0 * rng.next().abs()] },
                 cm: if circular { [cm; 2] } else { [cm, 0.1 + rng.next().abs()] },
+                cd_axial: if rng.next() > 0.0 { 0.2 + rng.next().abs() } else { 0.0 },
+                axial_area: 0.002 + 0.01 * rng.next().abs(),
             });
         }
     }

@@ -133,7 +133,9 @@ static UwmlRobotSegmentF32 segment_f32(const UwmlRobotSegmentF64 *s) {
                                .section = s->section,
                                .length = (float)s->length,
                                .area = (float)s->area,
-                               .diameter = (float)s->diameter};
+                               .diameter = (float)s->diameter,
+                               .cd_axial = (float)s->cd_axial,
+                               .axial_area = (float)s->axial_area};
     to_f32(s->start, out.start, 3);
     to_f32(s->axis, out.axis, 3);
     to_f32(s->normals[0], out.normals[0], 3);

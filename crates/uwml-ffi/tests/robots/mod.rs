@@ -455,6 +455,8 @@ pub fn core_robot<T: Real>(params: &Params) -> Robot<T, J, S> {
             },
             cd: s.cd.map(T::narrow),
             cm: s.cm.map(T::narrow),
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
         })
         .collect();
     let base = params.base.as_ref().map_or(RigidBody::empty(), body);
@@ -570,6 +572,8 @@ pub fn params32(p: &Params) -> Params32 {
                 diameter: f32::narrow(s.diameter),
                 cd: s.cd.map(f32::narrow),
                 cm: s.cm.map(f32::narrow),
+                cd_axial: f32::narrow(s.cd_axial),
+                axial_area: f32::narrow(s.axial_area),
             })
             .collect(),
     }
