@@ -241,7 +241,7 @@ def _compile_error(exc: ValueError, spec: Any, fmt: str, source: str) -> Descrip
     return DescriptionError(f"{source}: {where}: MuJoCo cannot compile this {fmt} file: {clipped(message)}")
 
 
-def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str) -> Any:
+def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str, floating: bool = False) -> Any:
     mujoco = _mujoco()
     source = str(path)
     fmt = scan(path, what)  # the XML as written: files, sizes, names, numbers (uwml.io._description_xml)
@@ -278,6 +278,8 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
     for mesh in list(spec.meshes):
         if mesh.name not in kept_meshes:
             spec.delete(mesh)
+    if floating:
+        _float_root(spec, source)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -287,6 +289,20 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
     if caught:  # MuJoCo's warnings while compiling ("inertia matrix too close to singular"): a broken model
         raise DescriptionError(f"{source}: MuJoCo warns while compiling this {fmt} file: {clipped(str(caught[0].message))}")
     return model
+
+
+def _float_root(spec: Any, source: str) -> None:
+    """The root body on a free joint (unless it has one already)."""
+    mujoco = _mujoco()
+    roots = [body for body in spec.worldbody.bodies]
+    if len(roots) != 1:
+        raise DescriptionError(f"{source}: the world must hold exactly one root body (the robot's base) to float it")
+    joints = list(roots[0].joints)
+    if any(joint.type == mujoco.mjtJoint.mjJNT_FREE for joint in joints):
+        return
+    if joints:
+        raise DescriptionError(f"{source}: the root body {quoted(roots[0].name)} hangs from the world by a joint: it cannot also float")
+    roots[0].add_freejoint()
 
 
 def urdf_parts(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> DescriptionParts:
@@ -301,14 +317,21 @@ def mjcf_parts(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | Non
     return _from_model(_spec(path, "MJCF", file.links, str(hydro)), file, str(path), str(hydro))
 
 
-def model_and_parts(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> tuple[Any, DescriptionParts]:
+def model_and_parts(
+    path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None, floating: bool | None = None
+) -> tuple[Any, DescriptionParts]:
     """The compiled ``mujoco.MjModel`` of a URDF (``.urdf``) or MJCF (any other suffix) file, as
     this module reads it (visual geoms and their meshes removed, so absent visual mesh files do
     not matter; fixed links kept as bodies; the root kept with its inertial), and its robot in
-    parts: what a simulation of the description needs (:mod:`uwml.sim.mujoco`)."""
+    parts: what a simulation of the description needs (:mod:`uwml.sim.mujoco`). ``floating``:
+    the root body on a free joint (a vehicle floating freely), keeping the description's own
+    masses and inertias; None (default): the hydro file's ``[base] floating`` (default false).
+    A root that is already free stays so."""
     what = "URDF" if str(path).lower().endswith(".urdf") else "MJCF"
     file = HydroFile() if hydro is None else read_hydro(hydro)
-    model = _spec(path, what, file.links, str(hydro))
+    if floating is not None and not isinstance(floating, bool):
+        raise TypeError(f"floating must be true, false or None, got {type(floating).__name__}")
+    model = _spec(path, what, file.links, str(hydro), file.floating if floating is None else floating)
     return model, _from_model(model, file, str(path), str(hydro))
 
 

@@ -72,7 +72,11 @@ uses unless given another)::
     gravity = 9.81     # m/s², 9.7 to 9.9 (default 9.81)
 
 A density or gravity outside those ranges is taken for a unit mistake (g/cm³, g, ft/s²) and is an
-error; another fluid or planet is a :class:`uwml.Water` given in code.
+error; another fluid or planet is a :class:`uwml.Water` given in code. ``[base]`` says how a
+simulation holds the robot's base (:meth:`uwml.sim.mujoco.Simulation.from_file`)::
+
+    [base]
+    floating = true    # the root body on a free joint: a vehicle floating freely (default false)
 
 The file itself: UTF-8 text (other bytes are an error naming the offset), a regular file (a
 directory, a named pipe or a device is refused, not waited on), valid TOML (arrays nested too
@@ -136,6 +140,8 @@ class HydroFile:
     joints: dict[str, JointLosses] = field(default_factory=dict)
     water: Water | None = None
     source: str = "<string>"
+    #: ``[base] floating``: simulate the description's root body on a free joint.
+    floating: bool = False
 
 
 def _coefficient(value: Any) -> float | tuple[float, float]:
@@ -205,7 +211,7 @@ def _toml(text: str, source: str) -> dict[str, Any]:
 def _hydro_loads(text: str, source: str) -> HydroFile:
     document = _toml(text, source)
     top = _Reader(source, "top level", document, DescriptionError)
-    top.check_keys(("links", "joints", "water"))
+    top.check_keys(("links", "joints", "water", "base"))
     links: dict[str, Any] = top.get(
         "links",
         lambda v: v if isinstance(v, dict) else _not("a table [links.NAME]"),
@@ -254,7 +260,12 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
     )
     losses = {name: _losses(source, _table("joints", name), table, DescriptionError) for name, table in joints.items()}
     water = _hydro_water(source, document["water"]) if "water" in document else None
-    return HydroFile(links=out, joints=losses, water=water, source=source)
+    floating = False
+    if "base" in document:
+        base = _Reader(source, "[base]", document["base"], DescriptionError)
+        base.check_keys(("floating",))
+        floating = base.get("floating", _boolean, "true or false", required=False, default=False)
+    return HydroFile(links=out, joints=losses, water=water, source=source, floating=floating)
 
 
 def read_hydro(path: str | os.PathLike[str]) -> HydroFile:

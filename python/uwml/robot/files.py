@@ -41,10 +41,13 @@ def from_mujoco(model: Any, hydro: str | os.PathLike[str] | None = None) -> Robo
     return Robot.from_mujoco(model, hydro)
 
 
-def model_and_robot(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> tuple[Any, Robot]:
+def model_and_robot(
+    path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None, floating: bool | None = None
+) -> tuple[Any, Robot]:
     """The compiled ``mujoco.MjModel`` of a URDF (``.urdf``) or MJCF (any other suffix) file, as
     :mod:`uwml.io.descriptions` reads it (visual geoms and their meshes removed, so absent visual
     mesh files do not matter; fixed links kept as bodies; the root kept with its inertial), and
-    its :class:`uwml.Robot`: what a simulation of the description needs (:mod:`uwml.sim.mujoco`)."""
-    model, parts = descriptions.model_and_parts(path, hydro)
+    its :class:`uwml.Robot`: what a simulation of the description needs (:mod:`uwml.sim.mujoco`).
+    ``floating``: the root on a free joint (None: the hydro file's ``[base] floating``)."""
+    model, parts = descriptions.model_and_parts(path, hydro, floating)
     return model, parts.build(Robot)

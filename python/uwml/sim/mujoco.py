@@ -65,8 +65,7 @@ stages as MuJoCo's own RK4 does, is second order.
 from __future__ import annotations
 
 import copy
-import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -82,6 +81,7 @@ from ..robot.files import model_and_robot
 from ..robot.results import BaseWrench, RobotEnvironment
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
+from .mjcf import mjcf_of
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 
@@ -124,111 +124,6 @@ def _number(value: Any, name: str) -> float:
         return float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be one number, got {shown(value)}") from None
-
-
-def _segment_solid(segment: Any) -> tuple[float, FloatArray, FloatArray]:
-    """A segment as a uniform solid: its volume, centre and unit-mass inertia about the centre."""
-    u = np.asarray(segment.axis, dtype=np.float64)
-    centre = np.asarray(segment.start, dtype=np.float64) + u * (segment.length / 2.0)
-    length = segment.length
-    if segment.section == "circular":
-        radius = segment.diameter / 2.0
-        axial, across = radius**2 / 2.0, (3.0 * radius**2 + length**2) / 12.0
-        inertia = across * (np.eye(3) - np.outer(u, u)) + axial * np.outer(u, u)
-        return math.pi * radius**2 * length, centre, inertia
-    n0, n1 = (np.asarray(n, dtype=np.float64) for n in segment.normals)
-    # Drag along n_k uses the extent along the other normal: widths = (along n1, along n0).
-    a, b, c = length, segment.widths[1], segment.widths[0]
-    frame = np.column_stack([u, n0, n1])
-    inertia = frame @ np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) @ frame.T / 12.0
-    return a * b * c, centre, inertia
-
-
-def _body_inertia(body: Any) -> FloatArray:
-    """A body's inertia about its centre of mass [kg·m²], its mass spread uniformly over its
-    segments' solids (a sphere of its volume, or of 0.05 m radius, without segments)."""
-    com = np.asarray(body.com, dtype=np.float64)
-    solids = [_segment_solid(s) for s in body.segments]
-    total = sum(volume for volume, _, _ in solids)
-    if not solids or total <= 0.0:
-        radius = (3.0 * body.volume / (4.0 * math.pi)) ** (1.0 / 3.0) if body.volume > 0.0 else 0.05
-        sphere: FloatArray = np.eye(3) * (0.4 * body.mass * radius**2)
-        return sphere
-    inertia = np.zeros((3, 3))
-    for volume, centre, unit in solids:
-        mass = body.mass * volume / total
-        d = centre - com
-        inertia += mass * unit + mass * (d @ d * np.eye(3) - np.outer(d, d))
-    return inertia
-
-
-def mjcf_of(robot: Robot, *, floating: bool = False, timestep: float = 1e-3, gravity: float | None = None) -> str:
-    """An MJCF model of ``robot`` for :class:`Simulation`: one body per link in uwml's frames
-    (parallel to the base at ``q = 0``), hinge and slide joints, each body's mass and centre of
-    mass, its inertia that of its mass spread uniformly over its segments' solids (boxes and
-    cylinders; without segments, a sphere of its volume), and its segments as geoms without
-    contacts. ``floating``: the base on a free joint (it then needs a mass). Gravity: the
-    robot's water's."""
-    g = robot.water.gravity if gravity is None else gravity
-    base = robot.base
-    lines = [
-        '<mujoco model="uwml_robot">',
-        f'  <option timestep="{timestep!r}" gravity="0 0 {-g!r}"/>',
-        "  <worldbody>",
-        '    <body name="base">',
-    ]
-    if floating:
-        if base is None or base.mass <= 0.0:
-            raise ValueError("a floating base needs a base body with a mass")
-        lines.append('      <freejoint name="base_free"/>')
-
-    def number(values: Any) -> str:
-        return " ".join(repr(float(x)) for x in values)
-
-    def body_lines(body: Any, indent: str) -> list[str]:
-        out = []
-        if body.mass > 0.0:
-            inertia = _body_inertia(body)
-            full = [inertia[0, 0], inertia[1, 1], inertia[2, 2], inertia[0, 1], inertia[0, 2], inertia[1, 2]]
-            out.append(f'{indent}<inertial pos="{number(body.com)}" mass="{body.mass!r}" fullinertia="{number(full)}"/>')
-        for segment in body.segments:
-            _, centre, _ = _segment_solid(segment)
-            u = np.asarray(segment.axis, dtype=np.float64)
-            if segment.section == "circular":
-                ends = np.concatenate([centre - u * segment.length / 2.0, centre + u * segment.length / 2.0])
-                out.append(
-                    f'{indent}<geom type="cylinder" fromto="{number(ends)}" size="{segment.diameter / 2.0!r}" contype="0" conaffinity="0"/>'
-                )
-            else:
-                n0 = np.asarray(segment.normals[0], dtype=np.float64)
-                size = [segment.length / 2.0, segment.widths[1] / 2.0, segment.widths[0] / 2.0]
-                axes = number(np.concatenate([u, n0]))
-                out.append(
-                    f'{indent}<geom type="box" pos="{number(centre)}" xyaxes="{axes}" size="{number(size)}" contype="0" conaffinity="0"/>'
-                )
-        return out
-
-    if base is not None:
-        lines += body_lines(base, "      ")
-    children: dict[int, list[int]] = {}
-    for i, joint in enumerate(robot.joints):
-        children.setdefault(-1 if joint.parent is None else joint.parent, []).append(i)
-
-    def emit(parent: int, depth: int) -> None:
-        for i in children.get(parent, []):
-            joint, link, pad = robot.joints[i], robot.links[i], "  " * depth
-            lines.append(f'{pad}<body name="{link.name or f"link{i}"}" pos="{number(joint.origin)}">')
-            kind = "slide" if joint.kind == "prismatic" else "hinge"
-            lines.append(f'{pad}  <joint name="{joint.name or f"joint{i}"}" type="{kind}" axis="{number(joint.axis)}"/>')
-            if link.mass <= 0.0:
-                raise ValueError(f"link {i} needs a mass > 0 to move in a simulation")
-            lines.extend(body_lines(link, pad + "  "))
-            emit(i, depth + 1)
-            lines.append(f"{pad}</body>")
-
-    emit(-1, 3)
-    lines += ["    </body>", "  </worldbody>", "</mujoco>"]
-    return "\n".join(lines)
 
 
 class Simulation:
@@ -425,11 +320,16 @@ class Simulation:
         return self._data
 
     @classmethod
-    def from_file(cls, path: Any, hydro: Any = None, **options: Any) -> Simulation:
+    def from_file(cls, path: Any, hydro: Any = None, *, floating: bool | None = None, **options: Any) -> Simulation:
         """The simulation of a URDF or MJCF file (with its hydro file), read as
-        :func:`uwml.robot.files.model_and_robot` reads it (absent visual meshes do not matter);
-        ``options`` as for the constructor."""
-        model, robot = model_and_robot(path, hydro)
+        :func:`uwml.robot.files.model_and_robot` reads it: the description's own masses and
+        inertias; visual geoms dropped (absent visual meshes do not matter), and a collision mesh
+        dropped too where the hydro file describes its link's geometry (``volume`` or ``dry``)
+        and the link's mass comes from its inertial (always in a URDF), so no mesh file is needed
+        then (the link has no contacts). ``floating``: the root
+        body on a free joint, a vehicle floating freely (None: the hydro file's ``[base]
+        floating``, default false). ``options`` as for the constructor."""
+        model, robot = model_and_robot(path, hydro, floating)
         return cls(model, robot, **options)
 
     # --- the map between uwml's coordinates and MuJoCo's degrees of freedom -------------------
@@ -550,9 +450,44 @@ class Simulation:
         mj.mj_projectConstraint(m, d)
         mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
 
-    def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
+    def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None, wrenches: Mapping[str, ArrayLike] | None = None) -> None:
         """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
-        generalized forces ``qfrc`` (as :meth:`forward`)."""
+        generalized forces ``qfrc`` (as :meth:`forward`), and ``wrenches`` on bodies by name
+        (thrusters, a tether): each six numbers, a force [N] and a moment [N·m] in world
+        components at the body's centre of mass (MuJoCo's ``data.xfrc_applied``), held for this
+        step only: those bodies' rows of ``xfrc_applied`` are restored after it."""
+        if wrenches is None:
+            self._step(torque, qfrc)
+            return
+        rows = self._wrench_rows(wrenches)
+        d = self.data
+        kept = {body: d.xfrc_applied[body].copy() for body in rows}
+        try:
+            for body, wrench in rows.items():
+                d.xfrc_applied[body] = wrench
+            self._step(torque, qfrc)
+        finally:
+            for body, row in kept.items():
+                d.xfrc_applied[body] = row
+
+    def _wrench_rows(self, wrenches: Mapping[str, ArrayLike]) -> dict[int, FloatArray]:
+        """``wrenches`` by body id, checked."""
+        if not isinstance(wrenches, Mapping):
+            raise TypeError(f"wrenches must map body names to 6 numbers, got {type(wrenches).__name__}")
+        rows: dict[int, FloatArray] = {}
+        m = self.model
+        for name, value in wrenches.items():
+            body = self._mj.mj_name2id(m, self._mj.mjtObj.mjOBJ_BODY, name) if isinstance(name, str) else -1
+            if body < 1:
+                names = ", ".join(m.body(i).name for i in range(1, m.nbody))
+                raise ValueError(f"wrenches: no body named {name!r} (the model's bodies: {names})")
+            wrench = np.asarray(value, dtype=np.float64)
+            if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
+                raise ValueError(f"wrenches[{name!r}] must be 6 finite numbers (force [N], moment [N·m], world components), got {value!r}")
+            rows[body] = wrench
+        return rows
+
+    def _step(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d = self._mj, self.model, self.data
         if self.integrator == "euler":
             self.forward(torque, qfrc)
