@@ -82,6 +82,7 @@ from ..robot.results import BaseWrench, RobotEnvironment
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
 from .mjcf import mjcf_of
+from .prescribed import Trajectory, imposing_torque
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 
@@ -252,6 +253,9 @@ class Simulation:
             tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
+        #: The prescribed joints' degrees of freedom, qpos entries and motion (:meth:`prescribe`).
+        self._prescribed: tuple[NDArray[np.int64], NDArray[np.int64], Trajectory] | None = None
+        self._prescribed_torque = np.zeros(0)
         try:  # a current so strong that the water's forces overflow is outside the physics
             self.environment()
         except ValueError as error:
@@ -449,6 +453,16 @@ class Simulation:
         mj.mj_factorM(m, d)
         mj.mj_projectConstraint(m, d)
         mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
+        if self._prescribed is not None:
+            # The prescribed joints' accelerations imposed by the torque that gives them, added to
+            # the applied forces and the pass run again, so that every stage (constraints,
+            # MuJoCo's implicit damping) sees it (sim/prescribed.py).
+            dofs, _, motion = self._prescribed
+            _, _, target = motion(float(d.time))
+            torque = imposing_torque(mj, m, d, dofs, target)
+            d.qfrc_applied[dofs] += torque
+            self._prescribed_torque = torque
+            mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
 
     def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None, wrenches: Mapping[str, ArrayLike] | None = None) -> None:
         """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
@@ -487,7 +501,55 @@ class Simulation:
             rows[body] = wrench
         return rows
 
+    def prescribe(self, joints: Sequence[str | int], motion: Trajectory | None) -> None:
+        """Make ``joints`` (names or indices of the robot's joints) follow ``motion`` (a
+        :class:`uwml.sim.prescribed.Trajectory` of as many joints) exactly from now on, their
+        accelerations imposed while the rest of the robot, the floating base above all,
+        responds through ``M + M_A`` (docs/model.md section 12.4); ``None`` frees them again. The
+        joints are set on the motion at the data's time at once, and after every step; the
+        torque that imposed it is :attr:`prescribed_torque`."""
+        if motion is None:
+            self._prescribed, self._prescribed_torque = None, np.zeros(0)
+            return
+        if not isinstance(motion, Trajectory):
+            raise TypeError(f"motion must be a uwml.sim.prescribed.Trajectory or None, got {type(motion).__name__}")
+        names = [joint.name for joint in self.robot.joints]
+        indices = []
+        for joint in joints:
+            if isinstance(joint, str) and joint in names:
+                indices.append(names.index(joint))
+            elif isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
+                indices.append(joint)
+            else:
+                raise ValueError(
+                    f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})"
+                )
+        if len(set(indices)) != len(indices) or not indices:
+            raise ValueError(f"joints must name each prescribed joint once, got {list(joints)!r}")
+        if motion.joints != len(indices):
+            raise ValueError(f"the motion is of {motion.joints} joints, {len(indices)} are prescribed")
+        dofs, qpos = self._joint_dofs[indices], self._joint_qpos[indices]
+        q, qd, _ = motion(float(self.data.time))  # refused here if the data's time is outside the motion
+        self._prescribed = (dofs, qpos, motion)
+        self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
+
+    @property
+    def prescribed_torque(self) -> FloatArray:
+        """The generalized force that imposed the prescribed joints' accelerations at the last
+        forward pass, one per prescribed joint [N·m or N] (empty without a prescribed motion):
+        what their motors deliver, beyond the other forces on those joints."""
+        return self._prescribed_torque.copy()
+
     def _step(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
+        self._integrate(torque, qfrc)
+        if self._prescribed is not None:
+            # On the motion, exactly (the integration of imposed accelerations drifts by its error).
+            _, qpos, motion = self._prescribed
+            dofs = self._prescribed[0]
+            q, qd, _ = motion(float(self.data.time))
+            self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
+
+    def _integrate(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d = self._mj, self.model, self.data
         if self.integrator == "euler":
             self.forward(torque, qfrc)
