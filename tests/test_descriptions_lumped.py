@@ -155,14 +155,3 @@ def test_describe_shows_a_lumped_model(tmp_path: Path) -> None:
     text = describe(uwml.Robot.from_mjcf(DATA / "arm.xml", hydro))
     assert "lumped models" in text and "M_A diag (6.36, 7.12, 18.68, 0.189, 0.135, 0.222)" in text and "D_Q (141, 217, 190" in text
     assert "lumped models" not in describe(uwml.Robot.from_mjcf(DATA / "arm.xml"))
-
-
-def test_the_firmware_export_refuses_a_robot_with_lumped_models_rather_than_drop_them(tmp_path: Path) -> None:
-    from uwml.export import to_c, to_rust
-
-    hydro = tmp_path / "h.toml"
-    hydro.write_text(lumped_table("hull", None, np.eye(6), np.zeros((6, 6)), [0.0] * 6))
-    robot = uwml.Robot.from_mjcf(DATA / "arm.xml", hydro)
-    for export in (to_c, to_rust):
-        with pytest.raises(ValueError, match="lumped models .* which the firmware export does not write yet"):
-            export(robot)

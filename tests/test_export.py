@@ -93,6 +93,23 @@ pub mod uwml_core {
     pub mod nalgebra {
         pub struct Vector3<T>([T; 3]);
         impl<T> Vector3<T> { pub const fn new(x: T, y: T, z: T) -> Self { Vector3([x, y, z]) } }
+        pub struct Matrix3<T>([T; 9]);
+        impl<T> Matrix3<T> {
+            #[allow(clippy::too_many_arguments)]
+            pub const fn new(a: T, b: T, c: T, d: T, e: T, f: T, g: T, h: T, i: T) -> Self { Matrix3([a, b, c, d, e, f, g, h, i]) }
+        }
+        pub struct Matrix6<T>([[T; 6]; 6]);
+        impl<T> Matrix6<T> {
+            #[allow(clippy::too_many_arguments)]
+            pub const fn new(
+                a0: T, a1: T, a2: T, a3: T, a4: T, a5: T, b0: T, b1: T, b2: T, b3: T, b4: T, b5: T,
+                c0: T, c1: T, c2: T, c3: T, c4: T, c5: T, d0: T, d1: T, d2: T, d3: T, d4: T, d5: T,
+                e0: T, e1: T, e2: T, e3: T, e4: T, e5: T, f0: T, f1: T, f2: T, f3: T, f4: T, f5: T,
+            ) -> Self {
+                Matrix6([[a0, a1, a2, a3, a4, a5], [b0, b1, b2, b3, b4, b5], [c0, c1, c2, c3, c4, c5],
+                         [d0, d1, d2, d3, d4, d5], [e0, e1, e2, e3, e4, e5], [f0, f1, f2, f3, f4, f5]])
+            }
+        }
     }
     use self::nalgebra::Vector3;
     pub enum JointKind { Revolute, Prismatic }
@@ -100,6 +117,10 @@ pub mod uwml_core {
     pub struct TreeJoint<T> { pub parent: Option<usize>, pub kind: JointKind, pub origin: Vector3<T>, pub axis: Vector3<T> }
     pub struct RigidBody<T> { pub mass: T, pub com: Vector3<T>, pub volume: T, pub cob: Vector3<T> }
     pub enum Section<T> { Circular { diameter: T }, Rectangular { normals: [Vector3<T>; 2], widths: [T; 2] } }
+    pub struct LumpedBody<T> {
+        pub owner: Owner, pub point: Vector3<T>, pub axes: nalgebra::Matrix3<T>, pub added_mass: nalgebra::Matrix6<T>,
+        pub linear_damping: nalgebra::Matrix6<T>, pub quadratic_damping: [T; 6],
+    }
     pub struct RobotSegment<T> {
         pub owner: Owner, pub start: Vector3<T>, pub axis: Vector3<T>, pub length: T, pub area: T,
         pub section: Section<T>, pub cd: [T; 2], pub cm: [T; 2], pub cd_axial: T, pub axial_area: T,
@@ -190,3 +211,56 @@ def test_the_c_prefix_is_an_ascii_identifier(prefix: str) -> None:
     with pytest.raises(ValueError, match="prefix must be an upper-case C identifier"):
         to_c(arm_on_rov(), prefix=prefix)
     assert "#define _ARM_2_N_JOINTS 7u" in to_c(arm_on_rov(), prefix="_ARM_2")
+
+
+def with_hull() -> uwml.Robot:
+    """The arm on its ROV with a lumped model on the hull (turned axes, a coupled added mass)."""
+    import dataclasses
+
+    arm = arm_on_rov()
+    added = np.diag([190.0, 360.0, 420.0, 12.0, 30.0, 25.0])
+    added[0, 4] = added[4, 0] = 8.0
+    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    lumped = uwml.LumpedModel(
+        point=(0.0, 0.0, 0.05), added_mass=added, linear_damping=np.diag([120.0, 150, 160, 20, 30, 25]),
+        quadratic_damping=[420.0, 600, 700, 30, 60, 50], axes=turn,
+    )  # fmt: skip
+    assert arm.base is not None
+    return uwml.Robot(arm.joints, arm.links, base=dataclasses.replace(arm.base, lumped=lumped), water=arm.water)
+
+
+def test_a_lumped_model_is_exported_for_the_firmware(tmp_path: Path) -> None:
+    robot = with_hull()
+    c, rust = to_c(robot, prefix="ARM"), to_rust(robot)
+    assert "#define ARM_N_LUMPED 1u" in c and "static const UwmlLumpedF64 ARM_LUMPED[1]" in c and ".owner = UWML_BASE" in c
+    assert "pub const N_LUMPED: usize = 1;" in rust and "LumpedBody { owner: Owner::Base" in rust and "Matrix6::new(190.0," in rust
+    for number in (8.0, 420.0, 0.05, -1.0, 700.0):
+        assert repr(number) in c and repr(number) in rust
+    # Without lumped models, nothing about them (the arm's checked-in exports stay as they were).
+    assert "LUMPED" not in to_c(arm_on_rov()) and "LumpedBody" not in to_rust(arm_on_rov())
+    # More than the C API's robot holds: refused, not cut.
+    import dataclasses
+
+    many = uwml.Robot(
+        robot.joints, [dataclasses.replace(link, lumped=uwml.LumpedModel()) for link in robot.links], base=robot.base, water=robot.water
+    )
+    with pytest.raises(ValueError, match="at most 4 lumped models"):
+        to_c(many)
+    if shutil.which("gcc") is not None:
+        header = tmp_path / "arm.h"
+        header.write_text(c)
+        unit = tmp_path / "unit.c"
+        unit.write_text(
+            '#include "arm.h"\nunsigned long used(void) { return sizeof ARM_LUMPED + ARM_N_LUMPED + sizeof ARM_SEGMENTS + sizeof ARM_JOINTS + sizeof ARM_LINKS; }\n'
+        )
+        include = ROOT / "crates/uwml-ffi/include"
+        built = _run(
+            ["gcc", "-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic", "-I", str(include), "-c", unit.name, "-o", "unit.o"], tmp_path
+        )
+        assert built.returncode == 0, built.stderr
+    if shutil.which("rustc") is not None:
+        lib = tmp_path / "lumped.rs"
+        lib.write_text(UWML_CORE_STUB + rust)
+        command = ["rustc", "--edition", "2021", "--crate-type", "lib", "--emit", "metadata", "-D", "warnings", "--out-dir", str(tmp_path)]
+        built = _run([*command, lib.name], tmp_path)
+        assert built.returncode == 0, built.stderr

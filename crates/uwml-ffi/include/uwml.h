@@ -14,8 +14,8 @@
  * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
  *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  6152 bytes,
  *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  3208 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 29032 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 15120 bytes.
+ *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 32008 bytes,
+ *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 16656 bytes.
  * Functions are reentrant: different legs and robots may be used from different threads; one
  * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
  * evaluation's workspace, so it is evaluated by one thread at a time.
@@ -180,14 +180,19 @@
 #define UWML_ROBOT_MAX_SEGMENTS 32
 
 /**
+ * The most lumped models (docs/model.md section 12.1) a robot of the `uwml_robot_*` API may carry.
+ */
+#define UWML_ROBOT_MAX_LUMPED 4
+
+/**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 3628
+#define UWML_ROBOT_F64_WORDS 4000
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 1889
+#define UWML_ROBOT_F32_WORDS 2081
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
@@ -1285,6 +1290,69 @@ typedef struct UwmlJointEnvironmentF32 {
     float total;
 } UwmlJointEnvironmentF32;
 
+/**
+ * Fossen's lumped model of one body (docs/model.md section 12.1): a hull's, a bulky link's. Every
+ * matrix is row-major, ordered `(x, y, z, roll, pitch, yaw)`, linear first, in the model's axes,
+ * about its point. Magnitudes as they act: SNAME's `X_u̇` is `-added_mass[0][0]`.
+ */
+typedef struct UwmlLumpedF64 {
+    /**
+     * The body: a link (0 to n_joints - 1), or `UWML_BASE` (-1).
+     */
+    int32_t owner;
+    /**
+     * The reference point P in the body's frame [m].
+     */
+    double point[3];
+    /**
+     * The model's axes in the body's frame: a rotation whose columns are its x, y, z (row-major);
+     * all zero (as a zeroed struct has it): the body's own axes.
+     */
+    double axes[3][3];
+    /**
+     * M_A about P: symmetric, positive semi-definite [kg, kg·m, kg·m²].
+     */
+    double added_mass[6][6];
+    /**
+     * D_L about P, its symmetric part positive semi-definite [N·s/m, N·s, N·m·s].
+     */
+    double linear_damping[6][6];
+    /**
+     * The quadratic damping d_i >= 0 of -d_i |nu_i| nu_i.
+     */
+    double quadratic_damping[6];
+} UwmlLumpedF64;
+
+/**
+ * `UwmlLumpedF64` in f32.
+ */
+typedef struct UwmlLumpedF32 {
+    /**
+     * The body: a link, or `UWML_BASE`.
+     */
+    int32_t owner;
+    /**
+     * The reference point [m].
+     */
+    float point[3];
+    /**
+     * The model's axes (all zero: the body's).
+     */
+    float axes[3][3];
+    /**
+     * M_A about the point.
+     */
+    float added_mass[6][6];
+    /**
+     * D_L about the point.
+     */
+    float linear_damping[6][6];
+    /**
+     * The quadratic damping.
+     */
+    float quadratic_damping[6];
+} UwmlLumpedF32;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -1840,6 +1908,35 @@ int32_t uwml_robot_environment_f32(struct UwmlRobotF32 *robot,
                                    struct UwmlJointEnvironmentF32 *joint_environment,
                                    struct UwmlBaseWrenchF32 *base_wrench,
                                    struct UwmlError *error);
+
+/**
+ * Gives `robot`'s bodies the `count` lumped models `models` (docs/model.md section 12.1; at most
+ * `UWML_ROBOT_MAX_LUMPED`, one per body), replacing any it had (`count` 0: none; `models` may then
+ * be NULL). Checked as the core checks them (`UWML_ERR_NOT_SYMMETRIC`,
+ * `UWML_ERR_NOT_POSITIVE_SEMIDEFINITE`, `UWML_ERR_NEGATIVE`, `UWML_ERR_TOO_LARGE`, ...; field
+ * e.g. "lumped.added_mass", index the model's); on error the robot is left as it was. Its forces
+ * join every later evaluation: the damping the drag, the rest the added mass.
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `models` is NULL or valid for reads of `count` `UwmlLumpedF64`s; `error` is
+ * NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ */
+int32_t uwml_robot_set_lumped_f64(struct UwmlRobotF64 *robot,
+                                  const struct UwmlLumpedF64 *models,
+                                  uint32_t count,
+                                  struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_lumped_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_set_lumped_f64`, with the f32 types.
+ */
+int32_t uwml_robot_set_lumped_f32(struct UwmlRobotF32 *robot,
+                                  const struct UwmlLumpedF32 *models,
+                                  uint32_t count,
+                                  struct UwmlError *error);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -108,10 +108,12 @@ const _: () = {
 pub const UWML_ROBOT_MAX_JOINTS: usize = 16;
 /// The most segments a robot of the `uwml_robot_*` API may have (on all bodies together).
 pub const UWML_ROBOT_MAX_SEGMENTS: usize = 32;
+/// The most lumped models (docs/model.md section 12.1) a robot of the `uwml_robot_*` API may carry.
+pub const UWML_ROBOT_MAX_LUMPED: usize = 4;
 /// Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
-pub const UWML_ROBOT_F64_WORDS: usize = 3628;
+pub const UWML_ROBOT_F64_WORDS: usize = 4000;
 /// Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
-pub const UWML_ROBOT_F32_WORDS: usize = 1889;
+pub const UWML_ROBOT_F32_WORDS: usize = 2081;
 /// `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
 pub const UWML_BASE: i32 = -1;
 /// `UwmlTreeJoint*.kind`: turns its link about the axis by q [rad]; the force is a torque [N·m].
@@ -140,7 +142,9 @@ const _: () = {
     assert!(offset_of!(UwmlRobotF32, opaque) == size_of::<u64>());
     assert!(size_of::<robot::Block<f32>>() <= size_of::<[u64; UWML_ROBOT_F32_WORDS]>());
     assert!(align_of::<robot::Block<f32>>() <= align_of::<u64>());
-    assert!(robot::J == UWML_ROBOT_MAX_JOINTS && robot::S == UWML_ROBOT_MAX_SEGMENTS);
+    assert!(
+        robot::J == UWML_ROBOT_MAX_JOINTS && robot::S == UWML_ROBOT_MAX_SEGMENTS && robot::B == UWML_ROBOT_MAX_LUMPED
+    );
 };
 
 /// What went wrong, for the optional last argument of most functions (NULL to skip it).

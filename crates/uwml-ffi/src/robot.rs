@@ -7,11 +7,11 @@
 //! by value, outputs are written at the end, and nothing is written on error (except NaN
 //! forces for a non-finite joint state).
 
-use uwml_core::nalgebra::{RealField, Vector3};
+use uwml_core::nalgebra::{Matrix3, Matrix6, RealField, Vector3};
 use uwml_core::{
     AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointForces, JointKind,
-    JointLoss, JointLosses, LossState, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
-    TreeJoint, Water, robot_hydro,
+    JointLoss, JointLosses, LossState, LumpedBody, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment,
+    Section, TreeJoint, Water, robot_hydro,
 };
 
 use crate::imp::{Failure, check_conditions, check_overflow, joint_slot, non_null, read_one};
@@ -20,22 +20,24 @@ use crate::{
     UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR,
     UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32,
     UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointEnvironmentF32, UwmlJointEnvironmentF64, UwmlJointForcesF32,
-    UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlRobotF32, UwmlRobotF64,
-    UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64,
+    UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlLumpedF32, UwmlLumpedF64, UwmlRobotF32,
+    UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64,
 };
 
 /// The joint capacity of the C API's robot.
 pub(crate) const J: usize = 16;
 /// The segment capacity of the C API's robot.
 pub(crate) const S: usize = 32;
+/// The lumped-model capacity of the C API's robot (`UWML_ROBOT_MAX_LUMPED`).
+pub(crate) const B: usize = 4;
 
 /// A robot with everything its evaluation takes besides the joint state and a workspace: the
 /// water, the added-mass form and the joints' losses. The robot API's block holds one of up to
 /// `J` joints and `S` segments; the leg API's leg, one of 3 and 3 (the leg API is this API
 /// behind other arguments).
 #[derive(Clone, Copy)]
-pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize> {
-    pub(crate) robot: Robot<T, JM, SM>,
+pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize, const BM: usize = 0> {
+    pub(crate) robot: Robot<T, JM, SM, BM>,
     pub(crate) water: Water<T>,
     /// How the added-mass forces depend on the velocities (`uwml_robot_set_added_mass_form_*`):
     /// `UWML_ADDED_MASS_KIRCHHOFF` or else Morison's, kept as the C constant so that every bit
@@ -50,14 +52,14 @@ pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize> {
 
 /// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`.
 pub(crate) struct Block<T: RealField + Copy> {
-    model: Model<T, J, S>,
+    model: Model<T, J, S, B>,
     /// The workspace and results of the last evaluation.
     data: RobotData<T, J>,
 }
 
-impl<T: RealField + uwml_core::Real, const JM: usize, const SM: usize> Model<T, JM, SM> {
+impl<T: RealField + uwml_core::Real, const JM: usize, const SM: usize, const BM: usize> Model<T, JM, SM, BM> {
     /// `robot` in `water`, with Morison's added mass and no joint losses.
-    pub(crate) const fn new(robot: Robot<T, JM, SM>, water: Water<T>) -> Self {
+    pub(crate) const fn new(robot: Robot<T, JM, SM, BM>, water: Water<T>) -> Self {
         Self { robot, water, form: UWML_ADDED_MASS_MORISON, losses: [None; JM], states: [None; JM] }
     }
 
@@ -172,6 +174,7 @@ pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
     type BaseWrench: Copy;
     type LossParams: Copy;
     type JointEnvironment: Copy;
+    type Lumped: Copy;
     /// The tag word of a robot written by this library ("UWMLRF64" / "UWMLRF32" in ASCII).
     const TAG: u64;
     /// # Errors
@@ -195,6 +198,9 @@ pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
     /// A joint's forces and losses; `total` is the core's `(hydro total + visc) + seal`, as
     /// `EnvironmentTorques::total` sums them.
     fn joint_environment(f: &JointForces<Self>, loss: &JointLoss<Self>) -> Self::JointEnvironment;
+    /// # Errors
+    /// An owner that is not one of the documented values.
+    fn lumped(p: &Self::Lumped, index: usize) -> Result<LumpedBody<Self>, Failure>;
 }
 
 /// `UWML_BASE` or an index (checked against the joints by the core).
@@ -224,7 +230,7 @@ fn circular(value: i32, index: usize) -> Result<bool, Failure> {
 
 macro_rules! robot_precision {
     ($t:ty, $tag:expr, $robot:ty, $joint:ty, $body:ty, $segment:ty, $motion:ty, $current:ty, $forces:ident,
-     $wrench:ident, $loss:ty, $environment:ident) => {
+     $wrench:ident, $loss:ty, $environment:ident, $lumped:ty) => {
         impl RobotPrecision for $t {
             type Robot = $robot;
             type Joint = $joint;
@@ -236,6 +242,7 @@ macro_rules! robot_precision {
             type BaseWrench = $wrench;
             type LossParams = $loss;
             type JointEnvironment = $environment;
+            type Lumped = $lumped;
             const TAG: u64 = $tag;
 
             fn joint(p: &$joint, index: usize) -> Result<TreeJoint<$t>, Failure> {
@@ -311,6 +318,28 @@ macro_rules! robot_precision {
                 <$t as crate::imp::Precision>::losses(p)
             }
 
+            fn lumped(p: &$lumped, index: usize) -> Result<LumpedBody<$t>, Failure> {
+                let owner = body_index(p.owner, "lumped.owner", index)?.map_or(Owner::Base, Owner::Link);
+                // All-zero axes (as a zeroed struct has them): the body's own.
+                let entry = |rows: &[[$t; 6]; 6], r: usize, c: usize| {
+                    rows.get(r).and_then(|row| row.get(c)).copied().unwrap_or(0.0)
+                };
+                let axes = if p.axes == [[0.0; 3]; 3] {
+                    Matrix3::identity()
+                } else {
+                    Matrix3::from_fn(|r, c| p.axes.get(r).and_then(|row| row.get(c)).copied().unwrap_or(0.0))
+                };
+                let matrix = |rows: &[[$t; 6]; 6]| Matrix6::from_fn(|r, c| entry(rows, r, c));
+                Ok(LumpedBody {
+                    owner,
+                    point: p.point.into(),
+                    axes,
+                    added_mass: matrix(&p.added_mass),
+                    linear_damping: matrix(&p.linear_damping),
+                    quadratic_damping: p.quadratic_damping,
+                })
+            }
+
             fn joint_environment(f: &JointForces<$t>, loss: &JointLoss<$t>) -> $environment {
                 $environment {
                     drag: f.drag,
@@ -345,7 +374,8 @@ robot_precision!(
     UwmlJointForcesF64,
     UwmlBaseWrenchF64,
     UwmlJointLossParamsF64,
-    UwmlJointEnvironmentF64
+    UwmlJointEnvironmentF64,
+    UwmlLumpedF64
 );
 robot_precision!(
     f32,
@@ -359,7 +389,8 @@ robot_precision!(
     UwmlJointForcesF32,
     UwmlBaseWrenchF32,
     UwmlJointLossParamsF32,
-    UwmlJointEnvironmentF32
+    UwmlJointEnvironmentF32,
+    UwmlLumpedF32
 );
 
 /// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).
@@ -695,6 +726,28 @@ pub(crate) unsafe fn set_losses<T: RobotPrecision>(
     let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
     check_conditions(pressure, temperature)?;
     block.model.set_losses(slot, losses, pressure, temperature);
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call; `models` is null or valid for reads of `count` `T::Lumped`s that do not overlap it.
+pub(crate) unsafe fn set_lumped<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    models: *const T::Lumped,
+    count: u32,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let block = unsafe { block_mut::<T>(robot) }?;
+    let n = self::count(count, B, "lumped (at most UWML_ROBOT_MAX_LUMPED)")?;
+    // SAFETY: forwarded contract.
+    let given = unsafe { read_slice(models, n, "models") }?;
+    let mut bodies = [LumpedBody::none(Owner::Base); B];
+    for (index, (slot, model)) in bodies.iter_mut().zip(given).enumerate() {
+        *slot = T::lumped(model, index)?;
+    }
+    let robot = block.model.robot.with_lumped(bodies.get(..n).unwrap_or_default())?;
+    block.model.robot = robot;
     Ok(())
 }
 

@@ -100,6 +100,45 @@ pub struct UwmlRobotSegmentF64 {
     pub axial_area: f64,
 }
 
+/// Fossen's lumped model of one body (docs/model.md section 12.1): a hull's, a bulky link's. Every
+/// matrix is row-major, ordered `(x, y, z, roll, pitch, yaw)`, linear first, in the model's axes,
+/// about its point. Magnitudes as they act: SNAME's `X_u̇` is `-added_mass[0][0]`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlLumpedF64 {
+    /// The body: a link (0 to n_joints - 1), or `UWML_BASE` (-1).
+    pub owner: i32,
+    /// The reference point P in the body's frame [m].
+    pub point: [f64; 3],
+    /// The model's axes in the body's frame: a rotation whose columns are its x, y, z (row-major);
+    /// all zero (as a zeroed struct has it): the body's own axes.
+    pub axes: [[f64; 3]; 3],
+    /// M_A about P: symmetric, positive semi-definite [kg, kg·m, kg·m²].
+    pub added_mass: [[f64; 6]; 6],
+    /// D_L about P, its symmetric part positive semi-definite [N·s/m, N·s, N·m·s].
+    pub linear_damping: [[f64; 6]; 6],
+    /// The quadratic damping d_i >= 0 of -d_i |nu_i| nu_i.
+    pub quadratic_damping: [f64; 6],
+}
+
+/// `UwmlLumpedF64` in f32.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UwmlLumpedF32 {
+    /// The body: a link, or `UWML_BASE`.
+    pub owner: i32,
+    /// The reference point [m].
+    pub point: [f32; 3],
+    /// The model's axes (all zero: the body's).
+    pub axes: [[f32; 3]; 3],
+    /// M_A about the point.
+    pub added_mass: [[f32; 6]; 6],
+    /// D_L about the point.
+    pub linear_damping: [[f32; 6]; 6],
+    /// The quadratic damping.
+    pub quadratic_damping: [f32; 6],
+}
+
 /// The base's orientation and motion at one instant (docs/model.md section 10, "Base motion and
 /// current").
 #[repr(C)]
@@ -663,4 +702,41 @@ pub unsafe extern "C" fn uwml_robot_environment_f32(
     let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_environment, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::environment`'s and `imp::report`'s.
     unsafe { imp::report(error, robot::environment::<f32>(robot, &io)) }
+}
+
+/// Gives `robot`'s bodies the `count` lumped models `models` (docs/model.md section 12.1; at most
+/// `UWML_ROBOT_MAX_LUMPED`, one per body), replacing any it had (`count` 0: none; `models` may then
+/// be NULL). Checked as the core checks them (`UWML_ERR_NOT_SYMMETRIC`,
+/// `UWML_ERR_NOT_POSITIVE_SEMIDEFINITE`, `UWML_ERR_NEGATIVE`, `UWML_ERR_TOO_LARGE`, ...; field
+/// e.g. "lumped.added_mass", index the model's); on error the robot is left as it was. Its forces
+/// join every later evaluation: the damping the drag, the rest the added mass.
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `models` is NULL or valid for reads of `count` `UwmlLumpedF64`s; `error` is
+/// NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_lumped_f64(
+    robot: *mut UwmlRobotF64,
+    models: *const UwmlLumpedF64,
+    count: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_lumped`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_lumped::<f64>(robot, models, count)) }
+}
+
+/// `uwml_robot_set_lumped_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_set_lumped_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_lumped_f32(
+    robot: *mut UwmlRobotF32,
+    models: *const UwmlLumpedF32,
+    count: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_lumped`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_lumped::<f32>(robot, models, count)) }
 }

@@ -741,3 +741,131 @@ fn kirchhoffs_added_mass_is_the_cores_and_can_be_chosen_back() {
     assert_eq!(set_form64(null_mut(), UWML_ADDED_MASS_KIRCHHOFF).0, UWML_ERR_NULL_POINTER);
     assert_eq!(set_form64(&mut *zeroed64(), UWML_ADDED_MASS_KIRCHHOFF).0, UWML_ERR_UNINITIALIZED);
 }
+
+/// A lumped hull and a lumped can on link 2 (its model's axes turned about z), in C.
+fn lumped_models() -> [UwmlLumpedF64; 2] {
+    let diagonal = |d: [f64; 6]| core::array::from_fn(|r| core::array::from_fn(|c| if r == c { d[r] } else { 0.0 }));
+    let mut added_mass: [[f64; 6]; 6] = diagonal([120.0, 200.0, 260.0, 8.0, 20.0, 16.0]);
+    added_mass[0][4] = 5.0;
+    added_mass[4][0] = 5.0;
+    let hull = UwmlLumpedF64 {
+        owner: UWML_BASE,
+        point: [0.0, 0.0, 0.05],
+        axes: [[0.0; 3]; 3],
+        added_mass,
+        linear_damping: diagonal([80.0, 90.0, 100.0, 10.0, 12.0, 9.0]),
+        quadratic_damping: [300.0, 420.0, 500.0, 20.0, 30.0, 25.0],
+    };
+    let can = UwmlLumpedF64 {
+        owner: 2,
+        point: [0.1, 0.0, 0.0],
+        axes: [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+        added_mass: diagonal([1.0, 2.0, 3.0, 0.01, 0.02, 0.03]),
+        linear_damping: diagonal([2.0, 3.0, 4.0, 0.1, 0.1, 0.1]),
+        quadratic_damping: [5.0, 6.0, 7.0, 0.2, 0.2, 0.2],
+    };
+    [hull, can]
+}
+
+fn set_lumped64(robot: &mut UwmlRobotF64, models: &[UwmlLumpedF64]) -> UwmlError {
+    let mut error = blank_error();
+    // SAFETY: live locals; `models` holds its length.
+    let code = unsafe { uwml_robot_set_lumped_f64(robot, models.as_ptr(), count(models.len()), &mut error) };
+    assert_eq!(error.code, code);
+    error
+}
+
+#[test]
+fn lumped_models_are_the_cores_bit_for_bit_and_bad_ones_change_nothing() {
+    use uwml_core::nalgebra::{Matrix3, Matrix6};
+    use uwml_core::{LumpedBody, Owner, Robot};
+    let params = arm();
+    let mut robot = built64(&params);
+    let models = lumped_models();
+    assert_eq!(parts(&set_lumped64(&mut robot, &models)), (UWML_OK, -1, String::new()));
+    let plain = core_robot::<f64>(&params);
+    let core = Robot::<f64, 16, 32, 4>::new(plain.joints(), plain.links(), *plain.base(), plain.segments()).unwrap();
+    let body = |m: &UwmlLumpedF64, owner| LumpedBody {
+        owner,
+        point: m.point.into(),
+        axes: if m.axes == [[0.0; 3]; 3] { Matrix3::identity() } else { Matrix3::from_fn(|r, c| m.axes[r][c]) },
+        added_mass: Matrix6::from_fn(|r, c| m.added_mass[r][c]),
+        linear_damping: Matrix6::from_fn(|r, c| m.linear_damping[r][c]),
+        quadratic_damping: m.quadratic_damping,
+    };
+    let core = core.with_lumped(&[body(&models[0], Owner::Base), body(&models[1], Owner::Link(2))]).unwrap();
+    let water = Water::new(DENSITY, GRAVITY).unwrap();
+    let motion = arm_motion();
+    for [q, qd, qdd] in arm_states() {
+        let state = [&q[..], &qd[..], &qdd[..]];
+        let out = hydro64(&mut robot, state, Some(&motion), Some(&ARM_CURRENT));
+        let data = core_hydro(&core, &water, &core_motion(Some(&motion)), &core_current(Some(&ARM_CURRENT)), state);
+        assert_eq!(forces_bits64(&out.forces), forces_bits64(&forces64(&data)));
+        assert_eq!(wrench_bits64(&out.wrench), wrench_bits64(&wrench64(&data)));
+    }
+    // The hull's damping is in the base drag: without it (count 0), another drag.
+    let [q, qd, qdd] = ARM_STATE;
+    let with = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), None);
+    let bad = |change: &dyn Fn(&mut [UwmlLumpedF64; 2]), n: usize| {
+        let mut changed = models;
+        change(&mut changed);
+        changed[..n].to_vec()
+    };
+    for (given, expected) in [
+        (
+            bad(&|m| m[1].added_mass[2][2] = -1.0, 2),
+            (UWML_ERR_NOT_POSITIVE_SEMIDEFINITE, 1, "lumped.added_mass".to_string()),
+        ),
+        (bad(&|m| m[0].added_mass[0][1] = 3.0, 2), (UWML_ERR_NOT_SYMMETRIC, 0, "lumped.added_mass".to_string())),
+        (bad(&|m| m[1].quadratic_damping[0] = -1.0, 2), (UWML_ERR_NEGATIVE, 1, "lumped.quadratic_damping".to_string())),
+        (bad(&|m| m[1].owner = 99, 2), (UWML_ERR_OUT_OF_RANGE, 1, "lumped.owner".to_string())),
+        (bad(&|m| m[1].owner = UWML_BASE, 2), (UWML_ERR_OUT_OF_RANGE, 1, "lumped.owner".to_string())),
+        (
+            bad(&|m| m[0].axes = [[2.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], 1),
+            (UWML_ERR_NOT_UNIT, 0, "lumped.axes".to_string()),
+        ),
+    ] {
+        assert_eq!(parts(&set_lumped64(&mut robot, &given)), expected);
+        let again = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), None);
+        assert_eq!(wrench_bits64(&again.wrench), wrench_bits64(&with.wrench), "unchanged after an error");
+    }
+    let five = [models[0]; 5];
+    assert_eq!(set_lumped64(&mut robot, &five).code, UWML_ERR_OUT_OF_RANGE);
+    assert_eq!(parts(&set_lumped64(&mut robot, &[])), (UWML_OK, -1, String::new()));
+    let without = hydro64(&mut robot, [&q, &qd, &qdd], Some(&motion), None);
+    assert!(without.wrench.drag[0] != with.wrench.drag[0]);
+    let plain_data = core_hydro(&plain, &water, &core_motion(Some(&motion)), &core_current(None), [&q, &qd, &qdd]);
+    assert_eq!(wrench_bits64(&without.wrench), wrench_bits64(&wrench64(&plain_data)));
+}
+
+#[test]
+fn lumped_models_null_pointers_and_the_f32_half() {
+    let params = arm();
+    let models = lumped_models();
+    let mut error = blank_error();
+    // SAFETY: null robot and models, a live error.
+    let code = unsafe { uwml_robot_set_lumped_f64(null_mut(), models.as_ptr(), 2, &mut error) };
+    assert_eq!((code, parts(&error).2), (UWML_ERR_NULL_POINTER, "robot".to_string()));
+    let mut robot = built64(&params);
+    // SAFETY: a live robot, null models with a count.
+    let code = unsafe { uwml_robot_set_lumped_f64(&mut *robot, null(), 1, &mut error) };
+    assert_eq!((code, parts(&error).2), (UWML_ERR_NULL_POINTER, "models".to_string()));
+    let mut robot32 = built32(&params);
+    let narrow = |m: &UwmlLumpedF64| UwmlLumpedF32 {
+        owner: m.owner,
+        point: m.point.map(|x| x as f32),
+        axes: m.axes.map(|r| r.map(|x| x as f32)),
+        added_mass: m.added_mass.map(|r| r.map(|x| x as f32)),
+        linear_damping: m.linear_damping.map(|r| r.map(|x| x as f32)),
+        quadratic_damping: m.quadratic_damping.map(|x| x as f32),
+    };
+    let models32 = models.map(|m| narrow(&m));
+    // SAFETY: live locals.
+    let code = unsafe { uwml_robot_set_lumped_f32(&mut *robot32, models32.as_ptr(), 2, &mut error) };
+    assert_eq!(code, UWML_OK);
+    let [q, qd, qdd] = ARM_STATE;
+    let (q, qd, qdd) = (q.map(|x| x as f32), qd.map(|x| x as f32), qdd.map(|x| x as f32));
+    let (code, forces, wrench) = hydro32(&mut robot32, [&q, &qd, &qdd], Some(&motion32(&arm_motion())), None);
+    assert_eq!(code, UWML_OK);
+    assert!(forces.iter().all(|f| f.total.is_finite()) && wrench.total.iter().all(|x| x.is_finite()));
+}

@@ -26,10 +26,12 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Sequence
+from typing import Any
 
 import numpy as np
 
 from .._checks import shown
+from ..model.lumped import LumpedModel
 from ..model.parts import Link, Segment
 from ._robot_like import RobotLike
 
@@ -50,12 +52,6 @@ def _literal(x: float, precision: str, suffix: str = "") -> str:
 def _check(precision: str, robot: RobotLike) -> None:
     if precision not in PRECISIONS:
         raise ValueError(f"precision must be one of {PRECISIONS}, got {shown(precision)}")
-    bodies = ([robot.base] if robot.base is not None else []) + list(robot.links)
-    if any(getattr(body, "lumped", None) is not None for body in bodies):
-        raise ValueError(
-            "this robot's bodies carry lumped models (uwml.LumpedModel, docs/model.md section 12.1), which the firmware "
-            "export does not write yet: exporting without them would give the firmware other forces"
-        )
 
 
 # Names (a URDF's or MJCF's) and the source's path are untrusted text: they go only into
@@ -83,6 +79,21 @@ def _from(source: str | None) -> str:
 def _owned(robot: RobotLike) -> list[tuple[int, Segment]]:
     base = [] if robot.base is None else [(-1, s) for s in robot.base.segments]
     return base + [(i, s) for i, link in enumerate(robot.links) for s in link.segments]
+
+
+#: The C API's robot's capacity for lumped models (``UWML_ROBOT_MAX_LUMPED``).
+C_MAX_LUMPED = 4
+
+
+def _lumped_owned(robot: RobotLike) -> list[tuple[int, LumpedModel]]:
+    """Each body's lumped model (docs/model.md section 12.1) with its owner (-1: the base)."""
+    bodies = [(-1, robot.base)] if robot.base is not None else []
+    bodies += list(enumerate(robot.links))
+    return [(owner, body.lumped) for owner, body in bodies if body.lumped is not None]
+
+
+def _rust_matrix(rows: Sequence[Sequence[float]], p: str, kind: str) -> str:
+    return f"{kind}::new(" + ", ".join(_literal(x, p) for row in rows for x in row) + ")"
 
 
 def _rust_vector(v: Sequence[float], p: str) -> str:
@@ -147,6 +158,25 @@ def to_rust(robot: RobotLike, precision: str = "f64", source: str | None = None)
             f"axial_area: {_literal(s.axial_area, p)} }},"
         )
     out.append("];")
+    lumped = _lumped_owned(robot)
+    if lumped:
+        out += [
+            "/// The bodies' lumped models (docs/model.md section 12.1): `.with_lumped(&LUMPED)` on the robot.",
+            f"pub const N_LUMPED: usize = {len(lumped)};",
+            f"pub const LUMPED: [LumpedBody<{t}>; N_LUMPED] = [",
+        ]
+        for owner, model in lumped:
+            owner_text = "Owner::Base" if owner < 0 else f"Owner::Link({owner})"
+            point = model.point if model.point is not None else (0.0, 0.0, 0.0)
+            out.append(
+                f"    LumpedBody {{ owner: {owner_text}, point: {_rust_vector(point, p)}, "
+                f"axes: {_rust_matrix(model.axes, p, 'Matrix3')}, added_mass: {_rust_matrix(model.added_mass, p, 'Matrix6')}, "  # type: ignore[arg-type]
+                f"linear_damping: {_rust_matrix(model.linear_damping, p, 'Matrix6')}, "  # type: ignore[arg-type]
+                f"quadratic_damping: {_rust_pair(model.quadratic_damping, p)} }},"  # type: ignore[arg-type]
+            )
+        out.append("];")
+        out[2] = "use uwml_core::nalgebra::{Matrix3, Matrix6, Vector3};"
+        out[3] = "use uwml_core::{JointKind, LumpedBody, Owner, RigidBody, RobotSegment, Section, TreeJoint};"
     out += [
         "/// The robot's water: density [kg/m³] and gravity [m/s²], the evaluation's `density` and `gravity`.",
         f"pub const WATER_DENSITY: {t} = {_literal(robot.water.density, p)};",
@@ -177,6 +207,10 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
     p = precision
     t = "F64" if p == "f64" else "F32"
     suffix = "f" if p == "f32" else ""
+    if len(_lumped_owned(robot)) > C_MAX_LUMPED:
+        raise ValueError(
+            f"the C API's robot carries at most {C_MAX_LUMPED} lumped models (UWML_ROBOT_MAX_LUMPED), this one {len(_lumped_owned(robot))}"
+        )
     owned = _owned(robot)
     guard = f"UWML_EXPORT_{prefix}_H"
     out = [
@@ -221,6 +255,26 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
             f".diameter = {_literal(s.diameter or 0.0, p, suffix)}, .cd = {_c_array(s.cd, p)}, .cm = {_c_array(s.cm, p)}, "
             f".cd_axial = {_literal(s.cd_axial, p, suffix)}, .axial_area = {_literal(s.axial_area, p, suffix)} }},"
         )
+    lumped = _lumped_owned(robot)
+    if lumped:
+        out += [
+            "};",
+            "/* the bodies' lumped models (docs/model.md section 12.1), for uwml_robot_set_lumped */",
+            f"#define {prefix}_N_LUMPED {len(lumped)}u",
+            f"static const UwmlLumped{t} {prefix}_LUMPED[{len(lumped)}] = {{",
+        ]
+        for owner, model in lumped:
+            owner_text = "UWML_BASE" if owner < 0 else str(owner)
+            point = model.point if model.point is not None else (0.0, 0.0, 0.0)
+
+            def rows(matrix: Any) -> str:
+                return "{" + ", ".join(_c_array(row, p) for row in matrix) + "}"
+
+            out.append(
+                f"    {{ .owner = {owner_text}, .point = {_c_array(point, p)}, .axes = {rows(model.axes)}, "
+                f".added_mass = {rows(model.added_mass)}, .linear_damping = {rows(model.linear_damping)}, "
+                f".quadratic_damping = {_c_array(model.quadratic_damping, p)} }},"  # type: ignore[arg-type]
+            )
     out += [
         "};",
         "/* the robot's water: density [kg/m^3] and gravity [m/s^2], for the evaluation's density and gravity */",

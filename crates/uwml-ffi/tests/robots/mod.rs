@@ -483,8 +483,8 @@ pub fn core_current<T: Real>(c: Option<&UwmlCurrentF64>) -> Current<T> {
 }
 
 /// The core's evaluation, on `q`, `qd`, `qdd` (the robot's joints only).
-pub fn core_hydro<T: Real>(
-    robot: &Robot<T, J, S>,
+pub fn core_hydro<T: Real, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     motion: &BaseMotion<T>,
     current: &Current<T>,
@@ -494,8 +494,8 @@ pub fn core_hydro<T: Real>(
 }
 
 /// As [`core_hydro`], with the added-mass forces in `form`.
-pub fn core_hydro_with<T: Real>(
-    robot: &Robot<T, J, S>,
+pub fn core_hydro_with<T: Real, const B: usize>(
+    robot: &Robot<T, J, S, B>,
     water: &Water<T>,
     form: AddedMassForm,
     motion: &BaseMotion<T>,
