@@ -139,41 +139,64 @@ fn nearly_symmetric<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
     (m - m.transpose()).iter().all(|x| x.abs() <= tolerance)
 }
 
-/// Whether the symmetric `m` is positive semi-definite, to rounding: an `LDLᵀ` factorization in
-/// which a pivot may be zero (within `1e-10` of the largest diagonal entry) only where the rest of
-/// its column is too.
+/// Whether the symmetric `m` is positive semi-definite, to rounding: its smallest eigenvalue (by
+/// Jacobi's method, robust for the singular matrices a semi-definite one may be) at least
+/// `-1e-10` times its largest diagonal entry in magnitude.
 fn positive_semidefinite<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
     let scale = m.diagonal().iter().fold(T::zero(), |s, x| s.max(x.abs()));
-    let tolerance = scale * constant(1e-10);
+    smallest_eigenvalue(m) >= -(scale * constant(1e-10))
+}
+
+/// The smallest eigenvalue of the symmetric `m`: cyclic Jacobi rotations until the off-diagonal
+/// part is negligible (at most 30 sweeps; six by six needs a handful).
+fn smallest_eigenvalue<T: RealField + Copy>(m: &Matrix6<T>) -> T {
     let mut a = *m;
     let at = |a: &Matrix6<T>, i: usize, j: usize| a.get((i, j)).copied().unwrap_or_else(T::zero);
-    for k in 0..6 {
-        let pivot = at(&a, k, k);
-        if pivot < -tolerance {
-            return false;
+    let set = |a: &mut Matrix6<T>, i: usize, j: usize, x: T| {
+        if let Some(slot) = a.get_mut((i, j)) {
+            *slot = x;
         }
-        if pivot <= tolerance {
-            // A direction of (nearly) zero energy: it may not couple to any other.
-            let zero_column = (k + 1..6).all(|i| {
-                let bound = (tolerance * at(&a, i, i).max(T::zero())).sqrt() + tolerance;
-                at(&a, i, k).abs() <= bound
+    };
+    let scale = m.iter().fold(T::zero(), |s, x| s.max(x.abs()));
+    for _ in 0..30 {
+        let off =
+            (0..6).flat_map(|i| (0..6).map(move |j| (i, j))).filter(|(i, j)| i != j).fold(T::zero(), |s, (i, j)| {
+                let x = at(&a, i, j);
+                s + x * x
             });
-            if !zero_column {
-                return false;
-            }
-            continue;
+        if off.sqrt() <= scale * constant(1e-15) {
+            break;
         }
-        for i in k + 1..6 {
-            let factor = at(&a, i, k) / pivot;
-            for j in k + 1..6 {
-                let value = at(&a, i, j) - factor * at(&a, k, j);
-                if let Some(slot) = a.get_mut((i, j)) {
-                    *slot = value;
+        for p in 0..5 {
+            for q in p + 1..6 {
+                let apq = at(&a, p, q);
+                if apq == T::zero() {
+                    continue;
+                }
+                let theta = (at(&a, q, q) - at(&a, p, p)) / (apq + apq);
+                // The smaller root of t² + 2θt − 1 = 0, without overflow for a large θ.
+                let t = if theta.abs() > constant(1e100) {
+                    (theta + theta).recip()
+                } else {
+                    let root = (theta * theta + T::one()).sqrt();
+                    if theta >= T::zero() { (theta + root).recip() } else { -(root - theta).recip() }
+                };
+                let c = (t * t + T::one()).sqrt().recip();
+                let sn = t * c;
+                for k in 0..6 {
+                    let (akp, akq) = (at(&a, k, p), at(&a, k, q));
+                    set(&mut a, k, p, c * akp - sn * akq);
+                    set(&mut a, k, q, sn * akp + c * akq);
+                }
+                for k in 0..6 {
+                    let (apk, aqk) = (at(&a, p, k), at(&a, q, k));
+                    set(&mut a, p, k, c * apk - sn * aqk);
+                    set(&mut a, q, k, sn * apk + c * aqk);
                 }
             }
         }
     }
-    true
+    (0..6).fold(at(&a, 0, 0), |s, i| s.min(at(&a, i, i)))
 }
 
 /// The lumped models of a robot's bodies (up to `B`), each in its body's frame.

@@ -364,3 +364,36 @@ fn bad_lumped_models_are_refused_naming_the_model_and_the_field() {
     rounded[(0, 3)] += 1e-14;
     robot.with_lumped(&[LumpedBody { added_mass: rounded, ..good }]).unwrap();
 }
+
+#[test]
+fn singular_semidefinite_matrices_are_taken_and_slightly_indefinite_ones_refused() {
+    // A Aᵀ of every rank, at scales from 1e-3 to 1e6, as added mass and as the symmetric part of a
+    // damping with a skew part: taken; a singular one less 1e-6 of its scale on the diagonal:
+    // refused.
+    let robot = Model::new(
+        &[TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() }],
+        &[RigidBody::empty()],
+        RigidBody::empty(),
+        &[],
+    )
+    .unwrap();
+    let mut rng = Rng(29);
+    for rank in 0..=6 {
+        for scale in [1e-3, 1.0, 1e6] {
+            let psd = random_psd(&mut rng, rank, scale);
+            let skew = {
+                let a: Matrix6<f64> = Matrix6::from_fn(|_, _| scale * rng.next());
+                a - a.transpose()
+            };
+            let good = LumpedBody { added_mass: psd, linear_damping: psd + skew, ..LumpedBody::none(Owner::Base) };
+            robot.with_lumped(&[good]).unwrap();
+            if rank < 6 {
+                // Singular: a zero eigenvalue, made slightly negative.
+                let size = psd.diagonal().amax().max(scale);
+                let bad = psd - Matrix6::identity() * (1e-6 * size);
+                let error = robot.with_lumped(&[LumpedBody { added_mass: bad, ..good }]).unwrap_err();
+                assert_eq!((error.field, error.problem), ("lumped.added_mass", Problem::NotPositiveSemidefinite));
+            }
+        }
+    }
+}
