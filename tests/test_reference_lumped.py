@@ -21,13 +21,13 @@ from reference_trees import (
     RHO,
     assert_close,
     hydro,
-    quat_axis_angle,
     quat_matrix,
     quat_mul,
     random_quaternion,
     random_unit,
     ref,
 )
+from test_reference_robot_invariants import _poses
 
 parts = load("model.parts")
 LumpedModel = load("model.lumped").LumpedModel
@@ -144,20 +144,6 @@ H = 1e-3  # finite-difference step in time (fourth order)
 
 def _vee(m: np.ndarray) -> np.ndarray:
     return np.array([m[2, 1], m[0, 2], m[1, 0]])
-
-
-def _poses(joints: list, q: np.ndarray, base_rot: np.ndarray, base_pos: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
-    """World (rotation, origin) of every body, base first, by quaternions; complex entries allowed."""
-    poses = [(base_rot, base_pos)]
-    for i, jt in enumerate(joints):
-        parent = (i - 1 if jt.parent is None else jt.parent) + 1
-        rot, pos = poses[parent]
-        point = pos + rot @ np.asarray(jt.origin)
-        if jt.kind == "revolute":
-            poses.append((rot @ quat_matrix(quat_axis_angle(jt.axis, q[i])), point))
-        else:
-            poses.append((rot, point + q[i] * (rot @ np.asarray(jt.axis))))
-    return poses
 
 
 def _trajectory(rng: np.random.Generator, n: int) -> SimpleNamespace:
