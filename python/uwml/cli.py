@@ -531,7 +531,33 @@ depth_sweep.png in --out. A progress bar on standard error.""",
     )
     simulate.add_argument("--json", action="store_true", help="print the runs' summaries as JSON only")
     simulate.set_defaults(run=_simulate)
+
+    replay = commands.add_parser(
+        "replay",
+        help="simulate the vehicle floating freely while its arm follows a log's joint angles (needs uwml[mujoco])",
+        formatter_class=formatter,
+        description="""The vehicle's response to a recorded arm motion (uwml.sim.replay; docs/model.md section 12.4):
+the description's root floats freely, thrusters off, while the joints follow the log's angles exactly;
+the vehicle's pose and twist over time go to replay.csv (or replay.parquet with --parquet) and a figure,
+replay.png, in --out. When the log also holds the measured pose (x, y, z and qw, qx, qy, qz or roll,
+pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against measured, is printed
+(--json: as JSON). The log's format and how to join streams recorded apart: uwml.sim.replay.""",
+        epilog=_EXIT,
+    )
+    replay.add_argument("log", help="the joint log (CSV or Parquet): time, q1..qN, optionally the vehicle's pose")
+    replay.add_argument("--robot", required=True, metavar="DESCRIPTION", help="the robot's URDF or MJCF file")
+    replay.add_argument("--hydro", default=None, metavar="FILE", help="its hydro file")
+    replay.add_argument("--out", default="uwml-replay", metavar="DIR", help="directory for the outputs (default uwml-replay)")
+    replay.add_argument("--parquet", action="store_true", help="write replay.parquet instead of replay.csv")
+    replay.add_argument("--json", action="store_true", help="print the errors (or null) as JSON only")
+    replay.set_defaults(run=_replay)
     return parser
+
+
+def _replay(args: argparse.Namespace) -> int:
+    from .sim.replay import command
+
+    return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json)
 
 
 def _simulate(args: argparse.Namespace) -> int:

@@ -1,0 +1,303 @@
+"""Replaying a recorded arm motion on a floating vehicle (``uwml replay``, :func:`replay`): the
+vehicle floats freely, thrusters off, while the arm's joints follow the log's angles exactly
+(docs/model.md section 12.4); the vehicle's simulated pose and twist over time are the answer,
+held against its measured pose where the log has one. This is how vehicle-manipulator systems
+are identified and validated in pool trials.
+
+The log
+-------
+One file (CSV or Parquet), the joint log format of :mod:`uwml.io.logs`: ``time`` [s], ``q1`` …
+``qN`` (the robot's joints, in its order) [rad or m], and optionally ``qd*``, ``qdd*`` (else the
+cubic spline of ``q`` estimates them, :class:`uwml.sim.prescribed.Trajectory`). Optionally the
+vehicle's measured pose in the same rows: ``x``, ``y``, ``z`` [m] (world, z up) and either a
+quaternion ``qw``, ``qx``, ``qy``, ``qz`` (world from vehicle) or ``roll``, ``pitch``, ``yaw``
+[rad] (z-y-x Euler angles). Streams recorded apart (motion capture at 100 Hz, joint encoders at
+500 Hz, with jitter) are joined on time first, into one file, by the user: each stream resampled
+linearly onto the joint stream's time stamps within the span they share (``numpy.interp``);
+uwml does not join several files yet. Gaps: a step between samples longer than ``MAX_GAP_S``
+(0.1 s) is refused, naming where, rather than bridged by the spline: split the log there.
+
+The simulation starts at the log's first sample, the vehicle at rest (at its measured pose, if
+given; else at the origin, level), the joints on the log's motion, and runs to its last.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..io.logs import Log, read_log
+from .prescribed import Trajectory
+
+__all__ = ["MAX_GAP_S", "Replay", "command", "plot_replay", "read_vehicle_pose", "replay", "write_replay"]
+
+FloatArray = NDArray[np.float64]
+
+#: The longest step between two samples of a replayed log [s]; a longer gap is refused.
+MAX_GAP_S = 0.1
+_POSITION, _QUATERNION, _EULER = ("x", "y", "z"), ("qw", "qx", "qy", "qz"), ("roll", "pitch", "yaw")
+
+
+@dataclass(frozen=True)
+class Replay:
+    """A replay's result: at each ``time`` [s], the vehicle's simulated ``position`` (world, z
+    up) [m], ``quaternion`` (world from vehicle, w first) and ``twist`` (MuJoCo's free joint:
+    world-frame velocity [m/s], body-frame angular velocity [rad/s]); ``errors``: RMS of the
+    simulated against the measured roll, pitch [rad], yaw rate [rad/s] and heave [m] (None
+    without a measured pose)."""
+
+    time: FloatArray
+    position: FloatArray
+    quaternion: FloatArray
+    twist: FloatArray
+    errors: dict[str, float] | None
+
+    def euler(self) -> FloatArray:
+        """Roll, pitch, yaw [rad] (z-y-x) of the simulated pose, ``(n, 3)``."""
+        return _euler(self.quaternion)
+
+
+def _euler(quaternion: FloatArray) -> FloatArray:
+    w, x, y, z = quaternion.T
+    roll = np.arctan2(2.0 * (w * x + y * z), 1.0 - 2.0 * (x * x + y * y))
+    pitch = np.arcsin(np.clip(2.0 * (w * y - z * x), -1.0, 1.0))
+    yaw = np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    return np.stack([roll, pitch, yaw], axis=1)
+
+
+def _quaternion(euler: FloatArray) -> FloatArray:
+    roll, pitch, yaw = (euler[:, k] / 2.0 for k in range(3))
+    cr, sr, cp, sp, cy, sy = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    return np.stack(
+        [cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy], axis=1
+    )
+
+
+def read_vehicle_pose(path: str | os.PathLike[str]) -> tuple[FloatArray, FloatArray] | None:
+    """The measured pose in a log (see the module): ``(position (n, 3), quaternion (n, 4))``, or
+    None when the log has no ``x`` column. A pose given in part (``x`` without ``y``, a quaternion
+    without ``qz``, neither a quaternion nor Euler angles) is an error naming the columns."""
+    source = str(path)
+    if source.endswith(".parquet"):
+        import pyarrow.parquet as pq
+
+        table = pq.read_table(source)
+        header = table.column_names
+
+        def read(names: tuple[str, ...]) -> dict[str, Any]:
+            return {name: table.column(name).to_numpy() for name in names}
+    else:
+        from ..io._arrow_csv import CsvTable
+
+        csv = CsvTable(path, f"{source}: ", "time")
+        header = csv.header
+        read = csv.read
+    present = set(header)
+    if "x" not in present:
+        return None
+    orientation = _QUATERNION if "qw" in present else _EULER
+    missing = [name for name in (*_POSITION, *orientation) if name not in present]
+    if missing:
+        raise ValueError(
+            f"{source}: the vehicle's pose needs x, y, z and qw, qx, qy, qz (or roll, pitch, yaw); missing {', '.join(missing)}"
+        )
+    columns = read((*_POSITION, *orientation))
+    values = {name: np.asarray(columns[name], dtype=np.float64) for name in (*_POSITION, *orientation)}
+    for name, column in values.items():
+        if not np.all(np.isfinite(column)):
+            raise ValueError(f"{source}: column {name!r} must hold finite numbers (row {int(np.argmin(np.isfinite(column))) + 2})")
+    position = np.stack([values[name] for name in _POSITION], axis=1)
+    angles = np.stack([values[name] for name in orientation], axis=1)
+    if orientation == _EULER:
+        return position, _quaternion(angles)
+    norms = np.linalg.norm(angles, axis=1)
+    if np.any(np.abs(norms - 1.0) > 1e-3):
+        row = int(np.argmax(np.abs(norms - 1.0))) + 2
+        raise ValueError(f"{source}: the quaternion (qw, qx, qy, qz) of row {row} is not of norm 1 (within 1e-3): {norms[row - 2]:.6g}")
+    return position, angles / norms[:, None]
+
+
+def _check_gaps(time: FloatArray, source: str) -> None:
+    steps = np.diff(time)
+    if steps.size and float(steps.max()) > MAX_GAP_S:
+        k = int(np.argmax(steps))
+        raise ValueError(
+            f"{source}: a gap of {steps[k]:.3g} s between t = {time[k]:.6g} and {time[k + 1]:.6g} s (rows {k + 2} and {k + 3}), longer "
+            f"than {MAX_GAP_S:g} s: split the log there and replay the parts"
+        )
+
+
+def replay(
+    log: str | os.PathLike[str],
+    description: str | os.PathLike[str],
+    hydro: str | os.PathLike[str] | None = None,
+    *,
+    progress: bool = False,
+    **options: Any,
+) -> Replay:
+    """Replay the joint motion of ``log`` on the robot of ``description`` (URDF or MJCF, with
+    its ``hydro`` file) floating freely (see the module); ``options`` as for
+    :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ``integrator``, ...). A
+    progress bar on standard error with ``progress``."""
+    from .mujoco import Simulation
+
+    sim = Simulation.from_file(description, hydro, floating=True, **options)
+    if sim._free_dof is None:
+        raise ValueError(f"{description}: the robot's base did not float (its root hangs from the world by a joint)")
+    recorded: Log = read_log(log, n_joints=sim.robot.n_joints)
+    source = recorded.source
+    _check_gaps(recorded.time, source)
+    measured = read_vehicle_pose(log)
+    time = recorded.time
+    trajectory = Trajectory(time, recorded.q, recorded.qd, recorded.qdd)
+    d, m = sim.data, sim.model
+    d.time = float(time[0])
+    free = int(sim._free_qpos or 0)
+    if measured is not None:
+        d.qpos[free : free + 3], d.qpos[free + 3 : free + 7] = measured[0][0], measured[1][0]
+    sim.prescribe(list(range(sim.robot.n_joints)), trajectory)
+    steps = max(1, math.floor((time[-1] - time[0]) / m.opt.timestep + 1e-9))
+    times, positions, quaternions, twists = (
+        [float(d.time)],
+        [d.qpos[free : free + 3].copy()],
+        [d.qpos[free + 3 : free + 7].copy()],
+        [d.qvel[:6].copy()],
+    )
+    bar = _progress(steps) if progress else None
+    for k in range(steps):
+        sim.step()
+        times.append(float(d.time))
+        positions.append(d.qpos[free : free + 3].copy())
+        quaternions.append(d.qpos[free + 3 : free + 7].copy())
+        twists.append(d.qvel[:6].copy())
+        if bar is not None and (k % max(1, steps // 100) == 0 or k == steps - 1):
+            bar(k + 1)
+    result = Replay(np.array(times), np.array(positions), np.array(quaternions), np.array(twists), None)
+    if measured is None:
+        return result
+    return Replay(result.time, result.position, result.quaternion, result.twist, _errors(result, time, *measured))
+
+
+def _errors(result: Replay, time: FloatArray, position: FloatArray, quaternion: FloatArray) -> dict[str, float]:
+    """RMS of simulated against measured roll, pitch, yaw rate and heave, on the log's samples."""
+    simulated = result.euler()
+    measured = _euler(quaternion)
+
+    def at(column: FloatArray) -> FloatArray:
+        return np.asarray(np.interp(time, result.time, column), dtype=np.float64)
+
+    def rms(error: FloatArray) -> float:
+        return float(np.sqrt(np.mean(error * error)))
+
+    def wrap(angle: FloatArray) -> FloatArray:
+        return np.asarray((angle + np.pi) % (2.0 * np.pi) - np.pi, dtype=np.float64)
+
+    sim_yaw_rate = np.gradient(np.unwrap(simulated[:, 2]), result.time)
+    measured_yaw_rate = np.gradient(np.unwrap(measured[:, 2]), time)
+    return {
+        "roll": rms(wrap(at(simulated[:, 0]) - measured[:, 0])),
+        "pitch": rms(wrap(at(simulated[:, 1]) - measured[:, 1])),
+        "yaw_rate": rms(at(sim_yaw_rate) - measured_yaw_rate),
+        "heave": rms(at(result.position[:, 2]) - position[:, 2]),
+    }
+
+
+def _progress(total: int) -> Any:
+    import sys
+
+    def show(done: int) -> None:
+        filled = int(40 * done / total)
+        sys.stderr.write(f"\rreplay [{'#' * filled}{'.' * (40 - filled)}] {done}/{total} steps")
+        if done == total:
+            sys.stderr.write("\n")
+        sys.stderr.flush()
+
+    return show
+
+
+def write_replay(result: Replay, path: str | os.PathLike[str]) -> None:
+    """The replay's time, pose and twist as a CSV or Parquet file (by the suffix), written whole
+    or not at all (a temporary file renamed over ``path``)."""
+    from ..io._files import write_atomically
+
+    names = ["time", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"]
+    table = np.column_stack([result.time, result.position, result.quaternion, result.twist])
+    if str(path).endswith(".parquet"):
+        import io
+
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        buffer = io.BytesIO()
+        pq.write_table(pa.table({name: table[:, k] for k, name in enumerate(names)}), buffer)
+        write_atomically(path, buffer.getvalue())
+        return
+    lines = [",".join(names)] + [",".join(repr(float(x)) for x in row) for row in table]
+    write_atomically(path, ("\n".join(lines) + "\n").encode("utf-8"))
+
+
+def plot_replay(result: Replay, path: str | os.PathLike[str], measured: tuple[FloatArray, FloatArray, FloatArray] | None = None) -> None:
+    """A figure of the vehicle's roll, pitch, yaw and heave over time (and the measured ones,
+    ``(time, position, quaternion)``, if given), saved to ``path``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    euler = result.euler()
+    figure, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
+    labels = ["roll [rad]", "pitch [rad]", "yaw [rad]", "heave z [m]"]
+    series = [euler[:, 0], euler[:, 1], np.unwrap(euler[:, 2]), result.position[:, 2]]
+    for axis, label, values in zip(axes, labels, series, strict=True):
+        axis.plot(result.time, values, label="simulated")
+        axis.set_ylabel(label)
+        axis.grid(True, alpha=0.3)
+    if measured is not None:
+        time, position, quaternion = measured
+        angles = _euler(quaternion)
+        for axis, values in zip(axes, [angles[:, 0], angles[:, 1], np.unwrap(angles[:, 2]), position[:, 2]], strict=True):
+            axis.plot(time, values, "--", label="measured")
+    axes[0].legend(loc="best")
+    axes[-1].set_xlabel("time [s]")
+    figure.suptitle("vehicle response to the replayed arm motion")
+    figure.tight_layout()
+    figure.savefig(path, dpi=120)
+    plt.close(figure)
+
+
+def command(
+    log: str | os.PathLike[str],
+    description: str | os.PathLike[str],
+    hydro: str | os.PathLike[str] | None,
+    out: str | os.PathLike[str],
+    *,
+    parquet: bool = False,
+    as_json: bool = False,
+) -> int:
+    """``uwml replay``: replay, write ``replay.csv`` (``.parquet``) and ``replay.png`` in ``out``,
+    print the errors (a table, or JSON with ``as_json``)."""
+    import json
+    from pathlib import Path
+
+    result = replay(log, description, hydro, progress=not as_json)
+    folder = Path(out)
+    folder.mkdir(parents=True, exist_ok=True)
+    write_replay(result, folder / ("replay.parquet" if parquet else "replay.csv"))
+    measured = read_vehicle_pose(log)
+    plot_replay(result, folder / "replay.png", None if measured is None else (read_log(log).time, *measured))
+    if as_json:
+        print(json.dumps(result.errors))
+        return 0
+    print(f"replayed {result.time[-1] - result.time[0]:.3f} s; outputs in {folder}")
+    if result.errors is None:
+        print("no measured pose in the log: nothing to compare")
+        return 0
+    units = {"roll": "rad", "pitch": "rad", "yaw_rate": "rad/s", "heave": "m"}
+    for name, value in result.errors.items():
+        print(f"  RMS {name:9s} {value:.4g} {units[name]}")
+    return 0
