@@ -61,9 +61,10 @@ def test_the_replay_reproduces_a_recorded_trial(tmp_path: Path, euler: bool) -> 
     heave = pool_trial(log, euler=euler)
     result = replay(log, URDF, HYDRO)
     assert result.errors is not None
-    # The same physics: the replay's pose is the trial's, to the spline of 100 Hz samples.
-    assert result.errors["roll"] < 1e-4 and result.errors["pitch"] < 1e-4, result.errors
-    assert result.errors["yaw_rate"] < 1e-3 and result.errors["heave"] < 1e-5, result.errors
+    # The same physics: the replay's pose is the trial's, to the spline of 100 Hz samples and the
+    # starting twist estimated from the first three poses.
+    assert result.errors["roll"] < 2e-4 and result.errors["pitch"] < 2e-4, result.errors
+    assert result.errors["yaw_rate"] < 1e-3 and result.errors["heave"] < 1e-4, result.errors
     # And the vehicle did answer the arm (the test can fail).
     assert np.ptp(result.euler()[:, 0]) > 1e-3 and np.ptp(heave) > 1e-4
 
@@ -80,8 +81,8 @@ def test_a_replay_differs_from_the_trial_when_the_vehicle_differs(tmp_path: Path
     other = tmp_path / "other.hydro.toml"
     other.write_text(doubled)
     result = replay(log, URDF, other)
-    # (The same vehicle's replay: pitch below 1e-4 rad and heave below 1e-5 m, above.)
-    assert result.errors is not None and result.errors["pitch"] > 5e-4 and result.errors["heave"] > 1e-4, result.errors
+    # (The same vehicle's replay: pitch below 2e-4 rad and heave below 1e-4 m, above.)
+    assert result.errors is not None and result.errors["pitch"] > 5e-4 and result.errors["heave"] > 3e-4, result.errors
 
 
 def test_gaps_and_partial_poses_are_refused(tmp_path: Path) -> None:
@@ -105,7 +106,7 @@ def test_the_command_line_writes_the_pose_and_a_figure(tmp_path: Path, capsys: p
     out = tmp_path / "out"
     assert main(["replay", str(log), "--robot", str(URDF), "--hydro", str(HYDRO), "--out", str(out), "--json"]) == 0
     errors = json.loads(capsys.readouterr().out)
-    assert set(errors) == {"roll", "pitch", "yaw_rate", "heave"} and errors["roll"] < 1e-4
+    assert set(errors) == {"roll", "pitch", "yaw_rate", "heave"} and errors["roll"] < 2e-4
     written = (out / "replay.csv").read_text().splitlines()
     assert written[0] == "time,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz" and len(written) > 100
     assert (out / "replay.png").stat().st_size > 1000
@@ -113,3 +114,30 @@ def test_the_command_line_writes_the_pose_and_a_figure(tmp_path: Path, capsys: p
     assert main(["replay", str(tmp_path / "none.csv"), "--robot", str(URDF), "--out", str(out)]) == 2
     assert "none.csv" in capsys.readouterr().err
     assert isinstance(uwml.Robot.from_urdf(URDF, HYDRO), uwml.Robot)
+
+
+def test_two_streams_at_their_own_jittery_rates_are_joined_on_time(tmp_path: Path) -> None:
+    """The trial's joints at 100 Hz in one file and its pose in another, at about 40 Hz with
+    jitter and starting later: the pose is resampled onto the joints' time stamps within the span
+    both cover, and the replay still reproduces the trial."""
+    whole = tmp_path / "trial.csv"
+    pool_trial(whole)
+    rows = np.array([[float(x) for x in line.split(",")] for line in whole.read_text().splitlines()[1:]])
+    joints = tmp_path / "joints.csv"
+    joints.write_text("time,q1,q2\n" + "".join(f"{float(r[0])!r},{float(r[1])!r},{float(r[2])!r}\n" for r in rows))
+    rng = np.random.default_rng(3)
+    pose_time = np.arange(0.1, 1.9, 0.025) + rng.uniform(-0.004, 0.004, 72)
+    position = np.stack([np.interp(pose_time, rows[:, 0], rows[:, 7 + k]) for k in range(3)], axis=1)
+    quaternion = np.stack([np.interp(pose_time, rows[:, 0], rows[:, 10 + k]) for k in range(4)], axis=1)
+    quaternion /= np.linalg.norm(quaternion, axis=1, keepdims=True)
+    quaternion[::3] *= -1.0  # the same turns, the other sign: the join keeps them continuous
+    mocap = tmp_path / "mocap.csv"
+    mocap.write_text(
+        "time,x,y,z,qw,qx,qy,qz\n"
+        + "".join(",".join(repr(float(x)) for x in (t, *p, *q)) + "\n" for t, p, q in zip(pose_time, position, quaternion))
+    )
+    result = replay([joints, mocap], URDF, HYDRO)
+    assert result.time[0] >= 0.1 and result.time[-1] <= 1.9
+    assert result.errors is not None and result.errors["roll"] < 1e-3 and result.errors["pitch"] < 1e-3, result.errors
+    with pytest.raises(ValueError, match="exactly one file with the joint angles"):
+        replay([mocap], URDF, HYDRO)

@@ -544,7 +544,9 @@ pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against
 (--json: as JSON). The log's format and how to join streams recorded apart: uwml.sim.replay.""",
         epilog=_EXIT,
     )
-    replay.add_argument("log", help="the joint log (CSV or Parquet): time, q1..qN, optionally the vehicle's pose")
+    replay.add_argument(
+        "log", nargs="+", help="the joint log (CSV or Parquet): time, q1..qN, optionally the vehicle's pose; or one file per stream"
+    )
     replay.add_argument("--robot", required=True, metavar="DESCRIPTION", help="the robot's URDF or MJCF file")
     replay.add_argument("--hydro", default=None, metavar="FILE", help="its hydro file")
     replay.add_argument("--out", default="uwml-replay", metavar="DIR", help="directory for the outputs (default uwml-replay)")

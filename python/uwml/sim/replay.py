@@ -11,20 +11,23 @@ One file (CSV or Parquet), the joint log format of :mod:`uwml.io.logs`: ``time``
 cubic spline of ``q`` estimates them, :class:`uwml.sim.prescribed.Trajectory`). Optionally the
 vehicle's measured pose in the same rows: ``x``, ``y``, ``z`` [m] (world, z up) and either a
 quaternion ``qw``, ``qx``, ``qy``, ``qz`` (world from vehicle) or ``roll``, ``pitch``, ``yaw``
-[rad] (z-y-x Euler angles). Streams recorded apart (motion capture at 100 Hz, joint encoders at
-500 Hz, with jitter) are joined on time first, into one file, by the user: each stream resampled
-linearly onto the joint stream's time stamps within the span they share (``numpy.interp``);
-uwml does not join several files yet. Gaps: a step between samples longer than ``MAX_GAP_S``
+[rad] (z-y-x Euler angles). Or one file per stream, recorded apart (joint encoders at 500 Hz,
+motion capture at 100 Hz, with jitter): the one with the ``q`` columns is the joint stream, the
+one with ``x`` the pose stream (its own ``time`` column), resampled linearly onto the joint
+stream's time stamps (``numpy.interp``; the quaternion's sign kept continuous, then normalized),
+and only the span both cover is replayed (:func:`joined`). Gaps: a step between samples longer than ``MAX_GAP_S``
 (0.1 s) is refused, naming where, rather than bridged by the spline: split the log there.
 
-The simulation starts at the log's first sample, the vehicle at rest (at its measured pose, if
-given; else at the origin, level), the joints on the log's motion, and runs to its last.
+The simulation starts at the log's first sample (of the span both streams cover), the vehicle at
+its measured pose and moving as the pose's first samples say (else at rest at the origin, level),
+the joints on the log's motion, and runs to its last.
 """
 
 from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -122,6 +125,20 @@ def read_vehicle_pose(path: str | os.PathLike[str]) -> tuple[FloatArray, FloatAr
     return position, angles / norms[:, None]
 
 
+def _starting_twist(time: FloatArray, position: FloatArray, quaternion: FloatArray) -> FloatArray:
+    """The first sample's world velocity and body angular velocity (MuJoCo's free joint), from the
+    second-order slopes of the first three samples of the measured pose (``ω = 2 q* ⊗ q̇``, vector part)."""
+    if len(time) < 3:
+        return np.zeros(6)
+    velocity = np.gradient(position[:3], time[:3], axis=0, edge_order=2)[0]
+    rate = np.gradient(quaternion[:3], time[:3], axis=0, edge_order=2)[0]
+    w, x, y, z = quaternion[0]
+    dw, dx, dy, dz = rate
+    # The vector part of conj(q) ⊗ q̇, twice.
+    omega = 2.0 * np.array([w * dx - x * dw - y * dz + z * dy, w * dy + x * dz - y * dw - z * dx, w * dz - x * dy + y * dx - z * dw])
+    return np.concatenate([velocity, omega])
+
+
 def _check_gaps(time: FloatArray, source: str) -> None:
     steps = np.diff(time)
     if steps.size and float(steps.max()) > MAX_GAP_S:
@@ -132,16 +149,88 @@ def _check_gaps(time: FloatArray, source: str) -> None:
         )
 
 
+def joined(
+    logs: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], n_joints: int | None = None
+) -> tuple[Log, tuple[FloatArray, FloatArray] | None]:
+    """The joint log and the measured pose on its time stamps, from one file or several (the module:
+    the file with the ``q`` columns is the joint stream; the one with ``x``, the pose stream,
+    resampled linearly onto the joint stream's time stamps within the span both cover, the
+    quaternion's sign kept continuous and its interpolation normalized). Gaps are checked in each
+    stream."""
+    paths = [logs] if isinstance(logs, (str, os.PathLike)) else list(logs)
+    if not paths:
+        raise ValueError("replay needs a log")
+    joint_files = [path for path in paths if "q1" in _header(path)]
+    pose_files = [path for path in paths if "x" in _header(path)]
+    if len(joint_files) != 1:
+        raise ValueError(
+            f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)} of {[str(p) for p in paths]}"
+        )
+    if len(pose_files) > 1:
+        raise ValueError(f"at most one file may hold the vehicle's pose (x, y, z, ...), got {[str(p) for p in pose_files]}")
+    recorded: Log = read_log(joint_files[0], n_joints=n_joints)
+    _check_gaps(recorded.time, recorded.source)
+    if not pose_files:
+        return recorded, None
+    pose = read_vehicle_pose(pose_files[0])
+    if pose is None:  # its header has x: read_vehicle_pose returns one
+        raise ValueError(f"{pose_files[0]}: no vehicle pose")
+    if pose_files[0] == joint_files[0]:
+        return recorded, pose
+    pose_time = _time(pose_files[0])
+    _check_gaps(pose_time, str(pose_files[0]))
+    inside = (recorded.time >= pose_time[0]) & (recorded.time <= pose_time[-1])
+    if np.count_nonzero(inside) < 4:
+        raise ValueError(f"{pose_files[0]} and {joint_files[0]} share fewer than 4 joint samples in time: nothing to replay")
+
+    def keep(a: FloatArray | None) -> FloatArray | None:
+        return None if a is None else a[inside]
+
+    recorded = Log(recorded.time[inside], recorded.q[inside], keep(recorded.qd), keep(recorded.qdd), source=recorded.source)
+    position, quaternion = pose[0], pose[1].copy()
+    # A quaternion and its negative are the same turn: keep neighbours on one side before interpolating.
+    for k in range(1, len(quaternion)):
+        if quaternion[k] @ quaternion[k - 1] < 0.0:
+            quaternion[k] = -quaternion[k]
+    position = np.stack([np.interp(recorded.time, pose_time, position[:, k]) for k in range(3)], axis=1)
+    quaternion = np.stack([np.interp(recorded.time, pose_time, quaternion[:, k]) for k in range(4)], axis=1)
+    return recorded, (position, quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True))
+
+
+def _header(path: str | os.PathLike[str]) -> list[str]:
+    if str(path).endswith(".parquet"):
+        import pyarrow.parquet as pq
+
+        return list(pq.read_schema(str(path)).names)
+    from ..io._arrow_csv import CsvTable
+
+    return list(CsvTable(path, f"{path}: ", "time").header)
+
+
+def _time(path: str | os.PathLike[str]) -> FloatArray:
+    if str(path).endswith(".parquet"):
+        import pyarrow.parquet as pq
+
+        time = np.asarray(pq.read_table(str(path), columns=["time"]).column("time").to_numpy(), dtype=np.float64)
+    else:
+        from ..io._arrow_csv import CsvTable
+
+        time = np.asarray(CsvTable(path, f"{path}: ", "time").read(["time"])["time"], dtype=np.float64)
+    if time.size < 2 or not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0.0):
+        raise ValueError(f"{path}: column 'time' must hold finite, strictly increasing times")
+    return time
+
+
 def replay(
-    log: str | os.PathLike[str],
+    log: str | os.PathLike[str] | Sequence[str | os.PathLike[str]],
     description: str | os.PathLike[str],
     hydro: str | os.PathLike[str] | None = None,
     *,
     progress: bool = False,
     **options: Any,
 ) -> Replay:
-    """Replay the joint motion of ``log`` on the robot of ``description`` (URDF or MJCF, with
-    its ``hydro`` file) floating freely (see the module); ``options`` as for
+    """Replay the joint motion of ``log`` (one file, or several streams: :func:`joined`) on the
+    robot of ``description`` (URDF or MJCF, with its ``hydro`` file) floating freely (see the module); ``options`` as for
     :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ``integrator``, ...). A
     progress bar on standard error with ``progress``."""
     from .mujoco import Simulation
@@ -149,17 +238,18 @@ def replay(
     sim = Simulation.from_file(description, hydro, floating=True, **options)
     if sim._free_dof is None:
         raise ValueError(f"{description}: the robot's base did not float (its root hangs from the world by a joint)")
-    recorded: Log = read_log(log, n_joints=sim.robot.n_joints)
-    source = recorded.source
-    _check_gaps(recorded.time, source)
-    measured = read_vehicle_pose(log)
+    recorded, measured = joined(log, sim.robot.n_joints)
     time = recorded.time
     trajectory = Trajectory(time, recorded.q, recorded.qd, recorded.qdd)
     d, m = sim.data, sim.model
     d.time = float(time[0])
     free = int(sim._free_qpos or 0)
     if measured is not None:
-        d.qpos[free : free + 3], d.qpos[free + 3 : free + 7] = measured[0][0], measured[1][0]
+        # The vehicle's measured pose at the start, and its twist there from the pose's rates.
+        position, quaternion = measured
+        d.qpos[free : free + 3], d.qpos[free + 3 : free + 7] = position[0], quaternion[0]
+        dof = int(sim._free_dof or 0)
+        d.qvel[dof : dof + 6] = _starting_twist(time, position, quaternion)
     sim.prescribe(list(range(sim.robot.n_joints)), trajectory)
     steps = max(1, math.floor((time[-1] - time[0]) / m.opt.timestep + 1e-9))
     times, positions, quaternions, twists = (
@@ -271,7 +361,7 @@ def plot_replay(result: Replay, path: str | os.PathLike[str], measured: tuple[Fl
 
 
 def command(
-    log: str | os.PathLike[str],
+    log: str | os.PathLike[str] | Sequence[str | os.PathLike[str]],
     description: str | os.PathLike[str],
     hydro: str | os.PathLike[str] | None,
     out: str | os.PathLike[str],
@@ -288,8 +378,8 @@ def command(
     folder = Path(out)
     folder.mkdir(parents=True, exist_ok=True)
     write_replay(result, folder / ("replay.parquet" if parquet else "replay.csv"))
-    measured = read_vehicle_pose(log)
-    plot_replay(result, folder / "replay.png", None if measured is None else (read_log(log).time, *measured))
+    recorded, measured = joined(log)
+    plot_replay(result, folder / "replay.png", None if measured is None else (recorded.time, *measured))
     if as_json:
         print(json.dumps(result.errors))
         return 0
