@@ -296,15 +296,15 @@ fn four_states_on_lanes_are_the_scalar_evaluations_bit_for_bit() {
     }
 }
 
+/// A robot of one revolute joint, no segments, empty bodies.
+fn one_joint() -> Model {
+    let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() };
+    Model::new(&[joint], &[RigidBody::empty()], RigidBody::empty(), &[]).unwrap()
+}
+
 #[test]
 fn bad_lumped_models_are_refused_naming_the_model_and_the_field() {
-    let robot = Model::new(
-        &[TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() }],
-        &[RigidBody::empty()],
-        RigidBody::empty(),
-        &[],
-    )
-    .unwrap();
+    let robot = one_joint();
     let good = LumpedBody::none(Owner::Link(0));
     let refused = |bodies: &[LumpedBody<f64>]| {
         let e = robot.with_lumped(bodies).unwrap_err();
@@ -370,13 +370,7 @@ fn singular_semidefinite_matrices_are_taken_and_slightly_indefinite_ones_refused
     // A Aᵀ of every rank, at scales from 1e-3 to 1e6, as added mass and as the symmetric part of a
     // damping with a skew part: taken; a singular one less 1e-6 of its scale on the diagonal:
     // refused.
-    let robot = Model::new(
-        &[TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() }],
-        &[RigidBody::empty()],
-        RigidBody::empty(),
-        &[],
-    )
-    .unwrap();
+    let robot = one_joint();
     let mut rng = Rng(29);
     for rank in 0..=6 {
         for scale in [1e-3, 1.0, 1e6] {
