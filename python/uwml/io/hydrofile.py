@@ -145,17 +145,19 @@ class HydroFile:
 
 
 def _coefficient(value: Any) -> float | tuple[float, float]:
-    coefficient = _pair(value) if isinstance(value, list) else _float(value)
-    for x in coefficient if isinstance(coefficient, tuple) else (coefficient,):
-        if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
-            raise ValueError(f"each between 0 and {MAX_COEFFICIENT:g}")
-    return coefficient
+    if isinstance(value, list):
+        first, second = _pair(value)
+        return _in_coefficient_range(first, "each "), _in_coefficient_range(second, "each ")
+    return _in_coefficient_range(_float(value), "each ")
 
 
 def _axial(value: Any) -> float:
-    x = _float(value)
+    return _in_coefficient_range(_float(value), "")
+
+
+def _in_coefficient_range(x: float, each: str) -> float:
     if not (math.isfinite(x) and 0.0 <= x <= MAX_COEFFICIENT):
-        raise ValueError(f"between 0 and {MAX_COEFFICIENT:g}")
+        raise ValueError(f"{each}between 0 and {MAX_COEFFICIENT:g}")
     return x
 
 

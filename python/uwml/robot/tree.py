@@ -53,6 +53,12 @@ MAX_SEGMENTS: int = _core.MAX_SEGMENTS
 MAX_LUMPED_BODIES: int = _core.MAX_LUMPED_BODIES
 
 
+def _base_wrench(out: Sequence[FloatArray], lead: tuple[int, ...]) -> BaseWrench:
+    """The base wrench of a native ``hydro`` result (items 4 to 7), shaped ``(*lead, 6)``."""
+    drag, mass, buoyancy, gravity = (a.reshape(*lead, 6) for a in out[4:8])
+    return BaseWrench(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity)
+
+
 class Robot:
     """A robot: joints in a tree, the links they move, and optionally the base's own body.
 
@@ -202,6 +208,22 @@ class Robot:
     ) -> JointLosses | Sequence[JointLosses | None] | None:
         """``losses`` if given, else the joints' own: one object when they all share one."""
         return self._own_losses if losses is None else losses
+
+    def _loss_inputs(
+        self,
+        losses: JointLosses | Sequence[JointLosses | None] | None,
+        depth: ArrayLike,
+        temperature_c: ArrayLike,
+        water: Water | None,
+        sea_density: float | None,
+        n_samples: int,
+    ) -> tuple[Any, FloatArray, FloatArray]:
+        """The native losses arguments of a batch: the joints' losses packed, and the pressure [Pa]
+        and temperature [°C] per sample (hydrostatic, over ``sea_density`` or the water's)."""
+        water = self._the_water(water)
+        column = water.density if sea_density is None else sea_density
+        pressure, temperature = loss_conditions(depth, temperature_c, column, water.gravity, n_samples)
+        return pack_leg_losses(losses, self.n_joints), pressure, temperature
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Robot):
@@ -364,18 +386,9 @@ class Robot:
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
         out = self._core.hydro(*arguments, threads, False, kirchhoff=kirchhoff)
         check_overflow((out[0], out[1], out[4], out[5]), n_samples, arguments[1], arguments[2])
-        n = self.n_joints
-        joint_shape = (n_samples, n) if batched else (n,)
-        base_shape = (n_samples, 6) if batched else (6,)
-        joints = [a.reshape(joint_shape) for a in out[:4]]
-        base = [a.reshape(base_shape) for a in out[4:8]]
-        return RobotTorques(
-            drag=joints[0],
-            added_mass=joints[1],
-            buoyancy=joints[2],
-            gravity=joints[3],
-            base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
-        )
+        lead = (n_samples,) if batched else ()
+        drag, mass, buoyancy, gravity = (a.reshape(*lead, self.n_joints) for a in out[:4])
+        return RobotTorques(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity, base=_base_wrench(out, lead))
 
     def environment(
         self,
@@ -436,17 +449,11 @@ class Robot:
                 return one
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        compiled = pack_leg_losses(losses, self.n_joints)
-        the_water = self._the_water(water)
-        column = the_water.density if sea_density is None else sea_density
-        pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
-        out = self._core.hydro(*arguments, threads, False, compiled, pressure, temperature, kirchhoff=kirchhoff)
+        loss_inputs = self._loss_inputs(losses, depth, temperature_c, water, sea_density, n_samples)
+        out = self._core.hydro(*arguments, threads, False, *loss_inputs, kirchhoff=kirchhoff)
         check_overflow((out[0], out[1], out[4], out[5], out[9], out[10], out[11]), n_samples, arguments[1], arguments[2])
-        n = self.n_joints
-        joint_shape = (n_samples, n) if batched else (n,)
-        base_shape = (n_samples, 6) if batched else (6,)
-        drag, mass, buoyancy, gravity, visc, seal, current_a = (out[i].reshape(joint_shape) for i in (0, 1, 2, 3, 9, 10, 11))
-        base = [a.reshape(base_shape) for a in out[4:8]]
+        lead = (n_samples,) if batched else ()
+        drag, mass, buoyancy, gravity, visc, seal, current_a = (out[i].reshape(*lead, self.n_joints) for i in (0, 1, 2, 3, 9, 10, 11))
         return RobotEnvironment(
             drag=drag,
             added_mass=mass,
@@ -455,7 +462,7 @@ class Robot:
             visc=visc,
             seal=seal,
             current=current_a,
-            base=BaseWrench(drag=base[0], added_mass=base[1], buoyancy=base[2], gravity=base[3]),
+            base=_base_wrench(out, lead),
         )
 
     def jacobians(
@@ -480,11 +487,8 @@ class Robot:
         kirchhoff = _kirchhoff(added_mass)
         losses = self._effective_losses(losses)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        compiled = pack_leg_losses(losses, self.n_joints)
-        the_water = self._the_water(water)
-        column = the_water.density if sea_density is None else sea_density
-        pressure, temperature = loss_conditions(depth, temperature_c, column, the_water.gravity, n_samples)
-        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, compiled, pressure, temperature, kirchhoff=kirchhoff)
+        loss_inputs = self._loss_inputs(losses, depth, temperature_c, water, sea_density, n_samples)
+        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, *loss_inputs, kirchhoff=kirchhoff)
         check_overflow((value, d_q, d_velocity), n_samples, arguments[1], arguments[2])
         n = self.n_joints
         m = 6 + n

@@ -120,13 +120,11 @@ def imposing_torque(mujoco: Any, model: Any, data: Any, dofs: NDArray[np.int64],
     ``target`` (see the module), and ``data.qacc`` changed accordingly; ``data`` after a forward
     pass whose mass matrix is factored (``mj_factorM``)."""
     nv = model.nv
-    columns = np.zeros((nv, len(dofs)))
     unit = np.zeros((len(dofs), nv))
     unit[np.arange(len(dofs)), dofs] = 1.0
-    for k in range(len(dofs)):
-        solved = np.zeros(nv)
-        mujoco.mj_solveM(model, data, solved.reshape(1, nv), unit[k].reshape(1, nv))
-        columns[:, k] = solved
+    solved = np.zeros((len(dofs), nv))
+    mujoco.mj_solveM(model, data, solved, unit)  # one row per prescribed dof: M⁻¹ e_p
+    columns = solved.T  # M⁻¹[:, p]
     block = columns[dofs, :]  # (M⁻¹)_pp
     torque = np.linalg.solve(block, target - data.qacc[dofs])
     data.qacc[:] += columns @ torque

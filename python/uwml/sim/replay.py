@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -81,25 +81,34 @@ def _quaternion(euler: FloatArray) -> FloatArray:
     )
 
 
-def read_vehicle_pose(path: str | os.PathLike[str]) -> tuple[FloatArray, FloatArray] | None:
-    """The measured pose in a log (see the module): ``(position (n, 3), quaternion (n, 4))``, or
-    None when the log has no ``x`` column. A pose given in part (``x`` without ``y``, a quaternion
-    without ``qz``, neither a quaternion nor Euler angles) is an error naming the columns."""
+def _table(path: str | os.PathLike[str]) -> tuple[list[str], Callable[[Sequence[str]], dict[str, Any]]]:
+    """A log's column names and a reader of named columns (CSV or Parquet by the suffix): one read
+    of the file, whatever is asked of it after."""
     source = str(path)
     if source.endswith(".parquet"):
         import pyarrow.parquet as pq
 
         table = pq.read_table(source)
-        header = table.column_names
 
-        def read(names: tuple[str, ...]) -> dict[str, Any]:
+        def read(names: Sequence[str]) -> dict[str, Any]:
             return {name: table.column(name).to_numpy() for name in names}
-    else:
-        from ..io._arrow_csv import CsvTable
 
-        csv = CsvTable(path, f"{source}: ", "time")
-        header = csv.header
-        read = csv.read
+        return list(table.column_names), read
+    from ..io._arrow_csv import CsvTable
+
+    csv = CsvTable(path, f"{source}: ", "time")
+    return list(csv.header), csv.read
+
+
+def read_vehicle_pose(path: str | os.PathLike[str]) -> tuple[FloatArray, FloatArray] | None:
+    """The measured pose in a log (see the module): ``(position (n, 3), quaternion (n, 4))``, or
+    None when the log has no ``x`` column. A pose given in part (``x`` without ``y``, a quaternion
+    without ``qz``, neither a quaternion nor Euler angles) is an error naming the columns."""
+    return _pose(str(path), *_table(path))
+
+
+def _pose(source: str, header: list[str], read: Callable[[Sequence[str]], dict[str, Any]]) -> tuple[FloatArray, FloatArray] | None:
+    """:func:`read_vehicle_pose` of a table already open."""
     present = set(header)
     if "x" not in present:
         return None
@@ -160,8 +169,10 @@ def joined(
     paths = [logs] if isinstance(logs, (str, os.PathLike)) else list(logs)
     if not paths:
         raise ValueError("replay needs a log")
-    joint_files = [path for path in paths if "q1" in _header(path)]
-    pose_files = [path for path in paths if "x" in _header(path)]
+    tables = [_table(path) for path in paths]
+    joint_files = [path for path, (header, _) in zip(paths, tables, strict=True) if "q1" in header]
+    pose_tables = [(path, table) for path, table in zip(paths, tables, strict=True) if "x" in table[0]]
+    pose_files = [path for path, _ in pose_tables]
     if len(joint_files) != 1:
         raise ValueError(
             f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)} of {[str(p) for p in paths]}"
@@ -172,12 +183,12 @@ def joined(
     _check_gaps(recorded.time, recorded.source)
     if not pose_files:
         return recorded, None
-    pose = read_vehicle_pose(pose_files[0])
+    pose = _pose(str(pose_files[0]), *pose_tables[0][1])
     if pose is None:  # its header has x: read_vehicle_pose returns one
         raise ValueError(f"{pose_files[0]}: no vehicle pose")
     if pose_files[0] == joint_files[0]:
         return recorded, pose
-    pose_time = _time(pose_files[0])
+    pose_time = _time(str(pose_files[0]), *pose_tables[0][1])
     _check_gaps(pose_time, str(pose_files[0]))
     inside = (recorded.time >= pose_time[0]) & (recorded.time <= pose_time[-1])
     if np.count_nonzero(inside) < 4:
@@ -197,27 +208,13 @@ def joined(
     return recorded, (position, quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True))
 
 
-def _header(path: str | os.PathLike[str]) -> list[str]:
-    if str(path).endswith(".parquet"):
-        import pyarrow.parquet as pq
-
-        return list(pq.read_schema(str(path)).names)
-    from ..io._arrow_csv import CsvTable
-
-    return list(CsvTable(path, f"{path}: ", "time").header)
-
-
-def _time(path: str | os.PathLike[str]) -> FloatArray:
-    if str(path).endswith(".parquet"):
-        import pyarrow.parquet as pq
-
-        time = np.asarray(pq.read_table(str(path), columns=["time"]).column("time").to_numpy(), dtype=np.float64)
-    else:
-        from ..io._arrow_csv import CsvTable
-
-        time = np.asarray(CsvTable(path, f"{path}: ", "time").read(["time"])["time"], dtype=np.float64)
+def _time(source: str, header: list[str], read: Callable[[Sequence[str]], dict[str, Any]]) -> FloatArray:
+    """The ``time`` column of a pose stream's table, checked."""
+    if "time" not in header:
+        raise ValueError(f"{source}: no column 'time'")
+    time = np.asarray(read(("time",))["time"], dtype=np.float64)
     if time.size < 2 or not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0.0):
-        raise ValueError(f"{path}: column 'time' must hold finite, strictly increasing times")
+        raise ValueError(f"{source}: column 'time' must hold finite, strictly increasing times")
     return time
 
 
@@ -233,38 +230,49 @@ def replay(
     robot of ``description`` (URDF or MJCF, with its ``hydro`` file) floating freely (see the module); ``options`` as for
     :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ``integrator``, ...). A
     progress bar on standard error with ``progress``."""
+    sim = _floating(description, hydro, options)
+    recorded, measured = joined(log, sim.robot.n_joints)
+    return _simulate(sim, recorded, measured, progress)
+
+
+def _floating(description: str | os.PathLike[str], hydro: str | os.PathLike[str] | None, options: dict[str, Any]) -> Any:
+    """The simulation of :func:`replay`: the robot of ``description`` with its base floating."""
     from .mujoco import Simulation
 
     sim = Simulation.from_file(description, hydro, floating=True, **options)
     if sim._free_dof is None:
         raise ValueError(f"{description}: the robot's base did not float (its root hangs from the world by a joint)")
-    recorded, measured = joined(log, sim.robot.n_joints)
+    return sim
+
+
+def _simulate(sim: Any, recorded: Log, measured: tuple[FloatArray, FloatArray] | None, progress: bool) -> Replay:
+    """:func:`replay` of a log already read (:func:`joined`) on a floating simulation."""
     time = recorded.time
     trajectory = Trajectory(time, recorded.q, recorded.qd, recorded.qdd)
     d, m = sim.data, sim.model
     d.time = float(time[0])
-    free = int(sim._free_qpos or 0)
+    free, dof = int(sim._free_qpos), int(sim._free_dof)
     if measured is not None:
         # The vehicle's measured pose at the start, and its twist there from the pose's rates.
         position, quaternion = measured
         d.qpos[free : free + 3], d.qpos[free + 3 : free + 7] = position[0], quaternion[0]
-        dof = int(sim._free_dof or 0)
         d.qvel[dof : dof + 6] = _starting_twist(time, position, quaternion)
     sim.prescribe(list(range(sim.robot.n_joints)), trajectory)
     steps = max(1, math.floor((time[-1] - time[0]) / m.opt.timestep + 1e-9))
-    times, positions, quaternions, twists = (
-        [float(d.time)],
-        [d.qpos[free : free + 3].copy()],
-        [d.qpos[free + 3 : free + 7].copy()],
-        [d.qvel[:6].copy()],
-    )
-    bar = _progress(steps) if progress else None
-    for k in range(steps):
-        sim.step()
+    times: list[float] = []
+    positions, quaternions, twists = [], [], []
+
+    def record() -> None:
         times.append(float(d.time))
         positions.append(d.qpos[free : free + 3].copy())
         quaternions.append(d.qpos[free + 3 : free + 7].copy())
-        twists.append(d.qvel[:6].copy())
+        twists.append(d.qvel[dof : dof + 6].copy())
+
+    record()
+    bar = _progress(steps) if progress else None
+    for k in range(steps):
+        sim.step()
+        record()
         if bar is not None and (k % max(1, steps // 100) == 0 or k == steps - 1):
             bar(k + 1)
     result = Replay(np.array(times), np.array(positions), np.array(quaternions), np.array(twists), None)
@@ -374,11 +382,12 @@ def command(
     import json
     from pathlib import Path
 
-    result = replay(log, description, hydro, progress=not as_json)
+    sim = _floating(description, hydro, {})
+    recorded, measured = joined(log, sim.robot.n_joints)
+    result = _simulate(sim, recorded, measured, progress=not as_json)
     folder = Path(out)
     folder.mkdir(parents=True, exist_ok=True)
     write_replay(result, folder / ("replay.parquet" if parquet else "replay.csv"))
-    recorded, measured = joined(log)
     plot_replay(result, folder / "replay.png", None if measured is None else (recorded.time, *measured))
     if as_json:
         print(json.dumps(result.errors))
