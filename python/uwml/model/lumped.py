@@ -108,7 +108,7 @@ class LumpedModel:
         added_mass = _matrix6(self.added_mass, "lumped.added_mass")
         array = np.array(added_mass)
         asymmetry = np.abs(array - array.T)
-        if np.any(asymmetry > 1e-9 * max(float(np.max(np.abs(array))), 0.0)):
+        if np.any(asymmetry > 1e-9 * float(np.max(np.abs(array)))):
             r, c = np.unravel_index(int(np.argmax(asymmetry)), asymmetry.shape)
             raise ValueError(f"lumped.added_mass must be symmetric: [{r}][{c}] = {array[r, c]} but [{c}][{r}] = {array[c, r]}")
         symmetric = 0.5 * (array + array.T)

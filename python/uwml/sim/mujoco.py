@@ -544,8 +544,7 @@ class Simulation:
         self._integrate(torque, qfrc)
         if self._prescribed is not None:
             # On the motion, exactly (the integration of imposed accelerations drifts by its error).
-            _, qpos, motion = self._prescribed
-            dofs = self._prescribed[0]
+            dofs, qpos, motion = self._prescribed
             q, qd, _ = motion(float(self.data.time))
             self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
 
