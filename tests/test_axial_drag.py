@@ -67,9 +67,17 @@ def test_a_hydro_file_gives_a_links_segments_an_axial_drag(tmp_path: Path) -> No
         uwml.Robot.from_mjcf(DATA / "arm.xml", hydro)
 
 
-def test_regressors_and_a_leg_refuse_an_axial_drag_rather_than_leave_it_out() -> None:
-    with pytest.raises(ValueError, match=r"axial drag \(Segment.cd_axial\), whose regressors are not available yet"):
-        rod(0.8).hydro_regressors([0.0], [0.0], [0.0])
+def test_the_axial_column_times_cd_axial_is_the_axial_drag_and_a_leg_refuses_one() -> None:
+    robot = rod(0.8)
+    q, qd, qdd = [0.3], [1.5], [0.0]
+    motion = uwml.BaseMotion(velocity=(0.7, -0.2, 0.4))
+    regressors = robot.hydro_regressors(q, qd, qdd, base_motion=motion)
+    assert np.any(regressors.base_axial_drag != 0.0)
+    forces = robot.hydro(q, qd, qdd, base_motion=motion)
+    rebuilt = regressors.torques([s.cd for s in robot.segments], [s.cm for s in robot.segments], 0.8)
+    np.testing.assert_allclose(rebuilt.base.drag, forces.base.drag, rtol=1e-12, atol=1e-12)
+    without = regressors.torques([s.cd for s in robot.segments], [s.cm for s in robot.segments])
+    assert np.max(np.abs(without.base.drag - forces.base.drag)) > 1e-3, "the axial drag is in its own column"
     paper = uwml.Leg.paper()
     segment = paper.links[1].segment
     assert segment is not None

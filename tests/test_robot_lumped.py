@@ -143,11 +143,58 @@ def test_too_many_lumped_models_are_refused() -> None:
         uwml.Robot(joints, links)
 
 
-def test_regressors_of_a_robot_with_lumped_models_are_refused_not_wrong() -> None:
+@EXAMPLES
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 6), form=st.sampled_from(["morison", "kirchhoff"]))
+def test_regressors_times_every_coefficient_are_the_references_forces(seed: int, n: int, form: str) -> None:
+    """docs/model.md section 12.1: linear in each entry of M_A, D_L and D_Q (in the model's own
+    axes), and 12.2 in cd_axial: the columns times the robot's own coefficients are the numpy
+    reference's drag and added mass on every joint and on the base, on a moving base in a
+    current."""
+    rng = np.random.default_rng(seed)
+    robot = with_lumped(random_robot(rng, n, base_body=bool(rng.random() < 0.8), axial=True), rng)
+    samples = 6
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    motion = motion_arguments(rng, samples)
+    current, current_acceleration = rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+    regressors = robot.hydro_regressors(
+        q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current, current_acceleration=current_acceleration,
+        added_mass=form,
+    )  # fmt: skip
+    m = len(robot.lumped_models)
+    assert regressors.lumped.shape == (samples, n, m, 63) and regressors.base_lumped.shape == (samples, 6, m, 63)
+    assert regressors.axial_drag.shape == (samples, n, len(robot.segments))
+    cd = np.array([s.cd for s in robot.segments]).reshape(-1, 2)
+    cm = np.array([s.cm for s in robot.segments]).reshape(-1, 2)
+    forces = regressors.torques(
+        cd, cm, [s.cd_axial for s in robot.segments], np.array([model.coefficients() for _, model in robot.lumped_models]).reshape(m, 63)
+    )
+    expected = ref.robot_hydro(
+        robot.joints, robot.links, robot.base, q, qd, qdd, current=current, current_acceleration=current_acceleration,
+        added_mass=form, **motion,
+    )  # fmt: skip
+    assert_matches_reference(forces, expected)
+    # A lumped model's damping columns carry no added mass, its added-mass columns no drag:
+    # the damping half alone is the reference's drag without the segments.
+    damping_only = regressors.torques(0.0, 0.0, 0.0, np.array([np.r_[np.zeros(21), model.coefficients()[21:]] for _, model in robot.lumped_models]).reshape(m, 63))
+    assert np.all(damping_only.added_mass == 0.0) and np.all(damping_only.base.added_mass == 0.0)
+
+
+def test_regressors_name_their_lumped_coefficients_and_check_their_shapes() -> None:
+    from uwml.model.lumped import LUMPED_COEFFICIENTS
+
+    assert len(LUMPED_COEFFICIENTS) == 63 and len(set(LUMPED_COEFFICIENTS)) == 63
+    assert LUMPED_COEFFICIENTS[:2] == ("added_mass[0][0]", "added_mass[0][1]") and LUMPED_COEFFICIENTS[20] == "added_mass[5][5]"
+    assert LUMPED_COEFFICIENTS[21] == "linear_damping[0][0]" and LUMPED_COEFFICIENTS[-1] == "quadratic_damping[5]"
+    model = uwml.LumpedModel(added_mass=np.diag([1.0, 2, 3, 4, 5, 6]), quadratic_damping=[7.0, 0, 0, 0, 0, 8])
+    values = dict(zip(LUMPED_COEFFICIENTS, model.coefficients(), strict=True))
+    assert values["added_mass[2][2]"] == 3.0 and values["added_mass[0][1]"] == 0.0 and values["quadratic_damping[5]"] == 8.0
     rng = np.random.default_rng(2)
     robot = with_lumped(random_robot(rng, 2), rng)
-    with pytest.raises(ValueError, match="lumped"):
-        robot.hydro_regressors([0.1, 0.2], [0.0, 0.0], [0.0, 0.0])
+    regressors = robot.hydro_regressors([0.1, 0.2], [0.0, 0.0], [0.0, 0.0])
+    with pytest.raises(ValueError, match=r"lumped must have shape \(\d+, 63\)"):
+        regressors.torques(2.0, 1.0, 0.0, np.zeros((len(robot.lumped_models) + 1, 63)))
+    with pytest.raises(ValueError, match="cd_axial must be a scalar or"):
+        regressors.torques(2.0, 1.0, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0][: len(robot.segments) + 1])
 
 
 def test_a_leg_refuses_a_lumped_model_rather_than_dropping_it() -> None:

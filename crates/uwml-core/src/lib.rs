@@ -37,7 +37,7 @@ pub use losses::{
     MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques,
     pressure_at_depth, smooth_sign,
 };
-pub use lumped::{LumpedBody, MAX_LUMPED};
+pub use lumped::{LUMPED_COLUMNS, LumpedBody, MAX_LUMPED};
 pub use model::{
     AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, MAX_AREA, MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY, MAX_LENGTH,
     MAX_MASS, MAX_VOLUME, Segment, Water,

@@ -226,6 +226,10 @@ impl<T: SimdRealField + Copy, const B: usize> Lumped<T, B> {
     }
 
     /// Whether `owner` has one.
+    pub(crate) fn len(&self) -> usize {
+        usize::from(self.count)
+    }
+
     pub(crate) fn has(&self, owner: Owner) -> bool {
         self.iter().any(|(o, _)| *o == owner)
     }
@@ -329,5 +333,77 @@ impl<T: SimdRealField + Copy> LumpedFrame<T> {
         };
         let damping = Wrench { force: -(f_linear + f_quadratic), moment: -(m_linear + m_quadratic) };
         (damping.moved_from(&self.point), added_mass.moved_from(&self.point))
+    }
+}
+
+/// Regressor columns per lumped model (docs/model.md section 12.1: the model is linear in each
+/// of its entries): the added mass's 21 independent entries (upper triangle, row by row: `(0,0),
+/// (0,1), …, (0,5), (1,1), …, (5,5)`; an off-diagonal column is the unit entry at `(i, j)` and
+/// `(j, i)` both), the linear damping's 36 (row by row), the quadratic damping's 6; every entry
+/// in the model's own axes.
+pub const LUMPED_COLUMNS: usize = 63;
+
+impl<T: SimdRealField + Copy> LumpedFrame<T> {
+    /// The wrench of each of the [`LUMPED_COLUMNS`] unit coefficients, as [`Self::wrenches`]
+    /// gives them (about `F`'s origin, in its components): `put(column, added_mass, wrench)`,
+    /// `added_mass` true for the added-mass columns (the others are damping, reported as drag).
+    #[inline(always)]
+    pub(crate) fn unit_wrenches(
+        &self,
+        [v, w, v_dot, alpha]: [Vector3<T>; 4],
+        mut put: impl FnMut(usize, bool, Wrench<T>),
+    ) {
+        // The twist in the model's own axes, where its coefficients are given.
+        let own = |x: Vector3<T>| match &self.rotation {
+            Some(r) => r.transpose() * x,
+            None => x,
+        };
+        let (v, w, v_dot, alpha) = (own(v), own(w), own(v_dot), own(alpha));
+        let nu = [v.x, v.y, v.z, w.x, w.y, w.z];
+        let nu_dot = [v_dot.x, v_dot.y, v_dot.z, alpha.x, alpha.y, alpha.z];
+        let at = |x: &[T; 6], i: usize| x.get(i).copied().unwrap_or_else(T::zero);
+        // `x` at entry `i` of a 6-vector, as its linear and angular halves.
+        let unit = |i: usize, x: T| {
+            let mut a = [T::zero(); 6];
+            if let Some(slot) = a.get_mut(i) {
+                *slot = x;
+            }
+            (Vector3::new(a[0], a[1], a[2]), Vector3::new(a[3], a[4], a[5]))
+        };
+        let back = |force: Vector3<T>, moment: Vector3<T>| {
+            let wrench = match &self.rotation {
+                Some(r) => Wrench { force: r * force, moment: r * moment },
+                None => Wrench { force, moment },
+            };
+            wrench.moved_from(&self.point)
+        };
+        let mut column = 0;
+        for i in 0..6 {
+            for j in i..6 {
+                // (p, h) = E ν and E ν̇ for the symmetric unit E at (i, j) and (j, i).
+                let (mut p, mut h) = unit(i, at(&nu, j));
+                let (mut f, mut m) = unit(i, at(&nu_dot, j));
+                if i != j {
+                    let (p2, h2) = unit(j, at(&nu, i));
+                    let (f2, m2) = unit(j, at(&nu_dot, i));
+                    (p, h, f, m) = (p + p2, h + h2, f + f2, m + m2);
+                }
+                put(column, true, back(-(f + w.cross(&p)), -(m + v.cross(&p) + w.cross(&h))));
+                column += 1;
+            }
+        }
+        for i in 0..6 {
+            for j in 0..6 {
+                let (f, m) = unit(i, at(&nu, j));
+                put(column, false, back(-f, -m));
+                column += 1;
+            }
+        }
+        for i in 0..6 {
+            let x = at(&nu, i);
+            let (f, m) = unit(i, x.simd_abs() * x);
+            put(column, false, back(-f, -m));
+            column += 1;
+        }
     }
 }

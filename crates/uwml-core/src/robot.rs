@@ -15,7 +15,7 @@ use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
 use crate::frames::{BodyFrames, link_axes};
-use crate::lumped::{Lumped, LumpedBody, LumpedFrame};
+use crate::lumped::{LUMPED_COLUMNS, Lumped, LumpedBody, LumpedFrame};
 use crate::model::{
     AXIS_TOLERANCE, Chain, MAX_AREA, MAX_MASS, MAX_VOLUME, check_at_most, check_coefficient, check_length,
     check_non_negative, check_normal, check_point, check_positive, check_unit, constant,
@@ -483,6 +483,13 @@ impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Ro
     /// The bodies' lumped models, in their body frames.
     pub(crate) const fn lumped(&self) -> &Lumped<T, B> {
         &self.lumped
+    }
+
+    /// The number of columns of the robot's regressors ([`crate::tree::robot_hydro_regressors`]):
+    /// `3s + 63l` for `s` segments and `l` lumped models.
+    #[must_use]
+    pub fn regressor_column_count(&self) -> usize {
+        3 * self.segments().len() + LUMPED_COLUMNS * self.lumped.len()
     }
 }
 

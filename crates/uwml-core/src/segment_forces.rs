@@ -135,7 +135,7 @@ pub(crate) fn segment_wrenches<T: SimdRealField + Copy>(
     (drag.moved_from(&start), added_mass.moved_from(&start))
 }
 
-/// A segment's axial drag (docs/model.md section 12.2) about its body's origin, in its body frame:
+/// A segment's axial drag (docs/model.md section 12.2) at coefficient `cd_axial` about its body's origin, in its body frame:
 /// `−½ ρ cd_axial A_axial |u·v| (u·v) u` at its midpoint, `u·v` the same at every slice of a
 /// straight segment (`u·(ω × u) = 0`), so along the axis through the start, with no moment about
 /// it.
@@ -144,11 +144,12 @@ pub(crate) fn axial_drag<T: SimdRealField + Copy>(
     frame: &Frame<T>,
     segment: &RobotSegment<T>,
     geometry: &SegmentGeometry<T>,
+    cd_axial: T,
     density: T,
 ) -> Wrench<T> {
     let (velocity, _) = frame.point_motion(&geometry.start);
     let speed = geometry.frame.axial_component(&velocity);
-    let scale = -constant::<T>(0.5) * density * segment.cd_axial * segment.axial_area;
+    let scale = -constant::<T>(0.5) * density * cd_axial * segment.axial_area;
     let force = geometry.axis() * (scale * speed.simd_abs() * speed);
     Wrench { force, moment: Vector3::zeros() }.moved_from(&geometry.start)
 }

@@ -314,7 +314,7 @@ impl<T: SimdRealField + Copy> Frame<T> {
     /// The twist relative to the water `(v, ω)` of the material point at `r` and its components'
     /// derivative `(v̇, α)` (`v̇ = a − ω × v`, `a` the point's acceleration relative to the water).
     #[inline(always)]
-    fn twist_at(&self, r: &Vector3<T>) -> [Vector3<T>; 4] {
+    pub(crate) fn twist_at(&self, r: &Vector3<T>) -> [Vector3<T>; 4] {
         let (v, a) = self.point_motion(r);
         let w = self.angular_velocity;
         [v, w, a - w.cross(&v), self.angular_acceleration]
@@ -443,7 +443,7 @@ pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize, const B: usize>(
         body.drag += drag;
         body.added_mass += added_mass;
         if geometry.axial {
-            body.drag += axial_drag(frame, segment, geometry, rho);
+            body.drag += axial_drag(frame, segment, geometry, segment.cd_axial, rho);
         }
     }
     // Each lumped model's damping and added mass, on its body (docs/model.md section 12.1).

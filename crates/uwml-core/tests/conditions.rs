@@ -73,7 +73,8 @@ fn losses_in_the_conditions_are_each_joints_own_and_leave_the_forces_alone() {
         }
     }
     // An evaluation without losses (the regressors') leaves none behind in the workspace.
-    let (mut drag, mut added_mass) = (vec![0.0; (6 + n) * 2 * S], vec![0.0; (6 + n) * 2 * S]);
+    let width = (6 + n) * robot.regressor_column_count();
+    let (mut drag, mut added_mass) = (vec![0.0; width], vec![0.0; width]);
     robot_hydro_regressors(&robot, &with, [&q, &qd, &qdd], &mut a, &mut drag, &mut added_mass);
     assert!(a.joint_losses().iter().all(|l| [l.visc, l.seal, l.current] == [0.0; 3]));
 }

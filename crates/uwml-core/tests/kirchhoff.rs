@@ -148,7 +148,7 @@ fn kirchhoff_regressors_and_jacobians_are_its_forces() {
     let mut totals = data.base_wrench().total().to_array().to_vec();
     totals.extend(data.joint_forces().iter().map(|f| f.total()));
     // Regressors: Σ columns × each segment's own Cm is the added-mass force.
-    let columns = 2 * robot.segments().len();
+    let columns = robot.regressor_column_count();
     let (mut drag, mut added) = (vec![0.0; M * columns], vec![0.0; M * columns]);
     let form = AddedMassForm::Kirchhoff;
     robot_hydro_regressors(

@@ -161,10 +161,15 @@ fn a_body_moving_with_the_water_feels_no_damping_and_no_added_mass() {
 
 /// A robot of random joints with lumped models on the base and on some links.
 fn random_lumped_robot(rng: &mut Rng, n: usize) -> Model {
+    random_lumped_robot_and_models(rng, n).0
+}
+
+/// [`random_lumped_robot`] and its lumped models as given.
+fn random_lumped_robot_and_models(rng: &mut Rng, n: usize) -> (Model, Vec<LumpedBody<f64>>) {
     let robot: Model = random_robot(rng, n);
     let mut bodies = vec![random_lumped(rng, Owner::Base)];
     bodies.extend((0..n).filter(|i| i % 2 == 0).map(|i| random_lumped(rng, Owner::Link(i))));
-    robot.with_lumped(&bodies).unwrap()
+    (robot.with_lumped(&bodies).unwrap(), bodies)
 }
 
 #[test]
@@ -387,6 +392,95 @@ fn singular_semidefinite_matrices_are_taken_and_slightly_indefinite_ones_refused
                 let bad = psd - Matrix6::identity() * (1e-6 * size);
                 let error = robot.with_lumped(&[LumpedBody { added_mass: bad, ..good }]).unwrap_err();
                 assert_eq!((error.field, error.problem), ("lumped.added_mass", Problem::NotPositiveSemidefinite));
+            }
+        }
+    }
+}
+
+#[test]
+fn regressors_times_every_coefficient_are_the_forces_of_lumped_models_and_axial_drag() {
+    // docs/model.md section 12.1: the forces are linear in each entry of M_A, D_L and D_Q (in the
+    // model's own axes), and 12.2 in cd_axial; Σ columns × coefficients is the evaluation's drag
+    // and added mass on every row, in both added-mass forms, on moving bases in a current.
+    use uwml_core::{AddedMassForm, LUMPED_COLUMNS, robot_hydro_regressors};
+    let mut rng = Rng(83);
+    for round in 0..40 {
+        let n = 1 + round % 6;
+        let (robot, models) = random_lumped_robot_and_models(&mut rng, n);
+        let s = states(&mut rng, n);
+        let motion = random_motion(&mut rng);
+        let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
+        let form = if round % 2 == 0 { AddedMassForm::Morison } else { AddedMassForm::Kirchhoff };
+        let conditions = Conditions { motion, current, form, ..Conditions::new(Water::default()) };
+        let columns = robot.regressor_column_count();
+        let segments = robot.segments().len();
+        let rows = 6 + n;
+        let (mut drag, mut added_mass) = (vec![f64::NAN; rows * columns], vec![f64::NAN; rows * columns]);
+        let mut data = RobotData::new();
+        robot_hydro_regressors(&robot, &conditions, [&s[0], &s[1], &s[2]], &mut data, &mut drag, &mut added_mass);
+        let mut expected = RobotData::new();
+        robot_hydro(&robot, &conditions, [&s[0], &s[1], &s[2]], &mut expected);
+        assert_eq!(columns, 3 * segments + LUMPED_COLUMNS * models.len());
+        // Every coefficient, in the layout of the columns.
+        let mut coefficients = vec![0.0; columns];
+        for (k, segment) in robot.segments().iter().enumerate() {
+            coefficients[2 * k] = segment.cd[0];
+            coefficients[2 * k + 1] = segment.cd[1];
+            coefficients[2 * segments + k] = segment.cd_axial;
+        }
+        let mut added = coefficients.clone();
+        for (k, segment) in robot.segments().iter().enumerate() {
+            added[2 * k] = segment.cm[0];
+            added[2 * k + 1] = segment.cm[1];
+            added[2 * segments + k] = 0.0;
+        }
+        for (b, model) in models.iter().enumerate() {
+            let first = 3 * segments + LUMPED_COLUMNS * b;
+            let mut i = first;
+            for r in 0..6 {
+                for c in r..6 {
+                    added[i] = model.added_mass[(r, c)];
+                    coefficients[i] = 0.0;
+                    i += 1;
+                }
+            }
+            for r in 0..6 {
+                for c in 0..6 {
+                    coefficients[i] = model.linear_damping[(r, c)];
+                    added[i] = 0.0;
+                    i += 1;
+                }
+            }
+            for r in 0..6 {
+                coefficients[i] = model.quadratic_damping[r];
+                added[i] = 0.0;
+                i += 1;
+            }
+            assert_eq!(i, first + LUMPED_COLUMNS);
+        }
+        let sum = |table: &[f64], c: &[f64], row: usize| -> f64 {
+            (0..columns).map(|k| table[row * columns + k] * c[k]).sum()
+        };
+        let base = expected.base_wrench();
+        let mut want: Vec<(f64, f64)> =
+            base.drag.to_array().iter().zip(base.added_mass.to_array()).map(|(d, m)| (*d, m)).collect();
+        want.extend(expected.joint_forces().iter().map(|f| (f.drag, f.added_mass)));
+        let scale = want.iter().fold(1.0_f64, |m, (d, a)| m.max(d.abs()).max(a.abs()));
+        for (row, (d, m)) in want.iter().enumerate() {
+            let (got_d, got_m) = (sum(&drag, &coefficients, row), sum(&added_mass, &added, row));
+            assert!((got_d - d).abs() <= 1e-11 * scale, "round {round}, row {row}: drag {got_d} vs {d}");
+            assert!((got_m - m).abs() <= 1e-11 * scale, "round {round}, row {row}: added mass {got_m} vs {m}");
+        }
+        // The axial columns have no added mass; the lumped damping none either, and the added
+        // mass no drag.
+        for row in 0..rows {
+            for k in 0..segments {
+                assert_eq!(added_mass[row * columns + 2 * segments + k], 0.0);
+            }
+            for b in 0..models.len() {
+                let first = 3 * segments + LUMPED_COLUMNS * b;
+                assert!((first..first + 21).all(|c| drag[row * columns + c] == 0.0));
+                assert!((first + 21..first + LUMPED_COLUMNS).all(|c| added_mass[row * columns + c] == 0.0));
             }
         }
     }

@@ -489,7 +489,8 @@ fn regressors_times_coefficients_are_the_forces() {
         let motion = random_motion(&mut rng);
         let current = Current::new(rng.vector::<3>(1.0), rng.vector::<3>(1.0)).unwrap();
         let segments = robot.segments().len();
-        let columns = 2 * segments;
+        let columns = robot.regressor_column_count();
+        assert_eq!(columns, 3 * segments, "no lumped models: two normal directions and the axial drag per segment");
         let rows = 6 + n;
         let (mut drag, mut added_mass) = (vec![f64::NAN; rows * columns], vec![f64::NAN; rows * columns]);
         let mut data = RobotData::new();
@@ -502,9 +503,13 @@ fn regressors_times_coefficients_are_the_forces() {
             &mut added_mass,
         );
         let statics = (data.base_wrench().buoyancy, data.joint_forces().iter().map(|f| f.buoyancy).collect::<Vec<_>>());
-        // The axial drag has no columns: it is the drag of `data`, evaluated at zero coefficients.
-        let (axial_base, axial_joints) =
-            (data.base_wrench().drag.to_array(), data.joint_forces().iter().map(|f| f.drag).collect::<Vec<_>>());
+        let axial = |row: usize| -> f64 {
+            robot.segments().iter().enumerate().map(|(k, s)| s.cd_axial * drag[row * columns + 2 * segments + k]).sum()
+        };
+        assert!(
+            (0..rows).all(|row| (0..segments).all(|k| added_mass[row * columns + 2 * segments + k] == 0.0)),
+            "the axial columns have no added mass"
+        );
         let coefficients = robot.coefficients();
         let expected = evaluate(&robot, None, &motion, &current, &s);
         let scale = wrench_scale(expected.base_wrench());
@@ -515,12 +520,12 @@ fn regressors_times_coefficients_are_the_forces() {
         };
         let base = expected.base_wrench();
         for (row, (d, m)) in base.drag.to_array().iter().zip(base.added_mass.to_array()).enumerate() {
-            assert_close(apply(&drag, coefficients.cd(), row) + axial_base[row], *d, scale, 1e-12, "base drag");
+            assert_close(apply(&drag, coefficients.cd(), row) + axial(row), *d, scale, 1e-12, "base drag");
             assert_close(apply(&added_mass, coefficients.cm(), row), m, scale, 1e-12, "base added mass");
         }
         for (j, forces) in expected.joint_forces().iter().enumerate() {
             assert_close(
-                apply(&drag, coefficients.cd(), 6 + j) + axial_joints[j],
+                apply(&drag, coefficients.cd(), 6 + j) + axial(6 + j),
                 forces.drag,
                 scale,
                 1e-12,

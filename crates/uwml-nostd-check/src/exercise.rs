@@ -278,9 +278,12 @@ fn evaluate_robot<T: RealField + uwml_core::Real>(robot: &Robot<T, 6, 6, 2>, tal
     tally.all_finite(kirchhoff.iter());
     tally.expect(kirchhoff != morison);
     // Regressors, the added-mass matrix and the derivatives (10 = 6 + 4 rows).
-    let (mut drag, mut added_mass) = ([c::<T>(f64::NAN); 80], [c::<T>(f64::NAN); 80]);
+    // Every column: the segments' (three each) and the lumped models' (63 each).
+    let (mut drag, mut added_mass) = ([c::<T>(f64::NAN); 1500], [c::<T>(f64::NAN); 1500]);
+    let width = 10 * robot.regressor_column_count();
+    tally.expect(width > 10 * 3 * 4 && width <= 1500);
     robot_hydro_regressors(robot, &Conditions { motion, current, ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data, &mut drag, &mut added_mass);
-    tally.all_finite(drag.iter().chain(added_mass.iter()));
+    tally.all_finite(drag.iter().take(width).chain(added_mass.iter().take(width)));
     let mut matrix = [c::<T>(f64::NAN); 100];
     robot_added_mass_matrix(robot, &water, None, &q, &mut matrix);
     tally.all_finite(matrix.iter());

@@ -29,12 +29,27 @@ from numpy.typing import ArrayLike
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["MAX_LUMPED", "LumpedModel"]
+__all__ = ["LUMPED_COEFFICIENTS", "MAX_LUMPED", "LumpedModel"]
 
 #: The largest magnitude of an entry of a lumped model (the core's ``MAX_LUMPED``).
 MAX_LUMPED = 1e12
 
 Matrix6 = tuple[tuple[float, ...], ...]
+
+#: The names of a lumped model's 63 coefficients, in the order of its regressor columns
+#: (:attr:`uwml.RobotRegressors.lumped`, :meth:`LumpedModel.coefficients`): the added mass's 21
+#: independent entries (upper triangle, row by row: ``added_mass[0][0]``, ``added_mass[0][1]``,
+#: …, ``added_mass[5][5]``; an off-diagonal one stands for both of its symmetric entries), the
+#: linear damping's 36 (row by row), the quadratic damping's 6. Every entry is in the model's own
+#: axes: the forces are linear in each (docs/model.md section 12.1).
+LUMPED_COEFFICIENTS: tuple[str, ...] = (
+    *(f"added_mass[{i}][{j}]" for i in range(6) for j in range(i, 6)),
+    *(f"linear_damping[{i}][{j}]" for i in range(6) for j in range(6)),
+    *(f"quadratic_damping[{i}]" for i in range(6)),
+)
+
+#: How many of :data:`LUMPED_COEFFICIENTS` are the added mass's (the others are damping).
+LUMPED_ADDED_MASS_COEFFICIENTS = 21
 
 
 def _matrix6(value: object, name: str) -> Matrix6:
@@ -139,6 +154,14 @@ class LumpedModel:
             if d > MAX_LUMPED:
                 raise ValueError(f"lumped.quadratic_damping[{index}] must be at most {MAX_LUMPED:g}, got {d}")
         object.__setattr__(self, "quadratic_damping", quadratic)
+
+    def coefficients(self) -> np.ndarray:
+        """The model's 63 coefficients in the order of :data:`LUMPED_COEFFICIENTS`: with the
+        regressors' lumped columns, ``Σ columns × coefficients`` is the model's forces."""
+        upper = np.triu_indices(6)
+        return np.concatenate(
+            [np.asarray(self.added_mass)[upper], np.asarray(self.linear_damping).reshape(-1), np.asarray(self.quadratic_damping)]
+        )
 
     def at(self, point: Vec3) -> LumpedModel:
         """This model with ``point`` as its reference point where it has none."""

@@ -185,16 +185,25 @@ class RobotEnvironment(EnvironmentTorques):
 @dataclass(frozen=True)
 class RobotRegressors:
     """Regressors of a robot's hydrodynamic forces (docs/model.md section 4; for whole robots,
-    docs/model.md section 10, "What is computed").
+    section 10, "What is computed"; lumped models and axial drag, section 12): the force of each
+    coefficient at unit value, the others zero.
 
     ``drag[..., j, k, d]`` is the generalized force on joint ``j`` of segment ``k``'s drag along
     its normal direction ``d`` at unit coefficient (a circular segment: all in ``d = 0``), shape
     ``(..., n_joints, n_segments, 2)``; ``base_drag[..., i, k, d]`` the same for the base wrench's
     component ``i`` (force xyz, moment xyz), ``(..., 6, n_segments, 2)``; likewise
-    ``added_mass`` and ``base_added_mass``. So for coefficients ``cd``, ``cm`` per segment and
-    direction, ``total = buoyancy + einsum("...jkd,kd->...j", drag, cd) + (same for added
-    mass)``: linear least squares for an arm on a moving vehicle. Segments are ordered as
-    :attr:`Robot.segments`.
+    ``added_mass`` and ``base_added_mass``. ``axial_drag[..., j, k]`` is segment ``k``'s axial
+    drag at ``cd_axial = 1`` (zero where its ``axial_area`` is), ``(..., n_joints, n_segments)``,
+    and ``base_axial_drag`` ``(..., 6, n_segments)``. ``lumped[..., j, b, i]`` is coefficient
+    ``i`` of lumped model ``b`` (:attr:`Robot.lumped_models`; coefficients named and ordered as
+    :data:`uwml.model.lumped.LUMPED_COEFFICIENTS`, in the model's own axes), ``(..., n_joints,
+    n_lumped, 63)``, and ``base_lumped`` ``(..., 6, n_lumped, 63)``: its first 21 are added
+    mass, the rest damping (drag).
+
+    So ``total = buoyancy + einsum("...jkd,kd->...j", drag, cd) + (same for added mass) +
+    axial_drag @ cd_axial + einsum("...jbi,bi->...j", lumped, coefficients)``: linear least
+    squares for an arm on a moving vehicle, and for a hull (:meth:`torques`). Segments are ordered
+    as :attr:`Robot.segments`.
     """
 
     buoyancy: FloatArray
@@ -205,10 +214,18 @@ class RobotRegressors:
     base_gravity: FloatArray
     base_drag: FloatArray
     base_added_mass: FloatArray
+    axial_drag: FloatArray
+    base_axial_drag: FloatArray
+    lumped: FloatArray
+    base_lumped: FloatArray
 
-    def torques(self, cd: ArrayLike, cm: ArrayLike) -> RobotTorques:
-        """The forces at coefficients ``cd``, ``cm``: scalars, ``(n_segments,)`` or ``(n_segments, 2)``."""
+    def torques(self, cd: ArrayLike, cm: ArrayLike, cd_axial: ArrayLike = 0.0, lumped: ArrayLike | None = None) -> RobotTorques:
+        """The forces at coefficients ``cd``, ``cm``: scalars, ``(n_segments,)`` or
+        ``(n_segments, 2)``; ``cd_axial``: a scalar or ``(n_segments,)`` (a robot's own:
+        ``[s.cd_axial for s in robot.segments]``); ``lumped``: ``(n_lumped, 63)`` (a robot's own:
+        ``[m.coefficients() for _, m in robot.lumped_models]``), None for none."""
         n_segments = self.drag.shape[-2]
+        n_lumped = self.lumped.shape[-2]
 
         def table(value: ArrayLike, name: str) -> FloatArray:
             array = _real_array(value, name, "a scalar or an array per segment")
@@ -221,20 +238,38 @@ class RobotRegressors:
             raise ValueError(f"{name} must be a scalar, ({n_segments},) or ({n_segments}, 2); got shape {array.shape}")
 
         cd_table, cm_table = table(cd, "cd"), table(cm, "cm")
+        axial = _real_array(cd_axial, "cd_axial", "a scalar or an array per segment")
+        if axial.ndim == 0:
+            axial = np.full(n_segments, float(axial))
+        if axial.shape != (n_segments,):
+            raise ValueError(f"cd_axial must be a scalar or ({n_segments},); got shape {axial.shape}")
+        models = np.zeros((n_lumped, 63)) if lumped is None else _real_array(lumped, "lumped", "an array of 63 coefficients per model")
+        if models.shape != (n_lumped, 63):
+            raise ValueError(f"lumped must have shape ({n_lumped}, 63), one row of 63 coefficients per lumped model; got {models.shape}")
+        # The lumped models' added-mass coefficients, then their damping ones.
+        mass_part = np.zeros_like(models)
+        mass_part[:, :21] = models[:, :21]
+        damping_part = models - mass_part
 
         def apply(columns: FloatArray, coefficients: FloatArray) -> FloatArray:
             forces: FloatArray = np.einsum("...jkd,kd->...j", columns, coefficients)
             return forces
 
+        def drag(segments: FloatArray, axial_columns: FloatArray, lumped_columns: FloatArray) -> FloatArray:
+            return apply(segments, cd_table) + axial_columns @ axial + apply(lumped_columns, damping_part)
+
+        def added_mass(segments: FloatArray, lumped_columns: FloatArray) -> FloatArray:
+            return apply(segments, cm_table) + apply(lumped_columns, mass_part)
+
         base = BaseWrench(
-            drag=apply(self.base_drag, cd_table),
-            added_mass=apply(self.base_added_mass, cm_table),
+            drag=drag(self.base_drag, self.base_axial_drag, self.base_lumped),
+            added_mass=added_mass(self.base_added_mass, self.base_lumped),
             buoyancy=self.base_buoyancy,
             gravity=self.base_gravity,
         )
         return RobotTorques(
-            drag=apply(self.drag, cd_table),
-            added_mass=apply(self.added_mass, cm_table),
+            drag=drag(self.drag, self.axial_drag, self.lumped),
+            added_mass=added_mass(self.added_mass, self.lumped),
             buoyancy=self.buoyancy,
             gravity=self.gravity,
             base=base,

@@ -20,6 +20,7 @@ from .._checks import check_overflow
 from .._checks import real_array as _real_array
 from ..io import descriptions, modelfile
 from ..model.joint_losses import JointLosses, pack_leg_losses
+from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
 from ..sea.conditions import loss_conditions
 from ._arguments import (
@@ -138,15 +139,8 @@ class Robot:
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
-        # What the regressors' segment columns leave out (refused there rather than answered wrong).
-        self._without_columns = tuple(
-            what
-            for what, present in (
-                ("lumped models (uwml.LumpedModel)", lumped > 0),
-                ("axial drag (Segment.cd_axial)", any(segment.cd_axial != 0.0 for _, segment in owned)),
-            )
-            if present
-        )
+        #: The lumped models (body: -1 the base, else the link; model), in the regressors' order.
+        self._lumped = tuple((b - 1, body.lumped) for b, body in enumerate((base_body, *links)) if body.lumped is not None)
         self._losses = _per_joint_losses(losses, len(joints))
         # The joints' own losses as an evaluation takes them: one object when they all share one.
         first = self._losses[0] if self._losses else None
@@ -265,6 +259,12 @@ class Robot:
     def segments(self) -> tuple[Segment, ...]:
         """Every segment, base first, then link by link: the order of per-segment coefficients."""
         return self._segments
+
+    @property
+    def lumped_models(self) -> tuple[tuple[int, LumpedModel], ...]:
+        """Every lumped model with its body (-1 the base, else the link), base first: the
+        regressors' order (:attr:`RobotRegressors.lumped`)."""
+        return self._lumped
 
     @property
     def n_joints(self) -> int:
@@ -512,33 +512,36 @@ class Robot:
         threads: int = 1,
         added_mass: str = "morison",
     ) -> RobotRegressors:
-        """Regressors of the drag and added-mass forces, one column per segment and normal
-        direction, on the joints and on the base (:class:`RobotRegressors`). Arguments as for
-        :meth:`hydro`. Not for a robot with lumped models (:class:`uwml.LumpedModel`) or axial
-        drag, whose columns are not available yet: refused."""
-        if self._without_columns:
-            raise ValueError(
-                f"hydro_regressors: this robot has {' and '.join(self._without_columns)}, whose regressors are not available "
-                "yet; the segments' columns alone would leave their forces out"
-            )
+        """Regressors of the hydrodynamic forces (:class:`RobotRegressors`): a column per segment
+        and normal direction (Cd and Cm), per segment for its axial drag, and per coefficient of
+        each lumped model (:attr:`lumped_models`), on the joints and on the base. Arguments as
+        for :meth:`hydro`."""
         kirchhoff = _kirchhoff(added_mass)
         threads = _threads(threads)
         arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)
         states, (density, gravity), motion = arguments[:3], arguments[5:7], arguments[7:]
         out = self._core.regressors(*states, density, gravity, *motion, threads, kirchhoff=kirchhoff)
         check_overflow((out[4], out[5]), n_samples, arguments[1], arguments[2])
-        n, s = self.n_joints, len(self._segments)
+        n, s, m = self.n_joints, len(self._segments), len(self._lumped)
         lead = (n_samples,) if batched else ()
-        columns = out[4].reshape(*lead, 6 + n, s, 2), out[5].reshape(*lead, 6 + n, s, 2)
+        drag, added = (a.reshape(*lead, 6 + n, 3 * s + 63 * m) for a in (out[4], out[5]))
+        segments = [a[..., : 2 * s].reshape(*lead, 6 + n, s, 2) for a in (drag, added)]
+        axial = drag[..., 2 * s : 3 * s]
+        # A lumped coefficient's column is in one of the two tables and zero in the other.
+        lumped = (drag[..., 3 * s :] + added[..., 3 * s :]).reshape(*lead, 6 + n, m, 63)
         return RobotRegressors(
             buoyancy=out[0].reshape(*lead, n),
             gravity=out[1].reshape(*lead, n),
-            drag=columns[0][..., 6:, :, :],
-            added_mass=columns[1][..., 6:, :, :],
+            drag=segments[0][..., 6:, :, :],
+            added_mass=segments[1][..., 6:, :, :],
             base_buoyancy=out[2].reshape(*lead, 6),
             base_gravity=out[3].reshape(*lead, 6),
-            base_drag=columns[0][..., :6, :, :],
-            base_added_mass=columns[1][..., :6, :, :],
+            base_drag=segments[0][..., :6, :, :],
+            base_added_mass=segments[1][..., :6, :, :],
+            axial_drag=axial[..., 6:, :],
+            base_axial_drag=axial[..., :6, :],
+            lumped=lumped[..., 6:, :, :],
+            base_lumped=lumped[..., :6, :, :],
         )
 
     def link_wrenches(

@@ -122,8 +122,8 @@ pub(super) fn hydro_range(
 }
 
 /// Evaluates the regressors of samples `range` into `out`: buoyancy and gravity on the joints
-/// (`n` wide) and on the base (6 wide), then the drag and added-mass regressors (`(6 + n) · 2s`
-/// wide, see `robot_hydro_regressors`).
+/// (`n` wide) and on the base (6 wide), then the drag and added-mass regressors (`(6 + n) · c`
+/// wide for `c` columns, see `robot_hydro_regressors`).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn regressor_range(
     robot: &Model,
@@ -136,7 +136,7 @@ pub(super) fn regressor_range(
     [buoyancy, gravity, base_buoyancy, base_gravity, drag, added_mass]: [&mut [f64]; 6],
 ) -> Result<(), SampleError> {
     let n = robot.joint_count();
-    let width = (6 + n) * 2 * robot.segments().len();
+    let width = (6 + n) * robot.regressor_column_count();
     let mut row = StateRow::new();
     for (k, sample) in range.clone().enumerate() {
         row.load([q, qd, qdd], sample, n);

@@ -392,7 +392,7 @@ impl PyRobot {
             n_samples,
         )?;
         let water = water(density, gravity)?;
-        let width = (6 + n) * 2 * self.robot.segments().len();
+        let width = (6 + n) * self.robot.regressor_column_count();
         let [buoyancy, weight] = zeroed::<2>(py, n_samples, n);
         let [base_buoyancy, base_weight] = zeroed::<2>(py, n_samples, 6);
         let [drag, added_mass] = zeroed::<2>(py, n_samples, width);
