@@ -408,7 +408,7 @@ def test_streamed_fit_is_independent_of_chunks_and_cache(monkeypatch, robust: bo
     log = synthetic.land_water_experiment(seed=4, model_error=0.3)
     kwargs = {"joints": (0, 1, 2), "per": "link", "robust": robust}
     whole = fit.hydro_coefficients(log, **kwargs)
-    monkeypatch.setattr(fit.hydro, "CHUNK_SAMPLES", 97)
+    monkeypatch.setattr(fit.design, "CHUNK_SAMPLES", 97)
     for cache_bytes in (0, 1 << 30):
         chunked = fit.hydro_coefficients(log, cache_bytes=cache_bytes, **kwargs)
         assert chunked.var_names == whole.var_names
@@ -453,7 +453,7 @@ def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
     negative ones: they equal the one-pass design times the coefficients."""
     log = synthetic.land_water_experiment(cycles=0.5, seed=5)
     leg, joints = uwml.Leg.paper(), [0, 2]
-    design = fit.hydro._HydroDesign(leg, log, uwml.Water(), per, joints, cache_bytes=0)
+    design = fit.design._HydroDesign(leg, log, uwml.Water(), per, joints, cache_bytes=0)
     x = np.random.default_rng(2).normal(0.0, 2.0, len(design.names))
     assert np.any(x < 0.0) and np.any(x > 0.0)
     values, targets = design.fitted(x)

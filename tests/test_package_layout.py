@@ -41,7 +41,7 @@ LAYERS = (
     ("uwml.fit",),
     ("uwml.viz",),
     ("uwml.sim",),
-    ("uwml.cli", "uwml._cli_arguments", "uwml.__main__"),
+    ("uwml.cli", "uwml._cli_arguments", "uwml._cli_common", "uwml._cli_fit", "uwml.__main__"),
 )
 
 #: The former flat modules (``uwml/<name>.py`` before the package had subpackages) with every

@@ -100,3 +100,24 @@ def _depth_list(text: str) -> list[float]:
     if len(depths) > MAX_DEPTHS:
         raise argparse.ArgumentTypeError(f"must be at most {MAX_DEPTHS} depths (each runs five simulations), got {len(depths)}")
     return depths
+
+
+def _joint_list_or_none(text: str) -> list[int]:
+    """Joint numbers as :func:`_joint_list`, or ``none`` for no joint."""
+    return [] if text.strip().lower() == "none" else _joint_list(text)
+
+
+#: The base wrench's components as ``--base`` names them.
+BASE_COMPONENTS = ("fx", "fy", "fz", "mx", "my", "mz")
+
+
+def _base_rows(text: str) -> list[int]:
+    """Base wrench components (``fx, fy, fz, mx, my, mz``, or ``all``) as indices 0 … 5."""
+    if text.strip().lower() == "all":
+        return list(range(6))
+    names = [item.strip().lower() for item in text.split(",") if item.strip()]
+    if not names or any(name not in BASE_COMPONENTS for name in names) or len(set(names)) != len(names):
+        raise argparse.ArgumentTypeError(
+            f"must be distinct components among fx, fy, fz, mx, my, mz separated by commas, or all; got {_quoted(text)}"
+        )
+    return [BASE_COMPONENTS.index(name) for name in names]

@@ -18,11 +18,9 @@ row and column), 1 for other failures (out of memory included). Errors are print
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from collections.abc import Sequence
-from pathlib import Path
 from typing import IO, Any
 
 import numpy as np
@@ -35,14 +33,14 @@ from ._cli_arguments import (
     _depth,
     _depth_list,
     _finite,
-    _joint_list,
     _n_joints,
     _non_negative,
     _positive,
     _seed,
 )
+from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
+from ._cli_fit import add_fit_commands
 from .domains import MAX_ROBOT_JOINTS
-from .errors import UwmlError
 from .model.parts import SEA_WATER, Water
 from .robot.leg import Leg
 from .robot.tree import Robot
@@ -54,21 +52,6 @@ __all__ = ["build_parser", "gait_like_motion", "main"]
 #: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
 #: longer inputs report progress on stderr.
 CHUNK_ROWS = 100_000
-
-
-class _UsageError(UwmlError):
-    """A bad combination of options (exit code 2)."""
-
-
-def _check_output(path: str | None, option: str) -> None:
-    """An output file can be written where ``option`` says, before any work (else a usage error)."""
-    if path is None:
-        return
-    if os.path.isdir(path):
-        raise _UsageError(f"{path}: is a directory; {option} takes a file")
-    folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise _UsageError(f"{path}: no such directory: {folder}")
 
 
 def _demo(args: argparse.Namespace) -> int:
@@ -184,28 +167,6 @@ def _torques(args: argparse.Namespace) -> int:
     return 0
 
 
-# --------------------------------------------------------------------------------------------
-# uwml fit
-# --------------------------------------------------------------------------------------------
-
-
-def load_robot(path: str, hydro: str | None = None) -> Any:
-    """The robot of a description file given with ``--robot``: a uwml model file (``.toml``), a
-    URDF (``.urdf``) or an MJCF (``.xml``, ``.mjcf``), with ``--hydro`` for the last two."""
-    suffix = Path(path).suffix.lower()
-    if suffix == ".toml":
-        if hydro is not None:
-            raise _UsageError("--hydro goes with a URDF or MJCF --robot; a uwml model file holds its hydrodynamic parameters")
-        return Robot.load(path)
-    if suffix == ".urdf":
-        return Robot.from_urdf(path, hydro=hydro)
-    if suffix in (".xml", ".mjcf"):
-        return Robot.from_mjcf(path, hydro=hydro)
-    raise ValueError(
-        f"{path}: --robot takes a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml, .mjcf); got a {suffix or 'suffix-less'} file"
-    )
-
-
 def _export(args: argparse.Namespace) -> int:
     from .io.export import to_c, to_rust
 
@@ -230,86 +191,9 @@ def _describe(args: argparse.Namespace) -> int:
     return 0
 
 
-def _fit_hydro(args: argparse.Namespace) -> int:
-    from . import fit
-
-    _check_output(args.plot, "--plot")
-    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
-    what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
-    if any(j > leg.n_joints for j in args.joints):
-        raise _UsageError(f"--joints: {what} has joints 1 to {leg.n_joints}, got {','.join(map(str, args.joints))}")
-    source: Any = args.log if args.log_water is None else (args.log, args.log_water)
-    result = fit.hydro_coefficients(source, leg, joints=[j - 1 for j in args.joints], per=args.per, robust=args.robust)
-    if args.plot is not None:
-        from .viz import plot
-
-        plot.hydro_fit_plot(result, args.plot)
-    if args.json:
-        print(json.dumps(result.summary()))
-    else:
-        model = "" if args.robot is None else f", --robot {args.robot}"
-        print(f"uwml fit hydro: {result.source}{model}, joints {','.join(map(str, args.joints))} (1-based), per {args.per}")
-        print(result.fit_report())
-        if args.plot is not None:
-            print(f"figure: {args.plot}")
-    return 0
-
-
-def _fit_losses(args: argparse.Namespace) -> int:
-    import csv
-
-    from . import fit
-    from .io._arrow_csv import not_utf8_error
-    from .io.logs import _check_file
-
-    _check_file(args.csv, args.csv)  # no such file, a directory
-    try:
-        # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8") is skipped.
-        with open(args.csv, newline="", encoding="utf-8-sig") as handle:
-            data = fit.read_loss_csv(handle)
-    except UnicodeDecodeError:
-        raise not_utf8_error(lambda: open(args.csv, "rb"), f"{args.csv}: ") from None  # noqa: SIM115 (opened and closed by the callee)
-    except csv.Error as exc:
-        raise ValueError(f"{args.csv}: not CSV ({exc}; is a quote not closed?)") from None
-    except ValueError as exc:
-        raise ValueError(f"{args.csv}: {exc}") from None
-    results: dict[str, Any] = {}
-    for name, function in (("oil_drag", fit.oil_drag), ("seal", fit.seal)):
-        try:
-            results[name] = function(data)
-        except ValueError as exc:
-            raise ValueError(f"{args.csv}: {name} fit: {exc}") from None
-    figures = []
-    if args.plot is not None:
-        from .viz import plot
-
-        directory = Path(args.plot)
-        directory.mkdir(parents=True, exist_ok=True)
-        for name, result in results.items():
-            figures.append(directory / f"{name}_fit.png")
-            plot.fit_plot(result, figures[-1])
-    if args.json:
-        print(json.dumps({name: result.summary() for name, result in results.items()}))
-    else:
-        for name, result in results.items():
-            print(f"uwml fit losses: {args.csv}, {name.replace('_', ' ')} model")
-            print(result.fit_report())
-            print()
-        for figure in figures:
-            print(f"figure: {figure}")
-    return 0
-
-
 # --------------------------------------------------------------------------------------------
 # Parser
 # --------------------------------------------------------------------------------------------
-
-
-_LOG_FORMAT = """Log format (uwml.io.logs, docs/identification.md): CSV with a header row; columns
-time [s] (strictly increasing), q1..qN [rad], optionally qd1..qdN [rad/s] and qdd1..qddN
-[rad/s²] (else estimated by a Savitzky-Golay filter, which needs uniform sampling); extra
-columns are ignored. Parquet (.parquet) holds the same columns."""
-_EXIT = "Exit status: 0 on success, 2 for usage errors and bad input files (the message names file, row and column), 1 otherwise."
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -438,67 +322,7 @@ not written (standard output has the rows before it).""",
     export.add_argument("--name", default="ROBOT", metavar="NAME", help="prefix of the C names (default ROBOT)")
     export.set_defaults(run=_export)
 
-    fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
-    fits = fit_parser.add_subparsers(dest="fit_command", required=True)
-    hydro = fits.add_parser(
-        "hydro",
-        help="Cd and Cm from a land/water experiment",
-        formatter_class=formatter,
-        description=f"""Cd and Cm of the paper's leg (or of --robot, on a fixed base) from a land/water
-experiment (uwml.fit.hydro_coefficients): weighted linear least squares of
--(tau_water - tau_land) - buoyancy against the drag and added-mass regressors (the paper's
-eqs. 23-24). With --robot, --per link gives one Cd and Cm per link named after it (cd_<link>).
-
-Input: one log of both runs (columns tau_land1..N and tau_water1..N), or two logs LOG (land)
-and LOG_WATER (water) of one run each (columns tau1..N), paired by time.
-
-{_LOG_FORMAT}
-
-Output: the fit report (value +/- standard error, reduced chi-square, COD, AIC/BIC,
-correlations) on standard output; with --json only the result's summary as JSON (keys params,
-stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitted torque
-(cf. Fig. 7) as an image.""",
-        epilog=_EXIT,
-    )
-    hydro.add_argument("log", metavar="LOG", help="log of both runs, or the land log when LOG_WATER is given")
-    hydro.add_argument("log_water", metavar="LOG_WATER", nargs="?", help="the water log (then LOG is the land log)")
-    hydro.add_argument(
-        "--joints", type=_joint_list, default=[1], metavar="1,2,3", help="joints to fit, numbered from 1 (default 1, the paper's hip yaw)"
-    )
-    hydro.add_argument(
-        "--per",
-        choices=("leg", "link", "direction"),
-        default="leg",
-        help="one Cd and Cm (for the whole leg or robot); one per link; one per link and direction",
-    )
-    hydro.add_argument(
-        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml); default the paper's leg"
-    )
-    hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
-    hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
-    hydro.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
-    hydro.add_argument("--plot", metavar="FILE", help="save the measured-vs-fitted figure (format from the extension, e.g. .png)")
-    hydro.set_defaults(run=_fit_hydro)
-
-    losses = fits.add_parser(
-        "losses",
-        help="the oil-drag and seal loss models from a three-configuration experiment",
-        formatter_class=formatter,
-        description="""The oil-drag and dynamic-seal models (uwml.fit.oil_drag and uwml.fit.seal) from the paper's
-three-configuration experiment (docs/losses.md).
-
-Input: CSV with columns configuration (dry, oil or oil_seal), speed_rpm, pressure_mpa,
-current_a, optionally startup (0/1) and temperature_c; the default drive (uwml.Drive()).
-
-Output: both fit reports on standard output; with --json only {"oil_drag": summary,
-"seal": summary} as JSON; with --plot DIR the figures oil_drag_fit.png and seal_fit.png.""",
-        epilog=_EXIT,
-    )
-    losses.add_argument("csv", metavar="CSV", help="loss-experiment CSV file")
-    losses.add_argument("--json", action="store_true", help="print both results' summaries as JSON only")
-    losses.add_argument("--plot", metavar="DIR", help="directory for the fit figures (created if needed)")
-    losses.set_defaults(run=_fit_losses)
-
+    add_fit_commands(commands, formatter)
     simulate = commands.add_parser(
         "simulate",
         help="the paper's leg walking in sea water under four controllers, simulated (needs uwml[mujoco])",

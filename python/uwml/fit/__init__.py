@@ -99,7 +99,8 @@ With estimated σ_j the reduced χ² is 1 by construction (for ``robust=False``)
 something about the model only with a known ``sigma`` (the paper's 2.425 is of that kind).
 """
 
-from .hydro import CHUNK_SAMPLES, DESIGN_CACHE_BYTES, HUBER_SCALE, HydroFit, hydro_coefficients
+from .design import CHUNK_SAMPLES, DESIGN_CACHE_BYTES
+from .hydro import HUBER_SCALE, HydroFit, hydro_coefficients
 from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
 from .losses import oil_drag, seal
 from .results import FitResult, LossFit, OilDragFit, SealFit

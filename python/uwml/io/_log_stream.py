@@ -30,22 +30,18 @@ from typing import Any
 import numpy as np
 
 from .logs import (
-    POLYORDER,
-    WINDOW_S,
+    _BASE_FAMILIES,
     Array,
     Log,
-    _check_derivatives,
     _check_file,
-    _check_time,
     _is_parquet,
     _layout,
     _parquet,
     _parquet_columns,
     _parquet_error,
-    _sampling,
-    _savgol,
     _source,
 )
+from .sampling import POLYORDER, WINDOW_S, _check_derivatives, _check_time, _sampling, _savgol
 
 
 def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> Iterator[dict[str, Array]]:
@@ -142,7 +138,8 @@ def log_chunks(
 
 
 def _log(chunk: dict[str, Array], n: int, families: Sequence[str], source: str) -> Log:
-    arrays = {family: np.column_stack([chunk[f"{family}{k}"] for k in range(1, n + 1)]) for family in families}
+    width = {family: _BASE_FAMILIES.get(family, n) for family in families}
+    arrays = {family: np.column_stack([chunk[f"{family}{k}"] for k in range(1, width[family] + 1)]) for family in families}
     return Log(time=chunk["time"], source=source, **arrays)
 
 

@@ -72,7 +72,6 @@ Errors (``ValueError``) name the file (or ``<stream>``), the row and the column.
 from __future__ import annotations
 
 import io
-import math
 import os
 import re
 from collections.abc import Mapping, Sequence
@@ -80,11 +79,21 @@ from dataclasses import dataclass, replace
 from typing import IO, Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from .._checks import shown
 from ..domains import MAX_ROBOT_JOINTS
-from ._files import not_regular
+from ._files import not_regular, write_atomically
+from .sampling import (
+    MAX_TIME_S,
+    POLYORDER,
+    UNIFORM_TOLERANCE,
+    WINDOW_S,
+    _check_time,
+    estimate_derivatives,
+    estimate_rates,
+    savgol_window,
+)
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
@@ -103,23 +112,21 @@ __all__ = [
 Array = NDArray[np.float64]
 PathOrFile = str | os.PathLike[str] | IO[str]
 
-#: Time covered by the Savitzky-Golay window [s].
-WINDOW_S = 0.1
-#: Polynomial order of the Savitzky-Golay filter.
-POLYORDER = 3
-#: Largest relative deviation of a time step from the median step for derivative estimation.
-UNIFORM_TOLERANCE = 0.01
-#: Largest magnitude of a time stamp [s] (module docstring).
-MAX_TIME_S = 1e10
-#: Column families, in the order they are written.
-_FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
-_COLUMN = re.compile(r"^(q|qd|qdd|tau_land|tau_water|tau)(\d+)$")
+#: The joints' column families, in the order they are written (one column per joint).
+_JOINT_FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
+#: The base's column families and their widths, in the order they are written.
+_BASE_FAMILIES = {"base_orientation": 4, "base_twist": 6, "base_twist_dot": 6, "wrench_land": 6, "wrench_water": 6, "wrench": 6}
+_FAMILIES = (*_JOINT_FAMILIES, *_BASE_FAMILIES)
+_COLUMN = re.compile(r"^(" + "|".join(sorted(_FAMILIES, key=len, reverse=True)) + r")(\d+)$")
+#: The environments' pairs of columns: (land, water, one environment).
+_PAIRS = (("tau_land", "tau_water", "tau"), ("wrench_land", "wrench_water", "wrench"))
 
 
 @dataclass(frozen=True, eq=False)
 class Log:
-    """A joint log (module docstring): arrays of shape ``(n_samples,)`` (time) and
-    ``(n_samples, n_joints)`` (the rest); absent columns are None."""
+    """A log (module docstring): arrays of shape ``(n_samples,)`` (time), ``(n_samples,
+    n_joints)`` (the joints') and ``(n_samples, 4)`` or ``(n_samples, 6)`` (the base's); absent
+    columns are None."""
 
     time: Array
     q: Array
@@ -132,6 +139,16 @@ class Log:
     tau: Array | None = None
     #: Where the log came from (a file name), for error messages.
     source: str = "<log>"
+    #: The base's orientation, world from base, a unit quaternion ``(w, x, y, z)``.
+    base_orientation: Array | None = None
+    #: The base's twist ``ν = (v, ω)`` in base components [m/s, rad/s], and its time derivative.
+    base_twist: Array | None = None
+    base_twist_dot: Array | None = None
+    #: The rig's wrench on the base (force [N], moment about the base origin [N·m], base
+    #: components) on land and in water, or of a log of one environment.
+    wrench_land: Array | None = None
+    wrench_water: Array | None = None
+    wrench: Array | None = None
 
     def __post_init__(self) -> None:
         time = np.asarray(self.time, dtype=np.float64)
@@ -140,12 +157,13 @@ class Log:
             raise ValueError(f"{self.source}: time must have shape (n,) and q (n, n_joints), got {time.shape} and {q.shape}")
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "q", q)
-        for name in ("qd", "qdd", "tau_land", "tau_water", "tau"):
+        shapes = {name: q.shape for name in _JOINT_FAMILIES[1:]} | {name: (q.shape[0], w) for name, w in _BASE_FAMILIES.items()}
+        for name, shape in shapes.items():
             value = getattr(self, name)
             if value is not None:
                 array = np.asarray(value, dtype=np.float64)
-                if array.shape != q.shape:
-                    raise ValueError(f"{self.source}: {name} must have the shape of q {q.shape}, got {array.shape}")
+                if array.shape != shape:
+                    raise ValueError(f"{self.source}: {name} must have shape {shape}, got {array.shape}")
                 object.__setattr__(self, name, array)
 
     @property
@@ -160,123 +178,56 @@ class Log:
 
     def land(self) -> Log:
         """The land half of a log of the whole experiment, as a log of one environment."""
-        if self.tau_land is None:
-            raise ValueError(f"{self.source}: no tau_land columns")
-        return replace(self, tau_land=None, tau_water=None, tau=self.tau_land)
+        return self._half(0, "land")
 
     def water(self) -> Log:
         """The water half of a log of the whole experiment, as a log of one environment."""
-        if self.tau_water is None:
-            raise ValueError(f"{self.source}: no tau_water columns")
-        return replace(self, tau_land=None, tau_water=None, tau=self.tau_water)
+        return self._half(1, "water")
+
+    def _half(self, which: int, name: str) -> Log:
+        if all(getattr(self, pair[which]) is None for pair in _PAIRS):
+            raise ValueError(f"{self.source}: no tau_{name} (or wrench_{name}) columns")
+        halves = {pair[2]: getattr(self, pair[which]) for pair in _PAIRS}
+        return replace(self, tau_land=None, tau_water=None, wrench_land=None, wrench_water=None, **halves)
+
+    def base_motion(self) -> dict[str, Array]:
+        """The base's motion as :class:`uwml.BaseMotion`'s arguments (orientation upright where
+        absent); needs ``base_twist`` and ``base_twist_dot`` (:meth:`with_derivatives`)."""
+        if self.base_twist is None or self.base_twist_dot is None:
+            raise ValueError(
+                f"{self.source}: row 1 (header), column 'base_twist1': the base's twist is missing (base_twist1 … base_twist6)"
+            )
+        orientation = np.array([1.0, 0.0, 0.0, 0.0]) if self.base_orientation is None else self.base_orientation
+        nu, nu_dot = self.base_twist, self.base_twist_dot
+        return {
+            "orientation": orientation,
+            "velocity": nu[:, :3],
+            "angular_velocity": nu[:, 3:],
+            "acceleration": nu_dot[:, :3],
+            "angular_acceleration": nu_dot[:, 3:],
+        }
 
     def with_derivatives(self, window_s: float = WINDOW_S, polyorder: int = POLYORDER) -> Log:
-        """This log with ``qd`` and ``qdd`` filled in by :func:`estimate_derivatives` where absent."""
-        if self.qd is not None and self.qdd is not None:
-            return self
-        qd, qdd = estimate_derivatives(self.time, self.q, window_s, polyorder, source=self.source)
-        return replace(self, qd=qd if self.qd is None else self.qd, qdd=qdd if self.qdd is None else self.qdd)
-
-
-def savgol_window(rate_hz: float, window_s: float = WINDOW_S, polyorder: int = POLYORDER) -> int:
-    """The Savitzky-Golay window [samples] of the module docstring's rule."""
-    if not (math.isfinite(rate_hz) and rate_hz > 0.0):
-        raise ValueError(f"rate_hz must be finite and > 0, got {rate_hz!r}")
-    if not (math.isfinite(window_s) and window_s > 0.0):
-        raise ValueError(f"window_s must be finite and > 0, got {window_s!r}")
-    window = 2 * round(0.5 * window_s * rate_hz) + 1
-    smallest = polyorder + 2 + (polyorder + 2 + 1) % 2
-    return max(int(window), smallest)
-
-
-def estimate_derivatives(
-    time: ArrayLike, q: ArrayLike, window_s: float = WINDOW_S, polyorder: int = POLYORDER, *, source: str = "<log>"
-) -> tuple[Array, Array]:
-    """Velocities and accelerations of ``q`` (shape ``(n, n_joints)``) by a Savitzky-Golay filter.
-
-    Raises
-    ------
-    ValueError
-        Naming the first row (the header is row 1) whose time step is not within
-        ``UNIFORM_TOLERANCE`` of the median step, or when the log is shorter than the window.
-    """
-    t = np.asarray(time, dtype=np.float64)
-    positions = np.asarray(q, dtype=np.float64)
-    if t.ndim != 1 or positions.ndim != 2 or positions.shape[0] != t.shape[0]:
-        raise ValueError(f"{source}: time must have shape (n,) and q (n, n_joints), got {t.shape} and {positions.shape}")
-    dt, window = _sampling(t, window_s, polyorder, source)
-    qd, qdd = _savgol(positions, window, polyorder, dt)
-    _check_derivatives(qd, qdd, source, dt)
-    return qd, qdd
-
-
-def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[float, int]:
-    """The time step [s] and the Savitzky-Golay window [samples] of a log's time column, checked
-    as :func:`estimate_derivatives` says."""
-    if t.size < 2:
-        raise ValueError(f"{source}: row 2, column 'time': need at least 2 samples to estimate derivatives")
-    _check_time(t, source)
-    step = np.diff(t)
-    dt = float(np.median(step))
-    bad = np.flatnonzero(~(np.abs(step - dt) <= UNIFORM_TOLERANCE * dt))
-    if bad.size:
-        i = int(bad[0])
-        raise ValueError(
-            f"{source}: row {i + 3}, column 'time': non-uniform sampling (step {step[i]:.6g} s, median {dt:.6g} s); "
-            "velocities and accelerations are estimated by a Savitzky-Golay filter, which needs uniform sampling: "
-            "resample the log, or give qd and qdd columns"
-        )
-    rate = 1.0 / dt
-    if not math.isfinite(rate):  # a subnormal step
-        raise ValueError(f"{source}: row 3, column 'time': median time step {dt!r} s, too short to estimate derivatives")
-    window = savgol_window(rate, window_s, polyorder)
-    if window > t.size:
-        count = str(window) if window < 10**9 else f"{float(window):.3g}"
-        raise ValueError(
-            f"{source}: row {t.size + 1}, column 'time': {t.size} samples, fewer than the Savitzky-Golay window ({count} samples: "
-            f"{window_s:g} s at a median time step of {dt:.6g} s)"
-        )
-    return dt, window
-
-
-def _savgol(positions: Array, window: int, polyorder: int, dt: float) -> tuple[Array, Array]:
-    # Imported here: scipy.signal takes most of a second to import, and `import uwml` should not.
-    from scipy.signal import savgol_filter
-
-    # Overflow gives inf (or NaN), refused by _check_derivatives, not a warning.
-    with np.errstate(over="ignore", invalid="ignore"):
-        qd = savgol_filter(positions, window, polyorder, deriv=1, delta=dt, axis=0, mode="interp")
-        qdd = savgol_filter(positions, window, polyorder, deriv=2, delta=dt, axis=0, mode="interp")
-    return np.asarray(qd, dtype=np.float64), np.asarray(qdd, dtype=np.float64)
-
-
-def _check_derivatives(qd: Array, qdd: Array, source: str, dt: float, first_row: int = 2) -> None:
-    """Estimated velocities and accelerations finite, or a ValueError naming the first row
-    (``first_row`` for the first sample) and the joint's position column."""
-    for what, unit, values in (("velocity", "rad/s", qd), ("acceleration", "rad/s²", qdd)):
-        bad = np.flatnonzero(~np.isfinite(values).all(axis=1))
-        if bad.size:
-            i = int(bad[0])
-            k = int(np.flatnonzero(~np.isfinite(values[i]))[0])
-            raise ValueError(
-                f"{source}: row {i + first_row}, column 'q{k + 1}': the estimated {what} [{unit}] is not finite: the positions "
-                f"change too much for a time step of {dt:.6g} s"
-            )
+        """This log with ``qd`` and ``qdd`` filled in by :func:`estimate_derivatives` where absent,
+        and ``base_twist_dot`` by :func:`uwml.io.sampling.estimate_rates` where the twist is given."""
+        log = self
+        if log.qd is None or log.qdd is None:
+            qd, qdd = estimate_derivatives(log.time, log.q, window_s, polyorder, source=log.source)
+            log = replace(log, qd=qd if log.qd is None else log.qd, qdd=qdd if log.qdd is None else log.qdd)
+        if log.base_twist is not None and log.base_twist_dot is None:
+            log = replace(log, base_twist_dot=estimate_rates(log.time, log.base_twist, window_s, polyorder, source=log.source))
+        return log
 
 
 def align_logs(land: Log, water: Log) -> Log:
     """One log of the whole experiment from a land log and a water log, paired by time.
 
-    The water torques are interpolated linearly onto the land log's time stamps; land rows
-    outside the water log's time span are dropped. Each log's torque is its ``tau`` (or, for a
-    log of the whole experiment, its ``tau_land`` and ``tau_water`` respectively).
+    The water torques (and the rig's wrenches on the base) are interpolated linearly onto the
+    land log's time stamps; land rows outside the water log's time span are dropped. Each log's
+    torque is its ``tau`` (or, for a log of the whole experiment, its ``tau_land`` and
+    ``tau_water`` respectively); the same for ``wrench``. The motion (joints and base) is the
+    land log's.
     """
-    tau_land = land.tau if land.tau is not None else land.tau_land
-    tau_water = water.tau if water.tau is not None else water.tau_water
-    if tau_land is None:
-        raise ValueError(f"{land.source}: row 1 (header), column 'tau1': the land log has no torque columns")
-    if tau_water is None:
-        raise ValueError(f"{water.source}: row 1 (header), column 'tau1': the water log has no torque columns")
     if land.n_joints != water.n_joints:
         raise ValueError(
             f"{water.source}: row 1 (header), column 'q{water.n_joints}': the water log has {water.n_joints} joints, "
@@ -289,7 +240,20 @@ def align_logs(land: Log, water: Log) -> Log:
             f"the land log ({land.source}) in fewer than 2 samples"
         )
     t = land.time[inside]
-    interpolated = np.column_stack([np.interp(t, water.time, tau_water[:, j]) for j in range(water.n_joints)])
+    paired: dict[str, Array] = {}
+    for land_name, water_name, one in _PAIRS:
+        on_land = getattr(land, one) if getattr(land, one) is not None else getattr(land, land_name)
+        in_water = getattr(water, one) if getattr(water, one) is not None else getattr(water, water_name)
+        if on_land is None and in_water is None:
+            continue
+        if on_land is None or in_water is None:
+            log, which = (land, "land") if on_land is None else (water, "water")
+            what = "torque" if one == "tau" else "wrench"
+            raise ValueError(f"{log.source}: row 1 (header), column '{one}1': the {which} log has no {what} columns")
+        paired[land_name] = on_land[inside]
+        paired[water_name] = np.column_stack([np.interp(t, water.time, column) for column in in_water.T])
+    if not paired:
+        raise ValueError(f"{land.source}: row 1 (header), column 'tau1': the land log has no torque columns")
 
     def cut(a: Array | None) -> Array | None:
         return None if a is None else a[inside]
@@ -299,9 +263,11 @@ def align_logs(land: Log, water: Log) -> Log:
         q=land.q[inside],
         qd=cut(land.qd),
         qdd=cut(land.qdd),
-        tau_land=tau_land[inside],
-        tau_water=interpolated,
+        base_orientation=cut(land.base_orientation),
+        base_twist=cut(land.base_twist),
+        base_twist_dot=cut(land.base_twist_dot),
         source=f"{land.source} + {water.source}",
+        **paired,
     )
 
 
@@ -402,23 +368,30 @@ def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[i
     for family, numbers in present.items():
         if not numbers:
             continue
-        extra = sorted(k for k in numbers if k > n)
+        width = _BASE_FAMILIES.get(family, n)
+        extra = sorted(k for k in numbers if k > width)
+        if extra and family in _BASE_FAMILIES:
+            raise ValueError(
+                f"{source}: row 1 (header), column {shown(numbers[extra[0]])}: {family} has {width} columns ({family}1 … {family}{width})"
+            )
         if extra:
             raise ValueError(f"{source}: row 1 (header), column {shown(numbers[extra[0]])}: the log has more joints than the {n} expected")
-        for k in range(1, n + 1):
+        for k in range(1, width + 1):
             if k not in numbers:
-                raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column (the log has {n} joints)")
-    torques = {family for family in ("tau_land", "tau_water", "tau") if present[family]}
-    if torques and torques not in ({"tau_land", "tau_water"}, {"tau"}):
-        name = "tau_water1" if "tau_water" not in torques else "tau_land1"
-        if torques == {"tau_land", "tau_water", "tau"}:
-            name = "tau1"
-        raise ValueError(
-            f"{source}: row 1 (header), column {name!r}: a log carries either tau_land and tau_water (both environments) "
-            "or tau (one environment)"
-        )
+                what = f"{family} has {width} columns" if family in _BASE_FAMILIES else f"the log has {n} joints"
+                raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column ({what})")
+    for land, water, one in _PAIRS:
+        given = {family for family in (land, water, one) if present[family]}
+        if given and given not in ({land, water}, {one}):
+            name = f"{water}1" if water not in given else f"{land}1"
+            if given == {land, water, one}:
+                name = f"{one}1"
+            raise ValueError(
+                f"{source}: row 1 (header), column {name!r}: a log carries either {land} and {water} (both environments) "
+                f"or {one} (one environment)"
+            )
     families = [family for family in _FAMILIES if present[family]]
-    names = ["time"] + [f"{family}{k}" for family in families for k in range(1, n + 1)]
+    names = ["time"] + [f"{family}{k}" for family in families for k in range(1, _BASE_FAMILIES.get(family, n) + 1)]
     return n, families, names
 
 
@@ -432,27 +405,6 @@ def _header_hint(header: Sequence[str]) -> str:
     return hint
 
 
-def _check_time(time: Array, source: str, first_row: int = 2) -> None:
-    """The time column in its domain (module docstring): finite, within ±MAX_TIME_S, strictly
-    increasing, or a ValueError naming the row (``first_row`` for ``time[0]``)."""
-    outside = np.flatnonzero(~(np.abs(time) <= MAX_TIME_S))
-    if outside.size:
-        i = int(outside[0])
-        value = float(time[i])
-        if not math.isfinite(value):
-            raise ValueError(f"{source}: row {i + first_row}, column 'time': expected a finite number, got {value!r}")
-        raise ValueError(
-            f"{source}: row {i + first_row}, column 'time': {value!r} s is beyond ±{MAX_TIME_S:g} s (317 years): "
-            "time must be in seconds (Unix time in seconds fits; milli- or nanosecond stamps do not)"
-        )
-    bad = np.flatnonzero(np.diff(time) <= 0.0)
-    if bad.size:
-        i = int(bad[0]) + 1
-        raise ValueError(
-            f"{source}: row {i + first_row}, column 'time': time must increase strictly ({float(time[i - 1])!r} then {float(time[i])!r})"
-        )
-
-
 def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], source: str) -> Log:
     """A :class:`Log` from checked float64 columns (array-likes, e.g. Arrow columns): the family
     arrays are filled column by column, so that one copy of the data exists at a time besides
@@ -463,8 +415,9 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
     _check_time(time, source)
     arrays: dict[str, Array] = {}
     for family in families:
-        out = np.empty((time.size, n))
-        for k in range(n):
+        width = _BASE_FAMILIES.get(family, n)
+        out = np.empty((time.size, width))
+        for k in range(width):
             out[:, k] = np.asarray(columns[f"{family}{k + 1}"], dtype=np.float64)
         arrays[family] = out
     return Log(time=time, source=source, **arrays)
@@ -515,27 +468,28 @@ def write_log(log: Log, path_or_file: PathOrFile) -> None:
 
     Numbers are written in their shortest round-trip form (pyarrow's CSV writer), so
     :func:`read_log` gives the same float64 values back, bit for bit. The header is one line of
-    the column names, unquoted.
+    the column names, unquoted. A path is written whole or not at all (a temporary file renamed
+    over it): a failed write leaves an existing file as it was.
     """
     names = ["time"]
     columns = [log.time]
     for family in _FAMILIES:
         value = getattr(log, family)
         if value is not None:
-            names += [f"{family}{k}" for k in range(1, log.n_joints + 1)]
-            columns += [value[:, k] for k in range(log.n_joints)]
+            names += [f"{family}{k}" for k in range(1, value.shape[1] + 1)]
+            columns += [value[:, k] for k in range(value.shape[1])]
+    buffer = io.BytesIO()
     if _is_parquet(path_or_file):
         import pyarrow
 
         table = pyarrow.table({name: np.ascontiguousarray(column) for name, column in zip(names, columns, strict=True)})
-        _parquet().write_table(table, path_or_file)
-        return
-    from ._arrow_csv import write_table
+        _parquet().write_table(table, buffer)
+    else:
+        from ._arrow_csv import write_table
 
+        write_table(buffer, names, columns)
     if isinstance(path_or_file, str | os.PathLike):
-        with open(path_or_file, "wb") as handle:
-            write_table(handle, names, columns)
+        # Whole or not at all: a failed write leaves an existing file as it was.
+        write_atomically(path_or_file, buffer.getvalue())
         return
-    buffer = io.BytesIO()
-    write_table(buffer, names, columns)
     path_or_file.write(buffer.getvalue().decode("utf-8"))

@@ -233,7 +233,8 @@ def hydro_fit_plot(result: HydroFit, path: str | os.PathLike[str] | None = None)
     -------
     matplotlib.figure.Figure
     """
-    joints = result.joints
+    # The joints' rows, then the base wrench's components (labelled -1 … -6).
+    joints = [*result.joints, *(-1 - c for c in result.base)]
     figure = Figure(figsize=(11.0, 3.2 * len(joints)), layout="constrained")
     axes = np.atleast_2d(figure.subplots(len(joints), 2, squeeze=False))
     values = ", ".join(
@@ -247,13 +248,15 @@ def hydro_fit_plot(result: HydroFit, path: str | os.PathLike[str] | None = None)
         ax.plot(t, result.data[here], ".", ms=2.5, color="0.45", label="measured")
         ax.plot(t, result.best_fit[here], color="C3", lw=1.3, label="fitted")
         ax.set_xlabel("time [s]")
-        ax.set_ylabel(f"joint {joint + 1} torque [N·m]")
+        component = ["fx", "fy", "fz", "mx", "my", "mz"][-1 - joint] if joint < 0 else ""
+        unit = "N" if component.startswith("f") else "N·m"
+        ax.set_ylabel(f"base {component} [{unit}]" if joint < 0 else f"joint {joint + 1} torque [N·m]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize="small", loc="upper right")
         ax_residual.plot(t, result.data[here] - result.best_fit[here], ".", ms=2.5, color="C0")
         ax_residual.axhline(0.0, color="k", lw=0.8)
         ax_residual.set_xlabel("time [s]")
-        ax_residual.set_ylabel("measured − fitted [N·m]")
+        ax_residual.set_ylabel(f"measured − fitted [{unit if joint < 0 else 'N·m'}]")
         ax_residual.grid(alpha=0.3)
         if row == 0:
             ax.set_title(f"hydrodynamic torque −Δτ − τ_buoy: {values}", fontsize="small")

@@ -1,0 +1,181 @@
+"""``uwml fit``: ``fit hydro`` (Cd and Cm, axial drag, lumped models, from a land/water
+experiment or a captive test) and ``fit losses`` (the joints' oil-drag and seal models)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from ._cli_arguments import _base_rows, _joint_list_or_none
+from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
+from .fit.robot_design import BASE_ROWS
+from .robot.leg import Leg
+
+
+def _fit_hydro(args: argparse.Namespace) -> int:
+    from . import fit
+
+    _check_output(args.plot, "--plot")
+    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
+    what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
+    joints = ([] if args.base else [1]) if args.joints is None else args.joints
+    if any(j > leg.n_joints for j in joints):
+        raise _UsageError(f"--joints: {what} has joints 1 to {leg.n_joints}, got {','.join(map(str, joints))}")
+    if args.base and args.robot is None:
+        raise _UsageError("--base: the paper's leg stands on a fixed base; give the --robot whose base (hull) is fitted")
+    if not joints and not args.base:
+        raise _UsageError("--joints none: give --base, or at least one joint")
+    source: Any = args.log if args.log_water is None else (args.log, args.log_water)
+    result = fit.hydro_coefficients(
+        source, leg, joints=[j - 1 for j in joints], per=args.per, robust=args.robust, base=args.base, lumped=args.lumped
+    )
+    if args.plot is not None:
+        from .viz import plot
+
+        plot.hydro_fit_plot(result, args.plot)
+    if args.json:
+        print(json.dumps(result.summary()))
+    else:
+        model = "" if args.robot is None else f", --robot {args.robot}"
+        rows = f"joints {','.join(map(str, joints)) or 'none'} (1-based)" + (
+            f", base {','.join(BASE_ROWS[c] for c in args.base)}" if args.base else ""
+        )
+        print(f"uwml fit hydro: {result.source}{model}, {rows}, per {args.per}")
+        print(result.fit_report())
+        if args.plot is not None:
+            print(f"figure: {args.plot}")
+    return 0
+
+
+def _fit_losses(args: argparse.Namespace) -> int:
+    import csv
+
+    from . import fit
+    from .io._arrow_csv import not_utf8_error
+    from .io.logs import _check_file
+
+    _check_file(args.csv, args.csv)  # no such file, a directory
+    try:
+        # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8") is skipped.
+        with open(args.csv, newline="", encoding="utf-8-sig") as handle:
+            data = fit.read_loss_csv(handle)
+    except UnicodeDecodeError:
+        raise not_utf8_error(lambda: open(args.csv, "rb"), f"{args.csv}: ") from None  # noqa: SIM115 (opened and closed by the callee)
+    except csv.Error as exc:
+        raise ValueError(f"{args.csv}: not CSV ({exc}; is a quote not closed?)") from None
+    except ValueError as exc:
+        raise ValueError(f"{args.csv}: {exc}") from None
+    results: dict[str, Any] = {}
+    for name, function in (("oil_drag", fit.oil_drag), ("seal", fit.seal)):
+        try:
+            results[name] = function(data)
+        except ValueError as exc:
+            raise ValueError(f"{args.csv}: {name} fit: {exc}") from None
+    figures = []
+    if args.plot is not None:
+        from .viz import plot
+
+        directory = Path(args.plot)
+        directory.mkdir(parents=True, exist_ok=True)
+        for name, result in results.items():
+            figures.append(directory / f"{name}_fit.png")
+            plot.fit_plot(result, figures[-1])
+    if args.json:
+        print(json.dumps({name: result.summary() for name, result in results.items()}))
+    else:
+        for name, result in results.items():
+            print(f"uwml fit losses: {args.csv}, {name.replace('_', ' ')} model")
+            print(result.fit_report())
+            print()
+        for figure in figures:
+            print(f"figure: {figure}")
+    return 0
+
+
+def add_fit_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
+    """``uwml fit hydro`` and ``uwml fit losses`` on the ``uwml`` parser's commands."""
+    fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
+    fits = fit_parser.add_subparsers(dest="fit_command", required=True)
+    hydro = fits.add_parser(
+        "hydro",
+        help="Cd and Cm from a land/water experiment",
+        formatter_class=formatter,
+        description=f"""Cd and Cm of the paper's leg (or of --robot, on a fixed base) from a land/water
+experiment (uwml.fit.hydro_coefficients): weighted linear least squares of
+-(tau_water - tau_land) - buoyancy against the drag and added-mass regressors (the paper's
+eqs. 23-24). With --robot, --per link gives one Cd and Cm per link named after it (cd_<link>),
+and the robot's axial drag and lumped models are fitted too (uwml.fit.robot_design).
+
+Input: one log of both runs (columns tau_land1..N and tau_water1..N), or two logs LOG (land)
+and LOG_WATER (water) of one run each (columns tau1..N), paired by time. With --base, a
+captive test of the robot's base (its hull) on a rig: the rig's wrench on the base
+(wrench_land1..6 and wrench_water1..6, or wrench1..6: force [N], moment [N·m] about the base
+origin, base components), the base's twist base_twist1..6 (v [m/s], w [rad/s], base
+components; its derivative base_twist_dot1..6 estimated where absent) and orientation
+base_orientation1..4 (a quaternion w, x, y, z; upright where absent).
+
+{_LOG_FORMAT}
+
+Output: the fit report (value +/- standard error, reduced chi-square, COD, AIC/BIC,
+correlations) on standard output; with --json only the result's summary as JSON (keys params,
+stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitted torque
+(cf. Fig. 7) as an image.""",
+        epilog=_EXIT,
+    )
+    hydro.add_argument("log", metavar="LOG", help="log of both runs, or the land log when LOG_WATER is given")
+    hydro.add_argument("log_water", metavar="LOG_WATER", nargs="?", help="the water log (then LOG is the land log)")
+    hydro.add_argument(
+        "--joints",
+        type=_joint_list_or_none,
+        default=None,
+        metavar="1,2,3",
+        help="joints to fit, numbered from 1, or none (default 1, the paper's hip yaw; none with --base)",
+    )
+    hydro.add_argument(
+        "--base",
+        type=_base_rows,
+        default=[],
+        metavar="fx,fy,...",
+        help="the base wrench's components to fit too (fx, fy, fz, mx, my, mz, or all): a captive test of a --robot's hull",
+    )
+    hydro.add_argument(
+        "--lumped",
+        choices=("diagonal", "full", "given"),
+        default="diagonal",
+        help="which entries of the lumped models to fit: their diagonals (default), all 63, or those not zero in the model",
+    )
+    hydro.add_argument(
+        "--per",
+        choices=("leg", "link", "direction"),
+        default="leg",
+        help="one Cd and Cm (for the whole leg or robot); one per link; one per link and direction",
+    )
+    hydro.add_argument(
+        "--robot", metavar="FILE", help="the robot: a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml); default the paper's leg"
+    )
+    hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
+    hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
+    hydro.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
+    hydro.add_argument("--plot", metavar="FILE", help="save the measured-vs-fitted figure (format from the extension, e.g. .png)")
+    hydro.set_defaults(run=_fit_hydro)
+
+    losses = fits.add_parser(
+        "losses",
+        help="the oil-drag and seal loss models from a three-configuration experiment",
+        formatter_class=formatter,
+        description="""The oil-drag and dynamic-seal models (uwml.fit.oil_drag and uwml.fit.seal) from the paper's
+three-configuration experiment (docs/losses.md).
+
+Input: CSV with columns configuration (dry, oil or oil_seal), speed_rpm, pressure_mpa,
+current_a, optionally startup (0/1) and temperature_c; the default drive (uwml.Drive()).
+
+Output: both fit reports on standard output; with --json only {"oil_drag": summary,
+"seal": summary} as JSON; with --plot DIR the figures oil_drag_fit.png and seal_fit.png.""",
+        epilog=_EXIT,
+    )
+    losses.add_argument("csv", metavar="CSV", help="loss-experiment CSV file")
+    losses.add_argument("--json", action="store_true", help="print both results' summaries as JSON only")
+    losses.add_argument("--plot", metavar="DIR", help="directory for the fit figures (created if needed)")
+    losses.set_defaults(run=_fit_losses)

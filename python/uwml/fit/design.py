@@ -1,0 +1,221 @@
+"""The identification design of the land/water experiment (docs/model.md section 4): the
+regressors of every coefficient and the target ``y = −Δτ_motor − τ_buoy`` on the selected
+joints, assembled by the Rust core chunk by chunk in one pass over a log, reduced to the normal
+equations (:class:`_Moments`), and iteratively reweighted for Huber's loss. The paper leg's
+design is here; a whole robot's (its base's wrench too) is :mod:`uwml.fit.robot_design`."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..io.logs import Log
+from ..model.parts import Water
+from ..robot.leg import Leg
+from ._types import Array
+
+#: Samples per chunk of the streamed hydro identification (the design of a chunk is at most
+#: ``CHUNK_SAMPLES × J × 4N`` floats: 37 MB for all three joints of the paper leg per direction).
+CHUNK_SAMPLES = 1 << 17
+
+#: Default of ``hydro_coefficients(cache_bytes=...)``: designs up to this size stay in memory
+#: between passes.
+DESIGN_CACHE_BYTES = 1 << 30
+
+
+@dataclass(frozen=True)
+class _Moments:
+    """Per selected joint ``j``: ``XⱼᵀXⱼ`` (``gram[j]``), ``Xⱼᵀyⱼ``, ``yⱼᵀyⱼ`` of the design."""
+
+    gram: Array  # (J, P, P)
+    xty: Array  # (J, P)
+    yty: Array  # (J,)
+
+    def kept(self, keep: NDArray[np.bool_]) -> _Moments:
+        return _Moments(self.gram[:, keep][:, :, keep], self.xty[:, keep], self.yty)
+
+    def weighted_gram(self, sigma_joint: Array) -> Array:
+        gram: Array = np.einsum("j,jab->ab", sigma_joint**-2.0, self.gram)
+        return gram
+
+    def solve(self, sigma_joint: Array) -> Array:
+        """Weighted least squares from the normal equations, with the columns scaled to unit
+        norm first (the Gram matrix's condition number is then that of the correlations)."""
+        gram = self.weighted_gram(sigma_joint)
+        rhs = np.einsum("j,ja->a", sigma_joint**-2.0, self.xty)
+        scale = np.sqrt(np.diag(gram))
+        scale = np.where(scale > 0.0, scale, 1.0)
+        return np.asarray(np.linalg.lstsq(gram / np.outer(scale, scale), rhs / scale, rcond=None)[0], dtype=np.float64) / scale
+
+    def residual_squares(self, x: Array) -> Array:
+        """``|Xⱼx − yⱼ|²`` per joint, from the moments (an estimate of scale: it loses the
+        digits that ``|y|²`` has beyond the residuals')."""
+        squares: Array = np.clip(self.yty - 2.0 * self.xty @ x + np.einsum("a,jab,b->j", x, self.gram, x), 0.0, None)
+        return squares
+
+
+class _HydroDesign:
+    """The identification design of a log (docs/model.md section 4) and its target
+    ``y = −Δτ_motor − τ_buoy`` on the selected joints, assembled by the Rust core in one pass per
+    chunk of samples; the chunks are kept while they fit into ``cache_bytes``."""
+
+    def __init__(self, leg: Leg, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
+        self._leg = leg
+        n_links = leg.n_joints
+        names: list[str] = []
+        for prefix in ("cd", "cm"):
+            if per == "leg":
+                names.append(prefix)
+            elif per == "link":
+                names += [f"{prefix}_link{link}" for link in range(n_links)]
+            else:
+                names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
+        self._setup(log, water, per, joints, cache_bytes, names)
+
+    def _setup(self, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int, names: list[str]) -> None:
+        """What every design keeps: the log, the water, the columns' names, the chunk cache."""
+        assert log.qd is not None and log.qdd is not None
+        self._log, self._water, self._per, self._joints = log, water, per, joints
+        self.names = names
+        size = log.n_samples * len(joints) * (len(names) + 1) * 8
+        self._cache: list[Array] | None = [] if size <= cache_bytes else None
+        self._cached = False
+        self._keep: NDArray[np.bool_] | None = None
+        # The last coefficients given to `fitted`, and its result (the robust fit's last scale
+        # estimate and the result's fitted values are of the same coefficients).
+        self._last_fit: tuple[Array, tuple[Array, Array]] | None = None
+
+    def _chunk_samples(self) -> int:
+        return CHUNK_SAMPLES
+
+    def keep(self, keep: NDArray[np.bool_]) -> None:
+        """Leave out the design's columns where ``keep`` is False (coefficients then index the
+        kept columns only)."""
+        self._keep = keep
+
+    def _full(self, x: Array) -> Array:
+        """Kept-column coefficients as coefficients of every column (zero where dropped)."""
+        if self._keep is None:
+            return x
+        full = np.zeros(self._keep.size)
+        full[self._keep] = x
+        return full
+
+    def _compute(self, start: int, stop: int) -> Array:
+        log = self._log
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        rows = slice(start, stop)
+        q, qd, qdd = (np.ascontiguousarray(a[rows]) for a in (log.q, log.qd, log.qdd))
+        delta = np.ascontiguousarray(log.tau_water[rows] - log.tau_land[rows])
+        return self._leg._chain.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
+
+    def chunks(self) -> Iterator[Array]:
+        """The problem chunk by chunk, joint-major ``(J, c, P + 1)``: every column's regressor,
+        then the target ``y``."""
+        if self._cached and self._cache is not None:
+            yield from self._cache
+            return
+        n, step = self._log.n_samples, self._chunk_samples()
+        for start in range(0, n, step):
+            chunk = self._compute(start, min(start + step, n))
+            if self._cache is not None:
+                self._cache.append(chunk)
+            yield chunk
+        self._cached = self._cache is not None
+
+    def moments(self) -> _Moments:
+        """Per-joint moments of all columns, in one pass (one product ``[X y]ᵀ[X y]`` per joint
+        and chunk)."""
+        n_selected, p = len(self._joints), len(self.names)
+        gram, xty, yty = np.zeros((n_selected, p, p)), np.zeros((n_selected, p)), np.zeros(n_selected)
+        for chunk in self.chunks():
+            for j, block in enumerate(chunk):
+                with np.errstate(over="ignore", invalid="ignore"):  # refused below, with the log named
+                    g = block.T @ block
+                if not np.all(np.isfinite(g)):
+                    raise ValueError(
+                        f"{self._log.source}: the regressors' and torques' products overflow float64 "
+                        f"(values near 1e150 or beyond, far outside any robot's speeds and torques)"
+                    )
+                gram[j] += g[:p, :p]
+                xty[j] += g[:p, p]
+                yty[j] += g[p, p]
+        return _Moments(gram, xty, yty)
+
+    def _table(self, values: Array) -> Array:
+        """One kind of coefficient (the Cd or the Cm half of the columns) as a per link and
+        direction table ``(n_links, 2)``."""
+        n_links = self._leg.n_joints
+        if self._per == "leg":
+            return np.full((n_links, 2), values[0])
+        if self._per == "link":
+            return np.repeat(values[:, None], 2, axis=1)
+        return values.reshape(n_links, 2)
+
+    def fitted(self, x: Array) -> tuple[Array, Array]:
+        """``(Xx, y)``, sample-major (all selected joints of sample 0, then sample 1, …).
+
+        The torques are linear in the coefficients, so ``Xx`` is the drag plus added-mass torque
+        at coefficients ``x`` (negative ones by a second evaluation at their magnitudes): a
+        third of the cost of the design's regressors, and nothing to keep between passes."""
+        if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
+            return self._last_fit[1]
+        full = self._full(x)
+        half = full.size // 2
+        cd, cm = self._table(full[:half]), self._table(full[half:])
+        log, leg, joints = self._log, self._leg, self._joints
+        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        signs = (1.0, -1.0) if np.any(full < 0.0) else (1.0,)
+        fits, targets = [], []
+        for start in range(0, log.n_samples, CHUNK_SAMPLES):
+            rows = slice(start, start + CHUNK_SAMPLES)
+            fit = np.zeros((len(log.q[rows]), leg.n_joints))
+            buoyancy = fit
+            for sign in signs:
+                tau = leg.hydro(
+                    log.q[rows], log.qd[rows], log.qdd[rows], np.clip(sign * cd, 0.0, None), np.clip(sign * cm, 0.0, None), self._water
+                )
+                fit += sign * (tau.drag + tau.added_mass)
+                buoyancy = tau.buoyancy
+            target = -(log.tau_water[rows] - log.tau_land[rows]) - buoyancy
+            fits.append(fit[:, joints].reshape(-1))
+            targets.append(target[:, joints].reshape(-1))
+        result = np.concatenate(fits), np.concatenate(targets)
+        self._last_fit = (np.array(x), result)
+        return result
+
+    def residuals(self, x: Array) -> Array:
+        """``Xx − y``, sample-major."""
+        fit, y = self.fitted(x)
+        return fit - y
+
+    def huber(self, x: Array, sigma_joint: Array, scale: float, max_passes: int = 200) -> tuple[Array, int, bool]:
+        """Huber's estimate by iteratively reweighted least squares from ``x``, on residuals
+        whitened by ``sigma_joint``: ``(x, passes, converged)``. The weights are
+        ``min(1, scale/|r|)``; the loss is convex, so the iteration converges to its unique
+        minimum (the one ``scipy.optimize.least_squares(loss="huber")`` finds)."""
+        keep = np.ones(len(self.names), dtype=bool) if self._keep is None else self._keep
+        p = keep.size
+        passes, converged = 0, False
+        for passes in range(1, max_passes + 1):
+            coefficients = np.append(self._full(x), -1.0)
+            gram, rhs = np.zeros((p, p)), np.zeros(p)
+            for chunk in self.chunks():
+                r = (chunk @ coefficients) / sigma_joint[:, None]
+                w = np.minimum(1.0, scale / np.maximum(np.abs(r), 1e-300)) * sigma_joint[:, None] ** -2.0
+                for block, weights in zip(chunk, w, strict=True):
+                    g = (block * weights[:, None]).T @ block
+                    gram += g[:p, :p]
+                    rhs += g[:p, p]
+            gram, rhs = gram[keep][:, keep], rhs[keep]
+            d = np.sqrt(np.diag(gram))
+            d = np.where(d > 0.0, d, 1.0)
+            new = np.linalg.lstsq(gram / np.outer(d, d), rhs / d, rcond=None)[0] / d
+            converged = bool(np.all(np.abs(new - x) <= 1e-12 * (np.abs(new) + np.max(np.abs(new)) + 1e-300)))
+            x = new
+            if converged:
+                break
+        return x, passes, converged
