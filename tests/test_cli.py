@@ -102,7 +102,7 @@ _HELP = [
     (["paper"], ["--out", "--seed", "report.md", "fig8_torques.png"]),
     (["torques"], ["LOG", "--out", "--depth", "--temperature", "--cd", "--cm", "--losses", "--joints", "drag1", "total1"]),
     (["fit"], ["hydro", "losses"]),
-    (["fit", "hydro"], ["LOG_WATER", "--joints", "--per", "--robust", "--json", "--plot", "tau_land1"]),
+    (["fit", "hydro"], ["LOG", "glob", "--joints", "--per", "--robust", "--json", "--plot", "tau_land1"]),
     (["fit", "losses"], ["CSV", "--json", "--plot", "configuration", "current_a"]),
 ]
 

@@ -17,6 +17,7 @@ import pytest
 import uwml
 from matplotlib.figure import Figure
 from uwml import fit, logs, plot, synthetic
+from uwml.fit.log_set import log_set
 from uwml.gait import WalkingGait
 
 matplotlib.use("Agg")
@@ -453,7 +454,7 @@ def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
     negative ones: they equal the one-pass design times the coefficients."""
     log = synthetic.land_water_experiment(cycles=0.5, seed=5)
     leg, joints = uwml.Leg.paper(), [0, 2]
-    design = fit.design._HydroDesign(leg, log, uwml.Water(), per, joints, cache_bytes=0)
+    design = fit.design._HydroDesign(leg, log_set(log, 3, "the leg", True, False), uwml.Water(), per, joints, cache_bytes=0)
     x = np.random.default_rng(2).normal(0.0, 2.0, len(design.names))
     assert np.any(x < 0.0) and np.any(x > 0.0)
     values, targets = design.fitted(x)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         raise _UsageError("--base: the paper's leg stands on a fixed base; give the --robot whose base (hull) is fitted")
     if not joints and not args.base:
         raise _UsageError("--joints none: give --base, or at least one joint")
-    source: Any = args.log if args.log_water is None else (args.log, args.log_water)
+    source: Any = _pair(args.logs) or (args.logs[0] if len(args.logs) == 1 else list(args.logs))
     result = fit.hydro_coefficients(
         source, leg, joints=[j - 1 for j in joints], per=args.per, robust=args.robust, base=args.base, lumped=args.lumped
     )
@@ -94,6 +95,22 @@ def _fit_losses(args: argparse.Namespace) -> int:
     return 0
 
 
+def _pair(logs: list[str]) -> tuple[str, str] | None:
+    """Two logs of one environment each (``tau*`` columns, not ``tau_land*``): a (land, water)
+    pair; anything else: None."""
+    from .io._log_stream import _header
+    from .io.logs import _check_file, _layout
+
+    if len(logs) != 2 or not all(os.path.isfile(path) for path in logs):
+        return None
+    for path in logs:
+        _check_file(path, path)
+        _, families, _ = _layout(_header(path, path), None, path)
+        if "tau" not in families and "wrench" not in families:
+            return None
+    return logs[0], logs[1]
+
+
 def add_fit_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
     """``uwml fit hydro`` and ``uwml fit losses`` on the ``uwml`` parser's commands."""
     fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
@@ -108,8 +125,11 @@ experiment (uwml.fit.hydro_coefficients): weighted linear least squares of
 eqs. 23-24). With --robot, --per link gives one Cd and Cm per link named after it (cd_<link>),
 and the robot's axial drag and lumped models are fitted too (uwml.fit.robot_design).
 
-Input: one log of both runs (columns tau_land1..N and tau_water1..N), or two logs LOG (land)
-and LOG_WATER (water) of one run each (columns tau1..N), paired by time. With --base, a
+Input: logs of both runs (columns tau_land1..N and tau_water1..N): one, several, or glob
+patterns (quoted: 'dives/*.parquet'), fitted together with each log's diagnostics (rows,
+residual RMS, the logs whose own fit disagrees with the pooled one by more than 3 sigma); files
+over 64 MiB are read chunk by chunk on every pass, in bounded memory. Or two logs (land, then
+water) of one run each (columns tau1..N), paired by time. With --base, a
 captive test of the robot's base (its hull) on a rig: the rig's wrench on the base
 (wrench_land1..6 and wrench_water1..6, or wrench1..6: force [N], moment [N·m] about the base
 origin, base components), the base's twist base_twist1..6 (v [m/s], w [rad/s], base
@@ -124,8 +144,12 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
 (cf. Fig. 7) as an image.""",
         epilog=_EXIT,
     )
-    hydro.add_argument("log", metavar="LOG", help="log of both runs, or the land log when LOG_WATER is given")
-    hydro.add_argument("log_water", metavar="LOG_WATER", nargs="?", help="the water log (then LOG is the land log)")
+    hydro.add_argument(
+        "logs",
+        metavar="LOG",
+        nargs="+",
+        help="logs of both runs (files or glob patterns, fitted together), or a land log and a water log of one run each",
+    )
     hydro.add_argument(
         "--joints",
         type=_joint_list_or_none,

@@ -16,6 +16,7 @@ from ..io.logs import Log
 from ..model.parts import Water
 from ..robot.leg import Leg
 from ._types import Array
+from .log_set import LogSet
 
 #: Samples per chunk of the streamed hydro identification (the design of a chunk is at most
 #: ``CHUNK_SAMPLES × J × 4N`` floats: 37 MB for all three joints of the paper leg per direction).
@@ -58,11 +59,12 @@ class _Moments:
 
 
 class _HydroDesign:
-    """The identification design of a log (docs/model.md section 4) and its target
+    """The identification design of a set of logs (docs/model.md section 4) and its target
     ``y = −Δτ_motor − τ_buoy`` on the selected joints, assembled by the Rust core in one pass per
-    chunk of samples; the chunks are kept while they fit into ``cache_bytes``."""
+    chunk of samples; the chunks are kept while they fit into ``cache_bytes``. The first pass
+    also keeps the logs' time stamps and each log's own moments (:attr:`log_moments`)."""
 
-    def __init__(self, leg: Leg, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
+    def __init__(self, leg: Leg, log: LogSet, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
         self._leg = leg
         n_links = leg.n_joints
         names: list[str] = []
@@ -75,13 +77,16 @@ class _HydroDesign:
                 names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
         self._setup(log, water, per, joints, cache_bytes, names)
 
-    def _setup(self, log: Log, water: Water, per: str, joints: list[int], cache_bytes: int, names: list[str]) -> None:
-        """What every design keeps: the log, the water, the columns' names, the chunk cache."""
-        assert log.qd is not None and log.qdd is not None
+    def _setup(self, log: LogSet, water: Water, per: str, joints: list[int], cache_bytes: int, names: list[str]) -> None:
+        """What every design keeps: the logs, the water, the columns' names, the chunk cache."""
         self._log, self._water, self._per, self._joints = log, water, per, joints
+        #: The time stamps of every log, one after the other (after the first pass).
+        self.time = np.empty(0)
+        #: Each log's moments (after :meth:`moments`).
+        self.log_moments: list[_Moments] = []
         self.names = names
         size = log.n_samples * len(joints) * (len(names) + 1) * 8
-        self._cache: list[Array] | None = [] if size <= cache_bytes else None
+        self._cache: list[tuple[int, Array]] | None = [] if size <= cache_bytes else None
         self._cached = False
         self._keep: NDArray[np.bool_] | None = None
         # The last coefficients given to `fitted`, and its result (the robust fit's last scale
@@ -104,46 +109,53 @@ class _HydroDesign:
         full[self._keep] = x
         return full
 
-    def _compute(self, start: int, stop: int) -> Array:
-        log = self._log
+    def _compute(self, log: Log) -> Array:
         assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
-        rows = slice(start, stop)
-        q, qd, qdd = (np.ascontiguousarray(a[rows]) for a in (log.q, log.qd, log.qdd))
-        delta = np.ascontiguousarray(log.tau_water[rows] - log.tau_land[rows])
+        q, qd, qdd = (np.ascontiguousarray(a) for a in (log.q, log.qd, log.qdd))
+        delta = np.ascontiguousarray(log.tau_water - log.tau_land)
         return self._leg._chain.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
 
-    def chunks(self) -> Iterator[Array]:
-        """The problem chunk by chunk, joint-major ``(J, c, P + 1)``: every column's regressor,
-        then the target ``y``."""
+    def indexed_chunks(self) -> Iterator[tuple[int, Array]]:
+        """``(index of the log, chunk)``: the problem chunk by chunk, joint-major ``(J, c, P + 1)``:
+        every column's regressor, then the target ``y``."""
         if self._cached and self._cache is not None:
             yield from self._cache
             return
-        n, step = self._log.n_samples, self._chunk_samples()
-        for start in range(0, n, step):
-            chunk = self._compute(start, min(start + step, n))
+        times = []
+        for index, log in self._log.chunks(self._chunk_samples()):
+            chunk = self._compute(log)
+            times.append(log.time)
             if self._cache is not None:
-                self._cache.append(chunk)
-            yield chunk
+                self._cache.append((index, chunk))
+            yield index, chunk
+        self.time = np.concatenate(times) if times else np.empty(0)
         self._cached = self._cache is not None
+
+    def chunks(self) -> Iterator[Array]:
+        """The problem chunk by chunk (:meth:`indexed_chunks` without the logs' indices)."""
+        for _, chunk in self.indexed_chunks():
+            yield chunk
 
     def moments(self) -> _Moments:
         """Per-joint moments of all columns, in one pass (one product ``[X y]ᵀ[X y]`` per joint
-        and chunk)."""
+        and chunk), and each log's (:attr:`log_moments`)."""
         n_selected, p = len(self._joints), len(self.names)
-        gram, xty, yty = np.zeros((n_selected, p, p)), np.zeros((n_selected, p)), np.zeros(n_selected)
-        for chunk in self.chunks():
+        logs = [_Moments(np.zeros((n_selected, p, p)), np.zeros((n_selected, p)), np.zeros(n_selected)) for _ in self._log.items]
+        for index, chunk in self.indexed_chunks():
+            gram, xty, yty = logs[index].gram, logs[index].xty, logs[index].yty
             for j, block in enumerate(chunk):
                 with np.errstate(over="ignore", invalid="ignore"):  # refused below, with the log named
                     g = block.T @ block
                 if not np.all(np.isfinite(g)):
                     raise ValueError(
-                        f"{self._log.source}: the regressors' and torques' products overflow float64 "
+                        f"{self._log.items[index].source}: the regressors' and torques' products overflow float64 "
                         f"(values near 1e150 or beyond, far outside any robot's speeds and torques)"
                     )
                 gram[j] += g[:p, :p]
                 xty[j] += g[:p, p]
                 yty[j] += g[p, p]
-        return _Moments(gram, xty, yty)
+        self.log_moments = logs
+        return _Moments(sum(m.gram for m in logs), sum(m.xty for m in logs), sum(m.yty for m in logs))  # type: ignore[arg-type]
 
     def _table(self, values: Array) -> Array:
         """One kind of coefficient (the Cd or the Cm half of the columns) as a per link and
@@ -166,21 +178,18 @@ class _HydroDesign:
         full = self._full(x)
         half = full.size // 2
         cd, cm = self._table(full[:half]), self._table(full[half:])
-        log, leg, joints = self._log, self._leg, self._joints
-        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+        leg, joints = self._leg, self._joints
         signs = (1.0, -1.0) if np.any(full < 0.0) else (1.0,)
         fits, targets = [], []
-        for start in range(0, log.n_samples, CHUNK_SAMPLES):
-            rows = slice(start, start + CHUNK_SAMPLES)
-            fit = np.zeros((len(log.q[rows]), leg.n_joints))
+        for _, log in self._log.chunks(CHUNK_SAMPLES):
+            assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
+            fit = np.zeros((log.n_samples, leg.n_joints))
             buoyancy = fit
             for sign in signs:
-                tau = leg.hydro(
-                    log.q[rows], log.qd[rows], log.qdd[rows], np.clip(sign * cd, 0.0, None), np.clip(sign * cm, 0.0, None), self._water
-                )
+                tau = leg.hydro(log.q, log.qd, log.qdd, np.clip(sign * cd, 0.0, None), np.clip(sign * cm, 0.0, None), self._water)
                 fit += sign * (tau.drag + tau.added_mass)
                 buoyancy = tau.buoyancy
-            target = -(log.tau_water[rows] - log.tau_land[rows]) - buoyancy
+            target = -(log.tau_water - log.tau_land) - buoyancy
             fits.append(fit[:, joints].reshape(-1))
             targets.append(target[:, joints].reshape(-1))
         result = np.concatenate(fits), np.concatenate(targets)

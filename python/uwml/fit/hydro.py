@@ -4,20 +4,22 @@ weighted and robust linear least squares.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..io.logs import Log, align_logs, read_log
+from ..io.logs import Log
 from ..model.parts import Water
 from ..robot.leg import Leg
 from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .design import DESIGN_CACHE_BYTES, _HydroDesign
 from .least_squares import _fit_statistics, _Solution, _uncertainties
-from .results import FitResult, _json_floats
+from .log_set import LogSet, log_set
+from .results import FitResult, _json_float, _json_floats
 from .robot_design import BASE_ROWS, _RobotHydroDesign
 
 # --------------------------------------------------------------------------------------------
@@ -28,6 +30,22 @@ from .robot_design import BASE_ROWS, _RobotHydroDesign
 HUBER_SCALE = 1.345
 #: σ of Gaussian noise per median absolute deviation.
 _MAD_TO_SIGMA = 1.4826
+
+
+@dataclass(frozen=True)
+class LogDiagnostics:
+    """One log of a fit over several (:attr:`HydroFit.logs`): its ``rows`` (samples), the RMS of
+    its residuals (``residual_rms``, unweighted, in the data's unit), its own least-squares fit
+    from its own normal equations with the pooled fit's weights (``params``; None where its data
+    do not determine every coefficient), and whether it ``disagrees`` with the pooled fit by more
+    than 3σ: its weighted χ² per point, relative to the pooled fit's, exceeds 1 by more than three
+    standard deviations of a χ² of its ``n`` points (``1 + 3 √(2/n)``)."""
+
+    source: str
+    rows: int
+    residual_rms: float
+    params: dict[str, float] | None
+    disagrees: bool
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -53,6 +71,8 @@ class HydroFit(FitResult):
     dropped: tuple[str, ...]
     #: Where the log came from.
     source: str
+    #: Each log's diagnostics, in the order read (one entry for one log).
+    logs: tuple[LogDiagnostics, ...] = ()
 
     #: Without σ, the hydrodynamic fit estimates each joint's from the residuals.
     _unknown_sigma_note = " (weighted by σ estimated from the residuals: ≈ N − p and 1 by construction)"
@@ -63,6 +83,10 @@ class HydroFit(FitResult):
             lines.insert(1, f"    base wrench rows   = {', '.join(BASE_ROWS[c] for c in self.base)}")
         if self.dropped:
             lines.append(f"    dropped (no data)  = {', '.join(self.dropped)}")
+        if len(self.logs) > 1:
+            disagreeing = [log.source for log in self.logs if log.disagrees]
+            lines.append(f"    logs               = {len(self.logs)}, {sum(log.rows for log in self.logs)} rows")
+            lines.append(f"    disagreeing (> 3σ) = {', '.join(disagreeing) if disagreeing else 'none'}")
         return lines
 
     def _summary_head(self) -> dict[str, Any]:
@@ -73,47 +97,39 @@ class HydroFit(FitResult):
             "base": [BASE_ROWS[c] for c in self.base],
             "dropped": list(self.dropped),
             "source": self.source,
+            "logs": [
+                {"source": log.source, "rows": log.rows, "residual_rms": _json_float(log.residual_rms), "disagrees": log.disagrees}
+                for log in self.logs
+            ],
         }
 
     def _point_coordinates(self) -> dict[str, list[Any]]:
         return {"time": _json_floats(self.time), "joint": np.asarray(self.joint, dtype=np.int64).tolist()}
 
 
-def _hydro_log(log_or_path: Any, n_joints: int, what: str = "the leg", torques: bool = True, wrench: bool = False) -> Log:
-    """A log of the whole experiment from a :class:`Log`, a file, or a (land, water) pair, with
-    the joints' torques (``torques``) and the base's wrench and twist (``wrench``) of both runs."""
-    if isinstance(log_or_path, tuple | list):
-        if len(log_or_path) != 2:
-            raise ValueError(f"give one log of the whole experiment or a (land, water) pair of logs, got {len(log_or_path)} items")
-        land, water = (item if isinstance(item, Log) else read_log(item, n_joints) for item in log_or_path)
-        for item in (land, water):
-            if item.n_joints != n_joints:
-                raise ValueError(
-                    f"{item.source}: row 1 (header), column 'q{item.n_joints}': the log has {item.n_joints} joints, {what} {n_joints}"
-                )
-        return _with_columns(align_logs(land, water), torques, wrench)
-    log = log_or_path if isinstance(log_or_path, Log) else read_log(log_or_path, n_joints)
-    if log.n_joints != n_joints:
-        raise ValueError(f"{log.source}: row 1 (header), column 'q{log.n_joints}': the log has {log.n_joints} joints, {what} {n_joints}")
-    return _with_columns(log, torques, wrench)
-
-
-def _with_columns(log: Log, torques: bool, wrench: bool) -> Log:
-    """``log``, or a ValueError naming the first column a fit of the joints' rows (``torques``)
-    or of the base's (``wrench``) needs and the log lacks."""
-    needs = [("tau_land", "tau_water", "tau")] if torques else []
-    needs += [("wrench_land", "wrench_water", "wrench")] if wrench else []
-    for land, water, one in needs:
-        if getattr(log, land) is None or getattr(log, water) is None:
-            raise ValueError(
-                f"{log.source}: row 1 (header), column '{land}1': need {land} and {water} columns "
-                f"(or give a (land, water) pair of logs of one environment each, with {one} columns)"
-            )
-    if wrench and log.base_twist is None:
-        raise ValueError(
-            f"{log.source}: row 1 (header), column 'base_twist1': a fit of the base's wrench needs the base's twist (base_twist1 … base_twist6)"
-        )
-    return log
+def _log_diagnostics(
+    design: _HydroDesign, logs: LogSet, keep: NDArray[np.bool_], sigma_joint: Array, residual: Array, whitened: Array
+) -> tuple[LogDiagnostics, ...]:
+    """Each log's :class:`LogDiagnostics` (``residual`` unweighted and ``whitened``, sample-major)."""
+    n_selected = sigma_joint.size
+    names = [name for name, k in zip(design.names, keep, strict=True) if k]
+    pooled = float(np.mean(whitened**2)) if whitened.size else math.nan
+    out = []
+    start = 0
+    for item, moments in zip(logs.items, design.log_moments, strict=True):
+        points = slice(start * n_selected, (start + item.n_samples) * n_selected)
+        start += item.n_samples
+        own_residual, own_whitened = residual[points], whitened[points]
+        rms = float(np.sqrt(np.mean(own_residual**2))) if own_residual.size else math.nan
+        ratio = float(np.mean(own_whitened**2)) / pooled if own_whitened.size and pooled > 0.0 else math.nan
+        disagrees = len(logs.items) > 1 and ratio > 1.0 + 3.0 * math.sqrt(2.0 / max(own_whitened.size, 1))
+        own = moments.kept(keep)
+        gram = own.weighted_gram(sigma_joint)
+        eigenvalues = np.linalg.eigvalsh(gram) if gram.size else np.zeros(0)
+        determined = bool(eigenvalues.size and eigenvalues[0] > 1e-10 * eigenvalues[-1])
+        params = dict(zip(names, own.solve(sigma_joint).tolist(), strict=True)) if determined else None
+        out.append(LogDiagnostics(item.source, item.n_samples, rms, params, bool(disagrees)))
+    return tuple(out)
 
 
 def _base_words(components: list[int]) -> str:
@@ -241,8 +257,7 @@ def hydro_coefficients(
         or any(not 0 <= j < leg.n_joints for j in selected_joints)
     ):
         raise ValueError(f"joints must be distinct indices in 0..{leg.n_joints - 1} (at least one, or base rows), got {joints!r}")
-    log = _hydro_log(log_or_path, expected, what, torques=bool(selected_joints), wrench=bool(components)).with_derivatives()
-    assert log.qd is not None and log.qdd is not None
+    log = log_set(log_or_path, expected, what, torques=bool(selected_joints), wrench=bool(components))
     # The rows fitted: the selected joints, then the base's components; as rows of the whole
     # robot's regressors (base 0 … 5, joint j at 6 + j) and as the points' labels.
     selected = selected_joints + [-1 - c for c in components]
@@ -317,13 +332,14 @@ def hydro_coefficients(
         fixed={},
         init_values=init,
         sigma=sigma_rows,
-        time=np.repeat(log.time, n_selected),
+        time=np.repeat(design.time, n_selected),
         joint=joint_of_row,
         per=per,
         joints=tuple(selected_joints),
         base=tuple(components),
         dropped=dropped,
         source=log.source,
+        logs=_log_diagnostics(design, log, keep, sigma_joint, residual * sigma_rows, residual),
         unit="N·m (−Δτ_motor − τ_buoy)",
         method=method,
         **stats,

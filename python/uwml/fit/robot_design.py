@@ -30,6 +30,7 @@ from ..robot.tree import Robot
 from . import design
 from ._types import Array
 from .design import _HydroDesign
+from .log_set import LogSet
 
 #: The base wrench's components, the rows ``0 … 5`` of the regressors.
 BASE_ROWS = ("fx", "fy", "fz", "mx", "my", "mz")
@@ -49,7 +50,9 @@ class _RobotHydroDesign(_HydroDesign):
     #: Bytes of regressors (all rows and columns, drag and added mass) per chunk.
     REGRESSOR_BYTES = 1 << 26
 
-    def __init__(self, robot: Robot, log: Log, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str = "diagonal") -> None:
+    def __init__(
+        self, robot: Robot, log: LogSet, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str = "diagonal"
+    ) -> None:
         self._robot = robot
         owners = [-1] * (len(robot.base.segments) if robot.base is not None else 0)
         owners += [i for i, link in enumerate(robot.links) for _ in link.segments]
@@ -90,16 +93,12 @@ class _RobotHydroDesign(_HydroDesign):
     def _chunk_samples(self) -> int:
         return min(design.CHUNK_SAMPLES, self._rows)
 
-    def _compute(self, start: int, stop: int) -> Array:
-        log, robot = self._log, self._robot
+    def _compute(self, log: Log) -> Array:
+        robot = self._robot
         assert log.qd is not None and log.qdd is not None
-        rows = slice(start, stop)
-        motion = None
-        if log.base_twist is not None:
-            arguments = log.base_motion()
-            motion = BaseMotion(**{name: value if value.ndim == 1 else value[rows] for name, value in arguments.items()})
-        regressors = robot.hydro_regressors(log.q[rows], log.qd[rows], log.qdd[rows], water=self._water, base_motion=motion)
-        n = stop - start
+        motion = None if log.base_twist is None else BaseMotion(**log.base_motion())
+        regressors = robot.hydro_regressors(log.q, log.qd, log.qdd, water=self._water, base_motion=motion)
+        n = log.n_samples
         selected = self._joints
 
         def every_row(base: Array, joints: Array) -> Array:
@@ -119,7 +118,7 @@ class _RobotHydroDesign(_HydroDesign):
         delta = np.zeros((n, 6 + robot.n_joints))
         for offset, land, water in ((0, log.wrench_land, log.wrench_water), (6, log.tau_land, log.tau_water)):
             if land is not None and water is not None:
-                delta[:, offset : offset + land.shape[1]] = water[rows] - land[rows]
+                delta[:, offset : offset + land.shape[1]] = water - land
         buoyancy = np.concatenate([regressors.base_buoyancy, regressors.buoyancy], axis=1)
         target = (-delta - buoyancy)[:, selected]
         problem = np.concatenate(

@@ -1,4 +1,4 @@
-"""A log read in chunks of rows, in bounded memory, for ``uwml torques``.
+"""A log read in chunks of rows, in bounded memory, for ``uwml torques`` and the fits.
 
 :func:`log_chunks` checks the log as :func:`uwml.io.logs.read_log` does and yields it as
 :class:`~uwml.io.logs.Log` chunks of ``rows`` rows (the last one shorter) with ``qd`` and ``qdd``,
@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -111,7 +112,7 @@ def log_chunks(
         raise ValueError(f"rows must be >= 1, got {rows!r}")
     source = _source(path)
     n, families, names = _layout(_header(path, source), n_joints, source)
-    estimate = "qd" not in families or "qdd" not in families
+    estimate = "qd" not in families or "qdd" not in families or ("base_twist" in families and "base_twist_dot" not in families)
     count, last = 0, np.empty(0)
     times: list[Array] = []
     for block in _blocks(path, ["time"], source):
@@ -148,28 +149,41 @@ def _with_derivatives(
 ) -> Iterator[Log]:
     """Chunks with qd and qdd estimated over overlapping segments (module docstring)."""
     dt, window = sampling
-    before = np.empty((0, n))  # the last `window` positions yielded (all of them while fewer)
+    width = n + (6 if "base_twist" in families and "base_twist_dot" not in families else 0)
+    before = np.empty((0, width))  # the last `window` positions (and twists) yielded (all while fewer)
+
+    def _values(log: Log) -> Array:
+        return np.concatenate([log.q, log.base_twist], axis=1) if width > n and log.base_twist is not None else log.q
+
     pending: list[Log] = []
     done = 0  # rows yielded
 
     def emit(log: Log, after: list[Log]) -> Log:
         nonlocal before, done
-        ahead = np.concatenate([a.q for a in after], axis=0)[:window] if after else np.empty((0, n))
-        segment = np.concatenate([before, log.q, ahead], axis=0)
-        qd, qdd = _savgol(segment, window, polyorder, dt)
+        ahead = np.concatenate([_values(a) for a in after], axis=0)[:window] if after else np.empty((0, before.shape[1]))
+        # The joints' positions and, where its derivative is absent, the base's twist, filtered
+        # together (one window, one step).
+        twist = log.base_twist is not None and log.base_twist_dot is None
+        values = np.concatenate([log.q, log.base_twist], axis=1) if twist and log.base_twist is not None else log.q
+        segment = np.concatenate([before, values, ahead], axis=0)
+        first, second = _savgol(segment, window, polyorder, dt)
         rows = slice(before.shape[0], before.shape[0] + log.n_samples)
-        _check_derivatives(qd[rows], qdd[rows], source, dt, first_row=done + 2)
-        before = np.concatenate([before, log.q], axis=0)[-window:]
+        qd, qdd = first[rows, :n], second[rows, :n]
+        _check_derivatives(qd, qdd, source, dt, first_row=done + 2)
+        if twist:
+            rates = first[rows, n:]
+            if not np.all(np.isfinite(rates)):
+                i = int(np.flatnonzero(~np.isfinite(rates).all(axis=1))[0])
+                raise ValueError(
+                    f"{source}: row {done + i + 2}, column 'base_twist1': its estimated rate is not finite for a time step of {dt:.6g} s"
+                )
+        before = np.concatenate([before, values], axis=0)[-window:]
         done += log.n_samples
-        return Log(
-            time=log.time,
-            q=log.q,
-            qd=log.qd if log.qd is not None else qd[rows],
-            qdd=log.qdd if log.qdd is not None else qdd[rows],
-            tau_land=log.tau_land,
-            tau_water=log.tau_water,
-            tau=log.tau,
-            source=source,
+        return replace(
+            log,
+            qd=log.qd if log.qd is not None else qd,
+            qdd=log.qdd if log.qdd is not None else qdd,
+            base_twist_dot=first[rows, n:] if twist else log.base_twist_dot,
         )
 
     for chunk in chunks:

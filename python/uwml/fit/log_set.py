@@ -1,0 +1,164 @@
+"""The logs a hydrodynamic fit reads (docs/identification.md, "Many logs, and logs larger than
+memory"): one or several logs of whole experiments, given as :class:`uwml.io.logs.Log` objects,
+files or glob patterns, or one (land, water) pair. Files are read chunk by chunk on every pass
+(:func:`uwml.io._log_stream.log_chunks`: checked as :func:`uwml.io.logs.read_log` checks them,
+derivatives estimated as :meth:`uwml.io.logs.Log.with_derivatives` estimates them), so a fit
+holds a few chunks of a log at a time, never a whole file; a (land, water) pair is aligned in
+memory (:func:`uwml.io.logs.align_logs`), and a file of up to ``STREAM_BYTES`` (64 MiB) is read
+whole.
+"""
+
+from __future__ import annotations
+
+import glob
+import os
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..io._log_stream import _header, log_chunks
+from ..io.logs import Log, _check_file, _layout, _source, align_logs, read_log
+
+#: The largest number of log files one fit takes.
+MAX_LOGS = 100_000
+#: Files up to this size are read whole (:func:`uwml.io.logs.read_log`, which names a file's
+#: first bad cell before anything else); larger ones are read chunk by chunk on every pass.
+STREAM_BYTES = 1 << 26
+
+
+@dataclass(frozen=True)
+class _Item:
+    """One log: in memory (``log``, with its derivatives) or a file (``path``)."""
+
+    source: str
+    n_samples: int
+    log: Log | None = None
+    path: str | None = None
+
+
+class LogSet:
+    """Logs read chunk by chunk, each pass anew (module docstring)."""
+
+    def __init__(self, items: Sequence[_Item]) -> None:
+        self.items = tuple(items)
+
+    @property
+    def n_samples(self) -> int:
+        """Rows of every log together."""
+        return sum(item.n_samples for item in self.items)
+
+    @property
+    def source(self) -> str:
+        """The logs' names, for the result and the messages: one name, or the first and a count."""
+        if len(self.items) == 1:
+            return self.items[0].source
+        return f"{self.items[0].source} and {len(self.items) - 1} more logs"
+
+    def chunks(self, rows: int) -> Iterator[tuple[int, Log]]:
+        """``(index of the log, chunk)``, log after log, chunks of at most ``rows`` rows with
+        their derivatives; a chunk never spans two logs."""
+        for index, item in enumerate(self.items):
+            if item.log is not None:
+                log = item.log
+                for start in range(0, log.n_samples, rows):
+                    yield index, _rows(log, slice(start, start + rows))
+            else:
+                assert item.path is not None
+                _, _, chunks = log_chunks(item.path, rows=rows)
+                for chunk in chunks:
+                    yield index, chunk
+
+
+def _rows(log: Log, rows: slice) -> Log:
+    """The rows ``rows`` of every column of ``log``."""
+    fields: dict[str, Any] = {name: getattr(log, name) for name in log.__dataclass_fields__}
+    return Log(**{name: value[rows] if hasattr(value, "ndim") else value for name, value in fields.items()})
+
+
+def log_set(given: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> LogSet:
+    """The :class:`LogSet` of a fit's first argument: a :class:`Log`, a file, a glob pattern, a
+    list of those (every one a log of the whole experiment), or a (land, water) pair of logs of
+    one environment each (a tuple of two), each checked for the joints' torques of both runs
+    (``torques``) and the base's wrench and twist (``wrench``)."""
+    if isinstance(given, tuple):
+        if len(given) != 2:
+            raise ValueError(f"give one log of the whole experiment or a (land, water) pair of logs, got {len(given)} items")
+        land, water = (item if isinstance(item, Log) else read_log(item, n_joints) for item in given)
+        for item in (land, water):
+            _check_joints(item.source, item.n_joints, n_joints, what)
+        log = _with_columns(align_logs(land, water), torques, wrench).with_derivatives()
+        return LogSet([_Item(log.source, log.n_samples, log=log)])
+    entries = list(given) if isinstance(given, list) else [given]
+    if not entries:
+        raise ValueError("give at least one log")
+    items: list[_Item] = []
+    for entry in entries:
+        for one in _expanded(entry):
+            items.append(_item(one, n_joints, what, torques, wrench))
+            if len(items) > MAX_LOGS:
+                raise ValueError(f"a fit takes at most {MAX_LOGS} logs")
+    return LogSet(items)
+
+
+def _expanded(entry: Any) -> list[Any]:
+    """A glob pattern's files, sorted (none matching is an error); anything else as it is."""
+    if isinstance(entry, str) and any(c in entry for c in "*?[") and not os.path.exists(entry):
+        matches = sorted(glob.glob(entry, recursive=True))
+        if not matches:
+            raise ValueError(f"{entry}: no file matches the pattern")
+        return matches
+    return [entry]
+
+
+def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> _Item:
+    """One checked log: in memory with its derivatives, or a file whose header and time column
+    are checked now (and every cell when it is read)."""
+    if isinstance(entry, Log):
+        _check_joints(entry.source, entry.n_joints, n_joints, what)
+        log = _with_columns(entry, torques, wrench).with_derivatives()
+        return _Item(log.source, log.n_samples, log=log)
+    if not isinstance(entry, str | os.PathLike):
+        raise TypeError(f"a log must be a uwml.io.logs.Log, a file or a glob pattern, got {type(entry).__name__}")
+    source = _source(entry)
+    _check_file(entry, source)
+    if os.path.getsize(entry) <= STREAM_BYTES:
+        return _item(read_log(entry, n_joints), n_joints, what, torques, wrench)
+    n, families, _ = _layout(_header(entry, source), n_joints, source)
+    _check_joints(source, n, n_joints, what)
+    _with_columns(_Families(source, set(families)), torques, wrench)
+    count, _, _ = log_chunks(entry, n_joints)  # the header and the time column, checked
+    return _Item(source, count, path=os.fspath(entry))
+
+
+def _check_joints(source: str, n: int, n_joints: int, what: str) -> None:
+    if n != n_joints:
+        raise ValueError(f"{source}: row 1 (header), column 'q{n}': the log has {n} joints, {what} {n_joints}")
+
+
+@dataclass(frozen=True)
+class _Families:
+    """A file's column families, standing in for a :class:`Log` in :func:`_with_columns`."""
+
+    source: str
+    families: set[str]
+
+    def __getattr__(self, name: str) -> object:
+        return True if name in self.families else None
+
+
+def _with_columns(log: Any, torques: bool, wrench: bool) -> Any:
+    """``log``, or a ValueError naming the first column a fit of the joints' rows (``torques``)
+    or of the base's (``wrench``) needs and the log lacks."""
+    needs = [("tau_land", "tau_water", "tau")] if torques else []
+    needs += [("wrench_land", "wrench_water", "wrench")] if wrench else []
+    for land, water, one in needs:
+        if getattr(log, land) is None or getattr(log, water) is None:
+            raise ValueError(
+                f"{log.source}: row 1 (header), column '{land}1': need {land} and {water} columns "
+                f"(or give a (land, water) pair of logs of one environment each, with {one} columns)"
+            )
+    if wrench and log.base_twist is None:
+        raise ValueError(
+            f"{log.source}: row 1 (header), column 'base_twist1': a fit of the base's wrench needs the base's twist (base_twist1 … base_twist6)"
+        )
+    return log
