@@ -175,6 +175,10 @@ class _HydroDesign:
         third of the cost of the design's regressors, and nothing to keep between passes."""
         if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
             return self._last_fit[1]
+        if self._cached:
+            # The design is in memory: its product with the coefficients, not another pass
+            # over the logs.
+            return self._fitted_from_chunks(x)
         full = self._full(x)
         half = full.size // 2
         cd, cm = self._table(full[:half]), self._table(full[half:])
@@ -192,6 +196,17 @@ class _HydroDesign:
             target = -(log.tau_water - log.tau_land) - buoyancy
             fits.append(fit[:, joints].reshape(-1))
             targets.append(target[:, joints].reshape(-1))
+        result = np.concatenate(fits), np.concatenate(targets)
+        self._last_fit = (np.array(x), result)
+        return result
+
+    def _fitted_from_chunks(self, x: Array) -> tuple[Array, Array]:
+        """``(Xx, y)``, sample-major, from the design's chunks."""
+        full = self._full(x)
+        fits, targets = [], []
+        for chunk in self.chunks():
+            fits.append((chunk[:, :, :-1] @ full).T.reshape(-1))
+            targets.append(chunk[:, :, -1].T.reshape(-1))
         result = np.concatenate(fits), np.concatenate(targets)
         self._last_fit = (np.array(x), result)
         return result

@@ -1,7 +1,7 @@
 """The logs a hydrodynamic fit reads (docs/identification.md, "Many logs, and logs larger than
 memory"): one or several logs of whole experiments, given as :class:`uwml.io.logs.Log` objects,
 files or glob patterns, or one (land, water) pair. Files are read chunk by chunk on every pass
-(:func:`uwml.io._log_stream.log_chunks`: checked as :func:`uwml.io.logs.read_log` checks them,
+(:func:`uwml.io._log_stream.check_log`: checked as :func:`uwml.io.logs.read_log` checks them,
 derivatives estimated as :meth:`uwml.io.logs.Log.with_derivatives` estimates them), so a fit
 holds a few chunks of a log at a time, never a whole file; a (land, water) pair is aligned in
 memory (:func:`uwml.io.logs.align_logs`), and a file of up to ``STREAM_BYTES`` (64 MiB) is read
@@ -16,7 +16,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from ..io._log_stream import _header, log_chunks
+from ..io._log_stream import CheckedLog, _header, check_log
 from ..io.logs import Log, _check_file, _layout, _source, align_logs, read_log
 
 #: The largest number of log files one fit takes.
@@ -33,7 +33,8 @@ class _Item:
     source: str
     n_samples: int
     log: Log | None = None
-    path: str | None = None
+    #: A file, checked once (its later passes skip the check of its time column).
+    file: CheckedLog | None = None
 
 
 class LogSet:
@@ -63,9 +64,8 @@ class LogSet:
                 for start in range(0, log.n_samples, rows):
                     yield index, _rows(log, slice(start, start + rows))
             else:
-                assert item.path is not None
-                _, _, chunks = log_chunks(item.path, rows=rows)
-                for chunk in chunks:
+                assert item.file is not None
+                for chunk in item.file.chunks(rows):
                     yield index, chunk
 
 
@@ -126,8 +126,8 @@ def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> 
     n, families, _ = _layout(_header(entry, source), n_joints, source)
     _check_joints(source, n, n_joints, what)
     _with_columns(_Families(source, set(families)), torques, wrench)
-    count, _, _ = log_chunks(entry, n_joints)  # the header and the time column, checked
-    return _Item(source, count, path=os.fspath(entry))
+    checked = check_log(entry, n_joints)  # the header and the time column
+    return _Item(source, checked.count, file=checked)
 
 
 def _check_joints(source: str, n: int, n_joints: int, what: str) -> None:

@@ -137,14 +137,7 @@ class _RobotHydroDesign(_HydroDesign):
         """``(Xx, y)``, sample-major, from the design's chunks."""
         if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
             return self._last_fit[1]
-        full = self._full(x)
-        fits, targets = [], []
-        for chunk in self.chunks():
-            fits.append((chunk[:, :, :-1] @ full).T.reshape(-1))
-            targets.append(chunk[:, :, -1].T.reshape(-1))
-        result = np.concatenate(fits), np.concatenate(targets)
-        self._last_fit = (np.array(x), result)
-        return result
+        return self._fitted_from_chunks(x)
 
 
 def _label(robot: Robot, body: int) -> str:

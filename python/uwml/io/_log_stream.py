@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator, Sequence
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -104,12 +104,37 @@ def _rechunk(blocks: Iterator[dict[str, Array]], rows: int) -> Iterator[dict[str
         yield {name: np.concatenate([b[name] for b in pending]) for name in pending[0]}
 
 
-def log_chunks(
-    path: str | os.PathLike[str], n_joints: int | None = None, rows: int = 100_000, window_s: float = WINDOW_S, polyorder: int = POLYORDER
-) -> tuple[int, int, Iterator[Log]]:
-    """A log file checked and cut into chunks (module docstring): ``(n_samples, n_joints, chunks)``."""
-    if rows < 1:
-        raise ValueError(f"rows must be >= 1, got {rows!r}")
+@dataclass(frozen=True)
+class CheckedLog:
+    """What the first pass over a log file found (:func:`check_log`): its rows, joints, column
+    families and names, and the sampling (time step, Savitzky-Golay window) where derivatives
+    are estimated."""
+
+    path: str | os.PathLike[str]
+    source: str
+    count: int
+    n_joints: int
+    families: list[str]
+    names: list[str]
+    sampling: tuple[float, int] | None
+    polyorder: int
+
+    def chunks(self, rows: int = 100_000) -> Iterator[Log]:
+        """The log's chunks of ``rows`` rows, read anew (module docstring)."""
+        if rows < 1:
+            raise ValueError(f"rows must be >= 1, got {rows!r}")
+        chunks = _rechunk(_blocks(self.path, self.names, self.source), rows)
+        if self.sampling is None:
+            for chunk in chunks:
+                yield _log(chunk, self.n_joints, self.families, self.source)
+        else:
+            yield from _with_derivatives(chunks, self.n_joints, self.families, self.source, self.sampling, self.polyorder)
+
+
+def check_log(
+    path: str | os.PathLike[str], n_joints: int | None = None, window_s: float = WINDOW_S, polyorder: int = POLYORDER
+) -> CheckedLog:
+    """The first pass over a log file (module docstring): its header and time column checked."""
     source = _source(path)
     n, families, names = _layout(_header(path, source), n_joints, source)
     estimate = "qd" not in families or "qdd" not in families or ("base_twist" in families and "base_twist_dot" not in families)
@@ -125,17 +150,17 @@ def log_chunks(
     if count == 0:
         raise ValueError(f"{source}: row 2, column 'time': no data rows")
     sampling = _sampling(np.concatenate(times), window_s, polyorder, source) if estimate else None
-    del times
+    return CheckedLog(path, source, count, n, families, names, sampling, polyorder)
 
-    def logs() -> Iterator[Log]:
-        chunks = _rechunk(_blocks(path, names, source), rows)
-        if sampling is None:
-            for chunk in chunks:
-                yield _log(chunk, n, families, source)
-        else:
-            yield from _with_derivatives(chunks, n, families, source, sampling, polyorder)
 
-    return count, n, logs()
+def log_chunks(
+    path: str | os.PathLike[str], n_joints: int | None = None, rows: int = 100_000, window_s: float = WINDOW_S, polyorder: int = POLYORDER
+) -> tuple[int, int, Iterator[Log]]:
+    """A log file checked and cut into chunks (module docstring): ``(n_samples, n_joints, chunks)``."""
+    if rows < 1:
+        raise ValueError(f"rows must be >= 1, got {rows!r}")
+    checked = check_log(path, n_joints, window_s, polyorder)
+    return checked.count, checked.n_joints, checked.chunks(rows)
 
 
 def _log(chunk: dict[str, Array], n: int, families: Sequence[str], source: str) -> Log:
