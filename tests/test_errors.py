@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 import uwml
-from uwml import _core, cli, modelfile
+from uwml import _core, cli, modelfile, study
 
 
 def _classes_defined_in_uwml() -> set[type]:
@@ -35,7 +35,7 @@ def _exceptions() -> list[type]:
 def test_the_package_defines_the_exceptions_this_test_knows() -> None:
     # A new exception class shows up here, so the test below cannot miss it.
     names = {c.__qualname__ for c in _exceptions()}
-    assert names == {"UwmlError", "ModelError", "ModelFileError", "DescriptionError", "_UsageError"}
+    assert names == {"UwmlError", "ModelError", "ModelFileError", "DescriptionError", "_UsageError", "ConfigError"}
 
 
 @pytest.mark.parametrize("error", _exceptions(), ids=lambda c: c.__qualname__)
@@ -84,6 +84,7 @@ RAISERS: dict[str, tuple[type, Callable[[Path], None]]] = {
     "ModelFileError": (uwml.ModelFileError, lambda _: _bad_model_file()),
     "DescriptionError": (uwml.DescriptionError, _bad_urdf),
     "_UsageError": (cli._UsageError, _output_into_a_directory),
+    "ConfigError": (study.ConfigError, lambda _: study.loads("[parameters]\ndepth = -1\n")),
 }
 
 

@@ -41,7 +41,8 @@ LAYERS = (
     ("uwml.fit",),
     ("uwml.viz",),
     ("uwml.sim",),
-    ("uwml.cli", "uwml._cli_arguments", "uwml._cli_common", "uwml._cli_fit", "uwml.__main__"),
+    ("uwml.study",),
+    ("uwml.cli", "uwml._cli_arguments", "uwml._cli_common", "uwml._cli_fit", "uwml._cli_study", "uwml.__main__"),
 )
 
 #: The former flat modules (``uwml/<name>.py`` before the package had subpackages) with every

@@ -65,6 +65,10 @@ def _count(text: str) -> int:
     return _integer(text, 2, MAX_DEMO_SAMPLES)
 
 
+def _workers(text: str) -> int:
+    return _integer(text, 1, 4096)
+
+
 def _n_joints(text: str) -> int:
     return _integer(text, 1, MAX_ROBOT_JOINTS)
 

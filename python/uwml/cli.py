@@ -5,9 +5,10 @@ Subcommands (``uwml <command> --help`` for each):
 * ``uwml demo``: the paper leg's torque components along a gait-like motion, as a table.
 * ``uwml paper``: the paper's analysis end to end on built-in defaults (figures, report, summary).
 * ``uwml torques LOG``: every torque component along a logged trajectory, as CSV (or Parquet).
-* ``uwml fit hydro LOG [LOG_WATER]``: Cd and Cm from a land/water experiment.
+* ``uwml fit hydro LOG...``: Cd and Cm (and a robot's hull) from land/water experiments.
 * ``uwml fit losses CSV``: the oil-drag and seal models from a three-configuration experiment.
 * ``uwml simulate``: the paper's leg walking in sea water under four controllers (MuJoCo).
+* ``uwml study CONFIG``: a scenario over grids and random draws of its parameters, on Ray.
 
 Exit codes: 0 on success, 2 for usage errors and bad input files (the message names the file,
 row and column), 1 for other failures (out of memory included). Errors are printed as one line,
@@ -40,6 +41,7 @@ from ._cli_arguments import (
 )
 from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 from ._cli_fit import add_fit_commands
+from ._cli_study import add_study_command
 from .domains import MAX_ROBOT_JOINTS
 from .model.parts import SEA_WATER, Water
 from .robot.leg import Leg
@@ -323,6 +325,7 @@ not written (standard output has the rows before it).""",
     export.set_defaults(run=_export)
 
     add_fit_commands(commands, formatter)
+    add_study_command(commands, formatter)
     simulate = commands.add_parser(
         "simulate",
         help="the paper's leg walking in sea water under four controllers, simulated (needs uwml[mujoco])",

@@ -158,6 +158,10 @@ class Run:
         power = np.maximum(self.torque[self.window] * self.qd[self.window], 0.0).sum(axis=1)
         return float(np.sum(power) * TIMESTEP)
 
+    def energy(self) -> float:
+        """The motors' mechanical energy over the window, ``∫ Σ |τ_i q̇_i| dt`` [J]."""
+        return float(np.sum(np.abs(self.torque[self.window] * self.qd[self.window])) * TIMESTEP)
+
     def summary(self) -> dict[str, Any]:
         return {
             "controller": self.controller,
@@ -168,28 +172,48 @@ class Run:
         }
 
 
-def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | None = None) -> Run:
+def run(
+    controller: str,
+    depth: float,
+    cycles: float = 2.0,
+    model_xml: str | None = None,
+    *,
+    coefficient_scale: float | None = None,
+    payload: float = 0.0,
+) -> Run:
     """Simulates the paper's leg following the gait under ``controller`` at ``depth`` [m], for
-    ``cycles`` gait cycles (more than 0, at most ``MAX_CYCLES``)."""
+    ``cycles`` gait cycles (more than 0, at most ``MAX_CYCLES``). ``coefficient_scale``: the
+    controller's Cd and Cm over the plant's (default 1.3 for the ``_wrong`` controllers, else
+    1); ``payload``: a mass [kg, 0 to 100] the foot carries (at the last link's centre of mass,
+    without volume), which the controller does not know."""
     if controller not in CONTROLLERS:
         raise ValueError(f"controller must be one of {', '.join(CONTROLLERS)}, got {controller!r}")
     if not (math.isfinite(depth) and 0.0 <= depth <= 11_000.0):
         raise ValueError(f"depth must be between 0 and 11000 m, got {depth!r}")
     if not (math.isfinite(cycles) and 0.0 < cycles <= MAX_CYCLES):
         raise ValueError(f"cycles must be finite and > 0, at most {MAX_CYCLES} (gait cycles), got {cycles!r}")
+    if coefficient_scale is not None and not (math.isfinite(coefficient_scale) and 0.0 <= coefficient_scale <= 10.0):
+        raise ValueError(f"coefficient_scale must be between 0 and 10, got {coefficient_scale!r}")
+    if not (math.isfinite(payload) and 0.0 <= payload <= 100.0):
+        raise ValueError(f"payload must be between 0 and 100 kg, got {payload!r}")
     import mujoco
 
     leg = Leg.paper()
     robot = Robot(leg.joints, leg.links, losses=JointLosses(), water=SEA)
-    model = mujoco.MjModel.from_xml_string(model_xml or leg_model(leg))
+    xml = model_xml or leg_model(leg)
+    model = mujoco.MjModel.from_xml_string(xml)
+    # The controller's model: the plant without the payload.
+    known = mujoco.MjModel.from_xml_string(xml) if payload else model
+    if payload:
+        model.body_mass[model.nbody - 1] += payload
     sim = Simulation(model, robot, depth=depth, temperature_c=TEMPERATURE_C)
-    land = mujoco.MjData(model)
+    land = mujoco.MjData(known)
     gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
     steps = round(cycles * gait.period / TIMESTEP)
     time = np.arange(steps + 1, dtype=np.float64) * TIMESTEP
     q_d, qd_d, qdd_d = gait.joint_states(time)
     # Feedforward along the desired trajectory, all at once.
-    scale = 1.3 if controller.endswith("_wrong") else 1.0
+    scale = (1.3 if controller.endswith("_wrong") else 1.0) if coefficient_scale is None else coefficient_scale
     hydro = robot.environment(q_d, qd_d, qdd_d, depth=depth, temperature_c=TEMPERATURE_C, cd=2.2 * scale, cm=0.5 * scale)
     feedforward = np.zeros_like(q_d)
     if controller != "land":
@@ -198,9 +222,9 @@ def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | Non
         feedforward -= hydro.visc + hydro.seal
     # PD gains on the rigid inertia at the start.
     land.qpos[:] = q_d[0]
-    mujoco.mj_forward(model, land)
+    mujoco.mj_forward(known, land)
     inertia = np.zeros((model.nv, model.nv))
-    mujoco.mj_fullM(model, land, inertia)
+    mujoco.mj_fullM(known, land, inertia)
     omega = 2.0 * math.pi * PD_HZ
     kp, kd = np.diag(inertia) * omega**2, 2.0 * np.diag(inertia) * omega
     sim.data.qpos[:], sim.data.qvel[:] = q_d[0], qd_d[0]
@@ -208,7 +232,7 @@ def run(controller: str, depth: float, cycles: float = 2.0, model_xml: str | Non
     for k in range(steps + 1):
         q[k], qd[k] = sim.data.qpos, sim.data.qvel
         land.qpos[:], land.qvel[:], land.qacc[:] = q_d[k], qd_d[k], qdd_d[k]
-        mujoco.mj_inverse(model, land)
+        mujoco.mj_inverse(known, land)
         torque[k] = land.qfrc_inverse + feedforward[k] + kp * (q_d[k] - q[k]) + kd * (qd_d[k] - qd[k])
         if k < steps:
             sim.step(torque=torque[k])

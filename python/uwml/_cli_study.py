@@ -1,0 +1,63 @@
+"""``uwml study CONFIG.toml``: a study's runs on Ray (or serially), its results, figures and
+summary (:mod:`uwml.study`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+from ._cli_arguments import _workers
+from ._cli_common import _EXIT
+
+
+def _study(args: argparse.Namespace) -> int:
+    from . import study
+    from .study.runner import progress_bar
+
+    config = study.load(args.config)  # every key checked before anything runs
+    outcome = study.run_study(
+        config, args.out, address=args.address, serial=args.serial, workers=args.workers, resume=args.resume,
+        progress=None if args.json else progress_bar,
+    )  # fmt: skip
+    written = [] if args.no_figures else study.figures(args.out)
+    result = study.summary(args.out) | {"ran": outcome.ran, "skipped": outcome.skipped}
+    if args.json:
+        print(json.dumps(result))
+        return 0
+    print(
+        f"uwml study: {config.source}, {result['runs']} runs: {outcome.ran} run now, {outcome.skipped} done before, {result['failed']} failed"
+    )
+    print(f"{'metric':>16} {'mean':>12} {'min':>12} {'max':>12}")
+    for name, values in result["metrics"].items():
+        cells = " ".join(f"{'—' if values[k] is None else format(values[k], '.5g'):>12}" for k in ("mean", "min", "max"))
+        print(f"{name:>16} {cells}")
+    print(f"results: {args.out}/runs/*.parquet (uwml.study.read_results){'; figures: ' + str(args.out) + '/figures/' if written else ''}")
+    return 0
+
+
+def add_study_command(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
+    """``uwml study`` on the ``uwml`` parser's commands."""
+    parser = commands.add_parser(
+        "study",
+        help="simulate a scenario over grids and random draws of its parameters, on Ray",
+        formatter_class=formatter,
+        description="""A study (uwml.study, docs/scale.md): the runs a TOML file names (a scenario, grids and
+distributions of its parameters, a seed), each a Ray task: on a local Ray started for the
+study (--workers CPUs, default all), on a cluster (--address), or serially (--serial).
+
+Output in --out: runs/part-*.parquet (one row per run: its parameters, its metrics, its error
+if it raised), written as batches finish, so that a study that stops keeps what it finished
+and --resume runs only the rest; study.json; figures/<metric>.png (each metric against each
+parameter). A summary on standard output (--json: as JSON).""",
+        epilog=_EXIT,
+    )
+    parser.add_argument("config", metavar="CONFIG", help="the study's TOML file")
+    parser.add_argument("--out", default="uwml-study", metavar="DIR", help="output directory (default uwml-study)")
+    parser.add_argument("--address", metavar="ADDR", help="a Ray cluster's address (auto, or ray://host:10001); default a local Ray")
+    parser.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
+    parser.add_argument("--serial", action="store_true", help="run here, one run after the other, without Ray")
+    parser.add_argument("--resume", action="store_true", help="run only the runs --out lacks")
+    parser.add_argument("--no-figures", action="store_true", help="skip the figures")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON only")
+    parser.set_defaults(run=_study)

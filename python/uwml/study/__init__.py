@@ -1,0 +1,15 @@
+"""Studies: one scenario simulated over grids and random draws of its parameters, each run a Ray
+task (local by default, or a cluster), results written incrementally to Parquet
+(``uwml study CONFIG.toml``; docs/scale.md).
+
+* :mod:`uwml.study.config`: the TOML file (:func:`load`) and the runs it names;
+* :mod:`uwml.study.scenarios`: what one run computes, its parameters and metrics;
+* :mod:`uwml.study.runner`: running them (:func:`run_study`), resuming, failures;
+* :mod:`uwml.study.results`: reading them back (:func:`read_results`), summary, figures.
+"""
+
+from .config import ConfigError, StudyConfig, load, loads
+from .results import figures, read_results, summary
+from .runner import StudyOutcome, run_study
+
+__all__ = ["ConfigError", "StudyConfig", "StudyOutcome", "figures", "load", "loads", "read_results", "run_study", "summary"]

@@ -1,0 +1,232 @@
+"""A study's configuration (``uwml study CONFIG.toml``, :func:`uwml.study.load`): a scenario and
+the parameters that vary, checked whole before anything runs.
+
+::
+
+    # uwml study: the paper's leg tracking its gait, SI units
+    [scenario]
+    kind = "paper_leg"          # the only kind so far: uwml.sim.studies.run
+    cycles = 0.5                # gait cycles per run (a parameter below may vary it)
+
+    [parameters]                # a list is a grid; a table is a random distribution
+    depth = [0.0, 3000.0, 6000.0]
+    controller = ["land", "hydro", "hydro_losses"]
+    coefficient_scale = { distribution = "uniform", low = 0.7, high = 1.3 }
+    payload = { distribution = "normal", mean = 1.0, std = 0.2, low = 0.0 }
+
+    [sampling]
+    samples = 4                 # random draws per point of the grid (1 without distributions)
+    seed = 0
+
+The runs are every point of the grid (the product of the lists, in the order given) times
+``samples`` draws of the distributions, numbered from 0; the draws come from ``seed``
+(``numpy.random.default_rng``), so the same file gives the same runs, and a resumed study the
+runs it lacks. A distribution is ``uniform`` (``low``, ``high``), ``normal`` (``mean``,
+``std``, optionally clipped to ``low``/``high``) or ``choice`` (``values``). Every error names
+the file and the key.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import UwmlError
+from .scenarios import PARAMETERS, SCENARIOS
+
+__all__ = ["MAX_RUNS", "ConfigError", "Distribution", "StudyConfig", "load", "loads"]
+
+#: The most runs a study may have.
+MAX_RUNS = 10_000_000
+
+
+class ConfigError(UwmlError):
+    """A study configuration that cannot run (the message names the file and the key)."""
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """A random parameter (module docstring)."""
+
+    kind: str
+    arguments: dict[str, Any]
+
+    def draw(self, rng: np.random.Generator) -> Any:
+        a = self.arguments
+        if self.kind == "uniform":
+            return float(rng.uniform(a["low"], a["high"]))
+        if self.kind == "normal":
+            return float(np.clip(rng.normal(a["mean"], a["std"]), a.get("low", -math.inf), a.get("high", math.inf)))
+        values = a["values"]
+        return values[int(rng.integers(len(values)))]
+
+
+@dataclass(frozen=True)
+class StudyConfig:
+    """A checked study: its scenario's settings, its grid and distributions, draws and seed."""
+
+    source: str
+    kind: str
+    settings: dict[str, Any]
+    grid: dict[str, list[Any]]
+    distributions: dict[str, Distribution]
+    samples: int
+    seed: int
+
+    @property
+    def n_runs(self) -> int:
+        return math.prod(len(values) for values in self.grid.values()) * self.samples
+
+    @property
+    def parameter_names(self) -> list[str]:
+        return [*self.grid, *self.distributions]
+
+    def runs(self) -> list[dict[str, Any]]:
+        """Every run's parameters, numbered (``run``) as the module docstring says."""
+        rng = np.random.default_rng(self.seed)
+        out: list[dict[str, Any]] = []
+        for point in itertools.product(*self.grid.values()):
+            for _ in range(self.samples):
+                parameters = dict(zip(self.grid, point, strict=True))
+                parameters |= {name: d.draw(rng) for name, d in self.distributions.items()}
+                out.append({"run": len(out), **parameters})
+        return out
+
+    def fingerprint(self) -> str:
+        """A digest of what the runs are (not of the file's layout): a resumed study must be
+        this one."""
+        what = {
+            "kind": self.kind,
+            "settings": self.settings,
+            "grid": self.grid,
+            "distributions": {k: [d.kind, d.arguments] for k, d in self.distributions.items()},
+            "samples": self.samples,
+            "seed": self.seed,
+        }
+        return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def load(path: str | Path) -> StudyConfig:
+    """A study from its TOML file (module docstring)."""
+    source = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError(f"{source}: no such file") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"{source}: cannot be read ({exc})") from None
+    return loads(text, source)
+
+
+def loads(text: str, source: str = "<study>") -> StudyConfig:
+    """A study from TOML text (module docstring)."""
+    try:
+        table = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{source}: not TOML ({exc})") from None
+    for key in table:
+        if key not in ("scenario", "parameters", "sampling"):
+            raise ConfigError(f"{source}: key {key!r}: unknown table (a study has [scenario], [parameters] and [sampling])")
+    scenario = _table(table, "scenario", source)
+    kind = scenario.get("kind", "paper_leg")
+    if kind not in SCENARIOS:
+        raise ConfigError(f"{source}: key 'scenario.kind': must be one of {', '.join(SCENARIOS)}, got {kind!r}")
+    allowed = PARAMETERS[kind]
+    settings: dict[str, Any] = {}
+    for key, value in scenario.items():
+        if key == "kind":
+            continue
+        if key not in allowed:
+            raise ConfigError(f"{source}: key 'scenario.{key}': unknown setting (a {kind} run takes {', '.join(allowed)})")
+        settings[key] = _value(value, allowed[key], f"scenario.{key}", source)
+    grid: dict[str, list[Any]] = {}
+    distributions: dict[str, Distribution] = {}
+    for key, value in _table(table, "parameters", source).items():
+        where = f"parameters.{key}"
+        if key not in allowed:
+            raise ConfigError(f"{source}: key '{where}': unknown parameter (a {kind} run takes {', '.join(allowed)})")
+        if key in settings:
+            raise ConfigError(f"{source}: key '{where}': also set in [scenario]; give it once")
+        if isinstance(value, list):
+            if not value:
+                raise ConfigError(f"{source}: key '{where}': an empty grid")
+            grid[key] = [_value(v, allowed[key], f"{where}[{i}]", source) for i, v in enumerate(value)]
+        elif isinstance(value, dict):
+            distributions[key] = _distribution(value, allowed[key], where, source)
+        else:
+            grid[key] = [_value(value, allowed[key], where, source)]
+    sampling = _table(table, "sampling", source)
+    for key in sampling:
+        if key not in ("samples", "seed"):
+            raise ConfigError(f"{source}: key 'sampling.{key}': unknown setting (samples, seed)")
+    samples = sampling.get("samples", 1)
+    seed = sampling.get("seed", 0)
+    if not isinstance(samples, int) or isinstance(samples, bool) or not 1 <= samples <= MAX_RUNS:
+        raise ConfigError(f"{source}: key 'sampling.samples': must be an integer from 1 to {MAX_RUNS}, got {samples!r}")
+    if samples > 1 and not distributions:
+        raise ConfigError(f"{source}: key 'sampling.samples': {samples} draws of no random parameter would repeat each run")
+    if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed < 2**63:
+        raise ConfigError(f"{source}: key 'sampling.seed': must be a non-negative integer, got {seed!r}")
+    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed)
+    if config.n_runs > MAX_RUNS:
+        raise ConfigError(f"{source}: key 'parameters': {config.n_runs} runs, more than {MAX_RUNS}")
+    return config
+
+
+def _table(table: dict[str, Any], key: str, source: str) -> dict[str, Any]:
+    value = table.get(key, {})
+    if not isinstance(value, dict):
+        raise ConfigError(f"{source}: key {key!r}: must be a table")
+    return value
+
+
+def _value(value: Any, kind: Any, where: str, source: str) -> Any:
+    """A setting's value checked against its kind: ``float`` (finite, with its bounds) or a tuple
+    of allowed strings."""
+    if isinstance(kind, tuple) and len(kind) == 2 and all(isinstance(k, float) for k in kind):
+        low, high = kind
+        if isinstance(value, bool) or not isinstance(value, int | float) or not (math.isfinite(value) and low <= value <= high):
+            raise ConfigError(f"{source}: key '{where}': must be a number from {low:g} to {high:g}, got {value!r}")
+        return float(value)
+    if value not in kind:
+        raise ConfigError(f"{source}: key '{where}': must be one of {', '.join(kind)}, got {value!r}")
+    return value
+
+
+def _distribution(table: dict[str, Any], kind: Any, where: str, source: str) -> Distribution:
+    name = table.get("distribution")
+    numeric = isinstance(kind, tuple) and len(kind) == 2 and all(isinstance(k, float) for k in kind)
+    shapes = {"uniform": ("low", "high"), "normal": ("mean", "std"), "choice": ("values",)}
+    if name not in shapes or (name != "choice" and not numeric):
+        allowed = "uniform, normal or choice" if numeric else "choice"
+        raise ConfigError(f"{source}: key '{where}.distribution': must be {allowed}, got {name!r}")
+    extra = set(table) - {"distribution", *shapes[name], *(("low", "high") if name == "normal" else ())}
+    if extra:
+        raise ConfigError(f"{source}: key '{where}.{min(extra)}': unknown for a {name} distribution")
+    for key in shapes[name]:
+        if key not in table:
+            raise ConfigError(f"{source}: key '{where}.{key}': missing (a {name} distribution has {', '.join(shapes[name])})")
+    if name == "choice":
+        values = table["values"]
+        if not isinstance(values, list) or not values:
+            raise ConfigError(f"{source}: key '{where}.values': must be a non-empty list")
+        return Distribution(name, {"values": [_value(v, kind, f"{where}.values[{i}]", source) for i, v in enumerate(values)]})
+    arguments = {key: _value(table[key], kind, f"{where}.{key}", source) for key in table if key != "distribution"}
+    if name == "uniform" and not arguments["low"] < arguments["high"]:
+        raise ConfigError(f"{source}: key '{where}.high': must be above low ({arguments['low']:g}), got {arguments['high']:g}")
+    if name == "normal":
+        low, high = kind
+        if not 0.0 < table["std"] <= high - low:
+            raise ConfigError(f"{source}: key '{where}.std': must be positive and at most {high - low:g}, got {table['std']!r}")
+        arguments["std"] = float(table["std"])
+        arguments.setdefault("low", low)
+        arguments.setdefault("high", high)
+    return Distribution(name, arguments)

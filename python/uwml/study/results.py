@@ -1,0 +1,88 @@
+"""A study's results (:func:`read_results`): one row per run, its parameters and metrics, read
+from the Parquet files of ``OUT/runs/``; a summary and figures of each metric against each
+parameter."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["figures", "read_results", "summary"]
+
+
+def read_results(out: str | Path) -> Any:
+    """Every finished run of the study in ``out``, by run number, as a ``pyarrow.Table`` (None
+    before any): columns ``run``, the parameters, the metrics and ``error``."""
+    import pyarrow
+    import pyarrow.parquet
+
+    files = sorted((Path(out) / "runs").glob("part-*.parquet"))
+    if not files:
+        return None
+    table = pyarrow.concat_tables([pyarrow.parquet.read_table(path) for path in files], promote_options="permissive")
+    return table.sort_by("run")
+
+
+def summary(out: str | Path) -> dict[str, Any]:
+    """The study in ``out`` as JSON-safe numbers: its runs, those done and failed, and each
+    metric's mean, minimum and maximum over the runs that did not fail."""
+    record = json.loads((Path(out) / "study.json").read_text(encoding="utf-8"))
+    table = read_results(out)
+    done = 0 if table is None else table.num_rows
+    failed = 0 if table is None else sum(error is not None for error in table.column("error").to_pylist())
+    metrics: dict[str, dict[str, float | None]] = {}
+    for name in record["metrics"]:
+        values = np.array([] if table is None else table.column(name).to_numpy(zero_copy_only=False), dtype=np.float64)
+        values = values[np.isfinite(values)]
+
+        def number(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+
+        metrics[name] = {
+            "mean": number(float(np.mean(values))) if values.size else None,
+            "min": number(float(np.min(values))) if values.size else None,
+            "max": number(float(np.max(values))) if values.size else None,
+        }
+    return {"source": record["source"], "out": str(out), "runs": record["n_runs"], "done": done, "failed": failed, "metrics": metrics}
+
+
+def figures(out: str | Path) -> list[Path]:
+    """One figure per metric, ``OUT/figures/<metric>.png``: the metric of every run that did not
+    fail against each parameter (a text parameter's values side by side)."""
+    from matplotlib.figure import Figure
+
+    record = json.loads((Path(out) / "study.json").read_text(encoding="utf-8"))
+    table = read_results(out)
+    if table is None:
+        return []
+    ok = np.array([error is None for error in table.column("error").to_pylist()], dtype=bool)
+    folder = Path(out) / "figures"
+    folder.mkdir(parents=True, exist_ok=True)
+    written = []
+    parameters = record["parameters"]
+    for metric in record["metrics"]:
+        values = np.asarray(table.column(metric).to_numpy(zero_copy_only=False), dtype=np.float64)
+        figure = Figure(figsize=(4.0 * max(len(parameters), 1), 3.2), layout="constrained")
+        axes = np.atleast_1d(figure.subplots(1, max(len(parameters), 1), squeeze=False)[0])
+        for ax, name in zip(axes, parameters, strict=False):
+            column = table.column(name).to_pylist()
+            if all(isinstance(v, int | float) for v in column):
+                x = np.asarray(column, dtype=np.float64)
+                ax.plot(x[ok], values[ok], ".", ms=4, alpha=0.7)
+            else:
+                labels = sorted({str(v) for v in column})
+                x = np.array([labels.index(str(v)) for v in column], dtype=np.float64)
+                ax.plot(x[ok] + np.random.default_rng(0).uniform(-0.15, 0.15, int(ok.sum())), values[ok], ".", ms=4, alpha=0.7)
+                ax.set_xticks(range(len(labels)), labels, rotation=20, fontsize="small")
+            ax.set_xlabel(name)
+            ax.set_ylabel(metric)
+            ax.grid(alpha=0.3)
+        figure.suptitle(f"{metric}: {int(ok.sum())} runs of {record['source']}", fontsize="small")
+        path = folder / f"{metric}.png"
+        figure.savefig(path, dpi=90)
+        written.append(path)
+    return written
