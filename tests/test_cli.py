@@ -576,3 +576,24 @@ def test_out_of_memory_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch, caps
     monkeypatch.setattr(uwml.cli, "_demo", exhausted)
     status, _, err = _in_process(["demo"], capsys)
     assert status == 1 and err.startswith("uwml: error: out of memory") and err.count("\n") == 1, err
+
+
+def test_fit_losses_takes_several_files_and_patterns(tmp_path: Path, loss_csv: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """Several CSV files (or a pattern) are their rows together: the fit of one file holding them."""
+    lines = loss_csv.read_text().splitlines()
+    header, rows = lines[0], lines[1:]
+    half = len(rows) // 2
+    (tmp_path / "part1.csv").write_text("\n".join([header, *rows[:half]]) + "\n")
+    (tmp_path / "part2.csv").write_text("\n".join([header, *rows[half:]]) + "\n")
+    status, out, err = _in_process(["fit", "losses", str(loss_csv), "--json"], capsys)
+    assert status == 0, err
+    whole = json.loads(out)
+    for arguments in ([str(tmp_path / "part1.csv"), str(tmp_path / "part2.csv")], [str(tmp_path / "part*.csv")]):
+        status, out, err = _in_process(["fit", "losses", *arguments, "--json"], capsys)
+        assert status == 0, err
+        split = json.loads(out)
+        for model in ("oil_drag", "seal"):
+            for name, value in whole[model]["params"].items():
+                assert split[model]["params"][name] == pytest.approx(value, rel=1e-9), (model, name)
+    status, out, err = _in_process(["fit", "losses", str(tmp_path / "none*.csv")], capsys)
+    assert status == 2 and "none*.csv: no file matches the pattern" in err

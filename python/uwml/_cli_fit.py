@@ -50,24 +50,47 @@ def _fit_hydro(args: argparse.Namespace) -> int:
     return 0
 
 
-def _fit_losses(args: argparse.Namespace) -> int:
+def _read_losses(path: str, pairs: bool) -> Any:
+    """One loss-experiment CSV, its errors naming it."""
     import csv
 
     from . import fit
     from .io._arrow_csv import not_utf8_error
     from .io.logs import _check_file
 
-    _check_file(args.csv, args.csv)  # no such file, a directory
+    _check_file(path, path)  # no such file, a directory
     try:
         # utf-8-sig: a byte-order mark (Excel's "CSV UTF-8") is skipped.
-        with open(args.csv, newline="", encoding="utf-8-sig") as handle:
-            data = fit.read_loss_csv(handle)
+        with open(path, newline="", encoding="utf-8-sig") as handle:
+            return fit.read_loss_csv(handle, pairs)
     except UnicodeDecodeError:
-        raise not_utf8_error(lambda: open(args.csv, "rb"), f"{args.csv}: ") from None  # noqa: SIM115 (opened and closed by the callee)
+        raise not_utf8_error(lambda: open(path, "rb"), f"{path}: ") from None  # noqa: SIM115 (opened and closed by the callee)
     except csv.Error as exc:
-        raise ValueError(f"{args.csv}: not CSV ({exc}; is a quote not closed?)") from None
+        raise ValueError(f"{path}: not CSV ({exc}; is a quote not closed?)") from None
     except ValueError as exc:
-        raise ValueError(f"{args.csv}: {exc}") from None
+        raise ValueError(f"{path}: {exc}") from None
+
+
+def _fit_losses(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from . import fit
+    from .fit.log_set import expand_patterns
+
+    paths = [str(p) for p in expand_patterns(list(args.csv))]
+    tables = [_read_losses(path, pairs=len(paths) == 1) for path in paths]
+    for path, table in zip(paths, tables, strict=True):
+        if ("temperature_c" in table) != ("temperature_c" in tables[0]):
+            raise ValueError(f"{path}: row 1 (header), column 'temperature_c': in some files and not in others ({paths[0]})")
+    # Several files: their rows, one after the other.
+    data = {key: np.concatenate([table[key] for table in tables]) for key in tables[0]}
+    source = paths[0] if len(paths) == 1 else f"{paths[0]} and {len(paths) - 1} more files"
+    if len(paths) > 1:
+        try:
+            fit.validate_loss_data(data)  # the pairs of configurations, across the files
+        except ValueError as exc:
+            raise ValueError(f"{source}, their rows one after the other: {exc}") from None
+    args.csv = source
     results: dict[str, Any] = {}
     for name, function in (("oil_drag", fit.oil_drag), ("seal", fit.seal)):
         try:
@@ -199,7 +222,7 @@ Output: both fit reports on standard output; with --json only {"oil_drag": summa
 "seal": summary} as JSON; with --plot DIR the figures oil_drag_fit.png and seal_fit.png.""",
         epilog=_EXIT,
     )
-    losses.add_argument("csv", metavar="CSV", help="loss-experiment CSV file")
+    losses.add_argument("csv", metavar="CSV", nargs="+", help="loss-experiment CSV files or glob patterns (their rows fitted together)")
     losses.add_argument("--json", action="store_true", help="print both results' summaries as JSON only")
     losses.add_argument("--plot", metavar="DIR", help="directory for the fit figures (created if needed)")
     losses.set_defaults(run=_fit_losses)

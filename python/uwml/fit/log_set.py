@@ -100,6 +100,12 @@ def log_set(given: Any, n_joints: int, what: str, torques: bool, wrench: bool) -
     return LogSet(items)
 
 
+def expand_patterns(entries: list[Any]) -> list[Any]:
+    """Every entry, glob patterns replaced by their files, sorted (a pattern matching nothing is
+    an error)."""
+    return [one for entry in entries for one in _expanded(entry)]
+
+
 def _expanded(entry: Any) -> list[Any]:
     """A glob pattern's files, sorted (none matching is an error); anything else as it is."""
     if isinstance(entry, str) and any(c in entry for c in "*?[") and not os.path.exists(entry):

@@ -40,7 +40,7 @@ def _key_text(speed_rpm: float | None, pressure_mpa: float | None, temperature_c
     return ", ".join(parts)
 
 
-def validate_loss_data(columns: Mapping[str, ArrayLike]) -> Columns:
+def validate_loss_data(columns: Mapping[str, ArrayLike], pairs: bool = True) -> Columns:
     """Check loss-experiment columns and return them as numpy arrays.
 
     Parameters
@@ -120,7 +120,8 @@ def validate_loss_data(columns: Mapping[str, ArrayLike]) -> Columns:
     }
     if temperature is not None:
         data["temperature_c"] = np.array(temperature)
-    _check_pairs(data)
+    if pairs:
+        _check_pairs(data)
     return data
 
 
@@ -151,7 +152,7 @@ def _check_pairs(data: Columns) -> None:
             )
 
 
-def read_loss_csv(path_or_file: PathOrFile) -> Columns:
+def read_loss_csv(path_or_file: PathOrFile, pairs: bool = True) -> Columns:
     """Read and check a loss-experiment CSV file (format in the module docstring).
 
     Parameters
@@ -168,9 +169,11 @@ def read_loss_csv(path_or_file: PathOrFile) -> Columns:
     ------
     ValueError
         Naming the row (header = row 1) and column of the first problem; also for an empty file
-        or a row with fewer cells than the header.
+        or a row with fewer cells than the header. ``pairs=False`` leaves out the check that every
+        ``oil`` row has its ``dry`` rows (and ``oil_seal`` its ``oil`` rows): for one of several
+        files read to be fitted together, whose rows are checked together.
     """
-    return validate_loss_data(read_csv_columns(path_or_file, "", _REQUIRED[0]))
+    return validate_loss_data(read_csv_columns(path_or_file, "", _REQUIRED[0]), pairs)
 
 
 def write_loss_csv(data: Mapping[str, ArrayLike], path_or_file: PathOrFile) -> None:
