@@ -155,3 +155,26 @@ def test_bad_base_rows_and_logs_without_the_base_columns_are_refused(tmp_path: P
     path.write_text("time,q1,base_orientation1,base_orientation2,base_orientation3,base_orientation4,base_orientation5\n0,0,1,0,0,0,0\n")
     with pytest.raises(ValueError, match=r"column 'base_orientation5': base_orientation has 4 columns"):
         read_log(path)
+
+
+def test_a_hull_fit_on_ray_is_the_fit_in_one_process() -> None:
+    """The robot's design (lumped models, base rows) built by each Ray actor from the robot's
+    parts: two halves of a captive test, on a local Ray of 2 CPUs, fit as in one process."""
+    ray = pytest.importorskip("ray")
+    robot = uwml.Robot.from_urdf(URDF, HYDRO)
+    log = captive_test(robot, n=800)
+    fields = ("time", "q", "qd", "qdd", "tau_land", "tau_water", "base_twist", "base_twist_dot", "wrench_land", "wrench_water")
+    halves = [
+        Log(**{name: getattr(log, name)[rows] for name in fields}, source=f"half{k}")
+        for k, rows in enumerate((slice(0, 400), slice(400, None)))
+    ]
+    here = fit.hydro_coefficients(halves, robot, joints=(0,), base=range(6))
+    ray.init(num_cpus=2, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
+    try:
+        spread = fit.hydro_coefficients(halves, robot, joints=(0,), base=range(6), on_ray=True)
+    finally:
+        ray.shutdown()
+    assert spread.var_names == here.var_names
+    for name in here.var_names:
+        assert spread.params[name] == pytest.approx(here.params[name], rel=1e-10, abs=1e-12), name
+    assert spread.params["base.added_mass[2][2]"] == pytest.approx(18.68, rel=1e-8)

@@ -3,6 +3,7 @@ a list of logs or a glob, ``uwml.fit.log_set``; docs/identification.md, "Many lo
 fit equals the fit of the same rows in one log held in memory, statistics included; each log's
 diagnostics find the one log that disagrees."""
 
+import importlib.util
 import json
 from pathlib import Path
 
@@ -121,6 +122,11 @@ def test_the_command_line_takes_several_logs_and_a_pattern(tmp_path: Path, capsy
     assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--json"]) == 0
     pattern = json.loads(capsys.readouterr().out)
     assert listed["params"] == pattern["params"] and len(listed["logs"]) == 3
+    if importlib.util.find_spec("ray") is not None:
+        assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--ray", "--workers", "2", "--json"]) == 0
+        spread = json.loads(capsys.readouterr().out)
+        for name, value in listed["params"].items():
+            assert spread["params"][name] == pytest.approx(value, rel=1e-10)
     # Two logs of one environment each are still a (land, water) pair.
     log = synthetic.land_water_experiment(cycles=1, seed=3)
     write_log(log.land(), tmp_path / "land.csv")
@@ -128,3 +134,26 @@ def test_the_command_line_takes_several_logs_and_a_pattern(tmp_path: Path, capsy
     assert main(["fit", "hydro", str(tmp_path / "land.csv"), str(tmp_path / "water.csv"), "--json"]) == 0
     pair = json.loads(capsys.readouterr().out)
     assert pair["params"]["cd"] == pytest.approx(fit.hydro_coefficients(log).params["cd"], rel=1e-9)
+
+
+@pytest.mark.parametrize("robust", [False, True])
+def test_a_fit_on_ray_is_the_fit_in_one_process(tmp_path: Path, robust: bool) -> None:
+    """Four logs shared out among the actors of a local Ray of 2 CPUs, each reducing its own: the
+    one-process fit, statistics and each log's diagnostics included."""
+    ray = pytest.importorskip("ray")
+    logs = dives((2.2, 2.2, 2.6, 2.2))
+    paths = []
+    for k, log in enumerate(logs):
+        paths.append(str(tmp_path / f"dive{k}.csv"))
+        write_log(log, paths[-1])
+    arguments = {"joints": (0, 1), "per": "link", "robust": robust}
+    here = fit.hydro_coefficients(paths, **arguments)
+    ray.init(num_cpus=2, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
+    try:
+        spread = fit.hydro_coefficients(paths, on_ray=True, **arguments)
+    finally:
+        ray.shutdown()
+    assert_same_fit(spread, here, 1e-10)
+    assert [log.disagrees for log in spread.logs] == [log.disagrees for log in here.logs] == [False, False, True, False]
+    for a, b in zip(spread.logs, here.logs, strict=True):
+        assert a.rows == b.rows and a.residual_rms == pytest.approx(b.residual_rms, rel=1e-10)

@@ -33,7 +33,7 @@ REFERENCE = "uwml.reference"
 #: ones. Within a layer the graph must still be acyclic. The former flat modules and the package
 #: itself (``uwml/__init__.py``) come last: they re-export names for compatibility.
 LAYERS = (
-    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors"),
+    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml._ray"),
     ("uwml.sea",),
     ("uwml.model",),
     ("uwml.io",),

@@ -9,7 +9,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from ._cli_arguments import _base_rows, _joint_list_or_none
+from ._cli_arguments import _base_rows, _joint_list_or_none, _workers
 from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 from .fit.robot_design import BASE_ROWS
 from .robot.leg import Leg
@@ -30,7 +30,16 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         raise _UsageError("--joints none: give --base, or at least one joint")
     source: Any = _pair(args.logs) or (args.logs[0] if len(args.logs) == 1 else list(args.logs))
     result = fit.hydro_coefficients(
-        source, leg, joints=[j - 1 for j in joints], per=args.per, robust=args.robust, base=args.base, lumped=args.lumped
+        source,
+        leg,
+        joints=[j - 1 for j in joints],
+        per=args.per,
+        robust=args.robust,
+        base=args.base,
+        lumped=args.lumped,
+        on_ray=args.ray or args.address is not None,
+        address=args.address,
+        workers=args.workers,
     )
     if args.plot is not None:
         from .viz import plot
@@ -204,6 +213,9 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
     )
     hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
+    hydro.add_argument("--ray", action="store_true", help="share the logs out among the workers of a local Ray (docs/scale.md)")
+    hydro.add_argument("--address", metavar="ADDR", help="a Ray cluster's address (auto, or ray://host:10001): the logs' workers there")
+    hydro.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
     hydro.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
     hydro.add_argument("--plot", metavar="FILE", help="save the measured-vs-fitted figure (format from the extension, e.g. .png)")
     hydro.set_defaults(run=_fit_hydro)

@@ -216,24 +216,30 @@ class _HydroDesign:
         fit, y = self.fitted(x)
         return fit - y
 
+    def huber_normal_equations(self, x: Array, sigma_joint: Array, scale: float) -> tuple[Array, Array]:
+        """One pass of Huber's iteration at ``x``: ``XᵀWX`` and ``XᵀWy`` of every column (kept or
+        not), ``W`` the weights ``min(1, scale/|r|) / σ²`` of the whitened residuals ``r``."""
+        p = len(self.names)
+        coefficients = np.append(self._full(x), -1.0)
+        gram, rhs = np.zeros((p, p)), np.zeros(p)
+        for chunk in self.chunks():
+            r = (chunk @ coefficients) / sigma_joint[:, None]
+            w = np.minimum(1.0, scale / np.maximum(np.abs(r), 1e-300)) * sigma_joint[:, None] ** -2.0
+            for block, weights in zip(chunk, w, strict=True):
+                g = (block * weights[:, None]).T @ block
+                gram += g[:p, :p]
+                rhs += g[:p, p]
+        return gram, rhs
+
     def huber(self, x: Array, sigma_joint: Array, scale: float, max_passes: int = 200) -> tuple[Array, int, bool]:
         """Huber's estimate by iteratively reweighted least squares from ``x``, on residuals
         whitened by ``sigma_joint``: ``(x, passes, converged)``. The weights are
         ``min(1, scale/|r|)``; the loss is convex, so the iteration converges to its unique
         minimum (the one ``scipy.optimize.least_squares(loss="huber")`` finds)."""
         keep = np.ones(len(self.names), dtype=bool) if self._keep is None else self._keep
-        p = keep.size
         passes, converged = 0, False
         for passes in range(1, max_passes + 1):
-            coefficients = np.append(self._full(x), -1.0)
-            gram, rhs = np.zeros((p, p)), np.zeros(p)
-            for chunk in self.chunks():
-                r = (chunk @ coefficients) / sigma_joint[:, None]
-                w = np.minimum(1.0, scale / np.maximum(np.abs(r), 1e-300)) * sigma_joint[:, None] ** -2.0
-                for block, weights in zip(chunk, w, strict=True):
-                    g = (block * weights[:, None]).T @ block
-                    gram += g[:p, :p]
-                    rhs += g[:p, p]
+            gram, rhs = self.huber_normal_equations(x, sigma_joint, scale)
             gram, rhs = gram[keep][:, keep], rhs[keep]
             d = np.sqrt(np.diag(gram))
             d = np.where(d > 0.0, d, 1.0)

@@ -172,6 +172,9 @@ def hydro_coefficients(
     cache_bytes: int = DESIGN_CACHE_BYTES,
     base: ArrayLike = (),
     lumped: Literal["diagonal", "full", "given"] = "diagonal",
+    on_ray: bool = False,
+    address: str | None = None,
+    workers: int | None = None,
 ) -> HydroFit:
     """Fit Cd and Cm (and a robot's axial drag and lumped models) to a land/water experiment
     (module docstring, "Hydrodynamic coefficients").
@@ -214,6 +217,10 @@ def hydro_coefficients(
         orientation (``base_orientation*``, upright where absent); how a hull is identified.
     lumped : {"diagonal", "full", "given"}
         Which entries of a robot's lumped models are fitted (:mod:`uwml.fit.robot_design`).
+    on_ray, address, workers : bool, str, int
+        Share the logs out among Ray workers, each reducing its own (:mod:`uwml.fit.on_ray`): on
+        the Ray this process runs, else the cluster at ``address``, else a local Ray of
+        ``workers`` CPUs started for the fit. The result is the one-process fit's.
     cache_bytes : int
         The design is computed by the Rust core chunk by chunk and, while it takes no more than
         this, kept for the later passes; above, each pass computes it again (memory stays
@@ -263,7 +270,7 @@ def hydro_coefficients(
     selected = selected_joints + [-1 - c for c in components]
     rows = [6 + j for j in selected_joints] + components
 
-    n_samples, n_selected = log.n_samples, len(selected)
+    n_selected = len(selected)
     known = sigma is not None
     given_sigma: Array | None = None
     if sigma is not None:
@@ -273,11 +280,42 @@ def hydro_coefficients(
             raise ValueError(
                 f"sigma must be a positive number or one per selected row ({n_selected}: the joints, then the base components), got {sigma!r}"
             )
-    design: _HydroDesign = (
-        _HydroDesign(leg, log, water, per, selected, cache_bytes)
-        if isinstance(leg, Leg)
-        else _RobotHydroDesign(leg, log, water, per, rows, cache_bytes, lumped)
-    )
+    # The leg's design takes the joints' indices, a robot's the rows of its regressors.
+    design_rows = selected if isinstance(leg, Leg) else rows
+    what_is_fitted = (log, selected, selected_joints, components, per, robust, known, given_sigma, scale_covar)
+    if not on_ray:
+        design: _HydroDesign = (
+            _HydroDesign(leg, log, water, per, design_rows, cache_bytes)
+            if isinstance(leg, Leg)
+            else _RobotHydroDesign(leg, log, water, per, design_rows, cache_bytes, lumped)
+        )
+        return _fit(design, *what_is_fitted)
+    from .._ray import ray_session
+    from .on_ray import RayDesign
+
+    with ray_session(address, workers) as ray:
+        spread = RayDesign(ray, leg, log, water, per, design_rows, cache_bytes, lumped)
+        try:
+            return _fit(spread, *what_is_fitted)
+        finally:
+            spread.close()
+
+
+def _fit(
+    design: _HydroDesign,
+    log: LogSet,
+    selected: list[int],
+    selected_joints: list[int],
+    components: list[int],
+    per: str,
+    robust: bool,
+    known: bool,
+    given_sigma: Array | None,
+    scale_covar: bool,
+) -> HydroFit:
+    """The fit of ``design`` (module docstring): its normal equations, weights, the robust
+    iteration, the statistics and the result."""
+    n_samples, n_selected = log.n_samples, len(selected)
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0
     dropped = tuple(name for name, k in zip(design.names, keep, strict=True) if not k)

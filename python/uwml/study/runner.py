@@ -111,19 +111,10 @@ def _serial(config: StudyConfig, pending: list[dict[str, Any]], address: str | N
 
 
 def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | None, workers: int | None) -> Iterator[list[dict[str, Any]]]:
-    try:
-        import ray
-    except ImportError:
-        raise ImportError('a study runs on Ray: pip install "uwml[ray]" (or run it serially: --serial)') from None
-    started = not ray.is_initialized()
-    if started:
-        options: dict[str, Any] = {"include_dashboard": False, "logging_level": "ERROR", "log_to_driver": False}
-        if address is not None:
-            ray.init(address=address, **options)
-        else:
-            ray.init(num_cpus=workers or os.cpu_count() or 1, **options)
-    try:
-        cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))  # type: ignore[no-untyped-call]
+    from .._ray import ray_session
+
+    with ray_session(address, workers) as ray:
+        cpus = max(1, int(ray.cluster_resources().get("CPU", 1)))
         remote = ray.remote(max_retries=3, retry_exceptions=False)(run_batch)
         batches = _batches(pending, cpus)
         waiting: dict[Any, list[dict[str, Any]]] = {}
@@ -149,9 +140,6 @@ def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | N
                         {**run, **dict.fromkeys(METRICS[config.kind], math.nan), "error": f"{type(exc).__name__}: {reason}"}
                         for run in batch
                     ]
-    finally:
-        if started:
-            ray.shutdown()
 
 
 def _prepare(config: StudyConfig, root: Path, parts: Path, resume: bool) -> set[int]:
