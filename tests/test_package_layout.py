@@ -173,9 +173,10 @@ FORMER_NAMES: dict[str, dict[str, str]] = {
         "uwml.robot.tree": "Robot",
         "uwml.sim.studies": (
             "CONTROLLERS DEPTHS Drift FloatArray FluidComparison MAX_CYCLES PD_HZ ROV_CURRENT Run SEA "
-            "SEA_VISCOSITY TEMPERATURE_C TIMESTEP command fluid_models leg_model progress_bar rov_drift run study "
-            "write_report"
+            "SEA_VISCOSITY TEMPERATURE_C TIMESTEP fluid_models leg_model rov_drift run study write_report"
         ),
+        "uwml.study.paper": "command",
+        "uwml.study.runner": "progress_bar",
     },
     "uwml.gait": {
         "uwml.sim.gait": "AXIS_CLEARANCE FloatArray Knee PAPER_L2 PAPER_L3 WalkingGait paper_leg_foot paper_leg_ik",

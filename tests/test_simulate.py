@@ -12,7 +12,7 @@ import pytest
 import uwml
 
 mujoco = pytest.importorskip("mujoco")
-from uwml import simulate
+from uwml import simulate, study
 from uwml.cli import main
 
 
@@ -67,6 +67,13 @@ def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureF
     report = (out / "report.md").read_text()
     assert report.count("| 6000 |") == 5 and "tracking.png" in report and "depth_sweep.png" in report and "fluid_models.png" in report
     assert (out / "tracking.png").stat().st_size > 10_000 and (out / "depth_sweep.png").stat().st_size > 10_000
+    # A study preset: its runs in Parquet, the table's numbers; the same command again reuses them.
+    (results,) = out.glob("study-*")
+    table = study.read_results(results).to_pylist()
+    assert [(r["depth"], r["controller"]) for r in table] == [(r["depth_m"], r["controller"]) for r in runs]
+    assert [r["rms_error_1"] for r in table] == [r["rms_error_rad"][0] for r in runs]
+    assert main(["simulate", "--out", str(out), "--depths", "0,6000", "--cycles", "1", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["runs"] == runs
     assert main(["simulate", "--out", str(out), "--depths", "0", "--cycles", "0.5"]) == 0
     table = capsys.readouterr().out
     assert re.search(r"^\s+0\s+hydro_losses\s", table, re.MULTILINE) and "report:" in table

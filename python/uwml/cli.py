@@ -38,6 +38,7 @@ from ._cli_arguments import (
     _non_negative,
     _positive,
     _seed,
+    _workers,
 )
 from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 from ._cli_fit import add_fit_commands
@@ -336,6 +337,10 @@ water at 4 °C at each depth, under PD + the land model's feedforward (land), + 
 feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last two with Cd and
 Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.sim.studies).
 
+A study preset (uwml.study, docs/scale.md): the grid depth x controller of the paper_leg
+scenario, its runs written to --out/study-<fingerprint>/runs/*.parquet (the same depths and
+cycles again reuse them); in this process by default, on Ray with --ray or --address.
+
 Output: a table of RMS and peak tracking error per joint and the motor's positive work per cycle
 (last cycle), or with --json the runs' summaries as JSON; report.md, tracking.png and
 depth_sweep.png in --out. A progress bar on standard error.""",
@@ -357,6 +362,9 @@ depth_sweep.png in --out. A progress bar on standard error.""",
         help=f"gait cycles per run, up to {MAX_CYCLES} (default 2; metrics over the last)",
     )
     simulate.add_argument("--json", action="store_true", help="print the runs' summaries as JSON only")
+    simulate.add_argument("--ray", action="store_true", help="run the study on a local Ray (default: here, one run after the other)")
+    simulate.add_argument("--address", metavar="ADDR", help="run the study on the Ray cluster at this address")
+    simulate.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
     simulate.set_defaults(run=_simulate)
 
     replay = commands.add_parser(
@@ -390,9 +398,9 @@ def _replay(args: argparse.Namespace) -> int:
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from .sim.studies import command
+    from .study.paper import command
 
-    return command(args.out, args.depths, args.cycles, args.json)
+    return command(args.out, args.depths, args.cycles, args.json, ray=args.ray, address=args.address, workers=args.workers)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

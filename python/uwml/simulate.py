@@ -21,15 +21,15 @@ from .sim.studies import (
     FloatArray,
     FluidComparison,
     Run,
-    command,
     fluid_models,
     leg_model,
-    progress_bar,
     rov_drift,
     run,
     study,
     write_report,
 )
+from .study.paper import command
+from .study.runner import progress_bar
 
 __all__ = [
     "CONTROLLERS",

@@ -29,7 +29,6 @@ joint [rad], and the motor's positive mechanical work per cycle ``∫ Σ max(τ_
 from __future__ import annotations
 
 import math
-import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -385,26 +384,27 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
     return Drift("PD + uwml base wrench" if with_uwml else "PD", time, position, attitude)
 
 
-def progress_bar(done: int, total: int) -> None:
-    """A one-line progress bar on standard error."""
-    width = 30
-    filled = round(width * done / total)
-    end = "\n" if done == total else ""
-    print(f"\ruwml simulate: [{'#' * filled}{'.' * (width - filled)}] {done}/{total} runs", end=end, file=sys.stderr, flush=True)
+def _errors(row: dict[str, Any], kind: str) -> list[float]:
+    """A study row's RMS or peak tracking error per joint [rad]."""
+    return [float(row[f"{kind}_error_{j}"]) for j in (1, 2, 3)]
 
 
-def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = None, drifts: Sequence[Drift] = ()) -> Path:
-    """The Markdown report and its figures (tracking, torques, depth sweep, and with ``fluid``
-    MuJoCo's fluid models against uwml) in ``out``."""
+def write_report(
+    rows: list[dict[str, Any]], series: list[Run], out: Path, fluid: FluidComparison | None = None, drifts: Sequence[Drift] = ()
+) -> Path:
+    """The Markdown report and its figures in ``out``: the table and the depth sweep of the
+    study's ``rows`` (``depth``, ``controller``, ``rms_error_<j>``, ``peak_error_<j>``,
+    ``positive_work``), the tracking figure of the runs ``series`` (time series, the deepest
+    depth's), and with ``fluid`` MuJoCo's fluid models against uwml."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     out.mkdir(parents=True, exist_ok=True)
-    depths = sorted({r.depth for r in runs})
-    controllers = [c for c in CONTROLLERS if any(r.controller == c for r in runs)]
-    deepest = [r for r in runs if r.depth == depths[-1]]
+    depths = sorted({float(r["depth"]) for r in rows})
+    controllers = [c for c in CONTROLLERS if any(r["controller"] == c for r in rows)]
+    deepest = series
     figure, axes = plt.subplots(3, 2, figsize=(11, 8), sharex=True)
     for joint in range(3):
         for r in deepest:
@@ -421,7 +421,10 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
     plt.close(figure)
     figure, axis = plt.subplots(figsize=(7, 4))
     for controller in controllers:
-        values = [np.degrees(np.max(next(r for r in runs if r.controller == controller and r.depth == d).rms_error())) for d in depths]
+        values = [
+            np.degrees(max(_errors(next(row for row in rows if row["controller"] == controller and row["depth"] == d), "rms")))
+            for d in depths
+        ]
         axis.plot(depths, values, marker="o", label=controller)
     axis.set_xlabel("depth [m]")
     axis.set_ylabel("worst joint RMS error [°]")
@@ -441,10 +444,10 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
         "| depth [m] | controller | RMS error per joint [°] | peak error per joint [°] | positive work per cycle [J] |",
         "|---|---|---|---|---|",
     ]
-    for r in runs:
-        rms = ", ".join(f"{x:.3f}" for x in np.degrees(r.rms_error()))
-        peak = ", ".join(f"{x:.3f}" for x in np.degrees(r.peak_error()))
-        lines.append(f"| {r.depth:g} | {r.controller} | {rms} | {peak} | {r.positive_work():.1f} |")
+    for row in rows:
+        rms = ", ".join(f"{x:.3f}" for x in np.degrees(_errors(row, "rms")))
+        peak = ", ".join(f"{x:.3f}" for x in np.degrees(_errors(row, "peak")))
+        lines.append(f"| {row['depth']:g} | {row['controller']} | {rms} | {peak} | {row['positive_work']:.1f} |")
     lines += [
         "",
         "Controllers: `land` PD + the rigid body's inverse dynamics; `hydro` + uwml's hydrodynamic",
@@ -505,39 +508,3 @@ def write_report(runs: list[Run], out: Path, fluid: FluidComparison | None = Non
     path = out / "report.md"
     path.write_text("\n".join(lines), encoding="utf-8")
     return path
-
-
-def command(out: str, depths: Sequence[float], cycles: float, as_json: bool) -> int:
-    """``uwml simulate``: the study, its report in ``out``, a summary (or JSON) on standard output."""
-    import json
-
-    try:
-        import mujoco  # noqa: F401
-    except ImportError:
-        raise ImportError('uwml simulate needs MuJoCo: pip install "uwml[mujoco]"') from None
-    runs = study(depths, CONTROLLERS, cycles, progress_bar)
-    fluid = fluid_models()
-    drifts = [rov_drift(False), rov_drift(True)]
-    report = write_report(runs, Path(out), fluid, drifts)
-    if as_json:
-        comparison = {name: fluid.relative_difference(name).tolist() for name in ("box", "ellipsoid")}
-        vehicle = [drift.summary() for drift in drifts]
-        print(json.dumps({"runs": [r.summary() for r in runs], "fluid_models_relative_rms_difference": comparison, "rov": vehicle}))
-        return 0
-    print(f"uwml simulate: the paper's leg on our gait, sea water at {TEMPERATURE_C:g} °C; last of {cycles:g} cycles")
-    print(f"{'depth':>7} {'controller':>18} {'RMS error per joint [°]':>26} {'peak [°]':>24} {'work/cycle':>11}")
-    for r in runs:
-        rms = " ".join(f"{x:7.3f}" for x in np.degrees(r.rms_error()))
-        peak = " ".join(f"{x:7.3f}" for x in np.degrees(r.peak_error()))
-        print(f"{r.depth:7g} {r.controller:>18} {rms:>26} {peak:>24} {r.positive_work():9.1f} J")
-    for name in ("box", "ellipsoid"):
-        difference = ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
-        print(f"MuJoCo's {name} fluid model against uwml on one gait cycle, RMS difference per joint: {difference}")
-    for drift in drifts:
-        row = drift.summary()
-        print(
-            f"ROV in a {ROV_CURRENT:g} m/s current, station keeping {row['station_keeping']}: drift {row['rms_drift_m']:.3f} m RMS, "
-            f"{row['max_drift_m']:.3f} m max; attitude {row['rms_attitude_deg']:.1f}° RMS"
-        )
-    print(f"report: {report}")
-    return 0
