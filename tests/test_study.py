@@ -203,3 +203,42 @@ def test_a_worker_killed_mid_study_loses_no_run_and_counts_none_twice(tmp_path: 
     got = [row["run"] for row in rows(out)]
     assert sorted(got) == list(range(40)), "every run once"
     assert all(row["error"] is None for row in rows(out)), "the killed batch was run again"
+
+
+ROOT = Path(__file__).resolve().parents[1]
+ROBOT_STUDY = f"""
+[scenario]
+kind = "robot"
+robot = "{ROOT / "examples/bluerov2/bluerov2_arm.urdf"}"
+hydro = "{ROOT / "examples/bluerov2/bluerov2_arm.hydro.toml"}"
+duration = 1.0
+[parameters]
+controller = ["land", "hydro"]
+amplitude = [0.0, 0.4]
+"""
+
+
+def test_a_robot_from_its_description_tracks_better_with_uwmls_feedforward(tmp_path: Path) -> None:
+    config = study.load(write(tmp_path, ROBOT_STUDY))
+    assert config.metrics == ("rms_error_1", "rms_error_2", "peak_error_1", "peak_error_2", "positive_work", "energy")
+    outcome = study.run_study(config, tmp_path / "out", serial=True)
+    assert outcome.ran == 4 and outcome.errors == 0
+    table = {(r["controller"], r["amplitude"]): r for r in rows(tmp_path / "out")}
+    # Held still in still water, the feedforward's buoyancy and the inverse dynamics' weight are
+    # the plant's: the arm does not move; without the buoyancy's feedforward it sags.
+    still = table[("hydro", 0.0)]
+    assert max(still["rms_error_1"], still["rms_error_2"]) < 1e-6
+    assert table[("land", 0.0)]["rms_error_2"] > 1e-3
+    # Moving, the feedforward of drag and added mass tracks better.
+    assert table[("hydro", 0.4)]["rms_error_2"] < 0.2 * table[("land", 0.4)]["rms_error_2"]
+
+
+def test_a_robot_study_names_a_missing_or_bad_description(tmp_path: Path) -> None:
+    with pytest.raises(study.ConfigError, match="key 'scenario.robot': .*absent.urdf: no such file"):
+        study.load(write(tmp_path, ROBOT_STUDY.replace("bluerov2_arm.urdf", "absent.urdf")))
+    with pytest.raises(study.ConfigError, match="key 'scenario.robot': missing"):
+        study.loads('[scenario]\nkind = "robot"\n')
+    with pytest.raises(study.ConfigError, match="key 'parameters.hydro': a file is a setting of"):
+        study.loads(
+            f'[scenario]\nkind = "robot"\nrobot = "{ROOT / "examples/bluerov2/bluerov2_arm.urdf"}"\n[parameters]\nhydro = ["a.toml"]\n'
+        )

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import UwmlError
-from .scenarios import PARAMETERS, SCENARIOS
+from .scenarios import PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_names
 
 __all__ = ["MAX_RUNS", "ConfigError", "Distribution", "StudyConfig", "load", "loads"]
 
@@ -80,6 +80,8 @@ class StudyConfig:
     distributions: dict[str, Distribution]
     samples: int
     seed: int
+    #: The metrics of its runs (the results' columns).
+    metrics: tuple[str, ...] = ()
 
     @property
     def n_runs(self) -> int:
@@ -123,11 +125,11 @@ def load(path: str | Path) -> StudyConfig:
         raise ConfigError(f"{source}: no such file") from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"{source}: cannot be read ({exc})") from None
-    return loads(text, source)
+    return loads(text, source, Path(path).parent)
 
 
-def loads(text: str, source: str = "<study>") -> StudyConfig:
-    """A study from TOML text (module docstring)."""
+def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> StudyConfig:
+    """A study from TOML text (module docstring); file settings relative to ``folder``."""
     try:
         table = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
@@ -146,7 +148,13 @@ def loads(text: str, source: str = "<study>") -> StudyConfig:
             continue
         if key not in allowed:
             raise ConfigError(f"{source}: key 'scenario.{key}': unknown setting (a {kind} run takes {', '.join(allowed)})")
-        settings[key] = _value(value, allowed[key], f"scenario.{key}", source)
+        if allowed[key] == PATH:
+            settings[key] = _path(value, Path(folder), f"scenario.{key}", source)
+        else:
+            settings[key] = _value(value, allowed[key], f"scenario.{key}", source)
+    for key in REQUIRED[kind]:
+        if key not in settings:
+            raise ConfigError(f"{source}: key 'scenario.{key}': missing (a {kind} run needs it)")
     grid: dict[str, list[Any]] = {}
     distributions: dict[str, Distribution] = {}
     for key, value in _table(table, "parameters", source).items():
@@ -155,6 +163,8 @@ def loads(text: str, source: str = "<study>") -> StudyConfig:
             raise ConfigError(f"{source}: key '{where}': unknown parameter (a {kind} run takes {', '.join(allowed)})")
         if key in settings:
             raise ConfigError(f"{source}: key '{where}': also set in [scenario]; give it once")
+        if allowed[key] == PATH:
+            raise ConfigError(f"{source}: key '{where}': a file is a setting of [scenario], not a parameter")
         if isinstance(value, list):
             if not value:
                 raise ConfigError(f"{source}: key '{where}': an empty grid")
@@ -175,7 +185,11 @@ def loads(text: str, source: str = "<study>") -> StudyConfig:
         raise ConfigError(f"{source}: key 'sampling.samples': {samples} draws of no random parameter would repeat each run")
     if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed < 2**63:
         raise ConfigError(f"{source}: key 'sampling.seed': must be a non-negative integer, got {seed!r}")
-    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed)
+    try:
+        metrics = metric_names(kind, settings)
+    except (ValueError, OSError) as exc:
+        raise ConfigError(f"{source}: key 'scenario.robot': {exc}") from None
+    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed, metrics)
     if config.n_runs > MAX_RUNS:
         raise ConfigError(f"{source}: key 'parameters': {config.n_runs} runs, more than {MAX_RUNS}")
     return config
@@ -186,6 +200,16 @@ def _table(table: dict[str, Any], key: str, source: str) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise ConfigError(f"{source}: key {key!r}: must be a table")
     return value
+
+
+def _path(value: Any, folder: Path, where: str, source: str) -> str:
+    """A file setting: a string naming an existing file, relative to the study file's folder."""
+    if not isinstance(value, str) or not value:
+        raise ConfigError(f"{source}: key '{where}': must be a file name, got {value!r}")
+    path = folder / value
+    if not path.is_file():
+        raise ConfigError(f"{source}: key '{where}': {path}: no such file")
+    return str(path)
 
 
 def _value(value: Any, kind: Any, where: str, source: str) -> Any:

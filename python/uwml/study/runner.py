@@ -28,7 +28,7 @@ from typing import Any
 
 from ..io._files import write_atomically
 from .config import StudyConfig
-from .scenarios import METRICS, run_one
+from .scenarios import run_one
 
 __all__ = ["MAX_BATCH", "StudyOutcome", "run_batch", "run_study"]
 
@@ -49,7 +49,7 @@ class StudyOutcome:
     skipped: int
 
 
-def run_batch(kind: str, settings: dict[str, Any], batch: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def run_batch(kind: str, settings: dict[str, Any], metrics: tuple[str, ...], batch: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Each run of ``batch`` as a result row: its number and parameters, its metrics (NaN where
     it raised) and ``error`` (None, or the exception's type and message)."""
     rows = []
@@ -59,7 +59,7 @@ def run_batch(kind: str, settings: dict[str, Any], batch: list[dict[str, Any]]) 
             row |= run_one(kind, settings, {k: v for k, v in parameters.items() if k != "run"})
             row["error"] = None
         except Exception as exc:  # noqa: BLE001 (a run's failure is its row, the study goes on)
-            row |= dict.fromkeys(METRICS[kind], math.nan)
+            row |= dict.fromkeys(metrics, math.nan)
             row["error"] = f"{type(exc).__name__}: {exc}"
         rows.append(row)
     return rows
@@ -107,7 +107,7 @@ def _batches(pending: list[dict[str, Any]], workers: int) -> list[list[dict[str,
 
 def _serial(config: StudyConfig, pending: list[dict[str, Any]], address: str | None, workers: int | None) -> Iterator[list[dict[str, Any]]]:
     for batch in _batches(pending, 1):
-        yield run_batch(config.kind, config.settings, batch)
+        yield run_batch(config.kind, config.settings, config.metrics, batch)
 
 
 def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | None, workers: int | None) -> Iterator[list[dict[str, Any]]]:
@@ -125,7 +125,7 @@ def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | N
                 batch = next(queue, None)
                 if batch is None:
                     break
-                waiting[remote.remote(config.kind, config.settings, batch)] = batch
+                waiting[remote.remote(config.kind, config.settings, config.metrics, batch)] = batch
             if not waiting:
                 return
             ready, _ = ray.wait(list(waiting), num_returns=1)
@@ -136,10 +136,7 @@ def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | N
                 except ray.exceptions.RayError as exc:
                     # Its worker died on every try: the runs are rows with the error, not lost.
                     reason = " ".join(str(exc).split())[:300]
-                    yield [
-                        {**run, **dict.fromkeys(METRICS[config.kind], math.nan), "error": f"{type(exc).__name__}: {reason}"}
-                        for run in batch
-                    ]
+                    yield [{**run, **dict.fromkeys(config.metrics, math.nan), "error": f"{type(exc).__name__}: {reason}"} for run in batch]
 
 
 def _prepare(config: StudyConfig, root: Path, parts: Path, resume: bool) -> set[int]:
@@ -166,7 +163,7 @@ def _prepare(config: StudyConfig, root: Path, parts: Path, resume: bool) -> set[
         "kind": config.kind,
         "n_runs": config.n_runs,
         "parameters": config.parameter_names,
-        "metrics": list(METRICS[config.kind]),
+        "metrics": list(config.metrics),
     }
     write_atomically(record, (json.dumps(what, indent=1) + "\n").encode())
     return set()
@@ -177,7 +174,7 @@ def _write_part(parts: Path, rows: list[dict[str, Any]], config: StudyConfig) ->
     import pyarrow
     import pyarrow.parquet
 
-    columns = ["run", *config.parameter_names, *METRICS[config.kind], "error"]
+    columns = ["run", *config.parameter_names, *config.metrics, "error"]
     table = pyarrow.table({name: [row.get(name) for row in rows] for name in columns})
     buffer = io.BytesIO()
     pyarrow.parquet.write_table(table, buffer)

@@ -11,6 +11,18 @@ carries, unknown to the controller, 0 to 100; default 0]. Metrics over the last 
 the whole run if shorter): ``rms_error_<j>`` and ``peak_error_<j>`` [rad] per joint ``j`` from 1,
 ``positive_work`` (the motors' positive work, ``∫ Σ max(τ q̇, 0) dt``) and ``energy``
 (``∫ Σ |τ q̇| dt``) [J].
+
+``robot``: any robot from its description (``robot``: a URDF or MJCF file, ``hydro``: its hydro
+file; paths relative to the study file), on a fixed base, its joints following sines
+(``amplitude`` [rad or m, 0 to 3.14; default 0.3] and ``period`` [s, 0.1 to 100; default 2],
+joint ``j`` shifted by ``j·π/3``) for ``duration`` [s, 0.01 to 3600; default 4] in a ``current``
+along x [m/s, 0 to 5; default 0] at ``depth`` [m], simulated in MuJoCo with uwml's forces under
+PD (a critically damped ``kp_hz`` loop on each joint's rigid inertia at the start, 0.1 to 50
+Hz; default 4) plus the rigid body's inverse dynamics (``land``), plus uwml's hydrodynamic
+feedforward in the current (``hydro``), plus the robot's joint losses' (``hydro_losses``), the
+feedforward's Cd and Cm ``coefficient_scale`` times the robot's own. Metrics over the last
+period (or the whole run if shorter): ``rms_error_<j>``, ``peak_error_<j>`` per joint,
+``positive_work``, ``energy``, as for ``paper_leg``; the metrics' joints are the robot's.
 """
 
 from __future__ import annotations
@@ -21,7 +33,9 @@ from ..sim.studies import CONTROLLERS, MAX_CYCLES
 
 __all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "SCENARIOS", "run_one"]
 
-SCENARIOS = ("paper_leg",)
+SCENARIOS = ("paper_leg", "robot")
+#: The kind of a setting that names a file (relative to the study file).
+PATH = "path"
 #: Each scenario's parameters: a number's (low, high) bounds, or the allowed strings.
 PARAMETERS: dict[str, dict[str, Any]] = {
     "paper_leg": {
@@ -30,9 +44,36 @@ PARAMETERS: dict[str, dict[str, Any]] = {
         "cycles": (1e-3, float(MAX_CYCLES)),
         "coefficient_scale": (0.0, 10.0),
         "payload": (0.0, 100.0),
-    }
+    },
+    "robot": {
+        "robot": PATH,
+        "hydro": PATH,
+        "depth": (0.0, 11_000.0),
+        "controller": ("land", "hydro", "hydro_losses"),
+        "duration": (0.01, 3600.0),
+        "amplitude": (0.0, 3.14),
+        "period": (0.1, 100.0),
+        "current": (0.0, 5.0),
+        "coefficient_scale": (0.0, 10.0),
+        "kp_hz": (0.1, 50.0),
+    },
 }
-DEFAULTS: dict[str, dict[str, Any]] = {"paper_leg": {"depth": 0.0, "controller": "hydro", "cycles": 0.5, "payload": 0.0}}
+#: Settings a scenario cannot run without.
+REQUIRED: dict[str, tuple[str, ...]] = {"paper_leg": (), "robot": ("robot",)}
+DEFAULTS: dict[str, dict[str, Any]] = {
+    "paper_leg": {"depth": 0.0, "controller": "hydro", "cycles": 0.5, "payload": 0.0},
+    "robot": {
+        "hydro": None,
+        "depth": 0.0,
+        "controller": "hydro",
+        "duration": 4.0,
+        "amplitude": 0.3,
+        "period": 2.0,
+        "current": 0.0,
+        "coefficient_scale": 1.0,
+        "kp_hz": 4.0,
+    },
+}
 #: Each scenario's metrics, the columns of a study's results.
 METRICS: dict[str, tuple[str, ...]] = {
     "paper_leg": (
@@ -44,12 +85,25 @@ METRICS: dict[str, tuple[str, ...]] = {
 }
 
 
+def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
+    """The metrics of a scenario's runs (the ``robot`` scenario's depend on its joints)."""
+    if kind == "paper_leg":
+        return METRICS[kind]
+    from ..robot.files import model_and_robot
+
+    _, robot = model_and_robot(settings["robot"], settings.get("hydro"), floating=False)
+    joints = range(1, robot.n_joints + 1)
+    return (*(f"rms_error_{j}" for j in joints), *(f"peak_error_{j}" for j in joints), "positive_work", "energy")
+
+
 def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> dict[str, float]:
     """One run's metrics (module docstring): the scenario's defaults, then ``settings``, then
     ``parameters``."""
     from ..sim.studies import run
 
     values = DEFAULTS[kind] | settings | parameters
+    if kind == "robot":
+        return _robot_run(values)
     result = run(
         str(values["controller"]),
         float(values["depth"]),
@@ -61,3 +115,65 @@ def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> 
     metrics = {f"rms_error_{j + 1}": float(rms[j]) for j in range(3)}
     metrics |= {f"peak_error_{j + 1}": float(peak[j]) for j in range(3)}
     return metrics | {"positive_work": result.positive_work(), "energy": result.energy()}
+
+
+def _robot_run(values: dict[str, Any]) -> dict[str, float]:
+    """One run of the ``robot`` scenario (module docstring)."""
+    import math
+
+    import mujoco
+    import numpy as np
+
+    from ..robot.files import model_and_robot
+    from ..sim.mujoco import Simulation
+
+    model, robot = model_and_robot(values["robot"], values["hydro"], floating=False)
+    n = robot.n_joints
+    if model.nq != n or model.nv != n:
+        raise ValueError(f"{values['robot']}: the robot scenario takes a fixed base and hinge or slide joints only")
+    current = (float(values["current"]), 0.0, 0.0)
+    depth = float(values["depth"])
+    sim = Simulation(model, robot, depth=depth, current=current)
+    dt = float(model.opt.timestep)
+    steps = max(1, round(float(values["duration"]) / dt))
+    time = np.arange(steps + 1) * dt
+    omega = 2.0 * math.pi / float(values["period"])
+    phase = np.arange(n) * math.pi / 3.0
+    amplitude = float(values["amplitude"])
+    q_d = amplitude * np.sin(omega * time[:, None] + phase)
+    qd_d = amplitude * omega * np.cos(omega * time[:, None] + phase)
+    qdd_d = -amplitude * omega**2 * np.sin(omega * time[:, None] + phase)
+    controller = values["controller"]
+    feedforward = np.zeros_like(q_d)
+    if controller != "land":
+        scale = float(values["coefficient_scale"])
+        cd = np.array([s.cd for s in robot.segments], dtype=np.float64).reshape(-1, 2) * scale
+        cm = np.array([s.cm for s in robot.segments], dtype=np.float64).reshape(-1, 2) * scale
+        forces = robot.environment(q_d, qd_d, qdd_d, depth=depth, cd=cd if cd.size else None, cm=cm if cm.size else None, current=current)
+        feedforward -= forces.hydro
+        if controller == "hydro_losses":
+            feedforward -= forces.visc + forces.seal
+    land = mujoco.MjData(model)
+    land.qpos[:] = q_d[0]
+    mujoco.mj_forward(model, land)
+    inertia = np.zeros((model.nv, model.nv))
+    mujoco.mj_fullM(model, land, inertia)
+    loop = 2.0 * math.pi * float(values["kp_hz"])
+    kp, kd = np.diag(inertia) * loop**2, 2.0 * np.diag(inertia) * loop
+    sim.data.qpos[:], sim.data.qvel[:] = q_d[0], qd_d[0]
+    q, qd, torque = np.zeros_like(q_d), np.zeros_like(q_d), np.zeros_like(q_d)
+    for k in range(steps + 1):
+        q[k], qd[k] = sim.data.qpos, sim.data.qvel
+        land.qpos[:], land.qvel[:], land.qacc[:] = q_d[k], qd_d[k], qdd_d[k]
+        mujoco.mj_inverse(model, land)
+        torque[k] = land.qfrc_inverse + feedforward[k] + kp * (q_d[k] - q[k]) + kd * (qd_d[k] - qd[k])
+        if k < steps:
+            sim.step(torque=torque[k])
+    window = slice(max(0, steps + 1 - round(float(values["period"]) / dt)), None)
+    error = (q - q_d)[window]
+    power = (torque * qd)[window]
+    if not np.all(np.isfinite(error)):
+        raise FloatingPointError("the simulation diverged (a non-finite joint state)")
+    metrics = {f"rms_error_{j + 1}": float(np.sqrt(np.mean(error[:, j] ** 2))) for j in range(n)}
+    metrics |= {f"peak_error_{j + 1}": float(np.max(np.abs(error[:, j]))) for j in range(n)}
+    return metrics | {"positive_work": float(np.sum(np.maximum(power, 0.0)) * dt), "energy": float(np.sum(np.abs(power)) * dt)}
