@@ -128,7 +128,7 @@ def test_a_run_that_raises_is_a_row_with_its_error(tmp_path: Path, monkeypatch: 
 
 BAD = [
     ("[scenery]\n", "key 'scenery': unknown table"),
-    ('[scenario]\nkind = "rov"\n', "key 'scenario.kind': must be one of paper_leg"),
+    ('[scenario]\nkind = "auv"\n', "key 'scenario.kind': must be one of paper_leg"),
     ("[scenario]\nspeed = 1\n", "key 'scenario.speed': unknown setting"),
     ("[parameters]\ndepth = [0, -5]\n", r"key 'parameters.depth\[1\]': must be a number from 0 to 11000"),
     ('[parameters]\ncontroller = ["pid"]\n', r"key 'parameters.controller\[0\]': must be one of land"),
@@ -242,3 +242,15 @@ def test_a_robot_study_names_a_missing_or_bad_description(tmp_path: Path) -> Non
         study.loads(
             f'[scenario]\nkind = "robot"\nrobot = "{ROOT / "examples/bluerov2/bluerov2_arm.urdf"}"\n[parameters]\nhydro = ["a.toml"]\n'
         )
+
+
+def test_a_floating_vehicles_drift_is_a_study_too(tmp_path: Path) -> None:
+    config = study.loads(
+        '[scenario]\nkind = "rov"\nduration = 2.0\n[parameters]\nstation_keeping = ["pd", "pd_uwml"]\ncurrent = [0.0, 0.8]\n'
+    )
+    assert config.metrics == ("rms_drift", "max_drift", "rms_attitude")
+    study.run_study(config, tmp_path / "out", serial=True)
+    table = {(r["station_keeping"], r["current"]): r for r in rows(tmp_path / "out")}
+    # uwml's predicted wrench holds the vehicle's attitude closer; the current pushes it away.
+    assert table[("pd_uwml", 0.8)]["rms_attitude"] < 0.8 * table[("pd", 0.8)]["rms_attitude"]
+    assert table[("pd", 0.8)]["max_drift"] > 2 * table[("pd", 0.0)]["max_drift"]

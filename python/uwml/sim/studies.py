@@ -325,9 +325,10 @@ class Drift:
 ROV_CURRENT = 0.5
 
 
-def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -> Drift:
+def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3, current: float = ROV_CURRENT) -> Drift:
     """The arm of :func:`uwml.robot.examples.arm_on_rov` on its free-floating hull (trimmed neutrally
-    buoyant in the study's sea water) moves its joints along sines in a 0.5 m/s current while a
+    buoyant in the study's sea water) moves its joints along sines in a ``current`` along x
+    [m/s, default 0.5] while a
     station-keeping PD (0.3 Hz, critically damped, on the vehicle's total rigid mass and inertia,
     ideal thrusters) holds the vehicle, ``with_uwml``: plus the feedforward of uwml's predicted
     wrench on the vehicle (hydrodynamics, buoyancy and the robot's weight, at the measured state)."""
@@ -341,7 +342,7 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
     trimmed = Link(SEA.density * volume - arm_mass, hull.com, hull.volume, cob=hull.cob, segments=hull.segments, name="hull")
     robot = Robot(arm.joints, arm.links, base=trimmed, water=SEA)
     model = mujoco.MjModel.from_xml_string(mjcf_of(robot, floating=True, timestep=timestep))
-    sim = Simulation(model, robot, current=(ROV_CURRENT, 0.0, 0.0), depth=1000.0, temperature_c=TEMPERATURE_C)
+    sim = Simulation(model, robot, current=(current, 0.0, 0.0), depth=1000.0, temperature_c=TEMPERATURE_C)
     mujoco.mj_forward(sim.model, sim.data)
     inertia = np.zeros((sim.model.nv, sim.model.nv))
     mujoco.mj_fullM(sim.model, sim.data, inertia)
@@ -375,7 +376,7 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3) -
             q, qd = d.qpos[7:].copy(), d.qvel[6:].copy()
             v_body, w_body = rotation.T @ d.qvel[:3], d.qvel[3:6].copy()
             motion = BaseMotion(orientation=np.array(d.qpos[3:7]), velocity=v_body, angular_velocity=w_body)
-            wrench = robot.hydro(q, qd, np.zeros_like(q), base_motion=motion, current=(ROV_CURRENT, 0.0, 0.0)).base
+            wrench = robot.hydro(q, qd, np.zeros_like(q), base_motion=motion, current=(current, 0.0, 0.0)).base
             predicted = wrench.total + wrench.gravity
             thrust[:3] -= rotation @ predicted[:3]
             thrust[3:6] -= predicted[3:6]

@@ -23,6 +23,12 @@ feedforward in the current (``hydro``), plus the robot's joint losses' (``hydro_
 feedforward's Cd and Cm ``coefficient_scale`` times the robot's own. Metrics over the last
 period (or the whole run if shorter): ``rms_error_<j>``, ``peak_error_<j>`` per joint,
 ``positive_work``, ``energy``, as for ``paper_leg``; the metrics' joints are the robot's.
+
+``rov``: an arm moving on a free-floating ROV in a current while a station-keeping PD holds the
+vehicle (:func:`uwml.sim.studies.rov_drift`): ``station_keeping`` (``pd``, or ``pd_uwml`` with
+the feedforward of uwml's predicted wrench on the vehicle; default ``pd_uwml``), ``duration``
+[s, 0.1 to 600; default 4], ``current`` [m/s along x, 0 to 3; default 0.5]. Metrics: the
+vehicle's drift from its start, ``rms_drift`` and ``max_drift`` [m], and ``rms_attitude`` [°].
 """
 
 from __future__ import annotations
@@ -33,7 +39,7 @@ from ..sim.studies import CONTROLLERS, MAX_CYCLES
 
 __all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "SCENARIOS", "run_one"]
 
-SCENARIOS = ("paper_leg", "robot")
+SCENARIOS = ("paper_leg", "robot", "rov")
 #: The kind of a setting that names a file (relative to the study file).
 PATH = "path"
 #: Each scenario's parameters: a number's (low, high) bounds, or the allowed strings.
@@ -57,9 +63,14 @@ PARAMETERS: dict[str, dict[str, Any]] = {
         "coefficient_scale": (0.0, 10.0),
         "kp_hz": (0.1, 50.0),
     },
+    "rov": {
+        "station_keeping": ("pd", "pd_uwml"),
+        "duration": (0.1, 600.0),
+        "current": (0.0, 3.0),
+    },
 }
 #: Settings a scenario cannot run without.
-REQUIRED: dict[str, tuple[str, ...]] = {"paper_leg": (), "robot": ("robot",)}
+REQUIRED: dict[str, tuple[str, ...]] = {"paper_leg": (), "robot": ("robot",), "rov": ()}
 DEFAULTS: dict[str, dict[str, Any]] = {
     "paper_leg": {"depth": 0.0, "controller": "hydro", "cycles": 0.5, "payload": 0.0},
     "robot": {
@@ -73,6 +84,7 @@ DEFAULTS: dict[str, dict[str, Any]] = {
         "coefficient_scale": 1.0,
         "kp_hz": 4.0,
     },
+    "rov": {"station_keeping": "pd_uwml", "duration": 4.0, "current": 0.5},
 }
 #: Each scenario's metrics, the columns of a study's results.
 METRICS: dict[str, tuple[str, ...]] = {
@@ -81,13 +93,14 @@ METRICS: dict[str, tuple[str, ...]] = {
         *(f"peak_error_{j}" for j in (1, 2, 3)),
         "positive_work",
         "energy",
-    )
+    ),
+    "rov": ("rms_drift", "max_drift", "rms_attitude"),
 }
 
 
 def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
     """The metrics of a scenario's runs (the ``robot`` scenario's depend on its joints)."""
-    if kind == "paper_leg":
+    if kind != "robot":
         return METRICS[kind]
     from ..robot.files import model_and_robot
 
@@ -104,6 +117,11 @@ def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> 
     values = DEFAULTS[kind] | settings | parameters
     if kind == "robot":
         return _robot_run(values)
+    if kind == "rov":
+        from ..sim.studies import rov_drift
+
+        drift = rov_drift(values["station_keeping"] == "pd_uwml", float(values["duration"]), current=float(values["current"])).summary()
+        return {"rms_drift": drift["rms_drift_m"], "max_drift": drift["max_drift_m"], "rms_attitude": drift["rms_attitude_deg"]}
     result = run(
         str(values["controller"]),
         float(values["depth"]),
