@@ -66,6 +66,10 @@ def test_uwml_simulate_writes_its_report(tmp_path: Path, capsys: pytest.CaptureF
     assert "10/10 runs" in captured.err
     report = (out / "report.md").read_text()
     assert report.count("| 6000 |") == 5 and "tracking.png" in report and "depth_sweep.png" in report and "fluid_models.png" in report
+    # Without the plant's joint losses the right coefficients track better than the wrong ones.
+    why = report.split("## Why the wrong coefficients track better", 1)[1].split("##", 1)[0]
+    right, wrong = (float(x) for x in re.findall(r"`hydro` ([0-9.]+)° against `hydro_wrong`'s ([0-9.]+)°", why)[0])
+    assert right < wrong / 3
     assert (out / "tracking.png").stat().st_size > 10_000 and (out / "depth_sweep.png").stat().st_size > 10_000
     # A study preset: its runs in Parquet, the table's numbers; the same command again reuses them.
     (results,) = out.glob("study-*")

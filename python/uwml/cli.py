@@ -7,7 +7,7 @@ Subcommands (``uwml <command> --help`` for each):
 * ``uwml torques LOG``: every torque component along a logged trajectory, as CSV (or Parquet).
 * ``uwml fit hydro LOG...``: Cd and Cm (and a robot's hull) from land/water experiments.
 * ``uwml fit losses CSV``: the oil-drag and seal models from a three-configuration experiment.
-* ``uwml simulate``: the paper's leg walking in sea water under four controllers (MuJoCo).
+* ``uwml simulate``: the paper's leg walking in sea water under five controllers (MuJoCo).
 * ``uwml study CONFIG``: a scenario over grids and random draws of its parameters, on Ray.
 
 Exit codes: 0 on success, 2 for usage errors and bad input files (the message names the file,
@@ -199,6 +199,16 @@ def _describe(args: argparse.Namespace) -> int:
 # --------------------------------------------------------------------------------------------
 
 
+def _installed_version() -> str:
+    """The installed package's version (its metadata; the source's own when not installed)."""
+    from importlib import metadata
+
+    try:
+        return metadata.version("uwml")
+    except metadata.PackageNotFoundError:
+        return "(not installed)"
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``uwml`` argument parser."""
     formatter = argparse.RawDescriptionHelpFormatter
@@ -207,6 +217,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Hydrodynamic joint torques and joint losses of underwater legs and arms (the paper's 3-DOF leg built in).",
         epilog=_EXIT,
     )
+    parser.add_argument("--version", action="version", version=f"uwml {_installed_version()}")
     commands = parser.add_subparsers(dest="command", required=True)
 
     demo = commands.add_parser("demo", help="print the paper leg's torque components along a gait-like motion")
@@ -254,7 +265,7 @@ Torque columns are not needed.
 Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet): columns time,
 drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses visc1..N, seal1..N [N·m],
 current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + seal). With
---robot (a uwml model file), the robot on a fixed, upright base, and six more columns
+--robot (a uwml model file, a URDF or an MJCF), the robot on a fixed, upright base, and six more columns
 base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its origin).
 Sign: the environment's torque on each joint, in the joint's positive direction. Losses use
 the illustrative defaults of uwml.model.losses on every joint (uwml.JointLosses()). The paper's leg
@@ -329,7 +340,7 @@ not written (standard output has the rows before it).""",
     add_study_command(commands, formatter)
     simulate = commands.add_parser(
         "simulate",
-        help="the paper's leg walking in sea water under four controllers, simulated (needs uwml[mujoco])",
+        help="the paper's leg walking in sea water under five controllers, simulated (needs uwml[mujoco])",
         formatter_class=formatter,
         description="""The paper's control question, simulated (uwml.sim.studies; MuJoCo with uwml's forces and the
 added mass in the mass matrix): the paper's leg on a fixed stand follows our walking gait in sea

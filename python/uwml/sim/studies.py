@@ -4,7 +4,7 @@ The paper ends where a controller's designer begins: the leg's controller "must 
 influence of the viscous resistance and dynamic seal resistance", and of the water. Here the
 paper's leg, on a fixed stand, follows our walking gait in sea water at several depths, in MuJoCo
 with uwml's forces (:mod:`uwml.sim.mujoco`: drag, added mass in the mass matrix, buoyancy, the joint
-losses of :class:`uwml.JointLosses` at the depth's pressure), under four controllers:
+losses of :class:`uwml.JointLosses` at the depth's pressure), under five controllers:
 
 * ``land``: PD on the joint error plus the land model's feedforward (the rigid body's inverse
   dynamics with gravity, ``mj_inverse``): a controller tuned on land;
@@ -179,12 +179,14 @@ def run(
     *,
     coefficient_scale: float | None = None,
     payload: float = 0.0,
+    plant_losses: bool = True,
 ) -> Run:
     """Simulates the paper's leg following the gait under ``controller`` at ``depth`` [m], for
     ``cycles`` gait cycles (more than 0, at most ``MAX_CYCLES``). ``coefficient_scale``: the
     controller's Cd and Cm over the plant's (default 1.3 for the ``_wrong`` controllers, else
     1); ``payload``: a mass [kg, 0 to 100] the foot carries (at the last link's centre of mass,
-    without volume), which the controller does not know."""
+    without volume), which the controller does not know; ``plant_losses``: False for a plant
+    whose joints have no losses (the controllers' feedforward keeps them)."""
     if controller not in CONTROLLERS:
         raise ValueError(f"controller must be one of {', '.join(CONTROLLERS)}, got {controller!r}")
     if not (math.isfinite(depth) and 0.0 <= depth <= 11_000.0):
@@ -199,13 +201,14 @@ def run(
 
     leg = Leg.paper()
     robot = Robot(leg.joints, leg.links, losses=JointLosses(), water=SEA)
+    plant = robot if plant_losses else Robot(leg.joints, leg.links, water=SEA)
     xml = model_xml or leg_model(leg)
     model = mujoco.MjModel.from_xml_string(xml)
     # The controller's model: the plant without the payload.
     known = mujoco.MjModel.from_xml_string(xml) if payload else model
     if payload:
         model.body_mass[model.nbody - 1] += payload
-    sim = Simulation(model, robot, depth=depth, temperature_c=TEMPERATURE_C)
+    sim = Simulation(model, plant, depth=depth, temperature_c=TEMPERATURE_C)
     land = mujoco.MjData(known)
     gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
     steps = round(cycles * gait.period / TIMESTEP)
@@ -385,18 +388,29 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3, c
     return Drift("PD + uwml base wrench" if with_uwml else "PD", time, position, attitude)
 
 
+#: The tracking figure's line styles, one per controller.
+LINE_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
+
+
 def _errors(row: dict[str, Any], kind: str) -> list[float]:
     """A study row's RMS or peak tracking error per joint [rad]."""
     return [float(row[f"{kind}_error_{j}"]) for j in (1, 2, 3)]
 
 
 def write_report(
-    rows: list[dict[str, Any]], series: list[Run], out: Path, fluid: FluidComparison | None = None, drifts: Sequence[Drift] = ()
+    rows: list[dict[str, Any]],
+    series: list[Run],
+    out: Path,
+    fluid: FluidComparison | None = None,
+    drifts: Sequence[Drift] = (),
+    lossless: Sequence[Run] = (),
 ) -> Path:
     """The Markdown report and its figures in ``out``: the table and the depth sweep of the
     study's ``rows`` (``depth``, ``controller``, ``rms_error_<j>``, ``peak_error_<j>``,
     ``positive_work``), the tracking figure of the runs ``series`` (time series, the deepest
-    depth's), and with ``fluid`` MuJoCo's fluid models against uwml."""
+    depth's), and with ``fluid`` MuJoCo's fluid models against uwml; ``lossless``: runs of the
+    ``hydro`` and ``hydro_wrong`` controllers on a plant without joint losses, which say why the
+    wrong coefficients track better when the losses are left out of the feedforward."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -408,9 +422,15 @@ def write_report(
     deepest = series
     figure, axes = plt.subplots(3, 2, figsize=(11, 8), sharex=True)
     for joint in range(3):
-        for r in deepest:
-            axes[joint, 0].plot(r.time, np.degrees(r.error[:, joint]), label=r.controller)
-            axes[joint, 1].plot(r.time, r.torque[:, joint], label=r.controller)
+        for index, r in enumerate(deepest):
+            # Controllers whose lines would lie on each other: each its own dash and width.
+            line: dict[str, Any] = {
+                "linestyle": LINE_STYLES[index % len(LINE_STYLES)],
+                "linewidth": 2.4 - 0.4 * index,
+                "label": r.controller,
+            }
+            axes[joint, 0].plot(r.time, np.degrees(r.error[:, joint]), **line)
+            axes[joint, 1].plot(r.time, r.torque[:, joint], **line)
         axes[joint, 0].set_ylabel(f"joint {joint + 1} error [°]")
         axes[joint, 1].set_ylabel(f"joint {joint + 1} torque [N·m]")
     axes[0, 0].legend(fontsize=8)
@@ -460,6 +480,27 @@ def write_report(
         "![worst joint RMS error against depth](depth_sweep.png)",
         "",
     ]
+    if lossless:
+        by_name = {r.controller: r for r in lossless}
+        right, wrong = by_name["hydro"], by_name["hydro_wrong"]
+        shallow = [row for row in rows if row["depth"] == depths[0]]
+        with_losses = {row["controller"]: ", ".join(f"{x:.3f}" for x in np.degrees(_errors(row, "rms"))) for row in shallow}
+        lines += [
+            "## Why the wrong coefficients track better",
+            "",
+            (
+                f"At {depths[0]:g} m the plant's joints have losses that `hydro` leaves out of its feedforward; "
+                f"`hydro_wrong`'s 30 % too much drag stands in for part of them: RMS error per joint "
+                f"{with_losses.get('hydro_wrong', '—')}° against `hydro`'s {with_losses.get('hydro', '—')}°."
+            ),
+            "On the same plant without joint losses, the right coefficients track better, as they should:",
+            (
+                f"`hydro` {np.degrees(max(right.rms_error())):.4f}° against `hydro_wrong`'s {np.degrees(max(wrong.rms_error())):.4f}° "
+                f"({max(wrong.rms_error()) / max(right.rms_error()):.0f} times worse). With the losses in the feedforward"
+            ),
+            "(`hydro_losses`), the right coefficients track better too.",
+            "",
+        ]
     if fluid is not None:
         figure, axes = plt.subplots(3, 1, figsize=(8, 8), sharex=True)
         for joint in range(3):

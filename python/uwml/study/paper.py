@@ -57,9 +57,11 @@ def command(
         raise RuntimeError(f"run {failed[0]['run']} ({failed[0]['controller']} at {failed[0]['depth']:g} m) failed: {failed[0]['error']}")
     deepest = max(float(d) for d in depths)
     series = [run(controller, deepest, cycles) for controller in CONTROLLERS]
+    shallowest = min(float(d) for d in depths)
+    lossless = [run(controller, shallowest, cycles, plant_losses=False) for controller in ("hydro", "hydro_wrong")]
     fluid = fluid_models()
     drifts = [rov_drift(False), rov_drift(True)]
-    report = write_report(rows, series, root, fluid, drifts)
+    report = write_report(rows, series, root, fluid, drifts, lossless)
     summaries = [
         {
             "controller": row["controller"],
@@ -76,11 +78,12 @@ def command(
         print(json.dumps({"runs": summaries, "fluid_models_relative_rms_difference": comparison, "rov": vehicle}))
         return 0
     print(f"uwml simulate: the paper's leg on our gait, sea water at {TEMPERATURE_C:g} °C; last of {cycles:g} cycles")
-    print(f"{'depth':>7} {'controller':>18} {'RMS error per joint [°]':>26} {'peak [°]':>24} {'work/cycle':>11}")
+    columns = [f"RMS j{j} [°]" for j in (1, 2, 3)] + [f"peak j{j} [°]" for j in (1, 2, 3)]
+    print(f"{'depth [m]':>9} {'controller':>18} " + " ".join(f"{c:>12}" for c in columns) + f" {'work/cycle [J]':>15}")
     for row in summaries:
-        rms = " ".join(f"{x:7.3f}" for x in np.degrees(row["rms_error_rad"]))
-        peak = " ".join(f"{x:7.3f}" for x in np.degrees(row["peak_error_rad"]))
-        print(f"{row['depth_m']:7g} {row['controller']:>18} {rms:>26} {peak:>24} {row['positive_work_per_cycle_j']:9.1f} J")
+        errors = np.degrees([*row["rms_error_rad"], *row["peak_error_rad"]])
+        cells = " ".join(f"{x:12.3f}" for x in errors)
+        print(f"{row['depth_m']:9g} {row['controller']:>18} {cells} {row['positive_work_per_cycle_j']:15.1f}")
     for name in ("box", "ellipsoid"):
         difference = ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
         print(f"MuJoCo's {name} fluid model against uwml on one gait cycle, RMS difference per joint: {difference}")
