@@ -26,9 +26,11 @@ def test_frame_origins_add_along_the_tree() -> None:
 
 def test_the_description_states_masses_volumes_and_net_buoyancy() -> None:
     text = describe(arm_on_rov(), uwml.Water(density=1025.0, gravity=9.81))
-    # The hull: (1025 · 0.29 − 300) · 9.81 = −26.98 N; link 0: (1025 · 0.004 − 12) · 9.81 = −77.50 N.
-    assert "base             mass       300 kg  volume      0.29 m³  net buoyancy     -26.98 N" in text
-    assert "net buoyancy      -77.5 N" in text
+    # The hull: 1025 · 0.29 · 9.81 = 2916 N of buoyancy, net (1025 · 0.29 − 300) · 9.81 = −26.98 N;
+    # link 0: net (1025 · 0.004 − 12) · 9.81 = −77.50 N.
+    assert "base             mass       300 kg  volume      0.29 m³  buoyancy      2916 N  net     -26.98 N" in text
+    assert "net      -77.5 N" in text
+    assert "net buoyancy" not in text and "buoyancy = ρ V g, the water's; net = ρ V g − m g" in text
     assert "joint6           prismatic parent link5" in text
     assert "circular, D 0.6 m" in text and "Cd (2, 2.1)" in text
     assert "   14 link6" in text
@@ -40,7 +42,7 @@ def test_uwml_describe_prints_and_draws(tmp_path: Path, capsys: pytest.CaptureFi
     picture = tmp_path / "arm.png"
     assert main(["describe", "--robot", str(path), "--plot", str(picture), "--density", "1025"]) == 0
     out = capsys.readouterr().out
-    assert "7 joints, 15 segments" in out and "net buoyancy" in out
+    assert "7 joints, 15 segments" in out and "buoyancy" in out and " net " in out
     assert picture.stat().st_size > 10_000 and picture.read_bytes()[:4] == b"\x89PNG"
     assert main(["describe"]) == 0
     assert "3 joints, 2 segments" in capsys.readouterr().out
@@ -60,3 +62,23 @@ def test_uwml_describe_reads_urdf_and_mjcf_with_their_hydro_files(capsys: pytest
         assert "3 joints, 2 segments" in out and "mass     19.26 kg" in out and "-119 N" in out
     assert main(["describe", "--robot", str(data / "paper_leg.urdf"), "--hydro", str(data / "missing.toml")]) == 2
     assert "missing.toml" in capsys.readouterr().err
+
+
+def test_rounding_residues_show_as_zero_and_bodies_without_drag_are_named() -> None:
+    joint = uwml.Joint((0.0, 0.0, 0.0), (0.0, 0.0, 1.0))
+    segment = uwml.Segment((0.0, 0.0, -1.665e-17), (1.0, 0.0, 2.22e-16), 0.5, section="circular", diameter=0.1)
+    robot = uwml.Robot(
+        [joint, joint], [uwml.Link(1.0, (0.25, 0, 0), 0.004, segments=[segment]), uwml.Link(0.5, (0, 0, 0), 0.001, name="can")]
+    )
+    text = describe(robot)
+    assert "start (0, 0, 0)" in text and "e-17" not in text and "e-16" not in text
+    assert "in the water without drag or added mass (a volume, no segment, no lumped model): can" in text
+
+
+def test_the_picture_draws_boxes_with_a_legend(tmp_path: Path) -> None:
+    from uwml.viz.describe import _box
+
+    segment = uwml.Segment((0, 0, 0), (1, 0, 0), 2.0, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.2), area=0.08)
+    corners = _box(np.zeros(3), np.array([1.0, 0.0, 0.0]), segment)
+    # Flow along y sees widths[0] = 0.4, the extent along z; flow along z sees 0.2, along y.
+    np.testing.assert_allclose(np.ptp(corners, axis=0), [2.0, 0.2, 0.4])

@@ -53,18 +53,28 @@ def describe(robot: Robot, water: Water | None = None) -> str:
     for name, joint in zip(robot.joint_names, robot.joints):
         parent = parent_names[0 if joint.parent is None or joint.parent < 0 else joint.parent + 1]
         lines.append(f"  {name:16s} {joint.kind:9s} parent {parent:16s} origin {_fmt(joint.origin)}  axis {_fmt(joint.axis)}")
-    lines += ["", "bodies (net buoyancy = ρ V g − m g, upwards)"]
+    lines += ["", "bodies (buoyancy = ρ V g, the water's; net = ρ V g − m g, with the weight; both upwards)"]
     total_mass = total_volume = 0.0
     for name, body, _ in _bodies(robot):
-        net = (water.density * body.volume - body.mass) * water.gravity
+        gross = water.density * body.volume * water.gravity
+        net = gross - body.mass * water.gravity
         total_mass += body.mass
         total_volume += body.volume
         lines.append(
-            f"  {name:16s} mass {body.mass:9.4g} kg  volume {body.volume:9.4g} m³  net buoyancy {net:+10.4g} N  "
+            f"  {name:16s} mass {body.mass:9.4g} kg  volume {body.volume:9.4g} m³  buoyancy {gross:9.4g} N  net {_number(net, '+10.4g')} N  "
             f"COM {_fmt(body.com)}  COB {_fmt(body.cob or body.com)}  segments {len(body.segments)}"
         )
-    net_total = (water.density * total_volume - total_mass) * water.gravity
-    lines.append(f"  {'all':16s} mass {total_mass:9.4g} kg  volume {total_volume:9.4g} m³  net buoyancy {net_total:+10.4g} N")
+    gross_total = water.density * total_volume * water.gravity
+    net_total = gross_total - total_mass * water.gravity
+    lines.append(
+        f"  {'all':16s} mass {total_mass:9.4g} kg  volume {total_volume:9.4g} m³  buoyancy {gross_total:9.4g} N  net {_number(net_total, '+10.4g')} N"
+    )
+    dragless = [name for name, body, _ in _bodies(robot) if body.volume > 0.0 and not body.segments and body.lumped is None]
+    if dragless:
+        lines.append(
+            f"  in the water without drag or added mass (a volume, no segment, no lumped model): {', '.join(dragless)}; "
+            "give them segments or a lumped model (a hydro file's [links.NAME]) if they move through the water"
+        )
     lines += ["", "segments (in their body's frame)"]
     index = 0
     for name, body, _ in _bodies(robot):
@@ -92,7 +102,15 @@ def describe(robot: Robot, water: Water | None = None) -> str:
 
 
 def _fmt(v: object) -> str:
-    return "(" + ", ".join(f"{x:.4g}" for x in np.asarray(v, dtype=float)) + ")"
+    """A vector with its rounding residue (below 1e-12 of its largest entry, or of 1) shown as 0."""
+    values = np.asarray(v, dtype=float)
+    scale = max(1.0, float(np.max(np.abs(values)))) if values.size else 1.0
+    return "(" + ", ".join(_number(x, ".4g", scale) for x in values) + ")"
+
+
+def _number(x: float, spec: str, scale: float = 1.0) -> str:
+    """``x`` formatted, a rounding residue (below 1e-12 of ``scale``) as 0."""
+    return format(0.0 if abs(x) < 1e-12 * scale else float(x), spec)
 
 
 def _pair(values: tuple[float, float]) -> str:
@@ -100,10 +118,29 @@ def _pair(values: tuple[float, float]) -> str:
     return f"{a:g}" if a == b else f"({a:g}, {b:g})"
 
 
+#: The twelve edges of a box, as pairs of corner indices of :func:`_box`.
+_BOX_EDGES = ((0, 1), (1, 3), (3, 2), (2, 0), (4, 5), (5, 7), (7, 6), (6, 4), (0, 4), (1, 5), (2, 6), (3, 7))
+
+
+def _box(start: np.ndarray, axis: np.ndarray, segment: Segment) -> np.ndarray:
+    """The eight corners of a rectangular segment's box: along its axis from ``start``, its
+    widths across (``widths[0]`` along ``normals[1]``, ``widths[1]`` along ``normals[0]``, the
+    widths that face the flow along ``normals[0]`` and ``normals[1]``)."""
+    n0, n1 = (np.asarray(n, dtype=float) for n in (segment.normals or ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0))))
+    w0, w1 = segment.widths or (0.0, 0.0)
+    corners = []
+    for along in (0.0, segment.length):
+        for a in (-0.5, 0.5):
+            for b in (-0.5, 0.5):
+                corners.append(start + along * axis + a * w1 * n0 + b * w0 * n1)
+    return np.asarray(corners)
+
+
 def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
-    """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up): segments as thick lines
-    (circular blue, rectangular orange, width by their size), joints as black dots with their axes,
-    centres of mass (x) and buoyancy (o). Written to ``path`` (format from the extension)."""
+    """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up), with a legend: circular
+    segments as thick blue lines (width by their diameter), rectangular ones as their boxes'
+    outlines (orange), joints as black dots with their axes, centres of mass (x) and buoyancy
+    (o). Written to ``path`` (format from the extension)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -117,10 +154,14 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
         for segment in body.segments:
             start = origin + np.asarray(segment.start)
             end = start + segment.length * np.asarray(segment.axis)
-            size = segment.diameter if segment.section == "circular" else max(segment.widths or (0.0, 0.0))
-            color = "tab:blue" if segment.section == "circular" else "tab:orange"
-            ax.plot(*np.stack([start, end]).T, color=color, linewidth=max(1.5, 40.0 * float(size or 0.0)), solid_capstyle="butt", alpha=0.8)
-            points += [start, end]
+            if segment.section == "circular":
+                ax.plot(*np.stack([start, end]).T, color="tab:blue", linewidth=max(1.5, 40.0 * float(segment.diameter or 0.0)), alpha=0.8)
+                points += [start, end]
+            else:
+                corners = _box(start, np.asarray(segment.axis), segment)
+                for a, b in _BOX_EDGES:
+                    ax.plot(*np.stack([corners[a], corners[b]]).T, color="tab:orange", linewidth=1.2)
+                points += list(corners)
         com, cob = origin + np.asarray(body.com), origin + np.asarray(body.cob or body.com)
         ax.scatter(*com, marker="x", color="k", s=25)
         ax.scatter(*cob, marker="o", facecolors="none", edgecolors="tab:green", s=30)
@@ -138,10 +179,17 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
-    ax.set_title(
-        title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0 (blue circular, orange rectangular; x COM, o COB)",
-        fontsize=9,
-    )
+    from matplotlib.lines import Line2D
+
+    legend = [
+        Line2D([], [], color="tab:blue", linewidth=4, label="circular segment (width ∝ diameter)"),
+        Line2D([], [], color="tab:orange", linewidth=1.2, label="rectangular segment (its box)"),
+        Line2D([], [], color="k", marker="o", markersize=4, linewidth=1.0, label="joint and its axis"),
+        Line2D([], [], color="k", marker="x", linestyle="none", label="centre of mass"),
+        Line2D([], [], markeredgecolor="tab:green", markerfacecolor="none", marker="o", linestyle="none", label="centre of buoyancy"),
+    ]
+    ax.legend(handles=legend, loc="upper left", fontsize=7)
+    ax.set_title(title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
