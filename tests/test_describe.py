@@ -82,3 +82,15 @@ def test_the_picture_draws_boxes_with_a_legend(tmp_path: Path) -> None:
     corners = _box(np.zeros(3), np.array([1.0, 0.0, 0.0]), segment)
     # Flow along y sees widths[0] = 0.4, the extent along z; flow along z sees 0.2, along y.
     np.testing.assert_allclose(np.ptp(corners, axis=0), [2.0, 0.2, 0.4])
+
+
+def test_a_joint_that_mujoco_split_is_named_as_the_planar_joint_it_was(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    pytest.importorskip("mujoco")
+    path = tmp_path / "split.xml"
+    path.write_text(
+        '<mujoco><worldbody><body name="base"><body name="arm"><joint name="j3_elbow_TX" type="slide" axis="1 0 0"/>'
+        '<joint name="j3_elbow_TY" type="slide" axis="0 1 0"/><geom type="sphere" size="0.05" mass="1"/></body></body></worldbody></mujoco>'
+    )
+    assert main(["describe", "--robot", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "joint 'j3_elbow' is a planar or floating joint" in err and "uwml takes revolute, continuous and prismatic joints" in err

@@ -493,3 +493,8 @@ def test_unweighted_statistics_are_ordinary_least_squares_in_the_datas_units() -
     assert summary["cod"] == result.cod and summary["sigma_given"] is False
     # With σ given, no such note.
     assert "by construction" not in fit.hydro_coefficients(log, sigma=2.0).fit_report()
+
+
+def test_the_report_numbers_joints_from_1_as_the_command_line() -> None:
+    report = fit.hydro_coefficients(synthetic.land_water_experiment(cycles=1, seed=2), joints=(0, 2)).fit_report()
+    assert "joints             = 1, 3 (numbered from 1" in report and "0-based" not in report

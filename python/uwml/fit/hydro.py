@@ -78,7 +78,11 @@ class HydroFit(FitResult):
     _unknown_sigma_note = " (weighted by σ estimated from the residuals: ≈ N − p and 1 by construction)"
 
     def _report_statistics(self) -> list[str]:
-        lines = [f"    joints (0-based)   = {', '.join(str(j) for j in self.joints) or 'none'}", f"    coefficients per   = {self.per}"]
+        numbered = ", ".join(str(j + 1) for j in self.joints) or "none"
+        lines = [
+            f"    joints             = {numbered} (numbered from 1, as --joints and the columns q1 …)",
+            f"    coefficients per   = {self.per}",
+        ]
         if self.base:
             lines.insert(1, f"    base wrench rows   = {', '.join(BASE_ROWS[c] for c in self.base)}")
         if self.dropped:

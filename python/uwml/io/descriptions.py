@@ -360,6 +360,17 @@ def _from_model(model: Any, file: HydroFile, source: str, hydro_source: str) -> 
         return _mapped(model, file, source, hydro_source)
 
 
+def _split_joint(first: str, second: str) -> str | None:
+    """The URDF joint that MuJoCo split into ``first`` and ``second`` (its planar and floating
+    joints become ``NAME_TX``, ``NAME_TY``, ``NAME_RZ``, …), or None."""
+    suffixes = ("_TX", "_TY", "_TZ", "_RX", "_RY", "_RZ")
+    for a in suffixes:
+        for b in suffixes:
+            if first.endswith(a) and second.endswith(b) and first[: -len(a)] == second[: -len(b)] and first[: -len(a)]:
+                return first[: -len(a)]
+    return None
+
+
 def _mapped(model: Any, file: HydroFile, source: str, hydro_source: str) -> DescriptionParts:
     hydro = file.links
     mujoco = _mujoco()
@@ -397,6 +408,12 @@ def _mapped(model: Any, file: HydroFile, source: str, hydro_source: str) -> Desc
                 f"{source}: {joint_label(j)} is a {what} joint; uwml takes revolute/continuous/hinge and prismatic/slide joints (and a free root)"
             )
         if b in moving:
+            split = _split_joint(model.joint(moving[b]).name, model.joint(j).name)
+            if split is not None:
+                raise DescriptionError(
+                    f"{source}: joint {quoted(split)} is a planar or floating joint (MuJoCo reads it as the joints "
+                    f"{joint_label(moving[b])}, {joint_label(j)}, …); uwml takes revolute, continuous and prismatic joints (and a free root)"
+                )
             raise DescriptionError(
                 f"{source}: body {quoted(body_name[b])} has several joints ({joint_label(moving[b])}, {joint_label(j)}); uwml takes one per link"
             )
