@@ -281,6 +281,7 @@ def test_loss_bad_inputs(make, error, match):
         make()
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @pytest.mark.parametrize("one_state", [True, False])
 def test_forces_that_overflow_raise_naming_the_sample(one_state: bool) -> None:
     """A finite state whose forces exceed float64 (a joint speed of 1e300 rad/s: the drag goes

@@ -432,6 +432,7 @@ def test_joint1_drag_equals_eq8_for_any_motion(seed: int, cd: float) -> None:
         assert err.max() <= 1e-9, f"joint-1 drag vs eq. (8) {source}: relative error {err.max():.3g} at sample {err.argmax()}"
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @given(seed=seeds, density=st.floats(500.0, 1500.0), gravity=st.floats(0.0, 20.0))
 def test_buoyancy_equals_eqs_17_and_21(seed: int, density: float, gravity: float) -> None:
     """τ_f2 = {m2 g Lc2 c2 + m3 g [L2 c2 + Lc3 s23]} ρ/ρm, τ_f3 = m3 g Lc3 s23 ρ/ρm, τ_f1 = 0 exactly."""
@@ -586,6 +587,7 @@ def test_every_term_is_linear_in_its_coefficient(kind: str, seed: int, factor: f
     np.testing.assert_array_equal(zero.total, zero.buoyancy)
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @pytest.mark.parametrize("kind", ["paper", "chain"])
 @PROPERTY_EXAMPLES
 @given(seed=seeds, density=st.floats(1.0, 2000.0), gravity=st.floats(0.0, 30.0))
@@ -603,6 +605,7 @@ def test_water_scaling(kind: str, seed: int, density: float, gravity: float) -> 
         )
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @given(seed=seeds, density=st.floats(500.0, 1500.0), gravity=st.floats(0.0, 20.0))
 def test_paper_leg_gravity_is_minus_density_ratio_times_buoyancy(seed: int, density: float, gravity: float) -> None:
     """COM = COB and V = m/ρm on the paper leg: the weight −m g at the COM and the buoyancy
@@ -811,6 +814,7 @@ def test_normals_within_the_tolerance_become_an_exact_frame() -> None:
             assert_batch_close(getattr(out, key), expected[key], 1e-12, f"{path} {key}", natural[key])
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @pytest.mark.parametrize("size", [1e5, 1e8, 1e10, 1e15, 1e300])
 def test_huge_joint_angles_keep_their_accuracy(size: float) -> None:
     """The batch path's SIMD sine and cosine reduce their argument in double precision only

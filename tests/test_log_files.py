@@ -30,6 +30,7 @@ def _bits(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a).view(np.int64)
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 @pytest.mark.parametrize("seed", (0, 1, 2))
 def test_csv_round_trip_is_bit_for_bit(tmp_path: Path, seed: int) -> None:
     log = _random_log(500, seed)
@@ -69,6 +70,7 @@ def test_files_of_the_previous_writer_still_read(tmp_path: Path) -> None:
         np.testing.assert_array_equal(getattr(back, name), getattr(log, name))
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 def test_lenient_cells_as_before(tmp_path: Path) -> None:
     """Spaces around cells and names, blank lines, extra columns and cells beyond the header's:
     read as the pure-Python reader did."""

@@ -226,6 +226,7 @@ def test_the_water_of_a_model_file_is_range_checked(tmp_path: Path, key: str, va
         uwml.Robot.load(path)
 
 
+@pytest.mark.filterwarnings("ignore::uwml.PlausibilityWarning")  # values beyond plausible on purpose
 def test_a_robot_whose_water_a_model_file_cannot_hold_is_not_saved(tmp_path: Path) -> None:
     leg = uwml.Leg.paper()
     path = tmp_path / "leg.toml"

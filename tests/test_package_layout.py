@@ -33,7 +33,7 @@ REFERENCE = "uwml.reference"
 #: ones. Within a layer the graph must still be acyclic. The former flat modules and the package
 #: itself (``uwml/__init__.py``) come last: they re-export names for compatibility.
 LAYERS = (
-    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml._ray"),
+    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml._ray", "uwml.plausibility"),
     ("uwml.sea",),
     ("uwml.model",),
     ("uwml.io",),
@@ -561,11 +561,12 @@ def test_the_former_modules_import_without_warnings() -> None:
 
 def test_the_top_level_namespace_is_unchanged() -> None:
     """Every name it had, and the ones added since on purpose (the lumped model of
-    docs/model.md section 12.1: ``LumpedModel``, ``MAX_LUMPED_BODIES``)."""
+    docs/model.md section 12.1: ``LumpedModel``, ``MAX_LUMPED_BODIES``; the warning of likely
+    unit mistakes, ``PlausibilityWarning``)."""
     assert uwml.__all__ == [
         "MAX_JOINTS", "MAX_LUMPED_BODIES", "MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "DescriptionError",
         "Drive", "EnvironmentJacobians", "EnvironmentTorques", "ExtrapolationWarning", "HydroRegressors", "HydroTorques", "Joint",
-        "JointLosses", "Leg", "Link", "Log", "LossTorques", "LumpedModel", "ModelError", "ModelFileError", "OilDrag", "Robot",
+        "JointLosses", "Leg", "Link", "Log", "LossTorques", "LumpedModel", "ModelError", "ModelFileError", "OilDrag", "PlausibilityWarning", "Robot",
         "RobotEnvironment", "RobotJacobians", "RobotRegressors", "RobotTorques", "Seal", "Segment", "UwmlError",
         "WalkingGait", "Water", "hydrostatic_pressure_mpa", "paper_leg_foot", "paper_leg_ik", "read_log", "write_log",
     ]  # fmt: skip

@@ -175,7 +175,9 @@ def test_regressors_times_every_coefficient_are_the_references_forces(seed: int,
     assert_matches_reference(forces, expected)
     # A lumped model's damping columns carry no added mass, its added-mass columns no drag:
     # the damping half alone is the reference's drag without the segments.
-    damping_only = regressors.torques(0.0, 0.0, 0.0, np.array([np.r_[np.zeros(21), model.coefficients()[21:]] for _, model in robot.lumped_models]).reshape(m, 63))
+    damping_only = regressors.torques(
+        0.0, 0.0, 0.0, np.array([np.r_[np.zeros(21), model.coefficients()[21:]] for _, model in robot.lumped_models]).reshape(m, 63)
+    )
     assert np.all(damping_only.added_mass == 0.0) and np.all(damping_only.base.added_mass == 0.0)
 
 

@@ -34,6 +34,7 @@ from .model.joint_losses import JointLosses, LossTorques
 from .model.losses import Drive, OilDrag, Seal
 from .model.lumped import LumpedModel
 from .model.parts import Joint, Link, Segment, Water
+from .plausibility import PlausibilityWarning
 from .robot.base_motion import BaseMotion
 from .robot.leg import MAX_JOINTS, Leg
 from .robot.results import (
@@ -75,6 +76,7 @@ __all__ = [
     "ModelError",
     "ModelFileError",
     "OilDrag",
+    "PlausibilityWarning",
     "Robot",
     "RobotEnvironment",
     "RobotJacobians",

@@ -29,6 +29,9 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
+    "PLAUSIBLE_ANGLE",
+    "PLAUSIBLE_ANGULAR_SPEED",
+    "PLAUSIBLE_LINEAR_SPEED",
     "Chain",
     "Losses",
     "ModelError",
@@ -53,6 +56,9 @@ MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
 MAX_ROBOT_JOINTS: int
+PLAUSIBLE_ANGLE: float
+PLAUSIBLE_ANGULAR_SPEED: float
+PLAUSIBLE_LINEAR_SPEED: float
 MAX_LUMPED_BODIES: int
 MAX_SEGMENTS: int
 

@@ -83,6 +83,7 @@ from numpy.typing import NDArray
 
 from .._checks import shown
 from ..domains import MAX_ROBOT_JOINTS
+from ..plausibility import check_time_step
 from ._files import not_regular, write_atomically
 from .sampling import (
     MAX_TIME_S,
@@ -413,6 +414,8 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
     if time.size == 0:
         raise ValueError(f"{source}: row 2, column 'time': no data rows")
     _check_time(time, source)
+    if time.size > 1:
+        check_time_step(float(np.median(np.diff(time))), source, stacklevel=4)
     arrays: dict[str, Array] = {}
     for family in families:
         width = _BASE_FAMILIES.get(family, n)

@@ -22,6 +22,7 @@ import numpy as np
 
 from .._checks import to_float
 from ..domains import MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY
+from ..plausibility import check_density
 from ..sea.conditions import SEA_WATER_DENSITY
 from .lumped import LumpedModel
 
@@ -369,6 +370,7 @@ class Water:
         for name, limit, unit in (("density", MAX_DENSITY, "kg/m³"), ("gravity", MAX_GRAVITY, "m/s²")):
             if getattr(self, name) > limit:
                 raise ValueError(f"water.{name} must be at most {limit:g} {unit}, got {getattr(self, name)!r}")
+        check_density(self.density)
 
 
 #: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).

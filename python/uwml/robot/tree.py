@@ -22,6 +22,7 @@ from ..io import descriptions, modelfile
 from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
+from ..plausibility import check_states
 from ..sea.conditions import loss_conditions
 from ._arguments import (
     _Inputs,
@@ -307,7 +308,9 @@ class Robot:
         if (cd is None) != (cm is None):
             # One given: the other is the segments' own.
             cd, cm = (self._own_cd, cm) if cd is None else (cd, self._own_cm)
-        return robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
+        inputs = robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
+        check_states(inputs[0][0], inputs[0][1], [joint.kind == "revolute" for joint in self._joints], stacklevel=4)
+        return inputs
 
     def hydro(
         self,

@@ -17,7 +17,7 @@ use uwml_core::{
 mod batch;
 mod coupling;
 mod inputs;
-mod one;
+pub(crate) mod one;
 mod rk4;
 mod view;
 

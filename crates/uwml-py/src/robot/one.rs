@@ -6,7 +6,7 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyString, PyTuple, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Owner, Section, Water, robot_hydro};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, JointKind, Owner, Section, Water, robot_hydro};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -109,6 +109,24 @@ fn coefficient_table(
     Some(Some(table))
 }
 
+/// The largest plausible speed of a revolute joint [rad/s] (`uwml.PLAUSIBLE_ANGULAR_SPEED`):
+/// about 290 r/min, beyond any manipulator's or leg's joint; degrees per second are above it.
+pub(crate) const PLAUSIBLE_ANGULAR_SPEED: f64 = 30.0;
+/// The largest plausible speed of a prismatic joint [m/s] (`uwml.PLAUSIBLE_LINEAR_SPEED`).
+pub(crate) const PLAUSIBLE_LINEAR_SPEED: f64 = 10.0;
+/// The largest plausible angle of a revolute joint [rad] (`uwml.PLAUSIBLE_ANGLE`): two turns
+/// either way; degrees given as radians are far beyond.
+pub(crate) const PLAUSIBLE_ANGLE: f64 = 4.0 * core::f64::consts::PI;
+
+/// Whether every joint's angle and speed is within the plausible bounds above (else the general
+/// path answers, and warns).
+fn plausible<const J: usize>(robot: &Model, q: &[f64; J], qd: &[f64; J]) -> bool {
+    robot.joints().iter().zip(q).zip(qd).all(|((joint, q), qd)| match joint.kind {
+        JointKind::Revolute => q.abs() <= PLAUSIBLE_ANGLE && qd.abs() <= PLAUSIBLE_ANGULAR_SPEED,
+        JointKind::Prismatic => qd.abs() <= PLAUSIBLE_LINEAR_SPEED,
+    })
+}
+
 /// Whether `segment` has a circular section (one coefficient for every direction).
 fn circular(segment: &uwml_core::RobotSegment<f64>) -> bool {
     matches!(segment.section, Section::Circular { .. })
@@ -124,6 +142,10 @@ impl OneState {
         fill_values(q, row.q.get_mut(..n)?)?;
         fill_values(qd, row.qd.get_mut(..n)?)?;
         fill_values(qdd, row.qdd.get_mut(..n)?)?;
+        // A state that looks like a unit mistake goes to the general path, which warns.
+        if !plausible(robot, &row.q, &row.qd) {
+            return None;
+        }
         if !threads_ok(threads) {
             return None;
         }
