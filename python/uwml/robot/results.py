@@ -46,7 +46,8 @@ class HydroTorques:
 
     @property
     def total(self) -> FloatArray:
-        """``drag + added_mass + buoyancy``: the paper's ``τ_w``."""
+        """``drag + added_mass + buoyancy``: the water's torque, the paper's ``τ_w``; the
+        links' weight (``gravity``) is not in it."""
         return self.drag + self.added_mass + self.buoyancy
 
 
@@ -160,7 +161,8 @@ class BaseWrench:
 
     @property
     def total(self) -> FloatArray:
-        """``drag + added_mass + buoyancy``."""
+        """``drag + added_mass + buoyancy``: the water's wrench (``buoyancy`` the gross
+        ``ρ V``, with Froude-Krylov); the weight (``gravity``) is not in it."""
         return self.drag + self.added_mass + self.buoyancy
 
 

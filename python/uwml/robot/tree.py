@@ -326,7 +326,9 @@ class Robot:
         threads: int = 1,
         added_mass: str = "morison",
     ) -> RobotTorques:
-        """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the base.
+        """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the
+        base, each apart: ``total`` is the water's (drag, added mass and buoyancy), without the
+        weight (``gravity``); the base's buoyancy is the gross ``ρ V g``, not net of the weight.
 
         Parameters
         ----------
