@@ -51,3 +51,9 @@ pub use tree::{
     AddedMassForm, EnvironmentWrench, JointForces, RobotData, Wrench, robot_added_mass_matrix, robot_hydro,
     robot_hydro_regressors, robot_joint_added_mass_matrix,
 };
+
+/// The README's Rust snippets, compiled and run as doctests (`cargo test --doc`): the README's
+/// examples run as written.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+struct ReadmeDoctests;

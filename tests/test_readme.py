@@ -1,0 +1,68 @@
+"""The README's examples run as written: every Python snippet on its own, in order, in a fresh
+interpreter, in a folder holding the repository's ``examples/``; the command-line block line by
+line after them (it uses the files they and ``examples/my_arm/make_logs.py`` make); the URDF and
+hydro file shown are the example's files. (Its Rust snippet is a doctest of uwml-core.)"""
+
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+PYTHON = re.findall(r"```python\n(.*?)```", README, re.DOTALL)
+#: The command-line block of "Your own robot, from its URDF".
+COMMANDS = next(block for block in re.findall(r"```bash\n(.*?)```", README, re.DOTALL) if "make_logs.py" in block)
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A folder like the repository's root for the snippets: ``examples/`` and what they write."""
+    path = tmp_path_factory.mktemp("readme")
+    shutil.copytree(ROOT / "examples", path / "examples")
+    return path
+
+
+def run(arguments: list[str], folder: Path) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(arguments, cwd=folder, capture_output=True, text=True, timeout=600, check=False)
+
+
+@pytest.mark.parametrize("index", range(len(PYTHON)))
+def test_each_python_snippet_runs_on_its_own(index: int, folder: Path) -> None:
+    pytest.importorskip("mujoco")
+    done = run([sys.executable, "-W", "error", "-c", PYTHON[index]], folder)
+    assert done.returncode == 0, f"snippet {index}:\n{PYTHON[index]}\n{done.stderr[-3000:]}"
+
+
+def test_the_command_line_block_runs_line_by_line(folder: Path) -> None:
+    pytest.importorskip("mujoco")
+    # my_arm.toml: written by the snippet of "Your own robot" (run here first if not yet).
+    if not (folder / "my_arm.toml").exists():
+        snippet = next(block for block in PYTHON if 'arm.save("my_arm.toml")' in block)
+        assert run([sys.executable, "-c", snippet], folder).returncode == 0
+    for line in COMMANDS.strip().splitlines():
+        command = line.split("  #")[0].strip()
+        words = shlex.split(command.split(">")[0])
+        program = [sys.executable] if words[0] == "python" else [sys.executable, "-m", "uwml"]
+        done = run([*program, *words[1:]], folder)
+        assert done.returncode == 0, f"{command}\n{done.stderr[-3000:]}"
+    assert (folder / "torques.csv").stat().st_size > 1000 and (folder / "my_arm.png").stat().st_size > 10_000
+
+
+def test_the_files_shown_are_the_examples_files() -> None:
+    urdf = re.search(r"```xml\n(<robot name=\"my_arm\">.*?)```", README, re.DOTALL)
+    hydro = re.search(r"```toml\n(# examples/my_arm/my_arm.hydro.toml.*?)```", README, re.DOTALL)
+    assert urdf is not None and hydro is not None
+    assert urdf.group(1) == (ROOT / "examples/my_arm/my_arm.urdf").read_text(encoding="utf-8")
+    assert hydro.group(1) == (ROOT / "examples/my_arm/my_arm.hydro.toml").read_text(encoding="utf-8")
+
+
+def test_the_study_the_readme_runs_is_a_valid_study() -> None:
+    from uwml import study
+
+    assert "uwml study examples/study.toml" in README
+    assert study.load(ROOT / "examples/study.toml").n_runs == 36
