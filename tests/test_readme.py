@@ -46,11 +46,16 @@ def test_the_command_line_block_runs_line_by_line(folder: Path) -> None:
         assert run([sys.executable, "-c", snippet], folder).returncode == 0
     for line in COMMANDS.strip().splitlines():
         command = line.split("  #")[0].strip()
-        words = shlex.split(command.split(">")[0])
+        command, _, into = command.partition(">")
+        words = shlex.split(command)
         program = [sys.executable] if words[0] == "python" else [sys.executable, "-m", "uwml"]
         done = run([*program, *words[1:]], folder)
         assert done.returncode == 0, f"{command}\n{done.stderr[-3000:]}"
-    assert (folder / "torques.csv").stat().st_size > 1000 and (folder / "my_arm.png").stat().st_size > 10_000
+        if into.strip():
+            (folder / into.strip()).write_text(done.stdout)
+    assert (folder / "my_arm.png").stat().st_size > 10_000
+    assert (folder / "torques.csv").read_text().startswith("time,drag1,drag2,")
+    assert "#define MY_ARM_WATER_DENSITY 1025.0" in (folder / "my_arm.h").read_text()
 
 
 def test_the_files_shown_are_the_examples_files() -> None:

@@ -278,13 +278,13 @@ def test_the_forward_pass_solves_rigid_plus_environment_on_a_floating_base(file:
 
 
 def test_the_readme_simulation_example_runs(monkeypatch: pytest.MonkeyPatch) -> None:
-    """README "Simulating in water": run as written, beside the test arm (tests/data)."""
+    """README "Simulating in water": run as written, from the repository's root (examples/)."""
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1]
     section = (root / "README.md").read_text(encoding="utf-8").split("## Simulating in water", 1)[1]
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
-    monkeypatch.chdir(root / "tests" / "data")
+    monkeypatch.chdir(root)
     namespace: dict = {}
     exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the README's own example
     sim = namespace["sim"]

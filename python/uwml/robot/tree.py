@@ -359,6 +359,8 @@ class Robot:
             energy-consistent. Also taken by :meth:`environment`, :meth:`link_wrenches`,
             :meth:`hydro_regressors` and :meth:`jacobians`.
 
+        Notes
+        -----
         Any argument with a sample axis gives results with one; the others are broadcast. One
         state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
         of single values) is read, checked and evaluated in one short native call, with the same
