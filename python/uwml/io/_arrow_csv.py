@@ -190,7 +190,7 @@ class CsvTable:
 
     def _column(self, index: int) -> str:
         """The column ``index`` (from 0) for an error message: its name, or its number beyond the header."""
-        return repr(self.header[index]) if index < len(self.header) else str(index + 1)
+        return shown(self.header[index]) if index < len(self.header) else str(index + 1)
 
     def _not_utf8(self) -> ValueError:
         return not_utf8_error(self._raw, self.prefix)
@@ -285,7 +285,7 @@ class CsvTable:
                 )
         column = self.header[min(cells, len(self.header) - 1)]
         what = "missing value" if cells < len(self.header) else "too many cells"
-        return ValueError(f"{self.prefix}row {row}, column {column!r}: {what} ({cells} cells, header has {len(self.header)})")
+        return ValueError(f"{self.prefix}row {row}, column {shown(column)}: {what} ({cells} cells, header has {len(self.header)})")
 
     def _rows_of_wrong_length(self, names: Sequence[str]) -> dict[str, Any]:
         wrong = self._first_row_of_wrong_length()

@@ -44,14 +44,21 @@ def estimate_derivatives(
         Naming the first row (the header is row 1) whose time step is not within
         ``UNIFORM_TOLERANCE`` of the median step, or when the log is shorter than the window.
     """
-    t = np.asarray(time, dtype=np.float64)
-    positions = np.asarray(q, dtype=np.float64)
-    if t.ndim != 1 or positions.ndim != 2 or positions.shape[0] != t.shape[0]:
-        raise ValueError(f"{source}: time must have shape (n,) and q (n, n_joints), got {t.shape} and {positions.shape}")
-    dt, window = _sampling(t, window_s, polyorder, source)
-    qd, qdd = _savgol(positions, window, polyorder, dt)
+    dt, qd, qdd = _filtered(time, q, "q (n, n_joints)", window_s, polyorder, source)
     _check_derivatives(qd, qdd, source, dt)
     return qd, qdd
+
+
+def _filtered(time: ArrayLike, x: ArrayLike, what: str, window_s: float, polyorder: int, source: str) -> tuple[float, Array, Array]:
+    """The time step, and the first and second derivatives of ``x`` (rows: the samples of
+    ``time``; ``what`` names its shape in the error) by the Savitzky-Golay filter."""
+    t = np.asarray(time, dtype=np.float64)
+    values = np.asarray(x, dtype=np.float64)
+    if t.ndim != 1 or values.ndim != 2 or values.shape[0] != t.shape[0]:
+        raise ValueError(f"{source}: time must have shape (n,) and {what}, got {t.shape} and {values.shape}")
+    dt, window = _sampling(t, window_s, polyorder, source)
+    first, second = _savgol(values, window, polyorder, dt)
+    return dt, first, second
 
 
 def _sampling(t: Array, window_s: float, polyorder: int, source: str) -> tuple[float, int]:
@@ -119,12 +126,7 @@ def estimate_rates(
 ) -> Array:
     """The time derivative of ``x`` (shape ``(n, k)``: a base's twist) by the Savitzky-Golay
     filter of :func:`estimate_derivatives`, with its checks; errors name ``column``."""
-    t = np.asarray(time, dtype=np.float64)
-    values = np.asarray(x, dtype=np.float64)
-    if t.ndim != 1 or values.ndim != 2 or values.shape[0] != t.shape[0]:
-        raise ValueError(f"{source}: time must have shape (n,) and {column} (n, k), got {t.shape} and {values.shape}")
-    dt, window = _sampling(t, window_s, polyorder, source)
-    rates, _ = _savgol(values, window, polyorder, dt)
+    dt, rates, _ = _filtered(time, x, f"{column} (n, k)", window_s, polyorder, source)
     bad = np.flatnonzero(~np.isfinite(rates).all(axis=1))
     if bad.size:
         i = int(bad[0])

@@ -209,7 +209,6 @@ def run(
     if payload:
         model.body_mass[model.nbody - 1] += payload
     sim = Simulation(model, plant, depth=depth, temperature_c=TEMPERATURE_C)
-    land = mujoco.MjData(known)
     gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
     steps = round(cycles * gait.period / TIMESTEP)
     time = np.arange(steps + 1, dtype=np.float64) * TIMESTEP
@@ -222,15 +221,32 @@ def run(
         feedforward -= hydro.hydro
     if controller.startswith("hydro_losses"):
         feedforward -= hydro.visc + hydro.seal
-    # PD gains on the rigid inertia at the start.
+    q, qd, torque = track(sim, known, (q_d, qd_d, qdd_d), feedforward, PD_HZ)
+    last = round(gait.period / TIMESTEP)
+    return Run(controller, depth, time, q, q_d, torque, qd, window=slice(max(0, steps + 1 - last), None))
+
+
+def track(
+    sim: Simulation, known: Any, desired: tuple[FloatArray, FloatArray, FloatArray], feedforward: FloatArray, pd_hz: float
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """A fixed-base robot in ``sim`` following the ``desired`` joint trajectory ``(q, q̇, q̈)`` (one
+    row per step) under PD (a critically damped ``pd_hz`` loop on each joint's rigid inertia at
+    the start) plus the rigid body's inverse dynamics of the model ``known`` (what the controller
+    knows: ``mj_inverse``) plus ``feedforward``: the joints' ``q``, ``q̇`` and the motor torque at
+    every step."""
+    import mujoco
+
+    q_d, qd_d, qdd_d = desired
+    land = mujoco.MjData(known)
     land.qpos[:] = q_d[0]
     mujoco.mj_forward(known, land)
-    inertia = np.zeros((model.nv, model.nv))
+    inertia = np.zeros((known.nv, known.nv))
     mujoco.mj_fullM(known, land, inertia)
-    omega = 2.0 * math.pi * PD_HZ
+    omega = 2.0 * math.pi * pd_hz
     kp, kd = np.diag(inertia) * omega**2, 2.0 * np.diag(inertia) * omega
     sim.data.qpos[:], sim.data.qvel[:] = q_d[0], qd_d[0]
     q, qd, torque = np.zeros_like(q_d), np.zeros_like(q_d), np.zeros_like(q_d)
+    steps = len(q_d) - 1
     for k in range(steps + 1):
         q[k], qd[k] = sim.data.qpos, sim.data.qvel
         land.qpos[:], land.qvel[:], land.qacc[:] = q_d[k], qd_d[k], qdd_d[k]
@@ -238,8 +254,7 @@ def run(
         torque[k] = land.qfrc_inverse + feedforward[k] + kp * (q_d[k] - q[k]) + kd * (qd_d[k] - qd[k])
         if k < steps:
             sim.step(torque=torque[k])
-    last = round(gait.period / TIMESTEP)
-    return Run(controller, depth, time, q, q_d, torque, qd, window=slice(max(0, steps + 1 - last), None))
+    return q, qd, torque
 
 
 def study(

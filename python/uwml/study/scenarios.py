@@ -139,11 +139,11 @@ def _robot_run(values: dict[str, Any]) -> dict[str, float]:
     """One run of the ``robot`` scenario (module docstring)."""
     import math
 
-    import mujoco
     import numpy as np
 
     from ..robot.files import model_and_robot
     from ..sim.mujoco import Simulation
+    from ..sim.studies import track
 
     model, robot = model_and_robot(values["robot"], values["hydro"], floating=False)
     n = robot.n_joints
@@ -171,22 +171,7 @@ def _robot_run(values: dict[str, Any]) -> dict[str, float]:
         feedforward -= forces.hydro
         if controller == "hydro_losses":
             feedforward -= forces.visc + forces.seal
-    land = mujoco.MjData(model)
-    land.qpos[:] = q_d[0]
-    mujoco.mj_forward(model, land)
-    inertia = np.zeros((model.nv, model.nv))
-    mujoco.mj_fullM(model, land, inertia)
-    loop = 2.0 * math.pi * float(values["kp_hz"])
-    kp, kd = np.diag(inertia) * loop**2, 2.0 * np.diag(inertia) * loop
-    sim.data.qpos[:], sim.data.qvel[:] = q_d[0], qd_d[0]
-    q, qd, torque = np.zeros_like(q_d), np.zeros_like(q_d), np.zeros_like(q_d)
-    for k in range(steps + 1):
-        q[k], qd[k] = sim.data.qpos, sim.data.qvel
-        land.qpos[:], land.qvel[:], land.qacc[:] = q_d[k], qd_d[k], qdd_d[k]
-        mujoco.mj_inverse(model, land)
-        torque[k] = land.qfrc_inverse + feedforward[k] + kp * (q_d[k] - q[k]) + kd * (qd_d[k] - qd[k])
-        if k < steps:
-            sim.step(torque=torque[k])
+    q, qd, torque = track(sim, model, (q_d, qd_d, qdd_d), feedforward, float(values["kp_hz"]))
     window = slice(max(0, steps + 1 - round(float(values["period"]) / dt)), None)
     error = (q - q_d)[window]
     power = (torque * qd)[window]
