@@ -393,3 +393,22 @@ def test_the_command_line_names_the_file_and_element_and_exits_2(
         assert main(command + arguments) == 2
         err = capsys.readouterr().err
         assert err.startswith("uwml: error: ") and re.search(message, err), err
+
+
+def test_a_mesh_link_given_only_a_volume_warns_that_it_has_no_drag(tmp_path: Path) -> None:
+    pytest.importorskip("mujoco")
+    urdf = tmp_path / "mesh.urdf"
+    urdf.write_text(MESH_URDF)
+    hydro = tmp_path / "h.toml"
+    hydro.write_text("[links.hand]\nvolume = 0.001\n")
+    with pytest.warns(uwml.PlausibilityWarning, match=r"h\.toml: \[links\.hand\] gives the mesh link 'hand' a volume but no segments"):
+        robot = uwml.Robot.from_urdf(urdf, hydro)
+    assert robot.links[0].volume == 0.001 and not robot.links[0].segments
+    # With a segment, or out of the water: nothing to say (the tests turn warnings into errors).
+    hydro.write_text(
+        '[links.hand]\nvolume = 0.001\n[[links.hand.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\n'
+        "axis = [1.0, 0.0, 0.0]\nlength = 0.1\ndiameter = 0.05\narea = 0.002\ncd = [1.2, 1.2]\ncm = [1.0, 1.0]\n"
+    )
+    uwml.Robot.from_urdf(urdf, hydro)
+    hydro.write_text("[links.hand]\ndry = true\n")
+    uwml.Robot.from_urdf(urdf, hydro)

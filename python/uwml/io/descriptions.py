@@ -88,6 +88,7 @@ from typing import Any, NoReturn, TypeVar
 import numpy as np
 
 from ..model.parts import Joint, Link
+from ..plausibility import PlausibilityWarning
 from ._description_geometry import _Body, _body, _rotation, _t
 from ._description_io import DescriptionError, clipped, quoted
 from ._description_xml import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS, limits_exceeded, scan
@@ -270,6 +271,14 @@ def _spec(path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], 
                     f"{source}: link {quoted(body.name)} has a collision mesh ({quoted(geom.meshname) if geom.meshname else 'unnamed'}), "
                     f"which uwml cannot turn into segments: describe the link in a hydro file ({_table('links', body.name)} with volume "
                     "and segments, or dry = true)"
+                )
+            if not entry.dry and not entry.segments and entry.lumped is None and (entry.volume or 0.0) > 0.0:
+                warnings.warn(
+                    f"{hydro_source}: {_table('links', body.name)} gives the mesh link {quoted(body.name)} a volume but no "
+                    "segments and no lumped model: it has buoyancy, but no drag and no added mass; give it segments or a "
+                    "lumped model if it moves through the water (or dry = true if it is out of it)",
+                    PlausibilityWarning,
+                    stacklevel=4,
                 )
             if body.explicitinertial or fmt == "URDF":
                 spec.delete(geom)  # its geometry is the hydro file's; its mass is the inertial's
