@@ -122,6 +122,11 @@ def test_the_command_line_takes_several_logs_and_a_pattern(tmp_path: Path, capsy
     assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--json"]) == 0
     pattern = json.loads(capsys.readouterr().out)
     assert listed["params"] == pattern["params"] and len(listed["logs"]) == 3
+    assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--no-points", "--json"]) == 0
+    lean = json.loads(capsys.readouterr().out)
+    assert lean["params"] == pytest.approx(listed["params"], rel=1e-12) and lean["points"]["time"] == []
+    assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--no-points", "--robust"]) == 2
+    assert "--no-points: a robust fit and the figure need the points" in capsys.readouterr().err
     if importlib.util.find_spec("ray") is not None:
         assert main(["fit", "hydro", str(tmp_path / "dive*.csv"), "--ray", "--workers", "2", "--json"]) == 0
         spread = json.loads(capsys.readouterr().out)
@@ -151,9 +156,38 @@ def test_a_fit_on_ray_is_the_fit_in_one_process(tmp_path: Path, robust: bool) ->
     ray.init(num_cpus=2, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
     try:
         spread = fit.hydro_coefficients(paths, on_ray=True, **arguments)
+        lean = None if robust else fit.hydro_coefficients(paths, on_ray=True, points=False, **arguments)
     finally:
         ray.shutdown()
+    if lean is not None:  # without the points, from the actors' residual sums
+        assert lean.residual.size == 0 and lean.chisqr == pytest.approx(here.chisqr, rel=1e-10)
+        assert lean.cod == pytest.approx(here.cod, rel=1e-10) and lean.params == pytest.approx(here.params, rel=1e-10)
     assert_same_fit(spread, here, 1e-10)
     assert [log.disagrees for log in spread.logs] == [log.disagrees for log in here.logs] == [False, False, True, False]
     for a, b in zip(spread.logs, here.logs, strict=True):
         assert a.rows == b.rows and a.residual_rms == pytest.approx(b.residual_rms, rel=1e-10)
+
+
+def test_a_fit_without_its_points_has_the_same_statistics(tmp_path: Path) -> None:
+    """points=False: the statistics from sums over the logs, the per-point arrays left out."""
+    logs = dives((2.2, 2.2, 2.6, 2.2))
+    arguments = {"joints": (0, 1), "per": "link"}
+    full = fit.hydro_coefficients(logs, **arguments)
+    lean = fit.hydro_coefficients(logs, points=False, **arguments)
+    assert lean.residual.size == lean.best_fit.size == lean.data.size == lean.time.size == 0
+    assert lean.var_names == full.var_names and lean.ndata == full.ndata and lean.nfree == full.nfree
+    for name in full.var_names:
+        assert lean.params[name] == full.params[name]
+        assert lean.stderr[name] == pytest.approx(full.stderr[name], rel=1e-10)
+    for name in STATISTICS:
+        scale = full.ndata if name in ("aic", "bic") else 0.0
+        assert getattr(lean, name) == pytest.approx(getattr(full, name), rel=1e-10, abs=1e-10 * scale), name
+    assert [log.disagrees for log in lean.logs] == [log.disagrees for log in full.logs] == [False, False, True, False]
+    for a, b in zip(lean.logs, full.logs, strict=True):
+        assert a.residual_rms == pytest.approx(b.residual_rms, rel=1e-10) and a.params == b.params
+    assert "R-squared" in lean.fit_report() and all(values == [] for values in lean.summary()["points"].values())
+    assert lean.sigma_given == full.sigma_given
+    known = fit.hydro_coefficients(logs, points=False, sigma=0.7, **arguments)
+    assert known.sigma_given and known.redchi == pytest.approx(fit.hydro_coefficients(logs, sigma=0.7, **arguments).redchi, rel=1e-10)
+    with pytest.raises(ValueError, match="points=False takes plain least squares"):
+        fit.hydro_coefficients(logs, points=False, robust=True)

@@ -26,6 +26,8 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         raise _UsageError(f"--joints: {what} has joints 1 to {leg.n_joints}, got {','.join(map(str, joints))}")
     if args.base and args.robot is None:
         raise _UsageError("--base: the paper's leg stands on a fixed base; give the --robot whose base (hull) is fitted")
+    if args.no_points and (args.robust or args.plot is not None):
+        raise _UsageError("--no-points: a robust fit and the figure need the points (leave out --robust and --plot)")
     if not joints and not args.base:
         raise _UsageError("--joints none: give --base, or at least one joint")
     source: Any = _pair(args.logs) or (args.logs[0] if len(args.logs) == 1 else list(args.logs))
@@ -40,6 +42,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         on_ray=args.ray or args.address is not None,
         address=args.address,
         workers=args.workers,
+        points=not args.no_points,
     )
     if args.plot is not None:
         from .viz import plot
@@ -213,6 +216,12 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
     )
     hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
+    hydro.add_argument(
+        "--no-points",
+        action="store_true",
+        help="keep no per-point arrays (the statistics from sums over the logs): bounded memory for many or long logs; "
+        "not with --robust or --plot",
+    )
     hydro.add_argument("--ray", action="store_true", help="share the logs out among the workers of a local Ray (docs/scale.md)")
     hydro.add_argument("--address", metavar="ADDR", help="a Ray cluster's address (auto, or ray://host:10001): the logs' workers there")
     hydro.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")

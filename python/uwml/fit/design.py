@@ -211,6 +211,19 @@ class _HydroDesign:
         self._last_fit = (np.array(x), result)
         return result
 
+    def residual_sums(self, x: Array) -> list[Array]:
+        """Per log, per selected row ``j``: the samples, ``Σ r_j²`` (``r = Xx − y``), ``Σ y_j`` and
+        ``Σ y_j²`` as an array ``(4, J)``: the statistics of a fit without its points."""
+        full = self._full(x)
+        sums = [np.zeros((4, len(self._joints))) for _ in self._log.items]
+        for index, chunk in self.indexed_chunks():
+            y = chunk[:, :, -1]
+            r = chunk[:, :, :-1] @ full - y
+            sums[index] += np.stack(
+                [np.full(len(self._joints), y.shape[1]), np.sum(r * r, axis=1), np.sum(y, axis=1), np.sum(y * y, axis=1)]
+            )
+        return sums
+
     def residuals(self, x: Array) -> Array:
         """``Xx − y``, sample-major."""
         fit, y = self.fitted(x)

@@ -17,7 +17,7 @@ from ..robot.leg import Leg
 from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .design import DESIGN_CACHE_BYTES, _HydroDesign
-from .least_squares import _fit_statistics, _Solution, _uncertainties
+from .least_squares import _fit_statistics, _parameter_covariance, _Solution, _uncertainties
 from .log_set import LogSet, log_set
 from .results import FitResult, _json_float, _json_floats
 from .robot_design import BASE_ROWS, _RobotHydroDesign
@@ -111,6 +111,70 @@ class HydroFit(FitResult):
         return {"time": _json_floats(self.time), "joint": np.asarray(self.joint, dtype=np.int64).tolist()}
 
 
+def _reduced_statistics(
+    sums: list[Array],
+    sigma_joint: Array,
+    solution: _Solution,
+    names: tuple[str, ...],
+    design: _HydroDesign,
+    logs: LogSet,
+    keep: NDArray[np.bool_],
+    scaled: bool,
+    known: bool,
+) -> tuple[dict[str, Any], tuple[LogDiagnostics, ...]]:
+    """:func:`_fit_statistics` of a fit from its logs' residual sums (``design.residual_sums``:
+    per log and row, the samples, ``Σ r²``, ``Σ y``, ``Σ y²``), without its points; and each
+    log's :class:`LogDiagnostics` as :func:`_log_diagnostics` makes them."""
+    total: Array = np.sum(sums, axis=0)
+    weights = sigma_joint**-2.0
+    n_rows, squares, y_sum, y_squares = total
+    ndata, nvarys = round(float(n_rows.sum())), len(names)
+    nfree = ndata - nvarys
+    chisqr = float(weights @ squares)
+    redchi = chisqr / nfree if nfree > 0 else math.nan
+    # Σ (y − m)²/σ² about the weighted mean m, and Σ (y − ȳ)² about the plain one.
+    weighted_total = float(weights @ y_squares - (weights @ y_sum) ** 2 / (weights @ n_rows))
+    plain_total = float(y_squares.sum() - y_sum.sum() ** 2 / ndata)
+    rss = float(squares.sum())
+    neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
+    covar, message = _parameter_covariance(solution, names, np.eye(nvarys), nfree, redchi, scaled)
+    stats = {
+        **_uncertainties(covar, names),
+        "ndata": ndata,
+        "nvarys": nvarys,
+        "nfree": nfree,
+        "chisqr": chisqr,
+        "redchi": redchi,
+        "rsquared": 1.0 - chisqr / weighted_total if weighted_total > 0.0 else math.nan,
+        "sigma_given": known,
+        "aic": neg2_log_likelihood + 2.0 * nvarys,
+        "bic": neg2_log_likelihood + math.log(ndata) * nvarys,
+        "residual": np.empty(0),
+        "best_fit": np.empty(0),
+        "data": np.empty(0),
+        "success": solution.success,
+        "message": message,
+        "nfev": solution.nfev,
+        "rss": rss,
+        "cod": 1.0 - rss / plain_total if plain_total > 0.0 else math.nan,
+    }
+    pooled = chisqr / ndata if ndata else math.nan
+    diagnostics = []
+    names_kept = list(names)
+    for item, log_sums, moments in zip(logs.items, sums, design.log_moments, strict=True):
+        count, log_squares = float(log_sums[0].sum()), log_sums[1]
+        rms = math.sqrt(float(log_squares.sum()) / count) if count else math.nan
+        ratio = float(weights @ log_squares) / count / pooled if count and pooled > 0.0 else math.nan
+        disagrees = len(logs.items) > 1 and ratio > 1.0 + 3.0 * math.sqrt(2.0 / max(count, 1.0))
+        own = moments.kept(keep)
+        gram = own.weighted_gram(sigma_joint)
+        eigenvalues = np.linalg.eigvalsh(gram) if gram.size else np.zeros(0)
+        determined = bool(eigenvalues.size and eigenvalues[0] > 1e-10 * eigenvalues[-1])
+        params = dict(zip(names_kept, own.solve(sigma_joint).tolist(), strict=True)) if determined else None
+        diagnostics.append(LogDiagnostics(item.source, item.n_samples, rms, params, bool(disagrees)))
+    return stats, tuple(diagnostics)
+
+
 def _log_diagnostics(
     design: _HydroDesign, logs: LogSet, keep: NDArray[np.bool_], sigma_joint: Array, residual: Array, whitened: Array
 ) -> tuple[LogDiagnostics, ...]:
@@ -179,6 +243,7 @@ def hydro_coefficients(
     on_ray: bool = False,
     address: str | None = None,
     workers: int | None = None,
+    points: bool = True,
 ) -> HydroFit:
     """Fit Cd and Cm (and a robot's axial drag and lumped models) to a land/water experiment
     (module docstring, "Hydrodynamic coefficients").
@@ -225,6 +290,11 @@ def hydro_coefficients(
         Share the logs out among Ray workers, each reducing its own (:mod:`uwml.fit.on_ray`): on
         the Ray this process runs, else the cluster at ``address``, else a local Ray of
         ``workers`` CPUs started for the fit. The result is the one-process fit's.
+    points : bool
+        Keep every fitted point's data, fit and residual in the result (about 6 floats a point).
+        False: the statistics come from sums over the logs (:func:`_reduced_statistics`), and the
+        result's per-point arrays are empty, so that memory stays bounded whatever the logs'
+        length; plain least squares only (a robust fit's scale is a median of the points).
     cache_bytes : int
         The design is computed by the Rust core chunk by chunk and, while it takes no more than
         this, kept for the later passes; above, each pass computes it again (memory stays
@@ -262,6 +332,8 @@ def hydro_coefficients(
         raise ValueError("base: a uwml.Leg stands on a fixed base; fit the base's wrench of a uwml.Robot")
     if lumped not in ("diagonal", "full", "given"):
         raise ValueError(f"lumped must be 'diagonal', 'full' or 'given', got {lumped!r}")
+    if robust and not points:
+        raise ValueError("points=False takes plain least squares: a robust fit's scale is a median of its points")
     if (
         (not selected_joints and not components)
         or len(set(selected_joints)) != len(selected_joints)
@@ -286,7 +358,7 @@ def hydro_coefficients(
             )
     # The leg's design takes the joints' indices, a robot's the rows of its regressors.
     design_rows = selected if isinstance(leg, Leg) else rows
-    what_is_fitted = (log, selected, selected_joints, components, per, robust, known, given_sigma, scale_covar)
+    what_is_fitted = (log, selected, selected_joints, components, per, robust, known, given_sigma, scale_covar, points)
     if not on_ray:
         design: _HydroDesign = (
             _HydroDesign(leg, log, water, per, design_rows, cache_bytes)
@@ -316,9 +388,10 @@ def _fit(
     known: bool,
     given_sigma: Array | None,
     scale_covar: bool,
+    points: bool = True,
 ) -> HydroFit:
     """The fit of ``design`` (module docstring): its normal equations, weights, the robust
-    iteration, the statistics and the result."""
+    iteration, the statistics and the result (``points``: with its per-point arrays)."""
     n_samples, n_selected = log.n_samples, len(selected)
     moments = design.moments()
     keep = np.diag(moments.gram.sum(axis=0)) > 0.0
@@ -361,6 +434,34 @@ def _fit(
         method = f"iteratively reweighted least squares (huber, f_scale = {HUBER_SCALE} σ)"
     if dropped:
         message += f"; dropped {', '.join(dropped)} (no regressor on joints {selected_joints}{_base_words(components)})"
+    if not points:
+        solution = _Solution(x=x, init=x, jacobian=None, residual=np.empty(0), success=success, message=message, nfev=nfev, gram=gram)
+        sums = design.residual_sums(x)
+        stats, diagnostics = _reduced_statistics(
+            sums, sigma_joint, solution, tuple(names), design, log, keep, scale_covar or not known, known
+        )
+        empty = np.empty(0)
+        result = HydroFit(
+            params=dict(zip(names, x.tolist(), strict=True)),
+            var_names=tuple(names),
+            fixed={},
+            init_values=init,
+            sigma=empty,
+            time=empty,
+            joint=np.empty(0, dtype=np.int64),
+            per=per,
+            joints=tuple(selected_joints),
+            base=tuple(components),
+            dropped=dropped,
+            source=log.source,
+            logs=diagnostics,
+            unit="N·m (−Δτ_motor − τ_buoy)",
+            method=method,
+            **{k: v for k, v in stats.items() if k not in ("rss", "cod")},
+        )
+        # The unweighted statistics, from the sums (the result has no points to compute them from).
+        result.__dict__["rss"], result.__dict__["cod"] = stats["rss"], stats["cod"]
+        return result
     sigma_rows = np.tile(sigma_joint, n_samples)
     best_fit, y_flat = design.fitted(x)
     residual = (best_fit - y_flat) / sigma_rows

@@ -120,20 +120,7 @@ def _fit_statistics(
     centred = z - ones * (ones @ z) / (ones @ ones)
     total = float(centred @ centred)
     neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
-    covar: Array | None = None
-    message = solution.message
-    singular = solution.singular_values()
-    gram = solution.normal_matrix()
-    if nfree <= 0:
-        message += "; no degrees of freedom left for uncertainties"
-    elif singular.size < nvarys or singular[-1] <= solution.rank_tolerance() * singular[0]:
-        weakest = names[int(np.argmin(np.diag(gram)))]
-        message += f"; the data do not determine every parameter (singular Jacobian; least sensitive: {weakest})"
-    else:
-        covar = np.asarray(np.linalg.inv(gram), dtype=np.float64)
-        if scale_covar or not known:
-            covar = covar * redchi
-        covar = transform @ covar @ transform.T
+    covar, message = _parameter_covariance(solution, names, transform, nfree, redchi, scale_covar or not known)
     return {
         **_uncertainties(covar, names),
         "ndata": ndata,
@@ -152,6 +139,28 @@ def _fit_statistics(
         "message": message,
         "nfev": solution.nfev,
     }
+
+
+def _parameter_covariance(
+    solution: _Solution, names: tuple[str, ...], transform: Array, nfree: int, redchi: float, scaled: bool
+) -> tuple[Array | None, str]:
+    """The covariance of ``transform @ x`` (None where the data do not determine it) and the
+    solution's message with the reason; ``scaled``: times the reduced χ²."""
+    covar: Array | None = None
+    message = solution.message
+    singular = solution.singular_values()
+    gram = solution.normal_matrix()
+    if nfree <= 0:
+        message += "; no degrees of freedom left for uncertainties"
+    elif singular.size < len(names) or singular[-1] <= solution.rank_tolerance() * singular[0]:
+        weakest = names[int(np.argmin(np.diag(gram)))]
+        message += f"; the data do not determine every parameter (singular Jacobian; least sensitive: {weakest})"
+    else:
+        covar = np.asarray(np.linalg.inv(gram), dtype=np.float64)
+        if scaled:
+            covar = covar * redchi
+        covar = transform @ covar @ transform.T
+    return covar, message
 
 
 def _uncertainties(covar: Array | None, names: tuple[str, ...]) -> dict[str, Any]:

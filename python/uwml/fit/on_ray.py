@@ -74,6 +74,9 @@ class _Worker:
     def fitted(self, x: Array) -> list[tuple[Array, Array]]:
         return [design.fitted(x) for design in self.designs]
 
+    def residual_sums(self, x: Array) -> list[Array]:
+        return [design.residual_sums(x)[0] for design in self.designs]
+
     def huber_normal_equations(self, x: Array, sigma_joint: Array, scale: float) -> tuple[Array, Array]:
         sums = [design.huber_normal_equations(x, sigma_joint, scale) for design in self.designs]
         return sum(g for g, _ in sums), sum(r for _, r in sums)  # type: ignore[return-value]
@@ -130,6 +133,9 @@ class RayDesign(_HydroDesign):
     def huber_normal_equations(self, x: Array, sigma_joint: Array, scale: float) -> tuple[Array, Array]:
         sums = self._ray.get([a.huber_normal_equations.remote(x, sigma_joint, scale) for a in self._actors])
         return sum(g for g, _ in sums), sum(r for _, r in sums)
+
+    def residual_sums(self, x: Array) -> list[Array]:
+        return self._gather(self._ray.get([a.residual_sums.remote(x) for a in self._actors]))
 
     def close(self) -> None:
         for actor in self._actors:
