@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import importlib.util
 import json
 import math
 import os
@@ -597,3 +598,7 @@ def test_fit_losses_takes_several_files_and_patterns(tmp_path: Path, loss_csv: P
                 assert split[model]["params"][name] == pytest.approx(value, rel=1e-9), (model, name)
     status, out, err = _in_process(["fit", "losses", str(tmp_path / "none*.csv")], capsys)
     assert status == 2 and "none*.csv: no file matches the pattern" in err
+    if importlib.util.find_spec("ray") is not None:  # the files read by Ray's workers
+        status, out, err = _in_process(["fit", "losses", str(tmp_path / "part*.csv"), "--ray", "--workers", "2", "--json"], capsys)
+        assert status == 0, err
+        assert json.loads(out)["seal"]["params"] == pytest.approx(whole["seal"]["params"], rel=1e-9)

@@ -90,7 +90,15 @@ def _fit_losses(args: argparse.Namespace) -> int:
     from .fit.log_set import expand_patterns
 
     paths = [str(p) for p in expand_patterns(list(args.csv))]
-    tables = [_read_losses(path, pairs=len(paths) == 1) for path in paths]
+    if args.ray or args.address is not None:
+        # Each file read and checked by a Ray worker; the rows fitted here.
+        from ._ray import ray_session
+
+        with ray_session(args.address, args.workers) as ray:
+            read = ray.remote(_read_losses)
+            tables = ray.get([read.remote(path, len(paths) == 1) for path in paths])
+    else:
+        tables = [_read_losses(path, pairs=len(paths) == 1) for path in paths]
     for path, table in zip(paths, tables, strict=True):
         if ("temperature_c" in table) != ("temperature_c" in tables[0]):
             raise ValueError(f"{path}: row 1 (header), column 'temperature_c': in some files and not in others ({paths[0]})")
@@ -245,5 +253,8 @@ Output: both fit reports on standard output; with --json only {"oil_drag": summa
     )
     losses.add_argument("csv", metavar="CSV", nargs="+", help="loss-experiment CSV files or glob patterns (their rows fitted together)")
     losses.add_argument("--json", action="store_true", help="print both results' summaries as JSON only")
+    losses.add_argument("--ray", action="store_true", help="read the files on the workers of a local Ray (docs/scale.md)")
+    losses.add_argument("--address", metavar="ADDR", help="read the files on the Ray cluster at this address")
+    losses.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
     losses.add_argument("--plot", metavar="DIR", help="directory for the fit figures (created if needed)")
     losses.set_defaults(run=_fit_losses)
