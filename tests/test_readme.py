@@ -84,3 +84,16 @@ def test_the_study_the_readme_runs_is_a_valid_study() -> None:
 
     assert "uwml study examples/study.toml" in README
     assert study.load(ROOT / "examples/study.toml").n_runs == 36
+
+
+def test_the_examples_small_log_gives_back_its_coefficients() -> None:
+    """examples/my_arm/land_water.csv: made with Cd 1.1 and Cm 0.9 (examples/my_arm/make_logs.py)."""
+    import uwml
+    from uwml import fit
+
+    pytest.importorskip("mujoco")
+    arm = uwml.Robot.from_urdf(ROOT / "examples/my_arm/my_arm.urdf", hydro=ROOT / "examples/my_arm/my_arm.hydro.toml")
+    result = fit.hydro_coefficients(str(ROOT / "examples/my_arm/land_water.csv"), arm, joints=(0, 1))
+    for name, truth in (("cd", 1.1), ("cm", 0.9)):  # within 4 standard errors (the log's torques have noise)
+        stderr = result.stderr[name]
+        assert stderr is not None and abs(result.params[name] - truth) <= 4.0 * stderr, (name, result.params[name], stderr)

@@ -5,7 +5,8 @@ that exist; a real rig's logs have the same columns). Run from the repository's 
 
 writes ``arm_log.csv`` (a trajectory: time, q, qd, qdd) and ``land_water.csv`` (the same
 trajectory run on land and in water with Cd = 1.1 and Cm = 0.9: time, q, qd, qdd, tau_land,
-tau_water) in the current folder.
+tau_water) in the current folder. ``examples/my_arm/land_water.csv`` is a small log of the same
+kind, kept in the repository (2 cycles at 100 Hz, 400 rows).
 """
 
 import uwml
