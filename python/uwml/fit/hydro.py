@@ -17,7 +17,7 @@ from ..robot.leg import Leg
 from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .design import DESIGN_CACHE_BYTES, _HydroDesign
-from .least_squares import _fit_statistics, _parameter_covariance, _Solution, _uncertainties
+from .least_squares import _fit_statistics, _Solution, _summary_statistics, _uncertainties
 from .log_set import LogSet, log_set
 from .results import FitResult, _json_float, _json_floats
 from .robot_design import BASE_ROWS, _RobotHydroDesign
@@ -124,73 +124,52 @@ def _reduced_statistics(
 ) -> tuple[dict[str, Any], tuple[LogDiagnostics, ...]]:
     """:func:`_fit_statistics` of a fit from its logs' residual sums (``design.residual_sums``:
     per log and row, the samples, ``Σ r²``, ``Σ y``, ``Σ y²``), without its points; and each
-    log's :class:`LogDiagnostics` as :func:`_log_diagnostics` makes them."""
+    log's :class:`LogDiagnostics`."""
     total: Array = np.sum(sums, axis=0)
     weights = sigma_joint**-2.0
     n_rows, squares, y_sum, y_squares = total
-    ndata, nvarys = round(float(n_rows.sum())), len(names)
-    nfree = ndata - nvarys
-    chisqr = float(weights @ squares)
-    redchi = chisqr / nfree if nfree > 0 else math.nan
+    ndata = round(float(n_rows.sum()))
     # Σ (y − m)²/σ² about the weighted mean m, and Σ (y − ȳ)² about the plain one.
     weighted_total = float(weights @ y_squares - (weights @ y_sum) ** 2 / (weights @ n_rows))
     plain_total = float(y_squares.sum() - y_sum.sum() ** 2 / ndata)
     rss = float(squares.sum())
-    neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
-    covar, message = _parameter_covariance(solution, names, np.eye(nvarys), nfree, redchi, scaled)
-    stats = {
-        **_uncertainties(covar, names),
-        "ndata": ndata,
-        "nvarys": nvarys,
-        "nfree": nfree,
-        "chisqr": chisqr,
-        "redchi": redchi,
-        "rsquared": 1.0 - chisqr / weighted_total if weighted_total > 0.0 else math.nan,
-        "sigma_given": known,
-        "aic": neg2_log_likelihood + 2.0 * nvarys,
-        "bic": neg2_log_likelihood + math.log(ndata) * nvarys,
-        "residual": np.empty(0),
-        "best_fit": np.empty(0),
-        "data": np.empty(0),
-        "success": solution.success,
-        "message": message,
-        "nfev": solution.nfev,
-        "rss": rss,
-        "cod": 1.0 - rss / plain_total if plain_total > 0.0 else math.nan,
-    }
-    pooled = chisqr / ndata if ndata else math.nan
-    diagnostics = []
-    names_kept = list(names)
-    for item, log_sums, moments in zip(logs.items, sums, design.log_moments, strict=True):
-        count, log_squares = float(log_sums[0].sum()), log_sums[1]
-        rms = math.sqrt(float(log_squares.sum()) / count) if count else math.nan
-        ratio = float(weights @ log_squares) / count / pooled if count and pooled > 0.0 else math.nan
-        disagrees = len(logs.items) > 1 and ratio > 1.0 + 3.0 * math.sqrt(2.0 / max(count, 1.0))
-        own = moments.kept(keep)
-        gram = own.weighted_gram(sigma_joint)
-        eigenvalues = np.linalg.eigvalsh(gram) if gram.size else np.zeros(0)
-        determined = bool(eigenvalues.size and eigenvalues[0] > 1e-10 * eigenvalues[-1])
-        params = dict(zip(names_kept, own.solve(sigma_joint).tolist(), strict=True)) if determined else None
-        diagnostics.append(LogDiagnostics(item.source, item.n_samples, rms, params, bool(disagrees)))
-    return stats, tuple(diagnostics)
+    stats = _summary_statistics(ndata, float(weights @ squares), weighted_total, solution, names, np.eye(len(names)), scaled)
+    empty = np.empty(0)
+    stats |= {"sigma_given": known, "residual": empty, "best_fit": empty, "data": empty}
+    stats |= {"rss": rss, "cod": 1.0 - rss / plain_total if plain_total > 0.0 else math.nan}
+    per_log = [(float(s[0].sum()), float(s[1].sum()), float(weights @ s[1])) for s in sums]
+    return stats, _diagnostics(design, logs, keep, sigma_joint, per_log)
 
 
 def _log_diagnostics(
     design: _HydroDesign, logs: LogSet, keep: NDArray[np.bool_], sigma_joint: Array, residual: Array, whitened: Array
 ) -> tuple[LogDiagnostics, ...]:
-    """Each log's :class:`LogDiagnostics` (``residual`` unweighted and ``whitened``, sample-major)."""
+    """Each log's :class:`LogDiagnostics` from the fit's points (``residual`` unweighted and
+    ``whitened``, sample-major)."""
     n_selected = sigma_joint.size
-    names = [name for name, k in zip(design.names, keep, strict=True) if k]
-    pooled = float(np.mean(whitened**2)) if whitened.size else math.nan
-    out = []
-    start = 0
-    for item, moments in zip(logs.items, design.log_moments, strict=True):
+    per_log, start = [], 0
+    for item in logs.items:
         points = slice(start * n_selected, (start + item.n_samples) * n_selected)
         start += item.n_samples
-        own_residual, own_whitened = residual[points], whitened[points]
-        rms = float(np.sqrt(np.mean(own_residual**2))) if own_residual.size else math.nan
-        ratio = float(np.mean(own_whitened**2)) / pooled if own_whitened.size and pooled > 0.0 else math.nan
-        disagrees = len(logs.items) > 1 and ratio > 1.0 + 3.0 * math.sqrt(2.0 / max(own_whitened.size, 1))
+        per_log.append(
+            (float(whitened[points].size), float(residual[points] @ residual[points]), float(whitened[points] @ whitened[points]))
+        )
+    return _diagnostics(design, logs, keep, sigma_joint, per_log)
+
+
+def _diagnostics(
+    design: _HydroDesign, logs: LogSet, keep: NDArray[np.bool_], sigma_joint: Array, per_log: list[tuple[float, float, float]]
+) -> tuple[LogDiagnostics, ...]:
+    """Each log's :class:`LogDiagnostics` from its points' count, ``Σ r²`` and ``Σ (r/σ)²``
+    (``per_log``), and its own normal equations (``design.log_moments``)."""
+    names = [name for name, k in zip(design.names, keep, strict=True) if k]
+    count_all = sum(count for count, _, _ in per_log)
+    pooled = sum(chi for _, _, chi in per_log) / count_all if count_all else math.nan
+    out = []
+    for item, moments, (count, squares, chi) in zip(logs.items, design.log_moments, per_log, strict=True):
+        rms = math.sqrt(squares / count) if count else math.nan
+        ratio = chi / count / pooled if count and pooled > 0.0 else math.nan
+        disagrees = len(logs.items) > 1 and ratio > 1.0 + 3.0 * math.sqrt(2.0 / max(count, 1.0))
         own = moments.kept(keep)
         gram = own.weighted_gram(sigma_joint)
         eigenvalues = np.linalg.eigvalsh(gram) if gram.size else np.zeros(0)

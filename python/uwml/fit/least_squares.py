@@ -112,15 +112,25 @@ def _fit_statistics(
     """lmfit's statistics of a fit to ``data`` whose errors are whitened by ``whiten`` (``L⁻¹``),
     and the covariance of ``transform @ x``; ``known``: whether the data's covariance is known
     (else it is scaled by the reduced χ² whatever ``scale_covar`` says)."""
-    ndata, nvarys = len(data), len(names)
-    nfree = ndata - nvarys
+    ndata = len(data)
     chisqr = float(solution.residual @ solution.residual)
-    redchi = chisqr / nfree if nfree > 0 else math.nan
     ones, z = whiten(np.ones(ndata)), whiten(data)
     centred = z - ones * (ones @ z) / (ones @ ones)
-    total = float(centred @ centred)
+    stats = _summary_statistics(ndata, chisqr, float(centred @ centred), solution, names, transform, scale_covar or not known)
+    return stats | {"sigma_given": known, "residual": solution.residual, "best_fit": best_fit, "data": data}
+
+
+def _summary_statistics(
+    ndata: int, chisqr: float, total: float, solution: _Solution, names: tuple[str, ...], transform: Array, scaled: bool
+) -> dict[str, Any]:
+    """lmfit's statistics of a fit of ``ndata`` points from its weighted χ² and the weighted total
+    sum of squares about the weighted mean (``total``), and the covariance of ``transform @ x``
+    (times the reduced χ² if ``scaled``): all but the points and ``sigma_given``."""
+    nvarys = len(names)
+    nfree = ndata - nvarys
+    redchi = chisqr / nfree if nfree > 0 else math.nan
     neg2_log_likelihood = ndata * math.log(max(chisqr, np.finfo(float).tiny) / ndata)
-    covar, message = _parameter_covariance(solution, names, transform, nfree, redchi, scale_covar or not known)
+    covar, message = _parameter_covariance(solution, names, transform, nfree, redchi, scaled)
     return {
         **_uncertainties(covar, names),
         "ndata": ndata,
@@ -129,12 +139,8 @@ def _fit_statistics(
         "chisqr": chisqr,
         "redchi": redchi,
         "rsquared": 1.0 - chisqr / total if total > 0.0 else math.nan,
-        "sigma_given": known,
         "aic": neg2_log_likelihood + 2.0 * nvarys,
         "bic": neg2_log_likelihood + math.log(ndata) * nvarys,
-        "residual": solution.residual,
-        "best_fit": best_fit,
-        "data": data,
         "success": solution.success,
         "message": message,
         "nfev": solution.nfev,

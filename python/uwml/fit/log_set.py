@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import glob
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -131,7 +131,7 @@ def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> 
         return _item(read_log(entry, n_joints), n_joints, what, torques, wrench)
     n, families, _ = _layout(_header(entry, source), n_joints, source)
     _check_joints(source, n, n_joints, what)
-    _with_columns(_Families(source, set(families)), torques, wrench)
+    _check_columns(source, set(families).__contains__, torques, wrench)
     checked = check_log(entry, n_joints)  # the header and the time column
     return _Item(source, checked.count, file=checked)
 
@@ -141,30 +141,25 @@ def _check_joints(source: str, n: int, n_joints: int, what: str) -> None:
         raise ValueError(f"{source}: row 1 (header), column 'q{n}': the log has {n} joints, {what} {n_joints}")
 
 
-@dataclass(frozen=True)
-class _Families:
-    """A file's column families, standing in for a :class:`Log` in :func:`_with_columns`."""
-
-    source: str
-    families: set[str]
-
-    def __getattr__(self, name: str) -> object:
-        return True if name in self.families else None
-
-
-def _with_columns(log: Any, torques: bool, wrench: bool) -> Any:
+def _with_columns(log: Log, torques: bool, wrench: bool) -> Log:
     """``log``, or a ValueError naming the first column a fit of the joints' rows (``torques``)
     or of the base's (``wrench``) needs and the log lacks."""
+    _check_columns(log.source, lambda family: getattr(log, family) is not None, torques, wrench)
+    return log
+
+
+def _check_columns(source: str, has: Callable[[str], bool], torques: bool, wrench: bool) -> None:
+    """A ValueError naming the first column family (``has(family)``: whether the log holds it)
+    a fit of the joints' rows (``torques``) or of the base's (``wrench``) needs and the log lacks."""
     needs = [("tau_land", "tau_water", "tau")] if torques else []
     needs += [("wrench_land", "wrench_water", "wrench")] if wrench else []
     for land, water, one in needs:
-        if getattr(log, land) is None or getattr(log, water) is None:
+        if not has(land) or not has(water):
             raise ValueError(
-                f"{log.source}: row 1 (header), column '{land}1': need {land} and {water} columns "
+                f"{source}: row 1 (header), column '{land}1': need {land} and {water} columns "
                 f"(or give a (land, water) pair of logs of one environment each, with {one} columns)"
             )
-    if wrench and log.base_twist is None:
+    if wrench and not has("base_twist"):
         raise ValueError(
-            f"{log.source}: row 1 (header), column 'base_twist1': a fit of the base's wrench needs the base's twist (base_twist1 … base_twist6)"
+            f"{source}: row 1 (header), column 'base_twist1': a fit of the base's wrench needs the base's twist (base_twist1 … base_twist6)"
         )
-    return log

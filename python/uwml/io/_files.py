@@ -12,9 +12,12 @@ from __future__ import annotations
 import os
 import secrets
 import stat
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
+from typing import BinaryIO
 
-__all__ = ["clipped", "not_regular", "read_regular", "write_atomically"]
+__all__ = ["atomic_file", "clipped", "not_regular", "read_regular", "write_atomically"]
 
 
 def clipped(text: str, limit: int = 160) -> str:
@@ -76,16 +79,24 @@ def read_regular(path: str | os.PathLike[str], what: str, error: type[ValueError
 
 
 def write_atomically(path: str | os.PathLike[str], data: bytes) -> None:
-    """Writes ``data`` to ``path``, whole or not at all: to a temporary file in the same folder,
-    synced, and renamed over ``path``; on any failure the temporary file is removed and an
-    existing file at ``path`` is left as it was."""
+    """Writes ``data`` to ``path``, whole or not at all (:func:`atomic_file`)."""
+    with atomic_file(path) as handle:
+        handle.write(data)
+
+
+@contextmanager
+def atomic_file(path: str | os.PathLike[str]) -> Iterator[BinaryIO]:
+    """A binary file to write ``path`` through, whole or not at all: a temporary file in the same
+    folder, synced and renamed over ``path`` when the block ends; on any failure the temporary
+    file is removed and an existing file at ``path`` is left as it was. What is written streams
+    to the disk (a large log is never held in memory twice)."""
     target = Path(os.path.realpath(path))  # through a symbolic link: replace the file it points to
     temporary = target.with_name(f".{target.name}.{secrets.token_hex(8)}.tmp")
     # Created with mode 0o666 (less the umask) like any new file; an existing file keeps its mode.
     fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
     try:
         with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
+            yield handle
             handle.flush()
             os.fsync(handle.fileno())
         if target.is_file():

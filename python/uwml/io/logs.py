@@ -84,7 +84,7 @@ from numpy.typing import NDArray
 from .._checks import shown
 from ..domains import MAX_ROBOT_JOINTS
 from ..plausibility import check_time_step
-from ._files import not_regular, write_atomically
+from ._files import atomic_file, not_regular
 from .sampling import (
     MAX_TIME_S,
     POLYORDER,
@@ -481,18 +481,24 @@ def write_log(log: Log, path_or_file: PathOrFile) -> None:
         if value is not None:
             names += [f"{family}{k}" for k in range(1, value.shape[1] + 1)]
             columns += [value[:, k] for k in range(value.shape[1])]
-    buffer = io.BytesIO()
-    if _is_parquet(path_or_file):
+    if not isinstance(path_or_file, str | os.PathLike):
+        buffer = io.BytesIO()
+        _write_table(buffer, names, columns, parquet=False)
+        path_or_file.write(buffer.getvalue().decode("utf-8"))
+        return
+    # Whole or not at all: a failed write leaves an existing file as it was.
+    with atomic_file(path_or_file) as handle:
+        _write_table(handle, names, columns, parquet=_is_parquet(path_or_file))
+
+
+def _write_table(handle: IO[bytes], names: list[str], columns: list[Array], parquet: bool) -> None:
+    """The columns as Parquet or CSV into a binary file."""
+    if parquet:
         import pyarrow
 
         table = pyarrow.table({name: np.ascontiguousarray(column) for name, column in zip(names, columns, strict=True)})
-        _parquet().write_table(table, buffer)
-    else:
-        from ._arrow_csv import write_table
-
-        write_table(buffer, names, columns)
-    if isinstance(path_or_file, str | os.PathLike):
-        # Whole or not at all: a failed write leaves an existing file as it was.
-        write_atomically(path_or_file, buffer.getvalue())
+        _parquet().write_table(table, handle)
         return
-    path_or_file.write(buffer.getvalue().decode("utf-8"))
+    from ._arrow_csv import write_table
+
+    write_table(handle, names, columns)

@@ -321,19 +321,16 @@ def _progress(total: int) -> Any:
 def write_replay(result: Replay, path: str | os.PathLike[str]) -> None:
     """The replay's time, pose and twist as a CSV or Parquet file (by the suffix), written whole
     or not at all (a temporary file renamed over ``path``)."""
-    from ..io._files import write_atomically
+    from ..io._files import atomic_file, write_atomically
 
     names = ["time", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"]
     table = np.column_stack([result.time, result.position, result.quaternion, result.twist])
     if str(path).endswith(".parquet"):
-        import io
-
         import pyarrow as pa
         import pyarrow.parquet as pq
 
-        buffer = io.BytesIO()
-        pq.write_table(pa.table({name: table[:, k] for k, name in enumerate(names)}), buffer)
-        write_atomically(path, buffer.getvalue())
+        with atomic_file(path) as handle:
+            pq.write_table(pa.table({name: table[:, k] for k, name in enumerate(names)}), handle)
         return
     lines = [",".join(names)] + [",".join(repr(float(x)) for x in row) for row in table]
     write_atomically(path, ("\n".join(lines) + "\n").encode("utf-8"))

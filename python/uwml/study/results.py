@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["figures", "read_results", "summary"]
+__all__ = ["done_runs", "figures", "read_results", "summary"]
 
 
 def read_results(out: str | Path) -> Any:
@@ -25,6 +25,17 @@ def read_results(out: str | Path) -> Any:
         return None
     table = pyarrow.concat_tables([pyarrow.parquet.read_table(path) for path in files], promote_options="permissive")
     return table.sort_by("run")
+
+
+def done_runs(out: str | Path) -> set[int]:
+    """The numbers of the runs finished in ``out`` (their ``run`` column alone read)."""
+    import pyarrow.parquet
+
+    return {
+        run
+        for path in (Path(out) / "runs").glob("part-*.parquet")
+        for run in pyarrow.parquet.read_table(path, columns=["run"]).column("run").to_pylist()
+    }
 
 
 def summary(out: str | Path) -> dict[str, Any]:

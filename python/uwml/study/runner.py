@@ -16,7 +16,6 @@ Parquet file of its own in ``OUT/runs/``, so that a study that stops keeps what 
 
 from __future__ import annotations
 
-import io
 import json
 import math
 import os
@@ -26,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..io._files import write_atomically
+from ..io._files import atomic_file, write_atomically
 from .config import StudyConfig
 from .scenarios import run_one
 
@@ -152,10 +151,9 @@ def _prepare(config: StudyConfig, root: Path, parts: Path, resume: bool) -> set[
             raise ValueError(f"{root}: holds a study already; resume it (--resume) or choose another --out")
         if previous.get("fingerprint") != config.fingerprint():
             raise ValueError(f"{root}: holds another study ({previous.get('source')}); its runs are not this study's")
-        from .results import read_results
+        from .results import done_runs
 
-        table = read_results(root)
-        return set(table.column("run").to_pylist()) if table is not None else set()
+        return done_runs(root)
     parts.mkdir(parents=True, exist_ok=True)
     what = {
         "fingerprint": config.fingerprint(),
@@ -176,10 +174,9 @@ def _write_part(parts: Path, rows: list[dict[str, Any]], config: StudyConfig) ->
 
     columns = ["run", *config.parameter_names, *config.metrics, "error"]
     table = pyarrow.table({name: [row.get(name) for row in rows] for name in columns})
-    buffer = io.BytesIO()
-    pyarrow.parquet.write_table(table, buffer)
     parts.mkdir(parents=True, exist_ok=True)
-    write_atomically(parts / f"part-{rows[0]['run']:09d}.parquet", buffer.getvalue())
+    with atomic_file(parts / f"part-{rows[0]['run']:09d}.parquet") as handle:
+        pyarrow.parquet.write_table(table, handle)
 
 
 def progress_bar(done: int, total: int) -> None:
