@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import uwml
-from uwml import _core, plausibility
+from uwml import plausibility
 from uwml.io.logs import Log, read_log, write_log
 
 
@@ -17,12 +17,6 @@ def quietly(call):  # type: ignore[no-untyped-def]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", uwml.PlausibilityWarning)
         return call()
-
-
-def test_the_compiled_cores_bounds_are_the_pythons() -> None:
-    assert _core.PLAUSIBLE_ANGULAR_SPEED == plausibility.PLAUSIBLE_ANGULAR_SPEED
-    assert _core.PLAUSIBLE_LINEAR_SPEED == plausibility.PLAUSIBLE_LINEAR_SPEED
-    assert _core.PLAUSIBLE_ANGLE == plausibility.PLAUSIBLE_ANGLE
 
 
 @pytest.mark.parametrize("batch", [False, True])
@@ -82,5 +76,5 @@ def test_a_batch_is_checked_on_rows_spread_over_it() -> None:
     qd = np.full((100_000, 3), 0.5)
     qd[:, 1] = 80.0  # every row: a unit mistake shows in all of them
     with pytest.warns(uwml.PlausibilityWarning, match="joint 2's speed reaches 80 rad/s"):
-        plausibility.check_states(q, qd, [True, True, True])
+        plausibility.check_states(q, qd, plausibility.joint_bounds(uwml.Leg.paper().joints))
     assert plausibility.CHECKED_ROWS <= 1024 and math.isclose(plausibility.PLAUSIBLE_ANGLE, 4 * math.pi)

@@ -29,9 +29,6 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
-    "PLAUSIBLE_ANGLE",
-    "PLAUSIBLE_ANGULAR_SPEED",
-    "PLAUSIBLE_LINEAR_SPEED",
     "Chain",
     "Losses",
     "ModelError",
@@ -56,9 +53,6 @@ MAX_GRAVITY: float
 ABSOLUTE_ZERO_C: float
 OIL_TEMPERATURE_RANGE_C: tuple[float, float]
 MAX_ROBOT_JOINTS: int
-PLAUSIBLE_ANGLE: float
-PLAUSIBLE_ANGULAR_SPEED: float
-PLAUSIBLE_LINEAR_SPEED: float
 MAX_LUMPED_BODIES: int
 MAX_SEGMENTS: int
 
@@ -99,7 +93,14 @@ class Chain:
 
 @final
 class Robot:
-    def __new__(cls, joints: Sequence[Joint], links: Sequence[Link], base: Link, segments: Sequence[tuple[int, Segment]]) -> Self: ...
+    def __new__(
+        cls,
+        joints: Sequence[Joint],
+        links: Sequence[Link],
+        base: Link,
+        segments: Sequence[tuple[int, Segment]],
+        bounds: Sequence[tuple[float, float, float]],
+    ) -> Self: ...
     @property
     def n_joints(self) -> int: ...
     def hydro(

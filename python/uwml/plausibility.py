@@ -5,15 +5,25 @@ uwml warns, once per call, when
 
 * a revolute joint turns faster than ``PLAUSIBLE_ANGULAR_SPEED`` (30 rad/s, about 290 r/min:
   beyond any manipulator's or leg's joint; degrees per second are far above it), or a prismatic
-  joint moves faster than ``PLAUSIBLE_LINEAR_SPEED`` (10 m/s);
+  joint moves faster than ``PLAUSIBLE_LINEAR_SPEED`` (10 m/s); a joint with a velocity limit
+  (:attr:`uwml.Joint.velocity_limit`, a URDF's ``<limit velocity>``) faster than
+  ``LIMIT_MARGIN`` (1.5) times it instead (a speed estimated from a log of a joint at its limit
+  overshoots it a little; one in the wrong unit by far);
 * a revolute joint's angle is beyond ``PLAUSIBLE_ANGLE`` (±4π, two turns: degrees given as
   radians are far beyond; a continuous joint that has turned more is legitimate, and the
-  warning can be silenced);
+  warning can be silenced); for a joint with a range (:attr:`uwml.Joint.range`: a URDF revolute
+  joint's ``lower``/``upper``, an MJCF hinge's ``range``), beyond ±2π or its range, whichever is
+  wider (it cannot turn a full turn);
+* a generalized force the water (and, in ``environment``, the joint losses) puts on a joint comes
+  out beyond its effort limit (:attr:`uwml.Joint.effort_limit`, a URDF's ``<limit effort>``, an
+  MJCF joint's ``actuatorfrcrange``): its motor could not hold it, and most likely a state is in
+  the wrong unit;
 * a water density is below 500 or above 1,100 kg/m³ (fresh water is 1,000, sea water about
   1,025; 1.025 is g/cm³);
 * a log's median time step is 0.5 s or more (2 Hz or less: time stamps in milliseconds look like
   that).
 
+The bounds of a robot's joints are worked out once, when it is built (:func:`joint_bounds`).
 A batch of states is checked on at most ``CHECKED_ROWS`` rows spread over it (a unit mistake
 shows in nearly every row), so the check costs nothing measurable; one state from the one-state
 path goes to the general path, which checks it, only when it is out of bounds. Silence the
@@ -26,21 +36,27 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 __all__ = [
     "CHECKED_ROWS",
+    "LIMIT_MARGIN",
     "PLAUSIBLE_ANGLE",
     "PLAUSIBLE_ANGULAR_SPEED",
     "PLAUSIBLE_DENSITY",
     "PLAUSIBLE_LINEAR_SPEED",
     "PLAUSIBLE_TIME_STEP",
+    "JointBounds",
     "PlausibilityWarning",
     "check_density",
+    "check_efforts",
     "check_states",
     "check_time_step",
+    "joint_bounds",
 ]
 
 #: The largest plausible speed of a revolute joint [rad/s] (also the compiled core's, which a test
@@ -50,6 +66,8 @@ PLAUSIBLE_ANGULAR_SPEED = 30.0
 PLAUSIBLE_LINEAR_SPEED = 10.0
 #: The largest plausible angle of a revolute joint [rad]: two turns either way.
 PLAUSIBLE_ANGLE = 4.0 * math.pi
+#: How far beyond a description's velocity limit a joint's speed may go before it warns.
+LIMIT_MARGIN = 1.5
 #: The plausible water densities [kg/m³].
 PLAUSIBLE_DENSITY = (500.0, 1100.0)
 #: The longest plausible median time step of a log [s].
@@ -65,37 +83,102 @@ class PlausibilityWarning(UserWarning):
     docstring)."""
 
 
-def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], revolute: Sequence[bool], stacklevel: int = 3) -> None:
-    """Warn about joint angles and speeds beyond the plausible bounds: ``q`` and ``qd`` of shape
-    ``(n_joints,)`` or ``(n_samples, n_joints)``, ``revolute`` per joint."""
-    q2, qd2 = np.atleast_2d(q), np.atleast_2d(qd)
-    step = max(1, q2.shape[0] // CHECKED_ROWS)
-    rows_q, rows_qd = q2[::step], qd2[::step]
-    if rows_q.size == 0:
-        return
-    # Non-finite values are refused by the evaluation itself, with its own message.
+@dataclass(frozen=True)
+class JointBounds:
+    """The plausible bounds of a robot's joints, one entry per joint (``inf``: unbounded), and
+    where each comes from, for the messages."""
+
+    #: The largest plausible ``|q|`` [rad or m].
+    angle: tuple[float, ...]
+    #: The largest plausible ``|q̇|`` [rad/s or m/s].
+    speed: tuple[float, ...]
+    #: The largest plausible ``|τ|`` of the environment [N·m or N].
+    effort: tuple[float, ...]
+    #: Each joint as messages name it: ``joint 2 ('elbow')``.
+    labels: tuple[str, ...]
+    #: Per joint: revolute (True) or prismatic.
+    revolute: tuple[bool, ...]
+    #: Per joint: whether its speed bound is its description's velocity limit.
+    speed_limited: tuple[bool, ...]
+    #: Per joint: whether its angle bound comes from its range.
+    ranged: tuple[bool, ...]
+
+    def rows(self) -> list[tuple[float, float, float]]:
+        """``(angle, speed, effort)`` per joint: the compiled core's one-state path takes a
+        state within them, and leaves any other to the general path, which warns."""
+        return list(zip(self.angle, self.speed, self.effort))
+
+
+def joint_bounds(joints: Sequence[Any]) -> JointBounds:
+    """The bounds of :class:`uwml.Joint`\\ s (module docstring)."""
+    angle, speed, effort, labels, revolute, speed_limited, ranged = [], [], [], [], [], [], []
+    for j, joint in enumerate(joints):
+        turns = joint.kind == "revolute"
+        limit = joint.velocity_limit
+        speed.append(LIMIT_MARGIN * limit if limit is not None else PLAUSIBLE_ANGULAR_SPEED if turns else PLAUSIBLE_LINEAR_SPEED)
+        if turns and joint.range is not None:
+            angle.append(max(2.0 * math.pi, abs(joint.range[0]), abs(joint.range[1])))
+        else:
+            angle.append(PLAUSIBLE_ANGLE if turns else math.inf)
+        effort.append(joint.effort_limit if joint.effort_limit is not None else math.inf)
+        labels.append(f"joint {j + 1}" + (f" ({joint.name!r})" if joint.name is not None else ""))
+        revolute.append(turns)
+        speed_limited.append(limit is not None)
+        ranged.append(turns and joint.range is not None)
+    return JointBounds(tuple(angle), tuple(speed), tuple(effort), tuple(labels), tuple(revolute), tuple(speed_limited), tuple(ranged))
+
+
+def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Per column, the largest finite ``|value|`` of at most ``CHECKED_ROWS`` rows spread over
+    ``values`` (1-D: one row); non-finite values are the evaluation's to refuse."""
+    rows = np.atleast_2d(values)
+    rows = rows[:: max(1, rows.shape[0] // CHECKED_ROWS)]
+    if rows.size == 0:
+        return np.zeros(rows.shape[1])
     with np.errstate(invalid="ignore"):
-        speeds = np.max(np.where(np.isfinite(rows_qd), np.abs(rows_qd), 0.0), axis=0)
-        angles = np.max(np.where(np.isfinite(rows_q), np.abs(rows_q), 0.0), axis=0)
-    for j, turns in enumerate(revolute):
-        if turns and speeds[j] > PLAUSIBLE_ANGULAR_SPEED:
-            _warn(
-                f"joint {j + 1}'s speed reaches {speeds[j]:.4g} rad/s, above {PLAUSIBLE_ANGULAR_SPEED:g} rad/s (about 290 r/min): "
-                f"are the speeds in degrees per second? uwml takes rad/s; {_SILENCE} if they are right",
-                stacklevel,
-            )
+        largest: NDArray[np.float64] = np.max(np.where(np.isfinite(rows), np.abs(rows), 0.0), axis=0)
+    return largest
+
+
+def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointBounds, stacklevel: int = 3) -> None:
+    """Warn about joint angles and speeds beyond ``bounds``: ``q`` and ``qd`` of shape
+    ``(n_joints,)`` or ``(n_samples, n_joints)``."""
+    speeds, angles = _largest(qd), _largest(q)
+    for j, label in enumerate(bounds.labels):
+        if speeds[j] > bounds.speed[j]:
+            unit = "rad/s" if bounds.revolute[j] else "m/s"
+            if bounds.speed_limited[j]:
+                above = f"above {LIMIT_MARGIN:g} times its velocity limit of {bounds.speed[j] / LIMIT_MARGIN:.4g} {unit}"
+            else:
+                above = f"above {bounds.speed[j]:g} {unit}" + (" (about 290 r/min)" if bounds.revolute[j] else "")
+            if bounds.revolute[j]:
+                seen, cause = f"{label}'s speed reaches {speeds[j]:.4g} rad/s", "degrees per second? uwml takes rad/s"
+            else:
+                seen, cause = f"{label} (prismatic) moves at up to {speeds[j]:.4g} m/s", "mm/s? uwml takes m/s"
+            _warn(f"{seen}, {above}: are the speeds in {cause}; {_SILENCE} if they are right", stacklevel)
             return
-        if turns and angles[j] > PLAUSIBLE_ANGLE:
+        if angles[j] > bounds.angle[j]:
+            ranged = " (beyond ±2π and its range)" if bounds.ranged[j] else ""
             _warn(
-                f"joint {j + 1}'s angle reaches {angles[j]:.4g} rad, {angles[j] / (2 * math.pi):.3g} turns: are the angles in "
+                f"{label}'s angle reaches {angles[j]:.4g} rad, {angles[j] / (2 * math.pi):.3g} turns{ranged}: are the angles in "
                 f"degrees? uwml takes radians; {_SILENCE} if the joint has turned that far",
                 stacklevel,
             )
             return
-        if not turns and speeds[j] > PLAUSIBLE_LINEAR_SPEED:
+
+
+def check_efforts(total: NDArray[np.float64], bounds: JointBounds, stacklevel: int = 3) -> None:
+    """Warn about a joint whose environment force ``total`` (``(n_joints,)`` or ``(n_samples,
+    n_joints)``) is beyond its effort limit."""
+    if all(math.isinf(x) for x in bounds.effort):
+        return
+    largest = _largest(total)
+    for j, label in enumerate(bounds.labels):
+        if largest[j] > bounds.effort[j]:
+            unit = "N·m" if bounds.revolute[j] else "N"
             _warn(
-                f"joint {j + 1} (prismatic) moves at up to {speeds[j]:.4g} m/s, above {PLAUSIBLE_LINEAR_SPEED:g} m/s: "
-                f"are the speeds in mm/s? uwml takes m/s; {_SILENCE} if they are right",
+                f"the environment puts up to {largest[j]:.4g} {unit} on {label}, beyond its effort limit of {bounds.effort[j]:.4g} {unit}: "
+                f"its motor could not hold that; is a state in the wrong unit (degrees, mm)? {_SILENCE} if it is right",
                 stacklevel,
             )
             return

@@ -254,9 +254,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::MujocoCoupling>()?;
     m.add_class::<PyLosses>()?;
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
-    m.add("PLAUSIBLE_ANGULAR_SPEED", robot::one::PLAUSIBLE_ANGULAR_SPEED)?;
-    m.add("PLAUSIBLE_LINEAR_SPEED", robot::one::PLAUSIBLE_LINEAR_SPEED)?;
-    m.add("PLAUSIBLE_ANGLE", robot::one::PLAUSIBLE_ANGLE)?;
     m.add("MAX_DEPTH", uwml_core::MAX_DEPTH)?;
     m.add("MAX_PRESSURE", uwml_core::MAX_PRESSURE)?;
     m.add("MAX_LENGTH", uwml_core::MAX_LENGTH)?;

@@ -98,7 +98,7 @@ from ..model.joint_losses import JointLosses
 from ..model.lumped import LumpedModel
 from ..model.parts import Segment, Water
 from ._description_io import DescriptionError, clipped, read_regular
-from .modelfile import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _vec3, _water
+from ._model_tables import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _vec3, _water
 
 __all__ = ["WATER_DENSITY_RANGE", "WATER_GRAVITY_RANGE", "DescriptionError", "HydroFile", "HydroLink", "read_hydro"]
 

@@ -54,6 +54,9 @@ at ``q = 0``, as in :mod:`uwml.model.parts`)::
     kind = "revolute"            # or "prismatic"
     origin = [0.9, 0.0, -0.3]
     axis = [0.0, 0.0, 1.0]
+    range = [-2.6, 2.6]          # optional: the description's limits (uwml.Joint's fields; they
+    velocity_limit = 2.0         # set the bounds of uwml.PlausibilityWarning, nothing else)
+    effort_limit = 80.0
 
     [joints.losses]              # optional: the joint's own losses (uwml.JointLosses)
     epsilon = 0.001              # smooth-sign width [rad/s]
@@ -90,42 +93,55 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import math
 import os
 import tomllib
 import unicodedata
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal, NoReturn, TypeVar, overload
+from typing import Any, TypeVar
 
 from .._checks import shown
 from ..errors import ModelFileError
 from ..model.joint_losses import JointLosses
-from ..model.losses import Drive, OilDrag, Seal
 from ..model.lumped import LumpedModel
 from ..model.parts import Joint, Link, Segment, Water
 from ._files import read_regular, write_atomically
+from ._model_tables import (
+    _DENSITY_HINT,
+    _GRAVITY_HINT,
+    WATER_DENSITY_RANGE,
+    WATER_GRAVITY_RANGE,
+    _body,
+    _clipped,
+    _fail_type,
+    _float,
+    _integer,
+    _losses,
+    _pair,
+    _Reader,
+    _text,
+    _vec3,
+    _water,
+)
 from ._robot_like import RobotLike
 
-__all__ = ["FORMAT", "VERSION", "ModelFileError", "ModelParts", "dumps", "parse", "read", "save"]
+__all__ = [
+    "FORMAT",
+    "VERSION",
+    "WATER_DENSITY_RANGE",
+    "WATER_GRAVITY_RANGE",
+    "ModelFileError",
+    "ModelParts",
+    "dumps",
+    "parse",
+    "read",
+    "save",
+]
 
 #: The ``format`` key of a uwml model file.
 FORMAT = "uwml-robot"
 #: The version this module writes and reads.
 VERSION = 1
-
-_T = TypeVar("_T")
-
-
-#: The water of a model file or a hydro file must lie in these ranges (SI units; a value outside
-#: is taken for a unit mistake, such as a density in g/cm³ or a gravity in g or ft/s²). Other
-#: fluids or planets: construct :class:`uwml.Water` in code.
-WATER_DENSITY_RANGE = (900.0, 1300.0)
-WATER_GRAVITY_RANGE = (9.7, 9.9)
-_DENSITY_HINT = "fresh water is 1000, sea water about 1025 (a density in g/cm³ or t/m³ is 1000 times too small)"
-_GRAVITY_HINT = "the Earth's is 9.78 to 9.83 (not in g, not in ft/s²)"
-#: The longest message a model file's error quotes from the library's own checks [characters].
-_MESSAGE_LIMIT = 300
 
 
 def _number(x: float) -> str:
@@ -254,6 +270,9 @@ def dumps(robot: RobotLike) -> str:
             f"origin = {_vector(joint.origin)}",
             f"axis = {_vector(joint.axis)}",
         ]
+        if joint.range is not None:
+            out.append(f"range = [{_number(joint.range[0])}, {_number(joint.range[1])}]")
+        out += [f"{key} = {_number(value)}" for key in ("velocity_limit", "effort_limit") if (value := getattr(joint, key)) is not None]
         if losses is not None:
             out += _losses_lines(losses)
     for i, link in enumerate(robot.links):
@@ -270,265 +289,6 @@ def save(robot: RobotLike, path: str | os.PathLike[str]) -> None:
     written to a temporary file in the same folder, synced, and renamed over ``path``; on any
     failure the temporary file is removed and an existing file at ``path`` is left as it was."""
     write_atomically(path, dumps(robot).encode("utf-8"))
-
-
-class _Reader:
-    """Typed access to one table of the file, with errors naming the file, table and key."""
-
-    def __init__(self, source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> None:
-        self.source, self.where, self.error = source, where, error
-        if not isinstance(table, dict):
-            self.fail(None, f"must be a table, got {type(table).__name__}")
-        self.table: dict[str, Any] = table
-
-    def fail(self, key: str | None, message: str) -> NoReturn:
-        at = self.where if key is None else f"{self.where}, key {shown(key, 40)}"
-        raise self.error(f"{self.source}: {at}: {message}")
-
-    def check_keys(self, allowed: Sequence[str]) -> None:
-        for key in self.table:
-            if key not in allowed:
-                self.fail(key, f"is not a key of this table (allowed: {', '.join(allowed)})")
-
-    @overload
-    def get(self, key: str, convert: Callable[[Any], _T], what: str) -> _T: ...
-    @overload
-    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False], default: _T) -> _T: ...
-    @overload
-    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: Literal[False]) -> _T | None: ...
-
-    def get(self, key: str, convert: Callable[[Any], _T], what: str, *, required: bool = True, default: _T | None = None) -> _T | None:
-        """The value of ``key`` converted by ``convert``; a missing key is an error if
-        ``required``, else ``default``."""
-        if key not in self.table:
-            if required:
-                self.fail(key, f"is missing ({what})")
-            return default
-        value = self.table[key]
-        try:
-            return convert(value)
-        except (TypeError, ValueError) as exc:
-            self.fail(key, f"must be {what}, got {shown(value)} ({_clipped(str(exc))})")
-
-    def build(self, make: Callable[[], _T]) -> _T:
-        """``make()``, its ValueError or TypeError (from the model's checks) named here."""
-        try:
-            return make()
-        except (TypeError, ValueError) as exc:
-            self.fail(None, _clipped(str(exc)))
-
-
-def _clipped(message: str) -> str:
-    """A message of the model's own checks, which may quote a whole value (a name), made short."""
-    return message if len(message) <= _MESSAGE_LIMIT else f"{message[:_MESSAGE_LIMIT]}... ({len(message)} characters)"
-
-
-def _float(value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise TypeError("not a number")
-    return float(value)
-
-
-def _vec3(value: Any) -> tuple[float, float, float]:
-    if not isinstance(value, list) or len(value) != 3:
-        raise TypeError("not an array of 3 numbers")
-    x, y, z = (_float(v) for v in value)
-    return (x, y, z)
-
-
-def _pair(value: Any) -> tuple[float, float]:
-    if not isinstance(value, list) or len(value) != 2:
-        raise TypeError("not an array of 2 numbers")
-    a, b = (_float(v) for v in value)
-    return (a, b)
-
-
-def _normals(value: Any) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
-    if not isinstance(value, list) or len(value) != 2:
-        raise TypeError("not an array of 2 vectors")
-    return (_vec3(value[0]), _vec3(value[1]))
-
-
-def _text(value: Any) -> str:
-    if not isinstance(value, str):
-        raise TypeError("not a string")
-    return value
-
-
-def _integer(value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise TypeError("not an integer")
-    return value
-
-
-_SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm", "cd_axial", "axial_area")
-_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped")
-_LUMPED_KEYS = ("point", "axes", "added_mass", "linear_damping", "quadratic_damping")
-
-
-def _matrix3(value: Any) -> tuple[tuple[float, ...], ...]:
-    if not isinstance(value, list) or len(value) != 3:
-        raise TypeError("not an array of 3 rows")
-    return tuple(_vec3(row) for row in value)
-
-
-def _six(value: Any) -> tuple[float, ...]:
-    if not isinstance(value, list) or len(value) != 6:
-        raise TypeError("not an array of 6 numbers")
-    return tuple(_float(v) for v in value)
-
-
-def _matrix6(value: Any) -> tuple[tuple[float, ...], ...]:
-    if not isinstance(value, list) or len(value) != 6:
-        raise TypeError("not an array of 6 rows")
-    return tuple(_six(row) for row in value)
-
-
-def _lumped(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> LumpedModel:
-    r = _Reader(source, where, table, error)
-    r.check_keys(_LUMPED_KEYS)
-    point = r.get("point", _vec3, "an array of 3 numbers [m]", required=False)
-    identity: tuple[tuple[float, ...], ...] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
-    axes = r.get("axes", _matrix3, "3 rows of 3 numbers (a rotation)", required=False, default=identity)
-    zero: tuple[tuple[float, ...], ...] = tuple((0.0,) * 6 for _ in range(6))
-    no_quadratic: tuple[float, ...] = (0.0,) * 6
-    added_mass = r.get("added_mass", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
-    damping = r.get("linear_damping", _matrix6, "6 rows of 6 numbers", required=False, default=zero)
-    quadratic = r.get("quadratic_damping", _six, "6 numbers", required=False, default=no_quadratic)
-    return r.build(lambda: LumpedModel(point, added_mass, damping, quadratic, axes=axes))
-
-
-def _segment(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Segment:
-    r = _Reader(source, where, table, error)
-    r.check_keys(_SEGMENT_KEYS)
-    section = r.get("section", _text, 'a string, "rectangular" or "circular"')
-    start = r.get("start", _vec3, "an array of 3 numbers [m]")
-    axis = r.get("axis", _vec3, "a unit vector")
-    length = r.get("length", _float, "a length [m]")
-    cd = r.get("cd", _pair, "[Cd along normal 0, along normal 1]")
-    cm = r.get("cm", _pair, "[Cm along normal 0, along normal 1]")
-    cd_axial = r.get("cd_axial", _float, "an axial drag coefficient", required=False, default=0.0)
-    axial_area = r.get("axial_area", _float, "an area [m²]", required=False)
-    if section == "circular":
-        diameter = r.get("diameter", _float, "a diameter [m]")
-        area = r.get("area", _float, "a section area [m²]")
-        for key, pair in (("cd", cd), ("cm", cm)):
-            if pair[0] != pair[1]:
-                r.fail(key, f"of a circular section must have two equal entries, got {list(pair)}")
-        return r.build(
-            lambda: Segment(
-                start,
-                axis,
-                length,
-                section="circular",
-                diameter=diameter,
-                area=area,
-                cd=cd[0],
-                cm=cm[0],
-                cd_axial=cd_axial,
-                axial_area=axial_area,
-            )
-        )
-    normals = r.get("normals", _normals, "two unit vectors [[...], [...]]")
-    widths = r.get("widths", _pair, "[width along normal 0, along normal 1] [m]")
-    area = r.get("area", _float, "a section area [m²]")
-    return r.build(
-        lambda: Segment(
-            start,
-            axis,
-            length,
-            section=section,
-            normals=normals,
-            widths=widths,
-            area=area,
-            cd=cd,
-            cm=cm,
-            cd_axial=cd_axial,
-            axial_area=axial_area,
-        )
-    )
-
-
-def _body(source: str, where: str, table: object) -> Link:
-    r = _Reader(source, where, table)
-    r.check_keys(_BODY_KEYS)
-    raw_segments: list[object] = r.get("segments", _table_array, "[[...segments]]", required=False, default=[])
-    segments = tuple(_segment(source, f"{where}, segments[{i}]", s) for i, s in enumerate(raw_segments))
-    name = r.get("name", _text, "a string", required=False)
-    mass = r.get("mass", _float, "a mass [kg]")
-    com = r.get("com", _vec3, "an array of 3 numbers [m]")
-    volume = r.get("volume", _float, "a volume [m³]")
-    cob = r.get("cob", _vec3, "an array of 3 numbers [m]")
-    raw_lumped = r.get("lumped", lambda table: table, "a table", required=False)
-    lumped = None if raw_lumped is None else _lumped(source, f"{where}, lumped", raw_lumped)
-    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name, lumped=lumped))
-
-
-def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:
-    """A joint's losses from a table with ``epsilon`` and the tables ``drive``, ``oil``, ``seal``
-    (each with its dataclass's fields; an absent oil or seal is none, an absent drive the
-    default one)."""
-    r = _Reader(source, where, table, error)
-    r.check_keys(("epsilon", "drive", "oil", "seal"))
-    parts: dict[str, Any] = {}
-    for name, kind in (("drive", Drive), ("oil", OilDrag), ("seal", Seal)):
-        if name not in r.table:
-            continue
-        part = _Reader(source, f"{where}, {name}", r.table[name], error)
-        keys = [f.name for f in dataclasses.fields(kind)]
-        part.check_keys(keys)
-        values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
-        parts[name] = part.build(functools.partial(kind, **values))
-    epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]")
-    # A part the file does not give is absent (oil, seal), or the default drive.
-    return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
-
-
-def _within(low: float, high: float, unit: str, hint: str) -> Callable[[Any], float]:
-    """A converter to a number from ``low`` to ``high``, else a ValueError with ``hint``."""
-
-    def check(value: Any) -> float:
-        x = _float(value)
-        if not (math.isfinite(x) and low <= x <= high):
-            raise ValueError(f"outside {low:g} to {high:g} {unit}; {hint}")
-        return x
-
-    return check
-
-
-def _water(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> Water:
-    """The water of a ``[water]`` table of a model file or a hydro file: ``density`` [kg/m³]
-    within :data:`WATER_DENSITY_RANGE` and ``gravity`` [m/s²] within :data:`WATER_GRAVITY_RANGE`,
-    each defaulting to :class:`uwml.Water`'s."""
-    r = _Reader(source, where, table, error)
-    r.check_keys(("density", "gravity"))
-    low, high = WATER_DENSITY_RANGE
-    density = r.get(
-        "density",
-        _within(low, high, "kg/m³", _DENSITY_HINT),
-        f"a density [kg/m³], {low:g} to {high:g}",
-        required=False,
-        default=Water.density,
-    )
-    low, high = WATER_GRAVITY_RANGE
-    gravity = r.get(
-        "gravity",
-        _within(low, high, "m/s²", _GRAVITY_HINT),
-        f"an acceleration [m/s²], {low:g} to {high:g}",
-        required=False,
-        default=Water.gravity,
-    )
-    return r.build(lambda: Water(density=density, gravity=gravity))
-
-
-def _fail_type(what: str) -> NoReturn:
-    raise TypeError(f"not {what}")
-
-
-def _table_array(value: Any) -> list[object]:
-    if not isinstance(value, list):
-        _fail_type("an array of tables")
-    return value
 
 
 _R = TypeVar("_R")
@@ -573,14 +333,20 @@ def parse(text: str, source: str = "<string>") -> ModelParts:
     joints, losses = [], []
     for i, table in enumerate(joint_tables):
         r = _Reader(source, f"joints[{i}]", table)
-        r.check_keys(("name", "parent", "kind", "origin", "axis", "losses"))
+        r.check_keys(("name", "parent", "kind", "origin", "axis", "range", "velocity_limit", "effort_limit", "losses"))
         losses.append(_losses(source, f"joints[{i}], losses", table["losses"]) if "losses" in table else None)
         name = r.get("name", _text, "a string", required=False)
         parent = r.get("parent", _integer, "an integer: an earlier link's index, or -1 for the base")
         kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
         origin = r.get("origin", _vec3, "an array of 3 numbers [m]")
         axis = r.get("axis", _vec3, "a unit vector")
-        joints.append(r.build(functools.partial(Joint, origin, axis, parent=parent, kind=kind, name=name)))
+        limits = r.get("range", _pair, "an array of 2 numbers, lower < upper [rad or m]", required=False)
+        velocity = r.get("velocity_limit", _float, "a positive number [rad/s or m/s]", required=False)
+        effort = r.get("effort_limit", _float, "a positive number [N·m or N]", required=False)
+        make = functools.partial(
+            Joint, origin, axis, parent=parent, kind=kind, name=name, range=limits, velocity_limit=velocity, effort_limit=effort
+        )
+        joints.append(r.build(make))
     links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]
     base = _body(source, "base", document["base"]) if "base" in document else None
     water = _water(source, "water", document["water"]) if "water" in document else None

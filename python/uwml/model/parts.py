@@ -72,13 +72,15 @@ def _vec3(value: object, name: str) -> Vec3:
     return (items[0], items[1], items[2])
 
 
-def _scalar(value: object, name: str, *, positive: bool) -> float:
+def _scalar(value: object, name: str, *, positive: bool, signed: bool = False) -> float:
     try:
         x = to_float(value)
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a number, got {value!r}") from exc
     if not math.isfinite(x):
         raise ValueError(f"{name} must be finite, got {x}")
+    if signed:
+        return x
     if positive and not x > 0.0:
         raise ValueError(f"{name} must be positive, got {x}")
     if not positive and x < 0.0:
@@ -128,6 +130,12 @@ class Joint:
     parents is a serial chain. ``kind`` is ``"revolute"`` (turns about ``axis`` by ``q``, the
     generalized force is a torque [N·m]) or ``"prismatic"`` (slides along ``axis`` by ``q``, the
     generalized force is a force [N]).
+
+    The limits a description gives (URDF ``<limit lower upper velocity effort>``, MJCF ``range``
+    and ``actuatorfrcrange``), each optional: ``range`` ``(lower, upper)`` [rad or m],
+    ``velocity_limit`` [rad/s or m/s] and ``effort_limit`` [N·m or N], positive. uwml does not
+    enforce them (its evaluations take any state); they set the bounds of its
+    :class:`uwml.PlausibilityWarning` (:mod:`uwml.plausibility`).
     """
 
     origin: Vec3
@@ -136,6 +144,12 @@ class Joint:
     kind: str = "revolute"
     #: A name (a URDF or MJCF joint's), or None.
     name: str | None = None
+    #: ``(lower, upper)`` positions the description allows [rad or m], or None.
+    range: tuple[float, float] | None = None
+    #: The description's largest speed [rad/s or m/s], or None.
+    velocity_limit: float | None = None
+    #: The description's largest torque [N·m] or force [N], or None.
+    effort_limit: float | None = None
 
     def __post_init__(self) -> None:
         _check_name(self.name, "joint.name")
@@ -149,6 +163,14 @@ class Joint:
             object.__setattr__(self, "parent", int(self.parent))
         if self.kind not in JOINT_KINDS:
             raise ValueError(f"joint.kind must be one of {JOINT_KINDS}, got {self.kind!r}")
+        if self.range is not None:
+            lower, upper = (_scalar(x, "joint.range", positive=False, signed=True) for x in _pair(self.range, "joint.range"))
+            if not lower < upper:
+                raise ValueError(f"joint.range must be (lower, upper) with lower < upper, got ({lower}, {upper})")
+            object.__setattr__(self, "range", (lower, upper))
+        for limit in ("velocity_limit", "effort_limit"):
+            if getattr(self, limit) is not None:
+                object.__setattr__(self, limit, _scalar(getattr(self, limit), f"joint.{limit}", positive=True))
 
 
 def _coefficient_pair(value: object, name: str, section: str, default: float) -> tuple[float, float]:

@@ -4,7 +4,8 @@ joint losses (per joint, and read by the core once for a one-state call)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import dataclasses
+from collections.abc import Iterable, Sequence
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -12,8 +13,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _core
 from .._checks import real_array as _real_array
+from .._core import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS
 from ..model.joint_losses import JointLosses, pack_leg_losses
-from ..model.parts import Water
+from ..model.parts import Joint, Link, Segment, Water
 from .base_motion import BaseMotion
 
 FloatArray = NDArray[np.float64]
@@ -246,3 +248,39 @@ def robot_inputs(
         rows(flows[1], 3),
     )
     return arguments, bool(per_sample), n_samples
+
+
+def robot_parts(
+    joints: Sequence[Joint], links: Sequence[Link], base: Link | None
+) -> tuple[tuple[Joint, ...], tuple[Link, ...], Link, list[tuple[int, Segment]]]:
+    """A :class:`uwml.Robot`'s parts checked: its joints with every ``parent`` resolved, its
+    links, the base's body (a body without mass, volume or segments for ``None``) and every
+    segment with its owner (``-1`` the base), base first."""
+    try:
+        joints, links = tuple(joints), tuple(links)
+    except TypeError:
+        raise TypeError(
+            f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
+        ) from None
+    for name, items, kind in (("joints", joints, Joint), ("links", links, Link)):
+        for index, item in enumerate(items):
+            if not isinstance(item, kind):
+                raise TypeError(f"{name}[{index}] must be a uwml.{kind.__name__}, got {type(item).__name__}")
+    if base is not None and not isinstance(base, Link):
+        raise TypeError(f"base must be a uwml.Link or None, got {type(base).__name__}")
+    if len(joints) != len(links) or not 1 <= len(joints) <= MAX_ROBOT_JOINTS:
+        raise ValueError(f"a robot needs as many links as joints, 1 to {MAX_ROBOT_JOINTS}; got {len(joints)} joints and {len(links)} links")
+    parents = []
+    for index, joint in enumerate(joints):
+        parent = index - 1 if joint.parent is None else joint.parent
+        if parent >= index:
+            raise ValueError(f"joints[{index}].parent must be -1 (the base) or an earlier link (< {index}), got {parent}")
+        parents.append(parent)
+    base_body = base if base is not None else Link(mass=0.0, com=(0.0, 0.0, 0.0), volume=0.0)
+    owned = [(-1, s) for s in base_body.segments] + [(i, s) for i, link in enumerate(links) for s in link.segments]
+    if len(owned) > MAX_SEGMENTS:
+        raise ValueError(f"a robot may have up to {MAX_SEGMENTS} segments, got {len(owned)}")
+    lumped = sum(body.lumped is not None for body in (base_body, *links))
+    if lumped > MAX_LUMPED_BODIES:
+        raise ValueError(f"a robot may carry up to {MAX_LUMPED_BODIES} lumped models (one per body), got {lumped}")
+    return tuple(dataclasses.replace(j, parent=p) for p, j in zip(parents, joints)), links, base_body, owned

@@ -22,7 +22,7 @@ from ..io import descriptions, modelfile
 from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
-from ..plausibility import check_states
+from ..plausibility import check_efforts, check_states, joint_bounds
 from ..sea.conditions import loss_conditions
 from ._arguments import (
     _Inputs,
@@ -33,6 +33,7 @@ from ._arguments import (
     _water,
     one_state_losses,
     robot_inputs,
+    robot_parts,
     segment_coefficients,
 )
 from .base_motion import BaseMotion
@@ -101,37 +102,9 @@ class Robot:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         water: Water | None = None,
     ) -> None:
-        try:
-            joints, links = tuple(joints), tuple(links)
-        except TypeError:
-            raise TypeError(
-                f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
-            ) from None
-        for name, items, kind in (("joints", joints, Joint), ("links", links, Link)):
-            for index, item in enumerate(items):
-                if not isinstance(item, kind):
-                    raise TypeError(f"{name}[{index}] must be a uwml.{kind.__name__}, got {type(item).__name__}")
-        if base is not None and not isinstance(base, Link):
-            raise TypeError(f"base must be a uwml.Link or None, got {type(base).__name__}")
-        if len(joints) != len(links) or not 1 <= len(joints) <= MAX_ROBOT_JOINTS:
-            raise ValueError(
-                f"a robot needs as many links as joints, 1 to {MAX_ROBOT_JOINTS}; got {len(joints)} joints and {len(links)} links"
-            )
-        parents = []
-        for index, joint in enumerate(joints):
-            parent = index - 1 if joint.parent is None else joint.parent
-            if parent >= index:
-                raise ValueError(f"joints[{index}].parent must be -1 (the base) or an earlier link (< {index}), got {parent}")
-            parents.append(parent)
-        base_body = base if base is not None else Link(mass=0.0, com=(0.0, 0.0, 0.0), volume=0.0)
-        owned = [(-1, s) for s in base_body.segments] + [(i, s) for i, link in enumerate(links) for s in link.segments]
-        if len(owned) > MAX_SEGMENTS:
-            raise ValueError(f"a robot may have up to {MAX_SEGMENTS} segments, got {len(owned)}")
-        lumped = sum(body.lumped is not None for body in (base_body, *links))
-        if lumped > MAX_LUMPED_BODIES:
-            raise ValueError(f"a robot may carry up to {MAX_LUMPED_BODIES} lumped models (one per body), got {lumped}")
-        self._joints = tuple(Joint(j.origin, j.axis, parent=p, kind=j.kind, name=j.name) for p, j in zip(parents, joints))
-        self._core = _core.Robot(self._joints, links, base_body, owned)
+        self._joints, links, base_body, owned = robot_parts(joints, links, base)
+        self._bounds = joint_bounds(self._joints)
+        self._core = _core.Robot(self._joints, links, base_body, owned, self._bounds.rows())
         for what, items in (("joint", joints), ("link", links)):
             names = [item.name for item in items if item.name is not None]
             repeated = sorted({name for name in names if names.count(name) > 1})
@@ -309,7 +282,7 @@ class Robot:
             # One given: the other is the segments' own.
             cd, cm = (self._own_cd, cm) if cd is None else (cd, self._own_cm)
         inputs = robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
-        check_states(inputs[0][0], inputs[0][1], [joint.kind == "revolute" for joint in self._joints], stacklevel=4)
+        check_states(inputs[0][0], inputs[0][1], self._bounds, stacklevel=4)
         return inputs
 
     def hydro(
@@ -395,7 +368,9 @@ class Robot:
         check_overflow((out[0], out[1], out[4], out[5]), n_samples, arguments[1], arguments[2])
         lead = (n_samples,) if batched else ()
         drag, mass, buoyancy, gravity = (a.reshape(*lead, self.n_joints) for a in out[:4])
-        return RobotTorques(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity, base=_base_wrench(out, lead))
+        result = RobotTorques(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity, base=_base_wrench(out, lead))
+        check_efforts(result.total, self._bounds)
+        return result
 
     def environment(
         self,
@@ -461,7 +436,7 @@ class Robot:
         check_overflow((out[0], out[1], out[4], out[5], out[9], out[10], out[11]), n_samples, arguments[1], arguments[2])
         lead = (n_samples,) if batched else ()
         drag, mass, buoyancy, gravity, visc, seal, current_a = (out[i].reshape(*lead, self.n_joints) for i in (0, 1, 2, 3, 9, 10, 11))
-        return RobotEnvironment(
+        result = RobotEnvironment(
             drag=drag,
             added_mass=mass,
             buoyancy=buoyancy,
@@ -471,6 +446,8 @@ class Robot:
             current=current_a,
             base=_base_wrench(out, lead),
         )
+        check_efforts(result.total, self._bounds)
+        return result
 
     def jacobians(
         self,

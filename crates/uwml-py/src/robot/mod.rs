@@ -55,6 +55,9 @@ type Coefficients = SegmentCoefficients<f64, MAX_SEGMENTS>;
 #[pyclass(frozen, module = "uwml._core", name = "Robot")]
 pub(crate) struct PyRobot {
     robot: Box<Model>,
+    /// Each joint's plausible bounds (`uwml.plausibility.JointBounds.rows`): the one-state path
+    /// leaves a state or a result beyond them to the general path, which warns.
+    bounds: Vec<one::Bounds>,
     /// A workspace kept for one-thread calls, so that they do not set up a new one.
     data: Mutex<Box<Data>>,
     /// The robot over SIMD lanes, made at the first batch.
@@ -69,15 +72,23 @@ pub(crate) struct PyRobot {
 impl PyRobot {
     /// The robot of its `uwml.Joint`s (each `parent` resolved, `-1` for the base), its links'
     /// and base's bodies (`uwml.Link`s: mass, com, volume, cob) and its segments as `(owner,
-    /// uwml.Segment)` pairs (`owner` `-1` for the base).
+    /// uwml.Segment)` pairs (`owner` `-1` for the base), and each joint's plausible bounds
+    /// `(angle, speed, effort)`.
     #[new]
     fn new(
         joints: Vec<JointSpec>,
         links: Vec<BodySpec>,
         base: BodySpec,
         segments: Vec<(i64, SegmentSpec)>,
+        bounds: Vec<one::Bounds>,
     ) -> PyResult<Self> {
         let (n, s) = (joints.len(), segments.len());
+        if bounds.len() != n || bounds.iter().flatten().any(|x| x.is_nan()) {
+            return Err(PyValueError::new_err(format!(
+                "bounds must hold one (angle, speed, effort) of numbers per joint, got {} for {n} joints",
+                bounds.len()
+            )));
+        }
         if n > MAX_ROBOT_JOINTS || s > MAX_SEGMENTS || links.len() != n {
             return Err(PyValueError::new_err(format!(
                 "a robot may have up to {MAX_ROBOT_JOINTS} joints (and as many links) and {MAX_SEGMENTS} segments, got {n} joints, {} links and {s} segments",
@@ -101,6 +112,7 @@ impl PyRobot {
             .map_err(model_error)?;
         Ok(Self {
             robot: Box::new(robot),
+            bounds,
             data: Mutex::new(Box::new(Data::new())),
             lanes: OnceLock::new(),
             lane_data: Mutex::new(None),
@@ -274,10 +286,10 @@ impl PyRobot {
         per_link: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
-        let Some(one) = OneState::read(&self.robot, layout(per_link), arguments) else { return Ok(None) };
+        let Some(one) = OneState::read(&self.robot, &self.bounds, layout(per_link), arguments) else { return Ok(None) };
         let mut data = self.one_state_workspace();
         one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
-        if !one::finite(&data, &[]) {
+        if !one::answered(&data, &self.bounds, None) {
             return Ok(None); // forces that overflow: the general path names the sample
         }
         one_result(result_type, base_type, &data, None).map(Some)
@@ -313,7 +325,7 @@ impl PyRobot {
         let n = self.robot.joint_count();
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
         let (Some(one), Some(depth), Some(temperature), Some(sea_density)) = (
-            OneState::read(&self.robot, layout(per_link), arguments),
+            OneState::read(&self.robot, &self.bounds, layout(per_link), arguments),
             finite_number(depth),
             finite_number(temperature),
             finite_number(sea_density),
@@ -345,10 +357,11 @@ impl PyRobot {
             ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
         let states = parsed.iter().map(|losses| losses.and_then(|l| l.at(pressure, temperature).ok()));
         write_joint_losses(states, &one.row.qd, [&mut visc, &mut seal, &mut loss_current], 0);
-        if !one::finite(&data, &[visc.as_slice(), seal.as_slice(), loss_current.as_slice()]) {
+        let losses = [&visc, &seal, &loss_current].map(|v| v.as_slice());
+        if !one::answered(&data, &self.bounds, Some(losses)) {
             return Ok(None);
         }
-        one_result(result_type, base_type, &data, Some([&visc, &seal, &loss_current].map(|v| v.as_slice()))).map(Some)
+        one_result(result_type, base_type, &data, Some(losses)).map(Some)
     }
 
     /// Regressors: buoyancy, gravity (`(n_samples, N)`), base buoyancy, base gravity

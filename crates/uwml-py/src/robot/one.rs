@@ -6,7 +6,7 @@ use pyo3::intern;
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PyString, PyTuple, PyType};
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, JointKind, Owner, Section, Water, robot_hydro};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Owner, Section, Water, robot_hydro};
 
 use super::inputs::StateRow;
 use super::{Coefficients, Data, Model};
@@ -109,22 +109,14 @@ fn coefficient_table(
     Some(Some(table))
 }
 
-/// The largest plausible speed of a revolute joint [rad/s] (`uwml.PLAUSIBLE_ANGULAR_SPEED`):
-/// about 290 r/min, beyond any manipulator's or leg's joint; degrees per second are above it.
-pub(crate) const PLAUSIBLE_ANGULAR_SPEED: f64 = 30.0;
-/// The largest plausible speed of a prismatic joint [m/s] (`uwml.PLAUSIBLE_LINEAR_SPEED`).
-pub(crate) const PLAUSIBLE_LINEAR_SPEED: f64 = 10.0;
-/// The largest plausible angle of a revolute joint [rad] (`uwml.PLAUSIBLE_ANGLE`): two turns
-/// either way; degrees given as radians are far beyond.
-pub(crate) const PLAUSIBLE_ANGLE: f64 = 4.0 * core::f64::consts::PI;
+/// A joint's plausible bounds, `[angle, speed, effort]` (`uwml.plausibility.JointBounds.rows`:
+/// the largest plausible `|q|`, `|q̇|` and environment force; infinite where unbounded).
+pub(crate) type Bounds = [f64; 3];
 
-/// Whether every joint's angle and speed is within the plausible bounds above (else the general
-/// path answers, and warns).
-fn plausible<const J: usize>(robot: &Model, q: &[f64; J], qd: &[f64; J]) -> bool {
-    robot.joints().iter().zip(q).zip(qd).all(|((joint, q), qd)| match joint.kind {
-        JointKind::Revolute => q.abs() <= PLAUSIBLE_ANGLE && qd.abs() <= PLAUSIBLE_ANGULAR_SPEED,
-        JointKind::Prismatic => qd.abs() <= PLAUSIBLE_LINEAR_SPEED,
-    })
+/// Whether every joint's angle and speed is within its bounds (else the general path answers,
+/// and warns).
+fn plausible(bounds: &[Bounds], q: &[f64], qd: &[f64]) -> bool {
+    bounds.iter().zip(q).zip(qd).all(|((&[angle, speed, _], q), qd)| q.abs() <= angle && qd.abs() <= speed)
 }
 
 /// Whether `segment` has a circular section (one coefficient for every direction).
@@ -135,7 +127,12 @@ fn circular(segment: &uwml_core::RobotSegment<f64>) -> bool {
 impl OneState {
     /// `None` unless every argument (in the order of `hydro_one`'s) is of a kind taken there
     /// and passes its check; `cd` and `cm` arrays laid out by `layout`.
-    pub(super) fn read(robot: &Model, layout: Layout, arguments: [&Bound<'_, PyAny>; 11]) -> Option<Self> {
+    pub(super) fn read(
+        robot: &Model,
+        bounds: &[Bounds],
+        layout: Layout,
+        arguments: [&Bound<'_, PyAny>; 11],
+    ) -> Option<Self> {
         let [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads] = arguments;
         let n = robot.joint_count();
         let mut row = StateRow::new();
@@ -143,7 +140,7 @@ impl OneState {
         fill_values(qd, row.qd.get_mut(..n)?)?;
         fill_values(qdd, row.qdd.get_mut(..n)?)?;
         // A state that looks like a unit mistake goes to the general path, which warns.
-        if !plausible(robot, &row.q, &row.qd) {
+        if !plausible(bounds, &row.q, &row.qd) {
             return None;
         }
         if !threads_ok(threads) {
@@ -223,10 +220,18 @@ pub(super) fn one_result<'py>(
     instance(result_type, fields)
 }
 
-/// Every force of one evaluation in `data`, and every value of `more`, finite (else the general
-/// path answers, naming the sample whose forces overflow).
-pub(super) fn finite(data: &Data, more: &[&[f64]]) -> bool {
-    let joints = data.joint_forces().iter().all(|f| f.total().is_finite());
+/// Every force of one evaluation in `data` finite, and with `losses` (`[visc, seal, current]`,
+/// each of every joint) every loss, and every joint's environment force (the water's, plus
+/// `visc + seal`) within its effort bound: else the general path answers, naming the sample
+/// whose forces overflow, or warning of the effort.
+pub(super) fn answered(data: &Data, bounds: &[Bounds], losses: Option<[&[f64]; 3]>) -> bool {
+    let joints = data.joint_forces().iter().enumerate().all(|(i, f)| {
+        let lost = losses
+            .map_or(0.0, |[visc, seal, _]| visc.get(i).copied().unwrap_or(0.0) + seal.get(i).copied().unwrap_or(0.0));
+        let total = f.total() + lost;
+        total.is_finite() && bounds.get(i).is_none_or(|&[_, _, effort]| total.abs() <= effort)
+    });
     let base = data.base_wrench().total().to_array().iter().all(|x| x.is_finite());
-    joints && base && more.iter().all(|values| values.iter().all(|x| x.is_finite()))
+    let losses_finite = losses.is_none_or(|all| all.iter().all(|values| values.iter().all(|x| x.is_finite())));
+    joints && base && losses_finite
 }
