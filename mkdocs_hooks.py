@@ -1,5 +1,6 @@
 """MkDocs hooks of the documentation site (mkdocs.yml): the docstrings' Sphinx roles
-(``:class:`uwml.Robot```, ``:meth:`hydro```, ...) rendered as the code they name."""
+(``:class:`uwml.Robot```, ``:meth:`hydro```, ...) rendered as the code they name, and the Rust
+snippets' hidden lines (rustdoc's ``# ``: what makes a snippet a doctest) left out."""
 
 from __future__ import annotations
 
@@ -7,6 +8,19 @@ import re
 from typing import Any
 
 _ROLE = re.compile(r":(?:py:)?(?:class|meth|func|mod|attr|data|exc|obj|const):(<code>)")
+
+
+_RUST_BLOCK = re.compile(r"^```rust\n.*?^```$", re.MULTILINE | re.DOTALL)
+
+
+def _visible(block: re.Match[str]) -> str:
+    """A Rust block without rustdoc's hidden lines (``# ...`` and a lone ``#``)."""
+    return "\n".join(line for line in block.group(0).split("\n") if not (line == "#" or line.startswith("# ")))
+
+
+def on_page_markdown(markdown: str, **_: Any) -> str:
+    """The page's Markdown with its Rust snippets' hidden lines left out."""
+    return _RUST_BLOCK.sub(_visible, markdown)
 
 
 def on_page_content(html: str, **_: Any) -> str:

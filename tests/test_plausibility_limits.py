@@ -131,12 +131,17 @@ def test_a_torque_beyond_the_effort_limit_warns_on_both_paths() -> None:
     _, total = both_paths(arm, q, qd, [300.0, 300.0])
     # Joint 1's limit at 90 % of what the water puts on it, joint 2's far above.
     limits = (0.9 * abs(total[0]), 2.0 * abs(total[1]) + 1.0)
-    robot = uwml.Robot([dataclasses.replace(j, effort_limit=e) for j, e in zip(arm.joints, limits)], arm.links, base=arm.base, water=arm.water)
+    robot = uwml.Robot(
+        [dataclasses.replace(j, effort_limit=e) for j, e in zip(arm.joints, limits)], arm.links, base=arm.base, water=arm.water
+    )
     assert both_paths(robot, q, qd, [1.0, 1.0])[0] == []
     messages, again = both_paths(robot, q, qd, [300.0, 300.0])
     np.testing.assert_array_equal(again, total)
     assert len(messages) == 1
-    assert f"the environment puts up to {abs(total[0]):.4g} N·m on joint 1 ('shoulder'), beyond its effort limit of {limits[0]:.4g} N·m" in messages[0]
+    assert (
+        f"the environment puts up to {abs(total[0]):.4g} N·m on joint 1 ('shoulder'), beyond its effort limit of {limits[0]:.4g} N·m"
+        in messages[0]
+    )
 
 
 def test_the_joint_losses_count_towards_the_effort() -> None:

@@ -1,7 +1,8 @@
-"""The README's examples (and the site's first pages') run as written: every Python snippet on its own, in order, in a fresh
+"""The README's examples run as written: every Python snippet on its own, in order, in a fresh
 interpreter, in a folder holding the repository's ``examples/``; the command-line block line by
 line after them (it uses the files they and ``examples/my_arm/make_logs.py`` make); the URDF and
-hydro file shown are the example's files. (Its Rust snippet is a doctest of uwml-core.)"""
+hydro file shown are the example's files. (Its Rust snippet is a doctest of uwml-core; the site's
+pages are ``tests/test_site_snippets.py``'s.)"""
 
 import re
 import shlex
@@ -15,12 +16,6 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 PYTHON = re.findall(r"```python\n(.*?)```", README, re.DOTALL)
-#: The site's first pages' snippets, held to the same rule.
-SITE = [
-    block
-    for page in ("index.md", "getting-started.md")
-    for block in re.findall(r"```python\n(.*?)```", (ROOT / "docs" / page).read_text(encoding="utf-8"), re.DOTALL)
-]
 #: The command-line block of "Your own robot, from its URDF".
 COMMANDS = next(block for block in re.findall(r"```bash\n(.*?)```", README, re.DOTALL) if "make_logs.py" in block)
 
@@ -42,13 +37,6 @@ def test_each_python_snippet_runs_on_its_own(index: int, folder: Path) -> None:
     pytest.importorskip("mujoco")
     done = run([sys.executable, "-W", "error", "-c", PYTHON[index]], folder)
     assert done.returncode == 0, f"snippet {index}:\n{PYTHON[index]}\n{done.stderr[-3000:]}"
-
-
-@pytest.mark.parametrize("index", range(len(SITE)))
-def test_each_snippet_of_the_sites_first_pages_runs_on_its_own(index: int, folder: Path) -> None:
-    pytest.importorskip("mujoco")
-    done = run([sys.executable, "-W", "error", "-c", SITE[index]], folder)
-    assert done.returncode == 0, f"snippet {index}:\n{SITE[index]}\n{done.stderr[-3000:]}"
 
 
 def test_the_command_line_block_runs_line_by_line(folder: Path) -> None:

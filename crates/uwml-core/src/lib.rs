@@ -57,3 +57,13 @@ pub use tree::{
 #[cfg(doctest)]
 #[doc = include_str!("../../../README.md")]
 struct ReadmeDoctests;
+
+/// The Rust snippets of the documentation site's pages, compiled and run the same way (their
+/// lines that start with `# ` are rustdoc's hidden lines: the site leaves them out).
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/firmware.md")]
+struct FirmwareDoctests;
+
+#[cfg(doctest)]
+#[doc = include_str!("../../../docs/model.md")]
+struct ModelDoctests;
