@@ -1,7 +1,10 @@
 """Throughput of the batch calls ``Leg.hydro`` and ``Leg.environment`` (with the default losses on
 all three joints) on one and on two threads, against the numpy reference; and of ``Robot.hydro``:
 the paper's leg as a robot (fixed, and on a moving base in a current) and the 7-joint arm of 14
-segments on an ROV of :func:`uwml.robot.examples.arm_on_rov` (moving, in a current).
+segments on an ROV of :func:`uwml.robot.examples.arm_on_rov` (moving, in a current); and what the
+checks against a description's joint limits cost (``uwml.plausibility``): the README's arm of
+``examples/my_arm`` from its URDF (velocity and effort limits, ranges) against the same robot
+without its limits, alternately (needs MuJoCo; skipped without it).
 
 Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
 the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
@@ -63,6 +66,8 @@ def main() -> None:
         t = timings[label] = best_of(3, call)
         print(f"uwml {label:42s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
 
+    limits_cost(n, rng)
+
     m = min(n, 200_000)
     start = time.perf_counter()
     reference.hydro(leg.joints, leg.links, q[:m], qd[:m], qdd[:m])
@@ -70,6 +75,34 @@ def main() -> None:
     print(f"uwml.reference.hydro (numpy){'':15s} {numpy_time:7.3f} s  {n / numpy_time / 1e6:7.2f} M states/s  (timed on {m:,} states)")
     one, two = timings["Leg.hydro, 1 thread"], timings["Leg.hydro, 2 threads"]
     print(f"speed-up of Leg.hydro over the numpy reference: {numpy_time / one:.1f}x; 2 threads over 1: {one / two:.2f}x")
+
+
+def limits_cost(n: int, rng: np.random.Generator) -> None:
+    """``Robot.hydro`` and ``Robot.environment`` on the README's arm with and without its joint
+    limits, alternately, best of 3 each: the warnings' checks (no state here warns)."""
+    try:
+        import mujoco  # noqa: F401
+    except ImportError:
+        print("limits: skipped (no MuJoCo to read the URDF)")
+        return
+    import dataclasses
+    from pathlib import Path
+
+    folder = Path(__file__).resolve().parents[1] / "examples" / "my_arm"
+    limited = uwml.Robot.from_urdf(folder / "my_arm.urdf", folder / "my_arm.hydro.toml")
+    joints = [dataclasses.replace(j, range=None, velocity_limit=None, effort_limit=None) for j in limited.joints]
+    free = uwml.Robot(joints, limited.links, base=limited.base, water=limited.water)
+    q, qd, qdd = rng.uniform(-1, 1, (n, 2)), rng.uniform(-1, 1, (n, 2)), rng.uniform(-2, 2, (n, 2))
+    for label, call in [
+        ("hydro", lambda robot: robot.hydro(q, qd, qdd)),
+        ("environment", lambda robot: robot.environment(q, qd, qdd, depth=100.0)),
+    ]:
+        times = {"without": [], "with": []}
+        for _ in range(3):
+            for name, robot in (("without", free), ("with", limited)):
+                times[name].append(best_of(1, lambda: call(robot)))
+        without, with_ = (min(times[k]) / n * 1e9 for k in ("without", "with"))
+        print(f"uwml Robot.{label}, my_arm, without / with its limits: {without:6.1f} / {with_:6.1f} ns/state ({with_ / without:.3f}x)")
 
 
 if __name__ == "__main__":
