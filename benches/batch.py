@@ -86,6 +86,7 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
         print("limits: skipped (no MuJoCo to read the URDF)")
         return
     import dataclasses
+    import functools
     from pathlib import Path
 
     folder = Path(__file__).resolve().parents[1] / "examples" / "my_arm"
@@ -100,7 +101,7 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
         times = {"without": [], "with": []}
         for _ in range(3):
             for name, robot in (("without", free), ("with", limited)):
-                times[name].append(best_of(1, lambda: call(robot)))
+                times[name].append(best_of(1, functools.partial(call, robot)))
         without, with_ = (min(times[k]) / n * 1e9 for k in ("without", "with"))
         print(f"uwml Robot.{label}, my_arm, without / with its limits: {without:6.1f} / {with_:6.1f} ns/state ({with_ / without:.3f}x)")
 

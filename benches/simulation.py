@@ -90,7 +90,9 @@ def main() -> None:
         for label, micro in rows:
             print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")
         rk4 = next(micro for label, micro in rows if label.endswith("rk4"))
-        print(f"  {'bare mj_step, MuJoCo RK4':28s} {rk4_bare:9.1f} µs   {rk4_bare / rows[0][1]:6.1f} ×   (uwml's rk4: {rk4 / rk4_bare:.1f} × this)")
+        print(
+            f"  {'bare mj_step, MuJoCo RK4':28s} {rk4_bare:9.1f} µs   {rk4_bare / rows[0][1]:6.1f} ×   (uwml's rk4: {rk4 / rk4_bare:.1f} × this)"
+        )
 
 
 if __name__ == "__main__":
