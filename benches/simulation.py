@@ -3,7 +3,7 @@ and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tes
 
     python benches/simulation.py [--steps N]
 
-Prints microseconds per step (median of 5 runs of N steps) and the ratios to a bare mj_step (and
+Prints microseconds per step (median of 5 runs of N steps, each from the same state) and the ratios to a bare mj_step (and
 uwml's RK4 step against MuJoCo's own RK4 step, which also makes four forward passes), for
 the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints), without joint
 losses and (Euler) with the default ones at 3000 m. Timings on a
@@ -45,9 +45,15 @@ def with_fluid(path: Path, ellipsoid: bool) -> mujoco.MjModel:
     return compiled
 
 
-def per_step(step, steps: int) -> float:  # type: ignore[no-untyped-def]
+def per_step(step, steps: int, data: mujoco.MjData) -> float:  # type: ignore[no-untyped-def]
+    """Median microseconds per step of 5 runs of ``steps`` steps, each run from the same state
+    (``data``'s at the call: positions, velocities, time, the solver's warm start), so that every
+    run, and each method, starts alike (a simulation left to run on drifts into other contacts
+    and costs)."""
+    saved = data.qpos.copy(), data.qvel.copy(), data.time, data.qacc_warmstart.copy()
     runs = []
     for _ in range(5):
+        data.qpos[:], data.qvel[:], data.time, data.qacc_warmstart[:] = saved
         start = time.perf_counter()
         for _ in range(steps):
             step()
@@ -66,29 +72,29 @@ def main() -> None:
         rows = []
         bare = mujoco.MjData(model)
         bare.qvel[:] = rng.uniform(-0.5, 0.5, model.nv)
-        rows.append(("bare mj_step", per_step(lambda m=model, d=bare: mujoco.mj_step(m, d), args.steps)))
+        rows.append(("bare mj_step", per_step(lambda m=model, d=bare: mujoco.mj_step(m, d), args.steps, bare)))
         # MuJoCo's own RK4: four forward passes a step, as uwml's rk4 (compare its row with this).
         rk4_model = copy.copy(model)
         rk4_model.opt.integrator = mujoco.mjtIntegrator.mjINT_RK4
         rk4_data = mujoco.MjData(rk4_model)
         rk4_data.qvel[:] = bare.qvel
-        rk4_bare = per_step(lambda m=rk4_model, d=rk4_data: mujoco.mj_step(m, d), args.steps // 4)
+        rk4_bare = per_step(lambda m=rk4_model, d=rk4_data: mujoco.mj_step(m, d), args.steps // 4, rk4_data)
         for label, ellipsoid in (("MuJoCo fluid, inertia box", False), ("MuJoCo fluid, ellipsoid", True)):
             fluid = with_fluid(DATA / file, ellipsoid)
             data = mujoco.MjData(fluid)
             data.qvel[:] = rng.uniform(-0.5, 0.5, fluid.nv)
-            rows.append((label, per_step(lambda m=fluid, d=data: mujoco.mj_step(m, d), args.steps)))
+            rows.append((label, per_step(lambda m=fluid, d=data: mujoco.mj_step(m, d), args.steps, data)))
         for integrator in ("euler", "rk4"):
             sim = Simulation.from_file(DATA / file, DATA / hydro, integrator=integrator)
             sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
-            rows.append((f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps)))
+            rows.append((f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps, sim.data)))
         # The default joint losses at 3000 m: the seals' friction a MuJoCo constraint, noslip on.
         sim = Simulation.from_file(DATA / file, DATA / hydro, depth=3000.0, losses=uwml.JointLosses())
         sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
-        rows.append(("uwml.sim.mujoco, euler, losses", per_step(sim.step, args.steps)))
+        rows.append(("uwml.sim.mujoco, euler, losses", per_step(sim.step, args.steps, sim.data)))
         print(f"\n{name}")
         for label, micro in rows:
-            print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.1f} ×")
+            print(f"  {label:28s} {micro:9.1f} µs   {micro / rows[0][1]:6.2f} ×")
         rk4 = next(micro for label, micro in rows if label.endswith("rk4"))
         print(
             f"  {'bare mj_step, MuJoCo RK4':28s} {rk4_bare:9.1f} µs   {rk4_bare / rows[0][1]:6.1f} ×   (uwml's rk4: {rk4 / rk4_bare:.1f} × this)"

@@ -218,6 +218,8 @@ class Simulation:
         if added_mass not in ("morison", "kirchhoff"):
             raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
         self._scheme, self._integrator, self._added_mass = scheme, integrator, added_mass
+        self._euler, self._lagged = integrator == "euler", scheme == "lagged"
+        self._position_stage = mujoco.mjtStage.mjSTAGE_POS  # looked up once: a step's own cost is small
         # The joint losses, read by the core once for the one-state native path.
         self._losses = robot._effective_losses(losses)
         self._compiled_losses = pack_leg_losses(self._losses, robot.n_joints)
@@ -432,8 +434,7 @@ class Simulation:
         generalized forces in MuJoCo's coordinates (``(nv,)``, as ``qvel``), added too (thrusters
         on a free joint: the force in world components, the moment in the body's). A state that
         is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
-        mj, m, d = self._mj, self.model, self.data
-        coupling = self._coupling
+        mj, m, d, coupling = self._mj, self._model, self._data, self._coupling
         if self._compiled_losses is not None:  # the friction constraints take the levels
             coupling.write_joint_losses()
         mj.mj_fwdPosition(m, d)
@@ -452,7 +453,7 @@ class Simulation:
             d.qfrc_applied[:] += extra
         mj.mj_factorM(m, d)
         mj.mj_projectConstraint(m, d)
-        mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
+        mj.mj_forwardSkip(m, d, self._position_stage, 0)
         if self._prescribed is not None:
             # The prescribed joints' accelerations imposed by the torque that gives them, added to
             # the applied forces and the pass run again, so that every stage (constraints,
@@ -462,7 +463,7 @@ class Simulation:
             torque = imposing_torque(mj, m, d, dofs, target)
             d.qfrc_applied[dofs] += torque
             self._prescribed_torque = torque
-            mj.mj_forwardSkip(m, d, mj.mjtStage.mjSTAGE_POS, 0)
+            mj.mj_forwardSkip(m, d, self._position_stage, 0)
 
     def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None, wrenches: Mapping[str, ArrayLike] | None = None) -> None:
         """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
@@ -471,6 +472,12 @@ class Simulation:
         components at the body's centre of mass (MuJoCo's ``data.xfrc_applied``), held for this
         step only: those bodies' rows of ``xfrc_applied`` are restored after it."""
         if wrenches is None:
+            if self._euler and self._prescribed is None:  # the common step, without _step's frames
+                self.forward(torque, qfrc)
+                if self._lagged:
+                    self._coupling.remember_acceleration()
+                self._mj.mj_Euler(self._model, self._data)
+                return
             self._step(torque, qfrc)
             return
         rows = self._wrench_rows(wrenches)
@@ -549,10 +556,10 @@ class Simulation:
             self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
 
     def _integrate(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
-        mj, m, d = self._mj, self.model, self.data
-        if self.integrator == "euler":
+        mj, m, d = self._mj, self._model, self._data
+        if self._euler:
             self.forward(torque, qfrc)
-            if self.scheme == "lagged":
+            if self._lagged:
                 self._coupling.remember_acceleration()
             mj.mj_Euler(m, d)
             return
