@@ -87,7 +87,9 @@ def main() -> None:
         for integrator in ("euler", "rk4"):
             sim = Simulation.from_file(DATA / file, DATA / hydro, integrator=integrator)
             sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
-            rows.append((f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps, sim.data)))
+            rows.append(
+                (f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps, sim.data))
+            )
         # The default joint losses at 3000 m: the seals' friction a MuJoCo constraint, noslip on.
         sim = Simulation.from_file(DATA / file, DATA / hydro, depth=3000.0, losses=uwml.JointLosses())
         sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
