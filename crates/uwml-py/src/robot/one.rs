@@ -9,7 +9,7 @@ use uwml_core::nalgebra::Vector3;
 use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Owner, Section, Water, robot_hydro};
 
 use super::inputs::StateRow;
-use super::{Coefficients, Data, Model};
+use super::{Coefficients, Data, MAX_ROBOT_JOINTS, Model};
 use crate::single::{fill_values, finite_number, instance, threads_ok};
 
 /// The five arrays of a `uwml.BaseMotion` of one state.
@@ -192,8 +192,14 @@ pub(super) fn one_result<'py>(
     let py = result_type.py();
     let forces = data.joint_forces();
     let n = forces.len();
+    // Each array made and filled by numpy (`from_slice`), not over a Rust vector (`from_iter`
+    // keeps one, with an owner object of its own).
     let column = |value: fn(&uwml_core::JointForces<f64>) -> f64| {
-        numpy::PyArray1::from_iter(py, forces.iter().map(value)).into_any()
+        let mut values = [0.0; MAX_ROBOT_JOINTS];
+        for (slot, force) in values.iter_mut().zip(forces) {
+            *slot = value(force);
+        }
+        numpy::PyArray1::from_slice(py, values.get(..n).unwrap_or_default()).into_any()
     };
     let base = data.base_wrench();
     let wrench = |w: &uwml_core::Wrench<f64>| numpy::PyArray1::from_slice(py, &w.to_array()).into_any();
