@@ -250,12 +250,9 @@ def robot_inputs(
     return arguments, bool(per_sample), n_samples
 
 
-def robot_parts(
-    joints: Sequence[Joint], links: Sequence[Link], base: Link | None
-) -> tuple[tuple[Joint, ...], tuple[Link, ...], Link, list[tuple[int, Segment]]]:
-    """A :class:`uwml.Robot`'s parts checked: its joints with every ``parent`` resolved, its
-    links, the base's body (a body without mass, volume or segments for ``None``) and every
-    segment with its owner (``-1`` the base), base first."""
+def joint_and_link_tuples(joints: Sequence[Joint], links: Sequence[Link]) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
+    """``joints`` and ``links`` as tuples, each item checked to be a :class:`uwml.Joint` or a
+    :class:`uwml.Link` (a TypeError naming the first that is not)."""
     try:
         joints, links = tuple(joints), tuple(links)
     except TypeError:
@@ -266,6 +263,16 @@ def robot_parts(
         for index, item in enumerate(items):
             if not isinstance(item, kind):
                 raise TypeError(f"{name}[{index}] must be a uwml.{kind.__name__}, got {type(item).__name__}")
+    return joints, links
+
+
+def robot_parts(
+    joints: Sequence[Joint], links: Sequence[Link], base: Link | None
+) -> tuple[tuple[Joint, ...], tuple[Link, ...], Link, list[tuple[int, Segment]]]:
+    """A :class:`uwml.Robot`'s parts checked: its joints with every ``parent`` resolved, its
+    links, the base's body (a body without mass, volume or segments for ``None``) and every
+    segment with its owner (``-1`` the base), base first."""
+    joints, links = joint_and_link_tuples(joints, links)
     if base is not None and not isinstance(base, Link):
         raise TypeError(f"base must be a uwml.Link or None, got {type(base).__name__}")
     if len(joints) != len(links) or not 1 <= len(joints) <= MAX_ROBOT_JOINTS:

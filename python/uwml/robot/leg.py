@@ -14,7 +14,7 @@ from .. import _core
 from .._checks import real_array as _real_array
 from ..model.joint_losses import JointLosses
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
-from ._arguments import _coefficients
+from ._arguments import _coefficients, joint_and_link_tuples
 from .results import EnvironmentJacobians, HydroRegressors
 from .tree import Robot
 
@@ -80,16 +80,7 @@ class Leg(Robot):
     """
 
     def __init__(self, joints: Sequence[Joint], links: Sequence[Link]) -> None:
-        try:
-            joints, links = tuple(joints), tuple(links)
-        except TypeError:
-            raise TypeError(
-                f"joints and links must be sequences of uwml.Joint and uwml.Link, got {type(joints).__name__} and {type(links).__name__}"
-            ) from None
-        if not all(isinstance(j, Joint) for j in joints):
-            raise TypeError("joints must be uwml.Joint objects")
-        if not all(isinstance(link, Link) for link in links):
-            raise TypeError("links must be uwml.Link objects")
+        joints, links = joint_and_link_tuples(joints, links)
         if len(joints) != len(links) or not 1 <= len(joints) <= MAX_JOINTS:
             raise ValueError(f"a leg needs as many links as joints, 1 to {MAX_JOINTS}; got {len(joints)} joints and {len(links)} links")
         for index, joint in enumerate(joints):
