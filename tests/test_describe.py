@@ -60,6 +60,12 @@ def test_uwml_describe_reads_urdf_and_mjcf_with_their_hydro_files(capsys: pytest
         out = capsys.readouterr().out
         # Table II: the thigh's 19.261 kg at 2700 kg/m³, net buoyancy (1000 V − m) g = −118.98 N.
         assert "3 joints, 2 segments" in out and "mass     19.26 kg" in out and "-119 N" in out
+        # The limits as read: the URDF's range, velocity and effort; the MJCF gives none.
+        knee = next(line for line in out.splitlines() if line.strip().startswith("knee"))
+        if description.endswith(".urdf"):
+            assert "limits: range [-3, 3] rad, velocity 10 rad/s, effort 530 N·m" in knee
+        else:
+            assert "limits" not in knee
     assert main(["describe", "--robot", str(data / "paper_leg.urdf"), "--hydro", str(data / "missing.toml")]) == 2
     assert "missing.toml" in capsys.readouterr().err
 

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.parts import Link, Segment, Water
+from ..model.parts import Joint, Link, Segment, Water
 from ..robot.tree import Robot
 
 __all__ = ["describe", "draw", "frame_origins"]
@@ -40,6 +40,19 @@ def _section(segment: Segment) -> str:
     return f"rectangular, widths {widths[0]:.4g} × {widths[1]:.4g} m"
 
 
+def _limits(joint: Joint) -> str:
+    """A joint's limits as the description gives them (uwml warns beyond them, nothing else)."""
+    unit, force = ("rad", "N·m") if joint.kind == "revolute" else ("m", "N")
+    parts = []
+    if joint.range is not None:
+        parts.append(f"range [{joint.range[0]:.4g}, {joint.range[1]:.4g}] {unit}")
+    if joint.velocity_limit is not None:
+        parts.append(f"velocity {joint.velocity_limit:.4g} {unit}/s")
+    if joint.effort_limit is not None:
+        parts.append(f"effort {joint.effort_limit:.4g} {force}")
+    return f"  limits: {', '.join(parts)}" if parts else ""
+
+
 def describe(robot: Robot, water: Water | None = None) -> str:
     """A plain-text account of ``robot``: joints, bodies (mass, volume, net buoyancy in
     ``water``, fresh water by default), segments with their coefficients, and lumped models."""
@@ -52,7 +65,9 @@ def describe(robot: Robot, water: Water | None = None) -> str:
     parent_names = ("base", *robot.link_names)
     for name, joint in zip(robot.joint_names, robot.joints):
         parent = parent_names[0 if joint.parent is None or joint.parent < 0 else joint.parent + 1]
-        lines.append(f"  {name:16s} {joint.kind:9s} parent {parent:16s} origin {_fmt(joint.origin)}  axis {_fmt(joint.axis)}")
+        lines.append(
+            f"  {name:16s} {joint.kind:9s} parent {parent:16s} origin {_fmt(joint.origin)}  axis {_fmt(joint.axis)}{_limits(joint)}"
+        )
     lines += ["", "bodies (buoyancy = ρ V g, the water's; net = ρ V g − m g, with the weight; both upwards)"]
     total_mass = total_volume = 0.0
     for name, body, _ in _bodies(robot):
