@@ -48,6 +48,14 @@ def test_a_urdfs_limits_are_read(tmp_path: Path) -> None:
     assert (j3.kind, j3.range, j3.velocity_limit, j3.effort_limit) == ("prismatic", (0.0, 0.3), 0.5, 200.0)
 
 
+@pytest.mark.parametrize("key", ["velocity", "effort"])
+def test_a_urdf_limit_that_is_not_a_number_is_refused(key: str, tmp_path: Path) -> None:
+    path = tmp_path / "r.urdf"
+    path.write_text(URDF.replace(f'{key}="3"' if key == "velocity" else 'effort="80"', f'{key}="fast"', 1))
+    with pytest.raises(uwml.DescriptionError, match=rf"r.urdf, line 8: joint 'j1': <limit {key}='fast'> is not a number"):
+        uwml.Robot.from_urdf(path)
+
+
 def test_an_mjcfs_range_and_actuator_force_range_are_read(tmp_path: Path) -> None:
     path = tmp_path / "r.xml"
     path.write_text(MJCF)

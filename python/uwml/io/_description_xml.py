@@ -129,7 +129,7 @@ class _Scan:
         self.links: set[str] = set()
         self.joints: set[str] = set()
         self.tree: list[_Edge] = []
-        self.velocity_limits: dict[str, float] = {}  # URDF joint name -> <limit velocity>, when positive
+        self.limits: dict[str, dict[str, float]] = {}  # URDF joint name -> its positive <limit velocity effort>
         self.memo: dict[tuple[str, bool], _Counts] = {}
         self.active: list[str] = []
 
@@ -237,15 +237,17 @@ class _Scan:
         elif tag in ("parent", "child") and parent == "joint" and len(stack) == 2 and self.tree:
             setattr(self.tree[-1], tag, attrs.get("link", ""))
         elif tag == "limit" and parent == "joint" and len(stack) == 2:
-            # MuJoCo keeps a URDF's range and effort, not its velocity (0, or absent: none given).
-            try:
-                velocity = float(attrs.get("velocity", "0"))
-            except ValueError:
-                raise self.fail(
-                    where, f"joint {_quoted(stack[-1].name)}: <limit velocity={shown(attrs['velocity'], 40)}> is not a number"
-                ) from None
-            if velocity > 0.0:
-                self.velocity_limits[stack[-1].name] = velocity
+            # MuJoCo keeps a URDF's range, not its velocity, and its effort only in some versions:
+            # both read here (0, or absent: none given).
+            for key in ("velocity", "effort"):
+                try:
+                    value = float(attrs.get(key, "0"))
+                except ValueError:
+                    raise self.fail(
+                        where, f"joint {_quoted(stack[-1].name)}: <limit {key}={shown(attrs[key], 40)}> is not a number"
+                    ) from None
+                if value > 0.0:
+                    self.limits.setdefault(stack[-1].name, {})[key] = value
         elif tag == "mimic" and parent == "joint" and len(stack) == 2:
             raise self.fail(
                 where,
@@ -371,12 +373,12 @@ class _Scan:
                             )
 
 
-def scan(path: str | os.PathLike[str], what: str) -> tuple[str, dict[str, float]]:
+def scan(path: str | os.PathLike[str], what: str) -> tuple[str, dict[str, dict[str, float]]]:
     """Reads the description at ``path`` as written (see the module docstring) and returns its
-    format, ``"URDF"`` or ``"MJCF"`` (by its root element), and the velocity limits of its
-    joints by name (a URDF's positive ``<limit velocity>``; MuJoCo does not keep them, and MJCF
-    has none); ``what`` names the format expected in messages about a file that cannot be
-    parsed."""
+    format, ``"URDF"`` or ``"MJCF"`` (by its root element), and the limits of its joints by name:
+    a URDF's positive ``<limit velocity effort>`` as ``{"velocity": ..., "effort": ...}`` (MuJoCo
+    does not keep the velocity; an MJCF's limits are in the compiled model); ``what`` names the
+    format expected in messages about a file that cannot be parsed."""
     state = _Scan(path, what)
     counts = state.document(Path(path), False, f"{what} file")
     state.attached(counts)
@@ -386,4 +388,4 @@ def scan(path: str | os.PathLike[str], what: str) -> tuple[str, dict[str, float]
     if state.format == "URDF":
         state.check_tree()
     state.check_references()
-    return state.format, state.velocity_limits
+    return state.format, state.limits

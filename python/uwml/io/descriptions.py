@@ -244,11 +244,11 @@ def _compile_error(exc: ValueError, spec: Any, fmt: str, source: str) -> Descrip
 
 def _spec(
     path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str, floating: bool = False
-) -> tuple[Any, dict[str, float]]:
-    """The compiled model of the description, and its joints' velocity limits by name."""
+) -> tuple[Any, dict[str, dict[str, float]]]:
+    """The compiled model of the description, and its joints' limits by name as written (URDF)."""
     mujoco = _mujoco()
     source = str(path)
-    fmt, velocity_limits = scan(path, what)  # the XML as written: files, sizes, names, numbers (uwml.io._description_xml)
+    fmt, written_limits = scan(path, what)  # the XML as written: files, sizes, names, numbers (uwml.io._description_xml)
     try:
         spec = mujoco.MjSpec.from_file(source)
     except ValueError as exc:
@@ -300,7 +300,7 @@ def _spec(
             raise _compile_error(exc, spec, fmt, source) from None
     if caught:  # MuJoCo's warnings while compiling ("inertia matrix too close to singular"): a broken model
         raise DescriptionError(f"{source}: MuJoCo warns while compiling this {fmt} file: {clipped(str(caught[0].message))}")
-    return model, velocity_limits
+    return model, written_limits
 
 
 def _float_root(spec: Any, source: str) -> None:
@@ -343,8 +343,8 @@ def model_and_parts(
     file = HydroFile() if hydro is None else read_hydro(hydro)
     if floating is not None and not isinstance(floating, bool):
         raise TypeError(f"floating must be true, false or None, got {type(floating).__name__}")
-    model, velocity_limits = _spec(path, what, file.links, str(hydro), file.floating if floating is None else floating)
-    return model, _from_model(model, velocity_limits, file, str(path), str(hydro))
+    model, written_limits = _spec(path, what, file.links, str(hydro), file.floating if floating is None else floating)
+    return model, _from_model(model, written_limits, file, str(path), str(hydro))
 
 
 def mujoco_parts(model: Any, hydro: str | os.PathLike[str] | None = None) -> DescriptionParts:
@@ -365,11 +365,13 @@ def mujoco_parts(model: Any, hydro: str | os.PathLike[str] | None = None) -> Des
     return _from_model(model, {}, file, source, str(hydro))
 
 
-def _from_model(model: Any, velocity_limits: dict[str, float], file: HydroFile, source: str, hydro_source: str) -> DescriptionParts:
+def _from_model(
+    model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str
+) -> DescriptionParts:
     # A huge coordinate overflows to inf in the frames' products: the model's checks then refuse
     # it by name (a numpy warning would say nothing of where).
     with np.errstate(all="ignore"):
-        return _mapped(model, velocity_limits, file, source, hydro_source)
+        return _mapped(model, written_limits, file, source, hydro_source)
 
 
 def _split_joint(first: str, second: str) -> str | None:
@@ -383,21 +385,22 @@ def _split_joint(first: str, second: str) -> str | None:
     return None
 
 
-def _limits(model: Any, j: int, velocity_limits: dict[str, float]) -> dict[str, Any]:
+def _limits(model: Any, j: int, written_limits: dict[str, dict[str, float]]) -> dict[str, Any]:
     """Joint ``j``'s limits as :class:`uwml.Joint` takes them: its range (where limited), its
-    effort limit (the larger magnitude of its ``actuatorfrcrange``, a URDF's ``effort``, where
-    limited and nonzero), and its velocity limit (from the XML as written)."""
-    limits: dict[str, Any] = {"velocity_limit": velocity_limits.get(model.joint(j).name)}
+    velocity and effort limits as the URDF writes them, else the larger magnitude of its
+    ``actuatorfrcrange`` (MJCF; where limited and nonzero)."""
+    written = written_limits.get(model.joint(j).name, {})
+    limits: dict[str, Any] = {"velocity_limit": written.get("velocity"), "effort_limit": written.get("effort")}
     lower, upper = (float(x) for x in model.jnt_range[j])
     if model.jnt_limited[j] and lower < upper:
         limits["range"] = (lower, upper)
     effort = max(abs(float(x)) for x in model.jnt_actfrcrange[j])
-    if model.jnt_actfrclimited[j] and effort > 0.0:
+    if limits["effort_limit"] is None and model.jnt_actfrclimited[j] and effort > 0.0:
         limits["effort_limit"] = effort
     return limits
 
 
-def _mapped(model: Any, velocity_limits: dict[str, float], file: HydroFile, source: str, hydro_source: str) -> DescriptionParts:
+def _mapped(model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str) -> DescriptionParts:
     hydro = file.links
     mujoco = _mujoco()
     jt = mujoco.mjtJoint
@@ -482,7 +485,7 @@ def _mapped(model: Any, velocity_limits: dict[str, float], file: HydroFile, sour
                     parent=link_index.get(parent_owner, -1),
                     kind="revolute" if model.jnt_type[j] == jt.mjJNT_HINGE else "prismatic",
                     name=joint_name[j] or None,
-                    **_limits(model, j, velocity_limits),
+                    **_limits(model, j, written_limits),
                 )
             )
         except (TypeError, ValueError) as exc:
