@@ -60,6 +60,9 @@ pub(crate) struct PyRobot {
     bounds: Vec<one::Bounds>,
     /// A workspace kept for one-thread calls, so that they do not set up a new one.
     data: Mutex<Box<Data>>,
+    /// A coefficient table kept for one-state calls given `cd` or `cm` (8 kB: made once, and
+    /// only the robot's segments' entries written by each call).
+    coefficient_table: Mutex<Box<Coefficients>>,
     /// The robot over SIMD lanes, made at the first batch.
     lanes: OnceLock<Box<LaneModel>>,
     /// A lane workspace kept for one-thread batches.
@@ -111,6 +114,7 @@ impl PyRobot {
             .and_then(|robot| if lumped.is_empty() { Ok(robot) } else { robot.with_lumped(&lumped) })
             .map_err(model_error)?;
         Ok(Self {
+            coefficient_table: Mutex::new(Box::new(Coefficients::own(&robot))),
             robot: Box::new(robot),
             bounds,
             data: Mutex::new(Box::new(Data::new())),
@@ -286,9 +290,12 @@ impl PyRobot {
         per_link: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
-        let Some(one) = OneState::read(&self.robot, &self.bounds, layout(per_link), arguments) else { return Ok(None) };
+        let mut table = self.coefficient_workspace();
+        let Some(one) = OneState::read(&self.robot, &self.bounds, layout(per_link), arguments, &mut table) else {
+            return Ok(None);
+        };
         let mut data = self.one_state_workspace();
-        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
+        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data, &table);
         if !one::answered(&data, &self.bounds, None) {
             return Ok(None); // forces that overflow: the general path names the sample
         }
@@ -324,8 +331,9 @@ impl PyRobot {
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
         let n = self.robot.joint_count();
         let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
+        let mut table = self.coefficient_workspace();
         let (Some(one), Some(depth), Some(temperature), Some(sea_density)) = (
-            OneState::read(&self.robot, &self.bounds, layout(per_link), arguments),
+            OneState::read(&self.robot, &self.bounds, layout(per_link), arguments, &mut table),
             finite_number(depth),
             finite_number(temperature),
             finite_number(sea_density),
@@ -349,7 +357,7 @@ impl PyRobot {
             None => &[],
         };
         let mut data = self.one_state_workspace();
-        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data);
+        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data, &table);
         // The batch path's pressure and loss states (the same operations), so that the bits are
         // its; the robot's joints only.
         let pressure = sea_density * one.water.gravity() * depth;
@@ -561,12 +569,13 @@ impl PyRobot {
     /// The kept workspace for a one-state call made with the GIL held, or a new one if another
     /// thread is using it: a thread holding the GIL never waits for a lock (no deadlock with a
     /// detached batch, none when the result's construction runs Python that calls back in).
-    fn one_state_workspace(&self) -> OneStateWorkspace<'_> {
-        match self.data.try_lock() {
-            Ok(guard) => OneStateWorkspace::Kept(guard),
-            Err(TryLockError::Poisoned(poisoned)) => OneStateWorkspace::Kept(poisoned.into_inner()),
-            Err(TryLockError::WouldBlock) => OneStateWorkspace::New(Box::new(Data::new())),
-        }
+    fn one_state_workspace(&self) -> Workspace<'_, Data> {
+        Workspace::of(&self.data, || Box::new(Data::new()))
+    }
+
+    /// The kept coefficient table, or a new one while another thread holds it.
+    fn coefficient_workspace(&self) -> Workspace<'_, Coefficients> {
+        Workspace::of(&self.coefficient_table, || Box::new(Coefficients::own(&self.robot)))
     }
 
     /// Per-segment coefficients `(S, 2)`, or `None` for `(0, 2)` (the segments' own).
@@ -596,26 +605,38 @@ impl PyRobot {
 }
 
 /// A one-state call's workspace: the robot's kept one, or a new one (see `one_state_workspace`).
-enum OneStateWorkspace<'a> {
-    Kept(MutexGuard<'a, Box<Data>>),
-    New(Box<Data>),
+enum Workspace<'a, T> {
+    Kept(MutexGuard<'a, Box<T>>),
+    New(Box<T>),
 }
 
-impl Deref for OneStateWorkspace<'_> {
-    type Target = Data;
-    fn deref(&self) -> &Data {
-        match self {
-            Self::Kept(guard) => guard,
-            Self::New(data) => data,
+impl<'a, T> Workspace<'a, T> {
+    /// The one kept in `kept`, or `make()`'s while another thread holds it (a poisoned lock's
+    /// workspace is as good: every call writes what it reads).
+    fn of(kept: &'a Mutex<Box<T>>, make: impl FnOnce() -> Box<T>) -> Self {
+        match kept.try_lock() {
+            Ok(guard) => Self::Kept(guard),
+            Err(TryLockError::Poisoned(poisoned)) => Self::Kept(poisoned.into_inner()),
+            Err(TryLockError::WouldBlock) => Self::New(make()),
         }
     }
 }
 
-impl DerefMut for OneStateWorkspace<'_> {
-    fn deref_mut(&mut self) -> &mut Data {
+impl<T> Deref for Workspace<'_, T> {
+    type Target = T;
+    fn deref(&self) -> &T {
         match self {
             Self::Kept(guard) => guard,
-            Self::New(data) => data,
+            Self::New(value) => value,
+        }
+    }
+}
+
+impl<T> DerefMut for Workspace<'_, T> {
+    fn deref_mut(&mut self) -> &mut T {
+        match self {
+            Self::Kept(guard) => guard,
+            Self::New(value) => value,
         }
     }
 }

@@ -20,9 +20,9 @@ pub(super) type MotionArrays<'py> =
 pub(super) struct OneState {
     pub(super) row: StateRow,
     pub(super) water: Water<f64>,
-    /// The coefficients of every segment and direction (checked), or `None` for the segments'
-    /// own.
-    pub(super) coefficients: Option<Box<Coefficients>>,
+    /// Whether the call's coefficient table holds the coefficients (checked), or the segments'
+    /// own are taken.
+    pub(super) coefficients: bool,
     pub(super) motion: BaseMotion<f64>,
     pub(super) current: Current<f64>,
 }
@@ -73,17 +73,19 @@ fn coefficient_values(value: &Bound<'_, PyAny>, items: usize) -> Option<Vec<[f64
         .collect()
 }
 
-/// `cd` and `cm` (either None: the segments' own) as a table of every segment's, read by
-/// `layout`; `Some(None)` when both are None; `None` when either is not taken here or fails a
-/// check (a circular segment takes one coefficient).
+/// `cd` and `cm` (either None: the segments' own) written into `table` for every segment of
+/// the robot, read by `layout` (the other entries are never read); `Some(false)` when both are
+/// None (the table untouched); `None` when either is not taken here or fails a check (a
+/// circular segment takes one coefficient).
 fn coefficient_table(
     robot: &Model,
     layout: Layout,
     cd: &Bound<'_, PyAny>,
     cm: &Bound<'_, PyAny>,
-) -> Option<Option<Box<Coefficients>>> {
+    table: &mut Coefficients,
+) -> Option<bool> {
     if cd.is_none() && cm.is_none() {
-        return Some(None);
+        return Some(false);
     }
     let items = match layout {
         Layout::Segments => robot.segments().len(),
@@ -93,7 +95,6 @@ fn coefficient_table(
         if value.is_none() { Some(None) } else { coefficient_values(value, items).map(Some) }
     };
     let (cd, cm) = (read(cd)?, read(cm)?);
-    let mut table = Box::new(Coefficients::own(robot));
     for (k, segment) in robot.segments().iter().enumerate() {
         let item = match (layout, segment.owner) {
             (Layout::Segments, _) => k,
@@ -106,7 +107,7 @@ fn coefficient_table(
         };
         table.set(k, given(&cd, segment.cd)?, given(&cm, segment.cm)?).ok()?;
     }
-    Some(Some(table))
+    Some(true)
 }
 
 /// A joint's plausible bounds, `[angle, speed, effort]` (`uwml.plausibility.JointBounds.rows`:
@@ -132,6 +133,7 @@ impl OneState {
         bounds: &[Bounds],
         layout: Layout,
         arguments: [&Bound<'_, PyAny>; 11],
+        table: &mut Coefficients,
     ) -> Option<Self> {
         let [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads] = arguments;
         let n = robot.joint_count();
@@ -147,7 +149,7 @@ impl OneState {
             return None;
         }
         let water = Water::new(finite_number(density)?, finite_number(gravity)?).ok()?;
-        let coefficients = coefficient_table(robot, layout, cd, cm)?;
+        let coefficients = coefficient_table(robot, layout, cd, cm, table)?;
         let vector = |value: &Bound<'_, PyAny>| {
             let mut out = [0.0; 3];
             fill_values(value, &mut out).map(|()| Vector3::from(out))
@@ -167,13 +169,14 @@ impl OneState {
         Some(Self { row, water, coefficients, motion, current })
     }
 
-    pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data) {
+    /// The evaluation, with `table`'s coefficients if [`OneState::read`] wrote them there.
+    pub(super) fn evaluate(&self, robot: &Model, form: AddedMassForm, data: &mut Data, table: &Coefficients) {
         let Self { row, water, coefficients, motion, current } = self;
         let conditions = Conditions {
             water: *water,
             motion: *motion,
             current: *current,
-            coefficients: coefficients.as_deref(),
+            coefficients: coefficients.then_some(table),
             form,
             losses: None,
         };
