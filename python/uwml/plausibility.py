@@ -37,7 +37,7 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -85,23 +85,16 @@ class PlausibilityWarning(UserWarning):
 
 @dataclass(frozen=True)
 class JointBounds:
-    """The plausible bounds of a robot's joints, one entry per joint (``inf``: unbounded), and
-    where each comes from, for the messages."""
+    """The plausible bounds of a robot's joints (:func:`joint_bounds`), one entry per joint
+    (``inf``: unbounded), with the joints they were worked out from (for the messages)."""
 
+    joints: tuple[Any, ...]
     #: The largest plausible ``|q|`` [rad or m].
     angle: tuple[float, ...]
     #: The largest plausible ``|q̇|`` [rad/s or m/s].
     speed: tuple[float, ...]
     #: The largest plausible ``|τ|`` of the environment [N·m or N].
     effort: tuple[float, ...]
-    #: Each joint as messages name it: ``joint 2 ('elbow')``.
-    labels: tuple[str, ...]
-    #: Per joint: revolute (True) or prismatic.
-    revolute: tuple[bool, ...]
-    #: Per joint: whether its speed bound is its description's velocity limit.
-    speed_limited: tuple[bool, ...]
-    #: Per joint: whether its angle bound comes from its range.
-    ranged: tuple[bool, ...]
 
     def rows(self) -> list[tuple[float, float, float]]:
         """``(angle, speed, effort)`` per joint: the compiled core's one-state path takes a
@@ -111,8 +104,9 @@ class JointBounds:
 
 def joint_bounds(joints: Sequence[Any]) -> JointBounds:
     """The bounds of :class:`uwml.Joint`\\ s (module docstring)."""
-    angle, speed, effort, labels, revolute, speed_limited, ranged = [], [], [], [], [], [], []
-    for j, joint in enumerate(joints):
+    joints = tuple(joints)
+    angle, speed = [], []
+    for joint in joints:
         turns = joint.kind == "revolute"
         limit = joint.velocity_limit
         speed.append(LIMIT_MARGIN * limit if limit is not None else PLAUSIBLE_ANGULAR_SPEED if turns else PLAUSIBLE_LINEAR_SPEED)
@@ -120,12 +114,13 @@ def joint_bounds(joints: Sequence[Any]) -> JointBounds:
             angle.append(max(2.0 * math.pi, abs(joint.range[0]), abs(joint.range[1])))
         else:
             angle.append(PLAUSIBLE_ANGLE if turns else math.inf)
-        effort.append(joint.effort_limit if joint.effort_limit is not None else math.inf)
-        labels.append(f"joint {j + 1}" + (f" ({joint.name!r})" if joint.name is not None else ""))
-        revolute.append(turns)
-        speed_limited.append(limit is not None)
-        ranged.append(turns and joint.range is not None)
-    return JointBounds(tuple(angle), tuple(speed), tuple(effort), tuple(labels), tuple(revolute), tuple(speed_limited), tuple(ranged))
+    effort = tuple(math.inf if joint.effort_limit is None else joint.effort_limit for joint in joints)
+    return JointBounds(joints, tuple(angle), tuple(speed), effort)
+
+
+def _label(j: int, joint: Any) -> str:
+    """Joint ``j`` as messages name it: ``joint 2 ('elbow')``."""
+    return f"joint {j + 1}" + (f" ({joint.name!r})" if joint.name is not None else "")
 
 
 def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -144,21 +139,22 @@ def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointB
     """Warn about joint angles and speeds beyond ``bounds``: ``q`` and ``qd`` of shape
     ``(n_joints,)`` or ``(n_samples, n_joints)``."""
     speeds, angles = _largest(qd), _largest(q)
-    for j, label in enumerate(bounds.labels):
+    for j, joint in enumerate(bounds.joints):
+        label, turns = _label(j, joint), joint.kind == "revolute"
         if speeds[j] > bounds.speed[j]:
-            unit = "rad/s" if bounds.revolute[j] else "m/s"
-            if bounds.speed_limited[j]:
-                above = f"above {LIMIT_MARGIN:g} times its velocity limit of {bounds.speed[j] / LIMIT_MARGIN:.4g} {unit}"
+            unit = "rad/s" if turns else "m/s"
+            if joint.velocity_limit is not None:
+                above = f"above {LIMIT_MARGIN:g} times its velocity limit of {joint.velocity_limit:.4g} {unit}"
             else:
-                above = f"above {bounds.speed[j]:g} {unit}" + (" (about 290 r/min)" if bounds.revolute[j] else "")
-            if bounds.revolute[j]:
+                above = f"above {bounds.speed[j]:g} {unit}" + (" (about 290 r/min)" if turns else "")
+            if turns:
                 seen, cause = f"{label}'s speed reaches {speeds[j]:.4g} rad/s", "degrees per second? uwml takes rad/s"
             else:
                 seen, cause = f"{label} (prismatic) moves at up to {speeds[j]:.4g} m/s", "mm/s? uwml takes m/s"
             _warn(f"{seen}, {above}: are the speeds in {cause}; {_SILENCE} if they are right", stacklevel)
             return
         if angles[j] > bounds.angle[j]:
-            ranged = " (beyond ±2π and its range)" if bounds.ranged[j] else ""
+            ranged = " (beyond ±2π and its range)" if joint.range is not None else ""
             _warn(
                 f"{label}'s angle reaches {angles[j]:.4g} rad, {angles[j] / (2 * math.pi):.3g} turns{ranged}: are the angles in "
                 f"degrees? uwml takes radians; {_SILENCE} if the joint has turned that far",
@@ -167,18 +163,25 @@ def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointB
             return
 
 
-def check_efforts(total: NDArray[np.float64], bounds: JointBounds, stacklevel: int = 3) -> None:
-    """Warn about a joint whose environment force ``total`` (``(n_joints,)`` or ``(n_samples,
-    n_joints)``) is beyond its effort limit."""
+class _Result(Protocol):
+    @property
+    def total(self) -> NDArray[np.float64]: ...
+
+
+def check_efforts(result: _Result, bounds: JointBounds, stacklevel: int = 3) -> None:
+    """Warn about a joint whose environment force (``result.total``: ``(n_joints,)`` or
+    ``(n_samples, n_joints)``) is beyond its effort limit; ``total`` is computed only for a
+    robot with an effort limit."""
     if all(math.isinf(x) for x in bounds.effort):
         return
-    largest = _largest(total)
-    for j, label in enumerate(bounds.labels):
+    largest = _largest(result.total)
+    for j, joint in enumerate(bounds.joints):
         if largest[j] > bounds.effort[j]:
-            unit = "N·m" if bounds.revolute[j] else "N"
+            unit = "N·m" if joint.kind == "revolute" else "N"
             _warn(
-                f"the environment puts up to {largest[j]:.4g} {unit} on {label}, beyond its effort limit of {bounds.effort[j]:.4g} {unit}: "
-                f"its motor could not hold that; is a state in the wrong unit (degrees, mm)? {_SILENCE} if it is right",
+                f"the environment puts up to {largest[j]:.4g} {unit} on {_label(j, joint)}, beyond its effort limit of "
+                f"{bounds.effort[j]:.4g} {unit}: its motor could not hold that; is a state in the wrong unit (degrees, mm)? "
+                f"{_SILENCE} if it is right",
                 stacklevel,
             )
             return

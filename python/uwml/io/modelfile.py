@@ -340,11 +340,11 @@ def parse(text: str, source: str = "<string>") -> ModelParts:
         kind = r.get("kind", _text, 'a string, "revolute" or "prismatic"')
         origin = r.get("origin", _vec3, "an array of 3 numbers [m]")
         axis = r.get("axis", _vec3, "a unit vector")
-        limits = r.get("range", _pair, "an array of 2 numbers, lower < upper [rad or m]", required=False)
+        joint_range = r.get("range", _pair, "an array of 2 numbers, lower < upper [rad or m]", required=False)
         velocity = r.get("velocity_limit", _float, "a positive number [rad/s or m/s]", required=False)
         effort = r.get("effort_limit", _float, "a positive number [N·m or N]", required=False)
         make = functools.partial(
-            Joint, origin, axis, parent=parent, kind=kind, name=name, range=limits, velocity_limit=velocity, effort_limit=effort
+            Joint, origin, axis, parent=parent, kind=kind, name=name, range=joint_range, velocity_limit=velocity, effort_limit=effort
         )
         joints.append(r.build(make))
     links = [_body(source, f"links[{i}]", table) for i, table in enumerate(link_tables)]

@@ -472,13 +472,10 @@ class Simulation:
         components at the body's centre of mass (MuJoCo's ``data.xfrc_applied``), held for this
         step only: those bodies' rows of ``xfrc_applied`` are restored after it."""
         if wrenches is None:
-            if self._euler and self._prescribed is None:  # the common step, without _step's frames
-                self.forward(torque, qfrc)
-                if self._lagged:
-                    self._coupling.remember_acceleration()
-                self._mj.mj_Euler(self._model, self._data)
-                return
-            self._step(torque, qfrc)
+            if self._prescribed is None:  # the common step: no motion to put the joints back on
+                self._integrate(torque, qfrc)
+            else:
+                self._step(torque, qfrc)
             return
         rows = self._wrench_rows(wrenches)
         d = self.data

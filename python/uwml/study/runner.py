@@ -58,10 +58,14 @@ def run_batch(kind: str, settings: dict[str, Any], metrics: tuple[str, ...], bat
             row |= run_one(kind, settings, {k: v for k, v in parameters.items() if k != "run"})
             row["error"] = None
         except Exception as exc:  # noqa: BLE001 (a run's failure is its row, the study goes on)
-            row |= dict.fromkeys(metrics, math.nan)
-            row["error"] = f"{type(exc).__name__}: {exc}"
+            row = _failed(parameters, metrics, f"{type(exc).__name__}: {exc}")
         rows.append(row)
     return rows
+
+
+def _failed(run: dict[str, Any], metrics: tuple[str, ...], error: str) -> dict[str, Any]:
+    """The row of a run that raised, or whose worker died: its parameters, NaN metrics, the error."""
+    return {**run, **dict.fromkeys(metrics, math.nan), "error": error}
 
 
 def run_study(
@@ -135,7 +139,7 @@ def _on_ray(config: StudyConfig, pending: list[dict[str, Any]], address: str | N
                 except ray.exceptions.RayError as exc:
                     # Its worker died on every try: the runs are rows with the error, not lost.
                     reason = " ".join(str(exc).split())[:300]
-                    yield [{**run, **dict.fromkeys(config.metrics, math.nan), "error": f"{type(exc).__name__}: {reason}"} for run in batch]
+                    yield [_failed(run, config.metrics, f"{type(exc).__name__}: {reason}") for run in batch]
 
 
 def _prepare(config: StudyConfig, root: Path, parts: Path, resume: bool) -> set[int]:
