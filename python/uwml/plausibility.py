@@ -37,7 +37,7 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -123,11 +123,16 @@ def _label(j: int, joint: Any) -> str:
     return f"joint {j + 1}" + (f" ({joint.name!r})" if joint.name is not None else "")
 
 
-def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Per column, the largest finite ``|value|`` of at most ``CHECKED_ROWS`` rows spread over
-    ``values`` (1-D: one row); non-finite values are the evaluation's to refuse."""
+def _checked_rows(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """At most ``CHECKED_ROWS`` rows spread over ``values`` (1-D: one row)."""
     rows = np.atleast_2d(values)
-    rows = rows[:: max(1, rows.shape[0] // CHECKED_ROWS)]
+    return rows[:: max(1, rows.shape[0] // CHECKED_ROWS)]
+
+
+def _largest(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Per column, the largest finite ``|value|`` of the checked rows of ``values``; non-finite
+    values are the evaluation's to refuse."""
+    rows = _checked_rows(values)
     if rows.size == 0:
         return np.zeros(rows.shape[1])
     with np.errstate(invalid="ignore"):
@@ -163,18 +168,15 @@ def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointB
             return
 
 
-class _Result(Protocol):
-    @property
-    def total(self) -> NDArray[np.float64]: ...
-
-
-def check_efforts(result: _Result, bounds: JointBounds, stacklevel: int = 3) -> None:
-    """Warn about a joint whose environment force (``result.total``: ``(n_joints,)`` or
-    ``(n_samples, n_joints)``) is beyond its effort limit; ``total`` is computed only for a
-    robot with an effort limit."""
+def check_efforts(parts: Sequence[NDArray[np.float64]], bounds: JointBounds, stacklevel: int = 3) -> None:
+    """Warn about a joint whose environment force is beyond its effort limit: the force the sum
+    of ``parts`` (each ``(n_joints,)`` or ``(n_samples, n_joints)``: a result's ``total`` is
+    the sum of its parts), added on the checked rows only, and only for a robot with an effort
+    limit."""
     if all(math.isinf(x) for x in bounds.effort):
         return
-    largest = _largest(result.total)
+    force = np.sum([_checked_rows(part) for part in parts], axis=0)
+    largest = _largest(force)
     for j, joint in enumerate(bounds.joints):
         if largest[j] > bounds.effort[j]:
             unit = "N·m" if joint.kind == "revolute" else "N"

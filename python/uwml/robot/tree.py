@@ -369,7 +369,7 @@ class Robot:
         lead = (n_samples,) if batched else ()
         drag, mass, buoyancy, gravity = (a.reshape(*lead, self.n_joints) for a in out[:4])
         result = RobotTorques(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity, base=_base_wrench(out, lead))
-        check_efforts(result, self._bounds)
+        check_efforts((drag, mass, buoyancy), self._bounds)
         return result
 
     def environment(
@@ -446,7 +446,7 @@ class Robot:
             current=current_a,
             base=_base_wrench(out, lead),
         )
-        check_efforts(result, self._bounds)
+        check_efforts((drag, mass, buoyancy, visc, seal), self._bounds)
         return result
 
     def jacobians(
