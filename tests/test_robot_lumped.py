@@ -19,6 +19,13 @@ from uwml import reference as ref
 EXAMPLES = settings(max_examples=max(5, int(settings.default.max_examples / 4)))
 
 
+def moving_water_states(rng: np.random.Generator, n: int, samples: int) -> tuple:  # type: ignore[type-arg]
+    """Random joint states of ``n`` joints, a base motion's arguments and a current, ``samples`` each."""
+    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
+    motion = motion_arguments(rng, samples)
+    return q, qd, qdd, motion, rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+
+
 def random_lumped(rng: np.random.Generator) -> uwml.LumpedModel:
     """A lumped model with a full (random, positive semi-definite) added mass, a linear damping
     with a positive semi-definite symmetric part and a skew part, and quadratic damping."""
@@ -47,9 +54,7 @@ def test_core_matches_the_reference_with_lumped_models_in_moving_water(seed: int
     rng = np.random.default_rng(seed)
     robot = with_lumped(random_robot(rng, n, base_body=bool(rng.random() < 0.8)), rng)
     samples = 12
-    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
-    motion = motion_arguments(rng, samples)
-    current, current_acceleration = rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+    q, qd, qdd, motion, current, current_acceleration = moving_water_states(rng, n, samples)
     result = robot.hydro(
         q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current, current_acceleration=current_acceleration,
         added_mass=form,
@@ -153,9 +158,7 @@ def test_regressors_times_every_coefficient_are_the_references_forces(seed: int,
     rng = np.random.default_rng(seed)
     robot = with_lumped(random_robot(rng, n, base_body=bool(rng.random() < 0.8), axial=True), rng)
     samples = 6
-    q, qd, qdd = rng.uniform(-3, 3, (samples, n)), rng.uniform(-2, 2, (samples, n)), rng.uniform(-5, 5, (samples, n))
-    motion = motion_arguments(rng, samples)
-    current, current_acceleration = rng.normal(size=(samples, 3)), rng.normal(size=(samples, 3))
+    q, qd, qdd, motion, current, current_acceleration = moving_water_states(rng, n, samples)
     regressors = robot.hydro_regressors(
         q, qd, qdd, base_motion=uwml.BaseMotion(**motion), current=current, current_acceleration=current_acceleration,
         added_mass=form,
