@@ -4,7 +4,10 @@ the paper's leg as a robot (fixed, and on a moving base in a current) and the 7-
 segments on an ROV of :func:`uwml.robot.examples.arm_on_rov` (moving, in a current); and what the
 checks against a description's joint limits cost (``uwml.plausibility``): the README's arm of
 ``examples/my_arm`` from its URDF (velocity and effort limits, ranges) against the same robot
-without its limits, alternately (needs MuJoCo; skipped without it).
+without its limits, alternately (needs MuJoCo; skipped without it). And what a leg's result alone
+costs, its arrays allocated and written with nothing computed: a robot's (four joint arrays and
+the base wrench's four 6-wide arrays, 36 numbers a state) against the chain path's former one
+(the four joint arrays, 12 numbers a state).
 
 Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
 the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
@@ -67,6 +70,7 @@ def main() -> None:
         print(f"uwml {label:42s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
 
     limits_cost(n, rng)
+    result_cost(n)
 
     m = min(n, 200_000)
     start = time.perf_counter()
@@ -75,6 +79,20 @@ def main() -> None:
     print(f"uwml.reference.hydro (numpy){'':15s} {numpy_time:7.3f} s  {n / numpy_time / 1e6:7.2f} M states/s  (timed on {m:,} states)")
     one, two = timings["Leg.hydro, 1 thread"], timings["Leg.hydro, 2 threads"]
     print(f"speed-up of Leg.hydro over the numpy reference: {numpy_time / one:.1f}x; 2 threads over 1: {one / two:.2f}x")
+
+
+def result_cost(n: int) -> None:
+    """Allocating and writing a leg's result arrays, with nothing computed (a floor under any
+    batch call that returns them): all of them held at once, as a result holds them."""
+
+    def written(widths: list[int]) -> None:
+        arrays = [np.zeros((n, width)) for width in widths]
+        for array in arrays:
+            array.fill(1.0)
+
+    for label, widths in (("a robot's (joints and base wrench)", [3] * 4 + [6] * 4), ("joints only (the former chain path's)", [3] * 4)):
+        t = best_of(3, lambda widths=widths: written(widths))
+        print(f"a leg's result arrays alone, {label:38s} {t / n * 1e9:7.1f} ns/state")
 
 
 def limits_cost(n: int, rng: np.random.Generator) -> None:

@@ -4,7 +4,8 @@ and against MuJoCo's own fluid models (inertia box; ellipsoid), on robots of tes
     python benches/simulation.py [--steps N]
 
 Prints microseconds per step (median of 5 runs of N steps, each from the same state) and the ratios to a bare mj_step (and
-uwml's RK4 step against MuJoCo's own RK4 step, which also makes four forward passes), for
+uwml's RK4 step against MuJoCo's own RK4 step, which also makes four forward passes; and
+uwml's forward pass alone, of which an RK4 step makes four: the least that step can cost), for
 the paper's leg (fixed base, 3 joints) and the arm on a free-floating hull (3 joints), without joint
 losses and (Euler) with the default ones at 3000 m. Timings on a
 shared machine are noisy: compare ratios from one run.
@@ -90,6 +91,10 @@ def main() -> None:
             rows.append(
                 (f"uwml.sim.mujoco, {integrator}", per_step(sim.step, args.steps // 4 if integrator == "rk4" else args.steps, sim.data))
             )
+        # One forward pass with uwml (Simulation.forward, no integration): an RK4 step makes four.
+        sim = Simulation.from_file(DATA / file, DATA / hydro, integrator="rk4")
+        sim.data.qvel[:] = bare.qvel
+        forward = per_step(sim.forward, args.steps, sim.data)
         # The default joint losses at 3000 m: the seals' friction a MuJoCo constraint, noslip on.
         sim = Simulation.from_file(DATA / file, DATA / hydro, depth=3000.0, losses=uwml.JointLosses())
         sim.data.qvel[:] = rng.uniform(-0.5, 0.5, sim.model.nv)
@@ -100,6 +105,10 @@ def main() -> None:
         rk4 = next(micro for label, micro in rows if label.endswith("rk4"))
         print(
             f"  {'bare mj_step, MuJoCo RK4':28s} {rk4_bare:9.1f} µs   {rk4_bare / rows[0][1]:6.1f} ×   (uwml's rk4: {rk4 / rk4_bare:.1f} × this)"
+        )
+        print(
+            f"  {'uwml forward pass alone':28s} {forward:9.1f} µs   {forward / rows[0][1]:6.2f} ×   "
+            f"(four, an RK4 step's least: {4 * forward / rows[0][1]:.2f} ×)"
         )
 
 
