@@ -183,6 +183,15 @@ def test_a_serial_chain_as_a_robot_is_the_leg() -> None:
     np.testing.assert_allclose(t.buoyancy, [0.0, 59.72457, 4.193843], rtol=2e-7, atol=1e-12)
 
 
+def test_joints_and_links_may_be_any_iterables() -> None:
+    leg = uwml.Leg.paper()
+    robot = uwml.Robot((j for j in leg.joints), iter(leg.links), losses=uwml.JointLosses())
+    assert robot.joints == uwml.Robot.from_leg(leg).joints and len(robot.losses) == 3
+    named = uwml.Joint((0, 0, 0), (0, 0, 1), name="knee")
+    with pytest.raises(ValueError, match="joint names must be unique; 'knee' is given more than once"):
+        uwml.Robot((j for j in (named, named)), iter(leg.links[:2]))
+
+
 def test_a_cylinder_dragged_broadside_by_its_base() -> None:
     # A horizontal cylinder (length L, diameter D) on a base moving at U across it: the base
     # feels −½ρ Cd D L U|U|; at rest in a current c, +½ρ Cd D L c|c|; along its axis, nothing.

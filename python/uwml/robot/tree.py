@@ -102,20 +102,21 @@ class Robot:
         losses: JointLosses | Sequence[JointLosses | None] | None = None,
         water: Water | None = None,
     ) -> None:
+        # The checked tuples from here on (``joints`` and ``links`` may be any iterables).
         self._joints, links, base_body, owned = robot_parts(joints, links, base)
-        self._bounds = joint_bounds(self._joints)
-        self._core = _core.Robot(self._joints, links, base_body, owned, self._bounds.rows())
-        for what, items in (("joint", joints), ("link", links)):
+        for what, items in (("joint", self._joints), ("link", links)):
             names = [item.name for item in items if item.name is not None]
             repeated = sorted({name for name in names if names.count(name) > 1})
             if repeated:
                 raise ValueError(f"{what} names must be unique; {repeated[0]!r} is given more than once")
+        self._bounds = joint_bounds(self._joints)
+        self._core = _core.Robot(self._joints, links, base_body, owned, self._bounds.rows())
         self._links = links
         self._base = base
         self._segments = tuple(s for _, s in owned)
         #: The lumped models (body: -1 the base, else the link; model), in the regressors' order.
         self._lumped = tuple((b - 1, body.lumped) for b, body in enumerate((base_body, *links)) if body.lumped is not None)
-        self._losses = _per_joint_losses(losses, len(joints))
+        self._losses = _per_joint_losses(losses, len(self._joints))
         # The joints' own losses as an evaluation takes them: one object when they all share one.
         first = self._losses[0] if self._losses else None
         self._own_losses = first if all(item is first for item in self._losses) else self._losses
