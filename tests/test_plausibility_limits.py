@@ -168,7 +168,7 @@ def test_the_joint_losses_count_towards_the_effort() -> None:
         np.testing.assert_array_equal(np.ravel(again.total), env.total)
 
 
-def test_bounds_are_worked_out_once_per_robot() -> None:
+def test_the_bounds_follow_the_descriptions_limits() -> None:
     bounds = plausibility.joint_bounds(uwml.Robot.from_urdf(ARM, ARM_HYDRO).joints)
     assert bounds.speed == (6.0, 6.0) and bounds.angle == (2 * math.pi, 2 * math.pi) and bounds.effort == (100.0, 50.0)
     paper = plausibility.joint_bounds(uwml.Leg.paper().joints)

@@ -381,7 +381,6 @@ def _fit(
     moments = moments.kept(keep)
     names = [name for name, k in zip(design.names, keep, strict=True) if k]
     p = len(names)
-    joint_of_row = np.tile(np.asarray(selected, dtype=np.int64), n_samples)
 
     def joint_scale_robust(x: Array) -> Array:
         r = design.residuals(x).reshape(n_samples, n_selected)
@@ -413,56 +412,44 @@ def _fit(
         method = f"iteratively reweighted least squares (huber, f_scale = {HUBER_SCALE} σ)"
     if dropped:
         message += f"; dropped {', '.join(dropped)} (no regressor on joints {selected_joints}{_base_words(components)})"
-    if not points:
+    if points:
+        sigma_rows = np.tile(sigma_joint, n_samples)
+        best_fit, y_flat = design.fitted(x)
+        residual = (best_fit - y_flat) / sigma_rows
+        solution = _Solution(x=x, init=x, jacobian=None, residual=residual, success=success, message=message, nfev=nfev, gram=gram)
+        stats = _fit_statistics(
+            y_flat, lambda v: v / sigma_rows, known, best_fit, solution, tuple(names), np.eye(p), scale_covar or not known
+        )
+        if robust and stats["covar"] is not None:
+            stats |= _uncertainties(_huber_covariance(gram, residual, HUBER_SCALE), tuple(names))
+        diagnostics = _log_diagnostics(design, log, keep, sigma_joint, residual * sigma_rows, residual)
+        sigma, time, joint = sigma_rows, np.repeat(design.time, n_selected), np.tile(np.asarray(selected, dtype=np.int64), n_samples)
+    else:
         solution = _Solution(x=x, init=x, jacobian=None, residual=np.empty(0), success=success, message=message, nfev=nfev, gram=gram)
-        sums = design.residual_sums(x)
         stats, diagnostics = _reduced_statistics(
-            sums, sigma_joint, solution, tuple(names), design, log, keep, scale_covar or not known, known
+            design.residual_sums(x), sigma_joint, solution, tuple(names), design, log, keep, scale_covar or not known, known
         )
-        empty = np.empty(0)
-        result = HydroFit(
-            params=dict(zip(names, x.tolist(), strict=True)),
-            var_names=tuple(names),
-            fixed={},
-            init_values=init,
-            sigma=empty,
-            time=empty,
-            joint=np.empty(0, dtype=np.int64),
-            per=per,
-            joints=tuple(selected_joints),
-            base=tuple(components),
-            dropped=dropped,
-            source=log.source,
-            logs=diagnostics,
-            unit="N·m (−Δτ_motor − τ_buoy)",
-            method=method,
-            **{k: v for k, v in stats.items() if k not in ("rss", "cod")},
-        )
-        # The unweighted statistics, from the sums (the result has no points to compute them from).
-        result.__dict__["rss"], result.__dict__["cod"] = stats["rss"], stats["cod"]
-        return result
-    sigma_rows = np.tile(sigma_joint, n_samples)
-    best_fit, y_flat = design.fitted(x)
-    residual = (best_fit - y_flat) / sigma_rows
-    solution = _Solution(x=x, init=x, jacobian=None, residual=residual, success=success, message=message, nfev=nfev, gram=gram)
-    stats = _fit_statistics(y_flat, lambda v: v / sigma_rows, known, best_fit, solution, tuple(names), np.eye(p), scale_covar or not known)
-    if robust and stats["covar"] is not None:
-        stats |= _uncertainties(_huber_covariance(gram, residual, HUBER_SCALE), tuple(names))
-    return HydroFit(
+        sigma, time, joint = np.empty(0), np.empty(0), np.empty(0, dtype=np.int64)
+    # Without the points, the unweighted statistics come from the sums (the result has no points
+    # to compute them from): set in place of the properties that would.
+    unweighted: dict[str, Any] = {name: stats.pop(name) for name in ("rss", "cod") if name in stats}
+    result = HydroFit(
         params=dict(zip(names, x.tolist(), strict=True)),
         var_names=tuple(names),
         fixed={},
         init_values=init,
-        sigma=sigma_rows,
-        time=np.repeat(design.time, n_selected),
-        joint=joint_of_row,
+        sigma=sigma,
+        time=time,
+        joint=joint,
         per=per,
         joints=tuple(selected_joints),
         base=tuple(components),
         dropped=dropped,
         source=log.source,
-        logs=_log_diagnostics(design, log, keep, sigma_joint, residual * sigma_rows, residual),
+        logs=diagnostics,
         unit="N·m (−Δτ_motor − τ_buoy)",
         method=method,
         **stats,
     )
+    result.__dict__.update(unweighted)
+    return result

@@ -261,22 +261,13 @@ def _water(source: str, where: str, table: object, error: type[ValueError] = Mod
     each defaulting to :class:`uwml.Water`'s."""
     r = _Reader(source, where, table, error)
     r.check_keys(("density", "gravity"))
-    low, high = WATER_DENSITY_RANGE
-    density = r.get(
-        "density",
-        _within(low, high, "kg/m³", _DENSITY_HINT),
-        f"a density [kg/m³], {low:g} to {high:g}",
-        required=False,
-        default=Water.density,
-    )
-    low, high = WATER_GRAVITY_RANGE
-    gravity = r.get(
-        "gravity",
-        _within(low, high, "m/s²", _GRAVITY_HINT),
-        f"an acceleration [m/s²], {low:g} to {high:g}",
-        required=False,
-        default=Water.gravity,
-    )
+
+    def ranged(key: str, bounds: tuple[float, float], what: str, unit: str, hint: str, default: float) -> float:
+        low, high = bounds
+        return r.get(key, _within(low, high, unit, hint), f"{what} [{unit}], {low:g} to {high:g}", required=False, default=default)
+
+    density = ranged("density", WATER_DENSITY_RANGE, "a density", "kg/m³", _DENSITY_HINT, Water.density)
+    gravity = ranged("gravity", WATER_GRAVITY_RANGE, "an acceleration", "m/s²", _GRAVITY_HINT, Water.gravity)
     return r.build(lambda: Water(density=density, gravity=gravity))
 
 
