@@ -220,6 +220,7 @@ class MujocoCoupling:
         qfrc_applied: NDArray[np.float64],
         dof_damping: NDArray[np.float64],
         dof_frictionloss: NDArray[np.float64],
+        model_gravity: NDArray[np.float64],
         root: int | None,
         joint_qpos: Sequence[int],
         joint_dofs: Sequence[int],

@@ -46,7 +46,9 @@ base's orientation, ``ν = (Rᵀ v_world, ω_body)`` and ``ν̇ = (Rᵀ v̇_worl
 ``−ω × v`` term is passed to uwml as the base's acceleration in ``τ_env,0``, ``M_A`` and the
 forces are mapped to MuJoCo's degrees of freedom with the same ``Rᵀ``. Gravity is MuJoCo's
 (``opt.gravity`` must be ``(0, 0, −g)`` with ``g`` the water's): uwml's gravity component is
-not applied.
+not applied. ``opt.gravity`` is read each step and a change refused (the buoyancy is the
+water's). Seal friction that MuJoCo's constraint memory cannot hold (it then drops every
+constraint with a warning) is an error too. One thread at a time: a lock serializes steps.
 
 **One native call per step.** The arithmetic between the position stage and ``mj_factorM`` (reading
 the state from the data's arrays, the evaluation of ``τ_env,0`` and ``M_A``, the map, the writes
@@ -65,6 +67,7 @@ stages as MuJoCo's own RK4 does, is second order.
 from __future__ import annotations
 
 import copy
+import threading
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -197,6 +200,9 @@ class Simulation:
         elif not isinstance(robot, Robot):
             raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
         self._mj = mujoco
+        #: Held by every step, forward pass and read of the state: one thread at a time (MuJoCo's
+        #: functions release the GIL, and the native coupling keeps one step's arrays).
+        self._lock = threading.Lock()
         self._model = copy.deepcopy(model)
         self._model.opt.density = 0.0  # MuJoCo's own fluid model off: uwml is the water
         self._model.opt.viscosity = 0.0
@@ -230,6 +236,8 @@ class Simulation:
             opt = self._model.opt
             opt.noslip_iterations = max(int(opt.noslip_iterations), NOSLIP_ITERATIONS)
             opt.noslip_tolerance = min(float(opt.noslip_tolerance), NOSLIP_TOLERANCE)
+        #: The friction constraints the seals need each step: fewer means MuJoCo dropped them.
+        self._seal_rows = sum(loss is not None and loss.seal is not None for loss in self._joint_losses)
         self._no_coefficients = np.zeros((0, 2))
         self._map_degrees_of_freedom()
         # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
@@ -248,7 +256,7 @@ class Simulation:
         d = self.data
         self._coupling = _core.MujocoCoupling(
             robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
-            self.model.dof_damping, self.model.dof_frictionloss,
+            self.model.dof_damping, self.model.dof_frictionloss, self.model.opt.gravity,
             None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
             self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._compiled_losses,
             self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
@@ -391,7 +399,12 @@ class Simulation:
         """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
         generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
         added-mass matrix. Two native calls (the one-state path of ``Robot.environment`` with
-        the losses read by the core once, and the added-mass matrix), the same numbers as the public API."""
+        the losses read by the core once, and the added-mass matrix), the same numbers as the public API.
+        Waits for a step under way in another thread."""
+        with self._lock:
+            return self._environment()
+
+    def _environment(self) -> tuple[FloatArray, FloatArray]:
         q = np.array(self.data.qpos[self._joint_qpos])
         qd = np.array(self.data.qvel[self._joint_dofs])
         motion = self._base_motion()
@@ -433,11 +446,21 @@ class Simulation:
         robot's joints [N·m or N], added to ``data.qfrc_applied``'s uwml part; ``qfrc``: any
         generalized forces in MuJoCo's coordinates (``(nv,)``, as ``qvel``), added too (thrusters
         on a free joint: the force in world components, the moment in the body's). A state that
-        is no longer finite (a diverged simulation) raises ``FloatingPointError``."""
+        is no longer finite (a diverged simulation) raises ``FloatingPointError``; a
+        ``model.opt.gravity`` changed since the simulation was made raises ``ValueError`` (uwml's
+        buoyancy is the water's, for the gravity it was made with); constraint memory too small
+        for the seals' friction raises :class:`uwml.UwmlError`. One thread at a time: calls from
+        several threads wait for each other."""
+        with self._lock:
+            self._forward(torque, qfrc)
+
+    def _forward(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d, coupling = self._mj, self._model, self._data, self._coupling
         if self._compiled_losses is not None:  # the friction constraints take the levels
             coupling.write_joint_losses()
         mj.mj_fwdPosition(m, d)
+        if self._seal_rows and d.nefc < self._seal_rows:
+            self._check_constraint_memory()
         status = coupling.apply(torque)
         if status == 2:  # a torque the native reader does not take as it is: convert, or refuse
             motor = np.asarray(torque, dtype=np.float64)
@@ -446,6 +469,12 @@ class Simulation:
             status = coupling.apply(np.ascontiguousarray(motor))
         if status == 1:
             raise FloatingPointError(f"the simulation diverged at t = {d.time:.6g} s: its state is no longer finite")
+        if status == 3:
+            raise ValueError(
+                f"model.opt.gravity changed to {[float(g) for g in m.opt.gravity]} after the Simulation was made: uwml's buoyancy "
+                f"is for the water's gravity (0, 0, -{self.water.gravity:g}); put it back, or make a new Simulation "
+                "(with water=uwml.Water(density, gravity) for another gravity)"
+            )
         if qfrc is not None:
             extra = np.asarray(qfrc, dtype=np.float64)
             if extra.shape != (m.nv,) or not np.all(np.isfinite(extra)):
@@ -465,18 +494,40 @@ class Simulation:
             self._prescribed_torque = torque
             mj.mj_forwardSkip(m, d, self._position_stage, 0)
 
+    def _check_constraint_memory(self) -> None:
+        """Refuses a step whose seal friction MuJoCo dropped (its constraint memory full), unless
+        the model's flags turned constraints or friction off (the module docstring)."""
+        mj, m, d = self._mj, self._model, self._data
+        off = int(mj.mjtDisableBit.mjDSBL_CONSTRAINT) | int(mj.mjtDisableBit.mjDSBL_FRICTIONLOSS)
+        if int(m.opt.disableflags) & off:
+            return
+        from ..errors import UwmlError
+
+        raise UwmlError(
+            f"MuJoCo's constraint memory ({m.narena / 2**20:.3g} MiB) cannot hold the constraints at t = {d.time:.6g} s "
+            f"({d.ncon} contacts, and the seal friction of {self._seal_rows} joints): MuJoCo dropped them all, the seal friction "
+            'with them. Give the model more memory (MJCF <size memory="..."/>, say four times as much) or fewer contacts '
+            "(contype/conaffinity of geoms that need not touch)"
+        )
+
     def step(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None, wrenches: Mapping[str, ArrayLike] | None = None) -> None:
         """One time step (``model.opt.timestep``) with motor ``torque`` on the joints and
         generalized forces ``qfrc`` (as :meth:`forward`), and ``wrenches`` on bodies by name
         (thrusters, a tether): each six numbers, a force [N] and a moment [N·m] in world
         components at the body's centre of mass (MuJoCo's ``data.xfrc_applied``), held for this
-        step only: those bodies' rows of ``xfrc_applied`` are restored after it."""
+        step only: those bodies' rows of ``xfrc_applied`` are restored after it. Errors as
+        :meth:`forward`'s; one thread at a time."""
         if wrenches is None:
-            if self._prescribed is None:  # the common step: no motion to put the joints back on
-                self._integrate(torque, qfrc)
-            else:
-                self._step(torque, qfrc)
+            with self._lock:
+                if self._prescribed is None:  # the common step: no motion to put the joints back on
+                    self._integrate(torque, qfrc)
+                else:
+                    self._step(torque, qfrc)
             return
+        with self._lock:
+            self._step_with_wrenches(torque, qfrc, wrenches)
+
+    def _step_with_wrenches(self, torque: ArrayLike | None, qfrc: ArrayLike | None, wrenches: Mapping[str, ArrayLike]) -> None:
         rows = self._wrench_rows(wrenches)
         d = self.data
         kept = {body: d.xfrc_applied[body].copy() for body in rows}
@@ -513,7 +564,8 @@ class Simulation:
         joints are set on the motion at the data's time at once, and after every step; the
         torque that imposed it is :attr:`prescribed_torque`."""
         if motion is None:
-            self._prescribed, self._prescribed_torque = None, np.zeros(0)
+            with self._lock:
+                self._prescribed, self._prescribed_torque = None, np.zeros(0)
             return
         if not isinstance(motion, Trajectory):
             raise TypeError(f"motion must be a uwml.sim.prescribed.Trajectory or None, got {type(motion).__name__}")
@@ -533,9 +585,10 @@ class Simulation:
         if motion.joints != len(indices):
             raise ValueError(f"the motion is of {motion.joints} joints, {len(indices)} are prescribed")
         dofs, qpos = self._joint_dofs[indices], self._joint_qpos[indices]
-        q, qd, _ = motion(float(self.data.time))  # refused here if the data's time is outside the motion
-        self._prescribed = (dofs, qpos, motion)
-        self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
+        with self._lock:
+            q, qd, _ = motion(float(self.data.time))  # refused here if the data's time is outside the motion
+            self._prescribed = (dofs, qpos, motion)
+            self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
 
     @property
     def prescribed_torque(self) -> FloatArray:
@@ -555,7 +608,7 @@ class Simulation:
     def _integrate(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d = self._mj, self._model, self._data
         if self._euler:
-            self.forward(torque, qfrc)
+            self._forward(torque, qfrc)
             if self._lagged:
                 self._coupling.remember_acceleration()
             mj.mj_Euler(m, d)
@@ -571,7 +624,7 @@ class Simulation:
             if previous is not None:
                 mj.mj_integratePos(m, d.qpos, previous, offset)
             d.time = time0 + offset
-            self.forward(torque, qfrc)
+            self._forward(torque, qfrc)
             coupling.rk4_keep(stage)
         mj.mj_integratePos(m, d.qpos, coupling.rk4_finish(h), h)
         d.time = time0 + h

@@ -35,6 +35,9 @@ struct Views {
     /// The `MjModel`'s `dof_damping` and `dof_frictionloss`: the joint losses go there.
     dof_damping: View,
     dof_frictionloss: View,
+    /// The `MjModel`'s `opt.gravity`, read each step: uwml's buoyancy is for the gravity the
+    /// coupling was made with, so a change is reported (`apply`), not followed by the weight alone.
+    gravity: View,
 }
 
 /// Where uwml's coordinates `(ν, q̇)` sit among MuJoCo's degrees of freedom.
@@ -65,6 +68,8 @@ pub(crate) struct MujocoCoupling {
     own_damping: Vec<f64>,
     own_frictionloss: Vec<f64>,
     water: Water<f64>,
+    /// `opt.gravity` when the coupling was made.
+    gravity: [f64; 3],
     current: Current<f64>,
     kirchhoff: bool,
     /// `(ν̇, q̈)` of the previous step, subtracted through `M_A` (the lagged scheme), if any.
@@ -102,7 +107,7 @@ impl MujocoCoupling {
     /// water of `sea_density` and at `temperature`.
     #[new]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, dof_damping, dof_frictionloss, root, joint_qpos, joint_dofs, free_dof, mass_pairs, losses, depth, temperature, density, gravity, sea_density, current, current_acceleration, kirchhoff, lagged))]
+    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, dof_damping, dof_frictionloss, model_gravity, root, joint_qpos, joint_dofs, free_dof, mass_pairs, losses, depth, temperature, density, gravity, sea_density, current, current_acceleration, kirchhoff, lagged))]
     fn new(
         robot: Bound<'_, PyRobot>,
         qpos: Bound<'_, PyArrayDyn<f64>>,
@@ -114,6 +119,7 @@ impl MujocoCoupling {
         qfrc_applied: Bound<'_, PyArrayDyn<f64>>,
         dof_damping: Bound<'_, PyArrayDyn<f64>>,
         dof_frictionloss: Bound<'_, PyArrayDyn<f64>>,
+        model_gravity: Bound<'_, PyArrayDyn<f64>>,
         root: Option<usize>,
         joint_qpos: Vec<usize>,
         joint_dofs: Vec<usize>,
@@ -201,6 +207,13 @@ impl MujocoCoupling {
             qfrc_applied: View::new(&qfrc_applied, "data.qfrc_applied")?,
             dof_damping: View::new(&dof_damping, "model.dof_damping")?,
             dof_frictionloss: View::new(&dof_frictionloss, "model.dof_frictionloss")?,
+            gravity: View::new(&model_gravity, "model.opt.gravity")?,
+        };
+        let mut initial = Vec::new();
+        views.gravity.copy_into(model_gravity.py(), &mut initial)?;
+        let gravity_at_start = match initial.as_slice() {
+            &[x, y, z] => [x, y, z],
+            _ => return Err(PyValueError::new_err("model.opt.gravity must hold 3 numbers")),
         };
         let (own_damping, own_frictionloss) =
             (own(&dof_damping, "dof_damping")?, own(&dof_frictionloss, "dof_frictionloss")?);
@@ -214,6 +227,7 @@ impl MujocoCoupling {
             own_damping,
             own_frictionloss,
             water,
+            gravity: gravity_at_start,
             current,
             kirchhoff,
             lagged: lagged.then(|| vec![0.0; size]),
@@ -251,7 +265,8 @@ impl MujocoCoupling {
     /// environment's forces (plus `torque` on the joints, if given) written to
     /// `data.qfrc_applied`. Returns 0 when done, 1 when the state (`qpos`, `qvel`) is not finite
     /// (nothing written), 2 when `torque` is not a list, tuple or float64 array of N finite
-    /// numbers (nothing written: the caller converts or refuses it).
+    /// numbers (nothing written: the caller converts or refuses it), 3 when `model.opt.gravity`
+    /// is no longer what it was when the coupling was made (nothing written).
     #[pyo3(signature = (torque=None))]
     fn apply(&mut self, py: Python<'_>, torque: Option<&Bound<'_, PyAny>>) -> PyResult<u8> {
         let n = self.robot.get().robot.joint_count();
@@ -261,6 +276,10 @@ impl MujocoCoupling {
             && fill_values(torque, motor.get_mut(..n).unwrap_or_default()).is_none()
         {
             return Ok(2);
+        }
+        self.views.gravity.copy_into(py, &mut self.scratch)?;
+        if self.scratch.as_slice() != self.gravity.as_slice() {
+            return Ok(3);
         }
         self.views.qpos.copy_into(py, &mut self.qpos)?;
         self.views.qvel.copy_into(py, &mut self.qvel)?;
