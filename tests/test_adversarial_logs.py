@@ -283,6 +283,22 @@ def _good_columns() -> dict[str, Any]:
     return {"time": log.time, **{f"q{k + 1}": log.q[:, k] for k in range(3)}}
 
 
+def _integers() -> bytes:
+    """GOOD with column q2 as the integers of micro-radians."""
+    rows = _rows()
+    for row in rows:
+        row[2] = repr(float(int(1e6 * float(row[2]))))
+    return _csv(rows)
+
+
+def _singles() -> bytes:
+    """GOOD with column q2 rounded to float32."""
+    rows = _rows()
+    for row in rows:
+        row[2] = repr(float(np.float32(float(row[2]))))
+    return _csv(rows)
+
+
 def test_parquet_files_that_are_not(tmp_path: Path) -> None:
     _refused(_write(tmp_path, GOOD, "csv.parquet"), "not a Parquet file")
     _refused(_write(tmp_path, b"", "empty.parquet"), "not a Parquet file")
@@ -295,9 +311,17 @@ def test_parquet_columns(tmp_path: Path) -> None:
     import pyarrow
 
     columns = _good_columns()
-    _reads(_parquet(tmp_path, {**columns, "q2": pyarrow.array([repr(float(x)) for x in columns["q2"]])}, "text.parquet"))
-    _refused(_parquet(tmp_path, {**columns, "q2": pyarrow.array(["x"] * 40)}, "words.parquet"), "row 2, column 'q2'")
-    _refused(_parquet(tmp_path, {**columns, "q3": pyarrow.array([[1.0]] * 40)}, "lists.parquet"), "row 2, column 'q3'")
+    _reads(_parquet(tmp_path, {**columns, "q2": pyarrow.array((1e6 * columns["q2"]).astype(np.int64))}, "integers.parquet"), _integers())
+    _reads(_parquet(tmp_path, {**columns, "q2": pyarrow.array(columns["q2"].astype(np.float32))}, "singles.parquet"), _singles())
+    # Numbers as text, booleans, times, lists: not a log's values, whatever a cast would make of them.
+    text = pyarrow.array([repr(float(x)) for x in columns["q2"]])
+    _refused(
+        _parquet(tmp_path, {**columns, "q2": text}, "text.parquet"), "column 'q2'", "Parquet type string", "integers or floating point"
+    )
+    _refused(_parquet(tmp_path, {**columns, "q2": pyarrow.array([True] * 40)}, "bools.parquet"), "column 'q2'", "Parquet type bool")
+    stamps = pyarrow.array(np.arange(40).astype("datetime64[s]"))
+    _refused(_parquet(tmp_path, {**columns, "q1": stamps}, "stamps.parquet"), "column 'q1'", "Parquet type timestamp")
+    _refused(_parquet(tmp_path, {**columns, "q3": pyarrow.array([[1.0]] * 40)}, "lists.parquet"), "column 'q3'", "Parquet type list")
     _refused(_parquet(tmp_path, {**columns, "time": 5e297 * np.arange(40.0)}, "huge.parquet"), "row 3, column 'time'")
     _refused(_parquet(tmp_path, {name: values[:0] for name, values in columns.items()}, "none.parquet"), "no data rows")
     table = pyarrow.table(columns).append_column("q1", pyarrow.array(columns["q1"]))

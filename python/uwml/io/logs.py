@@ -428,9 +428,18 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
 
 def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: int = 2) -> dict[str, Any]:
     """The columns of a Parquet table (its first row is ``first_row`` of the file) as float64,
-    checked column by column by the cell rule (:func:`uwml.io._arrow_csv.float64_column`)."""
+    checked column by column by the cell rule (:func:`uwml.io._arrow_csv.float64_column`). A
+    column whose Parquet type is not a number (integers or floating point) is refused: a
+    boolean, text or time stamp column is not a log's values."""
+    import pyarrow
+
     from ._arrow_csv import float64_column
 
+    for name in names:
+        kind = table.schema.field(name).type
+        if not (pyarrow.types.is_integer(kind) or pyarrow.types.is_floating(kind)):
+            text = str(kind) if len(str(kind)) <= 40 else f"{str(kind)[:40]}…"
+            raise ValueError(f"{source}: column {shown(name)}: Parquet type {text}; a log's columns are integers or floating point")
     return {name: float64_column(table.column(name), name, f"{source}: ", first_row) for name in names}
 
 

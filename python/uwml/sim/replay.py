@@ -18,6 +18,14 @@ stream's time stamps (``numpy.interp``; the quaternion's sign kept continuous, t
 and only the span both cover is replayed (:func:`joined`). Gaps: a step between samples longer than ``MAX_GAP_S``
 (0.1 s) is refused, naming where, rather than bridged by the spline: split the log there.
 
+What is refused before simulating, naming the file, row and column (a ``UwmlError``): fewer than 4
+samples; a position beyond ``±MAX_LENGTH`` (1e4 m, docs/domains.md: millimetres, or 1e300); a joint
+sample outside the joint's range (the description's limits, which would fight the replayed
+motion: an angle offset, degrees, another joint order); a revolute joint moving more than half a
+turn between two samples (a glitch, or an angle wrapped at ±π: unwrap it). The quaternion's sign
+is kept continuous in every pose (q and −q are the same turn). A simulation that diverges all the
+same (its state no longer finite) is an error naming the time and the log's rows around it.
+
 The simulation starts at the log's first sample (of the span both streams cover), the vehicle at
 its measured pose and moving as the pose's first samples say (else at rest at the origin, level),
 the joints on the log's motion, and runs to its last.
@@ -34,7 +42,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..io.logs import Log, read_log
+from ..domains import MAX_LENGTH
+from ..errors import UwmlError
+from ..io.logs import Log, _check_file, _header_hint, _parquet_columns, _parquet_table, read_log
 from .prescribed import Trajectory
 
 __all__ = ["MAX_GAP_S", "Replay", "command", "plot_replay", "read_vehicle_pose", "replay", "write_replay"]
@@ -85,13 +95,12 @@ def _table(path: str | os.PathLike[str]) -> tuple[list[str], Callable[[Sequence[
     """A log's column names and a reader of named columns (CSV or Parquet by the suffix): one read
     of the file, whatever is asked of it after."""
     source = str(path)
-    if source.endswith(".parquet"):
-        import pyarrow.parquet as pq
-
-        table = pq.read_table(source)
+    _check_file(path, source)
+    if source.lower().endswith(".parquet"):
+        table = _parquet_table(path, source)
 
         def read(names: Sequence[str]) -> dict[str, Any]:
-            return {name: table.column(name).to_numpy() for name in names}
+            return _parquet_columns(table, names, source)  # numbers only, finite, by name
 
         return list(table.column_names), read
     from ..io._arrow_csv import CsvTable
@@ -123,15 +132,31 @@ def _pose(source: str, header: list[str], read: Callable[[Sequence[str]], dict[s
     for name, column in values.items():
         if not np.all(np.isfinite(column)):
             raise ValueError(f"{source}: column {name!r} must hold finite numbers (row {int(np.argmin(np.isfinite(column))) + 2})")
+    for name in _POSITION:
+        far = np.flatnonzero(np.abs(values[name]) > MAX_LENGTH)
+        if far.size:
+            raise UwmlError(
+                f"{source}: row {int(far[0]) + 2}, column {name!r}: the vehicle's position {values[name][far[0]]:g} m is beyond "
+                f"±{MAX_LENGTH:g} m (uwml.domains.MAX_LENGTH, docs/domains.md): millimetres, or not a position?"
+            )
     position = np.stack([values[name] for name in _POSITION], axis=1)
     angles = np.stack([values[name] for name in orientation], axis=1)
     if orientation == _EULER:
-        return position, _quaternion(angles)
-    norms = np.linalg.norm(angles, axis=1)
+        return position, _continuous(_quaternion(angles))
+    with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
+        norms = np.linalg.norm(angles, axis=1)
     if np.any(np.abs(norms - 1.0) > 1e-3):
         row = int(np.argmax(np.abs(norms - 1.0))) + 2
         raise ValueError(f"{source}: the quaternion (qw, qx, qy, qz) of row {row} is not of norm 1 (within 1e-3): {norms[row - 2]:.6g}")
-    return position, angles / norms[:, None]
+    return position, _continuous(angles / norms[:, None])
+
+
+def _continuous(quaternion: FloatArray) -> FloatArray:
+    """Each quaternion on the sign nearest the one before it (q and −q are the same turn), so that
+    slopes and interpolation between samples follow the turn, not a sign flip."""
+    dots = np.einsum("ij,ij->i", quaternion[1:], quaternion[:-1])
+    signs = np.concatenate([[1.0], np.where(dots < 0.0, -1.0, 1.0)])
+    return np.asarray(quaternion * np.cumprod(signs)[:, None], dtype=np.float64)
 
 
 def _starting_twist(time: FloatArray, position: FloatArray, quaternion: FloatArray) -> FloatArray:
@@ -166,6 +191,14 @@ def joined(
     resampled linearly onto the joint stream's time stamps within the span both cover, the
     quaternion's sign kept continuous and its interpolation normalized). Gaps are checked in each
     stream."""
+    recorded, pose, _ = _joined(logs, n_joints)
+    return recorded, pose
+
+
+def _joined(
+    logs: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], n_joints: int | None
+) -> tuple[Log, tuple[FloatArray, FloatArray] | None, int]:
+    """:func:`joined`, and the row of the joint file that the joint log starts at."""
     paths = [logs] if isinstance(logs, (str, os.PathLike)) else list(logs)
     if not paths:
         raise ValueError("replay needs a log")
@@ -173,21 +206,33 @@ def joined(
     joint_files = [path for path, (header, _) in zip(paths, tables, strict=True) if "q1" in header]
     pose_tables = [(path, table) for path, table in zip(paths, tables, strict=True) if "x" in table[0]]
     pose_files = [path for path, _ in pose_tables]
-    if len(joint_files) != 1:
+    if not joint_files:
+        which = [
+            f"{path}: row 1 (header), column 'q1': missing column, replay needs exactly one file with the joint angles (q1 … qN)"
+            f"{_header_hint(header)}"
+            for path, (header, _) in zip(paths, tables, strict=True)
+        ]
+        raise UwmlError("; ".join(which))
+    if len(joint_files) > 1:
         raise ValueError(
-            f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)} of {[str(p) for p in paths]}"
+            f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)}: {[str(p) for p in joint_files]}"
         )
     if len(pose_files) > 1:
         raise ValueError(f"at most one file may hold the vehicle's pose (x, y, z, ...), got {[str(p) for p in pose_files]}")
     recorded: Log = read_log(joint_files[0], n_joints=n_joints)
+    if recorded.n_samples < 4:
+        raise UwmlError(
+            f"{recorded.source}: {recorded.n_samples} sample{'s' if recorded.n_samples != 1 else ''}: a replay needs at least 4 "
+            "(the joint angles' cubic spline)"
+        )
     _check_gaps(recorded.time, recorded.source)
     if not pose_files:
-        return recorded, None
+        return recorded, None, 2
     pose = _pose(str(pose_files[0]), *pose_tables[0][1])
     if pose is None:  # its header has x: read_vehicle_pose returns one
         raise ValueError(f"{pose_files[0]}: no vehicle pose")
     if pose_files[0] == joint_files[0]:
-        return recorded, pose
+        return recorded, pose, 2
     pose_time = _time(str(pose_files[0]), *pose_tables[0][1])
     _check_gaps(pose_time, str(pose_files[0]))
     inside = (recorded.time >= pose_time[0]) & (recorded.time <= pose_time[-1])
@@ -197,15 +242,13 @@ def joined(
     def keep(a: FloatArray | None) -> FloatArray | None:
         return None if a is None else a[inside]
 
+    first_row = 2 + int(np.argmax(inside))
     recorded = Log(recorded.time[inside], recorded.q[inside], keep(recorded.qd), keep(recorded.qdd), source=recorded.source)
-    position, quaternion = pose[0], pose[1].copy()
-    # A quaternion and its negative are the same turn: keep neighbours on one side before interpolating.
-    for k in range(1, len(quaternion)):
-        if quaternion[k] @ quaternion[k - 1] < 0.0:
-            quaternion[k] = -quaternion[k]
+    # The pose's quaternions are on one side already (_continuous): interpolated, then normalized.
+    position, quaternion = pose
     position = np.stack([np.interp(recorded.time, pose_time, position[:, k]) for k in range(3)], axis=1)
     quaternion = np.stack([np.interp(recorded.time, pose_time, quaternion[:, k]) for k in range(4)], axis=1)
-    return recorded, (position, quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True))
+    return recorded, (position, quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True)), first_row
 
 
 def _time(source: str, header: list[str], read: Callable[[Sequence[str]], dict[str, Any]]) -> FloatArray:
@@ -231,8 +274,8 @@ def replay(
     :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ``integrator``, ...). A
     progress bar on standard error with ``progress``."""
     sim = _floating(description, hydro, options)
-    recorded, measured = joined(log, sim.robot.n_joints)
-    return _simulate(sim, recorded, measured, progress)
+    recorded, measured, first_row = _joined(log, sim.robot.n_joints)
+    return _simulate(sim, recorded, measured, progress, first_row)
 
 
 def _floating(description: str | os.PathLike[str], hydro: str | os.PathLike[str] | None, options: dict[str, Any]) -> Any:
@@ -245,8 +288,50 @@ def _floating(description: str | os.PathLike[str], hydro: str | os.PathLike[str]
     return sim
 
 
-def _simulate(sim: Any, recorded: Log, measured: tuple[FloatArray, FloatArray] | None, progress: bool) -> Replay:
-    """:func:`replay` of a log already read (:func:`joined`) on a floating simulation."""
+def _check_joints(recorded: Log, joints: Sequence[Any], first_row: int) -> None:
+    """The log's joint samples against the robot's joints (module docstring): no revolute joint
+    moving more than half a turn between two samples, none outside its range. ``first_row``:
+    the file's row of the log's first sample."""
+    time, source = recorded.time, recorded.source
+    for j, joint in enumerate(joints):
+        q, column = recorded.q[:, j], f"column 'q{j + 1}'"
+        label = f"joint {j + 1}" + (f" ({joint.name!r})" if joint.name is not None else "")
+        unit = "rad" if joint.kind == "revolute" else "m"
+        steps = np.abs(np.diff(q))
+        if joint.kind == "revolute" and steps.size and float(steps.max()) > math.pi:
+            k = int(np.flatnonzero(steps > math.pi)[0])
+            raise UwmlError(
+                f"{source}: row {first_row + k + 1}, {column}: {label} jumps by {steps[k]:.6g} rad from the row before "
+                f"(t = {time[k]:.6g} to {time[k + 1]:.6g} s), more than half a turn between two samples: a glitch, or an angle "
+                "wrapped at ±π (unwrap it)"
+            )
+        if joint.range is not None:
+            lower, upper = joint.range
+            outside = np.flatnonzero((q < lower) | (q > upper))
+            if outside.size:
+                k = int(outside[0])
+                raise UwmlError(
+                    f"{source}: row {first_row + k}, {column}: {q[k]:.6g} {unit} is outside the range of {label}, {lower:g} to "
+                    f"{upper:g} {unit} (the description's limits, which would fight the replayed motion): an angle offset, "
+                    "degrees, or another joint order?"
+                )
+
+
+def _diverged(recorded: Log, first_row: int, at: float) -> UwmlError:
+    """The error of a replay whose state stopped being finite at time ``at``: the log's rows around it."""
+    time = recorded.time
+    k = int(np.clip(np.searchsorted(time, at, side="right") - 1, 0, time.size - 2))
+    return UwmlError(
+        f"{recorded.source}: the replay diverged at t = {at:.6g} s, between rows {first_row + k} and {first_row + k + 1} "
+        f"(t = {time[k]:.6g} and {time[k + 1]:.6g} s): the vehicle's state is no longer finite; look at the log's motion there "
+        "(a jump, accelerations or velocities in the wrong unit)"
+    )
+
+
+def _simulate(sim: Any, recorded: Log, measured: tuple[FloatArray, FloatArray] | None, progress: bool, first_row: int = 2) -> Replay:
+    """:func:`replay` of a log already read (:func:`joined`, its first sample at row ``first_row``
+    of its file) on a floating simulation."""
+    _check_joints(recorded, sim.robot.joints, first_row)
     time = recorded.time
     trajectory = Trajectory(time, recorded.q, recorded.qd, recorded.qdd)
     d, m = sim.data, sim.model
@@ -271,8 +356,15 @@ def _simulate(sim: Any, recorded: Log, measured: tuple[FloatArray, FloatArray] |
     record()
     bar = _progress(steps) if progress else None
     for k in range(steps):
-        sim.step()
-        record()
+        try:
+            sim.step()
+            record()
+            if not (np.all(np.isfinite(positions[-1])) and np.all(np.isfinite(twists[-1]))):
+                raise FloatingPointError
+        except (FloatingPointError, np.linalg.LinAlgError):  # a state no longer finite, a singular mass matrix
+            if bar is not None:
+                bar(None)  # the error on a line of its own
+            raise _diverged(recorded, first_row, float(d.time)) from None
         if bar is not None and (k % max(1, steps // 100) == 0 or k == steps - 1):
             bar(k + 1)
     result = Replay(np.array(times), np.array(positions), np.array(quaternions), np.array(twists), None)
@@ -308,11 +400,16 @@ def _errors(result: Replay, time: FloatArray, position: FloatArray, quaternion: 
 def _progress(total: int) -> Any:
     import sys
 
-    def show(done: int) -> None:
-        filled = int(40 * done / total)
-        sys.stderr.write(f"\rreplay [{'#' * filled}{'.' * (40 - filled)}] {done}/{total} steps")
-        if done == total:
+    shown = [False]
+
+    def show(done: int | None) -> None:
+        """The bar at ``done`` steps; None: its line ended where it stands (the run stopped)."""
+        if done is not None:
+            filled = int(40 * done / total)
+            sys.stderr.write(f"\rreplay [{'#' * filled}{'.' * (40 - filled)}] {done}/{total} steps")
+        if done == total or (done is None and shown[0]):
             sys.stderr.write("\n")
+        shown[0] = done is not None
         sys.stderr.flush()
 
     return show
@@ -380,8 +477,8 @@ def command(
     from pathlib import Path
 
     sim = _floating(description, hydro, {})
-    recorded, measured = joined(log, sim.robot.n_joints)
-    result = _simulate(sim, recorded, measured, progress=not as_json)
+    recorded, measured, first_row = _joined(log, sim.robot.n_joints)
+    result = _simulate(sim, recorded, measured, not as_json, first_row)
     folder = Path(out)
     folder.mkdir(parents=True, exist_ok=True)
     write_replay(result, folder / ("replay.parquet" if parquet else "replay.csv"))
