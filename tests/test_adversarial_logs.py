@@ -22,6 +22,8 @@ import uwml
 from hypothesis import given
 from hypothesis import strategies as st
 from uwml import logs
+from uwml._checks import cell_number
+from uwml.io import _arrow_csv
 from uwml.io._log_stream import log_chunks
 
 #: Hostile logs may hold time steps that look like milliseconds: the reading is under test here,
@@ -214,6 +216,39 @@ def test_text_streams(tmp_path: Path) -> None:
     expected = r"log\.csv: row 3, column 'q1': expected a number, got '±0\.01"
     with open(_write(tmp_path, bad), encoding="latin-1") as handle, pytest.raises(ValueError, match=expected):
         logs.read_log(handle)  # decoded by the caller: read as such
+
+
+@pytest.mark.parametrize(
+    ("cell", "words"),
+    [
+        pytest.param("1_0", ["expected a number, got '1_0'", "'_'"], id="underscores"),
+        pytest.param("0.000_001", ["expected a number, got '0.000_001'"], id="underscores in the fraction"),
+        pytest.param("\u0661\u0660", ["expected a number"], id="Arabic-Indic digits"),
+        pytest.param("\uff11\uff10", ["expected a number"], id="full-width digits"),
+        pytest.param(" nan ", ["expected a finite number"], id="nan with spaces"),
+        pytest.param("infinity", ["expected a finite number"], id="infinity"),
+        pytest.param("-Infinity", ["expected a finite number"], id="minus Infinity"),
+        pytest.param("1e400", ["expected a finite number"], id="overflow"),
+    ],
+)
+def test_numbers_python_reads_but_a_csv_does_not_spell(tmp_path: Path, cell: str, words: list[str]) -> None:
+    """Python's float() reads '1_0' as 10.0 and other scripts' digits as ours; pyarrow does not:
+    a cell of a log is a decimal number in ASCII digits, else an error naming its row and column."""
+    _refused(_write(tmp_path, _cell(5, 2, cell)), "row 5, column 'q2'", *words)
+    # The same rule for the tables read cell by cell (uwml fit losses).
+    with pytest.raises(ValueError, match=r"^row 5, column 'q2': ") as info:
+        cell_number(cell, "row 5, column 'q2'")
+    assert words[0] in str(info.value), info.value
+
+
+@pytest.mark.parametrize("cell", ["1e-3", "-0.5", "10", "+0.25", ".5", "5.", " 7 ", "1E+2", "-0"])
+def test_numbers_as_a_csv_spells_them_are_read(tmp_path: Path, cell: str) -> None:
+    _reads(_write(tmp_path, _cell(5, 2, cell)), _cell(5, 2, repr(float(cell))))
+    # The slow path, which a bad cell later in the column sends every cell of its block to, reads it too.
+    rows = _rows()
+    rows[3][2], rows[20][2] = cell, "1_0"
+    _refused(_write(tmp_path, _csv(rows), "late.csv"), "row 22, column 'q2'", "'1_0'")
+    assert _arrow_csv.float_cells([cell], "q2", "", 5)[0] == float(cell)
 
 
 # --------------------------------------------------------------------------------------------

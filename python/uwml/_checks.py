@@ -3,6 +3,7 @@
 import csv
 import math
 import os
+import re
 from collections.abc import Sequence
 from typing import IO, Any, SupportsFloat, SupportsIndex
 
@@ -44,13 +45,37 @@ def finite_array(value: ArrayLike, name: str) -> NDArray[np.float64]:
     return a
 
 
+#: A number as a CSV cell spells it (pyarrow's reading): ASCII digits, an optional sign, decimal
+#: point and exponent; or a non-finite one (which the readers refuse as such).
+_DECIMAL = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+
+
+def cell_float(cell: Any) -> float:
+    """A table's cell (text, or a number) as a float: text is stripped and must be a decimal
+    number in ASCII digits (``_DECIMAL``), else a ValueError. Python's ``float`` alone would also
+    read ``'1_0'`` as 10.0 and other scripts' digits (``'١٠'``, ``'１０'``) as ours, which no CSV
+    reader does. The value may be infinite or NaN: the caller refuses it, saying so."""
+    if isinstance(cell, str):
+        text = cell.strip()
+        if not _DECIMAL.fullmatch(text):
+            raise ValueError(f"not a decimal number: {text!r}")
+        return float(text)
+    return float(cell)
+
+
+def not_a_number(cell: Any) -> str:
+    """What an error says of a cell that :func:`cell_float` refused, after ``got <cell>``: a word
+    on digits grouped with '_' (which Python reads), else nothing."""
+    return " (digits grouped with '_' are not a number in a table)" if isinstance(cell, str) and "_" in cell else ""
+
+
 def cell_number(cell: Any, where: str) -> float:
-    """One cell of a table (text, a number or None) as a finite float, or a ValueError that
-    says ``where`` it is (``"row 7, column 'q1'"``) and what it holds."""
+    """One cell of a table (text, a number or None) as a finite float (:func:`cell_float`), or a
+    ValueError that says ``where`` it is (``"row 7, column 'q1'"``) and what it holds."""
     try:
-        x = float(cell.strip() if isinstance(cell, str) else cell)
+        x = cell_float(cell)
     except (TypeError, ValueError):
-        raise ValueError(f"{where}: expected a number, got {cell!r}") from None
+        raise ValueError(f"{where}: expected a number, got {cell!r}{not_a_number(cell)}") from None
     if not math.isfinite(x):
         raise ValueError(f"{where}: expected a finite number, got {cell!r}")
     return x

@@ -1,8 +1,9 @@
 """Numeric CSV tables through pyarrow: float64 columns parsed fast, and, only when that fails,
 a scan that names the row and column of the first bad cell.
 
-A cell is good when Python's ``float`` reads the stripped cell and the value is finite (the
-rule of the pure-Python reader this replaces). pyarrow parses the columns straight into float64
+A cell is good when it is a finite decimal number in ASCII digits once stripped
+(``_checks.cell_float``: the numbers both pyarrow and the pure-Python reader this replaces read;
+Python's ``float`` alone also reads ``'1_0'`` as 10.0). pyarrow parses the columns straight into float64
 (``ConvertOptions.column_types``); a parse that fails, or a column with an empty or non-finite
 cell, is read again as text, one block at a time, to find the cell and quote it: the slow path
 runs on bad files only. Rows are numbered as in a spreadsheet (the header is row 1, blank lines
@@ -36,7 +37,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 from numpy.typing import NDArray
 
-from .._checks import read_csv_columns, shown
+from .._checks import cell_float, not_a_number, read_csv_columns, shown
 
 Array = NDArray[np.float64]
 
@@ -65,13 +66,16 @@ def _quote(cell: Any) -> str:
 def float_cells(cells: Sequence[Any], name: str, prefix: str, first_row: int) -> Array:
     """Cells (text, numbers or None) as float64, or a ValueError naming the row (``first_row``
     for the first cell) and column ``name`` of the first cell that is not a finite number: a
-    cell is good when Python's ``float`` reads it (stripped, if text) and the value is finite."""
+    cell is good when it is a finite decimal number in ASCII digits (``_checks.cell_float``:
+    what pyarrow reads; Python's ``float`` also reads ``'1_0'`` and other scripts' digits)."""
     values = np.empty(len(cells))
     for i, cell in enumerate(cells):
         try:
-            x = float(cell.strip() if isinstance(cell, str) else cell)
+            x = cell_float(cell)
         except (TypeError, ValueError, OverflowError):
-            raise ValueError(f"{prefix}row {first_row + i}, column {name!r}: expected a number, got {_quote(cell)}") from None
+            raise ValueError(
+                f"{prefix}row {first_row + i}, column {name!r}: expected a number, got {_quote(cell)}{not_a_number(cell)}"
+            ) from None
         if not math.isfinite(x):
             raise ValueError(f"{prefix}row {first_row + i}, column {name!r}: expected a finite number, got {_quote(cell)}")
         values[i] = x
