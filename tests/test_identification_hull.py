@@ -5,6 +5,7 @@ reference (uwml.reference) with the published parameters; the fit (the Rust core
 uwml.fit.hydro_coefficients, ``uwml fit hydro --base``) recovers them."""
 
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -178,3 +179,33 @@ def test_a_hull_fit_on_ray_is_the_fit_in_one_process() -> None:
     for name in here.var_names:
         assert spread.params[name] == pytest.approx(here.params[name], rel=1e-10, abs=1e-12), name
     assert spread.params["base.added_mass[2][2]"] == pytest.approx(18.68, rel=1e-8)
+
+
+def test_an_orientation_that_is_not_a_unit_quaternion_names_the_file_row_and_column(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A captive log whose base orientation at row 39 is twice a unit quaternion: the reader,
+    the streaming reader (the row counted across chunks), the fit of the file and ``uwml fit
+    hydro`` name the file, the row and the column (they named only 'sample 37' of no file)."""
+    from dataclasses import replace
+
+    from uwml.io._log_stream import log_chunks
+
+    robot = uwml.Robot.from_urdf(URDF, HYDRO)
+    log = captive_test(robot, n=300, tilt=True)
+    assert log.base_orientation is not None
+    orientation = log.base_orientation.copy()
+    orientation[37] *= 2.0
+    for name in ("captive.csv", "captive.parquet"):
+        path = tmp_path / name
+        write_log(replace(log, base_orientation=orientation), path)
+        where = f"{path}: row 39, column 'base_orientation1': "
+        with pytest.raises(ValueError, match="^" + re.escape(where) + ".*norm 1 within 1e-06, got 2"):
+            read_log(path)
+        with pytest.raises(ValueError, match="^" + re.escape(where)):
+            list(log_chunks(path, rows=16)[2])
+        with pytest.raises(ValueError, match="^" + re.escape(where)):
+            fit.hydro_coefficients(path, robot, joints=(), base=range(6))
+        code = main(["fit", "hydro", str(path), "--robot", str(URDF), "--hydro", str(HYDRO), "--base", "all", "--joints", "none"])
+        err = capsys.readouterr().err
+        assert code == 2 and err.count("\n") == 1 and err.startswith(f"uwml: error: {where}"), err

@@ -41,6 +41,7 @@ from .logs import (
     _parquet_columns,
     _parquet_error,
     _source,
+    check_orientation,
 )
 from .sampling import POLYORDER, WINDOW_S, _check_derivatives, _check_time, _sampling, _savgol
 
@@ -104,6 +105,16 @@ def _rechunk(blocks: Iterator[dict[str, Array]], rows: int) -> Iterator[dict[str
         yield {name: np.concatenate([b[name] for b in pending]) for name in pending[0]}
 
 
+def _oriented(chunks: Iterator[dict[str, Array]], source: str) -> Iterator[dict[str, Array]]:
+    """The chunks, each one's base orientation (where the log has one) checked a unit quaternion."""
+    row = 2
+    for chunk in chunks:
+        if "base_orientation1" in chunk:
+            check_orientation(np.column_stack([chunk[f"base_orientation{k}"] for k in range(1, 5)]), source, row)
+        row += len(chunk["time"])
+        yield chunk
+
+
 @dataclass(frozen=True)
 class CheckedLog:
     """What the first pass over a log file found (:func:`check_log`): its rows, joints, column
@@ -123,7 +134,7 @@ class CheckedLog:
         """The log's chunks of ``rows`` rows, read anew (module docstring)."""
         if rows < 1:
             raise ValueError(f"rows must be >= 1, got {rows!r}")
-        chunks = _rechunk(_blocks(self.path, self.names, self.source), rows)
+        chunks = _oriented(_rechunk(_blocks(self.path, self.names, self.source), rows), self.source)
         if self.sampling is None:
             for chunk in chunks:
                 yield _log(chunk, self.n_joints, self.families, self.source)

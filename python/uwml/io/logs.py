@@ -423,7 +423,27 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
         for k in range(width):
             out[:, k] = np.asarray(columns[f"{family}{k + 1}"], dtype=np.float64)
         arrays[family] = out
+    if "base_orientation" in arrays:
+        check_orientation(arrays["base_orientation"], source, 2)
     return Log(time=time, source=source, **arrays)
+
+
+#: How far from 1 a base orientation's norm may be (as :class:`uwml.BaseMotion` takes it).
+ORIENTATION_TOLERANCE = 1e-6
+
+
+def check_orientation(orientation: Array, source: str, first_row: int) -> None:
+    """The rows of ``base_orientation`` (``(n, 4)``, its first row ``first_row`` of the file)
+    unit quaternions within ``ORIENTATION_TOLERANCE``, or a ValueError naming the first other row."""
+    with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
+        norms = np.linalg.norm(orientation, axis=1)
+    bad = np.flatnonzero(~(np.abs(norms - 1.0) <= ORIENTATION_TOLERANCE))
+    if bad.size:
+        k = int(bad[0])
+        raise ValueError(
+            f"{source}: row {first_row + k}, column 'base_orientation1': the base's orientation (base_orientation1 … "
+            f"base_orientation4, a quaternion w, x, y, z) must be of norm 1 within {ORIENTATION_TOLERANCE:g}, got {norms[k]:.6g}"
+        )
 
 
 def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: int = 2) -> dict[str, Any]:
