@@ -88,6 +88,20 @@ def test_a_negative_mass_is_refused_not_clamped(tmp_path: Path) -> None:
     refused(lambda: uwml.Robot.from_mjcf(path), "neg.xml", match=r"body 'base'.*mass -5 .*negative")
 
 
+def test_a_mass_beyond_the_bound_is_uwml_s_error_before_mujoco_s_warning(tmp_path: Path) -> None:
+    """A link of 1e308 kg: uwml's bound (1e9 kg, ``MAX_MASS``) names the link, for the robot and
+    for its simulation (floating, MuJoCo warned of a singular inertia matrix first)."""
+    from uwml.sim.mujoco import Simulation
+
+    path = write(tmp_path, "heavy.urdf", urdf(link("base", 2.0), link("upper", 1e308), joint("shoulder", "base", "upper")))
+    match = r"heavy\.urdf: link 'upper' has mass 1e\+308 kg in its <inertial>, beyond 1e\+09 kg"
+    refused(lambda: uwml.Robot.from_urdf(path), "heavy.urdf", match=match)
+    refused(lambda: Simulation.from_file(path, floating=True), "heavy.urdf", match=match)
+    refused(lambda: Simulation.from_file(path), "heavy.urdf", match=match)
+    path = write(tmp_path, "heavy.xml", MJCF.format(mass=1e308))
+    refused(lambda: uwml.Robot.from_mjcf(path), "heavy.xml", match=r"body 'base' has mass 1e\+308 kg in its <inertial>, beyond 1e\+09 kg")
+
+
 def test_a_urdf_link_without_inertial_is_massless(tmp_path: Path) -> None:
     """URDF: no <inertial>, no mass (MuJoCo would compute one from the collision geometry)."""
     path = write(tmp_path, "noinertial.urdf", urdf(link("base"), link("arm", None), joint("j", "base", "arm")))
@@ -592,6 +606,7 @@ def test_hostile_hydro_values(
         ("[links.calf]\nvolume = 1e308\n", r"h\.toml: \[links\.calf\], key 'volume': .*0 to 1e\+06"),
         ("[links.calf]\nvolume = 0.1\ncob = [1e308, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], key 'cob': .*at most 10000 m"),
         (A_SEGMENT.replace("cd = [1.0, 1.0]", "cd = [1e308, 1e308]"), r"link 'calf' \(with .*h\.toml \[links\.calf\]\), segment \d+: .*cd"),
+        ("[links.calf.lumped]\npoint = [1e5, 0.0, 0.0]\n", r"h\.toml: \[links\.calf\], lumped, key 'point': .*at most 10000 m"),
     ],
 )
 def test_hydro_values_beyond_the_model_s_bounds_name_the_hydro_file(tmp_path: Path, text: str, match: str) -> None:

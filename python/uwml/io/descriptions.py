@@ -87,6 +87,7 @@ from typing import Any, NoReturn, TypeVar
 
 import numpy as np
 
+from ..domains import MAX_MASS
 from ..model.parts import Joint, Link
 from ..plausibility import PlausibilityWarning
 from ._description_geometry import _Body, _body, _rotation, _t
@@ -182,12 +183,19 @@ def _unknown_link(hydro_source: str, name: str, source: str, names: set[str]) ->
 def _check_masses(spec: Any, fmt: str, source: str) -> None:
     """Refuses what MuJoCo's compile would change without a word: a negative mass (clamped to 0),
     a URDF link named 'world' with mass or geometry (taken for the world), and a URDF link moved
-    by a joint with no mass (massless by URDF's rules; MuJoCo cannot move it)."""
+    by a joint with no mass (massless by URDF's rules; MuJoCo cannot move it); and a mass beyond
+    ``MAX_MASS``, which the model refuses, before MuJoCo's compile warns of it (a singular
+    inertia matrix) in words that do not name the link."""
     noun = "link" if fmt == "URDF" else "body"
     world, bodies = spec.bodies[0], spec.bodies[1:]
     for body in bodies:
         if body.explicitinertial and not body.mass >= 0.0:
             raise DescriptionError(f"{source}: {noun} {quoted(body.name)} has mass {body.mass:g} kg in its <inertial>, which is negative")
+        if body.explicitinertial and body.mass > MAX_MASS:
+            raise DescriptionError(
+                f"{source}: {noun} {quoted(body.name)} has mass {body.mass:g} kg in its <inertial>, beyond {MAX_MASS:g} kg "
+                "(uwml.domains.MAX_MASS, docs/domains.md)"
+            )
         if body.explicitinertial and not np.all(np.asarray(body.inertia) >= 0.0):
             raise DescriptionError(
                 f"{source}: {noun} {quoted(body.name)} has a negative moment of inertia in its <inertial> ({', '.join(f'{x:g}' for x in body.inertia)})"

@@ -187,6 +187,14 @@ def _point(value: Any) -> tuple[float, float, float]:
     return point
 
 
+def _hydro_lumped(source: str, where: str, table: object) -> LumpedModel:
+    """A ``lumped`` table of a link, its ``point`` within ``MAX_LENGTH`` (the model refuses it
+    later, naming the description, not this file)."""
+    if isinstance(table, dict) and "point" in table:
+        _Reader(source, where, table, DescriptionError).get("point", _point, "an array of 3 numbers [m]")
+    return _lumped(source, where, table, DescriptionError)
+
+
 def _not(what: str) -> Any:
     raise TypeError(f"not {what}")
 
@@ -244,7 +252,7 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             dry=r.get("dry", _boolean, "true or false", required=False, default=False),
             segments=segments,
             strips=r.get("strips", _boolean, "true or false", required=False, default=True),
-            lumped=None if "lumped" not in r.table else _lumped(source, f"{where}, lumped", r.table["lumped"], DescriptionError),
+            lumped=None if "lumped" not in r.table else _hydro_lumped(source, f"{where}, lumped", r.table["lumped"]),
         )
         if entry.dry:
             for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm", "cd_axial", "strips", "lumped"):
