@@ -109,6 +109,11 @@ def test_short_and_semicolon_separated_logs_name_the_file_and_the_cause(tmp_path
     semicolons = tmp_path / "semicolons.csv"
     semicolons.write_text("time;q1;q2\n" + "".join(f"{t!r};0;0\n" for t in TIME))
     _replay_error(semicolons, capsys, "row 1 (header)", "separated by commas")
+    # A pose stream of semicolons beside a good joint stream: named, not ignored.
+    joints, pose = _log(tmp_path / "joints.csv", np.zeros_like(TIME)), tmp_path / "pose.csv"
+    pose.write_text("time;x;y;z;qw;qx;qy;qz\n" + "".join(f"{t!r};0;0;0;1;0;0;0\n" for t in TIME))
+    with pytest.raises(ValueError, match=r"pose\.csv: row 1 \(header\): neither joint angles .* nor a pose .*separated by commas"):
+        replay([joints, pose], URDF, HYDRO)
 
 
 def test_parquet_columns_that_are_not_numbers_are_refused(tmp_path: Path) -> None:

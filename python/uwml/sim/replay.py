@@ -208,11 +208,15 @@ def _joined(
     pose_files = [path for path, _ in pose_tables]
     if not joint_files:
         which = [
-            f"{path}: row 1 (header), column 'q1': missing column, replay needs exactly one file with the joint angles (q1 … qN)"
-            f"{_header_hint(header)}"
+            f"{path}: row 1 (header), column 'q1': missing column{_header_hint(header)}"
             for path, (header, _) in zip(paths, tables, strict=True)
         ]
-        raise UwmlError("; ".join(which))
+        raise UwmlError(f"{'; '.join(which)}; replay needs exactly one file with the joint angles (q1 … qN)")
+    for path, (header, _) in zip(paths, tables, strict=True):
+        if "q1" not in header and "x" not in header:
+            raise UwmlError(
+                f"{path}: row 1 (header): neither joint angles (q1 … qN) nor a pose (x, y, z, ...) to replay{_header_hint(header)}"
+            )
     if len(joint_files) > 1:
         raise ValueError(
             f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)}: {[str(p) for p in joint_files]}"
@@ -256,7 +260,9 @@ def _time(source: str, header: list[str], read: Callable[[Sequence[str]], dict[s
     if "time" not in header:
         raise ValueError(f"{source}: no column 'time'")
     time = np.asarray(read(("time",))["time"], dtype=np.float64)
-    if time.size < 2 or not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0.0):
+    if time.size < 2:
+        raise UwmlError(f"{source}: {time.size} sample{'s' if time.size != 1 else ''} of the pose: at least 2 to interpolate")
+    if not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0.0):
         raise ValueError(f"{source}: column 'time' must hold finite, strictly increasing times")
     return time
 
