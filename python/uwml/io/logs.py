@@ -46,7 +46,10 @@ Files: UTF-8 text (a leading byte-order mark, as Excel writes, is skipped), any 
 a file that is missing, a directory, not UTF-8 or not Parquet though named ``.parquet`` is a
 ``ValueError`` naming it.
 
-Parquet (``.parquet`` files) holds the same columns. Both formats are read and written with
+Parquet (``.parquet`` files) holds the same columns, of integers or floating point (a boolean,
+text or time stamp column is refused). A CSV cell is a decimal number in ASCII digits (``1_0``,
+which Python's ``float`` reads as 10, is refused). A base orientation is a unit quaternion within
+``ORIENTATION_TOLERANCE`` (1e-6), checked where it is read. Both formats are read and written with
 ``pyarrow`` (a dependency): CSV columns are parsed straight into float64 and written in the
 shortest form that reads back to the same float64 (``uwml.io._arrow_csv``); a file that does not
 parse is scanned again, slowly, only to name the row and column of its first bad cell.
