@@ -84,6 +84,7 @@ from ..robot.files import model_and_robot
 from ..robot.results import BaseWrench, RobotEnvironment
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
+from ._dof_map import map_degrees_of_freedom, sparse_inertia_entries
 from .mjcf import mjcf_of
 from .prescribed import Trajectory, imposing_torque
 
@@ -239,26 +240,18 @@ class Simulation:
         #: The friction constraints the seals need each step: fewer means MuJoCo dropped them.
         self._seal_rows = sum(loss is not None and loss.seal is not None for loss in self._joint_losses)
         self._no_coefficients = np.zeros((0, 2))
-        self._map_degrees_of_freedom()
-        # Where each (row, column) of the joint-space inertia sits in MuJoCo's sparse storage.
-        mujoco.mj_forward(self.model, self.data)
-        saved = self.data.M.copy()
-        self.data.M[:] = np.arange(1.0, self.model.nM + 1.0)
-        probe = np.zeros((self.model.nv, self.model.nv))
-        mujoco.mj_fullM(self.model, self.data, probe)
-        self.data.M[:] = saved
-        rows, columns = np.nonzero(np.tril(probe))
-        order = np.argsort(probe[rows, columns])
-        rows, columns = rows[order], columns[order]
-        if not np.array_equal(probe[rows, columns], np.arange(1.0, self.model.nM + 1.0)):
-            raise RuntimeError("unexpected layout of MuJoCo's sparse inertia (data.M)")
+        dofs = map_degrees_of_freedom(mujoco, self.model, robot)
+        self._root, self._free_dof, self._free_qpos = dofs.root, dofs.free_dof, dofs.free_qpos
+        self._joint_dofs, self._joint_qpos = dofs.joint_dofs, dofs.joint_qpos
+        self._base_is_world, self._floating = dofs.base_is_world, dofs.floating
+        inertia_entries = sparse_inertia_entries(mujoco, self.model, self.data)
         # The per-step arithmetic, native: it keeps views of the data's arrays (module docstring).
         d = self.data
         self._coupling = _core.MujocoCoupling(
             robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
             self.model.dof_damping, self.model.dof_frictionloss, self.model.opt.gravity,
             None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
-            self._free_dof, np.stack([rows, columns], axis=1).astype(np.int64), self._compiled_losses,
+            self._free_dof, inertia_entries, self._compiled_losses,
             self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
             tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
         )  # fmt: skip
@@ -346,37 +339,7 @@ class Simulation:
         model, robot = model_and_robot(path, hydro, floating)
         return cls(model, robot, **options)
 
-    # --- the map between uwml's coordinates and MuJoCo's degrees of freedom -------------------
-
-    def _map_degrees_of_freedom(self) -> None:
-        m, mj = self.model, self._mj
-        roots = [i for i in range(1, m.nbody) if m.body_parentid[i] == 0]
-        if len(roots) != 1:
-            raise ValueError(f"the model's world must hold exactly one root body (the robot's base), got {len(roots)}")
-        self._root = roots[0]
-        free_kind, hinge, slide = (int(k) for k in (mj.mjtJoint.mjJNT_FREE, mj.mjtJoint.mjJNT_HINGE, mj.mjtJoint.mjJNT_SLIDE))
-        free = [j for j in range(m.njnt) if int(m.jnt_type[j]) == free_kind]
-        if free and (len(free) > 1 or m.jnt_bodyid[free[0]] != self._root):
-            raise ValueError("only the root body may have a free joint (the floating base)")
-        ball = int(mj.mjtJoint.mjJNT_BALL)
-        if any(int(kind) == ball for kind in m.jnt_type):
-            raise ValueError("the model has a ball joint: uwml's joints are revolute and prismatic (hinge and slide)")
-        self._free_dof = int(m.jnt_dofadr[free[0]]) if free else None
-        self._free_qpos = int(m.jnt_qposadr[free[0]]) if free else None
-        moving = [j for j in range(m.njnt) if int(m.jnt_type[j]) in (hinge, slide)]
-        robot = self.robot
-        if len(moving) != robot.n_joints:
-            raise ValueError(f"the model has {len(moving)} hinge and slide joints, the robot {robot.n_joints} joints: not the same robot")
-        for i, (j, joint) in enumerate(zip(moving, robot.joints, strict=True)):
-            kind = "revolute" if int(m.jnt_type[j]) == hinge else "prismatic"
-            name = m.joint(j).name
-            if kind != joint.kind or (joint.name is not None and name and name != joint.name):
-                raise ValueError(f"the model's joint {j} ('{name}', {kind}) is not the robot's joint {i} ({joint.name!r}, {joint.kind})")
-        self._joint_dofs = np.array([m.jnt_dofadr[j] for j in moving], dtype=np.int64)
-        self._joint_qpos = np.array([m.jnt_qposadr[j] for j in moving], dtype=np.int64)
-        # The base is the root body's frame unless the root hangs from the world by a joint.
-        self._base_is_world = self._free_dof is None and m.body_jntnum[self._root] > 0
-        self._floating = self._free_dof is not None
+    # --- the base's motion in uwml's coordinates ----------------------------------------------
 
     def _base_motion(self) -> BaseMotion:
         zero = np.zeros(3)
