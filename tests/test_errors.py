@@ -35,7 +35,7 @@ def _exceptions() -> list[type]:
 def test_the_package_defines_the_exceptions_this_test_knows() -> None:
     # A new exception class shows up here, so the test below cannot miss it.
     names = {c.__qualname__ for c in _exceptions()}
-    assert names == {"UwmlError", "ModelError", "ModelFileError", "DescriptionError", "_UsageError", "ConfigError"}
+    assert names == {"UwmlError", "ModelError", "ModelFileError", "DescriptionError", "_UsageError", "ConfigError", "StudyError"}
 
 
 @pytest.mark.parametrize("error", _exceptions(), ids=lambda c: c.__qualname__)
@@ -79,12 +79,18 @@ def _output_into_a_directory(tmp_path: Path) -> None:
     cli._check_output(str(tmp_path), "--out")
 
 
+def _a_study_over_another(tmp_path: Path) -> None:
+    (tmp_path / "study.json").write_text("{}")
+    study.run_study(study.loads(""), tmp_path, serial=True)
+
+
 RAISERS: dict[str, tuple[type, Callable[[Path], None]]] = {
     "ModelError": (uwml.ModelError, lambda _: _negative_mass()),
     "ModelFileError": (uwml.ModelFileError, lambda _: _bad_model_file()),
     "DescriptionError": (uwml.DescriptionError, _bad_urdf),
     "_UsageError": (cli._UsageError, _output_into_a_directory),
     "ConfigError": (study.ConfigError, lambda _: study.loads("[parameters]\ndepth = -1\n")),
+    "StudyError": (study.StudyError, _a_study_over_another),
 }
 
 

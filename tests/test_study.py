@@ -1,12 +1,19 @@
 """Studies (``uwml.study``, ``uwml study``; docs/scale.md): the runs a configuration names, run on
 a local Ray of 2 CPUs or serially; results written batch by batch to Parquet, resumed, failures
-kept as rows; a worker killed mid-study loses no run and counts none twice."""
+kept as rows; a worker killed mid-study loses no run and counts none twice; nor does a run that
+kills its worker every time, a driver killed mid-study (its Ray ends with it) or two studies
+started on one folder at once; a resume refuses a robot file that changed."""
 
 import json
 import os
+import re
+import shutil
 import signal
+import subprocess
+import sys
 import threading
 import time
+import tracemalloc
 from pathlib import Path
 
 import numpy as np
@@ -14,7 +21,9 @@ import pyarrow.parquet
 import pytest
 from uwml import study
 from uwml.cli import main
+from uwml.errors import UwmlError
 from uwml.study import runner
+from uwml.study.config import Distribution
 
 ray = pytest.importorskip("ray")
 
@@ -254,3 +263,286 @@ def test_a_floating_vehicles_drift_is_a_study_too(tmp_path: Path) -> None:
     # uwml's predicted wrench holds the vehicle's attitude closer; the current pushes it away.
     assert table[("pd_uwml", 0.8)]["rms_attitude"] < 0.8 * table[("pd", 0.8)]["rms_attitude"]
     assert table[("pd", 0.8)]["max_drift"] > 2 * table[("pd", 0.0)]["max_drift"]
+
+
+# Studies never lose, mix or duplicate a run (issue 31).
+
+
+def test_resume_after_the_robot_or_hydro_file_changed_is_refused_naming_the_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys
+) -> None:
+    for name in ("bluerov2_arm.urdf", "bluerov2_arm.hydro.toml"):
+        shutil.copy(ROOT / "examples/bluerov2" / name, tmp_path / name)
+    path = write(
+        tmp_path,
+        '[scenario]\nkind = "robot"\nrobot = "bluerov2_arm.urdf"\nhydro = "bluerov2_arm.hydro.toml"\nduration = 0.05\n'
+        '[parameters]\ncontroller = ["land", "hydro"]\namplitude = [0.0, 0.4]\n',
+    )
+    out = tmp_path / "out"
+    study.run_study(study.load(path), out, serial=True)
+    before = rows(out)
+    max(out.glob("runs/part-*.parquet")).unlink()  # a study stopped before its last batch
+    urdf, hydro = tmp_path / "bluerov2_arm.urdf", tmp_path / "bluerov2_arm.hydro.toml"
+    original_urdf, original_hydro = urdf.read_text(), hydro.read_text()
+    urdf.write_text(original_urdf.replace('<mass value="0.2"/>', '<mass value="0.3"/>'))  # the same joints, another arm
+    with pytest.raises(UwmlError, match=r"bluerov2_arm\.urdf changed since the study began; start a new --out or restore it"):
+        study.run_study(study.load(path), out, serial=True, resume=True)
+    assert main(["study", str(path), "--out", str(out), "--serial", "--resume", "--no-figures"]) == 2
+    assert "bluerov2_arm.urdf changed since the study began" in capsys.readouterr().err
+    urdf.write_text(original_urdf)
+    hydro.write_text(original_hydro.replace("density = 1000.0", "density = 1025.0"))
+    with pytest.raises(UwmlError, match=r"bluerov2_arm\.hydro\.toml changed since the study began") as refused:
+        study.run_study(study.load(path), out, serial=True, resume=True)
+    assert "bluerov2_arm.urdf" not in str(refused.value)
+    hydro.write_text(original_hydro)
+    assert len(rows(out)) == 3, "nothing written by the refused resumes"
+    assert study.run_study(study.load(path), out, serial=True, resume=True).ran == 1
+    assert rows(out) == before
+    # Changed during a study: it stops before writing a run that may have read the new file.
+    real = runner.run_one
+
+    def changing(kind: str, settings: dict, parameters: dict) -> dict:
+        result = real(kind, settings, parameters)
+        urdf.write_text(original_urdf.replace('<mass value="0.2"/>', '<mass value="0.3"/>'))
+        return result
+
+    monkeypatch.setattr(runner, "run_one", changing)
+    with pytest.raises(UwmlError, match=r"bluerov2_arm\.urdf changed during the study"):
+        study.run_study(study.load(path), tmp_path / "during", serial=True)
+    assert study.read_results(tmp_path / "during") is None
+
+
+def test_two_studies_on_one_folder_at_once_the_second_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    path = write(tmp_path)
+    config = study.load(path)
+    out = tmp_path / "out"
+    real = runner.run_one
+    started, release = threading.Event(), threading.Event()
+
+    def held(kind: str, settings: dict, parameters: dict) -> dict:
+        if threading.current_thread().name == "first":
+            started.set()
+            release.wait(120)
+        return real(kind, settings, parameters)
+
+    monkeypatch.setattr(runner, "run_one", held)
+    result: dict = {}
+    first = threading.Thread(target=lambda: result.setdefault("outcome", study.run_study(config, out, serial=True)), name="first")
+    first.start()
+    try:
+        assert started.wait(120)
+        where = re.escape(str(out))
+        with pytest.raises(UwmlError, match=rf"{where}: a study is running in this folder already \(pid {os.getpid()} "):
+            study.run_study(config, out, serial=True, resume=True)
+        # Another process, on Ray: refused at once (exit 2, one line), before starting Ray.
+        env = {k: v for k, v in os.environ.items() if k != "RAY_ADDRESS"}
+        second = subprocess.run(
+            [sys.executable, "-m", "uwml.cli", "study", str(path), "--out", str(out), "--resume", "--workers", "3", "--no-figures"],
+            check=False, capture_output=True, text=True, timeout=300, env=env,
+        )  # fmt: skip
+        assert second.returncode == 2, second.stderr
+        assert f"a study is running in this folder already (pid {os.getpid()} " in second.stderr
+    finally:
+        release.set()
+        first.join(300)
+    assert result["outcome"].ran == 12
+    assert sorted(row["run"] for row in rows(out)) == list(range(12)), "every run once"
+    assert study.run_study(config, out, serial=True, resume=True).ran == 0  # the lock ends with its study
+
+
+def test_a_run_that_kills_its_worker_every_time_fails_alone(tmp_path: Path, local_ray: None, monkeypatch: pytest.MonkeyPatch) -> None:
+    config = study.loads(CONFIG.replace("samples = 3", "samples = 16"), str(tmp_path / "deadly.toml"))  # batches of 4
+    real = runner.run_batch
+
+    def deadly(kind: str, settings: dict, metrics: tuple, batch: list) -> list:
+        if any(run["run"] == 13 for run in batch):
+            os.kill(os.getpid(), signal.SIGKILL)
+        return real(kind, settings, metrics, batch)
+
+    monkeypatch.setattr(runner, "run_batch", deadly)
+    out = tmp_path / "out"
+    outcome = study.run_study(config, out)
+    got = rows(out)
+    assert sorted(row["run"] for row in got) == list(range(64)), "every run once"
+    failed = [row for row in got if row["error"] is not None]
+    assert [row["run"] for row in failed] == [13] and outcome.errors == 1, "the culprit alone"
+    assert failed[0]["error"].startswith("WorkerCrashedError: this run killed its worker on each of its 4 tries")
+    assert failed[0]["error_kind"] == "run"
+    monkeypatch.undo()
+    assert study.run_study(config, out, resume=True).ran == 0, "its own failure: not run again"
+
+
+def test_resume_retries_the_runs_that_failed_by_infrastructure_only(
+    tmp_path: Path, local_ray: None, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    config = study.load(write(tmp_path))  # batches of 1 on 2 CPUs
+    real = runner.run_batch
+
+    def lost(kind: str, settings: dict, metrics: tuple, batch: list) -> list:
+        if any(run["run"] == 4 for run in batch):
+            raise RuntimeError("the node went away")  # not a run's exception: run_batch keeps those as rows
+        return real(kind, settings, metrics, batch)
+
+    monkeypatch.setattr(runner, "run_batch", lost)
+    out = tmp_path / "out"
+    assert study.run_study(config, out).errors == 1
+    monkeypatch.undo()
+    (row,) = [row for row in rows(out) if row["error"] is not None]
+    assert row["run"] == 4 and row["error_kind"] == "infrastructure" and "the node went away" in row["error"]
+    # A batch that an earlier uwml recorded as crashed (no error_kind column): its rows are Ray's too.
+    part = next(p for p in out.glob("runs/part-*.parquet") if 9 in pyarrow.parquet.read_table(p).column("run").to_pylist())
+    table = pyarrow.parquet.read_table(part).drop_columns(["error_kind"]).to_pylist()
+    table = [{**r, "energy": float("nan"), "error": "WorkerCrashedError: The worker died unexpectedly"} for r in table]
+    pyarrow.parquet.write_table(pyarrow.Table.from_pylist(table), part)
+    parts = sorted(out.glob("runs/*"))
+    resumed = study.run_study(config, out, resume=True)
+    assert resumed.ran == 2 and resumed.skipped == 10 and resumed.errors == 0
+    assert sorted(out.glob("runs/*")) == parts, "the retried rows replaced the failed ones, part by part"
+    serial = study.run_study(config, tmp_path / "serial", serial=True)
+    assert serial.errors == 0 and rows(out) == rows(tmp_path / "serial"), "every run once, with its own result"
+    assert study.run_study(config, out, resume=True).ran == 0
+
+
+def test_a_normal_distribution_whose_low_is_above_its_high_is_refused(tmp_path: Path, capsys) -> None:
+    explicit = '[parameters]\ndepth = { distribution = "normal", mean = 50, std = 10, low = 100, high = 20 }\n'
+    with pytest.raises(study.ConfigError, match=r"key 'parameters.depth.high': must be above low \(100\), got 20"):
+        study.load(write(tmp_path, explicit))
+    assert main(["study", str(write(tmp_path, explicit)), "--out", str(tmp_path / "never"), "--serial"]) == 2
+    assert "key 'parameters.depth.high': must be above low" in capsys.readouterr().err
+    # low at the parameter's upper bound, high left to it: no room either.
+    bound = '[parameters]\npayload = { distribution = "normal", mean = 99, std = 1, low = 100 }\n'
+    with pytest.raises(study.ConfigError, match=r"key 'parameters.payload.low': must be below high \(100, the parameter's bound\)"):
+        study.load(write(tmp_path, bound))
+    draws = study.loads(
+        '[parameters]\npayload = { distribution = "normal", mean = 1, std = 0.2, low = 0.5, high = 1.5 }\n[sampling]\nsamples = 50\n'
+    ).runs()
+    payloads = [run["payload"] for run in draws]
+    assert all(0.5 <= p <= 1.5 for p in payloads) and len(set(payloads)) > 40
+
+
+BIG = """
+[scenario]
+kind = "paper_leg"
+cycles = 0.1
+[parameters]
+depth = [0.0, 1000.0, 2000.0, 3000.0, 4000.0, 5000.0, 6000.0, 7000.0, 8000.0, 9000.0]
+controller = ["land", "hydro", "hydro_losses"]
+coefficient_scale = { distribution = "uniform", low = 0.7, high = 1.3 }
+payload = { distribution = "normal", mean = 1.0, std = 0.2, low = 0.0 }
+[sampling]
+samples = 333333
+"""
+
+
+def test_a_ten_million_run_study_starts_without_listing_its_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    config = study.loads(BIG, str(tmp_path / "big.toml"))
+    assert config.n_runs == 9_999_990
+    drawn = [0]
+    real_draw = Distribution.draw
+
+    def draw(self: Distribution, rng: np.random.Generator) -> object:
+        drawn[0] += 1
+        if drawn[0] > 100_000:
+            raise AssertionError("the runs were listed before the first batch")
+        return real_draw(self, rng)
+
+    class First(Exception):
+        pass
+
+    batches: list[list[dict]] = []
+
+    def first(kind: str, settings: dict, metrics: tuple, batch: list) -> list:
+        batches.append(batch)
+        if len(batches) > 1:
+            raise First
+        return [{**run, **dict.fromkeys(metrics, 0.0), "error": None} for run in batch]
+
+    monkeypatch.setattr(Distribution, "draw", draw)
+    monkeypatch.setattr(runner, "run_batch", first)
+    out = tmp_path / "out"
+    tracemalloc.start()
+    try:
+        with pytest.raises(First):
+            study.run_study(config, out, serial=True)
+        assert [run["run"] for run in batches[0]] == list(range(64)) and batches[1][0]["run"] == 64
+        assert drawn[0] <= 2 * 2 * 2 * 64, "only the runs of the batches taken"
+        # Resumed: the done runs are skipped (their draws made, nothing kept), not listed either.
+        batches.clear()
+        with pytest.raises(First):
+            study.run_study(config, out, serial=True, resume=True)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert batches[0][0]["run"] == 64 and study.read_results(out).num_rows == 128
+    assert peak < 64 * 2**20, f"{peak / 2**20:.0f} MiB"
+    small = study.load(write(tmp_path))
+    assert list(small.iter_runs()) == small.runs(), "the same runs, drawn in the same order"
+
+
+def _processes() -> dict[int, tuple[int, str, str]]:
+    """The live processes: pid -> (parent, start time, name), from /proc (zombies left out)."""
+    found = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                stat = (entry / "stat").read_text()
+            except OSError:
+                continue
+            fields = stat[stat.rindex(")") + 2 :].split()
+            if fields[0] != "Z":
+                found[int(entry.name)] = (int(fields[1]), fields[19], stat[stat.index("(") + 1 : stat.rindex(")")])
+    return found
+
+
+def _descendants(pid: int) -> dict[int, tuple[int, str, str]]:
+    table = _processes()
+    found: dict[int, tuple[int, str, str]] = {}
+    parents = [pid]
+    while parents:
+        parent = parents.pop()
+        for child, info in table.items():
+            if info[0] == parent and child not in found:
+                found[child] = info
+                parents.append(child)
+    return found
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="finds the driver's processes in /proc")
+def test_a_driver_killed_mid_study_takes_its_ray_along_and_the_study_resumes(tmp_path: Path, local_ray: None) -> None:
+    path = write(tmp_path, CONFIG.replace("cycles = 0.1", "cycles = 2.0").replace("samples = 3", "samples = 30"))
+    out = tmp_path / "out"
+    env = {k: v for k, v in os.environ.items() if k != "RAY_ADDRESS"}  # a local Ray of its own
+    with open(tmp_path / "driver.err", "wb") as err:
+        driver = subprocess.Popen(
+            [sys.executable, "-m", "uwml.cli", "study", str(path), "--out", str(out), "--workers", "2", "--no-figures", "--json"],
+            stdout=subprocess.DEVNULL, stderr=err, env=env,
+        )  # fmt: skip
+    ray_processes: dict[int, tuple[int, str, str]] = {}
+    try:
+        deadline = time.monotonic() + 180
+        while driver.poll() is None and time.monotonic() < deadline and not list(out.glob("runs/part-*.parquet")):
+            time.sleep(0.05)
+        assert driver.poll() is None, (tmp_path / "driver.err").read_text()
+        ray_processes = _descendants(driver.pid)
+        assert "raylet" in {name for _, _, name in ray_processes.values()}, ray_processes
+        os.kill(driver.pid, signal.SIGKILL)
+        driver.wait(60)
+        left = ray_processes
+        deadline = time.monotonic() + 60
+        while left and time.monotonic() < deadline:
+            time.sleep(0.2)
+            now = _processes()
+            left = {pid: info for pid, info in ray_processes.items() if pid in now and now[pid][1] == info[1]}
+        assert not left, f"still alive 60 s after the driver: {sorted(name for _, _, name in left.values())}"
+    finally:
+        if driver.poll() is None:
+            driver.kill()
+        now = _processes()
+        for pid, info in ray_processes.items():
+            if pid in now and now[pid][1] == info[1]:
+                os.kill(pid, signal.SIGKILL)
+    config = study.load(path)
+    done_before = len(rows(out))
+    resumed = study.run_study(config, out, resume=True)  # no stale lock
+    assert resumed.skipped == done_before and resumed.ran == 120 - done_before and resumed.errors == 0
+    assert sorted(row["run"] for row in rows(out)) == list(range(120)), "every run once"

@@ -25,8 +25,9 @@ def _study(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(result))
         return 0
+    lost = f" ({result['lost']} lost by Ray, not by the run: --resume runs them again)" if result["lost"] else ""
     print(
-        f"uwml study: {config.source}, {result['runs']} runs: {outcome.ran} run now, {outcome.skipped} done before, {result['failed']} failed"
+        f"uwml study: {config.source}, {result['runs']} runs: {outcome.ran} run now, {outcome.skipped} done before, {result['failed']} failed{lost}"
     )
     print(f"{'metric':>16} {'mean':>12} {'min':>12} {'max':>12}")
     for name, values in result["metrics"].items():
@@ -47,9 +48,11 @@ distributions of its parameters, a seed), each a Ray task: on a local Ray starte
 study (--workers CPUs, default all), on a cluster (--address), or serially (--serial).
 
 Output in --out: runs/part-*.parquet (one row per run: its parameters, its metrics, its error
-if it raised), written as batches finish, so that a study that stops keeps what it finished
-and --resume runs only the rest; study.json; figures/<metric>.png (each metric against each
-parameter). A summary on standard output (--json: as JSON).""",
+if it failed), written as batches finish, so that a study that stops keeps what it finished
+and --resume runs only the rest, and the runs Ray lost (not those that failed by themselves);
+study.json (the study's fingerprint, its robot files' digests: --resume refuses another study,
+or a robot file that changed); study.lock (one process at a time); figures/<metric>.png (each
+metric against each parameter). A summary on standard output (--json: as JSON).""",
         epilog=_EXIT,
     )
     parser.add_argument("config", metavar="CONFIG", help="the study's TOML file")
@@ -57,7 +60,7 @@ parameter). A summary on standard output (--json: as JSON).""",
     parser.add_argument("--address", metavar="ADDR", help="a Ray cluster's address (auto, or ray://host:10001); default a local Ray")
     parser.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
     parser.add_argument("--serial", action="store_true", help="run here, one run after the other, without Ray")
-    parser.add_argument("--resume", action="store_true", help="run only the runs --out lacks")
+    parser.add_argument("--resume", action="store_true", help="run only the runs --out lacks, and those Ray lost")
     parser.add_argument("--no-figures", action="store_true", help="skip the figures")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON only")
     parser.set_defaults(run=_study)

@@ -5,11 +5,24 @@ task (local by default, or a cluster), results written incrementally to Parquet
 * :mod:`uwml.study.config`: the TOML file (:func:`load`) and the runs it names;
 * :mod:`uwml.study.scenarios`: what one run computes, its parameters and metrics;
 * :mod:`uwml.study.runner`: running them (:func:`run_study`), resuming, failures;
+* :mod:`uwml.study.store`: the output folder: its record, lock and parts, one row per run;
 * :mod:`uwml.study.results`: reading them back (:func:`read_results`), summary, figures.
 """
 
 from .config import ConfigError, StudyConfig, load, loads
 from .results import figures, read_results, summary
 from .runner import StudyOutcome, run_study
+from .store import StudyError
 
-__all__ = ["ConfigError", "StudyConfig", "StudyOutcome", "figures", "load", "loads", "read_results", "run_study", "summary"]
+__all__ = [
+    "ConfigError",
+    "StudyConfig",
+    "StudyError",
+    "StudyOutcome",
+    "figures",
+    "load",
+    "loads",
+    "read_results",
+    "run_study",
+    "summary",
+]

@@ -21,9 +21,14 @@ the parameters that vary, checked whole before anything runs.
 The runs are every point of the grid (the product of the lists, in the order given) times
 ``samples`` draws of the distributions, numbered from 0; the draws come from ``seed``
 (``numpy.random.default_rng``), so the same file gives the same runs, and a resumed study the
-runs it lacks. A distribution is ``uniform`` (``low``, ``high``), ``normal`` (``mean``,
-``std``, optionally clipped to ``low``/``high``) or ``choice`` (``values``). Every error names
-the file and the key.
+runs it lacks. They are made one by one as the study takes them (:meth:`StudyConfig.iter_runs`):
+a study of :data:`MAX_RUNS` runs starts at once, in little memory. A distribution is ``uniform``
+(``low`` < ``high``), ``normal`` (``mean``, ``std``, clipped to ``low`` < ``high``, by default
+the parameter's bounds) or ``choice`` (``values``). Every error names the file and the key.
+
+A file setting (the ``robot`` scenario's description and hydro file) is read for its digest
+(SHA-256 of its bytes, :attr:`StudyConfig.inputs`) as well as its path: the study's fingerprint
+covers both, so a study does not resume over a robot that changed.
 """
 
 from __future__ import annotations
@@ -33,7 +38,8 @@ import itertools
 import json
 import math
 import tomllib
-from dataclasses import dataclass
+from collections.abc import Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -63,8 +69,8 @@ class Distribution:
         a = self.arguments
         if self.kind == "uniform":
             return float(rng.uniform(a["low"], a["high"]))
-        if self.kind == "normal":
-            return float(np.clip(rng.normal(a["mean"], a["std"]), a.get("low", -math.inf), a.get("high", math.inf)))
+        if self.kind == "normal":  # clipped, as np.clip would
+            return min(max(float(rng.normal(a["mean"], a["std"])), a.get("low", -math.inf)), a.get("high", math.inf))
         values = a["values"]
         return values[int(rng.integers(len(values)))]
 
@@ -82,6 +88,8 @@ class StudyConfig:
     seed: int
     #: The metrics of its runs (the results' columns).
     metrics: tuple[str, ...] = ()
+    #: Each file setting's digest (SHA-256 of the file's bytes when loaded), by setting.
+    inputs: dict[str, str] = field(default_factory=dict)
 
     @property
     def n_runs(self) -> int:
@@ -92,20 +100,32 @@ class StudyConfig:
         return [*self.grid, *self.distributions]
 
     def runs(self) -> list[dict[str, Any]]:
-        """Every run's parameters, numbered (``run``) as the module docstring says."""
+        """Every run's parameters, numbered (``run``) as the module docstring says (a list: for a
+        small study; a study takes them one by one, :meth:`iter_runs`)."""
+        return list(self.iter_runs())
+
+    def iter_runs(self, wanted: np.ndarray | None = None) -> Iterator[dict[str, Any]]:
+        """The runs of :meth:`runs`, made one by one; with ``wanted`` (a boolean per run), only
+        those it marks, the others' draws made and dropped (so each run gets its own draws)."""
         rng = np.random.default_rng(self.seed)
-        out: list[dict[str, Any]] = []
+        names = list(self.grid)
+        distributions = list(self.distributions.items())
+        run = 0
         for point in itertools.product(*self.grid.values()):
             for _ in range(self.samples):
-                parameters = dict(zip(self.grid, point, strict=True))
-                parameters |= {name: d.draw(rng) for name, d in self.distributions.items()}
-                out.append({"run": len(out), **parameters})
-        return out
+                if wanted is None or wanted[run]:
+                    parameters = dict(zip(names, point, strict=True))
+                    parameters |= {name: d.draw(rng) for name, d in distributions}
+                    yield {"run": run, **parameters}
+                else:
+                    for _, d in distributions:
+                        d.draw(rng)
+                run += 1
 
-    def fingerprint(self) -> str:
+    def fingerprint(self, inputs: dict[str, str] | None = None) -> str:
         """A digest of what the runs are (not of the file's layout): a resumed study must be
-        this one."""
-        what = {
+        this one. It covers the file settings' content (:attr:`inputs`, or the digests given)."""
+        what: dict[str, Any] = {
             "kind": self.kind,
             "settings": self.settings,
             "grid": self.grid,
@@ -113,7 +133,22 @@ class StudyConfig:
             "samples": self.samples,
             "seed": self.seed,
         }
+        inputs = self.inputs if inputs is None else inputs
+        if inputs:  # none for the scenarios without files: their fingerprints are as before
+            what["inputs"] = inputs
         return hashlib.sha256(json.dumps(what, sort_keys=True).encode()).hexdigest()[:16]
+
+    def changed_inputs(self) -> list[str]:
+        """The file settings' paths whose content is no longer the one loaded (or is gone)."""
+        changed = []
+        for key, digest in self.inputs.items():
+            try:
+                now = _digest(Path(self.settings[key]))
+            except OSError:
+                now = None
+            if now != digest:
+                changed.append(str(self.settings[key]))
+        return changed
 
 
 def load(path: str | Path) -> StudyConfig:
@@ -143,6 +178,7 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
         raise ConfigError(f"{source}: key 'scenario.kind': must be one of {', '.join(SCENARIOS)}, got {kind!r}")
     allowed = PARAMETERS[kind]
     settings: dict[str, Any] = {}
+    inputs: dict[str, str] = {}
     for key, value in scenario.items():
         if key == "kind":
             continue
@@ -150,6 +186,10 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
             raise ConfigError(f"{source}: key 'scenario.{key}': unknown setting (a {kind} run takes {', '.join(allowed)})")
         if allowed[key] == PATH:
             settings[key] = _path(value, Path(folder), f"scenario.{key}", source)
+            try:
+                inputs[key] = _digest(Path(settings[key]))
+            except OSError as exc:
+                raise ConfigError(f"{source}: key 'scenario.{key}': {settings[key]}: cannot be read ({exc.strerror or exc})") from None
         else:
             settings[key] = _value(value, allowed[key], f"scenario.{key}", source)
     for key in REQUIRED[kind]:
@@ -189,7 +229,7 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
         metrics = metric_names(kind, settings)
     except (ValueError, OSError) as exc:
         raise ConfigError(f"{source}: key 'scenario.robot': {exc}") from None
-    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed, metrics)
+    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed, metrics, inputs)
     if config.n_runs > MAX_RUNS:
         raise ConfigError(f"{source}: key 'parameters': {config.n_runs} runs, more than {MAX_RUNS}")
     return config
@@ -200,6 +240,11 @@ def _table(table: dict[str, Any], key: str, source: str) -> dict[str, Any]:
     if not isinstance(value, dict):
         raise ConfigError(f"{source}: key {key!r}: must be a table")
     return value
+
+
+def _digest(path: Path) -> str:
+    """SHA-256 of a file's bytes, in hex."""
+    return hashlib.sha256(path.read_bytes()).hexdigest()
 
 
 def _path(value: Any, folder: Path, where: str, source: str) -> str:
@@ -253,4 +298,10 @@ def _distribution(table: dict[str, Any], kind: Any, where: str, source: str) -> 
         arguments["std"] = float(table["std"])
         arguments.setdefault("low", low)
         arguments.setdefault("high", high)
+        if not arguments["low"] < arguments["high"]:  # else every draw would be one of them
+            if "high" in table:
+                raise ConfigError(f"{source}: key '{where}.high': must be above low ({arguments['low']:g}), got {arguments['high']:g}")
+            raise ConfigError(
+                f"{source}: key '{where}.low': must be below high ({arguments['high']:g}, the parameter's bound), got {arguments['low']:g}"
+            )
     return Distribution(name, arguments)

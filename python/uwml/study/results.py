@@ -11,40 +11,55 @@ from typing import Any
 
 import numpy as np
 
+from .store import INFRASTRUCTURE, error_kinds, parts
+
 __all__ = ["done_runs", "figures", "read_results", "summary"]
 
 
 def read_results(out: str | Path) -> Any:
     """Every finished run of the study in ``out``, by run number, as a ``pyarrow.Table`` (None
-    before any): columns ``run``, the parameters, the metrics and ``error``."""
+    before any): columns ``run``, the parameters, the metrics, ``error`` and ``error_kind``
+    (:mod:`uwml.study.store`). One row per run: were a run in two parts (uwml writes none so),
+    its own row would stand over a row of Ray's failure, and the later part's over the earlier."""
     import pyarrow
     import pyarrow.parquet
 
-    files = sorted((Path(out) / "runs").glob("part-*.parquet"))
-    if not files:
+    tables = []
+    for path in parts(Path(out)):
+        table = pyarrow.parquet.read_table(path)
+        if "error_kind" not in table.column_names:  # written by an earlier uwml
+            table = table.append_column("error_kind", pyarrow.array(error_kinds(table), type=pyarrow.string()))
+        tables.append(table)
+    if not tables:
         return None
-    table = pyarrow.concat_tables([pyarrow.parquet.read_table(path) for path in files], promote_options="permissive")
+    table = pyarrow.concat_tables(tables, promote_options="permissive")
+    runs = np.asarray(table.column("run").to_numpy(), dtype=np.int64)
+    if np.unique(runs).size < runs.size:
+        own = np.array([kind != INFRASTRUCTURE for kind in table.column("error_kind").to_pylist()], dtype=bool)
+        order = np.lexsort((np.arange(runs.size), own, runs))  # by run; its best row last
+        last = np.append(runs[order][1:] != runs[order][:-1], True)
+        table = table.take(order[last])
     return table.sort_by("run")
 
 
 def done_runs(out: str | Path) -> set[int]:
-    """The numbers of the runs finished in ``out`` (their ``run`` column alone read)."""
-    import pyarrow.parquet
+    """The numbers of the runs finished in ``out``: with a row of their own, a result or their
+    own error (a run Ray lost is not done; ``--resume`` runs it again)."""
+    from .store import ledger
 
-    return {
-        run
-        for path in (Path(out) / "runs").glob("part-*.parquet")
-        for run in pyarrow.parquet.read_table(path, columns=["run"]).column("run").to_pylist()
-    }
+    record = json.loads((Path(out) / "study.json").read_text(encoding="utf-8"))
+    return {int(run) for run in np.flatnonzero(ledger(Path(out), int(record["n_runs"])).done)}
 
 
 def summary(out: str | Path) -> dict[str, Any]:
-    """The study in ``out`` as JSON-safe numbers: its runs, those done and failed, and each
-    metric's mean, minimum and maximum over the runs that did not fail."""
+    """The study in ``out`` as JSON-safe numbers: its runs, those with a row (``done``), those
+    failed (``failed``; ``lost``: of them, those Ray lost, which ``--resume`` runs again), and
+    each metric's mean, minimum and maximum over the runs that did not fail."""
     record = json.loads((Path(out) / "study.json").read_text(encoding="utf-8"))
     table = read_results(out)
     done = 0 if table is None else table.num_rows
     failed = 0 if table is None else sum(error is not None for error in table.column("error").to_pylist())
+    lost = 0 if table is None else sum(kind == INFRASTRUCTURE for kind in table.column("error_kind").to_pylist())
     metrics: dict[str, dict[str, float | None]] = {}
     for name in record["metrics"]:
         values = np.array([] if table is None else table.column(name).to_numpy(zero_copy_only=False), dtype=np.float64)
@@ -58,7 +73,15 @@ def summary(out: str | Path) -> dict[str, Any]:
             "min": number(float(np.min(values))) if values.size else None,
             "max": number(float(np.max(values))) if values.size else None,
         }
-    return {"source": record["source"], "out": str(out), "runs": record["n_runs"], "done": done, "failed": failed, "metrics": metrics}
+    return {
+        "source": record["source"],
+        "out": str(out),
+        "runs": record["n_runs"],
+        "done": done,
+        "failed": failed,
+        "lost": lost,
+        "metrics": metrics,
+    }
 
 
 def figures(out: str | Path) -> list[Path]:
