@@ -30,9 +30,14 @@ pub enum Problem {
     /// [`MAX_DENSITY`](crate::MAX_DENSITY), [`MAX_GRAVITY`](crate::MAX_GRAVITY)): a unit
     /// mistake, or a value whose forces would overflow.
     TooLarge,
-    /// A matrix that must be symmetric is not (beyond rounding, `1e-9` of its largest entry).
+    /// A matrix that must be symmetric is not (beyond rounding: an asymmetry above
+    /// [`LUMPED_SYMMETRY_TOLERANCE`](crate::LUMPED_SYMMETRY_TOLERANCE) times its largest entry or
+    /// [`LUMPED_ABSOLUTE_TOLERANCE`](crate::LUMPED_ABSOLUTE_TOLERANCE), whichever is smaller).
     NotSymmetric,
-    /// A matrix (or a matrix's symmetric part) that must be positive semi-definite is not.
+    /// A matrix (or a matrix's symmetric part) that must be positive semi-definite is not (its
+    /// smallest eigenvalue below `−min(`[`LUMPED_EIGENVALUE_TOLERANCE`](crate::LUMPED_EIGENVALUE_TOLERANCE)
+    /// `· s, `[`LUMPED_ABSOLUTE_TOLERANCE`](crate::LUMPED_ABSOLUTE_TOLERANCE)`)`, `s` its largest
+    /// diagonal entry in magnitude).
     NotPositiveSemidefinite,
 }
 
@@ -83,13 +88,28 @@ impl fmt::Display for ModelError {
             }
             Problem::BeyondDeepestOcean => "must be at most 11000 m (the deepest ocean)",
             Problem::TooLarge => too_large(self.field),
-            Problem::NotSymmetric => "must be symmetric",
+            Problem::NotSymmetric => "must be symmetric:",
             Problem::NotPositiveSemidefinite if self.field.ends_with("damping") => {
                 "must have a positive semi-definite symmetric part (no direction in which it feeds energy in)"
             }
             Problem::NotPositiveSemidefinite => "must be positive semi-definite (no direction of negative energy)",
         };
-        write!(f, "{} {allowed}", self.field)
+        write!(f, "{} {allowed}", self.field)?;
+        // The lumped model's tolerances (docs/model.md section 12.1), from their constants.
+        let floor = crate::lumped::LUMPED_ABSOLUTE_TOLERANCE;
+        match self.problem {
+            Problem::NotSymmetric => write!(
+                f,
+                " |m[i][j] - m[j][i]| at most min({:e} x its largest entry, {floor:e})",
+                crate::lumped::LUMPED_SYMMETRY_TOLERANCE
+            ),
+            Problem::NotPositiveSemidefinite => write!(
+                f,
+                ": its smallest eigenvalue at least -min({:e} x its largest diagonal entry, {floor:e})",
+                crate::lumped::LUMPED_EIGENVALUE_TOLERANCE
+            ),
+            _ => Ok(()),
+        }
     }
 }
 

@@ -37,7 +37,10 @@ pub use losses::{
     MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques,
     pressure_at_depth, smooth_sign,
 };
-pub use lumped::{LUMPED_COLUMNS, LumpedBody, MAX_LUMPED};
+pub use lumped::{
+    LUMPED_ABSOLUTE_TOLERANCE, LUMPED_COLUMNS, LUMPED_EIGENVALUE_TOLERANCE, LUMPED_SYMMETRY_TOLERANCE, LumpedBody,
+    MAX_LUMPED,
+};
 pub use model::{
     AXIS_TOLERANCE, Chain, Coefficients, Joint, Link, MAX_AREA, MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY, MAX_LENGTH,
     MAX_MASS, MAX_VOLUME, Segment, Water,

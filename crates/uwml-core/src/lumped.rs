@@ -24,6 +24,20 @@ use crate::wrench::Wrench;
 /// keeps every force of a finite state finite.
 pub const MAX_LUMPED: f64 = 1e12;
 
+/// How far from symmetric a lumped model's added mass may be, relative to its largest entry in
+/// magnitude (docs/model.md section 12.1), but never more than [`LUMPED_ABSOLUTE_TOLERANCE`].
+pub const LUMPED_SYMMETRY_TOLERANCE: f64 = 1e-9;
+/// How negative the smallest eigenvalue of a lumped model's added mass (and of its linear
+/// damping's symmetric part) may be, relative to its largest diagonal entry in magnitude
+/// (docs/model.md section 12.1), but never more than [`LUMPED_ABSOLUTE_TOLERANCE`].
+pub const LUMPED_EIGENVALUE_TOLERANCE: f64 = 1e-10;
+/// The most either tolerance allows, in the entries' own units (kg, kg·m, kg·m², N·s/m, ...):
+/// relative tolerances alone let a huge entry hide a wrong small one (at the 1e12 cap,
+/// `diag(1e12, −99, …)` and an asymmetry of 900 passed). 1e-2 is ten times the rounding of
+/// float64 at the cap (a singular semi-definite matrix at 1e12 rounds to eigenvalues down to about
+/// −1e-3) and far below any physical entry.
+pub const LUMPED_ABSOLUTE_TOLERANCE: f64 = 1e-2;
+
 /// Fossen's lumped model of one body (docs/model.md section 12.1), about the reference point
 /// `point` of the body's frame, in the axes `axes` (the identity: the body's own). Every matrix is
 /// ordered `(x, y, z, roll, pitch, yaw)`, linear first.
@@ -75,17 +89,20 @@ impl<T: RealField + Copy> LumpedBody<T> {
         let axes = check_rotation(&self.axes, "lumped.axes", i)?;
         let added_mass = check_matrix(&self.added_mass, "lumped.added_mass", i)?;
         let linear_damping = check_matrix(&self.linear_damping, "lumped.linear_damping", i)?;
-        let half = constant::<T>(0.5);
-        let added_mass = (added_mass + added_mass.transpose()) * half;
-        if !nearly_symmetric(&self.added_mass) {
+        // Judged in f64 on the exact values (an f32 converts exactly), so that a model is taken
+        // or refused alike in either precision: f32 arithmetic would round a singular
+        // semi-definite matrix's zero eigenvalues far below the tolerance.
+        let (given_mass, given_damping) = (in_f64(&added_mass), in_f64(&linear_damping));
+        if !nearly_symmetric(&given_mass) {
             return Err(ModelError::new("lumped.added_mass", i, Problem::NotSymmetric));
         }
-        if !positive_semidefinite(&added_mass) {
+        if !positive_semidefinite(&((given_mass + given_mass.transpose()) * 0.5)) {
             return Err(ModelError::new("lumped.added_mass", i, Problem::NotPositiveSemidefinite));
         }
-        if !positive_semidefinite(&((linear_damping + linear_damping.transpose()) * half)) {
+        if !positive_semidefinite(&((given_damping + given_damping.transpose()) * 0.5)) {
             return Err(ModelError::new("lumped.linear_damping", i, Problem::NotPositiveSemidefinite));
         }
+        let added_mass = (added_mass + added_mass.transpose()) * constant::<T>(0.5);
         let mut quadratic_damping = self.quadratic_damping;
         for d in &mut quadratic_damping {
             *d = check_at_most(
@@ -132,19 +149,32 @@ fn check_matrix<T: RealField + Copy>(
     Ok(*m)
 }
 
-/// Symmetric to rounding: `|m_ij − m_ji| ≤ 1e-9 max |m|`.
-fn nearly_symmetric<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
-    let scale = m.iter().fold(T::zero(), |s, x| s.max(x.abs()));
-    let tolerance = scale * constant(1e-9);
-    (m - m.transpose()).iter().all(|x| x.abs() <= tolerance)
+/// `m`'s entries in f64 (exact for f32 and f64; NaN, which no check takes, for a number that
+/// has none).
+fn in_f64<T: RealField + Copy>(m: &Matrix6<T>) -> Matrix6<f64> {
+    m.map(|x| nalgebra::try_convert_ref::<T, f64>(&x).unwrap_or(f64::NAN))
+}
+
+/// The tolerance of docs/model.md section 12.1: `relative` times `scale`, but never more than
+/// [`LUMPED_ABSOLUTE_TOLERANCE`].
+fn tolerance(relative: f64, scale: f64) -> f64 {
+    (relative * scale).min(LUMPED_ABSOLUTE_TOLERANCE)
+}
+
+/// Symmetric to rounding: `|m_ij − m_ji| ≤ min(LUMPED_SYMMETRY_TOLERANCE · max |m|,
+/// LUMPED_ABSOLUTE_TOLERANCE)`.
+fn nearly_symmetric(m: &Matrix6<f64>) -> bool {
+    let allowed = tolerance(LUMPED_SYMMETRY_TOLERANCE, m.iter().fold(0.0_f64, |s, x| s.max(x.abs())));
+    (m - m.transpose()).iter().all(|x| x.abs() <= allowed)
 }
 
 /// Whether the symmetric `m` is positive semi-definite, to rounding: its smallest eigenvalue (by
 /// Jacobi's method, robust for the singular matrices a semi-definite one may be) at least
-/// `-1e-10` times its largest diagonal entry in magnitude.
-fn positive_semidefinite<T: RealField + Copy>(m: &Matrix6<T>) -> bool {
-    let scale = m.diagonal().iter().fold(T::zero(), |s, x| s.max(x.abs()));
-    smallest_eigenvalue(m) >= -(scale * constant(1e-10))
+/// `−min(LUMPED_EIGENVALUE_TOLERANCE · s, LUMPED_ABSOLUTE_TOLERANCE)`, `s` its largest diagonal
+/// entry in magnitude.
+fn positive_semidefinite(m: &Matrix6<f64>) -> bool {
+    let scale = m.diagonal().iter().fold(0.0_f64, |s, x| s.max(x.abs()));
+    smallest_eigenvalue(m) >= -tolerance(LUMPED_EIGENVALUE_TOLERANCE, scale)
 }
 
 /// The smallest eigenvalue of the symmetric `m`: cyclic Jacobi rotations until the off-diagonal

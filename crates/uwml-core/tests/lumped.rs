@@ -360,7 +360,8 @@ fn bad_lumped_models_are_refused_naming_the_model_and_the_field() {
     let message = robot.with_lumped(&[LumpedBody { added_mass: indefinite, ..good }]).unwrap_err().to_string();
     assert_eq!(
         message,
-        "lumped model 0: lumped.added_mass must be positive semi-definite (no direction of negative energy)"
+        "lumped model 0: lumped.added_mass must be positive semi-definite (no direction of negative energy): \
+         its smallest eigenvalue at least -min(1e-10 x its largest diagonal entry, 1e-2)"
     );
     // A positive semi-definite matrix of lower rank, and one symmetric to rounding, are taken.
     let mut rng = Rng(21);
@@ -395,6 +396,136 @@ fn singular_semidefinite_matrices_are_taken_and_slightly_indefinite_ones_refused
             }
         }
     }
+}
+
+/// `diag(head, 1, …)`.
+fn diag_from(head: &[f64]) -> Matrix6<f64> {
+    Matrix6::from_fn(|r, c| if r == c { head.get(r).copied().unwrap_or(1.0) } else { 0.0 })
+}
+
+#[test]
+fn a_huge_entry_hides_no_negative_eigenvalue_or_asymmetry() {
+    // Issue 31: with tolerances relative to the largest entry alone, diag(1e12, −99, …) was taken
+    // (−99 ≥ −1e-10·1e12) and an asymmetry of 900 at 1e12 averaged away (900 ≤ 1e-9·1e12). The
+    // absolute floor LUMPED_ABSOLUTE_TOLERANCE bounds both, in f64 and f32 alike.
+    use uwml_core::{LUMPED_ABSOLUTE_TOLERANCE, LUMPED_EIGENVALUE_TOLERANCE, LUMPED_SYMMETRY_TOLERANCE};
+    let negative = diag_from(&[1e12, -99.0]);
+    let mut asymmetric = diag_from(&[1e12]);
+    asymmetric[(0, 1)] = 900.0;
+    let good = LumpedBody::none(Owner::Link(0));
+    let cases = [
+        (LumpedBody { added_mass: negative, ..good }, ("lumped.added_mass", Problem::NotPositiveSemidefinite)),
+        (LumpedBody { added_mass: asymmetric, ..good }, ("lumped.added_mass", Problem::NotSymmetric)),
+        (LumpedBody { linear_damping: negative, ..good }, ("lumped.linear_damping", Problem::NotPositiveSemidefinite)),
+        (
+            LumpedBody { added_mass: diag_from(&[1e9, -0.1]), ..good },
+            ("lumped.added_mass", Problem::NotPositiveSemidefinite),
+        ),
+    ];
+    let robot = one_joint();
+    let robot32 = robot_f32();
+    for (body, expected) in cases {
+        assert_eq!(robot.with_lumped(&[body]).err().map(|e| (e.field, e.problem)), Some(expected));
+        assert_eq!(robot32.with_lumped(&[to_f32(&body)]).err().map(|e| (e.field, e.problem)), Some(expected), "f32");
+    }
+    // The messages say what is allowed.
+    let message = |body: LumpedBody<f64>| robot.with_lumped(&[body]).err().map(|e| e.to_string());
+    assert_eq!(
+        message(LumpedBody { added_mass: negative, ..good }).as_deref(),
+        Some(
+            "lumped model 0: lumped.added_mass must be positive semi-definite (no direction of negative energy): \
+             its smallest eigenvalue at least -min(1e-10 x its largest diagonal entry, 1e-2)"
+        )
+    );
+    assert_eq!(
+        message(LumpedBody { added_mass: asymmetric, ..good }).as_deref(),
+        Some(
+            "lumped model 0: lumped.added_mass must be symmetric: |m[i][j] - m[j][i]| at most min(1e-9 x its largest entry, 1e-2)"
+        )
+    );
+    assert_eq!(
+        (LUMPED_SYMMETRY_TOLERANCE, LUMPED_EIGENVALUE_TOLERANCE, LUMPED_ABSOLUTE_TOLERANCE),
+        (1e-9, 1e-10, 1e-2)
+    );
+    // Just within the floor: taken.
+    let mut within = diag_from(&[1e12]);
+    within[(0, 1)] = 0.9e-2;
+    robot.with_lumped(&[LumpedBody { added_mass: within, ..good }]).unwrap();
+    robot.with_lumped(&[LumpedBody { added_mass: diag_from(&[1e12, -0.9e-2]), ..good }]).unwrap();
+}
+
+/// A robot of one revolute joint in f32.
+fn robot_f32() -> Robot<f32, 1, 1, 1> {
+    let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() };
+    Robot::new(&[joint], &[RigidBody::empty()], RigidBody::empty(), &[]).unwrap()
+}
+
+fn to_f32(body: &LumpedBody<f64>) -> LumpedBody<f32> {
+    let cast = |x: f64| x as f32;
+    LumpedBody {
+        owner: body.owner,
+        point: body.point.map(cast),
+        axes: body.axes.map(cast),
+        added_mass: body.added_mass.map(cast),
+        linear_damping: body.linear_damping.map(cast),
+        quadratic_damping: body.quadratic_damping.map(cast),
+    }
+}
+
+#[test]
+fn rounding_at_the_cap_is_taken_and_f32_judges_as_f64_does() {
+    // Singular semi-definite matrices of every rank up to the 1e12 cap, rounded to f64 (their zero
+    // eigenvalues come out as ± rounding, up to ~1e-3 at 1e12), with an asymmetry of one ulp: taken.
+    // The same matrices rounded to f32 are judged as f64 judges those rounded values (the checks
+    // run in f64 on the exact values), so that an export's f32 model is refused or taken alike.
+    let robot = one_joint();
+    let robot32 = robot_f32();
+    let reference: Robot<f64, 1, 1, 1> = Robot::new(
+        &[TreeJoint { parent: None, kind: JointKind::Revolute, origin: Vector3::zeros(), axis: Vector3::z() }],
+        &[RigidBody::empty()],
+        RigidBody::empty(),
+        &[],
+    )
+    .unwrap();
+    let mut rng = Rng(31);
+    let mut worst: f64 = 0.0;
+    let (mut taken32, mut refused32) = (0, 0);
+    for rank in 0..6 {
+        for scale in [1e-3, 1.0, 1e6, 1e9, 1e11, 1e12] {
+            for _ in 0..20 {
+                let mut psd = random_psd(&mut rng, rank, 1.0);
+                let largest = psd.diagonal().amax();
+                if largest > 0.0 {
+                    psd *= scale / largest * 0.999_999; // not above the cap by rounding
+                }
+                psd = (psd + psd.transpose()) * 0.5;
+                let mut rounded = psd;
+                if rank > 0 {
+                    rounded[(0, 3)] = f64::from_bits(rounded[(0, 3)].to_bits() + 1);
+                }
+                worst = worst.min(psd.symmetric_eigenvalues().min());
+                let body = LumpedBody { added_mass: rounded, linear_damping: psd, ..LumpedBody::none(Owner::Base) };
+                assert_eq!(robot.with_lumped(&[body]).err().map(|e| e.to_string()), None, "rank {rank} at {scale}");
+                let single = to_f32(&body);
+                let as_f64 = LumpedBody {
+                    added_mass: single.added_mass.map(f64::from),
+                    linear_damping: single.linear_damping.map(f64::from),
+                    ..body
+                };
+                let verdict32 = robot32.with_lumped(&[single]).map(|_| ()).map_err(|e| (e.field, e.problem));
+                let verdict64 = reference.with_lumped(&[as_f64]).map(|_| ()).map_err(|e| (e.field, e.problem));
+                assert_eq!(verdict32, verdict64, "rank {rank} at {scale}");
+                if verdict32.is_ok() { taken32 += 1 } else { refused32 += 1 }
+            }
+        }
+    }
+    println!(
+        "smallest eigenvalue of the rounded singular matrices: {worst:e}; f32: {taken32} taken, {refused32} refused"
+    );
+    // Diagonal models, the usual hull's, survive f32 at any scale.
+    let hull =
+        LumpedBody { added_mass: diag_from(&[1e12, 3e11, 7.5, 1e-3, 0.0, 2.0]), ..LumpedBody::none(Owner::Base) };
+    robot32.with_lumped(&[to_f32(&hull)]).unwrap();
 }
 
 #[test]

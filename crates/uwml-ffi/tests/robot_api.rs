@@ -839,6 +839,64 @@ fn lumped_models_are_the_cores_bit_for_bit_and_bad_ones_change_nothing() {
 }
 
 #[test]
+fn a_huge_entry_hides_no_negative_eigenvalue_or_asymmetry_in_either_precision() {
+    // Issue 31: at the 1e12 cap, diag(1e12, −99, …) and an asymmetry of 900 passed the relative
+    // tolerances alone; the absolute floor refuses them, in f64 and f32, and a negative quadratic
+    // damping too; nothing changes on an error.
+    let params = arm();
+    let models = lumped_models();
+    let (mut robot, mut robot32) = (built64(&params), built32(&params));
+    let narrow = |m: &UwmlLumpedF64| UwmlLumpedF32 {
+        owner: m.owner,
+        point: m.point.map(|x| x as f32),
+        axes: m.axes.map(|r| r.map(|x| x as f32)),
+        added_mass: m.added_mass.map(|r| r.map(|x| x as f32)),
+        linear_damping: m.linear_damping.map(|r| r.map(|x| x as f32)),
+        quadratic_damping: m.quadratic_damping.map(|x| x as f32),
+    };
+    let set32 = |robot: &mut UwmlRobotF32, given: &[UwmlLumpedF64]| {
+        let narrowed: Vec<UwmlLumpedF32> = given.iter().map(narrow).collect();
+        let mut error = blank_error();
+        // SAFETY: live locals; `narrowed` holds its length.
+        let code = unsafe { uwml_robot_set_lumped_f32(robot, narrowed.as_ptr(), count(narrowed.len()), &mut error) };
+        assert_eq!(error.code, code);
+        parts(&error)
+    };
+    let changed = |change: &dyn Fn(&mut UwmlLumpedF64)| {
+        let mut changed = models;
+        change(&mut changed[1]);
+        changed
+    };
+    let cases = [
+        (
+            changed(&|m| (m.added_mass[0][0], m.added_mass[1][1]) = (1e12, -99.0)),
+            (UWML_ERR_NOT_POSITIVE_SEMIDEFINITE, 1, "lumped.added_mass".to_string()),
+        ),
+        (
+            changed(&|m| (m.added_mass[0][0], m.added_mass[0][1]) = (1e12, 900.0)),
+            (UWML_ERR_NOT_SYMMETRIC, 1, "lumped.added_mass".to_string()),
+        ),
+        (
+            changed(&|m| (m.linear_damping[0][0], m.linear_damping[1][1]) = (1e12, -99.0)),
+            (UWML_ERR_NOT_POSITIVE_SEMIDEFINITE, 1, "lumped.linear_damping".to_string()),
+        ),
+        (changed(&|m| m.quadratic_damping[3] = -1e-3), (UWML_ERR_NEGATIVE, 1, "lumped.quadratic_damping".to_string())),
+    ];
+    let [q, qd, qdd] = ARM_STATE;
+    let before = hydro64(&mut robot, [&q, &qd, &qdd], Some(&arm_motion()), None);
+    for (given, expected) in cases {
+        assert_eq!(parts(&set_lumped64(&mut robot, &given)), expected);
+        assert_eq!(set32(&mut robot32, &given), expected, "f32");
+        let after = hydro64(&mut robot, [&q, &qd, &qdd], Some(&arm_motion()), None);
+        assert_eq!(wrench_bits64(&after.wrench), wrench_bits64(&before.wrench), "unchanged after an error");
+    }
+    // Within the floor (1e-2): taken in both.
+    let within = changed(&|m| (m.added_mass[0][0], m.added_mass[1][1], m.added_mass[0][1]) = (1e12, -0.9e-2, 0.0));
+    assert_eq!(parts(&set_lumped64(&mut robot, &within)), (UWML_OK, -1, String::new()));
+    assert_eq!(set32(&mut robot32, &within), (UWML_OK, -1, String::new()), "f32");
+}
+
+#[test]
 fn lumped_models_null_pointers_and_the_f32_half() {
     let params = arm();
     let models = lumped_models();
