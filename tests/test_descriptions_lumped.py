@@ -94,6 +94,19 @@ def test_a_lumped_model_in_a_turned_description_frame_is_the_same_model_in_uwmls
             lumped_table("hull", None, np.diag([1.0, 1, 1, 1, 1, -1]), np.zeros((6, 6)), [0.0] * 6),
             r"h\.toml: \[links\.hull\], lumped: lumped\.added_mass must be positive semi-definite",
         ),
+        # Issue 31: the floating hull whose simulation diverged; a huge entry hides nothing.
+        (
+            lumped_table("hull", None, np.diag([1e12, -99.0, 1, 1, 1, 1]), np.zeros((6, 6)), [0.0] * 6),
+            r"h\.toml: \[links\.hull\], lumped: lumped\.added_mass must be positive semi-definite .*-99, below the allowed -0\.01",
+        ),
+        (
+            lumped_table("hull", None, np.eye(6), np.diag([1e12, -99.0, 1, 1, 1, 1]), [0.0] * 6),
+            r"h\.toml: \[links\.hull\], lumped: lumped\.linear_damping must have a positive semi-definite symmetric part",
+        ),
+        (
+            lumped_table("hull", None, np.diag([1e12, 1, 1, 1, 1, 1]) + np.eye(6, k=1) * 900.0, np.zeros((6, 6)), [0.0] * 6),
+            r"h\.toml: \[links\.hull\], lumped: lumped\.added_mass must be symmetric within 0\.01",
+        ),
         (
             lumped_table("hull", None, np.zeros((6, 6)), np.zeros((6, 6)), [0.0, -1.0, 0, 0, 0, 0]),
             r"h\.toml: \[links\.hull\], lumped: lumped\.quadratic_damping\[1\] must be finite and non-negative",

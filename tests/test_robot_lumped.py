@@ -116,7 +116,10 @@ def test_a_robot_with_lumped_models_round_trips_through_its_model_file(tmp_path)
     "arguments, message",
     [
         ({"added_mass": np.eye(5)}, r"lumped.added_mass must be a 6×6 matrix, got shape \(5, 5\)"),
-        ({"added_mass": np.triu(np.ones((6, 6)))}, r"lumped.added_mass must be symmetric: \[0\]\[1\] = 1.0 but \[1\]\[0\] = 0.0"),
+        (
+            {"added_mass": np.triu(np.ones((6, 6)))},
+            r"lumped.added_mass must be symmetric within 1e-09 .*: \[0\]\[1\] = 1.0 but \[1\]\[0\] = 0.0",
+        ),
         ({"added_mass": np.diag([1.0, 1.0, -1.0, 1.0, 1.0, 1.0])}, r"lumped.added_mass must be positive semi-definite .* -1"),
         ({"added_mass": np.ones((6, 6)) + np.diag([0, 0, 0, 0, 0, -2.0])}, r"lumped.added_mass must be positive semi-definite"),
         ({"linear_damping": -np.eye(6)}, r"lumped.linear_damping must have a positive semi-definite symmetric part"),
@@ -133,6 +136,137 @@ def test_a_robot_with_lumped_models_round_trips_through_its_model_file(tmp_path)
 def test_bad_lumped_models_are_refused_naming_the_entry(arguments: dict, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         uwml.LumpedModel(**arguments)
+
+
+def _diag(*head: float) -> np.ndarray:
+    """A diagonal 6×6 matrix starting with ``head``, ones after."""
+    return np.diag([*head, *[1.0] * (6 - len(head))])
+
+
+def _asymmetric(scale: float, asymmetry: float) -> np.ndarray:
+    """diag(scale, 1, …) with [0][1] = ``asymmetry`` and [1][0] = 0 (positive definite either way)."""
+    matrix = _diag(scale)
+    matrix[0, 1] = asymmetry
+    return matrix
+
+
+def _singular_at(rng: np.random.Generator, scale: float, rank: int) -> np.ndarray:
+    """A random positive semi-definite matrix of ``rank`` whose largest diagonal entry is ``scale``
+    (rounded to float64: its zero eigenvalues come out as ±rounding)."""
+    if rank == 0:
+        return np.zeros((6, 6))
+    a = rng.normal(size=(6, rank))
+    matrix = a @ a.T
+    return 0.5 * (matrix + matrix.T) * (scale / float(np.max(np.diag(matrix))) * 0.999_999)  # not above the cap by rounding
+
+
+class _Duck:
+    """A duck-typed body for the numpy reference: no segments, the given lumped model."""
+
+    def __init__(self, lumped: object) -> None:
+        self.mass, self.com, self.volume, self.cob, self.segments, self.lumped = 1.0, (0.0, 0.0, 0.0), 0.0, None, (), lumped
+
+
+@pytest.mark.parametrize(
+    "arguments, message",
+    [
+        # Issue 31: a 1e12 entry no longer hides a −99 eigenvalue (the relative tolerance alone
+        # allowed −100) nor an asymmetry of 900 (it allowed 1000, then averaged it away).
+        (
+            {"added_mass": _diag(1e12, -99.0)},
+            (
+                r"lumped.added_mass must be positive semi-definite .*smallest eigenvalue is -99, "
+                r"below the allowed -0\.01 \(-min\(1e-10 × 1e\+12 its largest diagonal entry, 0\.01\)\)"
+            ),
+        ),
+        (
+            {"added_mass": _asymmetric(1e12, 900.0)},
+            (
+                r"lumped.added_mass must be symmetric within 0\.01 \(min\(1e-09 × 1e\+12 its largest entry, 0\.01\)\): "
+                r"\[0\]\[1\] = 900.0 but \[1\]\[0\] = 0.0"
+            ),
+        ),
+        (
+            {"linear_damping": _diag(1e12, -99.0)},
+            r"lumped.linear_damping must have a positive semi-definite symmetric part .*smallest eigenvalue is -99, below the allowed -0\.01",
+        ),
+        ({"added_mass": _diag(1e9, -0.1)}, r"lumped.added_mass must be positive semi-definite"),
+        ({"added_mass": _asymmetric(1e9, 0.1)}, r"lumped.added_mass must be symmetric within 0\.01"),
+    ],
+)
+def test_a_huge_entry_hides_no_negative_eigenvalue_or_asymmetry(arguments: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        uwml.LumpedModel(**arguments)
+
+
+def test_rounding_in_huge_entries_is_still_taken() -> None:
+    """The absolute floor stays above float64's rounding at the 1e12 cap: singular semi-definite
+    matrices of every rank at 1e12, their asymmetric rounding, and a damping's skew part are taken
+    by the Python check, the core (through ``uwml.Robot``) and the reference alike."""
+    rng = np.random.default_rng(31)
+    joint, link = uwml.Joint((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)), uwml.Link(1.0, (0.0, 0.0, 0.0), 0.0)
+    for scale in (1e-3, 1.0, 1e6, 1e9, 1e11, 1e12):
+        for rank in range(6):
+            matrix = _singular_at(rng, scale, rank)
+            rounded = matrix.copy()
+            if rank:
+                rounded[0, 3] = np.nextafter(rounded[0, 3], np.inf)  # an asymmetry of one ulp
+            skew = rng.normal(size=(6, 6)) * scale * 1e-3
+            model = uwml.LumpedModel(added_mass=rounded, linear_damping=matrix + (skew - skew.T))
+            robot = uwml.Robot([joint], [link], base=uwml.Link(1.0, (0.0, 0.0, 0.0), 0.0, lumped=model))
+            q = np.zeros((1, 1))
+            ref.robot_hydro(robot.joints, robot.links, _Duck(model), q, q, q)
+
+
+def test_the_reference_refuses_what_the_model_refuses() -> None:
+    """The numpy reference checks a duck-typed lumped model by the same rule (docs/model.md section
+    12.1): what ``uwml.LumpedModel`` refuses, it refuses."""
+    import types
+
+    joint, link = uwml.Joint((0.0, 0.0, 0.0), (0.0, 0.0, 1.0)), uwml.Link(1.0, (0.0, 0.0, 0.0), 0.0)
+    q = np.zeros((1, 1))
+    zero = np.zeros((6, 6))
+    for fields, message in [
+        ({"added_mass": _diag(1e12, -99.0)}, r"base.lumped.added_mass must be positive semi-definite"),
+        ({"added_mass": _asymmetric(1e12, 900.0)}, r"base.lumped.added_mass must be symmetric within 0\.01"),
+        ({"linear_damping": _diag(1e12, -99.0)}, r"base.lumped.linear_damping must have a positive semi-definite symmetric part"),
+        ({"quadratic_damping": [0.0, 0.0, -1.0, 0.0, 0.0, 0.0]}, r"base.lumped.quadratic_damping\[2\] must be >= 0"),
+    ]:
+        given = {"point": None, "axes": None, "added_mass": zero, "linear_damping": zero, "quadratic_damping": np.zeros(6), **fields}
+        with pytest.raises(ValueError, match=message):
+            ref.robot_hydro([joint], [link], _Duck(types.SimpleNamespace(**given)), q, q, q)
+
+
+def test_the_tolerances_are_one_rule_in_the_core_the_model_and_the_reference() -> None:
+    """docs/model.md section 12.1: one relative tolerance per check and one absolute floor, named
+    once per language (the core's ``uwml_core::LUMPED_*``, ``uwml.model.lumped``'s, the
+    reference's); each states the same numbers."""
+    import re
+    from pathlib import Path
+
+    from uwml.model import lumped
+    from uwml.reference import _inputs
+
+    source = (Path(__file__).resolve().parents[1] / "crates/uwml-core/src/lumped.rs").read_text()
+    core = {name: float(value) for name, value in re.findall(r"pub const (LUMPED_\w+_TOLERANCE): f64 = ([-+.\deE_]+);", source)}
+    python = {name: getattr(lumped, name) for name in core}
+    reference = {name: getattr(_inputs, f"_{name}") for name in core}
+    assert set(core) == {"LUMPED_SYMMETRY_TOLERANCE", "LUMPED_EIGENVALUE_TOLERANCE", "LUMPED_ABSOLUTE_TOLERANCE"}
+    assert core == python == reference
+
+
+def test_the_floating_case_of_the_issue_is_refused_at_load(tmp_path) -> None:
+    """Issue 31: a floating robot whose hull had diag(1e12, −99, …) loaded and its simulation
+    diverged; now its model file is refused at load, naming the table and the entry's rule."""
+    hull = uwml.Link(50.0, (0.0, 0.0, 0.0), 0.05, lumped=uwml.LumpedModel(added_mass=_diag(1e12, 2.0)))
+    robot = uwml.Robot([uwml.Joint((0.3, 0.0, 0.0), (0.0, 0.0, 1.0))], [uwml.Link(1.0, (0.1, 0.0, 0.0), 0.001)], base=hull)
+    path = tmp_path / "floating.toml"
+    robot.save(path)
+    text = path.read_text()
+    assert "[0.0, 2.0, 0.0," in text
+    path.write_text(text.replace("[0.0, 2.0, 0.0,", "[0.0, -99.0, 0.0,"))
+    with pytest.raises(uwml.ModelFileError, match=r"floating\.toml: base, lumped: lumped.added_mass must be positive semi-definite .*-99"):
+        uwml.Robot.load(path)
 
 
 def test_a_link_takes_only_a_lumped_model() -> None:

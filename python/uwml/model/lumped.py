@@ -29,10 +29,30 @@ from numpy.typing import ArrayLike
 
 Vec3 = tuple[float, float, float]
 
-__all__ = ["LUMPED_COEFFICIENTS", "MAX_LUMPED", "LumpedModel"]
+__all__ = [
+    "LUMPED_ABSOLUTE_TOLERANCE",
+    "LUMPED_COEFFICIENTS",
+    "LUMPED_EIGENVALUE_TOLERANCE",
+    "LUMPED_SYMMETRY_TOLERANCE",
+    "MAX_LUMPED",
+    "LumpedModel",
+]
 
 #: The largest magnitude of an entry of a lumped model (the core's ``MAX_LUMPED``).
 MAX_LUMPED = 1e12
+
+# The tolerances of the checks (docs/model.md section 12.1), the core's constants of the same
+# names: an allowed asymmetry of the added mass and an allowed negative eigenvalue are relative to
+# the matrix's scale (rounding grows with it) but never more than LUMPED_ABSOLUTE_TOLERANCE, in
+# the entries' own units, so that a huge entry cannot hide a wrong small one (at the 1e12 cap, a
+# −99 eigenvalue and an asymmetry of 900 passed the relative rule alone). 1e-2 is ten times
+# float64's rounding at the cap and far below any physical entry.
+#: The allowed asymmetry of the added mass, relative to its largest entry in magnitude.
+LUMPED_SYMMETRY_TOLERANCE = 1e-9
+#: The allowed negative eigenvalue, relative to the matrix's largest diagonal entry in magnitude.
+LUMPED_EIGENVALUE_TOLERANCE = 1e-10
+#: The most either tolerance allows, in the entries' units.
+LUMPED_ABSOLUTE_TOLERANCE = 1e-2
 
 Matrix6 = tuple[tuple[float, ...], ...]
 
@@ -83,12 +103,27 @@ def _rotation(value: object) -> tuple[tuple[float, ...], ...]:
     return tuple(tuple(float(x) for x in row) for row in array)
 
 
-def _semidefinite(matrix: np.ndarray) -> tuple[bool, float]:
-    """Whether the symmetric ``matrix`` is positive semi-definite to rounding, and its smallest
-    eigenvalue."""
-    eigenvalues = np.linalg.eigvalsh(matrix)
-    scale = float(np.max(np.abs(np.diag(matrix)))) if matrix.size else 0.0
-    return bool(eigenvalues[0] >= -1e-10 * scale), float(eigenvalues[0])
+def _tolerance(relative: float, scale: float) -> float:
+    """The rule of docs/model.md section 12.1: ``relative × scale``, at most the absolute floor."""
+    return min(relative * scale, LUMPED_ABSOLUTE_TOLERANCE)
+
+
+def _rule(relative: float, scale: float, of: str) -> str:
+    return f"min({relative:g} × {scale:g} {of}, {LUMPED_ABSOLUTE_TOLERANCE:g})"
+
+
+def _check_semidefinite(matrix: np.ndarray, name: str, what: str) -> None:
+    """Refuses a symmetric ``matrix`` whose smallest eigenvalue is below the allowed
+    ``−min(LUMPED_EIGENVALUE_TOLERANCE × scale, LUMPED_ABSOLUTE_TOLERANCE)``, ``scale`` its largest
+    diagonal entry in magnitude."""
+    smallest = float(np.linalg.eigvalsh(matrix)[0])
+    scale = float(np.max(np.abs(np.diag(matrix))))
+    allowed = _tolerance(LUMPED_EIGENVALUE_TOLERANCE, scale)
+    if smallest < -allowed:
+        raise ValueError(
+            f"{name} must {what}; its smallest eigenvalue is {smallest:.6g}, below the allowed {-allowed:g} "
+            f"(-{_rule(LUMPED_EIGENVALUE_TOLERANCE, scale, 'its largest diagonal entry')})"
+        )
 
 
 @dataclass(frozen=True)
@@ -123,24 +158,24 @@ class LumpedModel:
         added_mass = _matrix6(self.added_mass, "lumped.added_mass")
         array = np.array(added_mass)
         asymmetry = np.abs(array - array.T)
-        if np.any(asymmetry > 1e-9 * float(np.max(np.abs(array)))):
+        scale = float(np.max(np.abs(array)))
+        allowed = _tolerance(LUMPED_SYMMETRY_TOLERANCE, scale)
+        if np.any(asymmetry > allowed):
             r, c = np.unravel_index(int(np.argmax(asymmetry)), asymmetry.shape)
-            raise ValueError(f"lumped.added_mass must be symmetric: [{r}][{c}] = {array[r, c]} but [{c}][{r}] = {array[c, r]}")
-        symmetric = 0.5 * (array + array.T)
-        ok, smallest = _semidefinite(symmetric)
-        if not ok:
             raise ValueError(
-                f"lumped.added_mass must be positive semi-definite (no direction of negative energy); its smallest eigenvalue is {smallest:.6g}"
+                f"lumped.added_mass must be symmetric within {allowed:g} ({_rule(LUMPED_SYMMETRY_TOLERANCE, scale, 'its largest entry')}): "
+                f"[{r}][{c}] = {array[r, c]} but [{c}][{r}] = {array[c, r]}"
             )
+        symmetric = 0.5 * (array + array.T)
+        _check_semidefinite(symmetric, "lumped.added_mass", "be positive semi-definite (no direction of negative energy)")
         object.__setattr__(self, "added_mass", tuple(tuple(float(x) for x in row) for row in symmetric))
         damping = _matrix6(self.linear_damping, "lumped.linear_damping")
         array = np.array(damping)
-        ok, smallest = _semidefinite(0.5 * (array + array.T))
-        if not ok:
-            raise ValueError(
-                "lumped.linear_damping must have a positive semi-definite symmetric part (no direction in which it feeds energy in); "
-                f"its smallest eigenvalue is {smallest:.6g}"
-            )
+        _check_semidefinite(
+            0.5 * (array + array.T),
+            "lumped.linear_damping",
+            "have a positive semi-definite symmetric part (no direction in which it feeds energy in)",
+        )
         object.__setattr__(self, "linear_damping", damping)
         try:
             quadratic = tuple(float(x) for x in np.asarray(self.quadratic_damping, dtype=np.float64).reshape(-1))

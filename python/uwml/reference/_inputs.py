@@ -12,6 +12,20 @@ Vec3 = tuple[float, float, float]
 #: Tolerance on unit length and orthogonality of axes and normals.
 _AXIS_TOLERANCE = 1e-6
 
+# A lumped model's tolerances (docs/model.md section 12.1; the core's and uwml.model.lumped's
+# constants of the same names, restated here so that the reference stays numpy-only): the allowed
+# asymmetry of the added mass and the allowed negative eigenvalue are the relative tolerance times
+# the matrix's scale, but never more than the absolute floor, in the entries' units (a huge entry
+# must not hide a wrong small one).
+_LUMPED_SYMMETRY_TOLERANCE = 1e-9
+_LUMPED_EIGENVALUE_TOLERANCE = 1e-10
+_LUMPED_ABSOLUTE_TOLERANCE = 1e-2
+
+
+def _lumped_tolerance(relative: float, scale: float) -> float:
+    """``relative × scale``, at most ``_LUMPED_ABSOLUTE_TOLERANCE``."""
+    return min(relative * scale, _LUMPED_ABSOLUTE_TOLERANCE)
+
 
 def _vector(value: Any, name: str, *, unit: bool = False) -> Array:
     try:

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._inputs import _AXIS_TOLERANCE, Array, _number, _vector
+from ._inputs import _AXIS_TOLERANCE, _LUMPED_EIGENVALUE_TOLERANCE, _LUMPED_SYMMETRY_TOLERANCE, Array, _lumped_tolerance, _number, _vector
 
 BoolArray = NDArray[np.bool_]
 IndexArray = NDArray[np.intp]
@@ -153,10 +153,18 @@ def _lumped_arrays(lumped: Any, name: str, cob: Array) -> dict[str, Array]:
             raise ValueError(f"{name}.{key} must be finite, of shape {shape}, got {value!r}")
         out[key] = a
     mass = out["added_mass"]
-    if np.any(np.abs(mass - mass.T) > 1e-9 * float(np.max(np.abs(mass)))):
-        raise ValueError(f"{name}.added_mass must be symmetric, got {mass.tolist()}")
-    if np.any(out["quadratic_damping"] < 0.0):
-        raise ValueError(f"{name}.quadratic_damping must be >= 0, got {out['quadratic_damping'].tolist()}")
+    allowed = _lumped_tolerance(_LUMPED_SYMMETRY_TOLERANCE, float(np.max(np.abs(mass))))
+    if np.any(np.abs(mass - mass.T) > allowed):
+        raise ValueError(f"{name}.added_mass must be symmetric within {allowed:g}, got {mass.tolist()}")
+    for key, what in (("added_mass", "be positive semi-definite"), ("linear_damping", "have a positive semi-definite symmetric part")):
+        symmetric = 0.5 * (out[key] + out[key].T)
+        smallest = float(np.linalg.eigvalsh(symmetric)[0])
+        allowed = _lumped_tolerance(_LUMPED_EIGENVALUE_TOLERANCE, float(np.max(np.abs(np.diag(symmetric)))))
+        if smallest < -allowed:
+            raise ValueError(f"{name}.{key} must {what}: its smallest eigenvalue is {smallest:.6g}, below the allowed {-allowed:g}")
+    for index, d in enumerate(out["quadratic_damping"]):
+        if d < 0.0:
+            raise ValueError(f"{name}.quadratic_damping[{index}] must be >= 0, got {d}")
     return out
 
 
