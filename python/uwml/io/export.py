@@ -19,25 +19,54 @@ C (with ``crates/uwml-ffi/include/uwml.h``)::
 
 Joint and link names and the source's path are untrusted text: they appear only in comments,
 every character outside a small safe set written as ``\\u{HEX}`` (docs/firmware.md, "The model
-as source"); the C prefix must be an upper-case ASCII identifier.
+as source"); the C prefix must be an upper-case ASCII identifier outside the header's own
+``UWML_`` names.
+
+What is written is what the firmware's constructor takes (docs/firmware.md, "The model as
+source"): C within the C API's capacities (:data:`C_MAX_JOINTS`, :data:`C_MAX_SEGMENTS`,
+:data:`C_MAX_LUMPED`), and in either language every number finite and, unless zero, a normal
+number of the precision (none rounds to zero, to a subnormal or to infinity; the error names the
+number and the range); in f32, each lumped model as rounded is one the core takes.
 """
 
 from __future__ import annotations
 
+import math
 import re
-from collections.abc import Iterable, Sequence
+import sys
+from collections.abc import Iterable, Iterator, Sequence
+from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 
 from .._checks import shown
 from ..model.lumped import LumpedModel
-from ..model.parts import Link, Segment
+from ..model.parts import AXIS_TOLERANCE, Link, Segment
 from ._robot_like import RobotLike
 
-__all__ = ["to_c", "to_rust"]
+__all__ = ["C_MAX_JOINTS", "C_MAX_LUMPED", "C_MAX_SEGMENTS", "to_c", "to_rust"]
 
 PRECISIONS = ("f64", "f32")
+
+#: The C API's robot's capacities: ``UWML_ROBOT_MAX_JOINTS``, ``UWML_ROBOT_MAX_SEGMENTS`` and
+#: ``UWML_ROBOT_MAX_LUMPED`` of crates/uwml-ffi/include/uwml.h (the header is not installed with
+#: the package; tests/test_export.py holds these to it).
+C_MAX_JOINTS = 16
+C_MAX_SEGMENTS = 32
+C_MAX_LUMPED = 4
+
+#: Per precision: the smallest normal number and the largest finite one. A nonzero number below
+#: the first rounds to zero or to a subnormal (which firmware built to flush subnormals reads as
+#: zero: a positive length becomes none); above the second, to infinity.
+_RANGE = {
+    "f64": (sys.float_info.min, sys.float_info.max),
+    "f32": (float(np.finfo(np.float32).tiny), float(np.finfo(np.float32).max)),
+}
+#: How far from a rotation a lumped model's axes may be when written in f32: the core allows
+#: AXIS_TOLERANCE, and f32's rounding of the entries and its arithmetic in the check take up to
+#: about 2e-7 of it.
+_F32_AXES_TOLERANCE = 0.5 * AXIS_TOLERANCE
 
 
 def _literal(x: float, precision: str, suffix: str = "") -> str:
@@ -50,8 +79,114 @@ def _literal(x: float, precision: str, suffix: str = "") -> str:
 
 
 def _check(precision: str, robot: RobotLike) -> None:
+    """What both languages check before writing: the precision, every number, and in f32 the
+    lumped models as rounded."""
     if precision not in PRECISIONS:
         raise ValueError(f"precision must be one of {PRECISIONS}, got {shown(precision)}")
+    smallest, largest = _RANGE[precision]
+    for label, x in _numbers(robot):
+        written = float(np.float32(x)) if precision == "f32" else float(x)
+        if not math.isfinite(written) or (x != 0.0 and not smallest <= abs(written) <= largest):
+            raise ValueError(
+                f"{label} = {x!r} cannot be written in {precision}: a number must be finite and, unless zero, "
+                f"between {smallest:.6g} and {largest:.6g} in magnitude ({_why(precision)})"
+            )
+    if precision == "f32":
+        for k, (owner, model) in enumerate(_lumped_owned(robot)):
+            _check_lumped_f32(k, _owner_name(owner), model)
+
+
+def _why(precision: str) -> str:
+    if precision == "f32":
+        return "f32 holds a smaller one only as zero or a subnormal, which firmware may flush to zero, and a larger one not at all"
+    return "a smaller one is a subnormal, which firmware may flush to zero"
+
+
+def _owner_name(owner: int) -> str:
+    return "base" if owner < 0 else f"link {owner}"
+
+
+def _numbers(robot: RobotLike) -> Iterator[tuple[str, float]]:
+    """Every number the exporters write, with the name an error gives it."""
+
+    def each(label: str, values: Iterable[float]) -> Iterator[tuple[str, float]]:
+        for c, x in enumerate(values):
+            yield f"{label}[{c}]", float(x)
+
+    for i, joint in enumerate(robot.joints):
+        yield from each(f"joint {i}: origin", joint.origin)
+        yield from each(f"joint {i}: axis", joint.axis)
+    bodies = [("base", robot.base)] if robot.base is not None else []
+    for where, body in [*bodies, *((f"link {i}", link) for i, link in enumerate(robot.links))]:
+        yield f"{where}: mass", float(body.mass)
+        yield from each(f"{where}: com", body.com)
+        yield f"{where}: volume", float(body.volume)
+        yield from each(f"{where}: cob", body.cob if body.cob is not None else body.com)
+    for k, (owner, s) in enumerate(_owned(robot)):
+        where = f"segment {k} ({_owner_name(owner)})"
+        yield from each(f"{where}: start", s.start)
+        yield from each(f"{where}: axis", s.axis)
+        yield f"{where}: length", float(s.length)
+        yield f"{where}: area", float(s.area or 0.0)
+        for n, normal in enumerate(s.normals or ()):
+            yield from each(f"{where}: normals[{n}]", normal)
+        yield from each(f"{where}: widths", s.widths or ())
+        yield f"{where}: diameter", float(s.diameter or 0.0)
+        yield from each(f"{where}: cd", s.cd)
+        yield from each(f"{where}: cm", s.cm)
+        yield f"{where}: cd_axial", float(s.cd_axial)
+        yield f"{where}: axial_area", float(s.axial_area)
+    for k, (owner, model) in enumerate(_lumped_owned(robot)):
+        where = f"lumped model {k} ({_owner_name(owner)})"
+        yield from each(f"{where}: point", model.point if model.point is not None else (0.0, 0.0, 0.0))
+        for name in ("axes", "added_mass", "linear_damping"):
+            for r, row in enumerate(getattr(model, name)):
+                yield from each(f"{where}: {name}[{r}]", row)
+        yield from each(f"{where}: quadratic_damping", model.quadratic_damping)  # type: ignore[arg-type]
+    yield "water: density", float(robot.water.density)
+    yield "water: gravity", float(robot.water.gravity)
+
+
+def _check_lumped_f32(k: int, owner: str, model: LumpedModel) -> None:
+    """Lumped model ``k`` as written in f32 is one the core takes. Its matrices are judged as
+    rounded (in f64 on the exact values, as the core does in either precision: the compiled core
+    itself judges them here), which may make a singular semi-definite matrix slightly indefinite;
+    its axes, which the core checks in f32 arithmetic, must be a rotation within
+    ``_F32_AXES_TOLERANCE``."""
+    from .._core import Robot as CoreRobot
+
+    def rounded(value: Any) -> list[Any]:
+        return np.asarray(value, dtype=np.float32).astype(np.float64).tolist()  # type: ignore[no-any-return]
+
+    where = f"lumped model {k} ({owner}) cannot be written in f32"
+    axes = np.asarray(rounded(model.axes))
+    columns = axes / np.linalg.norm(axes, axis=0)
+    off = max(
+        float(np.max(np.abs(np.linalg.norm(axes, axis=0) - 1.0))),
+        float(np.max(np.abs(np.triu(columns.T @ columns, 1)))),
+        float(np.max(np.abs(np.cross(columns[:, 0], columns[:, 1]) - columns[:, 2]))),
+    )
+    if off > _F32_AXES_TOLERANCE:
+        raise ValueError(
+            f"{where}: its axes, rounded to f32, are a rotation only within {off:.3g}, and f32's arithmetic needs them within "
+            f"{_F32_AXES_TOLERANCE:g} of one (the core allows {AXIS_TOLERANCE:g}); give them orthonormal to rounding, or export in f64"
+        )
+    lumped = SimpleNamespace(
+        point=rounded(model.point if model.point is not None else (0.0, 0.0, 0.0)),
+        axes=axes.tolist(),
+        added_mass=rounded(model.added_mass),
+        linear_damping=rounded(model.linear_damping),
+        quadratic_damping=rounded(model.quadratic_damping),
+    )
+    zero = (0.0, 0.0, 0.0)
+    joint = SimpleNamespace(parent=-1, kind="revolute", origin=zero, axis=(0.0, 0.0, 1.0))
+    body = SimpleNamespace(mass=0.0, com=zero, volume=0.0, cob=zero, lumped=None)
+    base = SimpleNamespace(mass=0.0, com=zero, volume=0.0, cob=zero, lumped=lumped)
+    try:
+        CoreRobot([joint], [body], base, [], [(math.inf, math.inf, math.inf)])  # type: ignore[arg-type, list-item]  # duck-typed parts
+    except ValueError as exc:
+        message = str(exc).removeprefix("lumped model 0: ")
+        raise ValueError(f"{where}: rounded to f32, {message}; export it in f64, or give it a margin above rounding") from None
 
 
 # Names (a URDF's or MJCF's) and the source's path are untrusted text: they go only into
@@ -59,8 +194,10 @@ def _check(precision: str, robot: RobotLike) -> None:
 # compiler, rustdoc or a terminal. Every other character is written as \u{HEX}: so `*/`, `/*`,
 # newlines, backslashes, control characters and non-ASCII text never reach the source as such.
 _COMMENT_SAFE = frozenset("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 _-.,:;/+=()#@!?'\"$%^|~{}")
-# The C names are PREFIX_...: an ASCII identifier in upper case.
+# The C names are PREFIX_...: an ASCII identifier in upper case, outside the header's UWML_
+# names (PREFIX UWML would redefine UWML_BASE; UWML_ROBOT_MAX could one day be a header's name).
 _C_PREFIX = re.compile(r"[A-Z_][A-Z0-9_]*")
+_HEADER_NAMES = re.compile(r"UWML(_.*)?")
 
 
 def _comment(text: str) -> str:
@@ -79,10 +216,6 @@ def _from(source: str | None) -> str:
 def _owned(robot: RobotLike) -> list[tuple[int, Segment]]:
     base = [] if robot.base is None else [(-1, s) for s in robot.base.segments]
     return base + [(i, s) for i, link in enumerate(robot.links) for s in link.segments]
-
-
-#: The C API's robot's capacity for lumped models (``UWML_ROBOT_MAX_LUMPED``).
-C_MAX_LUMPED = 4
 
 
 def _lumped_owned(robot: RobotLike) -> list[tuple[int, LumpedModel]]:
@@ -201,23 +334,31 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
     ``PREFIX_N_SEGMENTS``, ``PREFIX_JOINTS``, ``PREFIX_LINKS``, ``PREFIX_BASE`` (a pointer, NULL
     without a base body) and ``PREFIX_SEGMENTS``, for ``uwml_robot_new_f64`` (or ``_f32``), and
     the robot's water, ``PREFIX_WATER_DENSITY`` and ``PREFIX_GRAVITY``."""
-    _check(precision, robot)
     if not isinstance(prefix, str) or not _C_PREFIX.fullmatch(prefix) or not prefix.isupper():
         raise ValueError(f"prefix must be an upper-case C identifier (ASCII: A-Z, 0-9, _, not first a digit), got {shown(prefix)}")
+    if _HEADER_NAMES.fullmatch(prefix):
+        raise ValueError(
+            f"prefix must not be UWML or start with UWML_: uwml.h's own names are UWML_... (PREFIX_BASE would redefine UWML_BASE), got {prefix}"
+        )
+    owned = _owned(robot)
+    for what, count, cap, name in (
+        ("joints", robot.n_joints, C_MAX_JOINTS, "UWML_ROBOT_MAX_JOINTS"),
+        ("segments", len(owned), C_MAX_SEGMENTS, "UWML_ROBOT_MAX_SEGMENTS"),
+        ("lumped models", len(_lumped_owned(robot)), C_MAX_LUMPED, "UWML_ROBOT_MAX_LUMPED"),
+    ):
+        if count > cap:
+            raise ValueError(f"the C API's robot carries at most {cap} {what} ({name}), this one {count}")
+    _check(precision, robot)
     p = precision
     t = "F64" if p == "f64" else "F32"
     suffix = "f" if p == "f32" else ""
-    if len(_lumped_owned(robot)) > C_MAX_LUMPED:
-        raise ValueError(
-            f"the C API's robot carries at most {C_MAX_LUMPED} lumped models (UWML_ROBOT_MAX_LUMPED), this one {len(_lumped_owned(robot))}"
-        )
-    owned = _owned(robot)
     guard = f"UWML_EXPORT_{prefix}_H"
     out = [
         f"/* Generated by `uwml export --c`{_from(source)}: the robot's validated model as C",
         f" * initializers for uwml_robot_new_{p} (crates/uwml-ffi/include/uwml.h). */",
         f"#ifndef {guard}",
         f"#define {guard}",
+        "#include <stddef.h> /* NULL */",
         '#include "uwml.h"',
         "",
         f"#define {prefix}_N_JOINTS {robot.n_joints}u",
@@ -243,6 +384,8 @@ def to_c(robot: RobotLike, precision: str = "f64", prefix: str = "ROBOT", source
         "/* segments, base first, then link by link */",
         f"static const UwmlRobotSegment{t} {prefix}_SEGMENTS[{max(len(owned), 1)}] = {{",
     ]
+    if not owned:
+        out.append("    { 0 }, /* none: ISO C has no empty initializer (the count is 0) */")
     for owner, s in owned:
         owner_text = "UWML_BASE" if owner < 0 else str(owner)
         section = "UWML_SECTION_CIRCULAR" if s.section == "circular" else "UWML_SECTION_RECTANGULAR"

@@ -2,6 +2,7 @@
  * initializers for uwml_robot_new_f64 (crates/uwml-ffi/include/uwml.h). */
 #ifndef UWML_EXPORT_ARM_H
 #define UWML_EXPORT_ARM_H
+#include <stddef.h> /* NULL */
 #include "uwml.h"
 
 #define ARM_N_JOINTS 7u
