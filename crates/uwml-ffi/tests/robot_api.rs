@@ -838,6 +838,18 @@ fn lumped_models_are_the_cores_bit_for_bit_and_bad_ones_change_nothing() {
     assert_eq!(wrench_bits64(&without.wrench), wrench_bits64(&wrench64(&plain_data)));
 }
 
+/// A lumped model's f64 numbers rounded to f32.
+fn narrow(m: &UwmlLumpedF64) -> UwmlLumpedF32 {
+    UwmlLumpedF32 {
+        owner: m.owner,
+        point: m.point.map(|x| x as f32),
+        axes: m.axes.map(|r| r.map(|x| x as f32)),
+        added_mass: m.added_mass.map(|r| r.map(|x| x as f32)),
+        linear_damping: m.linear_damping.map(|r| r.map(|x| x as f32)),
+        quadratic_damping: m.quadratic_damping.map(|x| x as f32),
+    }
+}
+
 #[test]
 fn a_huge_entry_hides_no_negative_eigenvalue_or_asymmetry_in_either_precision() {
     // Issue 31: at the 1e12 cap, diag(1e12, −99, …) and an asymmetry of 900 passed the relative
@@ -846,14 +858,6 @@ fn a_huge_entry_hides_no_negative_eigenvalue_or_asymmetry_in_either_precision() 
     let params = arm();
     let models = lumped_models();
     let (mut robot, mut robot32) = (built64(&params), built32(&params));
-    let narrow = |m: &UwmlLumpedF64| UwmlLumpedF32 {
-        owner: m.owner,
-        point: m.point.map(|x| x as f32),
-        axes: m.axes.map(|r| r.map(|x| x as f32)),
-        added_mass: m.added_mass.map(|r| r.map(|x| x as f32)),
-        linear_damping: m.linear_damping.map(|r| r.map(|x| x as f32)),
-        quadratic_damping: m.quadratic_damping.map(|x| x as f32),
-    };
     let set32 = |robot: &mut UwmlRobotF32, given: &[UwmlLumpedF64]| {
         let narrowed: Vec<UwmlLumpedF32> = given.iter().map(narrow).collect();
         let mut error = blank_error();
@@ -909,14 +913,6 @@ fn lumped_models_null_pointers_and_the_f32_half() {
     let code = unsafe { uwml_robot_set_lumped_f64(&mut *robot, null(), 1, &mut error) };
     assert_eq!((code, parts(&error).2), (UWML_ERR_NULL_POINTER, "models".to_string()));
     let mut robot32 = built32(&params);
-    let narrow = |m: &UwmlLumpedF64| UwmlLumpedF32 {
-        owner: m.owner,
-        point: m.point.map(|x| x as f32),
-        axes: m.axes.map(|r| r.map(|x| x as f32)),
-        added_mass: m.added_mass.map(|r| r.map(|x| x as f32)),
-        linear_damping: m.linear_damping.map(|r| r.map(|x| x as f32)),
-        quadratic_damping: m.quadratic_damping.map(|x| x as f32),
-    };
     let models32 = models.map(|m| narrow(&m));
     // SAFETY: live locals.
     let code = unsafe { uwml_robot_set_lumped_f32(&mut *robot32, models32.as_ptr(), 2, &mut error) };
