@@ -4,6 +4,8 @@
 use nalgebra::{Matrix3, RealField, SVector, SimdRealField, Vector3};
 
 use crate::model::{Chain, Joint};
+use crate::real::Real;
+use crate::robot::{JointKind, Robot};
 
 /// `for $pattern in $items $body`, with the first two items taken out of the loop. LLVM does not
 /// fully unroll loops with bodies as big as a link's, so this gives chains of up to three joints
@@ -174,4 +176,130 @@ pub(crate) fn rotate_back<T: SimdRealField + Copy>(m: &Matrix3<T>, v: &Vector3<T
         c1.x * v.x + c1.y * v.y + c1.z * v.z,
         c2.x * v.x + c2.y * v.y + c2.z * v.z,
     )
+}
+
+/// Where a link's frame is and how it is turned, in the base frame (the world's for a fixed,
+/// upright base), and its joint's axis there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LinkPose<T: SimdRealField + Copy> {
+    /// Rotation from the link frame to the base frame.
+    pub rotation: Matrix3<T>,
+    /// The link frame's origin: the position of the joint that moves the link [m].
+    pub origin: Vector3<T>,
+    /// That joint's axis, in base components.
+    pub axis: Vector3<T>,
+}
+
+impl<T: SimdRealField + Copy> LinkPose<T> {
+    /// The position of a point given in the link frame [m].
+    #[inline]
+    #[must_use]
+    pub fn point(&self, local: &Vector3<T>) -> Vector3<T> {
+        self.origin + rotate(&self.rotation, local)
+    }
+}
+
+/// The workspace of [`forward_kinematics`] for robots of up to `J` joints: every link's pose of
+/// the last evaluation, which [`point_jacobian`] reads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KinematicsData<T: SimdRealField + Copy, const J: usize> {
+    poses: [LinkPose<T>; J],
+    joint_count: usize,
+}
+
+impl<T: SimdRealField + Copy, const J: usize> KinematicsData<T, J> {
+    /// A workspace for robots of up to `J` joints.
+    #[must_use]
+    pub fn new() -> Self {
+        let rest = LinkPose { rotation: Matrix3::identity(), origin: Vector3::zeros(), axis: Vector3::zeros() };
+        Self { poses: [rest; J], joint_count: 0 }
+    }
+
+    /// Every link's pose in the last evaluation (link `i` is moved by joint `i`).
+    pub fn poses(&self) -> &[LinkPose<T>] {
+        self.poses.get(..self.joint_count).unwrap_or(&[])
+    }
+}
+
+impl<T: SimdRealField + Copy, const J: usize> Default for KinematicsData<T, J> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Every link's pose at joint positions `q` (the first `robot.joint_count()` entries), into
+/// `data` ([`KinematicsData::poses`]): parents first, each link turned about (revolute) or slid
+/// along (prismatic) its joint's axis from where its parent puts the joint.
+///
+/// Never fails and never panics; a non-finite position gives non-finite poses below its joint.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn forward_kinematics<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    q: &[T; J],
+    data: &mut KinematicsData<T, J>,
+) {
+    let n = robot.joint_count();
+    data.joint_count = n;
+    for (i, (joint, &q)) in robot.joints().iter().zip(q).enumerate() {
+        // Parents come first: the parent is read from the poses before `i`, the child written
+        // in place.
+        let Some((done, [slot, ..])) = data.poses.split_at_mut_checked(i) else { continue };
+        let (parent, origin) = match joint.parent.and_then(|p| done.get(p)) {
+            Some(parent) => (parent.rotation, parent.origin),
+            None => (Matrix3::identity(), Vector3::zeros()),
+        };
+        let axis = rotate(&parent, &joint.axis);
+        let (offset, rotation) = match joint.kind {
+            JointKind::Revolute => {
+                let turned = axis_angle(&joint.axis, q.sin_cos());
+                // (`rotate` column by column: nalgebra's product adds each sum to a zero first.)
+                let columns = [0, 1, 2].map(|j| rotate(&parent, &turned.column(j).into_owned()));
+                (joint.origin, Matrix3::from_columns(&columns))
+            }
+            JointKind::Prismatic => (joint.origin + joint.axis * q, parent),
+        };
+        *slot = LinkPose { rotation, origin: origin + rotate(&parent, &offset), axis };
+    }
+}
+
+/// The position of `point` (given in link `link`'s frame) and the geometric Jacobian there, from
+/// the poses of the last [`forward_kinematics`] into `data`, written row-major into `jacobian`
+/// (`6 × n`, `n` the robot's joints; a shorter slice gets what fits). `None`, and nothing written,
+/// if `link` is not a link of the robot.
+///
+/// Column `j` maps `q̇_j` to the point's velocity (rows 0-2) and the link's angular velocity
+/// (rows 3-5): `(z_j × (p − o_j), z_j)` for a revolute joint, `(z_j, 0)` for a prismatic one, with
+/// `z_j` and `o_j` joint `j`'s axis and origin; the columns of joints that do not carry the link
+/// (not on its path to the base) are zero. Never fails and never panics.
+#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
+pub fn point_jacobian<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    data: &KinematicsData<T, J>,
+    link: usize,
+    point: &Vector3<T>,
+    jacobian: &mut [T],
+) -> Option<Vector3<T>> {
+    let joints = robot.joints();
+    let n = joints.len();
+    let position = data.poses().get(link)?.point(point);
+    for slot in jacobian.iter_mut().take(6 * n) {
+        *slot = T::zero();
+    }
+    // From the link up to the base: every joint on the way moves the point.
+    let mut at = Some(link);
+    while let Some(j) = at {
+        let (Some(joint), Some(pose)) = (joints.get(j), data.poses().get(j)) else { break };
+        let axis = pose.axis;
+        let (linear, angular) = match joint.kind {
+            JointKind::Revolute => (axis.cross(&(position - pose.origin)), axis),
+            JointKind::Prismatic => (axis, Vector3::zeros()),
+        };
+        for (row, value) in linear.iter().chain(angular.iter()).enumerate() {
+            if let Some(slot) = jacobian.get_mut(row * n + j) {
+                *slot = *value;
+            }
+        }
+        at = joint.parent.filter(|&p| p < j);
+    }
+    Some(position)
 }

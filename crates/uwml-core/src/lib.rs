@@ -14,6 +14,7 @@ pub mod losses;
 pub mod lumped;
 pub mod model;
 pub mod motion;
+pub mod presets;
 pub mod real;
 pub mod robot;
 pub mod robot_derivatives;
@@ -31,7 +32,7 @@ pub use dual::Dual;
 pub use error::{ModelError, Problem};
 pub use hydro::{HydroRegressors, HydroTorques, hydro_regressors, hydro_torques};
 pub use jacobian::point_jacobian;
-pub use kinematics::{LinkMotion, link_motions};
+pub use kinematics::{KinematicsData, LinkMotion, LinkPose, forward_kinematics, link_motions};
 pub use losses::{
     ABSOLUTE_ZERO_C, Drive, DryFrictionSplit, EnvironmentTorques, JointLoss, JointLosses, LossState, MAX_DEPTH,
     MAX_PRESSURE, OIL_TEMPERATURE_RANGE_C, OilDrag, Seal, check_conditions, environment_torques, loss_torques,

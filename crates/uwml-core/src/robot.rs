@@ -345,6 +345,56 @@ impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<
         Ok(Self { lumped, ..*self })
     }
 
+    /// The same robot in another capacity: `J2` joints, `S2` segments, `B2` lumped models (a
+    /// preset's robot as the C ABI's or the Python package's, which have room for more). Nothing
+    /// is validated again; the body frames are derived as [`Robot::new`] derives them.
+    ///
+    /// # Errors
+    /// More joints than `J2` (`"joints"`), segments than `S2` (`"segments"`) or lumped models than
+    /// `B2` (`"lumped"`), out of range.
+    pub fn to_capacity<const J2: usize, const S2: usize, const B2: usize>(
+        &self,
+    ) -> Result<Robot<T, J2, S2, B2>, ModelError> {
+        if self.joint_count > J2 {
+            return Err(ModelError::new("joints", None, Problem::OutOfRange));
+        }
+        if self.segment_count > S2 {
+            return Err(ModelError::new("segments", None, Problem::OutOfRange));
+        }
+        if self.lumped.len() > B2 {
+            return Err(ModelError::new("lumped", None, Problem::OutOfRange));
+        }
+        let mut robot =
+            Robot::<T, J2, S2, B2>::from_valid_parts(self.joints(), self.links(), self.base, self.segments());
+        for (owner, model) in self.lumped.iter() {
+            robot.lumped.push(*owner, *model);
+        }
+        Ok(robot)
+    }
+
+    /// A robot of parts that are valid (validated, or a preset's), as many as fit.
+    pub(crate) fn from_valid_parts(
+        joints: &[TreeJoint<T>],
+        links: &[RigidBody<T>],
+        base: RigidBody<T>,
+        segments: &[RobotSegment<T>],
+    ) -> Self {
+        let mut robot = Self::empty();
+        robot.base = base;
+        for (slot, joint) in robot.joints.iter_mut().zip(joints) {
+            *slot = *joint;
+        }
+        for (slot, link) in robot.links.iter_mut().zip(links) {
+            *slot = *link;
+        }
+        for (slot, segment) in robot.segments.iter_mut().zip(segments) {
+            *slot = *segment;
+        }
+        robot.joint_count = joints.len().min(links.len()).min(J);
+        robot.segment_count = segments.len().min(S);
+        robot.with_frames()
+    }
+
     /// A serial chain as a robot on a fixed base without a body of its own: joint `i`'s parent is
     /// link `i − 1`, every joint is revolute, every link's segment (if any) rectangular, with
     /// `coefficients` as its own.
