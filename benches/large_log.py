@@ -65,7 +65,8 @@ def fit_settings(n: int) -> None:
     """The fit settings on a log in memory (no file): time and growth of peak memory each."""
     import numpy as np
     import uwml
-    from uwml import fit, synthetic
+    from uwml import fit
+    from uwml.sim import synthetic
 
     leg = uwml.Leg.paper()
     start = time.perf_counter()
@@ -110,7 +111,7 @@ def _child(kind: str, n: int, path: str) -> None:
     import uwml
 
     if kind == "write":
-        from uwml import synthetic
+        from uwml.sim import synthetic
 
         leg = uwml.Leg.paper()
         rate = 1000.0

@@ -21,7 +21,7 @@ import pytest
 import uwml
 from hypothesis import given
 from hypothesis import strategies as st
-from uwml import seawater
+from uwml.sea import seawater
 
 SPECIAL = [math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, -0.0, 0.0, 1e200, 1e-300]
 
@@ -163,10 +163,10 @@ def test_adversarial_base_motions_in_an_evaluation(data: st.DataObject) -> None:
 
 
 def _arm_with(change: str, value: float) -> uwml.Robot:
-    """``uwml.examples.arm_on_rov`` with one model value replaced."""
+    """``uwml.robot.examples.arm_on_rov`` with one model value replaced."""
     import dataclasses
 
-    from uwml.examples import arm_on_rov
+    from uwml.robot.examples import arm_on_rov
 
     arm = arm_on_rov()
     joints, links, base = list(arm.joints), list(arm.links), arm.base
@@ -237,7 +237,7 @@ def test_a_huge_water_is_refused_at_construction(density: float, gravity: float)
         uwml.Water(density, gravity)
 
 
-# --- simulation conditions (uwml.mujoco.Simulation) ----------------------------------------------
+# --- simulation conditions (uwml.sim.mujoco.Simulation) ----------------------------------------------
 
 SIMULATION_ARGUMENTS: dict[str, list[Any]] = {
     "depth": [math.nan, math.inf, -1.0, 1e308, 12000.0, "1", None, True, [1.0, 2.0], np.zeros(3)],
@@ -261,7 +261,7 @@ def test_hostile_simulation_conditions_give_an_error_naming_them_or_a_finite_run
     pytest.importorskip("mujoco")
     from pathlib import Path
 
-    from uwml.mujoco import Simulation
+    from uwml.sim.mujoco import Simulation
 
     data = Path(__file__).parent / "data"
     try:

@@ -1,4 +1,4 @@
-"""Hostile robot descriptions (URDF, MJCF) and hydro files, read by uwml.descriptions
+"""Hostile robot descriptions (URDF, MJCF) and hydro files, read by uwml.io.descriptions
 (docs/model.md section 10, "From URDF and MJCF").
 
 What must hold: a correct load, or a :class:`uwml.DescriptionError` (a ``ValueError``) whose
@@ -630,9 +630,9 @@ def test_random_bytes_as_a_hydro_file_or_a_description(tmp_path_factory: pytest.
 
 def test_the_documented_limits_are_the_code_s() -> None:
     """docs/model.md section 10 states the description limits as numbers: they must be the code's."""
-    from uwml.descriptions import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS
+    from uwml.io.descriptions import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS
 
     docs = " ".join((Path(__file__).resolve().parents[1] / "docs" / "model.md").read_text(encoding="utf-8").split())
     assert MAX_DESCRIPTION_BODIES == 1 + uwml.MAX_ROBOT_JOINTS + uwml.MAX_SEGMENTS
-    assert f"`uwml.descriptions.MAX_DESCRIPTION_BODIES` bodies ({MAX_DESCRIPTION_BODIES}:" in docs
-    assert f"`uwml.descriptions.MAX_DESCRIPTION_GEOMS` geoms ({MAX_DESCRIPTION_GEOMS})" in docs
+    assert f"`uwml.io.descriptions.MAX_DESCRIPTION_BODIES` bodies ({MAX_DESCRIPTION_BODIES}:" in docs
+    assert f"`uwml.io.descriptions.MAX_DESCRIPTION_GEOMS` geoms ({MAX_DESCRIPTION_GEOMS})" in docs

@@ -21,9 +21,8 @@ import pytest
 import uwml
 from hypothesis import given
 from hypothesis import strategies as st
-from uwml import logs
 from uwml._checks import cell_number
-from uwml.io import _arrow_csv
+from uwml.io import _arrow_csv, logs
 from uwml.io._log_stream import log_chunks
 
 #: Hostile logs may hold time steps that look like milliseconds: the reading is under test here,

@@ -629,7 +629,8 @@ def test_import_uwml_loads_neither_the_reference_nor_matplotlib() -> None:
 def test_the_gaits_leg_lengths_are_the_papers() -> None:
     """The walking gait's own copy of Table II's lengths equals the core's paper leg and the numpy
     reference's."""
-    from uwml import gait, reference
+    from uwml import reference
+    from uwml.sim import gait
 
     leg = uwml.Leg.paper()
     assert (gait.PAPER_L2, gait.PAPER_L3) == (reference.PAPER_L2, reference.PAPER_L3)

@@ -18,8 +18,9 @@ import numpy as np
 import pytest
 import uwml
 import uwml.cli
-from uwml import fit, synthetic
-from uwml.logs import Log, write_log
+from uwml import fit
+from uwml.io.logs import Log, write_log
+from uwml.sim import synthetic
 
 LEG = uwml.Leg.paper()
 
@@ -200,7 +201,7 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
 
 
 def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
-    from uwml.examples import arm_on_rov
+    from uwml.robot.examples import arm_on_rov
 
     arm = arm_on_rov()
     model = tmp_path / "arm.toml"
@@ -563,7 +564,7 @@ def test_size_like_arguments_are_bounded(args: list[str], words: list[str], caps
 
 
 def test_simulate_run_bounds_cycles_before_allocating() -> None:
-    from uwml import simulate
+    from uwml.sim import studies as simulate
 
     for cycles in (1e12, 101.0, math.nan, math.inf, -1.0, 0.0):
         with pytest.raises(ValueError, match=r"^cycles must be finite and > 0, at most 100 \(gait cycles\), got "):

@@ -1,4 +1,4 @@
-"""``uwml describe`` and ``uwml.describe``: a robot's parts and net buoyancy in words, and its
+"""``uwml describe`` and ``uwml.viz.describe``: a robot's parts and net buoyancy in words, and its
 picture at q = 0; numbers checked against hand computations."""
 
 from pathlib import Path
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 import uwml
 from uwml.cli import main
-from uwml.describe import describe, frame_origins
-from uwml.examples import arm_on_rov
+from uwml.robot.examples import arm_on_rov
+from uwml.viz.describe import describe, frame_origins
 
 
 def test_frame_origins_add_along_the_tree() -> None:

@@ -1,4 +1,4 @@
-"""Two robots, each written as URDF and as MJCF (tests/data), read by uwml.descriptions (docs/model.md section 10).
+"""Two robots, each written as URDF and as MJCF (tests/data), read by uwml.io.descriptions (docs/model.md section 10).
 
 rov_arm6: a 6-joint arm of cylinders (a capsule on wrist_2) on a vehicle whose hull is a box, with
 a skid and a bracket on fixed joints, rotated joint frames (yaw 25°, roll 15°, rpy (20°, −10°,

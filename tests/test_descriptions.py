@@ -1,4 +1,4 @@
-"""URDF and MJCF descriptions to uwml.Robot (uwml.descriptions, docs/model.md section 10)."""
+"""URDF and MJCF descriptions to uwml.Robot (uwml.io.descriptions, docs/model.md section 10)."""
 
 from __future__ import annotations
 
@@ -321,7 +321,7 @@ def test_water_from_the_hydro_file(tmp_path: Path) -> None:
 
 def test_the_documented_example_hydro_file_reads() -> None:
     """examples/hydro.toml, the format's documented example, is a valid hydro file."""
-    from uwml.descriptions import read_hydro
+    from uwml.io.hydrofile import read_hydro
 
     file = read_hydro(Path(__file__).resolve().parents[1] / "examples" / "hydro.toml")
     assert set(file.links) == {"upper_arm", "wrist", "camera", "hull"} and file.links["camera"].dry

@@ -152,7 +152,7 @@ def test_two_lumped_models_on_bodies_fused_into_one_link_are_refused(tmp_path: P
 
 
 def test_describe_shows_a_lumped_model(tmp_path: Path) -> None:
-    from uwml.describe import describe
+    from uwml.viz.describe import describe
 
     hydro = tmp_path / "h.toml"
     hydro.write_text(

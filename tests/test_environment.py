@@ -10,7 +10,7 @@ import uwml
 from hypothesis import given
 from hypothesis import strategies as st
 from uwml import _core, reference
-from uwml.losses import rpm_to_rad_s
+from uwml.model.losses import rpm_to_rad_s
 
 
 def assert_close(actual, expected, rel=1e-12, atol=0.0):
@@ -166,7 +166,7 @@ def test_core_hydrostatic_formula():
     for kwargs in ({"sea_density": -1025.0}, {"sea_density": math.nan}, {"gravity": 0.0}):
         with pytest.raises(ValueError, match=f"{next(iter(kwargs))} must be finite and positive"):
             uwml.hydrostatic_pressure_mpa(100.0, **kwargs)
-    # The density is keyword-only: a second positional number (a latitude for uwml.seawater's
+    # The density is keyword-only: a second positional number (a latitude for uwml.sea.seawater's
     # TEOS-10 pressure_at_depth_mpa) is refused rather than read as a density.
     with pytest.raises(TypeError):
         uwml.hydrostatic_pressure_mpa(1000.0, 45.0)  # type: ignore[misc]

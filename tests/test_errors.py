@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 import uwml
-from uwml import _core, cli, modelfile, study
+from uwml import _core, cli, study
+from uwml.robot.files import loads
 
 
 def _classes_defined_in_uwml() -> set[type]:
@@ -47,7 +48,7 @@ def test_every_exception_is_a_uwml_error_and_a_value_error(error: type) -> None:
 def test_the_public_names_are_the_classes_raised() -> None:
     assert uwml.UwmlError is _core.UwmlError
     assert uwml.ModelError is _core.ModelError
-    assert uwml.ModelFileError is modelfile.ModelFileError
+    assert uwml.ModelFileError is uwml.errors.ModelFileError
     assert uwml.UwmlError.__mro__[1] is ValueError
     assert "UwmlError" in uwml.__all__
 
@@ -66,7 +67,7 @@ def _negative_mass() -> None:
 
 
 def _bad_model_file() -> None:
-    modelfile.loads("format = [", source="bad.toml")
+    loads("format = [", source="bad.toml")
 
 
 def _bad_urdf(tmp_path: Path) -> None:

@@ -1,5 +1,5 @@
 """``uwml export``: the robot's model as Rust constants and C initializers. The checked-in outputs
-for the arm of ``uwml.examples.arm_on_rov`` are what the exporter writes today (so the Rust test
+for the arm of ``uwml.robot.examples.arm_on_rov`` are what the exporter writes today (so the Rust test
 ``crates/uwml-core/tests/exported.rs`` and the C program ``crates/uwml-ffi/tests/c/exported.c``
 compile and evaluate exactly this output); every literal reads back to the model's number."""
 
@@ -16,8 +16,8 @@ import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from uwml.cli import main
-from uwml.examples import arm_on_rov
-from uwml.export import to_c, to_rust
+from uwml.io.export import to_c, to_rust
+from uwml.robot.examples import arm_on_rov
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCE = "uwml.examples.arm_on_rov()"
@@ -27,7 +27,7 @@ def test_the_checked_in_exports_are_the_exporters_output() -> None:
     arm = arm_on_rov()
     rust = ROOT / "crates/uwml-core/tests/exported/arm_on_rov.rs"
     c = ROOT / "crates/uwml-ffi/tests/c/exported_arm.h"
-    regenerate = "the exporter's output changed: regenerate the files from uwml.export.to_rust(arm_on_rov(), 'f64' and 'f32') / to_c(arm_on_rov(), prefix='ARM')"
+    regenerate = "the exporter's output changed: regenerate the files from uwml.io.export.to_rust(arm_on_rov(), 'f64' and 'f32') / to_c(arm_on_rov(), prefix='ARM')"
     assert rust.read_text() == to_rust(arm, source=SOURCE), regenerate
     assert rust.with_name("arm_on_rov_f32.rs").read_text() == to_rust(arm, "f32", source=SOURCE), regenerate
     assert c.read_text() == to_c(arm, prefix="ARM", source=SOURCE), regenerate

@@ -11,10 +11,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 import uwml
-from uwml import fit, synthetic
+from uwml import fit
 from uwml.cli import main
-from uwml.examples import arm_on_rov
-from uwml.logs import write_log
+from uwml.io.logs import write_log
+from uwml.robot.examples import arm_on_rov
+from uwml.sim import synthetic
 
 ARM_TRAJECTORY = synthetic.SineTrajectory([0.6, 0.5, 0.7, 0.8, 0.6, 0.9, 0.02], period=2.5)
 
@@ -48,7 +49,7 @@ def test_the_paper_leg_as_a_robot_fits_as_the_leg(per: str) -> None:
 
 
 def arm_truth() -> tuple[uwml.Robot, np.ndarray, np.ndarray, dict[str, float]]:
-    """The arm of uwml.examples with one true (Cd, Cm) per link (the hull's segments too)."""
+    """The arm of uwml.robot.examples with one true (Cd, Cm) per link (the hull's segments too)."""
     arm = arm_on_rov()
     cd_link = [1.1, 1.3, 0.9, 1.6, 1.2, 2.0, 2.4]
     cm_link = [0.9, 1.2, 1.05, 0.8, 1.0, 0.7, 0.6]

@@ -13,8 +13,7 @@ import pytest
 import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from uwml import _core
-from uwml.gait import WalkingGait, paper_leg_foot, paper_leg_ik
+from uwml import WalkingGait, _core, paper_leg_foot, paper_leg_ik
 
 # docs/model.md section 2 (Table II).
 L2, L3 = 0.660, 0.714

@@ -1,4 +1,4 @@
-"""Log files through pyarrow (uwml.logs, uwml._arrow_csv): exact round trips, the file format,
+"""Log files through pyarrow (uwml.io.logs, uwml.io._arrow_csv): exact round trips, the file format,
 and bad cells found after the fast parse fails, in files of several blocks."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from uwml import logs, synthetic
-from uwml.io import _arrow_csv
+from uwml.io import _arrow_csv, logs
+from uwml.sim import synthetic
 
 HEADER = "time,q1,q2,q3"
 

@@ -1,4 +1,4 @@
-"""The uwml model file (``uwml.modelfile``): a saved robot loads equal to itself and gives the same
+"""The uwml model file (``uwml.io.modelfile``): a saved robot loads equal to itself and gives the same
 forces bit for bit; every bad file is an error naming the file, the table and the key."""
 
 import os
@@ -10,8 +10,9 @@ import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_robot import motion_arguments, random_robot
-from uwml.examples import arm_on_rov
-from uwml.modelfile import dumps, loads
+from uwml.io.modelfile import dumps
+from uwml.robot.examples import arm_on_rov
+from uwml.robot.files import loads
 
 
 def same_forces(a: uwml.Robot, b: uwml.Robot, rng: np.random.Generator) -> None:

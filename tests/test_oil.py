@@ -1,4 +1,4 @@
-"""Tests of ``uwml.oil``: Walther / ASTM D341 viscosity, its derivative, Barus, and a_T."""
+"""Tests of ``uwml.sea.oil``: Walther / ASTM D341 viscosity, its derivative, Barus, and a_T."""
 
 import math
 

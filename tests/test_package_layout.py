@@ -1,6 +1,6 @@
 """The package's layout (README, "What is inside"): one idea per subpackage, dependencies pointing
 one way, the numpy reference and matplotlib out of ``import uwml``, no production use of the
-reference, one hydrostatic-pressure formula, the former flat modules still importable.
+reference, one hydrostatic-pressure formula.
 
 The import graph is read from the sources (``ast``): every import a module runs when it is
 imported (at module level, in a class body, under ``if``/``try``/``with``), not those inside
@@ -20,7 +20,6 @@ from functools import cache
 from pathlib import Path
 
 import numpy as np
-import pytest
 import uwml
 from uwml.robot.leg import Leg
 from uwml.sea import conditions
@@ -30,8 +29,8 @@ SOURCE = ROOT / "python" / "uwml"
 REFERENCE = "uwml.reference"
 
 #: The layers, lowest first: a module imports (at module level) only from its own layer or lower
-#: ones. Within a layer the graph must still be acyclic. The former flat modules and the package
-#: itself (``uwml/__init__.py``) come last: they re-export names for compatibility.
+#: ones. Within a layer the graph must still be acyclic. The package itself (``uwml/__init__.py``)
+#: comes last.
 LAYERS = (
     ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml._ray", "uwml.plausibility"),
     ("uwml.sea",),
@@ -44,218 +43,6 @@ LAYERS = (
     ("uwml.study",),
     ("uwml.cli", "uwml._cli_arguments", "uwml._cli_common", "uwml._cli_fit", "uwml._cli_study", "uwml.__main__"),
 )
-
-#: The former flat modules (``uwml/<name>.py`` before the package had subpackages) with every
-#: public name each had (the names it defined or imported from uwml; not those it imported from
-#: numpy, typing or the standard library), and where each now lives: the old path gives the same
-#: object. ``uwml.robot`` and ``uwml.model`` are now packages, ``uwml.domains`` stayed.
-FORMER_NAMES: dict[str, dict[str, str]] = {
-    "uwml.leg": {
-        "uwml._checks": "check_overflow",
-        "uwml.model.joint_losses": "JointLosses pack_leg_losses",
-        "uwml.model.parts": "FRESH_WATER Joint Link SEA_WATER Segment Water",
-        "uwml.robot._arguments": "one_state_losses",
-        "uwml.robot.leg": "FloatArray Leg MAX_JOINTS",
-        "uwml.robot.results": "EnvironmentJacobians EnvironmentTorques HydroRegressors HydroTorques",
-        "uwml.sea.conditions": "SEA_WATER_DENSITY loss_conditions",
-    },
-    "uwml.robot": {
-        "uwml._checks": "check_overflow",
-        "uwml.model.joint_losses": "JointLosses pack_leg_losses",
-        "uwml.model.parts": "FRESH_WATER Joint Link Segment Water",
-        "uwml.robot._arguments": "ADDED_MASS_FORMS one_state_losses",
-        "uwml.robot.base_motion": "BaseMotion",
-        "uwml.robot.results": "BaseWrench RobotEnvironment RobotJacobians RobotRegressors RobotTorques",
-        "uwml.robot.tree": "FloatArray MAX_ROBOT_JOINTS MAX_SEGMENTS Robot",
-        "uwml.sea.conditions": "loss_conditions",
-    },
-    "uwml.robot_types": {
-        "uwml.robot.base_motion": "BaseMotion",
-        "uwml.robot.results": (
-            "BaseWrench EnvironmentTorques FloatArray HydroTorques RobotEnvironment RobotJacobians RobotRegressors RobotTorques"
-        ),
-    },
-    "uwml.model": {
-        "uwml._checks": "to_float",
-        "uwml.domains": "MAX_DENSITY MAX_GRAVITY",
-        "uwml.model.parts": "AXIS_TOLERANCE CIRCULAR_DEFAULTS JOINT_KINDS Joint Link RECTANGULAR_DEFAULTS SECTIONS Segment Vec3 Water",
-    },
-    "uwml.losses": {
-        "uwml._checks": "to_float",
-        "uwml.model.losses": "Drive OilDrag RPM Seal rad_s_to_rpm rpm_to_rad_s",
-    },
-    "uwml.environment": {
-        "uwml._checks": "check_overflow to_float",
-        "uwml.domains": "ABSOLUTE_ZERO_C MAX_DEPTH MAX_PRESSURE OIL_TEMPERATURE_RANGE_C",
-        "uwml.model.joint_losses": "JointLosses LossTorques pack_leg_losses",
-        "uwml.model.losses": "Drive OilDrag Seal",
-        "uwml.robot._arguments": "one_state_losses",
-        "uwml.robot.results": "EnvironmentTorques",
-        "uwml.sea.conditions": (
-            "ExtrapolationWarning FloatArray MAX_PRESSURE_MPA SEA_WATER_DENSITY check_depths check_temperatures "
-            "hydrostatic_pressure_mpa loss_conditions"
-        ),
-    },
-    "uwml.seawater": {
-        "uwml._checks": "finite_array",
-        "uwml.domains": "MAX_DEPTH",
-        "uwml.sea.seawater": "Array density_at_depth pressure_at_depth_mpa",
-    },
-    "uwml.oil": {
-        "uwml._checks": "finite_array",
-        "uwml.sea.oil": "Array ISO_VG32 OILS OilViscosity barus_factor drag_temperature_sensitivity",
-    },
-    "uwml.modelfile": {
-        "uwml._checks": "shown",
-        "uwml.errors": "ModelFileError",
-        "uwml.io._files": "read_regular",
-        "uwml.io.modelfile": "FORMAT VERSION WATER_DENSITY_RANGE WATER_GRAVITY_RANGE dumps save",
-        "uwml.model.joint_losses": "JointLosses",
-        "uwml.model.losses": "Drive OilDrag Seal",
-        "uwml.model.parts": "Joint Link Segment Water",
-        "uwml.robot.files": "load loads",
-        "uwml.robot.tree": "Robot",
-    },
-    "uwml.descriptions": {
-        "uwml._checks": "shown",
-        "uwml.errors": "DescriptionError",
-        "uwml.io._description_geometry": "FloatArray",
-        "uwml.io._description_xml": "MAX_DESCRIPTION_BODIES MAX_DESCRIPTION_GEOMS limits_exceeded scan",
-        "uwml.io._files": "clipped",
-        "uwml.io.hydrofile": "HydroFile HydroLink read_hydro",
-        "uwml.io.modelfile": "WATER_DENSITY_RANGE WATER_GRAVITY_RANGE",
-        "uwml.model.parts": "Joint Link Segment",
-        "uwml.robot.files": "from_mjcf from_mujoco from_urdf model_and_robot",
-        "uwml.robot.tree": "Robot",
-    },
-    "uwml.hydrofile": {
-        "uwml._checks": "shown",
-        "uwml.domains": "MAX_COEFFICIENT MAX_LENGTH MAX_VOLUME",
-        "uwml.errors": "DescriptionError",
-        "uwml.io._description_io": "read_regular",
-        "uwml.io._files": "clipped",
-        "uwml.io.hydrofile": "HydroFile HydroLink read_hydro",
-        "uwml.io.modelfile": "WATER_DENSITY_RANGE WATER_GRAVITY_RANGE",
-        "uwml.model.joint_losses": "JointLosses",
-        "uwml.model.parts": "Segment Water",
-        "uwml.robot.tree": "MAX_SEGMENTS",
-    },
-    "uwml.export": {
-        "uwml._checks": "shown",
-        "uwml.io.export": "PRECISIONS to_c to_rust",
-        "uwml.model.parts": "Link Segment",
-        "uwml.robot.tree": "Robot",
-    },
-    "uwml.logs": {
-        "uwml._checks": "shown",
-        "uwml.domains": "MAX_ROBOT_JOINTS",
-        "uwml.io._files": "not_regular",
-        "uwml.io.logs": (
-            "Array Log MAX_TIME_S POLYORDER PathOrFile UNIFORM_TOLERANCE WINDOW_S align_logs estimate_derivatives "
-            "read_log savgol_window write_log"
-        ),
-    },
-    "uwml.mujoco": {
-        "uwml._checks": "shown",
-        "uwml.model.joint_losses": "JointLosses pack_leg_losses",
-        "uwml.model.parts": "Water",
-        "uwml.robot.base_motion": "BaseMotion",
-        "uwml.robot.results": "BaseWrench RobotEnvironment",
-        "uwml.robot.tree": "Robot",
-        "uwml.sea.conditions": "check_depths check_temperatures",
-        "uwml.sim.mujoco": "FloatArray INTEGRATORS NOSLIP_ITERATIONS NOSLIP_TOLERANCE SCHEMES Simulation mjcf_of",
-    },
-    "uwml.simulate": {
-        "uwml.model.joint_losses": "JointLosses",
-        "uwml.model.parts": "Water",
-        "uwml.robot.base_motion": "BaseMotion",
-        "uwml.robot.leg": "Leg",
-        "uwml.robot.tree": "Robot",
-        "uwml.sim.studies": (
-            "CONTROLLERS DEPTHS Drift FloatArray FluidComparison MAX_CYCLES PD_HZ ROV_CURRENT Run SEA "
-            "SEA_VISCOSITY TEMPERATURE_C TIMESTEP fluid_models leg_model rov_drift run study write_report"
-        ),
-        "uwml.study.paper": "command",
-        "uwml.study.runner": "progress_bar",
-    },
-    "uwml.gait": {
-        "uwml.sim.gait": "AXIS_CLEARANCE FloatArray Knee PAPER_L2 PAPER_L3 WalkingGait paper_leg_foot paper_leg_ik",
-    },
-    "uwml.paper_analysis": {
-        "uwml.robot.leg": "Leg",
-        "uwml.sim.paper_analysis": "gait_like_motion run",
-    },
-    "uwml.synthetic": {
-        "uwml.io.logs": "Log",
-        "uwml.model.losses": "Drive OilDrag RPM Seal",
-        "uwml.model.parts": "Water",
-        "uwml.sim.synthetic": (
-            "CONFIGURATIONS FloatArray LAND_COULOMB LAND_INERTIA LAND_VISCOUS ModelDiscrepancy ModelError "
-            "PAPER_LIKE_ERROR PAPER_LIKE_NOISE PAPER_LIKE_PERIOD SineTrajectory YAW_STEP_FOOT "
-            "land_water_experiment paper_like_experiment three_configuration_experiment"
-        ),
-    },
-    "uwml.plot": {
-        "uwml.fit.hydro": "HydroFit",
-        "uwml.fit.results": "LossFit",
-        "uwml.model.losses": "Drive OilDrag RPM Seal",
-        "uwml.viz.plot": "efficiency_map fit_plot hydro_fit_plot loss_maps",
-    },
-    "uwml.describe": {
-        "uwml.model.parts": "Link Segment Water",
-        "uwml.robot.tree": "Robot",
-        "uwml.viz.describe": "describe draw frame_origins",
-    },
-    "uwml.domains": {
-        "uwml.domains": (
-            "ABSOLUTE_ZERO_C MAX_AREA MAX_COEFFICIENT MAX_DENSITY MAX_DEPTH MAX_GRAVITY MAX_LENGTH MAX_MASS "
-            "MAX_PRESSURE MAX_ROBOT_JOINTS MAX_VOLUME OIL_TEMPERATURE_RANGE_C"
-        ),
-    },
-    "uwml.examples": {
-        "uwml.model.parts": "Joint Link Segment",
-        "uwml.robot.examples": "arm_on_rov",
-        "uwml.robot.tree": "Robot",
-    },
-}
-
-#: The ``__all__`` of each former module, kept (``from uwml.leg import *`` imports the same names).
-FORMER_ALL: dict[str, str] = {
-    "uwml.leg": "MAX_JOINTS EnvironmentJacobians HydroRegressors HydroTorques Leg",
-    "uwml.robot": "MAX_ROBOT_JOINTS MAX_SEGMENTS BaseMotion BaseWrench Robot RobotEnvironment RobotJacobians RobotRegressors RobotTorques",
-    "uwml.robot_types": "BaseMotion BaseWrench RobotEnvironment RobotJacobians RobotRegressors RobotTorques",
-    "uwml.model": "CIRCULAR_DEFAULTS RECTANGULAR_DEFAULTS SECTIONS Joint Link Segment Vec3 Water",
-    "uwml.losses": "RPM Drive OilDrag Seal rad_s_to_rpm rpm_to_rad_s",
-    "uwml.environment": (
-        "ABSOLUTE_ZERO_C MAX_DEPTH OIL_TEMPERATURE_RANGE_C SEA_WATER_DENSITY EnvironmentTorques "
-        "ExtrapolationWarning JointLosses LossTorques hydrostatic_pressure_mpa"
-    ),
-    "uwml.seawater": "density_at_depth pressure_at_depth_mpa",
-    "uwml.oil": "ISO_VG32 OILS OilViscosity barus_factor drag_temperature_sensitivity",
-    "uwml.modelfile": "FORMAT VERSION ModelFileError dumps load loads save",
-    "uwml.descriptions": (
-        "MAX_DESCRIPTION_BODIES MAX_DESCRIPTION_GEOMS DescriptionError HydroFile HydroLink from_mjcf "
-        "from_mujoco from_urdf model_and_robot read_hydro"
-    ),
-    "uwml.hydrofile": "WATER_DENSITY_RANGE WATER_GRAVITY_RANGE DescriptionError HydroFile HydroLink read_hydro",
-    "uwml.export": "to_c to_rust",
-    "uwml.logs": (
-        "MAX_ROBOT_JOINTS MAX_TIME_S POLYORDER UNIFORM_TOLERANCE WINDOW_S Log align_logs estimate_derivatives "
-        "read_log savgol_window write_log"
-    ),
-    "uwml.mujoco": "SCHEMES Simulation mjcf_of",
-    "uwml.simulate": "CONTROLLERS DEPTHS MAX_CYCLES Drift FluidComparison Run fluid_models leg_model rov_drift run study",
-    "uwml.gait": "WalkingGait paper_leg_foot paper_leg_ik",
-    "uwml.paper_analysis": "gait_like_motion run",
-    "uwml.synthetic": (
-        "CONFIGURATIONS LAND_COULOMB LAND_INERTIA LAND_VISCOUS PAPER_LIKE_ERROR PAPER_LIKE_NOISE "
-        "PAPER_LIKE_PERIOD YAW_STEP_FOOT ModelDiscrepancy SineTrajectory land_water_experiment "
-        "paper_like_experiment three_configuration_experiment"
-    ),
-    "uwml.plot": "efficiency_map fit_plot hydro_fit_plot loss_maps",
-    "uwml.describe": "describe draw frame_origins",
-    "uwml.examples": "arm_on_rov",
-}
 
 #: What ``import uwml`` exposed before the subpackages (public names and modules), still there.
 TOP_LEVEL = [
@@ -291,19 +78,13 @@ TOP_LEVEL = [
     "WalkingGait",
     "Water",
     "domains",
-    "environment",
     "errors",
-    "gait",
     "hydrostatic_pressure_mpa",
-    "leg",
-    "logs",
-    "losses",
     "model",
     "paper_leg_foot",
     "paper_leg_ik",
     "read_log",
     "robot",
-    "robot_types",
     "write_log",
 ]
 
@@ -537,26 +318,8 @@ def test_the_pressures_are_the_one_formula_bit_for_bit() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# The former flat modules
+# The front door and the command line
 # --------------------------------------------------------------------------------------------
-
-
-@pytest.mark.parametrize("old", sorted(FORMER_NAMES))
-def test_a_former_module_gives_every_name_it_had_from_its_new_home(old: str) -> None:
-    module = importlib.import_module(old)
-    for home, names in FORMER_NAMES[old].items():
-        assert home == "uwml.domains" or home not in FORMER_NAMES, f"{home} re-exports the former module's names: not their home"
-        new = importlib.import_module(home)
-        for name in names.split():
-            assert getattr(module, name) is getattr(new, name), f"{old}.{name} is not {home}.{name}"
-    if old in FORMER_ALL:
-        assert list(module.__all__) == FORMER_ALL[old].split()
-
-
-def test_the_former_modules_import_without_warnings() -> None:
-    code = "import " + ", ".join(sorted(FORMER_NAMES)) + "; print('ok')"
-    done = subprocess.run([sys.executable, "-W", "error", "-c", code], capture_output=True, text=True, check=False, timeout=120)
-    assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
 
 
 def test_the_top_level_namespace_is_unchanged() -> None:

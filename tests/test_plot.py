@@ -1,4 +1,4 @@
-"""Tests of ``uwml.plot``: figures are built under Agg, saved as PNG, and show the right numbers."""
+"""Tests of ``uwml.viz.plot``: figures are built under Agg, saved as PNG, and show the right numbers."""
 
 import math
 

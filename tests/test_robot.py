@@ -447,7 +447,7 @@ def test_jacobians_of_a_robot_are_the_slopes_and_the_legs_for_a_chain() -> None:
 
 
 def test_the_example_arm_on_an_rov_matches_the_reference() -> None:
-    from uwml.examples import arm_on_rov
+    from uwml.robot.examples import arm_on_rov
 
     arm = arm_on_rov()
     assert arm.n_joints == 7 and len(arm.segments) == 15 and arm.joints[6].kind == "prismatic"
@@ -565,7 +565,7 @@ def test_kirchhoff_regressors_and_jacobians_are_its_forces() -> None:
     """``added_mass="kirchhoff"`` everywhere a robot evaluates added mass: the regressors at the
     segments' coefficients give ``hydro``'s forces; the jacobians' value is ``environment``'s
     total and their velocity derivative matches central differences; ``M_A`` is the Morison one."""
-    from uwml.examples import arm_on_rov
+    from uwml.robot.examples import arm_on_rov
 
     robot = arm_on_rov()
     rng = np.random.default_rng(12)

@@ -1,4 +1,4 @@
-"""Tests of ``uwml.seawater`` (TEOS-10 via gsw) against the core's uniform sea ``p = ρ g z``.
+"""Tests of ``uwml.sea.seawater`` (TEOS-10 via gsw) against the core's uniform sea ``p = ρ g z``.
 
 The bound docs/losses.md states is measured here, over every latitude and depths from 1 m: the
 uniform sea (ρ = 1025 kg/m³, g = 9.81 m/s²) is below TEOS-10 by at most 0.77 % down to 1000 m

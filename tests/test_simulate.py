@@ -1,4 +1,4 @@
-"""``uwml simulate`` (uwml.simulate): the paper's leg walking in sea water under four controllers."""
+"""``uwml simulate`` (uwml.sim.studies): the paper's leg walking in sea water under four controllers."""
 
 from __future__ import annotations
 
@@ -12,8 +12,9 @@ import pytest
 import uwml
 
 mujoco = pytest.importorskip("mujoco")
-from uwml import simulate, study
+from uwml import study
 from uwml.cli import main
+from uwml.sim import studies as simulate
 
 
 def test_the_plant_is_table_ii_with_box_inertias() -> None:

@@ -1,4 +1,4 @@
-"""uwml inside MuJoCo (uwml.mujoco.Simulation): the added mass in the mass matrix, checked
+"""uwml inside MuJoCo (uwml.sim.mujoco.Simulation): the added mass in the mass matrix, checked
 against closed forms, an independent integration with scipy, and the lagged scheme that
 simulators use (which diverges on a light link)."""
 
@@ -12,7 +12,7 @@ import uwml
 
 mujoco = pytest.importorskip("mujoco")
 from scipy.integrate import solve_ivp
-from uwml.mujoco import Simulation
+from uwml.sim.mujoco import Simulation
 
 RHO, G = 1000.0, 9.81
 D, L = 0.1, 1.0  # the sinking log: a horizontal cylinder
@@ -333,7 +333,7 @@ def test_kirchhoff_conserves_the_energy_and_drag_only_dissipates_it() -> None:
     Kirchhoff's added mass and not with Morison's; with its drag on, the energy only falls."""
     from pathlib import Path
 
-    from uwml.descriptions import model_and_robot
+    from uwml.robot.files import model_and_robot
 
     data = Path(__file__).parent / "data"
     model, robot = model_and_robot(data / "arm.xml", data / "arm.hydro.toml")
@@ -404,10 +404,10 @@ def test_morison_energy_rate_is_the_documented_integral() -> None:
 
 
 def test_mjcf_of_a_robot() -> None:
-    """uwml.mujoco.mjcf_of: bodies, joints and masses of the robot; a link's inertia that of its
+    """uwml.sim.mujoco.mjcf_of: bodies, joints and masses of the robot; a link's inertia that of its
     mass spread over its segments' solids (here by hand: one box, one cylinder)."""
-    from uwml.examples import arm_on_rov
-    from uwml.mujoco import mjcf_of
+    from uwml.robot.examples import arm_on_rov
+    from uwml.sim.mujoco import mjcf_of
 
     box = uwml.Segment((0, 0, 0), (1, 0, 0), 0.6, normals=((0, 1, 0), (0, 0, 1)), widths=(0.1, 0.2), area=0.02)
     tube = uwml.Segment((0, 0, 0), (0, 0, -1), 0.4, section="circular", diameter=0.1)
@@ -444,7 +444,7 @@ def test_the_native_rk4_bookkeeping_is_the_numpy_method_bit_for_bit() -> None:
     method written here in numpy (the step's former code)."""
     from pathlib import Path
 
-    from uwml.descriptions import model_and_robot
+    from uwml.robot.files import model_and_robot
 
     data = Path(__file__).parent / "data"
     model, robot = model_and_robot(data / "arm.xml", data / "arm.hydro.toml")

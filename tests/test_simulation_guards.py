@@ -13,8 +13,8 @@ import pytest
 import uwml
 
 mujoco = pytest.importorskip("mujoco")
-from uwml.mujoco import Simulation
 from uwml.sim.mjcf import mjcf_of
+from uwml.sim.mujoco import Simulation
 
 SEAL = "c0 = 16.0\nc1_per_mpa = 3.7\ns0 = 21.0\ns1_per_mpa = 6.7\nd0 = 2.2\nd1_per_mpa = 0.34\nstribeck_speed = 0.05\n"
 

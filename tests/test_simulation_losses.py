@@ -1,4 +1,4 @@
-"""Joint losses inside a MuJoCo simulation (uwml.mujoco, "Joint losses"): the seal's dry
+"""Joint losses inside a MuJoCo simulation (uwml.sim.mujoco, "Joint losses"): the seal's dry
 friction is a MuJoCo friction constraint at the level of uwml's depth-dependent model, the oil
 drag and the seal's viscous term a damping MuJoCo integrates implicitly. Explicit forces made
 these simulations diverge (a seal slope of about 2e4 N·m·s/rad at rest against a few hundredths
@@ -15,8 +15,8 @@ import uwml
 
 mujoco = pytest.importorskip("mujoco")
 from uwml import reference
-from uwml.descriptions import model_and_robot
-from uwml.mujoco import Simulation
+from uwml.robot.files import model_and_robot
+from uwml.sim.mujoco import Simulation
 
 DATA = Path(__file__).parent / "data"
 HYDRO = DATA / "arm.hydro.toml"

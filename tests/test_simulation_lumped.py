@@ -60,7 +60,7 @@ def test_lumped_added_mass_keeps_the_kinetic_energy_of_a_hull_and_its_arm() -> N
     """No drag, no gravity, still water: the arm on its free hull, the hull with a full (coupled)
     lumped added mass beside its strips, Kirchhoff's form for the strips: T_rigid + T_A is kept
     to the RK4 integrator's accuracy, falling with the step."""
-    from uwml.descriptions import model_and_robot
+    from uwml.robot.files import model_and_robot
 
     model, robot = model_and_robot(DATA / "arm.xml", DATA / "arm.hydro.toml")
     model = weightless(model)

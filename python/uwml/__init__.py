@@ -15,19 +15,9 @@ files, robot descriptions, hydro files, exported code, logs), :mod:`uwml.robot` 
 :class:`Leg` and their results), then :mod:`uwml.fit` (identification), :mod:`uwml.viz` (figures,
 descriptions), :mod:`uwml.sim` (gait, MuJoCo, studies, synthetic experiments) and the command
 line (:mod:`uwml.cli`). :mod:`uwml.reference` is the independent numpy reference (tests and
-checks). The former flat modules (``uwml.leg``, ``uwml.environment``, ...) still import and
-re-export their names.
+checks).
 """
 
-# The former modules that `import uwml` has always loaded, kept as attributes of the package
-# (each re-exports its names from where they now live: uwml.environment from uwml.sea.conditions
-# and others, uwml.leg from uwml.robot.leg, ...).
-from . import environment as environment
-from . import gait as gait
-from . import leg as leg
-from . import logs as logs
-from . import losses as losses
-from . import robot_types as robot_types
 from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
 from .io.logs import Log, read_log, write_log
 from .model.joint_losses import JointLosses, LossTorques
