@@ -20,6 +20,7 @@ import pytest
 import uwml
 import uwml.cli
 from uwml import reference as ref
+from uwml.sim.paper_analysis import gait_like_motion
 
 RHO, G = 1000.0, 9.81
 RHO_M = 2700.0
@@ -552,7 +553,7 @@ def _check_demo_output(stdout: str, samples: int, period: float, cd: float, cm: 
             rms[tokens[0]] = [float(t) for t in tokens[1:]]
     rows = np.array(rows)
     assert rows.shape == (samples * 3, 8), stdout
-    t, q, qd, qdd = uwml.cli.gait_like_motion(samples, period)
+    t, q, qd, qdd = gait_like_motion(samples, period)
     expected = ref.hydro(PAPER.joints, PAPER.links, q, qd, qdd, cd=cd, cm=cm, density=density, gravity=G)
     half_digit = 0.5e-3 + 1e-9
     np.testing.assert_allclose(rows[:, 0], np.repeat(t, 3), atol=0.5e-2 + 1e-9)

@@ -306,7 +306,7 @@ def test_torques_in_chunks_equal_one_chunk(
     one, chunked = tmp_path / f"one{suffix}", tmp_path / f"chunked{suffix}"
     status, _, err = _in_process(["torques", str(path), "--out", str(one), "--losses", "--depth", "300"], capsys)
     assert status == 0 and "rows (" not in err, err  # one chunk: no progress
-    monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", rows)
+    monkeypatch.setattr(uwml.cli.robot_commands, "CHUNK_ROWS", rows)
     monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
     status, _, err = _in_process(["torques", str(path), "--out", str(chunked), "--losses", "--depth", "300"], capsys)
     n = experiment.n_samples
@@ -328,7 +328,7 @@ def test_torques_bad_cell_half_way_writes_no_file(
     _replace_cell(good, bad, 350, "qdd2", "")
     from uwml.io import _arrow_csv
 
-    monkeypatch.setattr(uwml.cli, "CHUNK_ROWS", 50)
+    monkeypatch.setattr(uwml.cli.robot_commands, "CHUNK_ROWS", 50)
     monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
     out = tmp_path / "torques.csv"
     status, _, err = _in_process(["torques", str(bad), "--out", str(out)], capsys)
@@ -575,7 +575,7 @@ def test_out_of_memory_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch, caps
     def exhausted(args: Any) -> int:
         raise MemoryError
 
-    monkeypatch.setattr(uwml.cli, "_demo", exhausted)
+    monkeypatch.setattr(uwml.cli.paper_commands, "_demo", exhausted)
     status, _, err = _in_process(["demo"], capsys)
     assert status == 1 and err.startswith("uwml: error: out of memory") and err.count("\n") == 1, err
 

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import pytest
 import uwml
-from uwml import _core, cli, study
+from uwml import _core, study
+from uwml.cli import common as cli_common
 from uwml.robot.files import loads
 
 
@@ -20,7 +21,7 @@ def _classes_defined_in_uwml() -> set[type]:
     """The exception and warning classes of every module of the package, the native one included."""
     found: set[type] = set()
     for info in pkgutil.walk_packages(uwml.__path__, "uwml."):
-        if info.name == "uwml.__main__":  # running it is the command line
+        if info.name.rpartition(".")[2] == "__main__":  # running it is the command line
             continue
         module = importlib.import_module(info.name)
         for _, value in inspect.getmembers(module, inspect.isclass):
@@ -77,7 +78,7 @@ def _bad_urdf(tmp_path: Path) -> None:
 
 
 def _output_into_a_directory(tmp_path: Path) -> None:
-    cli._check_output(str(tmp_path), "--out")
+    cli_common._check_output(str(tmp_path), "--out")
 
 
 def _a_study_over_another(tmp_path: Path) -> None:
@@ -89,7 +90,7 @@ RAISERS: dict[str, tuple[type, Callable[[Path], None]]] = {
     "ModelError": (uwml.ModelError, lambda _: _negative_mass()),
     "ModelFileError": (uwml.ModelFileError, lambda _: _bad_model_file()),
     "DescriptionError": (uwml.DescriptionError, _bad_urdf),
-    "_UsageError": (cli._UsageError, _output_into_a_directory),
+    "_UsageError": (cli_common._UsageError, _output_into_a_directory),
     "ConfigError": (study.ConfigError, lambda _: study.loads("[parameters]\ndepth = -1\n")),
     "StudyError": (study.StudyError, _a_study_over_another),
 }

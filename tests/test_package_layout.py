@@ -41,7 +41,7 @@ LAYERS = (
     ("uwml.viz",),
     ("uwml.sim",),
     ("uwml.study",),
-    ("uwml.cli", "uwml._cli_arguments", "uwml._cli_common", "uwml._cli_fit", "uwml._cli_study", "uwml.__main__"),
+    ("uwml.cli", "uwml.__main__"),
 )
 
 #: What ``import uwml`` exposed before the subpackages (public names and modules), still there.

@@ -8,8 +8,8 @@ from __future__ import annotations
 import argparse
 import math
 
-from .domains import MAX_DEPTH, MAX_ROBOT_JOINTS
-from .sim.studies import MAX_CYCLES
+from ..domains import MAX_DEPTH, MAX_ROBOT_JOINTS
+from ..sim.studies import MAX_CYCLES
 
 #: Most samples of ``uwml demo``'s printed table.
 MAX_DEMO_SAMPLES = 10_000

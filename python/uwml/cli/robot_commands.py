@@ -1,91 +1,31 @@
-"""The ``uwml`` command line.
-
-Subcommands (``uwml <command> --help`` for each):
-
-* ``uwml demo``: the paper leg's torque components along a gait-like motion, as a table.
-* ``uwml paper``: the paper's analysis end to end on built-in defaults (figures, report, summary).
-* ``uwml torques LOG``: every torque component along a logged trajectory, as CSV (or Parquet).
-* ``uwml fit hydro LOG...``: Cd and Cm (and a robot's hull) from land/water experiments.
-* ``uwml fit losses CSV``: the oil-drag and seal models from a three-configuration experiment.
-* ``uwml simulate``: the paper's leg walking in sea water under five controllers (MuJoCo).
-* ``uwml study CONFIG``: a scenario over grids and random draws of its parameters, on Ray.
-
-Exit codes: 0 on success, 2 for usage errors and bad input files (the message names the file,
-row and column), 1 for other failures (out of memory included). Errors are printed as one line,
-``uwml: error: <message>``. Size-like arguments are bounded (``--samples``, ``--cycles``,
-``--joints``, the number of ``--depths``), so that no argument asks for an absurd allocation.
-"""
+"""The commands on one robot: ``uwml torques`` (every torque component along a log),
+``uwml describe`` (what the robot is made of, drawn), ``uwml export`` (its model for firmware)
+and ``uwml replay`` (its vehicle floating while the arm follows a log)."""
 
 from __future__ import annotations
 
 import argparse
 import os
 import sys
-from collections.abc import Sequence
 from typing import IO, Any
 
 import numpy as np
 
-from ._cli_arguments import (
-    MAX_DEMO_SAMPLES,
-    MAX_DEPTHS,
-    _count,
-    _cycles,
-    _depth,
-    _depth_list,
-    _finite,
-    _n_joints,
-    _non_negative,
-    _positive,
-    _seed,
-    _workers,
-)
-from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
-from ._cli_fit import add_fit_commands
-from ._cli_study import add_study_command
-from .domains import MAX_ROBOT_JOINTS
-from .model.parts import SEA_WATER, Water
-from .robot.leg import Leg
-from .robot.tree import Robot
-from .sim.paper_analysis import _component_table, _rms, gait_like_motion
-from .sim.studies import MAX_CYCLES
-
-__all__ = ["build_parser", "gait_like_motion", "main"]
+from ..domains import MAX_ROBOT_JOINTS
+from ..model.parts import SEA_WATER, Water
+from ..robot.leg import Leg
+from ..robot.tree import Robot
+from .argument_types import _depth, _finite, _n_joints, _non_negative, _positive
+from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 
 #: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
 #: longer inputs report progress on stderr.
 CHUNK_ROWS = 100_000
 
 
-def _demo(args: argparse.Namespace) -> int:
-    leg = Leg.paper()
-    water = Water(density=args.density, gravity=9.81)
-    t, q, qd, qdd = gait_like_motion(args.samples, args.period)
-    tau = leg.hydro(q, qd, qdd, cd=args.cd, cm=args.cm, water=water)
-    print(f"uwml demo: the paper's leg (Table II) in water of {water.density:g} kg/m³, Cd = {args.cd:g}, Cm = {args.cm:g},")
-    print(f"along a gait-like motion of period {args.period:g} s. Torques on each joint [N·m], environment on joint.")
-    print("\n".join(_component_table(t, q, qd, tau)))
-    print()
-    print("RMS over the cycle     " + "   ".join(f"joint {j + 1}" for j in range(leg.n_joints)))
-    for name in ("drag", "added_mass", "buoyancy"):
-        print(f"  {name:<20} " + "   ".join(f"{v:7.3f}" for v in _rms(getattr(tau, name))))
-    return 0
-
-
-def _paper(args: argparse.Namespace) -> int:
-    from .sim.paper_analysis import run
-
-    return run(args.out, args.seed)
-
-
-# --------------------------------------------------------------------------------------------
-# uwml torques
-# --------------------------------------------------------------------------------------------
-
-
 def _torques(args: argparse.Namespace) -> int:
-    from .io._log_stream import log_chunks
-    from .model.joint_losses import JointLosses
+    from ..io._log_stream import log_chunks
+    from ..model.joint_losses import JointLosses
 
     out = args.out
     _check_output(out, "--out")
@@ -128,7 +68,7 @@ def _torques(args: argparse.Namespace) -> int:
             schema = pyarrow.schema([(name, pyarrow.float64()) for name in names])
             writer = pyarrow.parquet.ParquetWriter(partial, schema)
         else:
-            from .io._arrow_csv import CsvColumnsWriter
+            from ..io._arrow_csv import CsvColumnsWriter
 
             sys.stdout.flush()
             handle = sys.stdout.buffer if partial is None else open(partial, "wb")  # noqa: SIM115
@@ -171,7 +111,7 @@ def _torques(args: argparse.Namespace) -> int:
 
 
 def _export(args: argparse.Namespace) -> int:
-    from .io.export import to_c, to_rust
+    from ..io.export import to_c, to_rust
 
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
     source = args.robot or "the paper's leg"
@@ -182,7 +122,7 @@ def _export(args: argparse.Namespace) -> int:
 
 
 def _describe(args: argparse.Namespace) -> int:
-    from .viz.describe import describe, draw
+    from ..viz.describe import describe, draw
 
     _check_output(args.plot, "--plot")
     robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
@@ -194,65 +134,15 @@ def _describe(args: argparse.Namespace) -> int:
     return 0
 
 
-# --------------------------------------------------------------------------------------------
-# Parser
-# --------------------------------------------------------------------------------------------
+def _replay(args: argparse.Namespace) -> int:
+    from ..sim.replay import command
+
+    return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json)
 
 
-def _installed_version() -> str:
-    """The installed package's version (its metadata; the source's own when not installed)."""
-    from importlib import metadata
-
-    try:
-        return metadata.version("uwml")
-    except metadata.PackageNotFoundError:
-        return "(not installed)"
-
-
-def build_parser() -> argparse.ArgumentParser:
-    """The ``uwml`` argument parser."""
-    formatter = argparse.RawDescriptionHelpFormatter
-    parser = argparse.ArgumentParser(
-        prog="uwml",
-        description="Hydrodynamic joint torques and joint losses of underwater legs and arms (the paper's 3-DOF leg built in).",
-        epilog=_EXIT,
-    )
-    parser.add_argument("--version", action="version", version=f"uwml {_installed_version()}")
-    commands = parser.add_subparsers(dest="command", required=True)
-
-    demo = commands.add_parser("demo", help="print the paper leg's torque components along a gait-like motion")
-    demo.add_argument("--samples", type=_count, default=9, help=f"samples over one cycle, 2 to {MAX_DEMO_SAMPLES} (default 9)")
-    demo.add_argument("--period", type=_positive, default=2.0, help="cycle period [s] (default 2)")
-    demo.add_argument("--cd", type=_non_negative, default=2.2, help="drag coefficient (default 2.2, the paper's fit)")
-    demo.add_argument("--cm", type=_non_negative, default=0.5, help="added-mass coefficient (default 0.5, the paper's fit)")
-    demo.add_argument("--density", type=_positive, default=1000.0, help="water density [kg/m³] (default 1000)")
-    demo.set_defaults(run=_demo)
-
-    paper = commands.add_parser(
-        "paper",
-        help="reproduce the paper's analysis on built-in defaults: figures, report.md, summary",
-        formatter_class=formatter,
-        description="""The paper's analysis end to end, on built-in defaults (runs in a few seconds):
-
-  * the component torques (total, drag, added mass, buoyancy) of the paper's leg over one cycle
-    of our walking gait, which swings the hip yaw (cf. Fig. 8)            -> fig8_torques.png
-  * a SYNTHETIC land/water experiment (true Cd = 2.2, Cm = 0.5) sized and spoiled like the
-    paper's (noise and a documented model error), its fit on joint 1 (cf. Fig. 7), and what
-    each part of the model error does to Cd and Cm      -> land_water.csv, fig7_fit.png
-  * the joint-loss maps of the ILLUSTRATIVE loss defaults (Figs. 13-14)  -> fig13_14_loss_maps.png
-  * the rated current left after the losses over speed and depth        -> efficiency_map.png
-  * the loss current at 10 r/min, 10 MPa, 20 °C (the paper's 27.4 %)
-  * report.md with the numbers and figure links.
-
-A summary table (RMS torques per joint, fitted Cd and Cm with standard errors, reduced chi-square
-and COD weighted and unweighted beside the paper's, loss current and share) is printed to the
-terminal.""",
-        epilog=_EXIT,
-    )
-    paper.add_argument("--out", default="uwml-paper", metavar="DIR", help="output directory, created if needed (default uwml-paper)")
-    paper.add_argument("--seed", type=_seed, default=0, metavar="N", help="seed of the synthetic experiment's noise (default 0)")
-    paper.set_defaults(run=_paper)
-
+def add_robot_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
+    """``uwml torques``, ``uwml describe``, ``uwml export`` and ``uwml replay`` on the ``uwml``
+    parser's commands."""
     torques = commands.add_parser(
         "torques",
         help="every torque component along a logged trajectory, as CSV (or Parquet)",
@@ -336,48 +226,6 @@ not written (standard output has the rows before it).""",
     export.add_argument("--name", default="ROBOT", metavar="NAME", help="prefix of the C names (default ROBOT)")
     export.set_defaults(run=_export)
 
-    add_fit_commands(commands, formatter)
-    add_study_command(commands, formatter)
-    simulate = commands.add_parser(
-        "simulate",
-        help="the paper's leg walking in sea water under five controllers, simulated (needs uwml[mujoco])",
-        formatter_class=formatter,
-        description="""The paper's control question, simulated (uwml.sim.studies; MuJoCo with uwml's forces and the
-added mass in the mass matrix): the paper's leg on a fixed stand follows our walking gait in sea
-water at 4 °C at each depth, under PD + the land model's feedforward (land), + uwml's hydrodynamic
-feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last two with Cd and
-Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.sim.studies).
-
-A study preset (uwml.study, docs/scale.md): the grid depth x controller of the paper_leg
-scenario, its runs written to --out/study-<fingerprint>/runs/*.parquet (the same depths and
-cycles again reuse them); in this process by default, on Ray with --ray or --address.
-
-Output: a table of RMS and peak tracking error per joint and the motor's positive work per cycle
-(last cycle), or with --json the runs' summaries as JSON; report.md, tracking.png and
-depth_sweep.png in --out. A progress bar on standard error.""",
-        epilog=_EXIT,
-    )
-    simulate.add_argument("--out", default="uwml-simulate", metavar="DIR", help="directory for the report (default uwml-simulate)")
-    simulate.add_argument(
-        "--depths",
-        type=_depth_list,
-        default=[0.0, 1000.0, 3000.0, 6000.0],
-        metavar="0,1000,...",
-        help=f"depths [m], 0 to 11000, at most {MAX_DEPTHS} of them",
-    )
-    simulate.add_argument(
-        "--cycles",
-        type=_cycles,
-        default=2.0,
-        metavar="N",
-        help=f"gait cycles per run, up to {MAX_CYCLES} (default 2; metrics over the last)",
-    )
-    simulate.add_argument("--json", action="store_true", help="print the runs' summaries as JSON only")
-    simulate.add_argument("--ray", action="store_true", help="run the study on a local Ray (default: here, one run after the other)")
-    simulate.add_argument("--address", metavar="ADDR", help="run the study on the Ray cluster at this address")
-    simulate.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
-    simulate.set_defaults(run=_simulate)
-
     replay = commands.add_parser(
         "replay",
         help="simulate the vehicle floating freely while its arm follows a log's joint angles (needs uwml[mujoco])",
@@ -399,47 +247,3 @@ pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against
     replay.add_argument("--parquet", action="store_true", help="write replay.parquet instead of replay.csv")
     replay.add_argument("--json", action="store_true", help="print the errors (or null) as JSON only")
     replay.set_defaults(run=_replay)
-    return parser
-
-
-def _replay(args: argparse.Namespace) -> int:
-    from .sim.replay import command
-
-    return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json)
-
-
-def _simulate(args: argparse.Namespace) -> int:
-    from .study.paper import command
-
-    return command(args.out, args.depths, args.cycles, args.json, ray=args.ray, address=args.address, workers=args.workers)
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit status (0 success, 2 bad input, 1 other failures).
-
-    ``--help`` and usage errors raise ``SystemExit`` (status 0 and 2) from argparse; an
-    unexpected exception (a bug) propagates with its traceback, which exits with status 1.
-    """
-    args = build_parser().parse_args(argv)  # --help and usage errors exit here (status 0 and 2)
-    try:
-        return int(args.run(args))
-    except BrokenPipeError:  # the reader of standard output went away (``uwml torques LOG | head``)
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, sys.stdout.fileno())
-        return 1
-    except (ValueError, OSError) as exc:
-        print(f"uwml: error: {exc}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("uwml: interrupted", file=sys.stderr)
-        return 130
-    except ImportError as exc:  # an optional dependency is missing
-        print(f"uwml: error: {exc}", file=sys.stderr)
-        return 1
-    except MemoryError:
-        print("uwml: error: out of memory (a log too large for this machine's memory?)", file=sys.stderr)
-        return 1
-
-
-if __name__ == "__main__":
-    sys.exit(main())

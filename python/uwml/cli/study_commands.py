@@ -7,13 +7,13 @@ import argparse
 import json
 from typing import Any
 
-from ._cli_arguments import _workers
-from ._cli_common import _EXIT
+from .argument_types import _workers
+from .common import _EXIT
 
 
 def _study(args: argparse.Namespace) -> int:
-    from . import study
-    from .study.runner import progress_bar
+    from .. import study
+    from ..study.runner import progress_bar
 
     config = study.load(args.config)  # every key checked before anything runs
     outcome = study.run_study(

@@ -9,14 +9,14 @@ import os
 from pathlib import Path
 from typing import Any
 
-from ._cli_arguments import _base_rows, _joint_list_or_none, _workers
-from ._cli_common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
-from .fit.robot_design import BASE_ROWS
-from .robot.leg import Leg
+from ..fit.robot_design import BASE_ROWS
+from ..robot.leg import Leg
+from .argument_types import _base_rows, _joint_list_or_none, _workers
+from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 
 
 def _fit_hydro(args: argparse.Namespace) -> int:
-    from . import fit
+    from .. import fit
 
     _check_output(args.plot, "--plot")
     leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
@@ -45,7 +45,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         points=not args.no_points,
     )
     if args.plot is not None:
-        from .viz import plot
+        from ..viz import plot
 
         plot.hydro_fit_plot(result, args.plot)
     if args.json:
@@ -66,9 +66,9 @@ def _read_losses(path: str, pairs: bool) -> Any:
     """One loss-experiment CSV, its errors naming it."""
     import csv
 
-    from . import fit
-    from .io._arrow_csv import not_utf8_error
-    from .io.logs import _check_file
+    from .. import fit
+    from ..io._arrow_csv import not_utf8_error
+    from ..io.logs import _check_file
 
     _check_file(path, path)  # no such file, a directory
     try:
@@ -86,13 +86,13 @@ def _read_losses(path: str, pairs: bool) -> Any:
 def _fit_losses(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from . import fit
-    from .fit.log_set import expand_patterns
+    from .. import fit
+    from ..fit.log_set import expand_patterns
 
     paths = [str(p) for p in expand_patterns(list(args.csv))]
     if args.ray or args.address is not None:
         # Each file read and checked by a Ray worker; the rows fitted here.
-        from ._ray import ray_session
+        from .._ray import ray_session
 
         with ray_session(args.address, args.workers) as ray:
             read = ray.remote(_read_losses)
@@ -119,7 +119,7 @@ def _fit_losses(args: argparse.Namespace) -> int:
             raise ValueError(f"{args.csv}: {name} fit: {exc}") from None
     figures = []
     if args.plot is not None:
-        from .viz import plot
+        from ..viz import plot
 
         directory = Path(args.plot)
         directory.mkdir(parents=True, exist_ok=True)
@@ -141,8 +141,8 @@ def _fit_losses(args: argparse.Namespace) -> int:
 def _pair(logs: list[str]) -> tuple[str, str] | None:
     """Two logs of one environment each (``tau*`` columns, not ``tau_land*``): a (land, water)
     pair; anything else: None."""
-    from .io._log_stream import _header
-    from .io.logs import _check_file, _layout
+    from ..io._log_stream import _header
+    from ..io.logs import _check_file, _layout
 
     if len(logs) != 2 or not all(os.path.isfile(path) for path in logs):
         return None

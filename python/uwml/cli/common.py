@@ -7,8 +7,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from .errors import UwmlError
-from .robot.tree import Robot
+from ..errors import UwmlError
+from ..robot.tree import Robot
 
 
 class _UsageError(UwmlError):

@@ -1,0 +1,7 @@
+"""``python -m uwml.cli``: the ``uwml`` command line."""
+
+import sys
+
+from . import main
+
+sys.exit(main())
