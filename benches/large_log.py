@@ -2,7 +2,7 @@
 
 Run: ``python benches/large_log.py [--rows 1e6 1e7] [--formats csv parquet] [--torques] [--dir DIR]``.
 
-The log is synthetic (:func:`uwml.sim.synthetic.land_water_experiment` with the default gait at
+The log is synthetic (:func:`uwml.paper.synthetic.land_water_experiment` with the default gait at
 1 kHz, true Cd = 2.2 and Cm = 0.5; columns time, q, qd, qdd, tau_land, tau_water: 16 columns
 for the paper's 3-joint leg). Every measurement runs in a subprocess of its own, so that the
 peak resident memory (``ru_maxrss`` of that child, from ``os.wait4``) is its alone:
@@ -66,7 +66,7 @@ def fit_settings(n: int) -> None:
     import numpy as np
     import uwml
     from uwml import fit
-    from uwml.sim import synthetic
+    from uwml.paper import synthetic
 
     leg = uwml.Leg.paper()
     start = time.perf_counter()
@@ -111,7 +111,7 @@ def _child(kind: str, n: int, path: str) -> None:
     import uwml
 
     if kind == "write":
-        from uwml.sim import synthetic
+        from uwml.paper import synthetic
 
         leg = uwml.Leg.paper()
         rate = 1000.0

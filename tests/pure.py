@@ -4,7 +4,7 @@
 The pure modules (``model.losses``, ``model.parts`` and the package ``model``, ``sea.oil``,
 ``sea.seawater``, ``sea.conditions``, ``reference``) do not: :func:`load` imports them as
 submodules of a bare package ``uwml_pure`` whose path is ``python/uwml`` (``load("sea.oil")``),
-so their relative imports resolve to the sources under test. ``fit``, ``sim.synthetic`` and
+so their relative imports resolve to the sources under test. ``fit``, ``paper.synthetic`` and
 ``viz.plot`` evaluate the joint losses with the Rust core (``uwml.model.joint_losses``): their
 tests import them from the built package.
 """

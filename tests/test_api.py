@@ -20,7 +20,7 @@ import pytest
 import uwml
 import uwml.cli
 from uwml import reference as ref
-from uwml.sim.paper_analysis import gait_like_motion
+from uwml.paper.analysis import gait_like_motion
 
 RHO, G = 1000.0, 9.81
 RHO_M = 2700.0
@@ -631,7 +631,7 @@ def test_the_gaits_leg_lengths_are_the_papers() -> None:
     """The walking gait's own copy of Table II's lengths equals the core's paper leg and the numpy
     reference's."""
     from uwml import reference
-    from uwml.sim import gait
+    from uwml.paper import gait
 
     leg = uwml.Leg.paper()
     assert (gait.PAPER_L2, gait.PAPER_L3) == (reference.PAPER_L2, reference.PAPER_L3)

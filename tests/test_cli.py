@@ -20,7 +20,7 @@ import uwml
 import uwml.cli
 from uwml import fit
 from uwml.io.logs import Log, write_log
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 
 LEG = uwml.Leg.paper()
 
@@ -564,7 +564,7 @@ def test_size_like_arguments_are_bounded(args: list[str], words: list[str], caps
 
 
 def test_simulate_run_bounds_cycles_before_allocating() -> None:
-    from uwml.sim import studies as simulate
+    from uwml.paper import control_study as simulate
 
     for cycles in (1e12, 101.0, math.nan, math.inf, -1.0, 0.0):
         with pytest.raises(ValueError, match=r"^cycles must be finite and > 0, at most 100 \(gait cycles\), got "):

@@ -1,6 +1,6 @@
 """Tests of ``uwml.fit`` (identification of the joint losses) on synthetic data of known truth.
 
-The truth is the illustrative defaults of ``uwml.model.losses``; ``uwml.sim.synthetic`` adds Gaussian
+The truth is the illustrative defaults of ``uwml.model.losses``; ``uwml.paper.synthetic`` adds Gaussian
 current noise. Recovery is judged by the fit's own standard errors (within 3 of the truth); the
 standard errors by how they shrink with 4× the data.
 """
@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from pure import load
 from uwml import fit
 from uwml.model import losses
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 
 ref = load("reference")
 

@@ -1,7 +1,7 @@
 """Identification of Cd and Cm from land/water logs (``uwml.io.logs``, ``uwml.fit.hydro_coefficients``).
 
 Nothing expected here is produced by the code under test: the truth is the coefficients given to
-the synthetic experiment (``uwml.sim.synthetic.land_water_experiment``, Gaussian torque noise);
+the synthetic experiment (``uwml.paper.synthetic.land_water_experiment``, Gaussian torque noise);
 recovery is judged by the fit's own standard errors; derivatives against the gait's analytic
 ones; window lengths typed from the documented rule; bad files written by hand.
 """
@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from uwml import WalkingGait, fit
 from uwml.fit.log_set import log_set
 from uwml.io import logs
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 from uwml.viz import plot
 
 matplotlib.use("Agg")

@@ -14,7 +14,7 @@ from uwml import fit
 from uwml.cli import main
 from uwml.fit import log_set
 from uwml.io.logs import Log, write_log
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 
 STATISTICS = ("chisqr", "redchi", "rsquared", "aic", "bic", "rss", "cod", "redchi_unweighted")
 

@@ -14,15 +14,16 @@ import uwml
 from uwml import fit
 from uwml.cli import main
 from uwml.io.logs import write_log
+from uwml.paper import synthetic
 from uwml.robot.examples import arm_on_rov
-from uwml.sim import synthetic
+from uwml.sim.prescribed import SineTrajectory
 
-ARM_TRAJECTORY = synthetic.SineTrajectory([0.6, 0.5, 0.7, 0.8, 0.6, 0.9, 0.02], period=2.5)
+ARM_TRAJECTORY = SineTrajectory([0.6, 0.5, 0.7, 0.8, 0.6, 0.9, 0.02], period=2.5)
 
 
 def test_sine_trajectory_derivatives_are_exact() -> None:
     """q̇ and q̈ against central differences of q (step 1e-4 s: truncation ~1e-8 relative)."""
-    trajectory = synthetic.SineTrajectory([0.5, 0.3], period=1.5, offsets=[0.1, -0.2], harmonics=[1, 3], phases=[0.0, 1.0])
+    trajectory = SineTrajectory([0.5, 0.3], period=1.5, offsets=[0.1, -0.2], harmonics=[1, 3], phases=[0.0, 1.0])
     t, h = np.linspace(0.0, 3.0, 31), 1e-4
     q, qd, qdd = trajectory.joint_states(t)
     qp, qm = trajectory.joint_states(t + h)[0], trajectory.joint_states(t - h)[0]
@@ -30,7 +31,7 @@ def test_sine_trajectory_derivatives_are_exact() -> None:
     np.testing.assert_allclose(qdd, (qp - 2 * q + qm) / h**2, atol=1e-4)
     np.testing.assert_allclose(q[0], [0.1, -0.2 + 0.3 * np.sin(1.0)], rtol=1e-15)
     with pytest.raises(ValueError, match="period must be finite and > 0"):
-        synthetic.SineTrajectory([0.1], period=0.0)
+        SineTrajectory([0.1], period=0.0)
 
 
 @pytest.mark.parametrize("per", ["leg", "link", "direction"])

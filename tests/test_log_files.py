@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from uwml.io import _arrow_csv, logs
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 
 HEADER = "time,q1,q2,q3"
 

@@ -1,4 +1,4 @@
-"""The synthetic experiment's model error (``uwml.sim.synthetic.ModelDiscrepancy``) and the paper-like
+"""The synthetic experiment's model error (``uwml.paper.synthetic.ModelDiscrepancy``) and the paper-like
 experiment built with it: each part does what its docstring says, checked against torques
 computed independently (other calls, other time bases), and the paper-like fit's statistics
 come near the paper's 2.425 N·m² and 0.826."""
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import uwml
 from uwml import WalkingGait, fit
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 
 LEG = uwml.Leg.paper()
 GAIT = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT, period=3.0)

@@ -40,6 +40,7 @@ LAYERS = (
     ("uwml.fit",),
     ("uwml.viz",),
     ("uwml.sim",),
+    ("uwml.paper",),
     ("uwml.study",),
     ("uwml.cli", "uwml.__main__"),
 )
@@ -210,9 +211,9 @@ def test_the_graph_reader_sees_relative_imports_and_skips_deferred_ones() -> Non
     graph = _graph()
     assert "uwml.robot.tree" in graph["uwml.robot.leg"]  # from .tree import Robot
     assert "uwml._core" in graph["uwml.robot.leg"]  # from .. import _core
-    assert "uwml.sim.synthetic" in graph["uwml.sim.studies"]  # from . import synthetic
+    assert "uwml.paper.synthetic" in graph["uwml.paper.control_study"]  # from . import synthetic
     assert "uwml.model" in graph["uwml.io.modelfile"]  # entering uwml/model/__init__.py
-    assert "uwml.viz.plot" not in graph["uwml.sim.paper_analysis"]  # imported in a function (matplotlib)
+    assert "uwml.viz.plot" not in graph["uwml.paper.analysis"]  # imported in a function (matplotlib)
     assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
 
 

@@ -8,7 +8,7 @@ import pytest
 from matplotlib.figure import Figure
 from uwml import fit
 from uwml.model import losses
-from uwml.sim import synthetic
+from uwml.paper import synthetic
 from uwml.viz import plot
 
 matplotlib.use("Agg")

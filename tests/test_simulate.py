@@ -1,4 +1,4 @@
-"""``uwml simulate`` (uwml.sim.studies): the paper's leg walking in sea water under four controllers."""
+"""``uwml simulate`` (uwml.paper.control_study): the paper's leg walking in sea water under four controllers."""
 
 from __future__ import annotations
 
@@ -14,7 +14,8 @@ import uwml
 mujoco = pytest.importorskip("mujoco")
 from uwml import study
 from uwml.cli import main
-from uwml.sim import studies as simulate
+from uwml.paper import control_study as simulate
+from uwml.sim.control import rov_drift
 
 
 def test_the_plant_is_table_ii_with_box_inertias() -> None:
@@ -103,7 +104,7 @@ def test_mujocos_fluid_models_beside_uwml() -> None:
 def test_uwmls_base_wrench_helps_an_rov_hold_station() -> None:
     """The arm moving on its free-floating hull in a 0.5 m/s current: with uwml's predicted
     wrench fed to the station keeping, the vehicle drifts and tilts less than with PD alone."""
-    alone, helped = simulate.rov_drift(False, duration=4.0), simulate.rov_drift(True, duration=4.0)
+    alone, helped = rov_drift(False, duration=4.0), rov_drift(True, duration=4.0)
     a, b = alone.summary(), helped.summary()
     assert a["max_drift_m"] > 0.01 and a["rms_attitude_deg"] > 1.0
     assert b["rms_drift_m"] < 0.8 * a["rms_drift_m"] and b["rms_attitude_deg"] < 0.8 * a["rms_attitude_deg"], (a, b)

@@ -85,7 +85,7 @@ def test_study_rows_on_ray_are_the_serial_runs(tmp_path: Path, local_ray: None) 
     assert rows(tmp_path / "ray") == rows(tmp_path / "serial")
     # Against one run made here, directly.
     first = rows(tmp_path / "serial")[0]
-    from uwml.sim.studies import run
+    from uwml.paper.control_study import run
 
     direct = run("land", 0.0, 0.1, payload=first["payload"])
     assert first["rms_error_1"] == direct.rms_error()[0] and first["energy"] == direct.energy()

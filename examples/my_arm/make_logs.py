@@ -11,10 +11,11 @@ kind, kept in the repository (2 cycles at 100 Hz, 400 rows).
 
 import uwml
 from uwml.io.logs import Log
-from uwml.sim import synthetic
+from uwml.paper import synthetic
+from uwml.sim.prescribed import SineTrajectory
 
 arm = uwml.Robot.from_urdf("examples/my_arm/my_arm.urdf", hydro="examples/my_arm/my_arm.hydro.toml")
-motion = synthetic.SineTrajectory([0.6, 0.8], period=2.0)  # the shoulder and the elbow swing
+motion = SineTrajectory([0.6, 0.8], period=2.0)  # the shoulder and the elbow swing
 experiment = synthetic.land_water_experiment(arm, motion, cycles=4, rate_hz=200.0, cd=1.1, cm=0.9, seed=0)
 uwml.write_log(experiment, "land_water.csv")
 uwml.write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), "arm_log.csv")

@@ -13,9 +13,12 @@ sea's conditions at a joint: depth, temperature, hydrostatic pressure; sea water
 :mod:`uwml.model` (joints, links, segments, the water; the joint losses), :mod:`uwml.io` (model
 files, robot descriptions, hydro files, exported code, logs), :mod:`uwml.robot` (:class:`Robot`,
 :class:`Leg` and their results), then :mod:`uwml.fit` (identification), :mod:`uwml.viz` (figures,
-descriptions), :mod:`uwml.sim` (gait, MuJoCo, studies, synthetic experiments) and the command
-line (:mod:`uwml.cli`). :mod:`uwml.reference` is the independent numpy reference (tests and
-checks).
+descriptions), :mod:`uwml.sim` (MuJoCo with uwml's forces, prescribed motion, replay, control),
+:mod:`uwml.paper` (the paper's gait, synthetic experiments, analysis and control study),
+:mod:`uwml.study` (scenarios over grids of parameters, on Ray) and the command line
+(:mod:`uwml.cli`). Below them, the modules every layer may use: :mod:`uwml.errors`,
+:mod:`uwml.domains` and :mod:`uwml.plausibility`. :mod:`uwml.reference` is the independent numpy
+reference (tests and checks); this module is the front door: the names most users need.
 """
 
 from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
@@ -24,6 +27,7 @@ from .model.joint_losses import JointLosses, LossTorques
 from .model.losses import Drive, OilDrag, Seal
 from .model.lumped import LumpedModel
 from .model.parts import Joint, Link, Segment, Water
+from .paper.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .plausibility import PlausibilityWarning
 from .robot.base_motion import BaseMotion
 from .robot.leg import MAX_JOINTS, Leg
@@ -40,7 +44,6 @@ from .robot.results import (
 )
 from .robot.tree import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
 from .sea.conditions import ExtrapolationWarning, hydrostatic_pressure_mpa
-from .sim.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 
 __all__ = [
     "MAX_JOINTS",

@@ -9,7 +9,7 @@ import argparse
 import math
 
 from ..domains import MAX_DEPTH, MAX_ROBOT_JOINTS
-from ..sim.studies import MAX_CYCLES
+from ..paper.control_study import MAX_CYCLES
 
 #: Most samples of ``uwml demo``'s printed table.
 MAX_DEMO_SAMPLES = 10_000

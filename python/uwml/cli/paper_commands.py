@@ -5,12 +5,17 @@ control question, simulated)."""
 from __future__ import annotations
 
 import argparse
+import json
+from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from ..model.parts import Water
+from ..paper.analysis import _component_table, _rms, gait_like_motion
+from ..paper.control_study import CONTROLLERS, MAX_CYCLES, fluid_models, preset, run, write_report
 from ..robot.leg import Leg
-from ..sim.paper_analysis import _component_table, _rms, gait_like_motion
-from ..sim.studies import MAX_CYCLES
+from ..sim.control import ROV_CURRENT, TEMPERATURE_C, rov_drift
 from .argument_types import (
     MAX_DEMO_SAMPLES,
     MAX_DEPTHS,
@@ -41,15 +46,73 @@ def _demo(args: argparse.Namespace) -> int:
 
 
 def _paper(args: argparse.Namespace) -> int:
-    from ..sim.paper_analysis import run
+    from ..paper.analysis import run
 
     return run(args.out, args.seed)
 
 
 def _simulate(args: argparse.Namespace) -> int:
-    from ..study.paper import command
+    """``uwml simulate``: the study of :func:`uwml.paper.control_study.preset`, its report in
+    ``--out``, a summary (or JSON) on standard output."""
+    try:
+        import mujoco  # noqa: F401
+    except ImportError:
+        raise ImportError('uwml simulate needs MuJoCo: pip install "uwml[mujoco]"') from None
+    from ..study import loads, read_results, run_study
+    from ..study.runner import progress_bar
 
-    return command(args.out, args.depths, args.cycles, args.json, ray=args.ray, address=args.address, workers=args.workers)
+    out, depths, cycles, as_json = args.out, args.depths, args.cycles, args.json
+    config = loads(preset(depths, cycles), "uwml simulate")
+    root = Path(out)
+    results = root / f"study-{config.fingerprint()}"
+    resume = (results / "study.json").exists()
+    serial = not (args.ray or args.address)
+    run_study(config, results, serial=serial, address=args.address, workers=args.workers, resume=resume, progress=progress_bar)
+    table = read_results(results)
+    rows: list[dict[str, Any]] = table.to_pylist()
+    failed = [row for row in rows if row["error"] is not None]
+    if failed:
+        raise RuntimeError(f"run {failed[0]['run']} ({failed[0]['controller']} at {failed[0]['depth']:g} m) failed: {failed[0]['error']}")
+    deepest = max(float(d) for d in depths)
+    series = [run(controller, deepest, cycles) for controller in CONTROLLERS]
+    shallowest = min(float(d) for d in depths)
+    lossless = [run(controller, shallowest, cycles, plant_losses=False) for controller in ("hydro", "hydro_wrong")]
+    fluid = fluid_models()
+    drifts = [rov_drift(False), rov_drift(True)]
+    report = write_report(rows, series, root, fluid, drifts, lossless)
+    summaries = [
+        {
+            "controller": row["controller"],
+            "depth_m": row["depth"],
+            "rms_error_rad": [row[f"rms_error_{j}"] for j in (1, 2, 3)],
+            "peak_error_rad": [row[f"peak_error_{j}"] for j in (1, 2, 3)],
+            "positive_work_per_cycle_j": row["positive_work"],
+        }
+        for row in rows
+    ]
+    if as_json:
+        comparison = {name: fluid.relative_difference(name).tolist() for name in ("box", "ellipsoid")}
+        vehicle = [drift.summary() for drift in drifts]
+        print(json.dumps({"runs": summaries, "fluid_models_relative_rms_difference": comparison, "rov": vehicle}))
+        return 0
+    print(f"uwml simulate: the paper's leg on our gait, sea water at {TEMPERATURE_C:g} °C; last of {cycles:g} cycles")
+    columns = [f"RMS j{j} [°]" for j in (1, 2, 3)] + [f"peak j{j} [°]" for j in (1, 2, 3)]
+    print(f"{'depth [m]':>9} {'controller':>18} " + " ".join(f"{c:>12}" for c in columns) + f" {'work/cycle [J]':>15}")
+    for row in summaries:
+        errors = np.degrees([*row["rms_error_rad"], *row["peak_error_rad"]])
+        cells = " ".join(f"{x:12.3f}" for x in errors)
+        print(f"{row['depth_m']:9g} {row['controller']:>18} {cells} {row['positive_work_per_cycle_j']:15.1f}")
+    for name in ("box", "ellipsoid"):
+        difference = ", ".join(f"{100 * x:.0f} %" for x in fluid.relative_difference(name))
+        print(f"MuJoCo's {name} fluid model against uwml on one gait cycle, RMS difference per joint: {difference}")
+    for drift in drifts:
+        summary = drift.summary()
+        print(
+            f"ROV in a {ROV_CURRENT:g} m/s current, station keeping {summary['station_keeping']}: drift {summary['rms_drift_m']:.3f} m RMS, "
+            f"{summary['max_drift_m']:.3f} m max; attitude {summary['rms_attitude_deg']:.1f}° RMS"
+        )
+    print(f"report: {report}; the study's runs: {results}")
+    return 0
 
 
 def add_paper_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
@@ -91,11 +154,11 @@ terminal.""",
         "simulate",
         help="the paper's leg walking in sea water under five controllers, simulated (needs uwml[mujoco])",
         formatter_class=formatter,
-        description="""The paper's control question, simulated (uwml.sim.studies; MuJoCo with uwml's forces and the
+        description="""The paper's control question, simulated (uwml.paper.control_study; MuJoCo with uwml's forces and the
 added mass in the mass matrix): the paper's leg on a fixed stand follows our walking gait in sea
 water at 4 °C at each depth, under PD + the land model's feedforward (land), + uwml's hydrodynamic
 feedforward (hydro), + the joint losses' feedforward (hydro_losses), and the last two with Cd and
-Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.sim.studies).
+Cm 30 % too high (hydro_wrong, hydro_losses_wrong). The plant's inertias are assumed (uniform boxes; see uwml.paper.control_study).
 
 A study preset (uwml.study, docs/scale.md): the grid depth x controller of the paper_leg
 scenario, its runs written to --out/study-<fingerprint>/runs/*.parquet (the same depths and

@@ -74,7 +74,7 @@ def oil_drag(
     Parameters
     ----------
     data_or_path : mapping or str or path or text file
-        Columns (as :func:`uwml.sim.synthetic.three_configuration_experiment` returns) or a CSV file.
+        Columns (as :func:`uwml.paper.synthetic.three_configuration_experiment` returns) or a CSV file.
     drive : Drive
         Torque constant K_t and ratio N of the joint (``torque_constant=1`` to fit in amperes).
     temperature_sensitivity_per_k : float, optional
@@ -274,7 +274,7 @@ def seal(
     Parameters
     ----------
     data_or_path : mapping or str or path or text file
-        Columns (as :func:`uwml.sim.synthetic.three_configuration_experiment` returns) or a CSV file.
+        Columns (as :func:`uwml.paper.synthetic.three_configuration_experiment` returns) or a CSV file.
     drive : Drive
         Torque constant K_t, ratio N and efficiency η of the joint.
     stribeck_speed : float, optional

@@ -1,13 +1,10 @@
-"""Motions, simulations and synthetic experiments: the walking gait (:mod:`uwml.sim.gait`), MuJoCo
-stepped with uwml's forces (:mod:`uwml.sim.mujoco`), the simulation studies of ``uwml simulate``
-(:mod:`uwml.sim.studies`), synthetic experiments with a known truth for the fits
-(:mod:`uwml.sim.synthetic`) and the paper's analysis of ``uwml paper``
-(:mod:`uwml.sim.paper_analysis`).
+"""Simulation of any robot: MuJoCo stepped with uwml's forces, the added mass in the mass matrix
+(:mod:`uwml.sim.mujoco`, with the MJCF of a robot built in code, :mod:`uwml.sim.mjcf`), joint
+motion prescribed or in closed form (:mod:`uwml.sim.prescribed`), a recorded arm motion replayed
+on a floating vehicle (:mod:`uwml.sim.replay`, ``uwml replay``) and closed-loop control: tracking
+and station keeping (:mod:`uwml.sim.control`). The paper's own simulations are
+:mod:`uwml.paper`'s.
 
-The package imports only :mod:`~uwml.sim.gait` (numpy alone); name the others (MuJoCo is imported
-when a simulation is made).
+The package imports none of its modules: name the one you need (MuJoCo is imported when a
+simulation is made).
 """
-
-from .gait import WalkingGait, paper_leg_foot, paper_leg_ik
-
-__all__ = ["WalkingGait", "paper_leg_foot", "paper_leg_ik"]

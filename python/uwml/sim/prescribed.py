@@ -11,6 +11,10 @@ their accelerations the trajectory's is ``τ_p = [(M⁻¹)_pp]⁻¹ (q̈_target 
 accelerations of every degree of freedom change by ``M⁻¹[:, p] τ_p`` (``M`` MuJoCo's mass matrix with
 the added mass in it, factored). It is exact where no constraint (contact, limit, joint friction)
 acts; where one does, the constraint's force is that of the motion without the torque.
+
+:class:`SineTrajectory` is a motion in closed form: sines, one harmonic of a period per joint, an
+exciting trajectory for any robot (the synthetic experiments of :mod:`uwml.paper.synthetic`, the
+vehicle of :func:`uwml.sim.control.rov_drift`).
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-__all__ = ["Trajectory", "imposing_torque"]
+__all__ = ["SineTrajectory", "Trajectory", "imposing_torque"]
 
 FloatArray = NDArray[np.float64]
 MotionFunction = Callable[[float], tuple[ArrayLike, ArrayLike, ArrayLike]]
@@ -113,6 +117,53 @@ class Trajectory:
                 raise ValueError(f"the prescribed motion's {name} at t = {t:g} s must be {self.joints} finite numbers, got {value!r}")
             out.append(array)
         return out[0], out[1], out[2]
+
+
+class SineTrajectory:
+    """Joint states ``q_j(t) = offset_j + amplitude_j sin(2π t / period · harmonic_j + phase_j)``,
+    with their exact derivatives: an exciting trajectory for any robot (every joint moves with
+    its own harmonic of ``period``, so the regressors of different joints are not proportional).
+
+    ``amplitudes`` [rad or m], ``offsets`` (default 0), ``harmonics`` (default 1, 2, 3, ... per
+    joint) and ``phases`` [rad] (default 0.7 j): one per joint; ``period`` [s] > 0.
+    """
+
+    def __init__(
+        self,
+        amplitudes: ArrayLike,
+        period: float = 2.0,
+        offsets: ArrayLike | None = None,
+        harmonics: ArrayLike | None = None,
+        phases: ArrayLike | None = None,
+    ) -> None:
+        amplitude = np.atleast_1d(np.asarray(amplitudes, dtype=np.float64))
+        n = amplitude.size
+        if amplitude.ndim != 1 or n == 0:
+            raise ValueError(f"amplitudes must be one number per joint, got shape {np.shape(amplitudes)}")
+
+        def per_joint(value: ArrayLike | None, default: NDArray[np.float64], name: str) -> NDArray[np.float64]:
+            array = default if value is None else np.broadcast_to(np.asarray(value, dtype=np.float64), (n,)).copy()
+            if not np.all(np.isfinite(array)):
+                raise ValueError(f"{name} must be finite, got {value!r}")
+            return array
+
+        self.amplitudes = per_joint(amplitude, amplitude, "amplitudes")
+        self.offsets = per_joint(offsets, np.zeros(n), "offsets")
+        self.harmonics = per_joint(harmonics, np.arange(1.0, n + 1.0), "harmonics")
+        self.phases = per_joint(phases, 0.7 * np.arange(n, dtype=np.float64), "phases")
+        if not (np.isfinite(period) and period > 0.0):
+            raise ValueError(f"period must be finite and > 0, got {period!r}")
+        self.period = float(period)
+
+    def joint_states(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """``(q, q̇, q̈)`` at times ``t`` [s], each ``(len(t), n_joints)``."""
+        time = np.asarray(t, dtype=np.float64).reshape(-1, 1)
+        omega = 2.0 * np.pi / self.period * self.harmonics
+        angle = omega * time + self.phases
+        q = self.offsets + self.amplitudes * np.sin(angle)
+        qd = self.amplitudes * omega * np.cos(angle)
+        qdd = -self.amplitudes * omega**2 * np.sin(angle)
+        return q, qd, qdd
 
 
 def imposing_torque(mujoco: Any, model: Any, data: Any, dofs: NDArray[np.int64], target: FloatArray) -> FloatArray:

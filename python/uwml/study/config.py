@@ -5,7 +5,7 @@ the parameters that vary, checked whole before anything runs.
 
     # uwml study: the paper's leg tracking its gait, SI units
     [scenario]
-    kind = "paper_leg"          # the only kind so far: uwml.sim.studies.run
+    kind = "paper_leg"          # the only kind so far: uwml.paper.control_study.run
     cycles = 0.5                # gait cycles per run (a parameter below may vary it)
 
     [parameters]                # a list is a grid; a table is a random distribution

@@ -2,9 +2,9 @@
 defaults, and its metrics.
 
 ``paper_leg``: the paper's leg on its stand following the walking gait in sea water under a
-controller, simulated in MuJoCo with uwml's forces (:func:`uwml.sim.studies.run`, whose docstring
+controller, simulated in MuJoCo with uwml's forces (:func:`uwml.paper.control_study.run`, whose docstring
 states the plant and the controllers). Parameters: ``depth`` [m, 0 to 11000; default 0],
-``controller`` (one of :data:`uwml.sim.studies.CONTROLLERS`; default ``hydro``), ``cycles`` (gait
+``controller`` (one of :data:`uwml.paper.control_study.CONTROLLERS`; default ``hydro``), ``cycles`` (gait
 cycles, 0.001 to 100; default 0.5), ``coefficient_scale`` (the controller's Cd and Cm over the
 plant's, 0 to 10; default 1, or 1.3 for the ``_wrong`` controllers), ``payload`` [kg the foot
 carries, unknown to the controller, 0 to 100; default 0]. Metrics over the last gait cycle (or
@@ -25,7 +25,7 @@ period (or the whole run if shorter): ``rms_error_<j>``, ``peak_error_<j>`` per 
 ``positive_work``, ``energy``, as for ``paper_leg``; the metrics' joints are the robot's.
 
 ``rov``: an arm moving on a free-floating ROV in a current while a station-keeping PD holds the
-vehicle (:func:`uwml.sim.studies.rov_drift`): ``station_keeping`` (``pd``, or ``pd_uwml`` with
+vehicle (:func:`uwml.sim.control.rov_drift`): ``station_keeping`` (``pd``, or ``pd_uwml`` with
 the feedforward of uwml's predicted wrench on the vehicle; default ``pd_uwml``), ``duration``
 [s, 0.1 to 600; default 4], ``current`` [m/s along x, 0 to 3; default 0.5]. Metrics: the
 vehicle's drift from its start, ``rms_drift`` and ``max_drift`` [m], and ``rms_attitude`` [°].
@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ..sim.studies import CONTROLLERS, MAX_CYCLES
+from ..paper.control_study import CONTROLLERS, MAX_CYCLES
 
 __all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "SCENARIOS", "run_one"]
 
@@ -112,13 +112,13 @@ def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
 def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> dict[str, float]:
     """One run's metrics (module docstring): the scenario's defaults, then ``settings``, then
     ``parameters``."""
-    from ..sim.studies import run
+    from ..paper.control_study import run
 
     values = DEFAULTS[kind] | settings | parameters
     if kind == "robot":
         return _robot_run(values)
     if kind == "rov":
-        from ..sim.studies import rov_drift
+        from ..sim.control import rov_drift
 
         drift = rov_drift(values["station_keeping"] == "pd_uwml", float(values["duration"]), current=float(values["current"])).summary()
         return {"rms_drift": drift["rms_drift_m"], "max_drift": drift["max_drift_m"], "rms_attitude": drift["rms_attitude_deg"]}
@@ -142,8 +142,8 @@ def _robot_run(values: dict[str, Any]) -> dict[str, float]:
     import numpy as np
 
     from ..robot.files import model_and_robot
+    from ..sim.control import track
     from ..sim.mujoco import Simulation
-    from ..sim.studies import track
 
     model, robot = model_and_robot(values["robot"], values["hydro"], floating=False)
     n = robot.n_joints

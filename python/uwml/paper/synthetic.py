@@ -29,8 +29,8 @@ Steady rows use the hard sign (ε = 0), as the fits do.
 :func:`land_water_experiment` reproduces the paper's hydrodynamic experiment (Section III): the
 leg follows one trajectory on land and in water, and the motor torques of both runs are logged
 (:mod:`uwml.io.logs`), so that :func:`uwml.fit.hydro_coefficients` can be checked against known
-Cd and Cm. With a :class:`uwml.Robot` (any tree) and a :class:`SineTrajectory` (or anything with
-``joint_states(t)``) it does the same for any robot on a fixed base.
+Cd and Cm. With a :class:`uwml.Robot` (any tree) and a :class:`uwml.sim.prescribed.SineTrajectory`
+(or anything with ``joint_states(t)``) it does the same for any robot on a fixed base.
 """
 
 from __future__ import annotations
@@ -49,6 +49,7 @@ from ..model.parts import Water
 from ..robot.leg import Leg
 from ..robot.results import HydroTorques
 from ..robot.tree import Robot
+from ..sim.prescribed import SineTrajectory
 from .gait import WalkingGait
 
 FloatArray = NDArray[np.float64]
@@ -63,7 +64,6 @@ __all__ = [
     "PAPER_LIKE_PERIOD",
     "YAW_STEP_FOOT",
     "ModelDiscrepancy",
-    "SineTrajectory",
     "land_water_experiment",
     "paper_like_experiment",
     "three_configuration_experiment",
@@ -208,53 +208,6 @@ _COULOMB_SPEED = 0.05
 YAW_STEP_FOOT = (0.1, 0.7, -0.6)
 
 
-class SineTrajectory:
-    """Joint states ``q_j(t) = offset_j + amplitude_j sin(2π t / period · harmonic_j + phase_j)``,
-    with their exact derivatives: an exciting trajectory for any robot (every joint moves with
-    its own harmonic of ``period``, so the regressors of different joints are not proportional).
-
-    ``amplitudes`` [rad or m], ``offsets`` (default 0), ``harmonics`` (default 1, 2, 3, ... per
-    joint) and ``phases`` [rad] (default 0.7 j): one per joint; ``period`` [s] > 0.
-    """
-
-    def __init__(
-        self,
-        amplitudes: ArrayLike,
-        period: float = 2.0,
-        offsets: ArrayLike | None = None,
-        harmonics: ArrayLike | None = None,
-        phases: ArrayLike | None = None,
-    ) -> None:
-        amplitude = np.atleast_1d(np.asarray(amplitudes, dtype=np.float64))
-        n = amplitude.size
-        if amplitude.ndim != 1 or n == 0:
-            raise ValueError(f"amplitudes must be one number per joint, got shape {np.shape(amplitudes)}")
-
-        def per_joint(value: ArrayLike | None, default: NDArray[np.float64], name: str) -> NDArray[np.float64]:
-            array = default if value is None else np.broadcast_to(np.asarray(value, dtype=np.float64), (n,)).copy()
-            if not np.all(np.isfinite(array)):
-                raise ValueError(f"{name} must be finite, got {value!r}")
-            return array
-
-        self.amplitudes = per_joint(amplitude, amplitude, "amplitudes")
-        self.offsets = per_joint(offsets, np.zeros(n), "offsets")
-        self.harmonics = per_joint(harmonics, np.arange(1.0, n + 1.0), "harmonics")
-        self.phases = per_joint(phases, 0.7 * np.arange(n, dtype=np.float64), "phases")
-        if not (np.isfinite(period) and period > 0.0):
-            raise ValueError(f"period must be finite and > 0, got {period!r}")
-        self.period = float(period)
-
-    def joint_states(self, t: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-        """``(q, q̇, q̈)`` at times ``t`` [s], each ``(len(t), n_joints)``."""
-        time = np.asarray(t, dtype=np.float64).reshape(-1, 1)
-        omega = 2.0 * np.pi / self.period * self.harmonics
-        angle = omega * time + self.phases
-        q = self.offsets + self.amplitudes * np.sin(angle)
-        qd = self.amplitudes * omega * np.cos(angle)
-        qdd = -self.amplitudes * omega**2 * np.sin(angle)
-        return q, qd, qdd
-
-
 @dataclass(frozen=True)
 class ModelDiscrepancy:
     """What a real land/water experiment has and the identification's model does not.
@@ -307,7 +260,7 @@ class ModelDiscrepancy:
 #: recovered coefficients is in ``uwml paper``'s report.
 PAPER_LIKE_ERROR = ModelDiscrepancy(damping=0.5, water_lag=0.05, cd_speed=0.3, reference_speed=0.3)
 #: The former name of :class:`ModelDiscrepancy`, kept so that old code runs; not in ``__all__``,
-#: so that ``from uwml.sim.synthetic import *`` does not hide :class:`uwml.ModelError` (an exception).
+#: so that ``from uwml.paper.synthetic import *`` does not hide :class:`uwml.ModelError` (an exception).
 ModelError = ModelDiscrepancy
 #: Noise on each measured torque of :func:`paper_like_experiment` [N·m].
 PAPER_LIKE_NOISE = 1.08
