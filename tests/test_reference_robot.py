@@ -1,4 +1,4 @@
-"""Tests of the whole-robot numpy reference ``python/uwml/reference/robot.py`` (docs/model.md section 10).
+"""Tests of the whole-robot numpy reference ``python/uwml/reference/robot_hydro.py`` (docs/model.md section 10).
 
 The package is loaded standalone from its directory (as in ``test_reference.py``), so these tests
 need no compiled extension, except the one against ``uwml.Leg.paper()``. No expected value comes

@@ -100,10 +100,10 @@ something about the model only with a known ``sigma`` (the paper's 2.425 is of t
 """
 
 from .design import CHUNK_SAMPLES, DESIGN_CACHE_BYTES
+from .fit_results import FitResult, LossFit, OilDragFit, SealFit
 from .hydro import HUBER_SCALE, HydroFit, LogDiagnostics, hydro_coefficients
 from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
-from .losses import oil_drag, seal
-from .results import FitResult, LossFit, OilDragFit, SealFit
+from .loss_fits import oil_drag, seal
 
 __all__ = [
     "CHUNK_SAMPLES",

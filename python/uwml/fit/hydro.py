@@ -17,9 +17,9 @@ from ..robot.leg import Leg
 from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .design import DESIGN_CACHE_BYTES, _HydroDesign
+from .fit_results import FitResult, _json_float, _json_floats
 from .least_squares import _fit_statistics, _Solution, _summary_statistics, _uncertainties
 from .log_set import LogSet, log_set
-from .results import FitResult, _json_float, _json_floats
 from .robot_design import BASE_ROWS, _RobotHydroDesign
 
 # --------------------------------------------------------------------------------------------

@@ -12,14 +12,14 @@ import os
 
 from .._checks import shown
 from ..errors import DescriptionError
-from ._files import clipped, not_regular
-from ._files import read_regular as _read_regular
+from ._file_access import clipped, not_regular
+from ._file_access import read_regular as _read_regular
 
 __all__ = ["DescriptionError", "clipped", "not_regular", "quoted", "read_regular"]
 
 
 def read_regular(path: str | os.PathLike[str], what: str) -> bytes:
-    """:func:`uwml.io._files.read_regular` with a :class:`DescriptionError`."""
+    """:func:`uwml.io._file_access.read_regular` with a :class:`DescriptionError`."""
     return _read_regular(path, what, DescriptionError)
 
 

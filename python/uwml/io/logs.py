@@ -87,7 +87,7 @@ from numpy.typing import NDArray
 from .._checks import shown
 from ..domains import MAX_ROBOT_JOINTS
 from ..plausibility import check_time_step
-from ._files import atomic_file, not_regular
+from ._file_access import atomic_file, not_regular
 from .sampling import (
     MAX_TIME_S,
     POLYORDER,

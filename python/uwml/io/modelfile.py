@@ -105,7 +105,7 @@ from ..errors import ModelFileError
 from ..model.joint_losses import JointLosses
 from ..model.lumped import LumpedModel
 from ..model.parts import Joint, Link, Segment, Water
-from ._files import read_regular, write_atomically
+from ._file_access import read_regular, write_atomically
 from ._model_tables import (
     _DENSITY_HINT,
     _GRAVITY_HINT,

@@ -6,12 +6,12 @@ This package re-derives, with numpy only and different algorithms, what the Rust
 * :mod:`.chain`: a serial chain of revolute joints in still water on a fixed, upright base
   (docs/model.md sections 2-5): :func:`hydro`, :func:`regressors`, the paper's leg :func:`paper_leg`
   and the light descriptions :class:`RefJoint`, :class:`RefLink`, :class:`RefSegment`;
-* :mod:`.paper`: the paper's printed equations, :func:`paper_equations` (docs/model.md section 6);
-* :mod:`.losses`: the joint losses of an oil-filled, pressure-compensated joint
+* :mod:`.paper_equations`: the paper's printed equations, :func:`paper_equations` (docs/model.md section 6);
+* :mod:`.loss_torques`: the joint losses of an oil-filled, pressure-compensated joint
   (docs/losses.md, "The models"): :func:`smooth_sign`, :func:`oil_drag_torque`,
   :func:`seal_torque`, :func:`loss_current`, :func:`joint_loss_torques`,
   :func:`hydrostatic_pressure_mpa`;
-* :mod:`.robot`: whole robots (trees of revolute and prismatic joints, a moving base with a body
+* :mod:`.robot_hydro`: whole robots (trees of revolute and prismatic joints, a moving base with a body
   of its own, a uniform current, rectangular and circular segments; docs/model.md section 10):
   :func:`robot_hydro`, :func:`robot_added_mass_matrix`, :func:`robot_link_wrenches`.
 
@@ -37,9 +37,9 @@ from .chain import PAPER_LINK_DENSITY as PAPER_LINK_DENSITY
 from .chain import PAPER_MASSES as PAPER_MASSES
 from .chain import RefJoint, RefLink, RefSegment, hydro, paper_leg, regressors
 from .chain import _drag_integral as _drag_integral
-from .losses import hydrostatic_pressure_mpa, joint_loss_torques, loss_current, oil_drag_torque, seal_torque, smooth_sign
-from .paper import paper_equations
-from .robot import robot_added_mass_matrix, robot_hydro, robot_link_wrenches
+from .loss_torques import hydrostatic_pressure_mpa, joint_loss_torques, loss_current, oil_drag_torque, seal_torque, smooth_sign
+from .paper_equations import paper_equations
+from .robot_hydro import robot_added_mass_matrix, robot_hydro, robot_link_wrenches
 
 __all__ = [
     "RefJoint",

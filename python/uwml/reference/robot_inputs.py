@@ -1,4 +1,4 @@
-"""The inputs of the whole-robot reference (:mod:`uwml.reference.robot`), checked and packed into
+"""The inputs of the whole-robot reference (:mod:`uwml.reference.robot_hydro`), checked and packed into
 arrays: the robot description (joints, bodies, segments, coefficients) and the base motion and
 current of every sample. numpy and the standard library only, like the rest of the reference.
 A body's lumped model (docs/model.md section 12.1) is packed beside its segments."""

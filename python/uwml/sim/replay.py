@@ -424,7 +424,7 @@ def _progress(total: int) -> Any:
 def write_replay(result: Replay, path: str | os.PathLike[str]) -> None:
     """The replay's time, pose and twist as a CSV or Parquet file (by the suffix), written whole
     or not at all (a temporary file renamed over ``path``)."""
-    from ..io._files import atomic_file, write_atomically
+    from ..io._file_access import atomic_file, write_atomically
 
     names = ["time", "x", "y", "z", "qw", "qx", "qy", "qz", "vx", "vy", "vz", "wx", "wy", "wz"]
     table = np.column_stack([result.time, result.position, result.quaternion, result.twist])

@@ -6,13 +6,13 @@ task (local by default, or a cluster), results written incrementally to Parquet
 * :mod:`uwml.study.scenarios`: what one run computes, its parameters and metrics;
 * :mod:`uwml.study.runner`: running them (:func:`run_study`), resuming, failures;
 * :mod:`uwml.study.store`: the output folder: its record, lock and parts, one row per run;
-* :mod:`uwml.study.results`: reading them back (:func:`read_results`), summary, figures.
+* :mod:`uwml.study.study_results`: reading them back (:func:`read_results`), summary, figures.
 """
 
 from .config import ConfigError, StudyConfig, load, loads
-from .results import figures, read_results, summary
 from .runner import StudyOutcome, run_study
 from .store import StudyError
+from .study_results import figures, read_results, summary
 
 __all__ = [
     "ConfigError",

@@ -1,5 +1,5 @@
 """A study's folder (``--out``), kept so that no run is lost, mixed with another study's or
-written twice (:func:`uwml.study.run_study` writes it, :mod:`uwml.study.results` reads it):
+written twice (:func:`uwml.study.run_study` writes it, :mod:`uwml.study.study_results` reads it):
 
 * ``study.json``: the study's fingerprint (:meth:`StudyConfig.fingerprint`), which covers the
   content of its robot's files, and each file's digest: a study resumes only into its own
@@ -30,7 +30,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import UwmlError
-from ..io._files import atomic_file, write_atomically
+from ..io._file_access import atomic_file, write_atomically
 from .config import StudyConfig
 
 __all__ = ["INFRASTRUCTURE", "RUN", "Ledger", "StudyError", "error_kinds", "ledger", "locked", "prepare", "write_rows"]

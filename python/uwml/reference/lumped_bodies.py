@@ -1,4 +1,4 @@
-"""Fossen's lumped hydrodynamic model of a body, for the whole-robot reference (:mod:`.robot`;
+"""Fossen's lumped hydrodynamic model of a body, for the whole-robot reference (:mod:`.robot_hydro`;
 docs/model.md section 12.1). numpy only, like the rest of the reference.
 
 A body may carry, beside or instead of its strips, an added-mass matrix ``M_A``, a linear damping
@@ -35,7 +35,7 @@ from ._inputs import Array
 from .robot_inputs import IndexArray, _Motion, _Robot
 
 if TYPE_CHECKING:  # pragma: no cover - the reference imports this module, not the reverse
-    from .robot import _Kinematics
+    from .robot_hydro import _Kinematics
 
 
 def _fossen(nu: Array, nu_dot: Array, added_mass: Array, linear: Array, quadratic: Array) -> tuple[Array, Array]:

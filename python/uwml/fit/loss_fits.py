@@ -15,9 +15,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..model.losses import RPM, Drive, OilDrag
 from ._types import Array, Columns, PathOrFile
+from .fit_results import OilDragFit, SealFit
 from .least_squares import _least_squares, _Points, _statistics
 from .loss_data import _DEFAULT_TEMPERATURE_C, _groups, _load, _select, _temperatures
-from .results import OilDragFit, SealFit
 
 #: The default drive (the paper's hip-roll joint, illustrative K_t and η).
 _DRIVE = Drive()

@@ -74,7 +74,7 @@ Method
      ``d = −ρ Cm A L``;
    * buoyancy with Froude-Krylov ``ρ V (ċ − g_vec)`` at the centre of buoyancy and gravity
      ``m g_vec`` at the centre of mass;
-   * a body's lumped model (docs/model.md section 12.1; :mod:`.lumped`): Fossen's wrench at its
+   * a body's lumped model (docs/model.md section 12.1; :mod:`.lumped_bodies`): Fossen's wrench at its
      point ``P`` from the relative twist at ``P`` in body components, its damping added to the
      body's drag and its added-mass terms to the body's added mass, whatever the added-mass form.
 4. **Generalized forces as virtual work** of each body's wrench against the explicit joint
@@ -109,7 +109,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._inputs import Array, _number
-from .lumped import _lumped_wrenches
+from .lumped_bodies import _lumped_wrenches
 from .robot_inputs import BoolArray, IndexArray, _coefficients, _Motion, _motion, _Robot, _robot, _sampled
 
 __all__ = ["robot_added_mass_matrix", "robot_hydro", "robot_link_wrenches"]
@@ -378,7 +378,7 @@ def _body_wrenches(
         moment = np.cross(p0, force) + np.cross(e, bar0 / 6.0 + bar1 / 3.0)
         out["added_mass"] = collect(force, moment)
     if len(robot.lumped_body):
-        # Fossen's lumped models (docs/model.md section 12.1; :mod:`.lumped`), on the same bodies.
+        # Fossen's lumped models (docs/model.md section 12.1; :mod:`.lumped_bodies`), on the same bodies.
         for part, (force, moment) in _lumped_wrenches(robot, motion, kin, parts).items():
             out[part] = (out[part][0] + force, out[part][1] + moment)
     g_vec = np.array([0.0, 0.0, -gravity])
