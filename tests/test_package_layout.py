@@ -1,11 +1,19 @@
-"""The package's layout (README, "What is inside"): one idea per subpackage, dependencies pointing
-one way, the numpy reference and matplotlib out of ``import uwml``, no production use of the
-reference, one hydrostatic-pressure formula.
+"""The package's layout (README, "What is inside"): layers, each a subpackage, importing only from
+the layers below; every module in one layer; no module that only re-exports another's names, no
+package that re-exports another package's; no two modules of one name; the numpy reference
+standing alone and, with matplotlib, out of ``import uwml``; short modules; one
+hydrostatic-pressure formula.
 
-The import graph is read from the sources (``ast``): every import a module runs when it is
-imported (at module level, in a class body, under ``if``/``try``/``with``), not those inside
-functions or under ``if TYPE_CHECKING:``. Importing ``uwml.a.b`` from a module outside ``uwml.a``
-also runs ``uwml/a/__init__.py``: that edge is in the graph too.
+The rules hold for any module by where it sits and what it imports, not by a list of names; each
+checker is a function of a graph or a text, and ``test_each_rule_can_fail`` shows it failing on a
+made-up one.
+
+Imports are read from the sources (``ast``). The import-time graph has the imports a module runs
+when it is imported (at module level, in a class body, under ``if``/``try``/``with``), not those in
+functions or under ``if TYPE_CHECKING:``: it must have no circle. The full graph has those in
+functions too (a deferred import is a dependency all the same): its edges must point down.
+Importing ``uwml.a.b`` from a module outside ``uwml.a`` also runs ``uwml/a/__init__.py``: that
+edge is in both.
 """
 
 from __future__ import annotations
@@ -16,23 +24,25 @@ import shutil
 import subprocess
 import sys
 import tomllib
+import types
+from collections.abc import Iterable, Iterator, Mapping
 from functools import cache
 from pathlib import Path
 
 import numpy as np
 import uwml
-from uwml.robot.leg import Leg
 from uwml.sea import conditions
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCE = ROOT / "python" / "uwml"
 REFERENCE = "uwml.reference"
 
-#: The layers, lowest first: a module imports (at module level) only from its own layer or lower
-#: ones. Within a layer the graph must still be acyclic. The package itself (``uwml/__init__.py``)
-#: comes last.
-LAYERS = (
-    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml._ray", "uwml.plausibility"),
+#: The layers, lowest first. A module is in the layer of the name it is or lies under, and
+#: imports only from its own layer (without a circle) and those below. The bottom layer is the
+#: few modules every layer may use: the compiled core, the checks, the inputs' domains, the
+#: errors and warnings, Ray and its watchdog. Then one subpackage a layer.
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("uwml._core", "uwml._checks", "uwml.domains", "uwml.errors", "uwml.plausibility", "uwml._ray", "uwml._watchdog"),
     ("uwml.sea",),
     ("uwml.model",),
     ("uwml.io",),
@@ -42,52 +52,14 @@ LAYERS = (
     ("uwml.sim",),
     ("uwml.paper",),
     ("uwml.study",),
-    ("uwml.cli", "uwml.__main__"),
+    ("uwml.cli",),
 )
-
-#: What ``import uwml`` exposed before the subpackages (public names and modules), still there.
-TOP_LEVEL = [
-    "BaseMotion",
-    "BaseWrench",
-    "DescriptionError",
-    "Drive",
-    "EnvironmentJacobians",
-    "EnvironmentTorques",
-    "ExtrapolationWarning",
-    "HydroRegressors",
-    "HydroTorques",
-    "Joint",
-    "JointLosses",
-    "Leg",
-    "Link",
-    "Log",
-    "LossTorques",
-    "MAX_JOINTS",
-    "MAX_ROBOT_JOINTS",
-    "MAX_SEGMENTS",
-    "ModelError",
-    "ModelFileError",
-    "OilDrag",
-    "Robot",
-    "RobotEnvironment",
-    "RobotJacobians",
-    "RobotRegressors",
-    "RobotTorques",
-    "Seal",
-    "Segment",
-    "UwmlError",
-    "WalkingGait",
-    "Water",
-    "domains",
-    "errors",
-    "hydrostatic_pressure_mpa",
-    "model",
-    "paper_leg_foot",
-    "paper_leg_ik",
-    "read_log",
-    "robot",
-    "write_log",
-]
+#: Above every layer: the front door (``uwml/__init__.py``, the names most users need) and
+#: ``python -m uwml``. The numpy reference stands apart: it imports nothing of uwml, and nothing
+#: of uwml but the front door (lazily) imports it.
+TOP = ("uwml", "uwml.__main__")
+#: Where no layer or the top holds a module.
+NOWHERE = -1
 
 
 def _module_name(path: Path) -> str:
@@ -108,19 +80,32 @@ def _known(name: str) -> bool:
     return name in _modules() or name == "uwml._core"
 
 
+def _under(module: str, head: str) -> bool:
+    return module == head or module.startswith(head + ".")
+
+
+def _layer(module: str) -> int:
+    """The index of ``module``'s layer; ``len(LAYERS)`` for the top; ``NOWHERE`` if none."""
+    for index, heads in enumerate(LAYERS):
+        if any(_under(module, head) for head in heads):
+            return index
+    return len(LAYERS) if module in TOP else NOWHERE
+
+
 def _type_checking(node: ast.If) -> bool:
     test = node.test
     return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
 
 
-def _import_time_nodes(tree: ast.Module):
-    """The import statements a module runs when imported: not in functions, not under TYPE_CHECKING."""
+def _import_nodes(tree: ast.Module, deferred: bool) -> Iterator[ast.Import | ast.ImportFrom]:
+    """The import statements of a module, not under ``if TYPE_CHECKING:``; with ``deferred``
+    those in functions too."""
     stack: list[ast.AST] = list(tree.body)
     while stack:
         node = stack.pop()
         if isinstance(node, (ast.Import, ast.ImportFrom)):
             yield node
-        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)) and not deferred:
             continue
         elif isinstance(node, ast.If) and _type_checking(node):
             stack.extend(node.orelse)
@@ -150,25 +135,31 @@ def _imported(module: str, node: ast.Import | ast.ImportFrom) -> list[str]:
 
 
 @cache
-def _graph() -> dict[str, set[str]]:
-    """Module -> the uwml modules importing it runs (with the packages above them it enters)."""
-    graph: dict[str, set[str]] = {}
+def _graph(deferred: bool = False) -> dict[str, frozenset[str]]:
+    """Module -> the uwml modules its imports run (with the packages above them it enters);
+    ``deferred``: the imports in functions too."""
+    graph: dict[str, frozenset[str]] = {}
     for module, path in _modules().items():
         edges: set[str] = set()
-        for node in _import_time_nodes(ast.parse(path.read_text(encoding="utf-8"))):
+        for node in _import_nodes(ast.parse(path.read_text(encoding="utf-8")), deferred):
             for target in _imported(module, node):
                 edges.add(target)
                 # Importing uwml.a.b from outside uwml.a runs uwml/a/__init__.py first.
                 parts = target.split(".")
                 for k in range(2, len(parts)):
                     package = ".".join(parts[:k])
-                    if not (module == package or module.startswith(package + ".")):
+                    if not _under(module, package):
                         edges.add(package)
-        graph[module] = edges - {module}
+        graph[module] = frozenset(edges - {module})
     return graph
 
 
-def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
+# --------------------------------------------------------------------------------------------
+# The rules, each a function of a graph, the modules' names or a module's text
+# --------------------------------------------------------------------------------------------
+
+
+def _cycle(graph: Mapping[str, Iterable[str]]) -> list[str] | None:
     """One cycle of ``graph`` (its modules in order, the first repeated at the end), or None."""
     state: dict[str, int] = {}  # 1: on the current path, 2: done
     path: list[str] = []
@@ -195,26 +186,85 @@ def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
     return None
 
 
-def _layer(module: str) -> int:
-    for index, heads in enumerate(LAYERS):
-        if any(module == head or module.startswith(head + ".") for head in heads):
-            return index
-    return len(LAYERS)  # the package itself and the former flat modules
+def _without_a_layer(modules: Iterable[str]) -> list[str]:
+    """The modules outside every layer, the top and the reference."""
+    return [m for m in modules if _layer(m) == NOWHERE and not _under(m, REFERENCE)]
+
+
+def _upward(graph: Mapping[str, Iterable[str]]) -> list[str]:
+    """Every import of a module (the reference's aside) from a layer above its own."""
+    return [
+        f"{module} (layer {_layer(module)}) imports {target} (layer {_layer(target)})"
+        for module, targets in sorted(graph.items())
+        if not _under(module, REFERENCE)
+        for target in sorted(targets)
+        if not _under(target, REFERENCE) and _layer(target) > _layer(module)
+    ]
+
+
+def _shared_names(modules: Iterable[str]) -> dict[str, list[str]]:
+    """The names that more than one module or package has (a leading underscore aside: ``_files``
+    and ``files`` read alike), with the modules that have them."""
+    by_name: dict[str, list[str]] = {}
+    for module in modules:
+        last = module.rpartition(".")[2]
+        if module != "uwml" and not (last.startswith("__") and last.endswith("__")):  # __main__ is a role, not a name
+            by_name.setdefault(last.lstrip("_"), []).append(module)
+    return {name: sorted(found) for name, found in sorted(by_name.items()) if len(found) > 1}
+
+
+def _only_re_exports(text: str) -> bool:
+    """Whether a module's text defines nothing: only a docstring, imports and ``__all__``."""
+    for node in ast.parse(text).body:
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            continue
+        if isinstance(node, ast.Expr) and isinstance(node.value, ast.Constant) and isinstance(node.value.value, str):
+            continue
+        if isinstance(node, (ast.Assign, ast.AnnAssign)):
+            targets = node.targets if isinstance(node, ast.Assign) else [node.target]
+            if all(isinstance(t, ast.Name) and t.id == "__all__" for t in targets):
+                continue
+        return False
+    return True
+
+
+def _foreign_imports(package: str, text: str) -> list[str]:
+    """The imports of a package's ``__init__`` from outside the package (``from ..x import``, an
+    absolute ``uwml`` import): a package exports its own modules' names, not another's."""
+    found = []
+    for node in ast.parse(text).body:
+        if isinstance(node, ast.ImportFrom) and node.level > 1:
+            found.append(f"{package}: from {'.' * node.level}{node.module or ''} import ...")
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").split(".")[0] == "uwml":
+            found.append(f"{package}: from {node.module} import ...")
+        elif isinstance(node, ast.Import) and any(a.name.split(".")[0] == "uwml" for a in node.names):
+            found.append(f"{package}: import uwml...")
+    return found
 
 
 # --------------------------------------------------------------------------------------------
-# The import graph
+# The layers
 # --------------------------------------------------------------------------------------------
 
 
-def test_the_graph_reader_sees_relative_imports_and_skips_deferred_ones() -> None:
-    graph = _graph()
-    assert "uwml.robot.tree" in graph["uwml.robot.leg"]  # from .tree import Robot
-    assert "uwml._core" in graph["uwml.robot.leg"]  # from .. import _core
+def test_the_graph_reader_sees_relative_imports_and_tells_deferred_ones() -> None:
+    graph, full = _graph(), _graph(deferred=True)
+    assert "uwml.sim.mujoco" in graph["uwml.sim.control"]  # from .mujoco import Simulation
+    assert "uwml._core" in graph["uwml.sim.mujoco"]  # from .. import _core
     assert "uwml.paper.synthetic" in graph["uwml.paper.control_study"]  # from . import synthetic
     assert "uwml.model" in graph["uwml.io.modelfile"]  # entering uwml/model/__init__.py
-    assert "uwml.viz.plot" not in graph["uwml.paper.analysis"]  # imported in a function (matplotlib)
-    assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    # Imported in a function (matplotlib): not at import time, a dependency all the same.
+    assert "uwml.viz.plot" not in graph["uwml.paper.analysis"] and "uwml.viz.plot" in full["uwml.paper.analysis"]
+
+
+def test_every_module_is_in_a_layer() -> None:
+    """A new module sits in a subpackage (its layer); a flat module at the top of the package,
+    beside the bottom layer's few, has no layer."""
+    assert not _without_a_layer(_modules()), "in no layer (put each in the subpackage of its idea): " + ", ".join(
+        _without_a_layer(_modules())
+    )
+    subpackages = {m for m in _modules() if m.count(".") == 1 and _is_package(m)}
+    assert subpackages == {heads[0] for heads in LAYERS[1:]} | {REFERENCE}, "a layer without its subpackage, or the reverse"
 
 
 def test_no_import_circle() -> None:
@@ -222,30 +272,60 @@ def test_no_import_circle() -> None:
     assert cycle is None, "import circle: " + " -> ".join(cycle or ())
 
 
-def test_dependencies_point_one_way() -> None:
-    upward = [
-        f"{module} (layer {_layer(module)}) imports {target} (layer {_layer(target)})"
-        for module, targets in _graph().items()
-        if not module.startswith(REFERENCE)
-        for target in sorted(targets)
-        if _layer(target) > _layer(module)
-    ]
+def test_dependencies_point_down() -> None:
+    """Every import, deferred ones too, from the module's own layer or one below."""
+    upward = _upward(_graph(deferred=True))
     assert not upward, "\n".join(upward)
+
+
+def test_no_module_only_re_exports_and_packages_export_their_own() -> None:
+    """No shims: every module defines something of its own (a package's ``__init__`` may gather its
+    own modules' names, not another package's; the front door gathers the layers' names)."""
+    shims = [m for m, path in _modules().items() if path.name != "__init__.py" and _only_re_exports(path.read_text(encoding="utf-8"))]
+    assert not shims, f"modules that only re-export: {shims}"
+    foreign = [
+        finding
+        for m, path in _modules().items()
+        if path.name == "__init__.py" and m != "uwml"
+        for finding in _foreign_imports(m, path.read_text(encoding="utf-8"))
+    ]
+    assert not foreign, foreign
+
+
+def test_no_two_modules_share_a_name() -> None:
+    shared = _shared_names(_modules())
+    assert not shared, shared
+
+
+def test_each_rule_can_fail() -> None:
+    """The checkers above, on made-up modules that break each rule."""
+    assert _cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert _upward({"uwml.sea.conditions": {"uwml.robot.tree"}, "uwml.cli.common": {"uwml.robot.tree"}}) == [
+        "uwml.sea.conditions (layer 1) imports uwml.robot.tree (layer 4)"
+    ]
+    assert _upward({"uwml.robot.tree": {"uwml.paper.gait"}})  # a deferred import counts as much
+    assert _upward({"uwml.domains": {"uwml"}})  # nothing imports the front door
+    assert _without_a_layer(["uwml.gait", "uwml.sim.gait", "uwml.reference.chain"]) == ["uwml.gait"]
+    assert _shared_names(["uwml.fit.losses", "uwml.model.losses", "uwml.io._files", "uwml.robot.files", "uwml.sim.__main__"]) == {
+        "files": ["uwml.io._files", "uwml.robot.files"],
+        "losses": ["uwml.fit.losses", "uwml.model.losses"],
+    }
+    shim = '"""The former module."""\n\nfrom .paper.gait import WalkingGait\n\n__all__ = ["WalkingGait"]\n'
+    assert _only_re_exports(shim) and not _only_re_exports(shim + "\nX = 1\n")
+    assert _foreign_imports("uwml.robot", "from .tree import Robot\nfrom ..model.parts import Joint\n") == [
+        "uwml.robot: from ..model.parts import ..."
+    ]
 
 
 def test_the_reference_stands_alone_and_production_code_does_not_use_it() -> None:
     # Every import, deferred ones too: the reference is for tests and checks only.
     users, outside = [], []
-    for module, path in _modules().items():
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        for node in ast.walk(tree):
-            if not isinstance(node, (ast.Import, ast.ImportFrom)):
-                continue
-            for target in _imported(module, node):
-                if module.startswith(REFERENCE) and not target.startswith(REFERENCE):
-                    outside.append(f"{module} imports {target}")
-                if not module.startswith(REFERENCE) and module != "uwml" and target.startswith(REFERENCE):
-                    users.append(f"{module} imports {target}")
+    for module, targets in _graph(deferred=True).items():
+        for target in targets:
+            if _under(module, REFERENCE) and not _under(target, REFERENCE):
+                outside.append(f"{module} imports {target}")
+            if not _under(module, REFERENCE) and module != "uwml" and _under(target, REFERENCE):
+                users.append(f"{module} imports {target}")
     assert not outside, outside
     assert not users, users
 
@@ -265,7 +345,7 @@ def test_modules_stay_short() -> None:
     long = {
         name: n
         for name, path in _modules().items()
-        if not name.startswith(REFERENCE) and (n := len(path.read_text(encoding="utf-8").splitlines())) > 600
+        if not _under(name, REFERENCE) and (n := len(path.read_text(encoding="utf-8").splitlines())) > 600
     }
     assert not long, long
 
@@ -308,7 +388,7 @@ def test_the_pressures_are_the_one_formula_bit_for_bit() -> None:
     pressure, temperature = conditions.loss_conditions(depth, 4.0, 1025.0, 9.81, len(depth))
     assert np.array_equal(pressure, pascal) and np.array_equal(temperature, np.full(len(depth), 4.0))
     # A batch (pressure from Python) and one state at a time (pressure from the core) agree in every bit.
-    leg, losses = Leg.paper(), uwml.JointLosses()
+    leg, losses = uwml.Leg.paper(), uwml.JointLosses()
     q = np.tile([0.1, -0.4, 0.7], (len(depth), 1))
     qd = np.tile([0.3, 0.2, -0.5], (len(depth), 1))
     batch = leg.environment(q, qd, np.zeros_like(q), depth=depth, temperature_c=4.0, losses=losses)
@@ -323,29 +403,30 @@ def test_the_pressures_are_the_one_formula_bit_for_bit() -> None:
 # --------------------------------------------------------------------------------------------
 
 
-def test_the_top_level_namespace_is_unchanged() -> None:
-    """Every name it had, and the ones added since on purpose (the lumped model of
-    docs/model.md section 12.1: ``LumpedModel``, ``MAX_LUMPED_BODIES``; the warning of likely
-    unit mistakes, ``PlausibilityWarning``)."""
-    assert uwml.__all__ == [
-        "MAX_JOINTS", "MAX_LUMPED_BODIES", "MAX_ROBOT_JOINTS", "MAX_SEGMENTS", "BaseMotion", "BaseWrench", "DescriptionError",
-        "Drive", "EnvironmentJacobians", "EnvironmentTorques", "ExtrapolationWarning", "HydroRegressors", "HydroTorques", "Joint",
-        "JointLosses", "Leg", "Link", "Log", "LossTorques", "LumpedModel", "ModelError", "ModelFileError", "OilDrag", "PlausibilityWarning", "Robot",
-        "RobotEnvironment", "RobotJacobians", "RobotRegressors", "RobotTorques", "Seal", "Segment", "UwmlError",
-        "WalkingGait", "Water", "hydrostatic_pressure_mpa", "paper_leg_foot", "paper_leg_ik", "read_log", "write_log",
-    ]  # fmt: skip
-    # After a bare `import uwml`, in a fresh interpreter: every name it had, the modules included.
-    code = f"import uwml; missing = [n for n in {TOP_LEVEL!r} if not hasattr(uwml, n)]; print(missing)"
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120)
-    assert done.returncode == 0 and done.stdout.strip() == "[]", done.stdout + done.stderr
+def test_the_front_door_gives_the_layers_names() -> None:
+    """Each name of ``uwml.__all__`` is there, is no module, and is the object of the layer that
+    defines it (a class or function: its module is in a layer); the package's module attributes
+    are its layers' modules."""
+    assert uwml.__all__ == sorted(uwml.__all__, key=lambda n: (not n.isupper(), n)), "__all__: constants first, then sorted"
+    for name in uwml.__all__:
+        value = getattr(uwml, name)
+        assert not isinstance(value, types.ModuleType), f"uwml.{name} is a module"
+        home = getattr(value, "__module__", None)
+        if getattr(uwml._core, name, None) is value:
+            continue  # the compiled core's (its classes say module "uwml")
+        if isinstance(value, type) or callable(value):
+            assert home is not None and _layer(home) not in (NOWHERE, len(LAYERS)), f"uwml.{name} comes from {home}"
+    modules = [n for n, v in vars(uwml).items() if isinstance(v, types.ModuleType)]
+    assert all(_layer(f"uwml.{n}") not in (NOWHERE, len(LAYERS)) for n in modules), modules
 
 
 def test_the_command_line_entry_points() -> None:
     scripts = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["scripts"]
     module, _, function = scripts["uwml"].partition(":")
     assert callable(getattr(importlib.import_module(module), function))
-    done = subprocess.run([sys.executable, "-m", "uwml", "--help"], capture_output=True, text=True, check=False, timeout=120)
-    assert done.returncode == 0 and "usage: uwml" in done.stdout, done.stderr
+    for program in ("uwml", "uwml.cli"):
+        done = subprocess.run([sys.executable, "-m", program, "--help"], capture_output=True, text=True, check=False, timeout=120)
+        assert done.returncode == 0 and "usage: uwml" in done.stdout, done.stderr
 
 
 # --------------------------------------------------------------------------------------------
