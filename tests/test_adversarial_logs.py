@@ -1,6 +1,6 @@
 """Hostile log files (docs/domains.md, "Log files"): at :func:`uwml.read_log` followed by the
 derivative estimation (what ``uwml fit hydro`` does) and at the streaming reader of
-``uwml torques`` (``uwml._log_stream.log_chunks``, every chunk consumed).
+``uwml torques`` (``uwml.io._log_stream.log_chunks``, every chunk consumed).
 
 What must hold: a correct read, or a ``ValueError`` whose message starts with the file's name,
 says what is wrong and is short (under ``MAX_MESSAGE`` characters); never another exception

@@ -259,9 +259,6 @@ class ModelDiscrepancy:
 #: COD and reduced χ² come near the paper's 0.826 and 2.425 N·m²; each part's effect on the
 #: recovered coefficients is in ``uwml paper``'s report.
 PAPER_LIKE_ERROR = ModelDiscrepancy(damping=0.5, water_lag=0.05, cd_speed=0.3, reference_speed=0.3)
-#: The former name of :class:`ModelDiscrepancy`, kept so that old code runs; not in ``__all__``,
-#: so that ``from uwml.paper.synthetic import *`` does not hide :class:`uwml.ModelError` (an exception).
-ModelError = ModelDiscrepancy
 #: Noise on each measured torque of :func:`paper_like_experiment` [N·m].
 PAPER_LIKE_NOISE = 1.08
 #: Period of the gait of :func:`paper_like_experiment` [s]: slow enough that joint 1's
