@@ -64,7 +64,7 @@ def _negative_mass() -> None:
     leg = uwml.Leg.paper()
     link = copy.copy(leg.links[0])
     object.__setattr__(link, "mass", -1.0)  # past the dataclass's own check, to the core's
-    _core.Chain(leg.joints, [link, *leg.links[1:]])
+    uwml.Leg(leg.joints, [link, *leg.links[1:]])
 
 
 def _bad_model_file() -> None:

@@ -375,7 +375,7 @@ def test_one_pass_design_is_the_regressors(per: str) -> None:
     log = synthetic.land_water_experiment(cycles=0.5, seed=3)
     leg, joints = uwml.Leg.paper(), [2, 0]
     delta = log.tau_water - log.tau_land
-    design = leg._chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, joints, per)
+    design = leg._core.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, joints, per)
     reg = leg.hydro_regressors(log.q, log.qd, log.qdd, per="direction")  # (n, joint, link, k)
     for block, joint in zip(design, joints, strict=True):
         drag, added = reg.drag[:, joint], reg.added_mass[:, joint]
@@ -391,7 +391,7 @@ def test_one_pass_design_is_the_regressors(per: str) -> None:
 
 def test_design_input_errors() -> None:
     log = synthetic.land_water_experiment(cycles=0.1, seed=3)
-    chain, delta = uwml.Leg.paper()._chain, log.tau_water - log.tau_land
+    chain, delta = uwml.Leg.paper()._core, log.tau_water - log.tau_land
     bad = delta.copy()
     bad[3, 1] = np.nan
     with pytest.raises(ValueError, match=r"delta\[3, 1\] is NaN: every value must be finite"):
@@ -433,7 +433,7 @@ def test_huber_iteration_finds_the_minimum_scipy_finds() -> None:
     log.tau_water[outliers, 0] += rng.normal(0.0, 40.0, outliers.size)
     result = fit.hydro_coefficients(log, robust=True, sigma=0.7)
     leg = uwml.Leg.paper()
-    design = leg._chain.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, [0], "leg")[0]
+    design = leg._core.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, [0], "leg")[0]
     x, y = design[:, :2] / 0.7, design[:, 2] / 0.7
     reference = scipy.optimize.least_squares(
         lambda b: x @ b - y, [1.0, 1.0], loss="huber", f_scale=fit.HUBER_SCALE, xtol=1e-14, ftol=1e-14, gtol=1e-14
@@ -460,7 +460,7 @@ def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
     x = np.random.default_rng(2).normal(0.0, 2.0, len(design.names))
     assert np.any(x < 0.0) and np.any(x > 0.0)
     values, targets = design.fitted(x)
-    problem = leg._chain.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, joints, per)
+    problem = leg._core.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, joints, per)
     np.testing.assert_allclose(values, (problem[..., :-1] @ x).T.reshape(-1), rtol=1e-10, atol=1e-10)
     np.testing.assert_array_equal(targets, problem[..., -1].T.reshape(-1))
 

@@ -347,7 +347,7 @@ def test_bad_inputs_to_the_jacobian_and_forward_kinematics():
 
 
 def test_bad_inputs_to_the_binding():
-    chain = _core.Chain.paper()
+    chain = _core.Robot.paper_leg()
     q, point = np.zeros((2, 3)), np.zeros(3)
     for link in (-1, 3, 2**40):
         with pytest.raises(ValueError, match="link"):

@@ -10,8 +10,26 @@ from .model.joint_losses import JointLosses
 from .model.parts import Joint, Link, Segment
 
 _Vec3: TypeAlias = tuple[float, float, float]
-#: A chain segment's parts: start, axis, length, normals, widths, area.
-_SegmentParts: TypeAlias = tuple[_Vec3, _Vec3, float, tuple[_Vec3, _Vec3], tuple[float, float], float]
+#: A robot's validated parts (`Robot.parts`): a joint (parent, kind, origin, axis), a body (mass,
+#: com, volume, cob), a segment (owner, start, axis, length, area, section, normals, widths, diameter,
+#: cd, cm, cd_axial, axial_area).
+_JointParts: TypeAlias = tuple[int, str, _Vec3, _Vec3]
+_BodyParts: TypeAlias = tuple[float, _Vec3, float, _Vec3]
+_SegmentParts: TypeAlias = tuple[
+    int,
+    _Vec3,
+    _Vec3,
+    float,
+    float,
+    str,
+    tuple[_Vec3, _Vec3] | None,
+    tuple[float, float] | None,
+    float | None,
+    tuple[float, float],
+    tuple[float, float],
+    float,
+    float,
+]
 
 __all__ = [
     "ABSOLUTE_ZERO_C",
@@ -29,7 +47,6 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
-    "Chain",
     "Losses",
     "ModelError",
     "MujocoCoupling",
@@ -69,13 +86,23 @@ class Losses:
     def n_joints(self) -> int: ...
 
 @final
-class Chain:
-    def __new__(cls, joints: Sequence[Joint], links: Sequence[Link]) -> Self: ...
+class Robot:
+    def __new__(
+        cls,
+        joints: Sequence[Joint],
+        links: Sequence[Link],
+        base: Link,
+        segments: Sequence[tuple[int, Segment]],
+        bounds: Sequence[tuple[float, float, float]],
+    ) -> Self: ...
     @staticmethod
-    def paper() -> Chain: ...
+    def paper_leg() -> Robot: ...
     @property
     def n_joints(self) -> int: ...
-    def parts(self) -> tuple[list[tuple[_Vec3, _Vec3]], list[tuple[float, _Vec3, float, _Vec3, _SegmentParts | None]]]: ...
+    def parts(self) -> tuple[list[_JointParts], list[_BodyParts], _BodyParts, list[_SegmentParts]]: ...
+    def point_jacobian(
+        self, q: NDArray[np.float64], link: int, point: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
     def hydro_design(
         self,
         q: NDArray[np.float64],
@@ -87,22 +114,6 @@ class Chain:
         joints: Sequence[int],
         per: str,
     ) -> NDArray[np.float64]: ...
-    def point_jacobian(
-        self, q: NDArray[np.float64], link: int, point: NDArray[np.float64]
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
-
-@final
-class Robot:
-    def __new__(
-        cls,
-        joints: Sequence[Joint],
-        links: Sequence[Link],
-        base: Link,
-        segments: Sequence[tuple[int, Segment]],
-        bounds: Sequence[tuple[float, float, float]],
-    ) -> Self: ...
-    @property
-    def n_joints(self) -> int: ...
     def hydro(
         self,
         q: NDArray[np.float64],

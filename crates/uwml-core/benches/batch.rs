@@ -7,13 +7,13 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{Chain, Coefficients, JointLosses, Water, environment_torques, hydro_torques, pressure_at_depth};
+use uwml_core::nalgebra::{RealField, convert};
+use uwml_core::{Conditions, JointLosses, RobotData, Water, presets, pressure_at_depth, robot_hydro};
 
 const BATCH: usize = 1024;
 
 /// Deterministic states spread over the joints' ranges (a fixed linear congruential sequence).
-fn states<T: RealField + Copy>() -> Vec<[Vector3<T>; 3]> {
+fn states<T: RealField + Copy>() -> Vec<[[T; 3]; 3]> {
     let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut uniform = |scale: f64| {
         x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
@@ -21,44 +21,44 @@ fn states<T: RealField + Copy>() -> Vec<[Vector3<T>; 3]> {
     };
     (0..BATCH)
         .map(|_| {
-            let mut v = |scale| Vector3::new(uniform(scale), uniform(scale), uniform(scale));
+            let mut v = |scale| [uniform(scale), uniform(scale), uniform(scale)];
             [v(3.0), v(2.0), v(9.0)]
         })
         .collect()
 }
 
 fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
-    let leg = Chain::<T, 3>::paper();
-    let (water, coefficients) = (Water::<T>::default(), Coefficients::<T, 3>::default());
+    let leg = presets::paper_leg::<T>();
+    let water = Water::<T>::default();
     let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
     let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
     let states = states::<T>();
     let mut group = c.benchmark_group(format!("batch{BATCH}/{name}"));
     group.throughput(Throughput::Elements(BATCH as u64));
-    group.bench_function("hydro_torques", |b| {
-        b.iter(|| {
-            for [q, qd, qdd] in black_box(&states) {
-                black_box(hydro_torques(&leg, &water, &coefficients, q, qd, qdd));
-            }
-        })
-    });
-    group.bench_function("environment_torques", |b| {
-        b.iter(|| {
-            for [q, qd, qdd] in black_box(&states) {
-                black_box(environment_torques(&leg, &water, &coefficients, &losses, q, qd, qdd));
-            }
-        })
-    });
+    let mut data = RobotData::new();
+    for (what, conditions) in [
+        ("robot_hydro", Conditions::new(water)),
+        ("robot_hydro+losses", Conditions { losses: Some(&losses), ..Conditions::new(water) }),
+    ] {
+        group.bench_function(what, |b| {
+            b.iter(|| {
+                for [q, qd, qdd] in black_box(&states) {
+                    robot_hydro(&leg, &conditions, [q, qd, qdd], &mut data);
+                    black_box(data.joint_forces());
+                }
+            })
+        });
+    }
     group.finish();
 }
 
 fn bench_lanes(c: &mut Criterion) {
     use simba::simd::WideF64x4;
-    let leg = Chain::<f64, 3>::paper().splat::<WideF64x4>();
-    let (water, coefficients) = (Water::<f64>::default().splat(), Coefficients::<f64, 3>::default().splat());
+    let leg = presets::paper_leg::<f64>().splat::<WideF64x4>();
+    let conditions = Conditions::new(Water::<f64>::default().splat());
     let states = states::<f64>();
     // Four states side by side, one per lane.
-    let lanes: Vec<[Vector3<WideF64x4>; 3]> = states
+    let lanes: Vec<[[WideF64x4; 3]; 3]> = states
         .chunks_exact(4)
         .map(|four| {
             let lane = |k: usize, j: usize| {
@@ -66,15 +66,17 @@ fn bench_lanes(c: &mut Criterion) {
                     [0, 1, 2, 3].map(|l| four.get(l).and_then(|s| s.get(k)?.get(j).copied()).unwrap_or(0.0)),
                 )
             };
-            core::array::from_fn(|k| Vector3::from_fn(|j, _| lane(k, j)))
+            core::array::from_fn(|k| core::array::from_fn(|j| lane(k, j)))
         })
         .collect();
     let mut group = c.benchmark_group(format!("batch{BATCH}/f64x4 (WideF64x4, 4 states per call)"));
     group.throughput(Throughput::Elements(BATCH as u64));
-    group.bench_function("hydro_torques", |b| {
+    let mut data = RobotData::new();
+    group.bench_function("robot_hydro", |b| {
         b.iter(|| {
             for [q, qd, qdd] in black_box(&lanes) {
-                black_box(hydro_torques(&leg, &water, &coefficients, q, qd, qdd));
+                robot_hydro(&leg, &conditions, [q, qd, qdd], &mut data);
+                black_box(data.joint_forces());
             }
         })
     });

@@ -1,38 +1,43 @@
-//! One evaluation of the paper leg's hydrodynamic torques, f64 and f32.
-//! Run: `cargo bench -p uwml-core --bench hydro`.
+//! The paper leg's regressors and kinematics (`robot_hydro_regressors`, `forward_kinematics` and
+//! `point_jacobian` of the foot), f64 and f32; its forces are in `benches/robot.rs`.
+//! Run: `cargo bench -p uwml-core --features std --bench hydro`.
 #![allow(missing_docs)]
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use uwml_core::nalgebra::{RealField, Vector3};
-use uwml_core::{Chain, Coefficients, Water, hydro_regressors, hydro_torques};
+use uwml_core::nalgebra::{RealField, Vector3, convert};
+use uwml_core::{
+    Conditions, KinematicsData, RobotData, Water, forward_kinematics, point_jacobian, presets, robot_hydro_regressors,
+};
 
 fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
-    let leg = Chain::<T, 3>::paper();
-    let water = Water::<T>::default();
-    let coefficients = Coefficients::<T, 3>::default();
-    let v = |a: f64, b: f64, c: f64| {
-        Vector3::new(uwml_core::nalgebra::convert(a), uwml_core::nalgebra::convert(b), uwml_core::nalgebra::convert(c))
-    };
-    let (q, qd, qdd) = (v(0.3, -0.4, 0.6), v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
-    c.bench_function(&format!("hydro_torques/paper/{name}"), |b| {
+    let leg = presets::paper_leg::<T>();
+    let conditions = Conditions::new(Water::<T>::default());
+    let s = |x: [f64; 3]| x.map(convert::<f64, T>);
+    let (q, qd, qdd) = (s([0.3, -0.4, 0.6]), s([0.8, 0.5, -0.7]), s([1.0, -2.0, 0.5]));
+    let mut kinematics = KinematicsData::new();
+    let foot = Vector3::new(T::zero(), T::zero(), convert(-presets::paper::L3));
+    let mut jacobian = [T::zero(); 18];
+    c.bench_function(&format!("kinematics/paper foot/{name}"), |b| {
         b.iter(|| {
-            hydro_torques(
-                black_box(&leg),
-                black_box(&water),
-                black_box(&coefficients),
-                black_box(&q),
-                black_box(&qd),
-                black_box(&qdd),
-            )
+            forward_kinematics(black_box(&leg), black_box(&q), &mut kinematics);
+            point_jacobian(&leg, &kinematics, 2, &foot, &mut jacobian)
         })
     });
-    c.bench_function(&format!("link_motions/paper/{name}"), |b| {
-        b.iter(|| uwml_core::link_motions(black_box(&leg), black_box(&q), black_box(&qd), black_box(&qdd)))
-    });
-    c.bench_function(&format!("hydro_regressors/paper/{name}"), |b| {
-        b.iter(|| hydro_regressors(black_box(&leg), black_box(&water), black_box(&q), black_box(&qd), black_box(&qdd)))
+    let mut data = RobotData::new();
+    let (mut drag, mut added_mass) = ([T::zero(); 54], [T::zero(); 54]);
+    c.bench_function(&format!("robot_hydro_regressors/paper/{name}"), |b| {
+        b.iter(|| {
+            robot_hydro_regressors(
+                black_box(&leg),
+                &conditions,
+                [black_box(&q), &qd, &qdd],
+                &mut data,
+                &mut drag,
+                &mut added_mass,
+            )
+        })
     });
 }
 

@@ -1,33 +1,24 @@
-//! Whole robots: the paper's leg through the chain path (fixed base, still water) and through the
-//! tree path (fixed, and on a moving base in a current), and a 7-joint arm of 14 segments on an
-//! ROV, f64 and f32. Run: `cargo bench -p uwml-core --features std --bench robot`.
+//! Whole robots: the paper's leg (`presets::paper_leg`; fixed, and on a moving base in a current),
+//! and a 7-joint arm of 14 segments on an ROV, f64 and f32. Run: `cargo bench -p uwml-core --features std --bench robot`.
 #![allow(missing_docs, clippy::unwrap_used, clippy::expect_used, clippy::panic, clippy::indexing_slicing)]
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use uwml_core::nalgebra::{RealField, Vector3, convert};
-use uwml_core::{
-    BaseMotion, Chain, Coefficients, Conditions, Current, Robot, RobotData, Water, hydro_torques, robot_hydro,
-};
+use uwml_core::nalgebra::{RealField, convert};
+use uwml_core::{BaseMotion, Conditions, Current, RobotData, Water, presets, robot_hydro};
 
 #[path = "common/arm.rs"]
 mod arm;
 
 fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
     let water = Water::<T>::default();
-    let chain = Chain::<T, 3>::paper();
-    let coefficients = Coefficients::<T, 3>::default();
-    let leg = Robot::<T, 3, 2>::from_chain(&chain, &coefficients).unwrap();
+    let leg = presets::paper_leg::<T>();
     let s = |x: [f64; 3]| x.map(convert::<f64, T>);
     let (q, qd, qdd) = (s([0.3, -0.4, 0.6]), s([0.8, 0.5, -0.7]), s([1.0, -2.0, 0.5]));
     let (motion, current) = arm::rov_motion::<T>();
-    c.bench_function(&format!("paper leg, chain path, fixed/{name}"), |b| {
-        let (q, qd, qdd) = (Vector3::from(q), Vector3::from(qd), Vector3::from(qdd));
-        b.iter(|| hydro_torques(black_box(&chain), &water, &coefficients, black_box(&q), &qd, &qdd))
-    });
     let mut data = RobotData::<T, 3>::new();
-    c.bench_function(&format!("paper leg, tree path, fixed/{name}"), |b| {
+    c.bench_function(&format!("paper leg, fixed/{name}"), |b| {
         let fixed = (BaseMotion::fixed(), Current::still());
         b.iter(|| {
             robot_hydro(
@@ -38,7 +29,7 @@ fn bench_for<T: RealField + uwml_core::Real>(c: &mut Criterion, name: &str) {
             )
         })
     });
-    c.bench_function(&format!("paper leg, tree path, moving base in a current/{name}"), |b| {
+    c.bench_function(&format!("paper leg, moving base in a current/{name}"), |b| {
         b.iter(|| {
             robot_hydro(
                 black_box(&leg),

@@ -1,10 +1,12 @@
-//! Wall-clock ns per call of the paper leg's evaluation, and a fixed-work target for callgrind.
-//! Usage: `cargo run --release --example timing -- [n_calls] [kinematics|torques|regressors|environment] [f64|f32]`,
-//! or `... [n_calls] torques f64x4`: `hydro_torques` over simba's `WideF64x4`, four states per call
-//! (and `robot-leg|robot-leg-moving|robot-arm f64x4`: `robot_hydro` so);
-//! `... [n_calls] robot-leg|robot-leg-moving|robot-arm [f64|f32]`: `robot_hydro` on the paper leg
-//! (fixed base in still water, or on a moving base in a current) and on a 7-joint arm of 14
-//! segments on a moving ROV in a current (`benches/common/arm.rs`).
+//! Wall-clock ns per call of the paper leg's evaluation (`presets::paper_leg`), and a fixed-work
+//! target for callgrind. Usage: `cargo run --release --example timing -- [n_calls] [MODE] [T]`, T
+//! `f64` (the default) or `f32`, or `f64x4` (simba's `WideF64x4`, four states per call, for the
+//! `robot-*` modes but `robot-arm-hull`). MODE: `robot-leg` (the default: `robot_hydro`, fixed
+//! base in still water), `robot-leg-moving` (on a moving base in a current), `robot-arm` and
+//! `robot-arm-hull` (a 7-joint arm of 14 segments on a moving ROV in a current, without and with
+//! a lumped hull: `benches/common/arm.rs`), `environment` (the leg with the default losses on all
+//! three joints), `regressors` (`robot_hydro_regressors`), `kinematics` (`forward_kinematics` and
+//! the foot's `point_jacobian`).
 #![allow(missing_docs, clippy::unwrap_used)]
 
 use std::hint::black_box;
@@ -14,9 +16,8 @@ use simba::simd::{SimdValue, WideF64x4};
 
 use uwml_core::nalgebra::{RealField, Vector3, convert};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, JointLosses, LossState, Real, Robot,
-    RobotData, Water, environment_torques, hydro_regressors, hydro_torques, link_motions, pressure_at_depth,
-    robot_hydro,
+    AddedMassForm, BaseMotion, Conditions, Current, JointLosses, KinematicsData, LossState, Real, Robot, RobotData,
+    Water, forward_kinematics, point_jacobian, presets, pressure_at_depth, robot_hydro, robot_hydro_regressors,
 };
 
 #[path = "../benches/common/arm.rs"]
@@ -25,45 +26,57 @@ mod arm;
 // One evaluation each, not inlined into the loop, so that its code can be read on its own; the
 // whole result goes through `black_box`, so that no part of it is optimized away.
 
-/// The leg, the water, the coefficients, and the default losses of all three joints at 1000 m
-/// (computed once, as a controller does when the pressure changes).
-type Model<T> = (Chain<T, 3>, Water<T>, Coefficients<T, 3>, [Option<LossState<T>>; 3]);
+/// The paper's leg, and the default losses of all three joints at 1000 m (computed once, as a
+/// controller does when the pressure changes). The leg with room for a third segment: these modes'
+/// `robot_hydro` is an instantiation of its own, so that the `robot-*` modes' stays the only one
+/// of `Robot<T, 3, 2>` and is inlined into its caller as before.
+type Model<T> = (Robot<T, 3, 3>, [Option<LossState<T>>; 3]);
 
+/// The leg's workspaces.
+type Work<T> = (RobotData<T, 3>, KinematicsData<T, 3>);
+
+/// The foot's position and Jacobian (`forward_kinematics` and `point_jacobian`).
 #[inline(never)]
-fn kinematics<T: RealField + Copy>((leg, _, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
-    black_box(link_motions(leg, q, qd, qdd))[2].origin.x
+fn kinematics<T: RealField + Real>((leg, _): &Model<T>, [q, _, _]: &[[T; 3]; 3], (_, data): &mut Work<T>) -> T {
+    forward_kinematics(leg, q, data);
+    let mut jacobian = [T::zero(); 18];
+    let foot = Vector3::new(T::zero(), T::zero(), convert(-presets::paper::L3));
+    let position = point_jacobian(leg, data, 2, &foot, &mut jacobian);
+    black_box(jacobian)[0] + black_box(position).map_or(T::zero(), |p| p.x)
 }
 
+/// Every drag and added-mass column of the leg (`robot_hydro_regressors`).
 #[inline(never)]
-fn torques<T: RealField + Real>((leg, water, coefficients, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
-    black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
-}
-
-#[inline(never)]
-fn regressors<T: RealField + Real>((leg, water, _, _): &Model<T>, [q, qd, qdd]: &[Vector3<T>; 3]) -> T {
-    black_box(hydro_regressors(leg, water, q, qd, qdd)).drag[2][1].x
+fn regressors<T: RealField + Real>((leg, _): &Model<T>, state: &[[T; 3]; 3], (data, _): &mut Work<T>) -> T {
+    let (mut drag, mut added_mass) = ([T::zero(); 54], [T::zero(); 54]); // 9 rows, 6 columns
+    let [q, qd, qdd] = state;
+    robot_hydro_regressors(leg, &Conditions::new(Water::default()), [q, qd, qdd], data, &mut drag, &mut added_mass);
+    black_box(drag)[53] + black_box(added_mass)[53]
 }
 
 /// The paper leg's hydrodynamics plus the default joint losses on all three joints.
 #[inline(never)]
-fn environment<T: RealField + Real>(
-    (leg, water, coefficients, losses): &Model<T>,
-    [q, qd, qdd]: &[Vector3<T>; 3],
-) -> T {
-    black_box(environment_torques(leg, water, coefficients, losses, q, qd, qdd)).seal.x
+fn environment<T: RealField + Real>((leg, losses): &Model<T>, state: &[[T; 3]; 3], (data, _): &mut Work<T>) -> T {
+    let [q, qd, qdd] = state;
+    robot_hydro(leg, &Conditions { losses: Some(losses), ..Conditions::new(Water::default()) }, [q, qd, qdd], data);
+    black_box(data.joint_losses()).first().map_or(T::zero(), |l| l.seal)
 }
 
+/// One of the evaluations above.
+type Evaluation<T> = fn(&Model<T>, &[[T; 3]; 3], &mut Work<T>) -> T;
+
 /// Sum of one output per call (so nothing is optimized away); q changes every call.
-fn run<T: RealField + Real>(n: usize, evaluate: fn(&Model<T>, &[Vector3<T>; 3]) -> T) -> f64 {
+fn run<T: RealField + Real>(n: usize, evaluate: Evaluation<T>) -> f64 {
     let pressure = pressure_at_depth::<T>(convert(1000.0), convert(1025.0), convert(9.81)).unwrap();
     let losses = [Some(JointLosses::<T>::default().at(pressure, convert(4.0)).unwrap()); 3];
-    let model = (Chain::<T, 3>::paper(), Water::default(), Coefficients::default(), losses);
-    let v = |a: f64, b: f64, c: f64| Vector3::<T>::new(convert(a), convert(b), convert(c));
+    let model = (presets::paper_leg::<T>().to_capacity().unwrap(), losses);
+    let v = |a: f64, b: f64, c: f64| [a, b, c].map(convert::<f64, T>);
     let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
+    let mut work = (RobotData::new(), KinematicsData::new());
     let mut acc = T::zero();
     for i in 0..n {
         let q = v(0.3 + i as f64 * 1e-7, -0.4, 0.6);
-        acc += evaluate(black_box(&model), &[q, qd, qdd]);
+        acc += evaluate(black_box(&model), &[q, qd, qdd], &mut work);
     }
     // Every RealField here is f32 or f64; their Display round-trips.
     format!("{acc}").parse().unwrap_or(f64::NAN)
@@ -104,16 +117,15 @@ fn run_robot<T: RealField + Real, const J: usize, const S: usize, const B: usize
 }
 
 fn run_mode<T: RealField + Real>(n: usize, mode: &str) -> f64 {
-    let leg = || Robot::<T, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default());
+    let leg = presets::paper_leg::<T>;
     match mode {
-        "robot-leg" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, (BaseMotion::fixed(), Current::still()))),
-        "robot-leg-moving" => leg().map_or(f64::NAN, |leg| run_robot(n, &leg, arm::rov_motion())),
+        "robot-leg-moving" => run_robot(n, &leg(), arm::rov_motion()),
         "robot-arm" => run_robot(n, &arm::arm_on_rov::<T, 7, 15>(), arm::rov_motion()),
         "robot-arm-hull" => run_robot(n, &arm::with_hull(&arm::arm_on_rov::<T, 7, 15>()), arm::rov_motion()),
         "kinematics" => run::<T>(n, kinematics),
         "regressors" => run::<T>(n, regressors),
         "environment" => run::<T>(n, environment),
-        _ => run::<T>(n, torques),
+        _ => run_robot(n, &leg(), (BaseMotion::fixed(), Current::still())),
     }
 }
 
@@ -163,45 +175,18 @@ fn run_robot_lanes<const J: usize, const S: usize>(
     <[f64; 4]>::from(acc).iter().sum()
 }
 
-/// `hydro_torques` over four lanes: four states per call.
-#[inline(never)]
-fn torques_lanes(
-    (leg, water, coefficients): &(Chain<WideF64x4, 3>, Water<WideF64x4>, Coefficients<WideF64x4, 3>),
-    [q, qd, qdd]: &[Vector3<WideF64x4>; 3],
-) -> WideF64x4 {
-    black_box(hydro_torques(leg, water, coefficients, q, qd, qdd)).drag.x
-}
-
-/// [`run`] for [`torques_lanes`]: the sum over the lanes of every call's output.
-fn run_lanes(n: usize) -> f64 {
-    let model =
-        (Chain::<f64, 3>::paper().splat(), Water::<f64>::default().splat(), Coefficients::<f64, 3>::default().splat());
-    let v = |a: f64, b: f64, c: f64| Vector3::new(WideF64x4::splat(a), WideF64x4::splat(b), WideF64x4::splat(c));
-    let (qd, qdd) = (v(0.8, 0.5, -0.7), v(1.0, -2.0, 0.5));
-    let mut acc = WideF64x4::splat(0.0);
-    for i in 0..n {
-        let first = WideF64x4::from([0.0, 1e-3, 2e-3, 3e-3].map(|d| 0.3 + d + i as f64 * 1e-7));
-        let q = Vector3::new(first, WideF64x4::splat(-0.4), WideF64x4::splat(0.6));
-        acc += torques_lanes(black_box(&model), &[q, qd, qdd]);
-    }
-    <[f64; 4]>::from(acc).iter().sum()
-}
-
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(5_000_000);
-    let mode = args.next().unwrap_or_else(|| "torques".to_string());
+    let mode = args.next().unwrap_or_else(|| "robot-leg".to_string());
     let precision = args.next().unwrap_or_else(|| "f64".to_string());
     let start = Instant::now();
     let acc = match precision.as_str() {
         "f32" => run_mode::<f32>(n, &mode),
         "f64x4" => match mode.as_str() {
-            "robot-leg" => Robot::<f64, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default())
-                .map_or(f64::NAN, |leg| run_robot_lanes(n, &leg, (BaseMotion::fixed(), Current::still()))),
-            "robot-leg-moving" => Robot::<f64, 3, 2>::from_chain(&Chain::paper(), &Coefficients::default())
-                .map_or(f64::NAN, |leg| run_robot_lanes(n, &leg, arm::rov_motion())),
+            "robot-leg-moving" => run_robot_lanes(n, &presets::paper_leg(), arm::rov_motion()),
             "robot-arm" => run_robot_lanes(n, &arm::arm_on_rov::<f64, 7, 15>(), arm::rov_motion()),
-            _ => run_lanes(n),
+            _ => run_robot_lanes(n, &presets::paper_leg(), (BaseMotion::fixed(), Current::still())),
         },
         _ => run_mode::<f64>(n, &mode),
     };

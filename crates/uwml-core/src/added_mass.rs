@@ -9,12 +9,15 @@
 
 use nalgebra::{Matrix3, SimdRealField, Vector3};
 
+use crate::check::constant;
 use crate::frames::SegmentGeometry;
+use crate::hydro::{finite_lanes, used};
 use crate::lumped::LumpedFrame;
-use crate::model::{Water, constant};
+use crate::model::Robot;
+use crate::parts::{JointKind, Owner, RobotSegment, Section};
 use crate::real::Real;
-use crate::robot::{JointKind, Owner, Robot, RobotSegment, Section, SegmentCoefficients};
-use crate::tree::{finite_lanes, used};
+use crate::segment_coefficients::SegmentCoefficients;
+use crate::water::Water;
 
 /// A spatial inertia `[[A, B], [Bᵀ, C]]` (linear rows first) about a frame's origin, in its
 /// components: the wrench `−I (a, α)` for the acceleration `a` of the origin and `α`.

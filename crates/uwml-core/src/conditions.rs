@@ -1,15 +1,34 @@
 //! What an evaluation of a whole robot takes besides the robot and its joint state, in one
 //! value (docs/model.md sections 7 and 10): the water, the base's motion, the current, other
-//! coefficients than the segments' own, the added-mass form, and the joints' losses at their
-//! depth and temperature.
+//! coefficients than the segments' own, the added-mass form ([`AddedMassForm`]), and the joints'
+//! losses at their depth and temperature.
 
 use nalgebra::SimdRealField;
 
 use crate::losses::LossState;
-use crate::model::Water;
 use crate::motion::{BaseMotion, Current};
-use crate::robot::SegmentCoefficients;
-use crate::tree::AddedMassForm;
+use crate::segment_coefficients::SegmentCoefficients;
+use crate::water::Water;
+
+/// How the added-mass forces depend on the velocities (docs/simulation.md, "Energy-consistent added
+/// mass"). Both share the added-mass matrix `M_A(q)`, the acceleration part; they differ in the
+/// velocity terms.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum AddedMassForm {
+    /// The paper's Morison form: each slice's added mass on the normal components of its
+    /// acceleration relative to the water, `−ρ Cm_k A (n_k·a) n_k`. Not derived from the water's
+    /// kinetic energy: with drag off it exchanges energy with the robot at the rate of
+    /// docs/simulation.md, "Energy-consistent added mass".
+    #[default]
+    Morison,
+    /// Kirchhoff's form, derived from the water's kinetic energy `T_A = ½ Σ ∫ ρ Cm_k A v_k² ds`:
+    /// each slice, a body with the added-mass tensor `Σ_k ρ Cm_k A n_k n_kᵀ` and relative
+    /// velocity `v`, feels the force `−dp/dt` (`p` its added momentum, `n_k` turning with the
+    /// link) and the couple `−v × p` (Munk's). The generalized forces are then
+    /// `−M_A q̈ − C_A q̇` with `Ṁ_A − 2 C_A` skew-symmetric: in still water, without drag, the
+    /// energy `T_rigid + T_A + V` is conserved.
+    Kirchhoff,
+}
 
 /// The conditions of an evaluation of a robot of up to `J` joints and `S` segments. Start from
 /// [`Conditions::new`] (a fixed, upright base in still water) and set what differs:

@@ -1,127 +1,132 @@
-//! Derivatives of the environment torques for control: `∂τ_env/∂q`, `∂τ_env/∂q̇` and the
-//! added-mass matrix `M_A(q)`, by forward-mode dual numbers ([`Dual`]) through the very same
-//! [`environment_torques`] (no second implementation of the physics to keep in step).
+//! Derivatives of a whole robot's environment forces for control (docs/model.md sections 9 and 10;
+//! the losses of docs/losses.md, "The models"): the generalized forces on the base (its wrench) and
+//! on the joints, their derivatives with respect to the joint positions and to the velocities (base
+//! twist and joint rates), and the added-mass matrix, by forward-mode dual numbers ([`Dual`])
+//! through the very same [`robot_hydro`] (its joint losses included).
 //!
-//! Sign: `τ_env` is the environment's torque on the joints, as everywhere in uwml
-//! (`M(q) q̈ + c(q, q̇) + g(q) = τ_motor + τ_env`). Its added-mass part is linear in `q̈`,
-//! `added_mass(q, q̇, q̈) = −M_A(q) q̈ + (terms in q̇)`, so a simulator adds `M_A(q)` to the
-//! rigid-body inertia: `(M(q) + M_A(q)) q̈ = τ_motor + τ_env(q, q̇, 0) − c − g`. `M_A` is symmetric
-//! and positive semi-definite (the kinetic energy of the entrained water).
-//!
-//! Cost: two dual passes of width `N` (one seeded in `q`, one in `q̇`; each costs a few real
-//! evaluations, the derivative parts being `N` wide; the first's real parts are the value) and `N`
-//! real evaluations (the columns of `M_A`). Stable Rust cannot size one dual number `2N` or `3N` wide from a
-//! `const N` (no generic const expressions), and two passes of width `N` cost about as much as one
-//! of width `2N`: the real part is computed twice, each of `2N` derivatives once.
+//! Rows are `(W, τ)`: the base wrench's six components (force, moment about the base origin,
+//! base frame) then the joints. Columns of `d_velocity` are `(ν, q̇)`: the base twist (`v`, `ω`,
+//! base components) then the joint rates. The dual numbers are [`DUAL_WIDTH`] wide; the `2n + 6`
+//! directions are taken in passes of that many, so the cost grows with the robot, not with the
+//! capacity.
 
-use nalgebra::{RealField, SMatrix, SVector};
+use nalgebra::RealField;
 
+use crate::added_mass::robot_added_mass_matrix;
+use crate::conditions::Conditions;
 use crate::dual::Dual;
-use crate::hydro::hydro_torques;
-use crate::losses::{LossState, environment_torques};
-use crate::model::{Chain, Coefficients, Water};
+use crate::hydro::{RobotData, robot_hydro};
+use crate::model::Robot;
 use crate::real::Real;
 
-/// `τ_env` at a joint state and its derivatives.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EnvironmentJacobians<T: RealField + Copy, const N: usize> {
-    /// `τ_env(q, q̇, q̈)` [N·m]: [`environment_torques`]`(..).total()`, bit for bit.
-    pub value: SVector<T, N>,
-    /// `∂τ_env/∂q` [N·m/rad]: entry `(i, j)` is `∂τ_i/∂q_j`.
-    pub d_q: SMatrix<T, N, N>,
-    /// `∂τ_env/∂q̇` [N·m·s/rad]: entry `(i, j)` is `∂τ_i/∂q̇_j`.
-    pub d_qd: SMatrix<T, N, N>,
-    /// `M_A(q)` [kg·m²], symmetric: `added_mass(q, 0, q̈) = −M_A(q) q̈`, and `∂τ_env/∂q̈ = −M_A(q)`.
-    pub added_mass_matrix: SMatrix<T, N, N>,
+/// Derivative directions per dual pass.
+pub const DUAL_WIDTH: usize = 8;
+
+type D<T> = Dual<T, DUAL_WIDTH>;
+
+/// The workspace of [`robot_jacobians`]: the robot over dual numbers (made once, by
+/// [`RobotJacobianData::new`]) and the evaluations' data. Large for a large capacity (the
+/// robot's every number `DUAL_WIDTH + 1` times): keep one, on the heap where stacks are small.
+#[derive(Clone, Debug)]
+pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize, const B: usize = 0> {
+    robot: Robot<D<T>, J, S, B>,
+    dual: RobotData<D<T>, J>,
 }
 
-/// `v` as constant dual numbers.
-fn constants<T: RealField + Copy, const N: usize>(v: &SVector<T, N>) -> SVector<Dual<T, N>, N> {
-    v.map(Dual::constant)
-}
-
-/// `v` as the `N` seeded inputs: entry `i` has derivative one in direction `i`.
-fn seeded<T: RealField + Copy, const N: usize>(v: &SVector<T, N>) -> SVector<Dual<T, N>, N> {
-    v.map_with_location(|i, _, x| Dual::variable(x, i))
-}
-
-/// The derivative parts of `tau` as a matrix: row `i` is `τ_i`'s.
-fn jacobian<T: RealField + Copy, const N: usize>(tau: &SVector<Dual<T, N>, N>) -> SMatrix<T, N, N> {
-    let mut m = SMatrix::<T, N, N>::zeros();
-    for (mut row, t) in m.row_iter_mut().zip(tau.iter()) {
-        for (slot, &e) in row.iter_mut().zip(t.eps.iter()) {
-            *slot = e;
-        }
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> RobotJacobianData<T, J, S, B> {
+    /// The workspace for `robot` (and only for it).
+    #[must_use]
+    pub fn new(robot: &Robot<T, J, S, B>) -> Self {
+        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new() }
     }
-    m
 }
 
-/// `M_A(q)`, column `j` being `−added_mass(q, 0, e_j)` (exact: the added-mass torque is linear in
-/// `q̈`, and at `q̇ = 0` it has no other terms), symmetrized (`½(M + Mᵀ)`: the two triangles
-/// differ by rounding only).
-fn added_mass_matrix<T: RealField + Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    coefficients: &Coefficients<T, N>,
-    q: &SVector<T, N>,
-) -> SMatrix<T, N, N> {
-    let still = SVector::<T, N>::zeros();
-    let mut m = SMatrix::<T, N, N>::zeros();
-    for (j, mut column) in m.column_iter_mut().enumerate() {
-        let unit = SVector::<T, N>::from_fn(|i, _| if i == j { T::one() } else { T::zero() });
-        column.copy_from(&-hydro_torques(chain, water, coefficients, q, &still, &unit).added_mass);
-    }
-    (m + m.transpose()) * nalgebra::convert::<f64, T>(0.5)
+/// Where [`robot_jacobians`] writes, each row-major with `m = 6 + n` rows (`n` joints).
+pub struct RobotJacobians<'a, T> {
+    /// `(W, τ)` at the state, hydrodynamics plus joint losses (`m`).
+    pub value: &'a mut [T],
+    /// `∂(W, τ)/∂q` (`m × n`).
+    pub d_q: &'a mut [T],
+    /// `∂(W, τ)/∂(ν, q̇)` (`m × m`).
+    pub d_velocity: &'a mut [T],
+    /// The added-mass matrix `M_A = −∂(W, τ)/∂(ν̇, q̈)` (`m × m`), as [`robot_added_mass_matrix`].
+    pub added_mass_matrix: &'a mut [T],
 }
 
-/// `τ_env = τ_hydro + τ_visc + τ_seal` at `(q, q̇, q̈)` with its derivatives `∂τ_env/∂q`,
-/// `∂τ_env/∂q̇` and the added-mass matrix `M_A(q)`; arguments as for [`environment_torques`].
+/// The environment's forces on base and joints, `(W, τ) = hydro (+ joint losses on τ)`, and
+/// their derivatives, into `out` (see [`RobotJacobians`]); arguments as for [`robot_hydro`] (the
+/// losses those of `conditions`). The added-mass matrix is the same for both added-mass forms.
 ///
-/// The derivatives are those of the branch the real evaluation takes, exact up to rounding. Where
-/// the torques are not differentiable, they are one-sided: drag `v|v|` is differentiable
-/// everywhere, but a joint loss at exactly zero speed with a hard sign (`ε = 0`) jumps, and there
-/// `∂/∂q̇` is not meaningful (with `ε > 0` it is the smooth sign's finite slope). Non-finite states
-/// give NaN, as for the torques. Never fails and never panics. Cost: see the [module](self).
-#[must_use]
+/// The derivatives are exact (up to rounding) for the branch the evaluation takes; at a joint
+/// speed of exactly zero with a hard-sign loss model they are one-sided. Outputs shorter than
+/// their sizes get what fits. Never fails, never panics.
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn environment_jacobians<T: RealField + Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    coefficients: &Coefficients<T, N>,
-    losses: &[Option<LossState<T>>; N],
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> EnvironmentJacobians<T, N> {
-    let constant = Dual::<T, N>::constant;
-    let dual_chain = chain.map_scalars(constant);
-    let dual_water = water.map_scalars(constant);
-    let dual_coefficients = coefficients.map_scalars(constant);
-    let dual_losses = losses.map(|state| state.map(|state| state.map_scalars(constant)));
-    let qdd_constant = constants(qdd);
-    let pass = |q: &SVector<Dual<T, N>, N>, qd: &SVector<Dual<T, N>, N>| {
-        environment_torques(&dual_chain, &dual_water, &dual_coefficients, &dual_losses, q, qd, &qdd_constant).total()
-    };
-    let in_q = pass(&seeded(q), &constants(qd));
-    EnvironmentJacobians {
-        // A dual number's real part goes through the very operations of `T`: the value is the
-        // real evaluation's, bit for bit, without a third pass.
-        value: in_q.map(|t| t.re),
-        d_q: jacobian(&in_q),
-        d_qd: jacobian(&pass(&constants(q), &seeded(qd))),
-        added_mass_matrix: added_mass_matrix(chain, water, coefficients, q),
+pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    conditions: &Conditions<'_, T, J, S>,
+    [q, qd, qdd]: [&[T; J]; 3],
+    work: &mut RobotJacobianData<T, J, S, B>,
+    out: RobotJacobians<'_, T>,
+) {
+    let Conditions { water, motion, current, coefficients, form, losses } = *conditions;
+    let n = robot.joint_count();
+    let m = 6 + n;
+    let constant = D::<T>::constant;
+    let water_d = water.map_scalars(constant);
+    let coefficients_d = coefficients.map(|c| c.map_scalars(constant));
+    let no_losses = [None; J];
+    let losses_d = losses.unwrap_or(&no_losses).map(|state| state.map(|state| state.map_scalars(constant)));
+    let current_d = current.map_scalars(constant);
+    let motion_d = motion.map_scalars(constant);
+    let qdd_d = qdd.map(constant);
+    // Direction `k`: q_k for k < n, then ν_{k − n} (6), then q̇_{k − n − 6}.
+    let directions = n + m;
+    let mut start = 0;
+    while start < directions {
+        let seed = |k: usize, x: T| match k.checked_sub(start) {
+            Some(slot) if slot < DUAL_WIDTH => Dual::variable(x, slot),
+            _ => constant(x),
+        };
+        let q_d: [D<T>; J] = core::array::from_fn(|j| seed(j, q.get(j).copied().unwrap_or(T::zero())));
+        let qd_d: [D<T>; J] = core::array::from_fn(|j| seed(n + 6 + j, qd.get(j).copied().unwrap_or(T::zero())));
+        let mut motion_seeded = motion_d;
+        for (i, slot) in motion_seeded.velocity.iter_mut().chain(motion_seeded.angular_velocity.iter_mut()).enumerate()
+        {
+            *slot = seed(n + i, slot.re);
+        }
+        let dual_conditions = Conditions {
+            water: water_d,
+            motion: motion_seeded,
+            current: current_d,
+            coefficients: coefficients_d.as_ref(),
+            form,
+            losses: Some(&losses_d),
+        };
+        robot_hydro(&work.robot, &dual_conditions, [&q_d, &qd_d, &qdd_d], &mut work.dual);
+        let base = work.dual.base_wrench().total().to_array();
+        let losses = work.dual.joint_losses();
+        let joints = work.dual.joint_forces().iter().zip(losses).map(|(f, l)| f.total() + l.visc + l.seal);
+        for (row, value) in base.into_iter().chain(joints).enumerate() {
+            if start == 0
+                && let Some(slot) = out.value.get_mut(row)
+            {
+                *slot = value.re;
+            }
+            for (slot, derivative) in value.eps.iter().enumerate() {
+                let k = start + slot;
+                let target = if k < n {
+                    out.d_q.get_mut(row * n + k)
+                } else if k < directions {
+                    out.d_velocity.get_mut(row * m + k - n)
+                } else {
+                    None
+                };
+                if let Some(target) = target {
+                    *target = *derivative;
+                }
+            }
+        }
+        start += DUAL_WIDTH;
     }
-}
-
-/// [`environment_jacobians`] of the hydrodynamic torques alone (`τ_hydro`, no joint losses).
-#[must_use]
-pub fn hydro_jacobians<T: RealField + Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    coefficients: &Coefficients<T, N>,
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> EnvironmentJacobians<T, N> {
-    environment_jacobians(chain, water, coefficients, &[None; N], q, qd, qdd)
+    robot_added_mass_matrix(robot, &water, coefficients, q, out.added_mass_matrix);
 }

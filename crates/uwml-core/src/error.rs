@@ -2,6 +2,8 @@
 
 use core::fmt;
 
+use crate::bounds::{LUMPED_ABSOLUTE_TOLERANCE, LUMPED_EIGENVALUE_TOLERANCE, LUMPED_SYMMETRY_TOLERANCE};
+
 /// What was wrong with a parameter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Problem {
@@ -63,11 +65,11 @@ impl ModelError {
 impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(i) = self.index {
-            // A robot's segments are numbered on their own (a chain's segment is its link's).
+            // A robot's segments are numbered on their own, apart from its links.
             let owner = match self.field {
                 field if field.starts_with("joint") => "joint",
                 field if field.starts_with("lumped") => "lumped model",
-                "segment.owner" | "segment.section" | "segment.cd" | "segment.cm" | "segment.diameter" => "segment",
+                field if field.starts_with("segment") => "segment",
                 _ => "link",
             };
             write!(f, "{owner} {i}: ")?;
@@ -96,17 +98,17 @@ impl fmt::Display for ModelError {
         };
         write!(f, "{} {allowed}", self.field)?;
         // The lumped model's tolerances (docs/model.md section 12.1), from their constants.
-        let floor = crate::lumped::LUMPED_ABSOLUTE_TOLERANCE;
+        let floor = LUMPED_ABSOLUTE_TOLERANCE;
         match self.problem {
             Problem::NotSymmetric => write!(
                 f,
                 " |m[i][j] - m[j][i]| at most min({:e} x its largest entry, {floor:e})",
-                crate::lumped::LUMPED_SYMMETRY_TOLERANCE
+                LUMPED_SYMMETRY_TOLERANCE
             ),
             Problem::NotPositiveSemidefinite => write!(
                 f,
                 ": its smallest eigenvalue at least -min({:e} x its largest diagonal entry, {floor:e})",
-                crate::lumped::LUMPED_EIGENVALUE_TOLERANCE
+                LUMPED_EIGENVALUE_TOLERANCE
             ),
             _ => Ok(()),
         }

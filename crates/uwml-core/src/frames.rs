@@ -1,5 +1,5 @@
 //! Every body of a robot in a body frame of its own, computed once when the robot is built: what
-//! the evaluation (`crate::tree`) needs that does not depend on the state.
+//! the evaluation (`crate::hydro`) needs that does not depend on the state.
 //!
 //! Body frame `F_i` is link `i`'s frame turned by a constant rotation `R_i` whose third column is
 //! joint `i`'s axis. There the joint axis is `e_z`: a revolute joint turns `F_i` about z by `q`
@@ -11,7 +11,7 @@
 
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
-use crate::robot::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
+use crate::parts::{Owner, RigidBody, RobotSegment, Section, TreeJoint};
 use crate::segment_frame::{SegmentFrame, frame_about};
 
 /// Joint `i` and its link, in the body frames `F_parent` and `F_i`.

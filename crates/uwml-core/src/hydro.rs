@@ -1,222 +1,344 @@
-//! Drag, added-mass, buoyancy and gravity generalized forces of a chain in still water, and
-//! their identification regressors (docs/model.md sections 3 and 4): a convenience for a serial
-//! chain on a fixed base, which is the whole-robot evaluation ([`crate::tree::robot_hydro`]) of
-//! the chain's robot ([`Chain::robot`]) with the chain's coefficients, in the chain's types.
+//! Drag, added mass, buoyancy (with Froude-Krylov) and gravity on a whole robot: the generalized
+//! force on every joint and the wrench on the base (docs/model.md section 10).
 //!
-//! Sign: every torque is exerted by the environment on the joint, in the joint's positive
-//! direction (`M q̈ + c + g = τ_motor + τ_env`).
+//! One forward pass over the joints (parents before children, `crate::kinematics`) gives every
+//! link's motion relative to the water, in its own body frame (`crate::frames`: the joint axis is
+//! z, the link's geometry constant). Each body's segments give their drag and added-mass wrenches about
+//! its joint (exact strip integrals). One backward pass sums them over subtrees, as in recursive
+//! Newton-Euler, with the buoyancy and gravity of a subtree carried as the first moments of its
+//! volume and mass (its force is the total volume or mass times a uniform field). A joint's
+//! generalized force is the z component of its subtree's moment (revolute) or force
+//! (prismatic); the base wrench is the sum over all bodies, in the base frame. Evaluation never
+//! fails and never panics; a non-finite joint state gives NaN.
 
-use nalgebra::{SVector, SimdBool, SimdRealField};
+use nalgebra::{Matrix3, SimdBool, SimdRealField, Vector3};
 
+use crate::algebra::rotate;
 use crate::conditions::Conditions;
-use crate::model::{Chain, Coefficients, Water};
+use crate::kinematics::{Frame, forward};
+use crate::losses::{JointLoss, LossState};
+use crate::model::Robot;
+use crate::parts::{JointKind, Owner};
 use crate::real::Real;
-use crate::robot::Owner;
-use crate::robot::SegmentCoefficients;
-use crate::tree::{JointForces, RobotData, finite_lanes, hydro_in};
-use crate::tree_regressors::{Column, regressor_columns};
+use crate::segment_forces::{axial_drag, segment_wrenches};
+use crate::wrench::{EnvironmentWrench, JointForces, Wrench};
 
-/// The environment's generalized forces on every joint [N·m].
+/// A subtree's drag and added-mass wrenches about its joint, and the first moments of its volume
+/// and mass about it, in its body frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HydroTorques<T: SimdRealField + Copy, const N: usize> {
-    /// Drag (Morison, quadratic in velocity); `q̇ · drag ≤ 0`.
-    pub drag: SVector<T, N>,
-    /// Added mass (reaction of the accelerated water).
-    pub added_mass: SVector<T, N>,
-    /// Buoyancy at the centres of buoyancy.
-    pub buoyancy: SVector<T, N>,
-    /// Gravity of the links at their centres of mass (not part of [`HydroTorques::total`]).
-    pub gravity: SVector<T, N>,
+struct Subtree<T: SimdRealField + Copy> {
+    drag: Wrench<T>,
+    added_mass: Wrench<T>,
+    volume_moment: Vector3<T>,
+    mass_moment: Vector3<T>,
 }
 
-impl<T: SimdRealField + Copy, const N: usize> HydroTorques<T, N> {
-    /// `drag + added_mass + buoyancy`: the paper's `τ_w`.
-    #[must_use]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn total(&self) -> SVector<T, N> {
-        self.drag + self.added_mass + self.buoyancy
-    }
-
-    /// Every torque vector mapped by `f`: one lane of SIMD torques, say, or a mask applied.
-    #[must_use]
-    #[inline(always)]
-    pub fn map<U: SimdRealField + Copy>(&self, f: impl Fn(&SVector<T, N>) -> SVector<U, N>) -> HydroTorques<U, N> {
-        HydroTorques {
-            drag: f(&self.drag),
-            added_mass: f(&self.added_mass),
-            buoyancy: f(&self.buoyancy),
-            gravity: f(&self.gravity),
-        }
-    }
-}
-
-/// The terms of `τ_hydro = buoyancy + Σ Cd[l][k]·drag[l][k] + Σ Cm[l][k]·added_mass[l][k]`.
+/// The workspace and results of an evaluation of a robot of up to `J` joints (Pinocchio's
+/// `Data`): make one, evaluate into it as often as needed, read the results.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct HydroRegressors<T: SimdRealField + Copy, const N: usize> {
-    /// Buoyancy torques.
-    pub buoyancy: SVector<T, N>,
-    /// Gravity torques (not part of `τ_hydro`).
-    pub gravity: SVector<T, N>,
-    /// `drag[l][k]`: torques on every joint from link `l`'s drag along its normal `k`, at Cd = 1.
-    pub drag: [[SVector<T, N>; 2]; N],
-    /// `added_mass[l][k]`: the same for added mass, at Cm = 1.
-    pub added_mass: [[SVector<T, N>; 2]; N],
+pub struct RobotData<T: SimdRealField + Copy, const J: usize> {
+    pub(crate) frames: [Frame<T>; J],
+    subtree: [Subtree<T>; J],
+    /// Each link's own drag and added-mass wrench, about its joint, in its body frame.
+    own: [Wrench<T>; J],
+    /// The base's own, about its origin.
+    base_own: Wrench<T>,
+    pub(crate) base_frame: Frame<T>,
+    joints: [JointForces<T>; J],
+    losses: [JointLoss<T>; J],
+    base: EnvironmentWrench<T>,
+    joint_count: usize,
+    base_rotation: Matrix3<T>,
+    density: T,
 }
 
-fn contract<T: SimdRealField + Copy, const N: usize>(
-    columns: &[[SVector<T, N>; 2]; N],
-    coefficients: &[[T; 2]; N],
-) -> SVector<T, N> {
-    let mut sum = SVector::<T, N>::zeros();
-    for (link, c) in columns.iter().zip(coefficients.iter()) {
-        for (column, &c) in link.iter().zip(c.iter()) {
-            sum.axpy(c, column, T::one());
-        }
-    }
-    sum
-}
-
-fn sum_columns<T: SimdRealField + Copy, const N: usize>(columns: &[[SVector<T, N>; 2]; N]) -> SVector<T, N> {
-    columns.iter().flatten().fold(SVector::zeros(), |acc, column| acc + column)
-}
-
-impl<T: SimdRealField + Copy, const N: usize> HydroRegressors<T, N> {
-    /// Every column mapped by `f` (see [`HydroTorques::map`]).
+impl<T: SimdRealField + Copy, const J: usize> RobotData<T, J> {
+    /// A workspace for robots of up to `J` joints.
     #[must_use]
-    #[inline(always)]
-    pub fn map<U: SimdRealField + Copy>(&self, f: impl Fn(&SVector<T, N>) -> SVector<U, N>) -> HydroRegressors<U, N> {
-        let columns = |c: &[[SVector<T, N>; 2]; N]| c.each_ref().map(|c| c.each_ref().map(&f));
-        HydroRegressors {
-            buoyancy: f(&self.buoyancy),
-            gravity: f(&self.gravity),
-            drag: columns(&self.drag),
-            added_mass: columns(&self.added_mass),
-        }
-    }
-
-    /// The torques for the given coefficients.
-    #[must_use]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn apply(&self, coefficients: &Coefficients<T, N>) -> HydroTorques<T, N> {
-        HydroTorques {
-            drag: contract(&self.drag, coefficients.cd()),
-            added_mass: contract(&self.added_mass, coefficients.cm()),
-            buoyancy: self.buoyancy,
-            gravity: self.gravity,
+    pub fn new() -> Self {
+        let zero = Vector3::zeros();
+        let frame = Frame::rest();
+        let nothing = T::zero();
+        Self {
+            frames: [frame; J],
+            subtree: [Subtree {
+                drag: Wrench::zero(),
+                added_mass: Wrench::zero(),
+                volume_moment: zero,
+                mass_moment: zero,
+            }; J],
+            own: [Wrench::zero(); J],
+            base_own: Wrench::zero(),
+            base_frame: frame,
+            joints: [JointForces { drag: nothing, added_mass: nothing, buoyancy: nothing, gravity: nothing }; J],
+            losses: [JointLoss { visc: nothing, seal: nothing, current: nothing }; J],
+            base: EnvironmentWrench::zero(),
+            joint_count: 0,
+            base_rotation: Matrix3::identity(),
+            density: nothing,
         }
     }
 
-    /// The paper's drag regressor `R_d = −α`: drag torques with Cd = 1 everywhere.
-    #[must_use]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn drag_uniform(&self) -> SVector<T, N> {
-        sum_columns(&self.drag)
+    /// The generalized force on every joint of the last evaluation.
+    pub fn joint_forces(&self) -> &[JointForces<T>] {
+        self.joints.get(..self.joint_count).unwrap_or(&[])
     }
 
-    /// The paper's added-mass regressor `R_m = −β`: added-mass torques with Cm = 1 everywhere.
-    #[must_use]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn added_mass_uniform(&self) -> SVector<T, N> {
-        sum_columns(&self.added_mass)
+    /// Each joint's oil and seal losses in the last evaluation (zero for a joint without, and for
+    /// all when the conditions had none).
+    pub fn joint_losses(&self) -> &[JointLoss<T>] {
+        self.losses.get(..self.joint_count).unwrap_or(&[])
     }
-}
 
-/// The robot evaluation of the chain at `(q, q̇, q̈)` with the segments' coefficients `table`.
-#[inline(always)]
-fn evaluate<T: Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    table: &SegmentCoefficients<T, N>,
-    [q, qd, qdd]: [&SVector<T, N>; 3],
-) -> RobotData<T, N> {
-    let mut data = RobotData::new();
-    let conditions = Conditions { coefficients: Some(table), ..Conditions::new(*water) };
-    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
-    hydro_in(chain.robot(), &conditions, [&state(q), &state(qd), &state(qdd)], &mut data);
-    data
-}
-
-/// One component of every joint's forces, as a vector.
-#[inline(always)]
-fn each<T: SimdRealField + Copy, const N: usize>(
-    data: &RobotData<T, N>,
-    f: impl Fn(&JointForces<T>) -> T,
-) -> SVector<T, N> {
-    let mut column = [T::zero(); N];
-    for (slot, forces) in column.iter_mut().zip(data.joint_forces()) {
-        *slot = f(forces);
+    /// The wrench on the base of the last evaluation: force and moment about the base origin, base
+    /// components, of everything the environment exerts on the whole robot (docs/model.md section
+    /// 10, "What is computed").
+    pub const fn base_wrench(&self) -> &EnvironmentWrench<T> {
+        &self.base
     }
-    column.into()
-}
 
-/// Regressors of the hydrodynamic torques at joint state `(q, q̇, q̈)`, one column per link
-/// and normal direction: the chain's robot's regressors ([`crate::tree::robot_hydro_regressors`]),
-/// each segment's columns given to the link that carries it. For the torques at given
-/// coefficients, [`hydro_torques`] is faster.
-///
-/// Never fails and never panics; non-finite states give NaN.
-#[must_use]
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn hydro_regressors<T: Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> HydroRegressors<T, N> {
-    let robot = chain.robot();
-    let mut data = RobotData::new();
-    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
-    let zeros = SVector::<T, N>::zeros();
-    let (mut drag, mut added_mass) = ([[zeros; 2]; N], [[zeros; 2]; N]);
-    let conditions = Conditions::new(*water);
-    // Non-finite lanes: NaN in every column, those of links without a segment too.
-    let finite = finite_lanes(&[q.as_slice(), qd.as_slice(), qdd.as_slice()]);
-    let nan = T::zero() / T::zero();
-    if !finite.all() {
-        for column in drag.iter_mut().chain(added_mass.iter_mut()).flatten() {
-            *column = column.map(|x| x.select(finite, nan));
-        }
-    }
-    regressor_columns(
-        robot,
-        &conditions,
-        [&state(q), &state(qd), &state(qdd)],
-        &mut data,
-        |kind, row, column, value| {
-            let (Some(joint), Some(segment)) = (row.checked_sub(6), robot.segments().get(column / 2)) else { return };
-            let Owner::Link(link) = segment.owner else { return };
-            let out = match kind {
-                Column::Drag => &mut drag,
-                Column::AddedMass => &mut added_mass,
+    /// The environment's total wrench on one body (`None`: the base; `Some(i)`: link `i`) in the
+    /// last evaluation, every component (gravity included), as force and moment about the
+    /// body's centre of mass, in WORLD components: what a simulator applies to that body.
+    /// `None` for a link that does not exist.
+    pub fn body_wrench<const S: usize, const B: usize>(
+        &self,
+        robot: &Robot<T, J, S, B>,
+        body: Option<usize>,
+    ) -> Option<Wrench<T>> {
+        let frames = robot.frames();
+        let (own, frame, bulk) = match body {
+            None => (self.base_own, &self.base_frame, &frames.base),
+            Some(i) => match (self.own.get(i), self.frames.get(i), frames.joints.get(i)) {
+                (Some(own), Some(frame), Some(joint)) if i < self.joint_count => (*own, frame, &joint.bulk),
+                _ => return None,
+            },
+        };
+        let b = (frame.water_acceleration - frame.gravity) * self.density;
+        let whole = Wrench {
+            force: own.force + b * bulk.volume + frame.gravity * bulk.mass,
+            moment: own.moment + bulk.volume_moment.cross(&b) + bulk.mass_moment.cross(&frame.gravity),
+        };
+        let mut about_com = whole.moved_from(&-bulk.com);
+        // Up the tree to the base's components, then the world's.
+        let mut at = body;
+        while let Some(i) = at {
+            let (Some(joint), Some(frame), Some(geometry)) =
+                (robot.joints().get(i), self.frames.get(i), frames.joints.get(i))
+            else {
+                break;
             };
-            if let Some(slot) = out.get_mut(link).and_then(|l| l.get_mut(column % 2)).and_then(|c| c.get_mut(joint)) {
-                *slot = value;
-            }
-        },
-    );
-    HydroRegressors { buoyancy: each(&data, |f| f.buoyancy), gravity: each(&data, |f| f.gravity), drag, added_mass }
+            about_com = Wrench {
+                force: frame.in_parent(joint.kind, geometry, &about_com.force),
+                moment: frame.in_parent(joint.kind, geometry, &about_com.moment),
+            };
+            at = joint.parent.filter(|&p| p < i);
+        }
+        Some(Wrench {
+            force: rotate(&self.base_rotation, &about_com.force),
+            moment: rotate(&self.base_rotation, &about_com.moment),
+        })
+    }
 }
 
-/// Drag, added-mass, buoyancy and gravity torques at joint state `(q, q̇, q̈)`: the chain's
-/// robot evaluated with these coefficients.
+impl<T: SimdRealField + Copy, const J: usize> Default for RobotData<T, J> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The first `n` entries.
+pub(crate) fn used<T, const J: usize>(x: &[T; J], n: usize) -> &[T] {
+    x.get(..n).unwrap_or(&[])
+}
+
+/// Which lanes have every joint state finite.
+pub(crate) fn finite_lanes<T: SimdRealField + Copy>(states: &[&[T]]) -> T::SimdBool {
+    let sum = states.iter().flat_map(|s| s.iter()).fold(T::zero(), |sum, &x| sum + x * T::zero());
+    sum.simd_eq(T::zero())
+}
+
+/// Drag, added-mass, buoyancy and gravity forces on every joint of `robot` and the wrench on its
+/// base, and each joint's oil and seal losses if `conditions` has them, at joint state
+/// `[q, q̇, q̈]` (the first `robot.joint_count()` entries of each), into `data` (read
+/// [`RobotData::joint_forces`], [`RobotData::joint_losses`] and [`RobotData::base_wrench`]).
 ///
-/// Never fails and never panics; non-finite states give NaN.
-#[must_use]
+/// Never fails and never panics; a non-finite joint state gives NaN everywhere (in its lane).
 #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn hydro_torques<T: Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    coefficients: &Coefficients<T, N>,
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> HydroTorques<T, N> {
-    let data = evaluate(chain, water, &chain.robot().link_coefficients(coefficients), [q, qd, qdd]);
-    HydroTorques {
-        drag: each(&data, |f| f.drag),
-        added_mass: each(&data, |f| f.added_mass),
-        buoyancy: each(&data, |f| f.buoyancy),
-        gravity: each(&data, |f| f.gravity),
+pub fn robot_hydro<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    conditions: &Conditions<'_, T, J, S>,
+    state: [&[T; J]; 3],
+    data: &mut RobotData<T, J>,
+) {
+    hydro_in(robot, conditions, state, data);
+    let Some(losses) = conditions.losses else { return };
+    let [_, qd, _] = state;
+    let n = robot.joint_count();
+    for ((slot, loss), &speed) in data.losses.iter_mut().zip(losses).zip(qd).take(n) {
+        if let Some(loss) = loss {
+            *slot = joint_loss(loss, speed);
+        }
+    }
+}
+
+/// A joint's losses at output speed `speed` ([`LossState::evaluate`]), lane by lane: every lane
+/// gets exactly the bits of the scalar evaluation of its own state (the loss model branches on
+/// values, which lanes may not share).
+#[inline(always)]
+fn joint_loss<T: Real>(state: &LossState<T>, speed: T) -> JointLoss<T> {
+    let lane = |l: usize| state.map_scalars(|x| x.extract(l)).evaluate(speed.extract(l));
+    let first = lane(0);
+    let mut loss =
+        JointLoss { visc: T::splat(first.visc), seal: T::splat(first.seal), current: T::splat(first.current) };
+    for l in 1..T::LANES {
+        let other = lane(l);
+        loss.visc.replace(l, other.visc);
+        loss.seal.replace(l, other.seal);
+        loss.current.replace(l, other.current);
+    }
+    loss
+}
+
+/// [`robot_hydro`] without the joint losses (whatever `conditions` holds): they are zero.
+#[inline(always)]
+pub(crate) fn hydro_in<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    conditions: &Conditions<'_, T, J, S>,
+    state: [&[T; J]; 3],
+    data: &mut RobotData<T, J>,
+) {
+    let Conditions { water, motion, current, coefficients, form, .. } = conditions;
+    let form = *form;
+    let n = robot.joint_count();
+    let [q, qd, qdd] = state;
+    let finite = finite_lanes(&[used(q, n), used(qd, n), used(qdd, n)]);
+    let rho = water.density();
+    let frames = robot.frames();
+    data.joint_count = n;
+    for slot in data.losses.iter_mut().take(n) {
+        slot.visc = T::zero();
+        slot.seal = T::zero();
+        slot.current = T::zero();
+    }
+    data.base_rotation = *motion.rotation();
+    data.density = rho;
+    let base = Frame::base(motion, water, current);
+    data.base_frame = base;
+    forward(robot, &base, state, &mut data.frames);
+    // Field by field: a whole `Subtree` value would be built aside and copied in.
+    for (subtree, geometry) in data.subtree.iter_mut().zip(&frames.joints).take(n) {
+        subtree.drag = Wrench::zero();
+        subtree.added_mass = Wrench::zero();
+        subtree.volume_moment = geometry.bulk.volume_moment;
+        subtree.mass_moment = geometry.bulk.mass_moment;
+    }
+    let mut total = Subtree {
+        drag: Wrench::zero(),
+        added_mass: Wrench::zero(),
+        volume_moment: frames.base.volume_moment,
+        mass_moment: frames.base.mass_moment,
+    };
+    // Each segment's drag and added mass, on its body, in its body frame.
+    for (k, (segment, geometry)) in robot.segments().iter().zip(&frames.segments).enumerate() {
+        let (cd, cm) = match coefficients {
+            Some(c) => (c.cd.get(k).copied().unwrap_or(segment.cd), c.cm.get(k).copied().unwrap_or(segment.cm)),
+            None => (segment.cd, segment.cm),
+        };
+        let (frame, body) = match segment.owner {
+            Owner::Base => (&base, &mut total),
+            Owner::Link(i) => match (data.frames.get(i), data.subtree.get_mut(i)) {
+                (Some(frame), Some(body)) => (frame, body),
+                _ => continue,
+            },
+        };
+        let (drag, added_mass) = segment_wrenches(frame, segment, geometry, cd, cm, rho, form);
+        body.drag += drag;
+        body.added_mass += added_mass;
+        if geometry.axial {
+            body.drag += axial_drag(frame, segment, geometry, segment.cd_axial, rho);
+        }
+    }
+    // Each lumped model's damping and added mass, on its body (docs/model.md section 12.1).
+    for (owner, model) in robot.lumped().iter() {
+        let (frame, body) = match *owner {
+            Owner::Base => (&base, &mut total),
+            Owner::Link(i) => match (data.frames.get(i), data.subtree.get_mut(i)) {
+                (Some(frame), Some(body)) => (frame, body),
+                _ => continue,
+            },
+        };
+        let (drag, added_mass) = model.wrenches(frame.twist_at(&model.point));
+        body.drag += drag;
+        body.added_mass += added_mass;
+    }
+    data.base_own = total.drag + total.added_mass;
+    for (own, subtree) in data.own.iter_mut().zip(data.subtree.iter()).take(n) {
+        *own = subtree.drag + subtree.added_mass;
+    }
+    // Backward: subtrees summed into their parents; each joint's generalized force.
+    for i in (0..n).rev() {
+        // The subtree is read in place and its parent (before it) written.
+        let (Some(joint), Some(frame), Some(geometry), Some((before, [subtree, ..]))) =
+            (robot.joints().get(i), data.frames.get(i), frames.joints.get(i), data.subtree.split_at_mut_checked(i))
+        else {
+            continue;
+        };
+        let g = frame.gravity;
+        let b = (frame.water_acceleration - g) * rho;
+        let z_cross = |a: &Vector3<T>, b: &Vector3<T>| a.x * b.y - a.y * b.x;
+        let forces = match joint.kind {
+            JointKind::Revolute => JointForces {
+                drag: subtree.drag.moment.z,
+                added_mass: subtree.added_mass.moment.z,
+                buoyancy: z_cross(&subtree.volume_moment, &b),
+                gravity: z_cross(&subtree.mass_moment, &g),
+            },
+            JointKind::Prismatic => JointForces {
+                drag: subtree.drag.force.z,
+                added_mass: subtree.added_mass.force.z,
+                buoyancy: b.z * geometry.subtree_volume,
+                gravity: g.z * geometry.subtree_mass,
+            },
+        };
+        if let Some(slot) = data.joints.get_mut(i) {
+            *slot = forces;
+        }
+        let up = |v: &Vector3<T>| frame.in_parent(joint.kind, geometry, v);
+        let moved = |w: &Wrench<T>| {
+            let force = up(&w.force);
+            Wrench { force, moment: up(&w.moment) + frame.offset.cross(&force) }
+        };
+        let parent = match joint.parent.and_then(|p| before.get_mut(p)) {
+            Some(parent) => parent,
+            None => &mut total,
+        };
+        parent.drag += moved(&subtree.drag);
+        parent.added_mass += moved(&subtree.added_mass);
+        parent.volume_moment += up(&subtree.volume_moment) + frame.offset * geometry.subtree_volume;
+        parent.mass_moment += up(&subtree.mass_moment) + frame.offset * geometry.subtree_mass;
+    }
+    let g = base.gravity;
+    let b = (base.water_acceleration - g) * rho;
+    data.base = EnvironmentWrench {
+        drag: total.drag,
+        added_mass: total.added_mass,
+        buoyancy: Wrench { force: b * frames.total_volume, moment: total.volume_moment.cross(&b) },
+        gravity: Wrench { force: g * frames.total_mass, moment: total.mass_moment.cross(&g) },
+    };
+    if !finite.all() {
+        let nan = T::zero() / T::zero();
+        let mask = |x: T| x.select(finite, nan);
+        data.base = data.base.map(|w| w.map(mask));
+        data.base_own = data.base_own.map(mask);
+        for (forces, own) in data.joints.iter_mut().zip(data.own.iter_mut()).take(n) {
+            *forces = JointForces {
+                drag: mask(forces.drag),
+                added_mass: mask(forces.added_mass),
+                buoyancy: mask(forces.buoyancy),
+                gravity: mask(forces.gravity),
+            };
+            *own = own.map(mask);
+        }
     }
 }

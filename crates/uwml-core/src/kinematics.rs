@@ -1,181 +1,228 @@
-//! Forward kinematics of the chain in world coordinates, and the small vector helpers shared
-//! with the body-frame recursion of the whole-robot evaluation (`crate::frames`).
+//! Kinematics: where every link is, and how it moves relative to the water.
+//!
+//! For a user: [`forward_kinematics`] gives every link's pose in the base frame, and
+//! [`point_jacobian`] the geometric Jacobian of a point on a link, for any robot, as free functions
+//! over the model and a workspace ([`KinematicsData`]).
+//!
+//! For the evaluation (`crate::hydro`): the forward pass over the joints (parents before
+//! children) that gives every link's motion relative to the water in its own body frame
+//! (`crate::frames`: the joint axis is z, the link's geometry constant).
 
-use nalgebra::{Matrix3, RealField, SVector, SimdRealField, Vector3};
+use nalgebra::{Matrix3, SimdRealField, Vector3};
 
-use crate::model::{Chain, Joint};
+use crate::algebra::{axis_angle, rotate, rotate_back};
+use crate::frames::JointFrame;
+use crate::model::Robot;
+use crate::motion::{BaseMotion, Current};
+use crate::parts::{JointKind, TreeJoint};
 use crate::real::Real;
-use crate::robot::{JointKind, Robot};
+use crate::water::Water;
 
-/// `for $pattern in $items $body`, with the first two items taken out of the loop. LLVM does not
-/// fully unroll loops with bodies as big as a link's, so this gives chains of up to three joints
-/// (the paper's leg) straight-line code: no loop and no state through memory. A macro rather
-/// than a function taking a closure, which LLVM would not inline three times.
-macro_rules! for_each_peeled {
-    ($pattern:pat in $items:expr => $body:block) => {{
-        let mut items = $items;
-        if let Some($pattern) = items.next() $body
-        if let Some($pattern) = items.next() $body
-        for $pattern in items $body
-    }};
-}
-
-/// Pose and motion of one link frame (at its joint), in world coordinates.
+/// The motion of a body frame (at its joint) relative to the water, in its own components, and
+/// where it sits in its parent's.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LinkMotion<T: RealField + Copy> {
-    /// Rotation from the link frame to the world frame.
-    pub rotation: Matrix3<T>,
-    /// World position of the joint that moves this link (the frame origin) [m].
-    pub origin: Vector3<T>,
-    /// World direction of that joint's axis.
-    pub axis: Vector3<T>,
-    /// Angular velocity of the link [rad/s].
-    pub angular_velocity: Vector3<T>,
-    /// Angular acceleration of the link [rad/s²].
-    pub angular_acceleration: Vector3<T>,
-    /// Velocity of the frame origin [m/s].
-    pub velocity: Vector3<T>,
-    /// Acceleration of the frame origin [m/s²].
-    pub acceleration: Vector3<T>,
+pub(crate) struct Frame<T: SimdRealField + Copy> {
+    pub(crate) angular_velocity: Vector3<T>,
+    pub(crate) angular_acceleration: Vector3<T>,
+    /// Velocity of the frame origin less the water's.
+    velocity: Vector3<T>,
+    /// Classical acceleration of the frame origin less the water's.
+    acceleration: Vector3<T>,
+    /// Gravity's acceleration vector.
+    pub(crate) gravity: Vector3<T>,
+    /// The water's acceleration.
+    pub(crate) water_acceleration: Vector3<T>,
+    /// `(sin q, cos q)` of a revolute joint's angle; `(0, 1)` for a prismatic joint.
+    turn: (T, T),
+    /// The frame origin in the parent's body frame (a prismatic joint's slide included).
+    pub(crate) offset: Vector3<T>,
+    /// What is known of the motion from the robot's structure alone.
+    shape: Shape,
 }
 
-impl<T: RealField + Copy> LinkMotion<T> {
-    /// World position of a point given in the link frame.
-    #[inline]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn point(&self, local: &Vector3<T>) -> Vector3<T> {
-        self.origin + self.rotation * local
-    }
-
-    /// Velocity and acceleration of the material point at world offset `r` from the origin.
-    #[inline]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
-        let w = &self.angular_velocity;
-        let velocity = self.velocity + w.cross(r);
-        let acceleration = self.acceleration + self.angular_acceleration.cross(r) + w.cross(&w.cross(r));
-        (velocity, acceleration)
-    }
+/// What a frame's motion is, known from the robot's structure and whether the base is at rest:
+/// the forward pass then skips the products with zeros.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Shape {
+    /// At rest, in still water: the base of a fixed robot.
+    Still,
+    /// Turning about its own z axis through its fixed origin, in still water: `ω = ω_z e_z`,
+    /// `α = α_z e_z`, and the origin at rest (a revolute joint's link on a base at rest).
+    AboutAxis,
+    /// Any motion.
+    General,
 }
 
-/// Rotation by the angle with sine `s` and cosine `c` about the unit `axis` (Rodrigues).
+/// `Rz(q)ᵀ v` for `turn = (sin q, cos q)`.
 #[inline(always)]
-pub(crate) fn axis_angle<T: SimdRealField + Copy>(axis: &Vector3<T>, (s, c): (T, T)) -> Matrix3<T> {
-    let (x, y, z) = (axis.x, axis.y, axis.z);
-    let t = T::one() - c;
-    Matrix3::new(
-        t * x * x + c,
-        t * x * y - s * z,
-        t * x * z + s * y,
-        t * x * y + s * z,
-        t * y * y + c,
-        t * y * z - s * x,
-        t * x * z - s * y,
-        t * y * z + s * x,
-        t * z * z + c,
-    )
+fn turn_back<T: SimdRealField + Copy>((sin, cos): (T, T), v: &Vector3<T>) -> Vector3<T> {
+    Vector3::new(cos * v.x + sin * v.y, cos * v.y - sin * v.x, v.z)
 }
 
-impl<T: RealField + Copy> LinkMotion<T> {
-    /// The first link: the world is at rest.
-    #[inline(always)]
-    fn first(joint: &Joint<T>, turn: (T, T), qd: T, qdd: T) -> Self {
-        let still = Vector3::zeros();
+impl<T: SimdRealField + Copy> Frame<T> {
+    /// At rest, in no field: a workspace's initial value.
+    pub(crate) fn rest() -> Self {
+        let zero = Vector3::zeros();
         Self {
-            rotation: axis_angle(&joint.axis, turn),
-            origin: joint.origin,
-            axis: joint.axis,
-            angular_velocity: joint.axis * qd,
-            angular_acceleration: joint.axis * qdd,
-            velocity: still,
-            acceleration: still,
+            angular_velocity: zero,
+            angular_acceleration: zero,
+            velocity: zero,
+            acceleration: zero,
+            gravity: zero,
+            water_acceleration: zero,
+            turn: (T::zero(), T::one()),
+            offset: zero,
+            shape: Shape::General,
         }
     }
 
-    /// A later link, moved by `joint` relative to this one.
+    /// The base's own frame, relative to the water.
     #[inline(always)]
-    fn child(&self, joint: &Joint<T>, turn: (T, T), qd: T, qdd: T) -> Self {
-        let axis = rotate(&self.rotation, &joint.axis);
-        let offset = rotate(&self.rotation, &joint.origin);
-        let (velocity, acceleration) = self.point_motion(&offset);
-        let w = self.angular_velocity;
-        // (`rotate` column by column: nalgebra's product adds each sum to a zero first.)
-        let turned = axis_angle(&joint.axis, turn);
+    pub(crate) fn base(motion: &BaseMotion<T>, water: &Water<T>, current: &Current<T>) -> Self {
+        let rotation = motion.rotation();
+        let (v, w) = motion.twist();
+        let (v_dot, w_dot) = motion.twist_derivative();
+        let zero = Vector3::zeros();
+        let gravity = Vector3::new(rotation.m31, rotation.m32, rotation.m33) * -water.gravity();
+        let still = Self {
+            angular_velocity: zero,
+            angular_acceleration: zero,
+            velocity: zero,
+            acceleration: zero,
+            gravity,
+            water_acceleration: zero,
+            turn: (T::zero(), T::one()),
+            offset: zero,
+            shape: Shape::Still,
+        };
+        if [v, w, v_dot, w_dot, *current.velocity(), *current.acceleration()].iter().all(|x| *x == zero) {
+            return still;
+        }
+        let water_acceleration = rotate_back(rotation, current.acceleration());
         Self {
-            rotation: Matrix3::from_columns(&[0, 1, 2].map(|j| rotate(&self.rotation, &turned.column(j).into_owned()))),
-            origin: self.origin + offset,
-            axis,
-            angular_velocity: w + axis * qd,
-            angular_acceleration: self.angular_acceleration + axis * qdd + w.cross(&axis) * qd,
+            angular_velocity: w,
+            angular_acceleration: w_dot,
+            velocity: v - rotate_back(rotation, current.velocity()),
+            acceleration: v_dot + w.cross(&v) - water_acceleration,
+            water_acceleration,
+            shape: Shape::General,
+            ..still
+        }
+    }
+
+    /// A vector in this frame's components, in its parent's.
+    #[inline(always)]
+    pub(crate) fn in_parent(&self, kind: JointKind, joint: &JointFrame<T>, v: &Vector3<T>) -> Vector3<T> {
+        let v = match kind {
+            JointKind::Revolute => {
+                let (sin, cos) = self.turn;
+                Vector3::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y, v.z)
+            }
+            JointKind::Prismatic => *v,
+        };
+        match &joint.turn {
+            Some(turn) => rotate(turn, &v),
+            None => v,
+        }
+    }
+
+    /// The frame of a child moved by `joint` (whose body frame is `frame`) at `(q, q̇, q̈)`;
+    /// `still_water`: whether the water's acceleration is zero.
+    #[inline(always)]
+    fn child(&self, joint: &TreeJoint<T>, frame: &JointFrame<T>, [q, qd, qdd]: [T; 3], still_water: bool) -> Self
+    where
+        T: Real,
+    {
+        let revolute = joint.kind == JointKind::Revolute;
+        let (turn, offset) =
+            if revolute { (q.sin_cos(), frame.origin) } else { ((T::zero(), T::one()), frame.origin + frame.axis * q) };
+        let before_turn = |v: &Vector3<T>| match &frame.turn {
+            Some(t) => rotate_back(t, v),
+            None => *v,
+        };
+        let turned = |v: &Vector3<T>| if revolute { turn_back(turn, v) } else { *v };
+        let into = |v: &Vector3<T>| turned(&before_turn(v));
+        let zero = Vector3::zeros();
+        let (w, alpha, mut velocity, mut acceleration) = match self.shape {
+            Shape::Still => (zero, zero, zero, zero),
+            // The parent turns about its z axis through its fixed origin: the joint's motion is
+            // the unit turn's, scaled by the parent's rates.
+            Shape::AboutAxis if revolute => {
+                let (rate, rate_change) = (self.angular_velocity.z, self.angular_acceleration.z);
+                let [axis, tangential, centripetal] = &frame.unit_turn;
+                (
+                    turned(&(axis * rate)),
+                    turned(&(axis * rate_change)),
+                    turned(&(tangential * rate)),
+                    turned(&(tangential * rate_change + centripetal * (rate * rate))),
+                )
+            }
+            Shape::AboutAxis | Shape::General => {
+                let (velocity, acceleration) = self.point_motion(&offset);
+                (into(&self.angular_velocity), into(&self.angular_acceleration), into(&velocity), into(&acceleration))
+            }
+        };
+        // ω × e_z = (ω_y, −ω_x, 0).
+        let (angular_velocity, angular_acceleration) = if revolute {
+            (Vector3::new(w.x, w.y, w.z + qd), Vector3::new(alpha.x + qd * w.y, alpha.y - qd * w.x, alpha.z + qdd))
+        } else {
+            let twice = qd + qd;
+            velocity.z += qd;
+            acceleration += Vector3::new(twice * w.y, -twice * w.x, qdd);
+            (w, alpha)
+        };
+        Self {
+            angular_velocity,
+            angular_acceleration,
             velocity,
             acceleration,
+            gravity: into(&self.gravity),
+            water_acceleration: if still_water { zero } else { into(&self.water_acceleration) },
+            turn,
+            offset,
+            shape: if self.shape == Shape::Still && revolute { Shape::AboutAxis } else { Shape::General },
         }
+    }
+
+    /// The twist relative to the water `(v, ω)` of the material point at `r` and its components'
+    /// derivative `(v̇, α)` (`v̇ = a − ω × v`, `a` the point's acceleration relative to the water).
+    #[inline(always)]
+    pub(crate) fn twist_at(&self, r: &Vector3<T>) -> [Vector3<T>; 4] {
+        let (v, a) = self.point_motion(r);
+        let w = self.angular_velocity;
+        [v, w, a - w.cross(&v), self.angular_acceleration]
+    }
+
+    /// Velocity and acceleration (relative to the water) of the material point at `r`.
+    #[inline(always)]
+    pub(crate) fn point_motion(&self, r: &Vector3<T>) -> (Vector3<T>, Vector3<T>) {
+        let w = &self.angular_velocity;
+        let wr = w.cross(r);
+        (self.velocity + wr, self.acceleration + self.angular_acceleration.cross(r) + w.cross(&wr))
     }
 }
 
-/// World pose, velocity and acceleration of every link, by the usual forward recursion.
-///
-/// Joints with non-finite states give non-finite motions; nothing fails.
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn link_motions<T: RealField + Copy, const N: usize>(
-    chain: &Chain<T, N>,
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> [LinkMotion<T>; N] {
-    // Arrays, not nalgebra's iterators, which cost more than the loop bodies here; all sines and
-    // cosines first, as the calls are independent.
-    let (q, qd, qdd): ([T; N], [T; N], [T; N]) = ((*q).into(), (*qd).into(), (*qdd).into());
-    let turns = q.map(|q| q.sin_cos());
-    let zero = Vector3::zeros();
-    let rest = LinkMotion {
-        rotation: Matrix3::identity(),
-        origin: zero,
-        axis: zero,
-        angular_velocity: zero,
-        angular_acceleration: zero,
-        velocity: zero,
-        acceleration: zero,
-    };
-    let mut motions = [rest; N];
-    let mut links = motions.iter_mut().zip(chain.joints().iter()).zip(turns.into_iter().zip(qd.into_iter().zip(qdd)));
-    // The first link on its own: its parent, the world, is at rest (no products with zeros).
-    let Some(((motion, joint), (turn, (qd, qdd)))) = links.next() else { return motions };
-    *motion = LinkMotion::first(joint, turn, qd, qdd);
-    let mut parent = *motion;
-    for_each_peeled!(((motion, joint), (turn, (qd, qdd))) in links => {
-        *motion = parent.child(joint, turn, qd, qdd);
-        parent = *motion;
-    });
-    motions
-}
-
-/// `a · b`, without the zero accumulator of nalgebra's generic dot.
+/// The forward pass: every link's frame into `frames` (parents first).
 #[inline(always)]
-pub(crate) fn dot<T: SimdRealField + Copy>(a: &Vector3<T>, b: &Vector3<T>) -> T {
-    a.x * b.x + a.y * b.y + a.z * b.z
-}
-
-/// `m · v`.
-#[inline(always)]
-pub(crate) fn rotate<T: SimdRealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
-    let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
-    Vector3::new(
-        c0.x * v.x + c1.x * v.y + c2.x * v.z,
-        c0.y * v.x + c1.y * v.y + c2.y * v.z,
-        c0.z * v.x + c1.z * v.y + c2.z * v.z,
-    )
-}
-
-/// `mᵀ · v`.
-#[inline(always)]
-pub(crate) fn rotate_back<T: SimdRealField + Copy>(m: &Matrix3<T>, v: &Vector3<T>) -> Vector3<T> {
-    let (c0, c1, c2) = (m.column(0), m.column(1), m.column(2));
-    Vector3::new(
-        c0.x * v.x + c0.y * v.y + c0.z * v.z,
-        c1.x * v.x + c1.y * v.y + c1.z * v.z,
-        c2.x * v.x + c2.y * v.y + c2.z * v.z,
-    )
+pub(crate) fn forward<T: Real, const J: usize, const S: usize, const B: usize>(
+    robot: &Robot<T, J, S, B>,
+    base: &Frame<T>,
+    [q, qd, qdd]: [&[T; J]; 3],
+    frames: &mut [Frame<T>; J],
+) {
+    let n = robot.joint_count();
+    let still_water = base.water_acceleration == Vector3::zeros();
+    let per_joint = robot.joints().iter().zip(&robot.frames().joints).zip(q.iter().zip(qd).zip(qdd)).take(n);
+    for (i, ((joint, geometry), ((&q, &qd), &qdd))) in per_joint.enumerate() {
+        // Parents come first: the parent is read from the frames before `i`, the child written
+        // in place.
+        let Some((done, [slot, ..])) = frames.split_at_mut_checked(i) else { continue };
+        let parent = match joint.parent {
+            Some(p) => done.get(p).unwrap_or(base),
+            None => base,
+        };
+        *slot = parent.child(joint, geometry, [q, qd, qdd], still_water);
+    }
 }
 
 /// Where a link's frame is and how it is turned, in the base frame (the world's for a fixed,

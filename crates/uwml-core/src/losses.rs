@@ -13,9 +13,8 @@
 
 use nalgebra::{RealField, SVector, SimdRealField};
 
+use crate::check::{check_at_least, check_finite, check_positive, constant};
 use crate::error::{ModelError, Problem};
-use crate::hydro::{HydroTorques, hydro_torques};
-use crate::model::{Chain, Coefficients, Water, check_at_least, check_finite, check_positive, constant};
 
 /// `sgn_ε(x) = x / sqrt(x² + ε²)`: a smooth sign; `ε = 0` gives the hard sign with `sgn(0) = 0`.
 ///
@@ -568,50 +567,9 @@ pub fn pressure_at_depth<T: RealField + Copy>(depth: T, sea_density: T, gravity:
 /// Default sea-water density for [`pressure_at_depth`] [kg/m³].
 pub const SEA_WATER_DENSITY: f64 = 1025.0;
 
-/// The environment's torques on every joint: hydrodynamics plus joint losses.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EnvironmentTorques<T: RealField + Copy, const N: usize> {
-    /// Drag, added mass, buoyancy and gravity.
-    pub hydro: HydroTorques<T, N>,
-    /// Oil drag reflected to the output [N·m] (0 for joints without oil).
-    pub visc: SVector<T, N>,
-    /// Seal friction [N·m] (0 for joints without a seal).
-    pub seal: SVector<T, N>,
-    /// Loss current [A].
-    pub current: SVector<T, N>,
-}
-
-impl<T: RealField + Copy, const N: usize> EnvironmentTorques<T, N> {
-    /// `τ_env = τ_hydro + τ_visc + τ_seal`.
-    #[must_use]
-    #[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-    pub fn total(&self) -> SVector<T, N> {
-        self.hydro.total() + self.visc + self.seal
-    }
-}
-
-/// The environment torque of every joint, `τ_hydro + τ_visc + τ_seal`, in one call; `losses[i]`
-/// is joint `i`'s [`LossState`] at the current pressure and temperature, or `None`.
-///
-/// Never fails and never panics.
-#[must_use]
-#[cfg_attr(uwml_no_panic, no_panic::no_panic)]
-pub fn environment_torques<T: RealField + crate::real::Real, const N: usize>(
-    chain: &Chain<T, N>,
-    water: &Water<T>,
-    coefficients: &Coefficients<T, N>,
-    losses: &[Option<LossState<T>>; N],
-    q: &SVector<T, N>,
-    qd: &SVector<T, N>,
-    qdd: &SVector<T, N>,
-) -> EnvironmentTorques<T, N> {
-    let hydro = hydro_torques(chain, water, coefficients, q, qd, qdd);
-    let (visc, seal, current) = loss_torques(losses, qd);
-    EnvironmentTorques { hydro, visc, seal, current }
-}
-
-/// The joint losses of [`environment_torques`] alone: `(visc, seal, current)` of every joint at
-/// its speed `q̇[i]`, zero where `losses[i]` is `None`.
+/// The joint losses of `N` joints: `(visc, seal, current)` of every joint at its speed `q̇[i]`,
+/// zero where `losses[i]` is `None` (what `robot_hydro` gives with the conditions'
+/// losses, as vectors).
 ///
 /// Never fails and never panics.
 #[must_use]
@@ -634,7 +592,7 @@ pub fn loss_torques<T: RealField + Copy, const N: usize>(
 
 impl<T: RealField + Copy> LossState<T> {
     /// The same state over a SIMD type, every number splat across the lanes (see
-    /// `Chain::splat`).
+    /// `Robot::splat`).
     #[must_use]
     pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> LossState<L> {
         self.map_scalars(L::splat)

@@ -12,31 +12,13 @@
 
 use nalgebra::{Matrix3, Matrix6, RealField, SimdRealField, Vector3, Vector6};
 
-use crate::error::{ModelError, Problem};
-use crate::model::{
-    AXIS_TOLERANCE, check_at_most, check_finite, check_non_negative, check_point, check_unit, constant,
+use crate::bounds::{
+    AXIS_TOLERANCE, LUMPED_ABSOLUTE_TOLERANCE, LUMPED_EIGENVALUE_TOLERANCE, LUMPED_SYMMETRY_TOLERANCE, MAX_LUMPED,
 };
-use crate::robot::Owner;
+use crate::check::{check_at_most, check_finite, check_non_negative, check_point, check_unit, constant};
+use crate::error::{ModelError, Problem};
+use crate::parts::Owner;
 use crate::wrench::Wrench;
-
-/// The largest magnitude of an entry of a lumped model's matrices and quadratic damping (in its
-/// SI units: kg, kg·m, kg·m², N·s/m, ...). A hull of a million tonnes is far below it; the bound
-/// keeps every force of a finite state finite.
-pub const MAX_LUMPED: f64 = 1e12;
-
-/// How far from symmetric a lumped model's added mass may be, relative to its largest entry in
-/// magnitude (docs/model.md section 12.1), but never more than [`LUMPED_ABSOLUTE_TOLERANCE`].
-pub const LUMPED_SYMMETRY_TOLERANCE: f64 = 1e-9;
-/// How negative the smallest eigenvalue of a lumped model's added mass (and of its linear
-/// damping's symmetric part) may be, relative to its largest diagonal entry in magnitude
-/// (docs/model.md section 12.1), but never more than [`LUMPED_ABSOLUTE_TOLERANCE`].
-pub const LUMPED_EIGENVALUE_TOLERANCE: f64 = 1e-10;
-/// The most either tolerance allows, in the entries' own units (kg, kg·m, kg·m², N·s/m, ...):
-/// relative tolerances alone let a huge entry hide a wrong small one (at the 1e12 cap,
-/// `diag(1e12, −99, …)` and an asymmetry of 900 passed). 1e-2 is ten times the rounding of
-/// float64 at the cap (a singular semi-definite matrix at 1e12 rounds to eigenvalues down to about
-/// −1e-3) and far below any physical entry.
-pub const LUMPED_ABSOLUTE_TOLERANCE: f64 = 1e-2;
 
 /// Fossen's lumped model of one body (docs/model.md section 12.1), about the reference point
 /// `point` of the body's frame, in the axes `axes` (the identity: the body's own). Every matrix is

@@ -1,581 +1,282 @@
-//! The immutable, validated description of a serial chain, the water and the coefficients.
+//! The immutable, validated description of a whole robot (docs/model.md section 10): a
+//! kinematic tree of revolute and prismatic joints ([`crate::parts`]) on a base that may carry a
+//! body of its own, with any number of straight segments per body (up to a fixed capacity), and
+//! lumped models on some bodies (section 12.1), checked once when it is built.
 //!
-//! Frames follow URDF without fixed rotations: every link frame is parallel to the world frame
-//! when all joint angles are zero. Joint `i` sits at `origin` in the frame of link `i - 1` (the
-//! world frame for the first joint) and turns link `i` about `axis` by `q[i]`. Link `i`'s
-//! geometry is given in its own frame, whose origin is joint `i`. World z points up.
+//! A [`Robot`] holds up to `J` joints, `S` segments and `B` lumped models in fixed arrays: it
+//! needs no allocation, and its evaluation costs what its actual joints and segments cost, not
+//! its capacity.
 
-use nalgebra::{RealField, SimdRealField, Vector3};
+use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
 use crate::error::{ModelError, Problem};
-use crate::robot::Robot;
+use crate::frames::{BodyFrames, link_axes};
+use crate::lumped::{LUMPED_COLUMNS, Lumped, LumpedBody, LumpedFrame};
+use crate::parts::{JointKind, Owner, RigidBody, RobotSegment, Section, TreeJoint};
+use crate::segment_coefficients::SegmentCoefficients;
 
-/// Tolerance on unit length and on orthogonality of axes and normals at construction.
-pub const AXIS_TOLERANCE: f64 = 1e-6;
-
-/// A revolute joint: origin and unit axis in the parent link's frame at `q = 0`.
+/// A validated robot of up to `J` joints (each moving its own link) and `S` segments.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Joint<T: SimdRealField + Copy> {
-    /// Position of the joint in the parent frame [m].
-    pub origin: Vector3<T>,
-    /// Unit rotation axis in the parent frame.
-    pub axis: Vector3<T>,
+pub struct Robot<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize = 0> {
+    joints: [TreeJoint<T>; J],
+    links: [RigidBody<T>; J],
+    base: RigidBody<T>,
+    segments: [RobotSegment<T>; S],
+    joint_count: usize,
+    segment_count: usize,
+    /// Every body in its own body frame, for the evaluation.
+    frames: BodyFrames<T, J, S>,
+    /// The bodies' lumped models (docs/model.md section 12.1), in their body frames.
+    lumped: Lumped<T, B>,
 }
 
-/// The hydrodynamic geometry of a straight link (strip theory), in the link's frame.
-///
-/// A slice at arc length `s ∈ [0, length]` lies at `start + s·axis`. `normals[k]` are the two
-/// principal cross-flow directions (orthonormal, perpendicular to `axis`); `widths[k]` is the
-/// frontal width seen by flow along `normals[k]`; `area` is the section area for added mass.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Segment<T: SimdRealField + Copy> {
-    /// Start point of the segment [m].
-    pub start: Vector3<T>,
-    /// Unit direction of the segment.
-    pub axis: Vector3<T>,
-    /// Length [m], positive.
-    pub length: T,
-    /// The two principal normal directions.
-    pub normals: [Vector3<T>; 2],
-    /// Frontal width for flow along each normal [m], positive.
-    pub widths: [T; 2],
-    /// Cross-section area for added mass [m²], positive.
-    pub area: T,
-}
-
-/// A rigid link: mass and centre of mass, displaced volume and centre of buoyancy, and
-/// optionally a straight segment that meets the water.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Link<T: SimdRealField + Copy> {
-    /// Mass [kg], zero or positive.
-    pub mass: T,
-    /// Centre of mass in the link frame [m].
-    pub com: Vector3<T>,
-    /// Displaced volume [m³], zero or positive.
-    pub volume: T,
-    /// Centre of buoyancy in the link frame [m].
-    pub cob: Vector3<T>,
-    /// Hydrodynamic geometry; `None` for a link without drag or added mass.
-    pub segment: Option<Segment<T>>,
-}
-
-/// A validated serial chain of `N` revolute joints, link `i` moved by joint `i`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Chain<T: SimdRealField + Copy, const N: usize> {
-    joints: [Joint<T>; N],
-    links: [Link<T>; N],
-    /// The same chain as a robot (its joints in series on a fixed base, each link's segment in
-    /// link order, at the default coefficients), derived once: the chain's functions are this
-    /// robot's evaluation.
-    robot: Robot<T, N, N>,
-}
-
-/// The fluid the chain moves in.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Water<T: SimdRealField + Copy> {
-    density: T,
-    gravity: T,
-}
-
-/// Drag and added-mass coefficients per link and per normal direction (`[link][k]`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Coefficients<T: SimdRealField + Copy, const N: usize> {
-    cd: [[T; 2]; N],
-    cm: [[T; 2]; N],
-}
-
-pub(crate) fn constant<T: SimdRealField + Copy>(x: f64) -> T {
-    nalgebra::convert(x)
-}
-
-pub(crate) fn check_finite<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    if x.is_finite() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
-}
-
-pub(crate) fn check_positive<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    let x = check_finite(x, field, index)?;
-    if x > T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::NonPositive)) }
-}
-
-pub(crate) fn check_non_negative<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    let x = check_finite(x, field, index)?;
-    if x >= T::zero() { Ok(x) } else { Err(ModelError::new(field, index, Problem::Negative)) }
-}
-
-/// `x` finite and at least `low`, else `problem`.
-pub(crate) fn check_at_least<T: RealField + Copy>(
-    x: T,
-    low: T,
-    field: &'static str,
-    problem: Problem,
-) -> Result<T, ModelError> {
-    let x = check_finite(x, field, None)?;
-    if x >= low { Ok(x) } else { Err(ModelError::new(field, None, problem)) }
-}
-
-/// Every drag and added-mass coefficient of a table (`[owner][k]`) finite and non-negative, or
-/// an error naming `fields` and the owner's index.
-pub(crate) fn check_coefficient_table<T: RealField + Copy>(
-    cd: &[[T; 2]],
-    cm: &[[T; 2]],
-    [cd_field, cm_field]: [&'static str; 2],
-) -> Result<(), ModelError> {
-    for (index, (cd, cm)) in cd.iter().zip(cm.iter()).enumerate() {
-        for (&d, &m) in cd.iter().zip(cm.iter()) {
-            check_coefficient(d, cd_field, Some(index))?;
-            check_coefficient(m, cm_field, Some(index))?;
-        }
-    }
-    Ok(())
-}
-
-/// The largest length a model may hold [m]: every coordinate of a point (joint origins, centres
-/// of mass and buoyancy, segment starts) and every length, width and diameter. A robot's
-/// dimensions beyond 10 km are a unit mistake; the bounds keep every force of a finite state
-/// finite (docs/domains.md), in f32 too.
-pub const MAX_LENGTH: f64 = 1e4;
-/// The largest mass of a body [kg] (the largest ships displace under 1e9 kg).
-pub const MAX_MASS: f64 = 1e9;
-/// The largest volume of a body [m³] (1e9 kg of water).
-pub const MAX_VOLUME: f64 = 1e6;
-/// The largest cross-section area of a segment [m²] (`MAX_LENGTH²`).
-pub const MAX_AREA: f64 = 1e8;
-/// The largest drag or added-mass coefficient (measured ones are of order 1).
-pub const MAX_COEFFICIENT: f64 = 1e3;
-/// The largest water density [kg/m³] (more than any liquid's).
-pub const MAX_DENSITY: f64 = 1e5;
-/// The largest gravity [m/s²].
-pub const MAX_GRAVITY: f64 = 1e3;
-
-/// `x` (already checked finite) at most `limit` in magnitude, else [`Problem::TooLarge`].
-pub(crate) fn check_at_most<T: RealField + Copy>(
-    x: T,
-    limit: f64,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    if x.abs() <= constant(limit) { Ok(x) } else { Err(ModelError::new(field, index, Problem::TooLarge)) }
-}
-
-/// A drag or added-mass coefficient: finite, not negative, at most [`MAX_COEFFICIENT`].
-pub(crate) fn check_coefficient<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    check_at_most(check_non_negative(x, field, index)?, MAX_COEFFICIENT, field, index)
-}
-
-/// A point of the model: finite, each coordinate at most [`MAX_LENGTH`] in magnitude.
-pub(crate) fn check_point<T: RealField + Copy>(
-    v: Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    let v = check_vector(v, field, index)?;
-    for &x in v.iter() {
-        check_at_most(x, MAX_LENGTH, field, index)?;
-    }
-    Ok(v)
-}
-
-/// A length, width, diameter: finite, positive, at most [`MAX_LENGTH`].
-pub(crate) fn check_length<T: RealField + Copy>(
-    x: T,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<T, ModelError> {
-    check_at_most(check_positive(x, field, index)?, MAX_LENGTH, field, index)
-}
-
-pub(crate) fn check_vector<T: RealField + Copy>(
-    v: Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(ModelError::new(field, index, Problem::NonFinite)) }
-}
-
-/// Checks that `v` is a unit vector within [`AXIS_TOLERANCE`] and returns it normalized exactly.
-pub(crate) fn check_unit<T: RealField + Copy>(
-    v: Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    let v = check_vector(v, field, index)?;
-    let norm = v.norm();
-    if (norm - T::one()).abs() <= constant(AXIS_TOLERANCE) {
-        Ok(v / norm)
-    } else {
-        Err(ModelError::new(field, index, Problem::NotUnit))
-    }
-}
-
-/// `v` made exactly perpendicular to the unit `axis` and normalized, if it was within
-/// [`AXIS_TOLERANCE`] of perpendicular and of unit length.
-pub(crate) fn check_normal<T: RealField + Copy>(
-    v: Vector3<T>,
-    axis: &Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<Vector3<T>, ModelError> {
-    let v = check_unit(v, field, index)?;
-    if v.dot(axis).abs() > constant(AXIS_TOLERANCE) {
-        return Err(ModelError::new(field, index, Problem::NotPerpendicular));
-    }
-    Ok((v - axis * v.dot(axis)).normalize())
-}
-
-fn check_perpendicular<T: RealField + Copy>(
-    a: &Vector3<T>,
-    b: &Vector3<T>,
-    field: &'static str,
-    index: Option<usize>,
-) -> Result<(), ModelError> {
-    if a.dot(b).abs() <= constant(AXIS_TOLERANCE) {
-        Ok(())
-    } else {
-        Err(ModelError::new(field, index, Problem::NotPerpendicular))
-    }
-}
-
-impl<T: RealField + Copy> Joint<T> {
-    fn validated(self, index: usize) -> Result<Self, ModelError> {
-        let i = Some(index);
-        Ok(Self { origin: check_point(self.origin, "joint.origin", i)?, axis: check_unit(self.axis, "joint.axis", i)? })
-    }
-}
-
-impl<T: RealField + Copy> Segment<T> {
-    fn validated(self, index: usize) -> Result<Self, ModelError> {
-        let i = Some(index);
-        let axis = check_unit(self.axis, "segment.axis", i)?;
-        let [n1, n2] = self.normals;
-        let n1 = check_normal(n1, &axis, "segment.normals[0]", i)?;
-        let n2 = check_normal(n2, &axis, "segment.normals[1]", i)?;
-        check_perpendicular(&n1, &n2, "segment.normals[1]", i)?;
-        // An exact frame (the strip integrals' identities assume one): the second normal
-        // exactly perpendicular to the axis and the first, on the side it was given.
-        let n2 = axis.cross(&n1) * axis.cross(&n1).dot(&n2).signum();
-        let [w1, w2] = self.widths;
-        Ok(Self {
-            start: check_point(self.start, "segment.start", i)?,
-            axis,
-            length: check_length(self.length, "segment.length", i)?,
-            normals: [n1, n2],
-            widths: [check_length(w1, "segment.widths[0]", i)?, check_length(w2, "segment.widths[1]", i)?],
-            area: check_at_most(check_positive(self.area, "segment.area", i)?, MAX_AREA, "segment.area", i)?,
-        })
-    }
-}
-
-impl<T: RealField + Copy> Link<T> {
-    fn validated(self, index: usize) -> Result<Self, ModelError> {
-        let i = Some(index);
-        Ok(Self {
-            mass: check_at_most(check_non_negative(self.mass, "link.mass", i)?, MAX_MASS, "link.mass", i)?,
-            com: check_point(self.com, "link.com", i)?,
-            volume: check_at_most(check_non_negative(self.volume, "link.volume", i)?, MAX_VOLUME, "link.volume", i)?,
-            cob: check_point(self.cob, "link.cob", i)?,
-            segment: match self.segment {
-                Some(segment) => Some(segment.validated(index)?),
-                None => None,
-            },
-        })
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Chain<T, N> {
-    /// Validates and builds a chain. Axes are re-normalized exactly; each segment's normals are
-    /// made an exact orthonormal frame with its axis (Gram-Schmidt, the second normal on the side
-    /// it was given).
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
+    /// Validates and builds a robot from its joints, the links they move (same length), the
+    /// base's own body, and the segments of all bodies.
     ///
     /// # Errors
-    /// The first non-finite, non-positive (lengths, widths, area), negative (mass, volume),
-    /// non-unit or non-perpendicular parameter, naming the field and the joint or link.
-    pub fn new(mut joints: [Joint<T>; N], mut links: [Link<T>; N]) -> Result<Self, ModelError> {
-        for (index, (joint, link)) in joints.iter_mut().zip(links.iter_mut()).enumerate() {
-            *joint = joint.validated(index)?;
-            *link = link.validated(index)?;
+    /// More joints than `J` or segments than `S` (`"joints"`/`"segments"`, out of range), as many
+    /// links as joints; a parent that is not an earlier link (`"joint.parent"`); a segment owned
+    /// by a link that does not exist (`"segment.owner"`); a circular segment with different
+    /// coefficients per direction; and every check of each part (non-finite, non-positive, negative, too large, non-unit or
+    /// non-perpendicular values), naming the field and index.
+    pub fn new(
+        joints: &[TreeJoint<T>],
+        links: &[RigidBody<T>],
+        base: RigidBody<T>,
+        segments: &[RobotSegment<T>],
+    ) -> Result<Self, ModelError> {
+        if joints.len() > J {
+            return Err(ModelError::new("joints", None, Problem::OutOfRange));
         }
-        Ok(Self::from_validated(joints, links))
+        if links.len() != joints.len() {
+            return Err(ModelError::new("links", None, Problem::OutOfRange));
+        }
+        if segments.len() > S {
+            return Err(ModelError::new("segments", None, Problem::OutOfRange));
+        }
+        let mut robot = Self::empty();
+        robot.base = base.validated(None)?;
+        for (index, ((joint, link), (slot, link_slot))) in
+            joints.iter().zip(links).zip(robot.joints.iter_mut().zip(robot.links.iter_mut())).enumerate()
+        {
+            *slot = joint.validated(index)?;
+            *link_slot = link.validated(Some(index))?;
+        }
+        for (index, (segment, slot)) in segments.iter().zip(robot.segments.iter_mut()).enumerate() {
+            *slot = segment.validated(index, joints.len())?;
+        }
+        robot.joint_count = joints.len();
+        robot.segment_count = segments.len();
+        Ok(robot.with_frames())
     }
 
-    /// A chain of valid joints and links (validated, or the paper's), with its robot.
-    fn from_validated(joints: [Joint<T>; N], links: [Link<T>; N]) -> Self {
-        Self { joints, links, robot: Robot::serial(&joints, &links, &Coefficients::default()) }
+    /// The robot with its body frames computed.
+    fn with_frames(self) -> Self {
+        Self { frames: BodyFrames::new(self.joints(), self.links(), &self.base, self.segments()), ..self }
+    }
+
+    /// No joints, no segments, an empty base.
+    fn empty() -> Self {
+        let zero = Vector3::zeros();
+        let joint = TreeJoint { parent: None, kind: JointKind::Revolute, origin: zero, axis: Vector3::z() };
+        let segment = RobotSegment {
+            owner: Owner::Base,
+            start: zero,
+            axis: Vector3::x(),
+            length: T::one(),
+            area: T::one(),
+            section: Section::Circular { diameter: T::one() },
+            cd: [T::zero(); 2],
+            cm: [T::zero(); 2],
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
+        };
+        Self {
+            joints: [joint; J],
+            links: [RigidBody::empty(); J],
+            base: RigidBody::empty(),
+            segments: [segment; S],
+            joint_count: 0,
+            segment_count: 0,
+            frames: BodyFrames::new(&[], &[], &RigidBody::empty(), &[]),
+            lumped: Lumped::none(),
+        }
+    }
+
+    /// The robot with lumped models (docs/model.md section 12.1) on some of its bodies, at most
+    /// one per body and `B` in all (they replace any it had).
+    ///
+    /// # Errors
+    /// More than `B` models (`"lumped"`, out of range); a model's owner that is not a link of the
+    /// robot, or a body given two (`"lumped.owner"`, out of range); and every check of a
+    /// [`LumpedBody`]: finite entries at
+    /// most [`crate::MAX_LUMPED`] in magnitude, a reference point within [`crate::MAX_LENGTH`], a
+    /// symmetric positive semi-definite added-mass matrix, a linear damping whose symmetric part
+    /// is positive semi-definite, and non-negative quadratic damping, naming the field and the
+    /// model's index in `bodies`.
+    pub fn with_lumped(&self, bodies: &[LumpedBody<T>]) -> Result<Self, ModelError> {
+        if bodies.len() > B {
+            return Err(ModelError::new("lumped", None, Problem::OutOfRange));
+        }
+        let mut lumped = Lumped::none();
+        let link_axes = link_axes::<T, J>(self.joints());
+        for (index, body) in bodies.iter().enumerate() {
+            let body = body.validated(index, self.joint_count)?;
+            let axes = match body.owner {
+                Owner::Base => Some(Matrix3::identity()),
+                Owner::Link(i) => link_axes.get(i).copied().filter(|_| i < self.joint_count),
+            };
+            let placed = match axes {
+                Some(axes) if !lumped.has(body.owner) => lumped.push(body.owner, LumpedFrame::new(&body, &axes)),
+                _ => false,
+            };
+            if !placed {
+                return Err(ModelError::new("lumped.owner", Some(index), Problem::OutOfRange));
+            }
+        }
+        Ok(Self { lumped, ..*self })
+    }
+
+    /// The same robot in another capacity: `J2` joints, `S2` segments, `B2` lumped models (a
+    /// preset's robot as the C ABI's or the Python package's, which have room for more). Nothing
+    /// is validated again; the body frames are derived as [`Robot::new`] derives them.
+    ///
+    /// # Errors
+    /// More joints than `J2` (`"joints"`), segments than `S2` (`"segments"`) or lumped models than
+    /// `B2` (`"lumped"`), out of range.
+    pub fn to_capacity<const J2: usize, const S2: usize, const B2: usize>(
+        &self,
+    ) -> Result<Robot<T, J2, S2, B2>, ModelError> {
+        if self.joint_count > J2 {
+            return Err(ModelError::new("joints", None, Problem::OutOfRange));
+        }
+        if self.segment_count > S2 {
+            return Err(ModelError::new("segments", None, Problem::OutOfRange));
+        }
+        if self.lumped.len() > B2 {
+            return Err(ModelError::new("lumped", None, Problem::OutOfRange));
+        }
+        let mut robot =
+            Robot::<T, J2, S2, B2>::from_valid_parts(self.joints(), self.links(), self.base, self.segments());
+        for (owner, model) in self.lumped.iter() {
+            robot.lumped.push(*owner, *model);
+        }
+        Ok(robot)
+    }
+
+    /// A robot of parts that are valid (validated, or a preset's), as many as fit.
+    pub(crate) fn from_valid_parts(
+        joints: &[TreeJoint<T>],
+        links: &[RigidBody<T>],
+        base: RigidBody<T>,
+        segments: &[RobotSegment<T>],
+    ) -> Self {
+        let mut robot = Self::empty();
+        robot.base = base;
+        for (slot, joint) in robot.joints.iter_mut().zip(joints) {
+            *slot = *joint;
+        }
+        for (slot, link) in robot.links.iter_mut().zip(links) {
+            *slot = *link;
+        }
+        for (slot, segment) in robot.segments.iter_mut().zip(segments) {
+            *slot = *segment;
+        }
+        robot.joint_count = joints.len().min(links.len()).min(J);
+        robot.segment_count = segments.len().min(S);
+        robot.with_frames()
     }
 }
 
-impl<T: SimdRealField + Copy, const N: usize> Chain<T, N> {
+impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
+    /// The same robot with `table`'s coefficients as its segments' own (segment `k` takes row
+    /// `k`); nothing else changes.
+    #[must_use]
+    pub fn with_coefficients(&self, table: &SegmentCoefficients<T, S>) -> Self {
+        let mut robot = *self;
+        for ((segment, cd), cm) in robot.segments.iter_mut().zip(table.cd).zip(table.cm) {
+            (segment.cd, segment.cm) = (cd, cm);
+        }
+        robot
+    }
+
     /// The joints, as validated.
-    pub const fn joints(&self) -> &[Joint<T>; N] {
-        &self.joints
+    pub fn joints(&self) -> &[TreeJoint<T>] {
+        self.joints.get(..self.joint_count).unwrap_or(&[])
     }
 
-    /// The links, as validated.
-    pub const fn links(&self) -> &[Link<T>; N] {
-        &self.links
+    /// The links (link `i` is moved by joint `i`), as validated.
+    pub fn links(&self) -> &[RigidBody<T>] {
+        self.links.get(..self.joint_count).unwrap_or(&[])
     }
 
-    /// The chain as a robot of `N` joints and up to `N` segments (each link's, in link order), at
-    /// the default coefficients: what the chain's functions evaluate.
-    pub const fn robot(&self) -> &Robot<T, N, N> {
-        &self.robot
+    /// The base's own body.
+    pub const fn base(&self) -> &RigidBody<T> {
+        &self.base
     }
-}
 
-/// Table II of the paper, the UWML's parameters (SI units).
-pub mod paper {
-    /// Thigh length `L2` [m].
-    pub const L2: f64 = 0.660;
-    /// Calf length `L3` [m].
-    pub const L3: f64 = 0.714;
-    /// Thigh COM/COB distance from joint 2, `Lc2` [m].
-    pub const LC2: f64 = 0.506;
-    /// Calf COM/COB distance from joint 3, `Lc3` [m].
-    pub const LC3: f64 = 0.560;
-    /// Thigh frontal width for out-of-plane flow, `D21` [m].
-    pub const D21: f64 = 0.131;
-    /// Thigh frontal width for in-plane flow, `D22` [m].
-    pub const D22: f64 = 0.238;
-    /// Calf frontal width for out-of-plane flow, `D31` [m].
-    pub const D31: f64 = 0.131;
-    /// Calf frontal width for in-plane flow, `D32` [m].
-    pub const D32: f64 = 0.279;
-    /// Link masses `m1, m2, m3` [kg].
-    pub const MASSES: [f64; 3] = [10.758, 19.261, 10.375];
-    /// Equivalent link density `ρ_m` [kg/m³]; a link's displaced volume is `m / ρ_m`.
-    pub const LINK_DENSITY: f64 = 2700.0;
-}
+    /// The segments, as validated (normals exactly orthonormal).
+    pub fn segments(&self) -> &[RobotSegment<T>] {
+        self.segments.get(..self.segment_count).unwrap_or(&[])
+    }
 
-impl<T: RealField + Copy> Chain<T, 3> {
-    /// The paper's underwater mechanical leg (UWML, Table II): hip yaw about world z, hip roll
-    /// and knee roll about `-e_t`; thigh along local +x, calf along local −z at `q = 0`.
+    /// The number of joints (and links).
+    pub const fn joint_count(&self) -> usize {
+        self.joint_count
+    }
+
+    /// The segments' own coefficients.
     #[must_use]
-    pub fn paper() -> Self {
-        let c = constant::<T>;
-        let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
-        let roll_axis = v(0.0, -1.0, 0.0);
-        let joints = [
-            Joint { origin: Vector3::zeros(), axis: v(0.0, 0.0, 1.0) },
-            Joint { origin: Vector3::zeros(), axis: roll_axis },
-            Joint { origin: v(paper::L2, 0.0, 0.0), axis: roll_axis },
-        ];
-        let volume = |m: f64| c(m / paper::LINK_DENSITY);
-        let [m1, m2, m3] = paper::MASSES;
-        let out_of_plane = v(0.0, 1.0, 0.0);
-        let links = [
-            Link { mass: c(m1), com: Vector3::zeros(), volume: volume(m1), cob: Vector3::zeros(), segment: None },
-            Link {
-                mass: c(m2),
-                com: v(paper::LC2, 0.0, 0.0),
-                volume: volume(m2),
-                cob: v(paper::LC2, 0.0, 0.0),
-                segment: Some(Segment {
-                    start: Vector3::zeros(),
-                    axis: v(1.0, 0.0, 0.0),
-                    length: c(paper::L2),
-                    normals: [out_of_plane, v(0.0, 0.0, 1.0)],
-                    widths: [c(paper::D21), c(paper::D22)],
-                    area: c(paper::D21 * paper::D22),
-                }),
-            },
-            Link {
-                mass: c(m3),
-                com: v(0.0, 0.0, -paper::LC3),
-                volume: volume(m3),
-                cob: v(0.0, 0.0, -paper::LC3),
-                segment: Some(Segment {
-                    start: Vector3::zeros(),
-                    axis: v(0.0, 0.0, -1.0),
-                    length: c(paper::L3),
-                    normals: [out_of_plane, v(1.0, 0.0, 0.0)],
-                    widths: [c(paper::D31), c(paper::D32)],
-                    area: c(paper::D31 * paper::D32),
-                }),
-            },
-        ];
-        Self::from_validated(joints, links)
+    pub fn coefficients(&self) -> SegmentCoefficients<T, S> {
+        SegmentCoefficients { cd: self.segments.map(|s| s.cd), cm: self.segments.map(|s| s.cm) }
+    }
+
+    /// Every body in its own body frame, for the evaluation.
+    pub(crate) const fn frames(&self) -> &BodyFrames<T, J, S> {
+        &self.frames
+    }
+
+    /// The bodies' lumped models, in their body frames.
+    pub(crate) const fn lumped(&self) -> &Lumped<T, B> {
+        &self.lumped
+    }
+
+    /// The number of columns of the robot's regressors ([`crate::tree::robot_hydro_regressors`]):
+    /// `3s + 63l` for `s` segments and `l` lumped models.
+    #[must_use]
+    pub fn regressor_column_count(&self) -> usize {
+        3 * self.segments().len() + LUMPED_COLUMNS * self.lumped.len()
     }
 }
 
-impl<T: RealField + Copy> Water<T> {
-    /// Water of the given density [kg/m³] under the given gravity [m/s²].
-    ///
-    /// # Errors
-    /// Density not positive and finite, or gravity negative or not finite; either beyond
-    /// [`MAX_DENSITY`], [`MAX_GRAVITY`].
-    pub fn new(density: T, gravity: T) -> Result<Self, ModelError> {
-        Ok(Self {
-            density: check_at_most(
-                check_positive(density, "water.density", None)?,
-                MAX_DENSITY,
-                "water.density",
-                None,
-            )?,
-            gravity: check_at_most(
-                check_non_negative(gravity, "water.gravity", None)?,
-                MAX_GRAVITY,
-                "water.gravity",
-                None,
-            )?,
-        })
-    }
-}
-
-impl<T: SimdRealField + Copy> Water<T> {
-    /// Density [kg/m³].
-    pub const fn density(&self) -> T {
-        self.density
-    }
-
-    /// Gravitational acceleration [m/s²].
-    pub const fn gravity(&self) -> T {
-        self.gravity
-    }
-}
-
-impl<T: RealField + Copy> Default for Water<T> {
-    /// Fresh water as in the paper: 1000 kg/m³, g = 9.81 m/s².
-    fn default() -> Self {
-        Self { density: constant(1000.0), gravity: constant(9.81) }
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
-    /// One drag and one added-mass coefficient for every link and direction (the paper's model).
-    ///
-    /// # Errors
-    /// A coefficient that is negative or not finite.
-    pub fn uniform(cd: T, cm: T) -> Result<Self, ModelError> {
-        Self::per_direction([[cd; 2]; N], [[cm; 2]; N])
-    }
-
-    /// Coefficients per link and per normal direction, indexed `[link][k]`.
-    ///
-    /// # Errors
-    /// A coefficient that is negative or not finite, naming the link.
-    pub fn per_direction(cd: [[T; 2]; N], cm: [[T; 2]; N]) -> Result<Self, ModelError> {
-        check_coefficient_table(&cd, &cm, ["cd", "cm"])?;
-        Ok(Self { cd, cm })
-    }
-}
-
-impl<T: SimdRealField + Copy, const N: usize> Coefficients<T, N> {
-    /// Drag coefficients `[link][k]`.
-    pub const fn cd(&self) -> &[[T; 2]; N] {
-        &self.cd
-    }
-
-    /// Added-mass coefficients `[link][k]`.
-    pub const fn cm(&self) -> &[[T; 2]; N] {
-        &self.cm
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Default for Coefficients<T, N> {
-    /// The paper's fitted values rounded: `Cd = 2.2`, `Cm = 0.5` everywhere.
-    fn default() -> Self {
-        Self { cd: [[constant(2.2); 2]; N], cm: [[constant(0.5); 2]; N] }
-    }
-}
-
-impl<T: RealField + Copy> Joint<T> {
-    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Joint<U> {
-        Joint { origin: self.origin.map(f), axis: self.axis.map(f) }
-    }
-}
-
-impl<T: RealField + Copy> Segment<T> {
-    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Segment<U> {
-        Segment {
-            start: self.start.map(f),
-            axis: self.axis.map(f),
-            length: f(self.length),
-            normals: self.normals.map(|n| n.map(f)),
-            widths: self.widths.map(f),
-            area: f(self.area),
-        }
-    }
-}
-
-impl<T: RealField + Copy> Link<T> {
-    /// Every number mapped by `f` (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Link<U> {
-        Link {
-            mass: f(self.mass),
-            com: self.com.map(f),
-            volume: f(self.volume),
-            cob: self.cob.map(f),
-            segment: self.segment.map(|s| s.map_scalars(f)),
-        }
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Chain<T, N> {
-    /// The same chain over another scalar type, every number (including the precomputed body
-    /// frames) mapped by `f`, which must keep values (as `Dual::constant` does): nothing is
-    /// validated or derived again, so the mapped chain takes the same branches as this one.
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Chain<U, N> {
-        Chain {
-            joints: self.joints.map(|j| j.map_scalars(f)),
+impl<T: SimdRealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
+    /// The same robot over another scalar type, every number mapped by `f`, which must keep
+    /// values (as `Dual::constant` does): nothing is validated again.
+    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Robot<U, J, S, B> {
+        Robot {
+            joints: self.joints.map(|j| TreeJoint {
+                parent: j.parent,
+                kind: j.kind,
+                origin: j.origin.map(f),
+                axis: j.axis.map(f),
+            }),
             links: self.links.map(|l| l.map_scalars(f)),
-            robot: self.robot.map_scalars(f),
+            base: self.base.map_scalars(f),
+            segments: self.segments.map(|s| s.map_scalars(f)),
+            joint_count: self.joint_count,
+            segment_count: self.segment_count,
+            frames: self.frames.map_scalars(f),
+            lumped: self.lumped.map_scalars(f),
         }
     }
 }
 
-impl<T: RealField + Copy> Water<T> {
-    /// The same water over another scalar type (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U) -> Water<U> {
-        Water { density: f(self.density), gravity: f(self.gravity) }
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
-    /// The same coefficients over another scalar type (see [`Chain::map_scalars`]).
-    pub(crate) fn map_scalars<U: SimdRealField + Copy>(&self, f: impl Fn(T) -> U + Copy) -> Coefficients<U, N> {
-        Coefficients { cd: self.cd.map(|c| c.map(f)), cm: self.cm.map(|c| c.map(f)) }
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Chain<T, N> {
-    /// The same chain over a SIMD type `L` whose lanes are `T`s (such as simba's `WideF64x4`),
-    /// every number splat across the lanes: the torque paths then evaluate one joint state per
-    /// lane in one call, with the same operations as for `T`.
+impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> Robot<T, J, S, B> {
+    /// The same robot over a SIMD type, every number splat across the lanes: the evaluation then
+    /// takes one state per lane in one call, with the same operations as for `T`.
     #[must_use]
-    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Chain<L, N> {
-        self.map_scalars(L::splat)
-    }
-}
-
-impl<T: RealField + Copy> Water<T> {
-    /// The same water over a SIMD type (see [`Chain::splat`]).
-    #[must_use]
-    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Water<L> {
-        self.map_scalars(L::splat)
-    }
-}
-
-impl<T: RealField + Copy, const N: usize> Coefficients<T, N> {
-    /// The same coefficients over a SIMD type (see [`Chain::splat`]).
-    #[must_use]
-    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Coefficients<L, N> {
+    pub fn splat<L: SimdRealField<Element = T> + Copy>(&self) -> Robot<L, J, S, B> {
         self.map_scalars(L::splat)
     }
 }

@@ -10,8 +10,9 @@
 
 use nalgebra::{Matrix3, RealField, SMatrix, SimdRealField, Vector3};
 
+use crate::bounds::AXIS_TOLERANCE;
+use crate::check::{check_vector, constant};
 use crate::error::{ModelError, Problem};
-use crate::model::{AXIS_TOLERANCE, check_vector, constant};
 
 /// The base's orientation and motion at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -3,8 +3,9 @@
 
 use nalgebra::{RealField, Vector3};
 
-use crate::model::constant;
-use crate::robot::{JointKind, Owner, RigidBody, Robot, RobotSegment, Section, TreeJoint};
+use crate::check::constant;
+use crate::model::Robot;
+use crate::parts::{JointKind, Owner, RigidBody, RobotSegment, Section, TreeJoint};
 
 /// Table II of the paper, the UWML's parameters (SI units).
 pub mod paper {

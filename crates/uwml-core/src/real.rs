@@ -1,44 +1,28 @@
 //! The number types an evaluation of a whole robot runs on: `f32`, `f64`, dual numbers for
 //! derivatives, and (with the `wide` feature) four `f64` side by side on SIMD lanes.
 
-use nalgebra::SimdRealField;
+use nalgebra::{RealField, SimdRealField};
 
 use crate::dual::Dual;
-use crate::losses::{JointLoss, LossState};
 
 /// A number type of the evaluation. Everything but the joint angles' sines and cosines is
 /// nalgebra's `SimdRealField` arithmetic; those are computed here, so that SIMD lanes take the
 /// scalar functions lane by lane: every lane then has exactly the bits of a scalar evaluation
-/// of its state, whatever its neighbours.
-pub trait Real: SimdRealField + Copy {
+/// of its state, whatever its neighbours. A lane is itself a real number (`Element: RealField`),
+/// so that what branches on values (the joint losses) can be evaluated lane by lane too.
+pub trait Real: SimdRealField<Element: RealField + Copy> + Copy {
     /// `(sin x, cos x)`.
     #[must_use]
     fn sin_cos(self) -> (Self, Self) {
         self.simd_sin_cos()
     }
-
-    /// A joint's losses at output speed `speed` ([`LossState::evaluate`]; lane by lane).
-    #[must_use]
-    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self>;
 }
 
-impl Real for f32 {
-    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
-        state.evaluate(speed)
-    }
-}
+impl Real for f32 {}
 
-impl Real for f64 {
-    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
-        state.evaluate(speed)
-    }
-}
+impl Real for f64 {}
 
-impl<T: nalgebra::RealField + Copy, const M: usize> Real for Dual<T, M> {
-    fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
-        state.evaluate(speed)
-    }
-}
+impl<T: RealField + Copy, const M: usize> Real for Dual<T, M> {}
 
 /// `Real` for a simba SIMD type of four lanes of a scalar `Real`.
 #[cfg(feature = "wide")]
@@ -51,17 +35,6 @@ macro_rules! four_lanes {
                 let lanes: [$scalar; 4] = self.into();
                 let [a, b, c, d] = lanes.map(<$scalar as Real>::sin_cos);
                 (Self::from([a.0, b.0, c.0, d.0]), Self::from([a.1, b.1, c.1, d.1]))
-            }
-
-            fn joint_loss(state: &LossState<Self>, speed: Self) -> JointLoss<Self> {
-                use simba::simd::SimdValue;
-                let lane = |l: usize| state.map_scalars(|x: Self| x.extract(l)).evaluate(speed.extract(l));
-                let [a, b, c, d] = [lane(0), lane(1), lane(2), lane(3)];
-                JointLoss {
-                    visc: Self::from([a.visc, b.visc, c.visc, d.visc]),
-                    seal: Self::from([a.seal, b.seal, c.seal, d.seal]),
-                    current: Self::from([a.current, b.current, c.current, d.current]),
-                }
             }
         }
     };

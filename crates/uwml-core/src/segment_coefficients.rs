@@ -3,9 +3,8 @@
 
 use nalgebra::{RealField, SimdRealField};
 
+use crate::check::check_coefficient_table;
 use crate::error::{ModelError, Problem};
-use crate::model::check_coefficient_table;
-use crate::robot::Robot;
 
 /// Drag and added-mass coefficients per segment and normal direction (`[segment][k]`), to
 /// evaluate a robot with other coefficients than its segments' own.
@@ -34,17 +33,6 @@ impl<T: RealField + Copy, const S: usize> SegmentCoefficients<T, S> {
     pub fn per_segment(cd: [[T; 2]; S], cm: [[T; 2]; S]) -> Result<Self, ModelError> {
         check_coefficient_table(&cd, &cm, ["segment.cd", "segment.cm"])?;
         Ok(Self { cd, cm })
-    }
-
-    /// The coefficients of `robot`'s segments, as its segments give them (checked when it was
-    /// built); zero beyond its segments.
-    #[must_use]
-    pub fn own<const J: usize, const B: usize>(robot: &Robot<T, J, S, B>) -> Self {
-        let mut table = Self { cd: [[T::zero(); 2]; S], cm: [[T::zero(); 2]; S] };
-        for ((cd, cm), segment) in table.cd.iter_mut().zip(table.cm.iter_mut()).zip(robot.segments()) {
-            (*cd, *cm) = (segment.cd, segment.cm);
-        }
-        table
     }
 
     /// Segment `segment`'s coefficients, per normal direction.

@@ -1,38 +1,19 @@
 //! The water's forces on one straight segment of a body (docs/model.md sections 3, 10 and 12.2):
 //! its drag and added-mass wrenches by the exact strip integrals (the added mass in the paper's
-//! Morison form or Kirchhoff's, [`AddedMassForm`]), and its optional axial drag, each about its
-//! body's origin in its body frame, for the whole-robot evaluation (`crate::tree`) and its
-//! regressors.
+//! Morison form or Kirchhoff's, `crate::conditions::AddedMassForm`), and its optional axial drag,
+//! each about its body's origin in its body frame, for the whole-robot evaluation
+//! (`crate::hydro`) and its regressors.
 
 use nalgebra::{SimdRealField, Vector3};
 
+use crate::algebra::dot;
+use crate::check::constant;
+use crate::conditions::AddedMassForm;
 use crate::frames::SegmentGeometry;
-use crate::kinematics::dot;
-use crate::model::constant;
-use crate::robot::{RobotSegment, Section};
+use crate::kinematics::Frame;
+use crate::parts::{RobotSegment, Section};
 use crate::strip::{added_mass_moments, circular_speed_moments, drag_moments_2};
-use crate::tree::Frame;
 use crate::wrench::Wrench;
-
-/// How the added-mass forces depend on the velocities (docs/simulation.md, "Energy-consistent added
-/// mass"). Both share the added-mass matrix `M_A(q)`, the acceleration part; they differ in the
-/// velocity terms.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum AddedMassForm {
-    /// The paper's Morison form: each slice's added mass on the normal components of its
-    /// acceleration relative to the water, `−ρ Cm_k A (n_k·a) n_k`. Not derived from the water's
-    /// kinetic energy: with drag off it exchanges energy with the robot at the rate of
-    /// docs/simulation.md, "Energy-consistent added mass".
-    #[default]
-    Morison,
-    /// Kirchhoff's form, derived from the water's kinetic energy `T_A = ½ Σ ∫ ρ Cm_k A v_k² ds`:
-    /// each slice, a body with the added-mass tensor `Σ_k ρ Cm_k A n_k n_kᵀ` and relative
-    /// velocity `v`, feels the force `−dp/dt` (`p` its added momentum, `n_k` turning with the
-    /// link) and the couple `−v × p` (Munk's). The generalized forces are then
-    /// `−M_A q̈ − C_A q̇` with `Ṁ_A − 2 C_A` skew-symmetric: in still water, without drag, the
-    /// energy `T_rigid + T_A + V` is conserved.
-    Kirchhoff,
-}
 
 /// A segment's drag and added-mass wrenches about its body's origin, in its body frame (where
 /// `geometry` gives its directions), at coefficients `cd`, `cm`, in water of `density`.

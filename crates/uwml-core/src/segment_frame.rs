@@ -3,7 +3,7 @@
 
 use nalgebra::{Matrix3, RealField, SimdRealField, Vector3};
 
-use crate::kinematics::dot;
+use crate::algebra::dot;
 
 /// The directions of a segment in its body frame.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -7,8 +7,8 @@
 
 use nalgebra::{SimdBool, SimdRealField, Vector3};
 
-use crate::kinematics::dot;
-use crate::model::constant;
+use crate::algebra::dot;
+use crate::check::constant;
 
 /// `(∫ h|h| ds, ∫ s·h|h| ds)` over `[start, start + width]` by 2-point Gauss-Legendre, exact
 /// where `h = v0 + v1·s` keeps its sign (the integrands are then a quadratic and a cubic).

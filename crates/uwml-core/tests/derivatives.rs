@@ -1,18 +1,18 @@
-//! Derivatives for control: the dual numbers' chain rules, `environment_jacobians` against
-//! central finite differences (paper leg with and without joint losses, random 4-joint chains),
-//! the added-mass matrix (symmetric, positive semi-definite, `added_mass(q, 0, q̈) = −M_A q̈`,
-//! `∂τ/∂q̈ = −M_A`), the value against `environment_torques`, f32 against f64, and the loss
-//! derivatives (zero in `q`, diagonal in `q̇`).
+//! Derivatives for control: the dual numbers' chain rules, the joint block of `robot_jacobians`
+//! against central finite differences (paper leg with and without joint losses, random 4-joint
+//! chains), the added-mass matrix (symmetric, positive semi-definite, `added_mass(q, 0, q̈) =
+//! −M_A q̈`, `∂τ/∂q̈ = −M_A`), the value against `robot_hydro`, f32 against f64, and the loss
+//! derivatives (zero in `q`, diagonal in `q̇`). Trees on a moving base: tests/robot.rs.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{ComplexField, RealField, SMatrix, SVector, convert};
 use uwml_core::{
-    Chain, Coefficients, Drive, Dual, EnvironmentJacobians, JointLosses, LossState, OilDrag, Water,
-    environment_jacobians, environment_torques, hydro_jacobians, hydro_torques, pressure_at_depth,
+    Conditions, Drive, Dual, JointLosses, LossState, OilDrag, Real, Robot, RobotData, RobotJacobianData,
+    RobotJacobians, Water, presets, pressure_at_depth, robot_hydro, robot_jacobians,
 };
 
 mod common;
-use common::{Rng, random_chain, random_coefficients};
+use common::{Rng, hydro, random_chain};
 
 /// Central difference step and the tolerance it allows, relative to the matrix's largest entry.
 const H: f64 = 1e-6;
@@ -43,8 +43,8 @@ fn every_rule_matches_finite_differences() {
     let rules: [Rule; 40] = [
         ("sin", |x| x.sin()),
         ("cos", |x| x.cos()),
-        ("sin_cos.0", |x| x.sin_cos().0),
-        ("sin_cos.1", |x| x.sin_cos().1),
+        ("sin_cos.0", |x| ComplexField::sin_cos(x).0),
+        ("sin_cos.1", |x| ComplexField::sin_cos(x).1),
         ("tan", |x| x.tan()),
         ("asin", |x| (x * c(0.3)).asin()),
         ("acos", |x| (x * c(0.3)).acos()),
@@ -135,31 +135,83 @@ fn relative_error<const N: usize>(a: &SMatrix<f64, N, N>, b: &SMatrix<f64, N, N>
     (a - b).amax() / b.amax().max(floor)
 }
 
-struct Model<const N: usize> {
-    chain: Chain<f64, N>,
+/// The joint block of `robot_jacobians` for a robot on a fixed base (all `N` joints used).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Jacobians<T: RealField + Copy, const N: usize> {
+    /// `τ_env` (hydrodynamics and joint losses).
+    value: SVector<T, N>,
+    /// `∂τ_env/∂q`.
+    d_q: SMatrix<T, N, N>,
+    /// `∂τ_env/∂q̇`.
+    d_qd: SMatrix<T, N, N>,
+    /// `M_A(q)`.
+    added_mass_matrix: SMatrix<T, N, N>,
+}
+
+/// `robot_jacobians` of `robot` at `(q, q̇, q̈)`, its joint rows and columns.
+fn joint_jacobians<T: RealField + Real, const N: usize, const S: usize>(
+    robot: &Robot<T, N, S>,
+    water: &Water<T>,
+    losses: &[Option<LossState<T>>; N],
+    [q, qd, qdd]: [&SVector<T, N>; 3],
+) -> Jacobians<T, N> {
+    let m = 6 + N;
+    let nan = T::zero() / T::zero();
+    let (mut value, mut d_q, mut d_velocity, mut matrix) =
+        (vec![nan; m], vec![nan; m * N], vec![nan; m * m], vec![nan; m * m]);
+    let out = RobotJacobians {
+        value: &mut value,
+        d_q: &mut d_q,
+        d_velocity: &mut d_velocity,
+        added_mass_matrix: &mut matrix,
+    };
+    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
+    let conditions = Conditions { losses: Some(losses), ..Conditions::new(*water) };
+    let mut work = RobotJacobianData::new(robot);
+    robot_jacobians(robot, &conditions, [&state(q), &state(qd), &state(qdd)], &mut work, out);
+    Jacobians {
+        value: SVector::from_fn(|i, _| value[6 + i]),
+        d_q: SMatrix::from_fn(|i, j| d_q[(6 + i) * N + j]),
+        d_qd: SMatrix::from_fn(|i, j| d_velocity[(6 + i) * m + 6 + j]),
+        added_mass_matrix: SMatrix::from_fn(|i, j| matrix[(6 + i) * m + 6 + j]),
+    }
+}
+
+/// `τ_env`: every joint's hydrodynamic force plus its losses, summed as the evaluation sums them.
+fn environment<T: Real, const N: usize, const S: usize>(
+    robot: &Robot<T, N, S>,
+    conditions: &Conditions<'_, T, N, S>,
+    [q, qd, qdd]: [&SVector<T, N>; 3],
+) -> SVector<T, N> {
+    let mut data = RobotData::new();
+    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
+    robot_hydro(robot, conditions, [&state(q), &state(qd), &state(qdd)], &mut data);
+    SVector::from_fn(|i, _| {
+        let (f, l) = (data.joint_forces()[i], data.joint_losses()[i]);
+        f.total() + l.visc + l.seal
+    })
+}
+
+struct Model<const N: usize, const S: usize> {
+    robot: Robot<f64, N, S>,
     water: Water<f64>,
-    coefficients: Coefficients<f64, N>,
     losses: [Option<LossState<f64>>; N],
 }
 
-impl<const N: usize> Model<N> {
+impl<const N: usize, const S: usize> Model<N, S> {
     fn torques(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>, qdd: &SVector<f64, N>) -> SVector<f64, N> {
-        environment_torques(&self.chain, &self.water, &self.coefficients, &self.losses, q, qd, qdd).total()
+        let conditions = Conditions { losses: Some(&self.losses), ..Conditions::new(self.water) };
+        environment(&self.robot, &conditions, [q, qd, qdd])
     }
 
-    fn jacobians(
-        &self,
-        q: &SVector<f64, N>,
-        qd: &SVector<f64, N>,
-        qdd: &SVector<f64, N>,
-    ) -> EnvironmentJacobians<f64, N> {
-        environment_jacobians(&self.chain, &self.water, &self.coefficients, &self.losses, q, qd, qdd)
+    fn jacobians(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>, qdd: &SVector<f64, N>) -> Jacobians<f64, N> {
+        joint_jacobians(&self.robot, &self.water, &self.losses, [q, qd, qdd])
     }
 
     /// Checks every output at one state; returns the worst relative errors of `d_q` and `d_qd`.
     fn check(&self, q: &SVector<f64, N>, qd: &SVector<f64, N>, qdd: &SVector<f64, N>) -> (f64, f64) {
         let j = self.jacobians(q, qd, qdd);
-        // The value is environment_torques's, bit for bit.
+        // The value is robot_hydro's, bit for bit.
         assert_eq!(j.value, self.torques(q, qd, qdd));
         let fd_q = central(q, |q| self.torques(q, qd, qdd));
         let fd_qd = central(qd, |qd| self.torques(q, qd, qdd));
@@ -183,14 +235,14 @@ impl<const N: usize> Model<N> {
         let mut rng = Rng(77);
         for _ in 0..5 {
             let qdd = rng.vector::<N>(5.0);
-            let added_mass = hydro_torques(&self.chain, &self.water, &self.coefficients, q, &zero, &qdd).added_mass;
+            let added_mass = hydro(&self.robot, &self.water, None, q, &zero, &qdd).added_mass;
             assert!((added_mass + m * qdd).amax() <= 1e-13 * scale * qdd.amax(), "{added_mass} vs {}", -m * qdd);
         }
         // Unsymmetrized, column by column: the two triangles agree up to rounding.
         for j in 0..N {
             let mut unit = zero;
             unit[j] = 1.0;
-            let column = -hydro_torques(&self.chain, &self.water, &self.coefficients, q, &zero, &unit).added_mass;
+            let column = -hydro(&self.robot, &self.water, None, q, &zero, &unit).added_mass;
             assert!((column - m.column(j)).amax() <= 1e-14 * scale, "column {j}: {column} vs {}", m.column(j));
         }
     }
@@ -213,15 +265,10 @@ fn cholesky_succeeds<const N: usize>(m: &SMatrix<f64, N, N>) -> bool {
     true
 }
 
-fn paper(losses: bool) -> Model<3> {
+fn paper(losses: bool) -> Model<3, 2> {
     let pressure = pressure_at_depth(1000.0, 1025.0, 9.81).unwrap();
     let state = losses.then(|| JointLosses::default().at(pressure, 4.0).unwrap());
-    Model {
-        chain: Chain::paper(),
-        water: Water::new(1025.0, 9.81).unwrap(),
-        coefficients: Coefficients::default(),
-        losses: [state; 3],
-    }
+    Model { robot: presets::paper_leg(), water: Water::new(1025.0, 9.81).unwrap(), losses: [state; 3] }
 }
 
 /// Random speeds away from the smooth sign's width, where the finite differences' third
@@ -268,13 +315,11 @@ fn random_chains_match_finite_differences() {
     let mut rng = Rng(13);
     let seal_only = JointLosses::new(Drive::default(), None, JointLosses::default().seal, 0.02).unwrap();
     for k in 0..100 {
-        let coefficients = random_coefficients(&mut rng);
         let losses =
             [None, Some(JointLosses::default().at(5e6, 10.0).unwrap()), None, Some(seal_only.at(2e7, 2.0).unwrap())];
         let model = Model {
-            chain: random_chain(&mut rng),
+            robot: random_chain(&mut rng),
             water: Water::new(1025.0, 9.80665).unwrap(),
-            coefficients,
             losses: if k % 2 == 0 { losses } else { [None; 4] },
         };
         for _ in 0..5 {
@@ -285,15 +330,13 @@ fn random_chains_match_finite_differences() {
 }
 
 #[test]
-fn hydro_jacobians_are_environment_jacobians_without_losses() {
+fn without_losses_the_jacobians_are_the_hydrodynamics_alone() {
     let model = paper(false);
     let mut rng = Rng(14);
     for _ in 0..20 {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), rng.vector::<3>(2.0), rng.vector::<3>(5.0));
-        let hydro = hydro_jacobians(&model.chain, &model.water, &model.coefficients, &q, &qd, &qdd);
-        assert_eq!(hydro, model.jacobians(&q, &qd, &qdd));
-        let tau = hydro_torques(&model.chain, &model.water, &model.coefficients, &q, &qd, &qdd);
-        assert_eq!(hydro.value, tau.total());
+        let jacobians = model.jacobians(&q, &qd, &qdd);
+        assert_eq!(jacobians.value, hydro(&model.robot, &model.water, None, &q, &qd, &qdd).total());
     }
 }
 
@@ -340,11 +383,11 @@ fn loss_derivatives_are_zero_in_q_and_diagonal_in_qd() {
 
 #[test]
 fn the_dual_pass_computes_the_real_values_and_minus_the_added_mass_matrix_in_qdd() {
-    // The whole model over Dual, q̈ seeded: what environment_jacobians does, in the open.
+    // The whole model over Dual, q̈ seeded: what robot_jacobians does for the other inputs, in the
+    // open.
     type D3 = Dual<f64, 3>;
-    let leg = Chain::<D3, 3>::paper();
+    let leg = presets::paper_leg::<D3>();
     let water = Water::new(D3::constant(1025.0), D3::constant(9.81)).unwrap();
-    let coefficients = Coefficients::<D3, 3>::default();
     let pressure = pressure_at_depth(D3::constant(1000.0), D3::constant(1025.0), D3::constant(9.81)).unwrap();
     let losses = [Some(JointLosses::<D3>::default().at(pressure, D3::constant(4.0)).unwrap()); 3];
     let model = paper(true);
@@ -352,18 +395,10 @@ fn the_dual_pass_computes_the_real_values_and_minus_the_added_mass_matrix_in_qdd
     for _ in 0..100 {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), rng.vector::<3>(2.0), rng.vector::<3>(5.0));
         let seeded = qdd.map_with_location(|i, _, x| D3::variable(x, i));
-        let tau = environment_torques(
-            &leg,
-            &water,
-            &coefficients,
-            &losses,
-            &q.map(D3::constant),
-            &qd.map(D3::constant),
-            &seeded,
-        )
-        .total();
+        let conditions = Conditions { losses: Some(&losses), ..Conditions::new(water) };
+        let tau = environment(&leg, &conditions, [&q.map(D3::constant), &qd.map(D3::constant), &seeded]);
         let real = model.torques(&q, &qd, &qdd);
-        // Real parts: the same operations as the f64 path (environment_jacobians takes its value
+        // Real parts: the same operations as the f64 path (robot_jacobians takes its value
         // from them; this checks the open-coded pass to rounding).
         let re = tau.map(|t| t.re);
         assert!((re - real).amax() <= 1e-14 * real.amax(), "{re} vs {real}");
@@ -376,15 +411,15 @@ fn the_dual_pass_computes_the_real_values_and_minus_the_added_mass_matrix_in_qdd
 #[test]
 fn single_precision_agrees_with_double() {
     let model = paper(true);
-    let leg = Chain::<f32, 3>::paper();
-    let (water, coefficients) = (Water::new(1025.0f32, 9.81).unwrap(), Coefficients::<f32, 3>::default());
+    let leg = presets::paper_leg::<f32>();
+    let water = Water::new(1025.0f32, 9.81).unwrap();
     let losses =
         [Some(JointLosses::<f32>::default().at(pressure_at_depth(1000.0, 1025.0, 9.81).unwrap(), 4.0).unwrap()); 3];
     let mut rng = Rng(17);
     for _ in 0..200 {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), speeds::<3>(&mut rng, 2.0), rng.vector::<3>(5.0));
         let single = |v: &SVector<f64, 3>| v.map(|x| x as f32);
-        let j32 = environment_jacobians(&leg, &water, &coefficients, &losses, &single(&q), &single(&qd), &single(&qdd));
+        let j32 = joint_jacobians(&leg, &water, &losses, [&single(&q), &single(&qd), &single(&qdd)]);
         let j64 = model.jacobians(&q, &qd, &qdd);
         let double = |m: &SMatrix<f32, 3, 3>| m.map(f64::from);
         for (a, b) in [
@@ -406,15 +441,7 @@ fn laminar_and_quadratic_oil_and_a_generic_exponent_give_finite_slopes_at_rest()
         let oil = OilDrag::new(1.2e-3, exponent, 2e-8, 0.06, 0.0, 20.0).unwrap();
         let losses = JointLosses::new(Drive::default(), Some(oil), None, 1e-3).unwrap().at(1e7, 4.0).unwrap();
         let zero = SVector::<f64, 3>::zeros();
-        let j = environment_jacobians(
-            &model.chain,
-            &model.water,
-            &model.coefficients,
-            &[Some(losses); 3],
-            &zero,
-            &zero,
-            &zero,
-        );
+        let j = joint_jacobians(&model.robot, &model.water, &[Some(losses); 3], [&zero, &zero, &zero]);
         assert!(j.d_q.iter().chain(j.d_qd.iter()).all(|x| x.is_finite()), "n = {exponent}: {}", j.d_qd);
     }
 }

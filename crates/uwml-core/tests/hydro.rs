@@ -1,16 +1,56 @@
-//! The hydrodynamic torques of the core: the reference values and the
-//! properties of docs/model.md section 5, f32 against f64, and the agreement of the torque and regressor paths.
+//! The hydrodynamic torques of the core on the paper's leg (`presets::paper_leg`) and random
+//! chains: the reference values and the properties of docs/model.md section 5, f32 against f64,
+//! and the agreement of the torque and regressor paths.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{Matrix3, SVector};
-use uwml_core::{Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques, link_motions};
+use uwml_core::{
+    Conditions, KinematicsData, Robot, RobotData, SegmentCoefficients, Water, forward_kinematics, presets,
+    robot_hydro_regressors,
+};
 
 mod common;
-use common::{Rng, random_chain, random_coefficients};
+use common::{Forces, Rng, hydro, random_chain, random_coefficients};
 
-fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> HydroTorques<f64, 3> {
-    let c = Coefficients::uniform(2.2, 0.5).unwrap();
-    hydro_torques(&Chain::paper(), &Water::default(), &c, &q.into(), &qd.into(), &qdd.into())
+fn paper_torques(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> Forces<f64, 3> {
+    let c = SegmentCoefficients::uniform(2.2, 0.5).unwrap();
+    hydro(&presets::paper_leg(), &Water::default(), Some(&c), &q.into(), &qd.into(), &qdd.into())
+}
+
+/// The forces at `coefficients` from the regressors (drag and added-mass columns contracted with
+/// them, buoyancy and gravity as evaluated), for a chain of 4 joints.
+fn from_regressors(
+    chain: &Robot<f64, 4, 4>,
+    water: &Water<f64>,
+    coefficients: &SegmentCoefficients<f64, 4>,
+    [q, qd, qdd]: [&SVector<f64, 4>; 3],
+) -> Forces<f64, 4> {
+    let (columns, mut data) = (chain.regressor_column_count(), RobotData::new());
+    let (mut drag, mut added_mass) = (vec![0.0; 10 * columns], vec![0.0; 10 * columns]);
+    let state = |v: &SVector<f64, 4>| -> [f64; 4] { (*v).into() };
+    let conditions = Conditions::new(*water);
+    robot_hydro_regressors(
+        chain,
+        &conditions,
+        [&state(q), &state(qd), &state(qdd)],
+        &mut data,
+        &mut drag,
+        &mut added_mass,
+    );
+    let contract = |table: &[f64], c: &[[f64; 2]; 4]| {
+        SVector::<f64, 4>::from_fn(|j, _| {
+            let row = &table[(6 + j) * columns..(7 + j) * columns];
+            (0..chain.segments().len()).map(|k| row[2 * k] * c[k][0] + row[2 * k + 1] * c[k][1]).sum()
+        })
+    };
+    let each =
+        |f: fn(&uwml_core::JointForces<f64>) -> f64| SVector::<f64, 4>::from_fn(|j, _| f(&data.joint_forces()[j]));
+    Forces {
+        drag: contract(&drag, coefficients.cd()),
+        added_mass: contract(&added_mass, coefficients.cm()),
+        buoyancy: each(|f| f.buoyancy),
+        gravity: each(|f| f.gravity),
+    }
 }
 
 fn assert_close(actual: f64, expected: f64, rel: f64) {
@@ -90,8 +130,8 @@ fn torque_path_equals_regressors_applied() {
         let chain = random_chain(&mut rng);
         let coefficients = random_coefficients(&mut rng);
         let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
-        let fast = hydro_torques(&chain, &water, &coefficients, &q, &qd, &qdd);
-        let slow = hydro_regressors(&chain, &water, &q, &qd, &qdd).apply(&coefficients);
+        let fast = hydro(&chain, &water, Some(&coefficients), &q, &qd, &qdd);
+        let slow = from_regressors(&chain, &water, &coefficients, [&q, &qd, &qdd]);
         for (a, b) in [(fast.drag, slow.drag), (fast.added_mass, slow.added_mass), (fast.buoyancy, slow.buoyancy)] {
             let scale = b.amax().max(1e-12);
             assert!((a - b).amax() <= 1e-12 * scale, "{a} vs {b}");
@@ -107,10 +147,10 @@ fn drag_is_dissipative_and_homogeneous_of_degree_two() {
         let chain = random_chain(&mut rng);
         let c = random_coefficients(&mut rng);
         let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
-        let drag = hydro_torques(&chain, &water, &c, &q, &qd, &qdd).drag;
+        let drag = hydro(&chain, &water, Some(&c), &q, &qd, &qdd).drag;
         assert!(qd.dot(&drag) <= 1e-12 * qd.norm() * drag.norm(), "power {}", qd.dot(&drag));
         for lambda in [-2.5, -1.0, 0.3, 4.0] {
-            let scaled = hydro_torques(&chain, &water, &c, &q, &(qd * lambda), &qdd).drag;
+            let scaled = hydro(&chain, &water, Some(&c), &q, &(qd * lambda), &qdd).drag;
             let expected = drag * (lambda * f64::abs(lambda));
             assert!((scaled - expected).amax() <= 1e-12 * expected.amax().max(1e-12));
         }
@@ -130,7 +170,7 @@ fn added_mass_matrix_is_symmetric_positive_semidefinite() {
         let columns: [SVector<f64, 4>; 4] = core::array::from_fn(|j| {
             let mut unit = zero;
             unit[j] = 1.0;
-            -hydro_torques(&chain, &water, &c, &q, &zero, &unit).added_mass
+            -hydro(&chain, &water, Some(&c), &q, &zero, &unit).added_mass
         });
         let m = uwml_core::nalgebra::Matrix4::from_columns(&columns);
         assert!((m - m.transpose()).amax() <= 1e-12 * m.amax());
@@ -140,8 +180,8 @@ fn added_mass_matrix_is_symmetric_positive_semidefinite() {
         let qd = rng.vector::<4>(2.0);
         let (a, b) = (rng.vector::<4>(5.0), rng.vector::<4>(5.0));
         let f = |qdd: &SVector<f64, 4>| {
-            hydro_torques(&chain, &water, &c, &q, &qd, qdd).added_mass
-                - hydro_torques(&chain, &water, &c, &q, &qd, &zero).added_mass
+            hydro(&chain, &water, Some(&c), &q, &qd, qdd).added_mass
+                - hydro(&chain, &water, Some(&c), &q, &qd, &zero).added_mass
         };
         let lhs = f(&(a * 2.0 - b * 0.5));
         let rhs = f(&a) * 2.0 - f(&b) * 0.5;
@@ -150,13 +190,13 @@ fn added_mass_matrix_is_symmetric_positive_semidefinite() {
 }
 
 /// ρ g Σ V_i c_i,z: the potential whose gradient is the buoyancy torque.
-fn buoyancy_potential(chain: &Chain<f64, 4>, water: &Water<f64>, q: &SVector<f64, 4>) -> f64 {
-    let zero = SVector::zeros();
-    let motions = link_motions(chain, q, &zero, &zero);
+fn buoyancy_potential(chain: &Robot<f64, 4, 4>, water: &Water<f64>, q: &SVector<f64, 4>) -> f64 {
+    let mut kinematics = KinematicsData::new();
+    forward_kinematics(chain, &(*q).into(), &mut kinematics);
     chain
         .links()
         .iter()
-        .zip(motions.iter())
+        .zip(kinematics.poses())
         .map(|(l, m)| water.density() * water.gravity() * l.volume * m.point(&l.cob).z)
         .sum()
 }
@@ -170,7 +210,7 @@ fn buoyancy_is_conservative_and_joint_one_of_the_paper_gets_none() {
         let chain = random_chain(&mut rng);
         let c = random_coefficients(&mut rng);
         let q = rng.vector::<4>(3.0);
-        let tau = hydro_torques(&chain, &water, &c, &q, &zero, &zero).buoyancy;
+        let tau = hydro(&chain, &water, Some(&c), &q, &zero, &zero).buoyancy;
         let h = 1e-5;
         for j in 0..4 {
             let mut dq = zero;
@@ -204,8 +244,8 @@ fn every_term_is_linear_in_its_coefficient() {
     for _ in 0..100 {
         let chain = random_chain(&mut rng);
         let (q, qd, qdd) = (rng.vector::<4>(3.0), rng.vector::<4>(3.0), rng.vector::<4>(10.0));
-        let one = hydro_torques(&chain, &water, &Coefficients::uniform(1.0, 1.0).unwrap(), &q, &qd, &qdd);
-        let other = hydro_torques(&chain, &water, &Coefficients::uniform(2.2, 0.5).unwrap(), &q, &qd, &qdd);
+        let one = hydro(&chain, &water, Some(&SegmentCoefficients::uniform(1.0, 1.0).unwrap()), &q, &qd, &qdd);
+        let other = hydro(&chain, &water, Some(&SegmentCoefficients::uniform(2.2, 0.5).unwrap()), &q, &qd, &qdd);
         assert!((other.drag - one.drag * 2.2).amax() <= 1e-12 * (1.0 + other.drag.amax()));
         assert!((other.added_mass - one.added_mass * 0.5).amax() <= 1e-12 * (1.0 + other.added_mass.amax()));
         assert_eq!(other.buoyancy, one.buoyancy);
@@ -215,14 +255,13 @@ fn every_term_is_linear_in_its_coefficient() {
 /// The largest relative error of the f32 core against f64 over random states of the paper leg,
 /// per component, scaled by the largest magnitude of that component in the state.
 fn f32_error(states: usize) -> [f64; 3] {
-    let (leg64, leg32) = (Chain::<f64, 3>::paper(), Chain::<f32, 3>::paper());
-    let (c64, c32) = (Coefficients::<f64, 3>::default(), Coefficients::<f32, 3>::default());
+    let (leg64, leg32) = (presets::paper_leg::<f64>(), presets::paper_leg::<f32>());
     let mut rng = Rng(23);
     let mut worst = [0.0f64; 3];
     for _ in 0..states {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), rng.vector::<3>(3.0), rng.vector::<3>(10.0));
-        let t64 = hydro_torques(&leg64, &Water::default(), &c64, &q, &qd, &qdd);
-        let t32 = hydro_torques(&leg32, &Water::default(), &c32, &q.cast(), &qd.cast(), &qdd.cast());
+        let t64 = hydro(&leg64, &Water::default(), None, &q, &qd, &qdd);
+        let t32 = hydro(&leg32, &Water::default(), None, &q.cast(), &qd.cast(), &qdd.cast());
         let pairs = [(t64.drag, t32.drag), (t64.added_mass, t32.added_mass), (t64.buoyancy, t32.buoyancy)];
         for (w, (a, b)) in worst.iter_mut().zip(pairs) {
             let err = (a - b.cast::<f64>()).amax() / a.amax().max(1e-12);
@@ -254,8 +293,9 @@ fn non_finite_states_give_non_finite_torques_without_panic() {
 fn rotation_matrices_stay_orthonormal() {
     let mut rng = Rng(29);
     let chain = random_chain(&mut rng);
-    let zero = SVector::<f64, 4>::zeros();
-    for m in link_motions(&chain, &rng.vector::<4>(10.0), &zero, &zero) {
+    let mut kinematics = KinematicsData::new();
+    forward_kinematics(&chain, &rng.vector::<4>(10.0).into(), &mut kinematics);
+    for m in kinematics.poses() {
         assert!((m.rotation.transpose() * m.rotation - Matrix3::identity()).amax() < 1e-14);
     }
 }

@@ -1,4 +1,4 @@
-//! The torque paths over SIMD lanes (`Chain::splat` and simba's `WideF64x4`/`WideF32x4`, four
+//! The evaluation over SIMD lanes (`Robot::splat` and simba's `WideF64x4`/`WideF32x4`, four
 //! joint states per call, as the Python batch evaluates them) against the scalar paths, lane by
 //! lane. They differ only by the sine and cosine (wide's polynomial, not the platform's), so by
 //! a few units in the last place.
@@ -6,10 +6,10 @@
 
 mod common;
 
-use common::{Rng, random_chain, random_coefficients};
+use common::{Forces, Rng, hydro, random_chain};
 use simba::simd::{SimdValue, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{SVector, Scalar};
-use uwml_core::{BaseMotion, Chain, Coefficients, HydroTorques, Water, hydro_regressors, hydro_torques};
+use uwml_core::{BaseMotion, Conditions, Real, Robot, RobotData, Water, presets, robot_hydro_regressors};
 
 /// Four states side by side (one per lane) of `N` joints.
 fn lanes<L, const N: usize>(states: &[SVector<L::Element, N>; 4]) -> SVector<L, N>
@@ -28,28 +28,44 @@ where
     v.map(|x| x.extract(l))
 }
 
+/// The drag and added-mass regressors of `robot` at one state, row-major `(6 + N) × columns`.
+fn regressors<T: Real, const N: usize, const S: usize>(
+    robot: &Robot<T, N, S>,
+    water: &Water<T>,
+    [q, qd, qdd]: [&SVector<T, N>; 3],
+) -> Vec<T> {
+    let width = (6 + N) * robot.regressor_column_count();
+    let (mut drag, mut added_mass) = (vec![T::zero(); width], vec![T::zero(); width]);
+    let state = |v: &SVector<T, N>| -> [T; N] { (*v).into() };
+    let mut data = RobotData::new();
+    let conditions = Conditions::new(*water);
+    robot_hydro_regressors(
+        robot,
+        &conditions,
+        [&state(q), &state(qd), &state(qdd)],
+        &mut data,
+        &mut drag,
+        &mut added_mass,
+    );
+    drag.extend(added_mass);
+    drag
+}
+
 /// The largest difference between a lane and its scalar evaluation, relative to `1 +` the
 /// largest magnitude of the scalar torques of that kind.
-fn worst_difference<const N: usize>(
-    chain: &Chain<f64, N>,
-    coefficients: &Coefficients<f64, N>,
-    rng: &mut Rng,
-    groups: usize,
-) -> f64 {
+fn worst_difference<const N: usize, const S: usize>(robot: &Robot<f64, N, S>, rng: &mut Rng, groups: usize) -> f64 {
     let water = Water::new(1025.0, 9.81).unwrap();
-    let (lane_chain, lane_water, lane_coefficients) =
-        (chain.splat::<WideF64x4>(), water.splat::<WideF64x4>(), coefficients.splat::<WideF64x4>());
+    let (lane_robot, lane_water) = (robot.splat::<WideF64x4>(), water.splat::<WideF64x4>());
     let mut worst = 0.0f64;
     for _ in 0..groups {
         let q: [SVector<f64, N>; 4] = core::array::from_fn(|_| rng.vector(3.5));
         let qd: [SVector<f64, N>; 4] = core::array::from_fn(|_| rng.vector(3.0));
         let qdd: [SVector<f64, N>; 4] = core::array::from_fn(|_| rng.vector(10.0));
         let (lq, lqd, lqdd) = (lanes::<WideF64x4, N>(&q), lanes(&qd), lanes(&qdd));
-        let tau = hydro_torques(&lane_chain, &lane_water, &lane_coefficients, &lq, &lqd, &lqdd);
-        let regressors = hydro_regressors(&lane_chain, &lane_water, &lq, &lqd, &lqdd);
+        let tau = hydro(&lane_robot, &lane_water, None, &lq, &lqd, &lqdd);
+        let lane_regressors = regressors(&lane_robot, &lane_water, [&lq, &lqd, &lqdd]);
         for l in 0..4 {
-            let scalar = hydro_torques(chain, &water, coefficients, &q[l], &qd[l], &qdd[l]);
-            let scalar_regressors = hydro_regressors(chain, &water, &q[l], &qd[l], &qdd[l]);
+            let scalar = hydro(robot, &water, None, &q[l], &qd[l], &qdd[l]);
             let mut compare = |lanes: &SVector<WideF64x4, N>, scalar: &SVector<f64, N>| {
                 worst = worst.max((lane(lanes, l) - scalar).amax() / (1.0 + scalar.amax()));
             };
@@ -57,14 +73,10 @@ fn worst_difference<const N: usize>(
             compare(&tau.added_mass, &scalar.added_mass);
             compare(&tau.buoyancy, &scalar.buoyancy);
             compare(&tau.gravity, &scalar.gravity);
-            compare(&regressors.buoyancy, &scalar_regressors.buoyancy);
-            for (lanes, scalar) in regressors.drag.iter().flatten().zip(scalar_regressors.drag.iter().flatten()) {
-                compare(lanes, scalar);
-            }
-            for (lanes, scalar) in
-                regressors.added_mass.iter().flatten().zip(scalar_regressors.added_mass.iter().flatten())
-            {
-                compare(lanes, scalar);
+            let scalar_regressors = regressors(robot, &water, [&q[l], &qd[l], &qdd[l]]);
+            let scale = 1.0 + scalar_regressors.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for (a, b) in lane_regressors.iter().zip(&scalar_regressors) {
+                worst = worst.max((a.extract(l) - b).abs() / scale);
             }
         }
     }
@@ -74,12 +86,11 @@ fn worst_difference<const N: usize>(
 #[test]
 fn f64_lanes_match_the_scalar_path_on_the_paper_leg_and_random_chains() {
     let mut rng = Rng(41);
-    let paper = worst_difference(&Chain::paper(), &Coefficients::default(), &mut rng, 5_000);
+    let paper = worst_difference(&presets::paper_leg(), &mut rng, 5_000);
     let mut random = 0.0f64;
     for _ in 0..20 {
         let chain = random_chain(&mut rng);
-        let coefficients = random_coefficients(&mut rng);
-        random = random.max(worst_difference(&chain, &coefficients, &mut rng, 250));
+        random = random.max(worst_difference(&chain, &mut rng, 250));
     }
     println!("f64 lanes vs scalar, worst relative difference: paper {paper:.2e}, random chains {random:.2e}");
     assert!(paper < 1e-13 && random < 1e-13, "paper {paper:e}, random {random:e}");
@@ -87,19 +98,17 @@ fn f64_lanes_match_the_scalar_path_on_the_paper_leg_and_random_chains() {
 
 #[test]
 fn f32_lanes_match_the_scalar_f32_path() {
-    let (chain, coefficients, water) = (Chain::<f32, 3>::paper(), Coefficients::<f32, 3>::default(), Water::default());
-    let (lane_chain, lane_coefficients, lane_water) =
-        (chain.splat::<WideF32x4>(), coefficients.splat::<WideF32x4>(), water.splat::<WideF32x4>());
+    let (leg, water) = (presets::paper_leg::<f32>(), Water::default());
+    let (lane_leg, lane_water) = (leg.splat::<WideF32x4>(), water.splat::<WideF32x4>());
     let mut rng = Rng(43);
     let mut worst = 0.0f32;
     for _ in 0..5_000 {
         let mut state =
             |scale: f64| -> [SVector<f32, 3>; 4] { core::array::from_fn(|_| rng.vector::<3>(scale).cast()) };
         let (q, qd, qdd) = (state(3.5), state(3.0), state(10.0));
-        let tau = hydro_torques(&lane_chain, &lane_water, &lane_coefficients, &lanes(&q), &lanes(&qd), &lanes(&qdd));
+        let tau = hydro(&lane_leg, &lane_water, None, &lanes(&q), &lanes(&qd), &lanes(&qdd));
         for l in 0..4 {
-            let scalar = hydro_torques(&chain, &water, &coefficients, &q[l], &qd[l], &qdd[l]);
-            let total = scalar.total();
+            let total = hydro(&leg, &water, None, &q[l], &qd[l], &qdd[l]).total();
             worst = worst.max((lane(&tau.total(), l) - total).amax() / (1.0 + total.amax()));
         }
     }
@@ -109,9 +118,8 @@ fn f32_lanes_match_the_scalar_f32_path() {
 
 #[test]
 fn a_non_finite_state_gives_nan_in_its_lane_only() {
-    let (chain, coefficients, water) = (Chain::<f64, 3>::paper(), Coefficients::default(), Water::default());
-    let (lane_chain, lane_coefficients, lane_water) =
-        (chain.splat::<WideF64x4>(), coefficients.splat::<WideF64x4>(), water.splat::<WideF64x4>());
+    let (leg, water) = (presets::paper_leg::<f64>(), Water::default());
+    let (lane_leg, lane_water) = (leg.splat::<WideF64x4>(), water.splat::<WideF64x4>());
     let mut rng = Rng(47);
     let mut state = |scale: f64| -> [SVector<f64, 3>; 4] { core::array::from_fn(|_| rng.vector(scale)) };
     let (mut q, mut qd, qdd) = (state(1.0), state(1.0), state(1.0));
@@ -119,25 +127,24 @@ fn a_non_finite_state_gives_nan_in_its_lane_only() {
     // and gravity); lane 2: an infinite rate. Lanes 0 and 3 are finite.
     q[1][0] = f64::NAN;
     qd[2][2] = f64::INFINITY;
-    let tau = hydro_torques(&lane_chain, &lane_water, &lane_coefficients, &lanes(&q), &lanes(&qd), &lanes(&qdd));
-    let regressors = hydro_regressors(&lane_chain, &lane_water, &lanes(&q), &lanes(&qd), &lanes(&qdd));
+    let tau = hydro(&lane_leg, &lane_water, None, &lanes(&q), &lanes(&qd), &lanes(&qdd));
+    let lane_regressors = regressors(&lane_leg, &lane_water, [&lanes(&q), &lanes(&qd), &lanes(&qdd)]);
     for l in 0..4 {
-        let parts = |t: &HydroTorques<WideF64x4, 3>| {
+        let parts = |t: &Forces<WideF64x4, 3>| {
             [t.drag, t.added_mass, t.buoyancy, t.gravity].map(|v| lane(&v, l)).into_iter().flat_map(|v| v.data.0[0])
         };
-        let columns = regressors.drag.iter().chain(regressors.added_mass.iter()).flatten();
-        let regressor_values = columns.chain([&regressors.buoyancy]).flat_map(|v| lane(v, l).data.0[0]);
+        let regressor_values = lane_regressors.iter().map(|x| x.extract(l));
         if l == 1 || l == 2 {
             assert!(parts(&tau).chain(regressor_values).all(f64::is_nan), "lane {l}");
         } else {
-            let scalar = hydro_torques(&chain, &water, &coefficients, &q[l], &qd[l], &qdd[l]);
+            let scalar = hydro(&leg, &water, None, &q[l], &qd[l], &qdd[l]);
             assert!((lane(&tau.total(), l) - scalar.total()).amax() < 1e-12, "lane {l}");
             assert!(parts(&tau).chain(regressor_values).all(f64::is_finite), "lane {l}");
         }
     }
     // Every lane non-finite: NaN everywhere, as for a scalar.
     let nan = SVector::<WideF64x4, 3>::repeat(WideF64x4::splat(f64::NAN));
-    let all = hydro_torques(&lane_chain, &lane_water, &lane_coefficients, &nan, &nan, &nan);
+    let all = hydro(&lane_leg, &lane_water, None, &nan, &nan, &nan);
     assert!((0..4).all(|l| lane(&all.total(), l).iter().all(|x| x.is_nan())));
 }
 
@@ -148,7 +155,7 @@ fn a_non_finite_state_gives_nan_in_its_lane_only() {
 /// first state.
 #[test]
 fn robot_lanes_are_the_scalar_evaluation_bit_for_bit() {
-    use uwml_core::{AddedMassForm, Conditions, Current, JointLosses, LossState, Robot, RobotData, robot_hydro};
+    use uwml_core::{AddedMassForm, Current, JointLosses, LossState, robot_hydro};
     const J: usize = 9;
     const S: usize = 20;
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);

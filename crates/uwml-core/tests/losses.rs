@@ -4,10 +4,9 @@
 
 use core::f64::consts::PI;
 
-use uwml_core::nalgebra::Vector3;
 use uwml_core::{
-    Chain, Coefficients, Drive, JointLosses, OilDrag, Problem, Seal, Water, environment_torques, hydro_torques,
-    pressure_at_depth, smooth_sign,
+    Conditions, Drive, JointLosses, OilDrag, Problem, RobotData, Seal, Water, loss_torques, presets, pressure_at_depth,
+    robot_hydro, smooth_sign,
 };
 
 const MPA: f64 = 1e6;
@@ -149,23 +148,27 @@ fn parameters_are_validated() {
 }
 
 #[test]
-fn environment_torque_adds_losses_to_hydrodynamics() {
-    let leg = Chain::<f64, 3>::paper();
-    let (water, coefficients) = (Water::default(), Coefficients::default());
-    let (q, qd, qdd) = (Vector3::new(0.3, -0.4, 0.6), Vector3::new(0.8, 0.5, -0.7), Vector3::new(1.0, -2.0, 0.5));
+fn the_robot_evaluation_adds_losses_to_hydrodynamics() {
+    let leg = presets::paper_leg::<f64>();
+    let (q, qd, qdd) = ([0.3, -0.4, 0.6], [0.8, 0.5, -0.7], [1.0, -2.0, 0.5]);
     let p = pressure_at_depth(1000.0, 1025.0, 9.81).unwrap();
     assert!(close(p, 10.055_25 * MPA, 1e-12));
     let joint = JointLosses::default().at(p, 4.0).unwrap();
     let losses = [None, Some(joint), Some(joint)];
-    let env = environment_torques(&leg, &water, &coefficients, &losses, &q, &qd, &qdd);
-    let hydro = hydro_torques(&leg, &water, &coefficients, &q, &qd, &qdd);
-    assert_eq!(env.hydro, hydro);
-    assert_eq!((env.visc[0], env.seal[0], env.current[0]), (0.0, 0.0, 0.0));
-    for j in 1..3 {
-        let loss = joint.evaluate(qd[j]);
-        assert_eq!((env.visc[j], env.seal[j], env.current[j]), (loss.visc, loss.seal, loss.current));
+    let (mut with, mut without) = (RobotData::new(), RobotData::new());
+    let conditions = Conditions::new(Water::default());
+    robot_hydro(&leg, &Conditions { losses: Some(&losses), ..conditions }, [&q, &qd, &qdd], &mut with);
+    robot_hydro(&leg, &conditions, [&q, &qd, &qdd], &mut without);
+    assert_eq!(with.joint_forces(), without.joint_forces());
+    assert!(without.joint_losses().iter().all(|l| (l.visc, l.seal, l.current) == (0.0, 0.0, 0.0)));
+    let (visc, seal, current) = loss_torques(&losses, &qd.into());
+    for (j, loss) in with.joint_losses().iter().enumerate() {
+        assert_eq!((loss.visc, loss.seal, loss.current), (visc[j], seal[j], current[j]));
+        if j > 0 {
+            let alone = joint.evaluate(qd[j]);
+            assert_eq!((loss.visc, loss.seal, loss.current), (alone.visc, alone.seal, alone.current));
+        }
     }
-    assert_eq!(env.total(), hydro.total() + env.visc + env.seal);
 }
 
 #[test]

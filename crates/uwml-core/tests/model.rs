@@ -1,91 +1,132 @@
-//! Construction-time validation of the chain, the water and the coefficients.
-#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing)]
+//! Construction-time validation of a robot's parts (on the paper's leg), the water and the
+//! coefficients.
+#![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::panic)]
 
 use uwml_core::nalgebra::Vector3;
-use uwml_core::{Chain, Coefficients, Joint, Link, ModelError, Problem, Water};
+use uwml_core::{
+    ModelError, Problem, RigidBody, Robot, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, presets,
+};
 
-fn paper_parts() -> ([Joint<f64>; 3], [Link<f64>; 3]) {
-    let leg = Chain::<f64, 3>::paper();
-    (*leg.joints(), *leg.links())
+type Parts = ([TreeJoint<f64>; 3], [RigidBody<f64>; 3], [RobotSegment<f64>; 2]);
+type Leg = Robot<f64, 3, 2>;
+
+fn paper_parts() -> Parts {
+    let leg = presets::paper_leg::<f64>();
+    (leg.joints().try_into().unwrap(), leg.links().try_into().unwrap(), leg.segments().try_into().unwrap())
 }
 
-fn error_of(joints: [Joint<f64>; 3], links: [Link<f64>; 3]) -> ModelError {
-    Chain::new(joints, links).unwrap_err()
+fn build((joints, links, segments): Parts) -> Result<Leg, ModelError> {
+    Leg::new(&joints, &links, RigidBody::empty(), &segments)
+}
+
+fn error_of(parts: Parts) -> ModelError {
+    build(parts).unwrap_err()
+}
+
+/// The two normals of a rectangular segment.
+fn normals(segment: &RobotSegment<f64>) -> [uwml_core::nalgebra::Vector3<f64>; 2] {
+    match segment.section {
+        Section::Rectangular { normals, .. } => normals,
+        Section::Circular { .. } => panic!("the paper's segments are rectangular"),
+    }
+}
+
+fn set_normals(segment: &mut RobotSegment<f64>, new: [uwml_core::nalgebra::Vector3<f64>; 2]) {
+    if let Section::Rectangular { normals, .. } = &mut segment.section {
+        *normals = new;
+    }
 }
 
 #[test]
 fn the_paper_preset_is_valid_and_matches_table_2() {
-    let (joints, links) = paper_parts();
-    assert_eq!(Chain::new(joints, links).unwrap(), Chain::paper());
-    let thigh = links[1].segment.unwrap();
-    let calf = links[2].segment.unwrap();
-    assert_eq!((thigh.length, thigh.widths, calf.length, calf.widths), (0.660, [0.131, 0.238], 0.714, [0.131, 0.279]));
+    let parts = paper_parts();
+    assert_eq!(build(parts).unwrap(), presets::paper_leg());
+    let (joints, links, [thigh, calf]) = parts;
+    let widths = |s: &RobotSegment<f64>| match s.section {
+        Section::Rectangular { widths, .. } => widths,
+        Section::Circular { .. } => [0.0; 2],
+    };
+    assert_eq!(
+        (thigh.length, widths(&thigh), calf.length, widths(&calf)),
+        (0.660, [0.131, 0.238], 0.714, [0.131, 0.279])
+    );
+    assert_eq!((thigh.owner, calf.owner), (uwml_core::Owner::Link(1), uwml_core::Owner::Link(2)));
+    assert_eq!((thigh.cd, thigh.cm, calf.cd, calf.cm), ([2.2; 2], [0.5; 2], [2.2; 2], [0.5; 2]));
     assert_eq!(joints[2].origin, Vector3::new(0.660, 0.0, 0.0));
+    assert_eq!(joints.map(|j| j.parent), [None, Some(0), Some(1)]);
     assert_eq!(links.map(|l| l.mass), [10.758, 19.261, 10.375]);
     assert!((links[1].volume - 19.261 / 2700.0).abs() < 1e-18);
-    assert!(links[0].segment.is_none());
 }
 
 #[test]
 fn axes_must_be_unit_and_are_renormalized() {
-    let (mut joints, links) = paper_parts();
-    joints[1].axis = Vector3::new(0.0, -1.5, 0.0);
-    let e = error_of(joints, links);
+    let mut parts = paper_parts();
+    parts.0[1].axis = Vector3::new(0.0, -1.5, 0.0);
+    let e = error_of(parts);
     assert_eq!((e.field, e.index, e.problem), ("joint.axis", Some(1), Problem::NotUnit));
     assert_eq!(e.to_string(), "joint 1: joint.axis must be a unit vector (norm 1 within 1e-6)");
-    joints[1].axis = Vector3::zeros();
-    assert_eq!(error_of(joints, links).problem, Problem::NotUnit);
-    joints[1].axis = Vector3::new(0.0, -(1.0 + 5e-7), 0.0);
-    let chain = Chain::new(joints, links).unwrap();
-    assert_eq!(chain.joints()[1].axis, Vector3::new(0.0, -1.0, 0.0));
+    parts.0[1].axis = Vector3::zeros();
+    assert_eq!(error_of(parts).problem, Problem::NotUnit);
+    parts.0[1].axis = Vector3::new(0.0, -(1.0 + 5e-7), 0.0);
+    assert_eq!(build(parts).unwrap().joints()[1].axis, Vector3::new(0.0, -1.0, 0.0));
 }
 
 #[test]
 fn non_finite_values_are_rejected() {
-    let (mut joints, links) = paper_parts();
-    joints[2].origin.x = f64::NAN;
-    let e = error_of(joints, links);
+    let mut parts = paper_parts();
+    parts.0[2].origin.x = f64::NAN;
+    let e = error_of(parts);
     assert_eq!((e.field, e.index, e.problem), ("joint.origin", Some(2), Problem::NonFinite));
-    let (joints, mut links) = paper_parts();
-    links[0].com.z = f64::INFINITY;
-    assert_eq!(error_of(joints, links).field, "link.com");
+    let mut parts = paper_parts();
+    parts.1[0].com.z = f64::INFINITY;
+    assert_eq!(error_of(parts).field, "link.com");
 }
 
 #[test]
 fn segment_geometry_must_be_physical() {
-    type Edit = fn(&mut uwml_core::Segment<f64>);
+    type Edit = fn(&mut RobotSegment<f64>);
     let cases: [(Edit, &str, Problem); 6] = [
         (|s| s.length = 0.0, "segment.length", Problem::NonPositive),
-        (|s| s.widths[1] = -0.1, "segment.widths[1]", Problem::NonPositive),
+        (
+            |s| s.section = Section::Rectangular { normals: normals(s), widths: [0.1, -0.1] },
+            "segment.widths[1]",
+            Problem::NonPositive,
+        ),
         (|s| s.area = 0.0, "segment.area", Problem::NonPositive),
-        (|s| s.normals[0] = Vector3::new(1.0, 0.0, 0.0), "segment.normals[0]", Problem::NotPerpendicular),
-        (|s| s.normals[1] = Vector3::new(0.0, 1.0, 0.0), "segment.normals[1]", Problem::NotPerpendicular),
-        (|s| s.axis = Vector3::new(2.0, 0.0, 0.0), "segment.axis", Problem::NotUnit),
+        (
+            |s| set_normals(s, [Vector3::new(0.0, 0.0, 1.0), normals(s)[1]]),
+            "segment.normals[0]",
+            Problem::NotPerpendicular,
+        ),
+        (
+            |s| set_normals(s, [normals(s)[0], Vector3::new(0.0, 1.0, 0.0)]),
+            "segment.normals[1]",
+            Problem::NotPerpendicular,
+        ),
+        (|s| s.axis = Vector3::new(0.0, 0.0, -2.0), "segment.axis", Problem::NotUnit),
     ];
     for (edit, field, problem) in cases {
-        let (joints, mut links) = paper_parts();
-        let mut segment = links[1].segment.unwrap();
-        edit(&mut segment);
-        links[1].segment = Some(segment);
-        let e = error_of(joints, links);
+        let mut parts = paper_parts();
+        edit(&mut parts.2[1]);
+        let e = error_of(parts);
         assert_eq!((e.field, e.index, e.problem), (field, Some(1), problem));
-        assert!(e.to_string().starts_with("link 1: "));
+        assert!(e.to_string().starts_with("segment 1: "), "{e}");
     }
 }
 
 #[test]
 fn mass_and_volume_must_not_be_negative() {
-    let (joints, mut links) = paper_parts();
-    links[2].mass = -1.0;
-    assert_eq!(error_of(joints, links).problem, Problem::Negative);
-    let (joints, mut links) = paper_parts();
-    links[2].volume = -1e-3;
-    let e = error_of(joints, links);
+    let mut parts = paper_parts();
+    parts.1[2].mass = -1.0;
+    assert_eq!(error_of(parts).problem, Problem::Negative);
+    let mut parts = paper_parts();
+    parts.1[2].volume = -1e-3;
+    let e = error_of(parts);
     assert_eq!((e.field, e.index), ("link.volume", Some(2)));
-    let (joints, mut links) = paper_parts();
-    links[2].volume = 0.0;
-    links[2].mass = 0.0;
-    assert!(Chain::new(joints, links).is_ok());
+    let mut parts = paper_parts();
+    parts.1[2].volume = 0.0;
+    parts.1[2].mass = 0.0;
+    assert!(build(parts).is_ok());
 }
 
 #[test]
@@ -94,10 +135,10 @@ fn water_and_coefficients_are_validated() {
     assert_eq!(Water::new(1000.0, -1.0).unwrap_err().problem, Problem::Negative);
     assert_eq!(Water::new(f64::NAN, 9.81).unwrap_err().problem, Problem::NonFinite);
     assert_eq!(Water::<f64>::default(), Water::new(1000.0, 9.81).unwrap());
-    assert_eq!(Coefficients::<f64, 3>::uniform(-0.1, 0.5).unwrap_err().field, "cd");
-    let e = Coefficients::<f64, 2>::per_direction([[1.0; 2]; 2], [[0.5, 0.5], [0.5, f64::NAN]]).unwrap_err();
-    assert_eq!((e.field, e.index, e.problem), ("cm", Some(1), Problem::NonFinite));
-    assert_eq!(Coefficients::<f64, 3>::default(), Coefficients::uniform(2.2, 0.5).unwrap());
+    assert_eq!(SegmentCoefficients::<f64, 3>::uniform(-0.1, 0.5).unwrap_err().field, "segment.cd");
+    let e = SegmentCoefficients::<f64, 2>::per_segment([[1.0; 2]; 2], [[0.5, 0.5], [0.5, f64::NAN]]).unwrap_err();
+    assert_eq!((e.field, e.index, e.problem), ("segment.cm", Some(1), Problem::NonFinite));
+    assert_eq!(presets::paper_leg::<f64>().coefficients(), SegmentCoefficients::uniform(2.2, 0.5).unwrap());
 }
 
 #[test]
@@ -105,22 +146,18 @@ fn normals_within_the_tolerance_become_an_exact_frame() {
     // The strip integrals' identities assume an exact frame: normals accepted within
     // AXIS_TOLERANCE are made exactly orthonormal and perpendicular to the axis (Gram-Schmidt,
     // the second on the side it was given), not only renormalized.
-    let (joints, mut links) = paper_parts();
-    let mut segment = links[1].segment.unwrap();
-    let [n0, n1] = segment.normals;
+    let mut parts = paper_parts();
+    let segment = &mut parts.2[0];
+    let [n0, n1] = normals(segment);
     let exact = (n0, n1, segment.axis);
-    segment.normals = [(n0 + segment.axis * 5e-7).normalize(), (n1 + n0 * 5e-7 + segment.axis * 3e-7).normalize()];
-    links[1].segment = Some(segment);
-    let chain = Chain::new(joints, links).unwrap();
-    let stored = chain.links()[1].segment.unwrap();
-    let [m0, m1] = stored.normals;
+    let axis = segment.axis;
+    set_normals(segment, [(n0 + axis * 5e-7).normalize(), (n1 + n0 * 5e-7 + axis * 3e-7).normalize()]);
+    let [m0, m1] = normals(&build(parts).unwrap().segments()[0]);
     assert!(m0.dot(&exact.2).abs() < 1e-16 && m1.dot(&exact.2).abs() < 1e-16 && m0.dot(&m1).abs() < 1e-16);
     assert!((m0 - exact.0).norm() < 1e-15 && (m1 - exact.1).norm() < 1e-15);
     // The second normal keeps the side it was given.
-    let (joints, mut links) = paper_parts();
-    let mut flipped = links[1].segment.unwrap();
-    flipped.normals[1] = -flipped.normals[1];
-    links[1].segment = Some(flipped);
-    let chain = Chain::new(joints, links).unwrap();
-    assert!((chain.links()[1].segment.unwrap().normals[1] + exact.1).norm() < 1e-15);
+    let mut parts = paper_parts();
+    let [n0, n1] = normals(&parts.2[0]);
+    set_normals(&mut parts.2[0], [n0, -n1]);
+    assert!((normals(&build(parts).unwrap().segments()[0])[1] + exact.1).norm() < 1e-15);
 }

@@ -1,46 +1,45 @@
-//! The paper's leg as a preset robot against the chain path it replaces (hydrodynamics and the
-//! point Jacobian), before the chain path goes.
+//! The paper's leg as a preset robot (`presets::paper_leg`): the same forces in any capacity
+//! (`Robot::to_capacity`, as the C ABI and the Python package hold it), bit for bit, and a
+//! capacity too small refused. Its forces against docs/model.md section 5 are in `hydro.rs`, its
+//! parts against Table II in `model.rs`, its kinematics in `jacobian.rs`.
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
-use uwml_core::kinematics::point_jacobian as robot_point_jacobian;
-use uwml_core::nalgebra::Vector3;
-use uwml_core::{
-    Chain, Coefficients, Conditions, KinematicsData, RobotData, Water, forward_kinematics, hydro_torques,
-    point_jacobian, presets, robot_hydro,
-};
+use uwml_core::{Conditions, JointLosses, Problem, Robot, RobotData, Water, presets, robot_hydro};
 
 mod common;
 use common::Rng;
 
 #[test]
-fn the_preset_is_the_chain_path_to_1e_12() {
-    let (leg, chain) = (presets::paper_leg::<f64>(), Chain::<f64, 3>::paper());
+fn the_preset_in_a_larger_capacity_gives_the_same_forces_bit_for_bit() {
+    let leg = presets::paper_leg::<f64>();
+    let large: Robot<f64, 16, 32, 4> = leg.to_capacity().unwrap();
+    assert_eq!((large.joint_count(), large.segments().len()), (3, 2));
+    assert_eq!((large.joints(), large.links(), large.segments()), (leg.joints(), leg.links(), leg.segments()));
+    let losses = [Some(JointLosses::default().at(1e7, 4.0).unwrap()); 3];
+    let many = [Some(JointLosses::default().at(1e7, 4.0).unwrap()); 16];
     let water = Water::new(1025.0, 9.80665).unwrap();
     let mut rng = Rng(21);
-    let mut data = RobotData::new();
-    for _ in 0..300 {
+    let (mut small_data, mut large_data) = (RobotData::new(), RobotData::new());
+    for _ in 0..200 {
         let (q, qd, qdd) = (rng.vector::<3>(3.0), rng.vector::<3>(2.0), rng.vector::<3>(5.0));
-        let want = hydro_torques(&chain, &water, &Coefficients::default(), &q, &qd, &qdd);
-        robot_hydro(&leg, &Conditions::new(water), [&q.into(), &qd.into(), &qdd.into()], &mut data);
-        for (i, f) in data.joint_forces().iter().enumerate() {
-            let scale = 1.0 + want.total().amax();
-            for (a, b) in [(f.drag, want.drag[i]), (f.added_mass, want.added_mass[i]), (f.buoyancy, want.buoyancy[i])] {
-                assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
-            }
-            assert!((f.gravity - want.gravity[i]).abs() <= 1e-12 * scale);
-        }
-        let mut kinematics = KinematicsData::new();
-        forward_kinematics(&leg, &q.into(), &mut kinematics);
-        let point = rng.vector::<3>(0.7);
-        for link in 0..3 {
-            let (p, j) = point_jacobian(&chain, &q, link, &point).unwrap();
-            let mut jacobian = [0.0; 18];
-            let position = robot_point_jacobian(&leg, &kinematics, link, &point, &mut jacobian).unwrap();
-            assert!((p - position).norm() <= 1e-14);
-            for (row, column) in (0..6).flat_map(|r| (0..3).map(move |c| (r, c))) {
-                assert!((j[(row, column)] - jacobian[row * 3 + column]).abs() <= 1e-14);
-            }
-        }
-        assert!((kinematics.poses()[0].origin - Vector3::zeros()).norm() == 0.0);
+        let pad = |v: uwml_core::nalgebra::Vector3<f64>| -> [f64; 16] {
+            core::array::from_fn(|i| if i < 3 { v[i] } else { 0.0 })
+        };
+        let small = Conditions { losses: Some(&losses), ..Conditions::new(water) };
+        robot_hydro(&leg, &small, [&q.into(), &qd.into(), &qdd.into()], &mut small_data);
+        let wide = Conditions { losses: Some(&many), ..Conditions::new(water) };
+        robot_hydro(&large, &wide, [&pad(q), &pad(qd), &pad(qdd)], &mut large_data);
+        assert_eq!(small_data.joint_forces(), large_data.joint_forces());
+        assert_eq!(small_data.joint_losses(), large_data.joint_losses());
+        assert_eq!(small_data.base_wrench(), large_data.base_wrench());
     }
+}
+
+#[test]
+fn a_capacity_too_small_is_refused() {
+    let leg = presets::paper_leg::<f64>();
+    let joints = leg.to_capacity::<2, 4, 0>().unwrap_err();
+    assert_eq!((joints.field, joints.problem), ("joints", Problem::OutOfRange));
+    assert_eq!(leg.to_capacity::<3, 1, 0>().unwrap_err().field, "segments");
+    assert!(leg.to_capacity::<3, 2, 0>().unwrap() == leg);
 }

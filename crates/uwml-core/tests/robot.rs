@@ -1,19 +1,18 @@
-//! Whole robots (docs/model.md section 10): the chain special case, the invariants (its "Invariants"),
-//! the added-mass matrix, the regressors and jacobians. (The checks at construction are in
-//! `robot_validation.rs`, the circular strip integrals against dense quadrature in `strip.rs`.)
+//! Whole robots (docs/model.md section 10): the invariants (its "Invariants"), the regressors and
+//! jacobians. (The checks at construction are in `robot_validation.rs`, the added-mass matrix in
+//! `added_mass.rs`, the circular strip integrals against dense quadrature in `strip.rs`.)
 #![allow(missing_docs, clippy::unwrap_used, clippy::indexing_slicing, clippy::expect_used)]
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointKind, Owner, RigidBody, Robot,
-    RobotData, RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint, Water, hydro_jacobians,
-    hydro_torques, robot_added_mass_matrix, robot_hydro, robot_hydro_regressors, robot_jacobians,
-    robot_joint_added_mass_matrix,
+    BaseMotion, Conditions, Current, EnvironmentWrench, JointKind, Owner, RigidBody, Robot, RobotData,
+    RobotJacobianData, RobotJacobians, RobotSegment, SegmentCoefficients, TreeJoint, Water, robot_hydro,
+    robot_hydro_regressors, robot_jacobians,
 };
 
 mod common;
-use common::trees::random_motion;
-use common::{Rng, random_chain, random_coefficients};
+use common::Rng;
+use common::trees::{added_mass_matrix, assert_close, evaluate, random_motion};
 
 const J: usize = 12;
 const S: usize = 16;
@@ -25,101 +24,6 @@ fn random_robot(rng: &mut Rng, n: usize) -> Model {
 
 fn states(rng: &mut Rng, n: usize) -> [[f64; J]; 3] {
     common::trees::states(rng, n)
-}
-
-fn evaluate(
-    robot: &Model,
-    coefficients: Option<&SegmentCoefficients<f64, S>>,
-    motion: &BaseMotion<f64>,
-    current: &Current<f64>,
-    [q, qd, qdd]: &[[f64; J]; 3],
-) -> RobotData<f64, J> {
-    let mut data = RobotData::new();
-    robot_hydro(
-        robot,
-        &Conditions { motion: *motion, current: *current, coefficients, ..Conditions::new(Water::default()) },
-        [q, qd, qdd],
-        &mut data,
-    );
-    data
-}
-
-/// `|a − b| ≤ rel · scale`.
-fn assert_close(a: f64, b: f64, scale: f64, rel: f64, what: &str) {
-    assert!((a - b).abs() <= rel * scale, "{what}: {a} vs {b} (scale {scale})");
-}
-
-#[test]
-fn a_chain_on_a_fixed_base_in_still_water_is_the_chain() {
-    // docs/model.md sections 2-9 as the special case: the paper's leg and random chains as robots
-    // agree with the chain convenience (`hydro_torques`, the same evaluation of the chain's own
-    // robot) to 1e-14 of each component's largest torque: a chain's robot is built as this one.
-    let mut rng = Rng(11);
-    let paper = Chain::<f64, 3>::paper();
-    let paper_coefficients = Coefficients::uniform(2.2, 0.5).unwrap();
-    let paper_robot = Model::from_chain(&paper, &paper_coefficients).unwrap();
-    for trial in 0..400 {
-        let (chain_torques, robot, n) = if trial % 2 == 0 {
-            let s = states(&mut rng, 3);
-            let t = hydro_torques(
-                &paper,
-                &Water::default(),
-                &paper_coefficients,
-                &s[0][..3].try_into().map(|a: [f64; 3]| a.into()).unwrap(),
-                &<[f64; 3]>::try_from(&s[1][..3]).unwrap().into(),
-                &<[f64; 3]>::try_from(&s[2][..3]).unwrap().into(),
-            );
-            (
-                (
-                    t.drag.as_slice().to_vec(),
-                    t.added_mass.as_slice().to_vec(),
-                    t.buoyancy.as_slice().to_vec(),
-                    t.gravity.as_slice().to_vec(),
-                ),
-                (paper_robot, s),
-                3,
-            )
-        } else {
-            let chain = random_chain(&mut rng);
-            let coefficients = random_coefficients(&mut rng);
-            let s = states(&mut rng, 4);
-            let t = hydro_torques(
-                &chain,
-                &Water::default(),
-                &coefficients,
-                &<[f64; 4]>::try_from(&s[0][..4]).unwrap().into(),
-                &<[f64; 4]>::try_from(&s[1][..4]).unwrap().into(),
-                &<[f64; 4]>::try_from(&s[2][..4]).unwrap().into(),
-            );
-            let robot = Model::from_chain(&chain, &coefficients).unwrap();
-            (
-                (
-                    t.drag.as_slice().to_vec(),
-                    t.added_mass.as_slice().to_vec(),
-                    t.buoyancy.as_slice().to_vec(),
-                    t.gravity.as_slice().to_vec(),
-                ),
-                (robot, s),
-                4,
-            )
-        };
-        let (robot, s) = robot;
-        let data = evaluate(&robot, None, &BaseMotion::fixed(), &Current::still(), &s);
-        let forces = data.joint_forces();
-        assert_eq!(forces.len(), n);
-        let (drag, added_mass, buoyancy, gravity) = chain_torques;
-        for (component, expected, actual) in [
-            ("drag", &drag, forces.iter().map(|f| f.drag).collect::<Vec<_>>()),
-            ("added mass", &added_mass, forces.iter().map(|f| f.added_mass).collect()),
-            ("buoyancy", &buoyancy, forces.iter().map(|f| f.buoyancy).collect()),
-            ("gravity", &gravity, forces.iter().map(|f| f.gravity).collect()),
-        ] {
-            let scale = expected.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
-            for (a, e) in actual.iter().zip(expected.iter()) {
-                assert_close(*a, *e, scale, 1e-14, component);
-            }
-        }
-    }
 }
 
 fn wrench_scale(w: &EnvironmentWrench<f64>) -> f64 {
@@ -341,144 +245,6 @@ fn a_non_finite_state_gives_nan_and_nothing_else_fails() {
     assert!(data.base_wrench().drag.to_array().iter().all(|x| x.is_nan()));
 }
 
-/// `M_A` of a robot, `(6 + n)²` row-major.
-fn added_mass_matrix<const JJ: usize>(robot: &Robot<f64, JJ, S>, q: &[f64; JJ]) -> Vec<f64> {
-    let size = 6 + robot.joint_count();
-    let mut out = vec![f64::NAN; size * size];
-    robot_added_mass_matrix(robot, &Water::default(), None, q, &mut out);
-    out
-}
-
-/// `M_A` by its definition: column `k` is minus the added-mass forces (base wrench, then joints)
-/// at unit acceleration `k`, every velocity and the current zero.
-fn added_mass_by_columns(robot: &Model, q: &[f64; J]) -> Vec<f64> {
-    let size = 6 + robot.joint_count();
-    let mut out = vec![f64::NAN; size * size];
-    let mut data = RobotData::new();
-    for k in 0..size {
-        let unit = |i: usize| if i == k { 1.0 } else { 0.0 };
-        let zero = Vector3::zeros();
-        let motion = BaseMotion::new(
-            [1.0, 0.0, 0.0, 0.0],
-            zero,
-            zero,
-            Vector3::new(unit(0), unit(1), unit(2)),
-            Vector3::new(unit(3), unit(4), unit(5)),
-        )
-        .unwrap();
-        let qdd: [f64; J] = core::array::from_fn(|j| unit(6 + j));
-        let conditions = Conditions { motion, ..Conditions::new(Water::default()) };
-        robot_hydro(robot, &conditions, [q, &[0.0; J], &qdd], &mut data);
-        let base = data.base_wrench().added_mass.to_array();
-        let column = base.into_iter().chain(data.joint_forces().iter().map(|f| f.added_mass));
-        for (row, value) in column.enumerate() {
-            out[row * size + k] = -value;
-        }
-    }
-    out
-}
-
-#[test]
-fn the_composite_added_inertias_give_the_matrix_of_its_definition() {
-    let mut rng = Rng(77);
-    for _ in 0..40 {
-        let n = 1 + (rng.next().abs() * 9.0) as usize;
-        let robot = random_robot(&mut rng, n.min(J));
-        let q = states(&mut rng, robot.joint_count())[0];
-        let fast = added_mass_matrix(&robot, &q);
-        let by_columns = added_mass_by_columns(&robot, &q);
-        let scale = by_columns.iter().fold(1e-300_f64, |m, x| m.max(x.abs()));
-        for (k, (a, b)) in fast.iter().zip(&by_columns).enumerate() {
-            assert_close(*a, *b, scale, 1e-13, &format!("entry {k} of {n} joints"));
-        }
-    }
-}
-
-#[test]
-fn the_added_mass_matrix_is_symmetric_positive_semi_definite_and_the_chains() {
-    let mut rng = Rng(51);
-    for _ in 0..100 {
-        let n = 1 + (rng.next().abs() * 8.0) as usize;
-        let robot = random_robot(&mut rng, n);
-        let q = states(&mut rng, n)[0];
-        let m = added_mass_matrix(&robot, &q);
-        let size = 6 + n;
-        let scale = m.iter().fold(0.0_f64, |a, x| a.max(x.abs()));
-        for i in 0..size {
-            for j in 0..size {
-                assert_eq!(m[i * size + j], m[j * size + i]);
-            }
-        }
-        // xᵀ M x ≥ 0 for random x (the kinetic energy of the entrained water).
-        for _ in 0..20 {
-            let x: Vec<f64> = (0..size).map(|_| rng.next()).collect();
-            let energy: f64 = (0..size)
-                .flat_map(|i| (0..size).map(move |j| (i, j)))
-                .map(|(i, j)| x[i] * m[i * size + j] * x[j])
-                .sum();
-            assert!(energy >= -1e-12 * scale, "xᵀ M_A x = {energy}");
-        }
-        // The added-mass forces at any acceleration (velocities zero) are −M_A times it.
-        let mut s = states(&mut rng, n);
-        s[1] = [0.0; J];
-        let (v_dot, w_dot) = (rng.vector::<3>(1.0), rng.vector::<3>(1.0));
-        let motion = BaseMotion::new([1.0, 0.0, 0.0, 0.0], Vector3::zeros(), Vector3::zeros(), v_dot, w_dot).unwrap();
-        let data = evaluate(&robot, None, &motion, &Current::still(), &[q, s[1], s[2]]);
-        let a: Vec<f64> = v_dot.iter().chain(w_dot.iter()).copied().chain(s[2][..n].iter().copied()).collect();
-        let forces: Vec<f64> = data
-            .base_wrench()
-            .added_mass
-            .to_array()
-            .into_iter()
-            .chain(data.joint_forces().iter().map(|f| f.added_mass))
-            .collect();
-        for i in 0..size {
-            let product: f64 = (0..size).map(|j| m[i * size + j] * a[j]).sum();
-            assert_close(-product, forces[i], scale * 10.0, 1e-13, "M_A a");
-        }
-    }
-    // A chain's joint block is the chain path's M_A.
-    let chain = random_chain(&mut rng);
-    let coefficients = random_coefficients(&mut rng);
-    let robot = Model::from_chain(&chain, &coefficients).unwrap();
-    let q = states(&mut rng, 4)[0];
-    let m = added_mass_matrix(&robot, &q);
-    let q4: [f64; 4] = q[..4].try_into().unwrap();
-    let expected =
-        hydro_jacobians(&chain, &Water::default(), &coefficients, &q4.into(), &[0.0; 4].into(), &[0.0; 4].into())
-            .added_mass_matrix;
-    let scale = expected.amax();
-    for i in 0..4 {
-        for j in 0..4 {
-            assert_close(m[(6 + i) * 10 + 6 + j], expected[(i, j)], scale, 1e-14, "chain M_A");
-        }
-    }
-}
-
-#[test]
-fn the_joints_block_alone_is_the_full_matrixs_block() {
-    let mut rng = Rng(53);
-    for _ in 0..50 {
-        let n = 1 + (rng.next().abs() * 8.0) as usize;
-        let robot = random_robot(&mut rng, n);
-        let q = states(&mut rng, n)[0];
-        let full = added_mass_matrix(&robot, &q);
-        let mut block = vec![f64::NAN; n * n + 3];
-        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut block);
-        for i in 0..n {
-            for j in 0..n {
-                assert_eq!(block[i * n + j].to_bits(), full[(6 + i) * (6 + n) + 6 + j].to_bits(), "({i}, {j})");
-            }
-        }
-        assert!(block[n * n..].iter().all(|x| x.is_nan()), "wrote past n²");
-        // A short output gets what fits (unsymmetrized where the mirror entry does not fit), and
-        // nothing panics.
-        let mut short = vec![f64::NAN; n * n / 2];
-        robot_joint_added_mass_matrix(&robot, &Water::default(), None, &q, &mut short);
-        assert!(short.iter().all(|x| x.is_finite()));
-    }
-}
-
 #[test]
 fn regressors_times_coefficients_are_the_forces() {
     let mut rng = Rng(61);
@@ -623,36 +389,6 @@ fn jacobians_are_the_slopes_of_the_forces() {
             for row in 0..m {
                 assert_close(d_velocity[row * m + k], (p[row] - mi[row]) / (2.0 * h), scale, 1e-6, "d_nu");
             }
-        }
-    }
-    // A chain on a fixed base: the joint blocks are the chain path's derivatives.
-    let chain = random_chain(&mut rng);
-    let coefficients = random_coefficients(&mut rng);
-    let robot = Model::from_chain(&chain, &coefficients).unwrap();
-    let s = states(&mut rng, 4);
-    let (mut value, mut d_q, mut d_velocity, mut matrix) =
-        (vec![0.0; 10], vec![0.0; 40], vec![0.0; 100], vec![0.0; 100]);
-    let mut work = Box::new(RobotJacobianData::new(&robot));
-    let out = RobotJacobians {
-        value: &mut value,
-        d_q: &mut d_q,
-        d_velocity: &mut d_velocity,
-        added_mass_matrix: &mut matrix,
-    };
-    robot_jacobians(
-        &robot,
-        &Conditions { losses: Some(&[None; J]), ..Conditions::new(Water::default()) },
-        [&s[0], &s[1], &s[2]],
-        &mut work,
-        out,
-    );
-    let four = |x: &[f64; J]| -> uwml_core::nalgebra::SVector<f64, 4> { <[f64; 4]>::try_from(&x[..4]).unwrap().into() };
-    let expected = hydro_jacobians(&chain, &Water::default(), &coefficients, &four(&s[0]), &four(&s[1]), &four(&s[2]));
-    let scale = expected.d_q.amax().max(expected.d_qd.amax());
-    for i in 0..4 {
-        for j in 0..4 {
-            assert_close(d_q[(6 + i) * 4 + j], expected.d_q[(i, j)], scale, 1e-13, "chain d_q");
-            assert_close(d_velocity[(6 + i) * 10 + 6 + j], expected.d_qd[(i, j)], scale, 1e-13, "chain d_qd");
         }
     }
 }

@@ -192,7 +192,7 @@ fn a_coefficient_table_starts_from_the_segments_own_and_refuses_bad_entries_nami
     };
     let other = RobotSegment { cd: [2.0; 2], cm: [0.5; 2], ..segment };
     let robot = Model::new(&[joint], &[body], body, &[segment, other]).unwrap();
-    let mut table = SegmentCoefficients::own(&robot);
+    let mut table = robot.coefficients();
     assert_eq!(
         (table.cd()[0], table.cm()[0], table.cd()[1], table.cm()[1]),
         ([1.2, 1.4], [0.8, 0.9], [2.0; 2], [0.5; 2])

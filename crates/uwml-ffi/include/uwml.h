@@ -1,39 +1,36 @@
 /*
  * uwml.h: the C ABI of uwml-core (libuwml_ffi.a), for controller firmware.
  *
- * Two APIs, each in double (_f64) and float (_f32). See docs/firmware.md.
- *   uwml_leg3_*: hydrodynamic (drag, added mass, buoyancy) and joint-loss (oil drag, seal)
- *     torques of a 3-joint underwater leg (UWML_LEG3_JOINTS), the paper's UWML or your own;
- *     a thin wrapper of uwml_robot_*: the leg as a robot, through the same evaluation.
- *   uwml_robot_*: hydrodynamic forces on every joint and the wrench on the base of any robot up
- *     to UWML_ROBOT_MAX_JOINTS (16) revolute or prismatic joints in a tree and
- *     UWML_ROBOT_MAX_SEGMENTS (32) rectangular or circular segments, on a base that may move
- *     and carry a body of its own, in a current; with the leg's joint losses on any joint.
+ * One API, uwml_robot_*, in double (_f64) and float (_f32). See docs/firmware.md.
+ *   Hydrodynamic forces on every joint and the wrench on the base of any robot up to
+ *   UWML_ROBOT_MAX_JOINTS (16) revolute or prismatic joints in a tree and
+ *   UWML_ROBOT_MAX_SEGMENTS (32) rectangular or circular segments, on a base that may move and
+ *   carry a body of its own, in a current; with joint losses (oil drag, seal) on any joint. The
+ *   paper's 3-joint leg (UWML) is a preset: uwml_robot_paper_leg_f64.
+ *
+ * Model and workspace, as Pinocchio's Model and Data: a robot (UwmlRobotF64) is the model,
+ * validated when it is built and then only read by the evaluations (const UwmlRobotF64 *); a
+ * workspace (UwmlWorkspaceF64) is what an evaluation writes. One robot may be evaluated by
+ * several threads at once, each with its own workspace, but not while a setter changes it.
  *
  * Memory: no heap, no globals, no locks. All structs are plain data that the caller allocates,
- * statically or on the stack. Legs and robots are opaque and fixed-size, 8-aligned:
- *   sizeof(UwmlLeg3F64)  = 8 * (1 + UWML_LEG3_F64_WORDS)  =  6152 bytes,
- *   sizeof(UwmlLeg3F32)  = 8 * (1 + UWML_LEG3_F32_WORDS)  =  3208 bytes,
- *   sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS) = 32008 bytes,
- *   sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS) = 16656 bytes.
- * Functions are reentrant: different legs and robots may be used from different threads; one
- * leg may be evaluated concurrently but not while a setter changes it; one robot holds its
- * evaluation's workspace, so it is evaluated by one thread at a time.
+ * statically or on the stack. Robots and workspaces are opaque and fixed-size, 8-aligned:
+ *   sizeof(UwmlRobotF64)     = 8 * (1 + UWML_ROBOT_F64_WORDS)     = 24448 bytes,
+ *   sizeof(UwmlRobotF32)     = 8 * (1 + UWML_ROBOT_F32_WORDS)     = 12872 bytes,
+ *   sizeof(UwmlWorkspaceF64) = 8 * (1 + UWML_WORKSPACE_F64_WORDS) =  7568 bytes,
+ *   sizeof(UwmlWorkspaceF32) = 8 * (1 + UWML_WORKSPACE_F32_WORDS) =  3792 bytes.
  *
- * Call sequence, leg:
- *   1. uwml_leg3_paper_f64(&leg) or uwml_leg3_new_f64(joints, links, &leg, &err);
- *   2. optionally uwml_leg3_set_water_f64, uwml_leg3_set_coefficients_f64 (or _per_direction),
- *      uwml_leg3_set_losses_f64 per joint (start from uwml_leg3_default_losses_f64);
- *   3. when depth or oil temperature change: uwml_leg3_set_conditions_f64;
- *   4. every control period: uwml_leg3_environment_f64 (or uwml_leg3_hydro_f64).
- * Call sequence, robot:
- *   1. uwml_robot_paper_f64(&robot) or uwml_robot_new_f64(&robot, joints, n_joints, links,
- *      &base, segments, n_segments, density, gravity, &err), once;
- *   2. optionally uwml_robot_set_added_mass_form_f64, uwml_robot_set_losses_f64 per joint
- *      (start from uwml_leg3_default_losses_f64);
+ * Call sequence:
+ *   1. uwml_robot_paper_leg_f64(&robot) or uwml_robot_new_f64(&robot, joints, n_joints, links,
+ *      &base, segments, n_segments, density, gravity, &err), once; uwml_robot_workspace_init_f64
+ *      (&workspace), once per workspace;
+ *   2. optionally uwml_robot_set_water_f64, uwml_robot_set_coefficients_f64,
+ *      uwml_robot_set_added_mass_form_f64, uwml_robot_set_lumped_f64, uwml_robot_set_losses_f64
+ *      per joint (start from uwml_robot_default_losses_f64);
  *   3. when depth or oil temperature change: uwml_robot_set_conditions_f64;
- *   4. every control period: uwml_robot_environment_f64(&robot, q, qd, qdd, n, &motion,
- *      &current, joint_environment, &wrench, &err) (or uwml_robot_hydro_f64, without losses).
+ *   4. every control period: uwml_robot_environment_f64(&robot, &workspace, q, qd, qdd, n,
+ *      &motion, &current, joint_environment, &wrench, &err) (or uwml_robot_hydro_f64, without
+ *      losses).
  *
  * Errors: every function returns UWML_OK (0) or a UWML_ERR_* code; those with a trailing
  * `UwmlError *error` (may be NULL) also fill it with the code, the joint, link or segment index
@@ -41,7 +38,7 @@
  * dereferenced then: UWML_ERR_NULL_POINTER, unless documented as optional (a robot's base body,
  * base motion, current and base wrench; arrays of zero elements). On error nothing is written
  * except `*error`, with one exception: the evaluation functions given a NaN or infinite state
- * still write NaN torques and return UWML_ERR_NON_FINITE.
+ * still write NaN forces and return UWML_ERR_NON_FINITE.
  *
  * Units SI (m, kg, s, rad, N·m, Pa, A), temperatures in °C. Sign: every torque (or force, for
  * a prismatic joint) is exerted by the environment on the joint, in the joint's positive
@@ -103,13 +100,13 @@
 #define UWML_ERR_OUT_OF_RANGE 8
 
 /**
- * `joint_index` is not a joint: not 0, 1 or 2 for a leg, not below the joint count for a robot.
+ * `joint_index` is not a joint of the robot (not below its joint count).
  */
 #define UWML_ERR_INDEX_OUT_OF_RANGE 9
 
 /**
- * The leg or robot was not written by `uwml_leg3_paper_*`/`uwml_leg3_new_*` or
- * `uwml_robot_paper_*`/`uwml_robot_new_*` (e.g. a zeroed static).
+ * The robot was not written by `uwml_robot_paper_leg_*`/`uwml_robot_new_*`, or the workspace by
+ * `uwml_robot_workspace_init_*` (e.g. a zeroed static).
  */
 #define UWML_ERR_UNINITIALIZED 10
 
@@ -150,24 +147,9 @@
 #define UWML_ERR_NOT_POSITIVE_SEMIDEFINITE 16
 
 /**
- * The number of joints (and links) of the leg of this API.
- */
-#define UWML_LEG3_JOINTS 3
-
-/**
  * Bytes of `UwmlError.field`, NUL included.
  */
 #define UWML_ERROR_FIELD_LEN 48
-
-/**
- * Opaque words of `UwmlLeg3F64`: `sizeof(UwmlLeg3F64) = 8 * (1 + UWML_LEG3_F64_WORDS)` bytes.
- */
-#define UWML_LEG3_F64_WORDS 768
-
-/**
- * Opaque words of `UwmlLeg3F32`: `sizeof(UwmlLeg3F32) = 8 * (1 + UWML_LEG3_F32_WORDS)` bytes.
- */
-#define UWML_LEG3_F32_WORDS 400
 
 /**
  * The most joints (and links) a robot of the `uwml_robot_*` API may have.
@@ -187,12 +169,24 @@
 /**
  * Opaque words of `UwmlRobotF64`: `sizeof(UwmlRobotF64) = 8 * (1 + UWML_ROBOT_F64_WORDS)` bytes.
  */
-#define UWML_ROBOT_F64_WORDS 4000
+#define UWML_ROBOT_F64_WORDS 3055
 
 /**
  * Opaque words of `UwmlRobotF32`: `sizeof(UwmlRobotF32) = 8 * (1 + UWML_ROBOT_F32_WORDS)` bytes.
  */
-#define UWML_ROBOT_F32_WORDS 2081
+#define UWML_ROBOT_F32_WORDS 1608
+
+/**
+ * Opaque words of `UwmlWorkspaceF64`: `sizeof(UwmlWorkspaceF64) = 8 * (1 +
+ * UWML_WORKSPACE_F64_WORDS)` bytes.
+ */
+#define UWML_WORKSPACE_F64_WORDS 945
+
+/**
+ * Opaque words of `UwmlWorkspaceF32`: `sizeof(UwmlWorkspaceF32) = 8 * (1 +
+ * UWML_WORKSPACE_F32_WORDS)` bytes.
+ */
+#define UWML_WORKSPACE_F32_WORDS 473
 
 /**
  * `UwmlTreeJoint*.parent` and `UwmlRobotSegment*.owner` of the base.
@@ -262,95 +256,41 @@ typedef struct UwmlError {
 } UwmlError;
 
 /**
- * A leg (chain, water, coefficients, joint losses) in f64, for C to allocate (statically:
- * `static UwmlLeg3F64 leg;`). Opaque: written only by `uwml_leg3_paper_f64` or
- * `uwml_leg3_new_f64` and changed only by the setters; it holds no pointer, so it may be copied
- * with `memcpy`. Other functions refuse a leg these did not write (`UWML_ERR_UNINITIALIZED`).
+ * A robot (tree, bodies, segments, water, added-mass form, joint losses) in f64: the model, for C
+ * to allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
+ * `uwml_robot_paper_leg_f64` or `uwml_robot_new_f64` and changed only by the setters; the
+ * evaluations only read it (`const UwmlRobotF64 *`), so several threads may evaluate one robot at
+ * once, each with its own `UwmlWorkspaceF64`. It holds no pointer, so it may be copied with
+ * `memcpy`. Other functions refuse a block these did not write (`UWML_ERR_UNINITIALIZED`).
  */
-typedef struct UwmlLeg3F64 {
+typedef struct UwmlRobotF64 {
     /**
-     * A tag saying that the library wrote this leg. Do not touch.
+     * A tag saying that the library wrote this robot. Do not touch.
      */
     uint64_t opaque_tag;
     /**
-     * The leg. Do not touch.
+     * The robot. Do not touch.
      */
-    uint64_t opaque[UWML_LEG3_F64_WORDS];
-} UwmlLeg3F64;
+    uint64_t opaque[UWML_ROBOT_F64_WORDS];
+} UwmlRobotF64;
 
 /**
- * A revolute joint: where it sits in the parent link's frame and its unit axis there.
+ * The workspace of an evaluation in f64 (each link's frame and wrenches, the results), for any
+ * robot of the API: `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` write it, and nothing
+ * else may use it during the call (one per thread that evaluates). Opaque: written first by
+ * `uwml_robot_workspace_init_f64` (others refuse a block it did not write,
+ * `UWML_ERR_UNINITIALIZED`); it holds no pointer.
  */
-typedef struct UwmlJointParamsF64 {
+typedef struct UwmlWorkspaceF64 {
     /**
-     * Position of the joint in the parent frame [m].
+     * A tag saying that the library wrote this workspace. Do not touch.
      */
-    double origin[3];
+    uint64_t opaque_tag;
     /**
-     * Unit rotation axis in the parent frame (norm 1 within 1e-6; re-normalized).
+     * The workspace. Do not touch.
      */
-    double axis[3];
-} UwmlJointParamsF64;
-
-/**
- * The straight hydrodynamic segment of a link, in the link's frame (strip theory).
- */
-typedef struct UwmlSegmentParamsF64 {
-    /**
-     * Start point [m].
-     */
-    double start[3];
-    /**
-     * Unit direction.
-     */
-    double axis[3];
-    /**
-     * The two principal normal directions: unit, perpendicular to `axis` and to each other.
-     */
-    double normals[2][3];
-    /**
-     * Length [m], positive.
-     */
-    double length;
-    /**
-     * Frontal width for flow along each normal [m], positive.
-     */
-    double widths[2];
-    /**
-     * Cross-section area for added mass [m²], positive.
-     */
-    double area;
-} UwmlSegmentParamsF64;
-
-/**
- * A rigid link: mass, centre of mass, displaced volume, centre of buoyancy, optional segment.
- */
-typedef struct UwmlLinkParamsF64 {
-    /**
-     * Mass [kg], zero or positive.
-     */
-    double mass;
-    /**
-     * Centre of mass in the link frame [m].
-     */
-    double com[3];
-    /**
-     * Displaced volume [m³], zero or positive.
-     */
-    double volume;
-    /**
-     * Centre of buoyancy in the link frame [m].
-     */
-    double cob[3];
-    /**
-     * The segment; read only if `has_segment` is non-zero.
-     */
-    struct UwmlSegmentParamsF64 segment;
-    /**
-     * Non-zero if the link has a segment (drag and added mass), 0 if not.
-     */
-    int32_t has_segment;
-} UwmlLinkParamsF64;
+    uint64_t opaque[UWML_WORKSPACE_F64_WORDS];
+} UwmlWorkspaceF64;
 
 /**
  * Motor and reducer of a joint.
@@ -429,7 +369,8 @@ typedef struct UwmlSealParamsF64 {
 
 /**
  * The losses of one joint: its drive, and optionally oil drag and a seal (for
- * `uwml_leg3_set_losses_f64` and `uwml_robot_set_losses_f64`).
+ * `uwml_robot_set_losses_f64`; `uwml_robot_default_losses_f64` fills one with the core's
+ * illustrative defaults).
  */
 typedef struct UwmlJointLossParamsF64 {
     /**
@@ -457,345 +398,6 @@ typedef struct UwmlJointLossParamsF64 {
      */
     int32_t has_seal;
 } UwmlJointLossParamsF64;
-
-/**
- * Hydrodynamic torques on each joint [N·m], exerted by the environment on the joint.
- */
-typedef struct UwmlHydro3F64 {
-    /**
-     * Drag; `qd · drag <= 0`.
-     */
-    double drag[3];
-    /**
-     * Added mass.
-     */
-    double added_mass[3];
-    /**
-     * Buoyancy.
-     */
-    double buoyancy[3];
-    /**
-     * Gravity of the links (not part of `total`).
-     */
-    double gravity[3];
-    /**
-     * `drag + added_mass + buoyancy` (the paper's τ_w).
-     */
-    double total[3];
-} UwmlHydro3F64;
-
-/**
- * Hydrodynamic torques and joint losses on each joint [N·m], and the loss current [A].
- */
-typedef struct UwmlEnvironment3F64 {
-    /**
-     * Drag; `qd · drag <= 0`.
-     */
-    double drag[3];
-    /**
-     * Added mass.
-     */
-    double added_mass[3];
-    /**
-     * Buoyancy.
-     */
-    double buoyancy[3];
-    /**
-     * Gravity of the links (not part of `total`).
-     */
-    double gravity[3];
-    /**
-     * Oil drag reflected to the output (0 without oil or losses).
-     */
-    double visc[3];
-    /**
-     * Seal friction (0 without a seal or losses).
-     */
-    double seal[3];
-    /**
-     * Loss current [A], signed like the motion.
-     */
-    double current[3];
-    /**
-     * `drag + added_mass + buoyancy + visc + seal`.
-     */
-    double total[3];
-} UwmlEnvironment3F64;
-
-/**
- * A leg in f32; as `UwmlLeg3F64`.
- */
-typedef struct UwmlLeg3F32 {
-    /**
-     * A tag saying that the library wrote this leg. Do not touch.
-     */
-    uint64_t opaque_tag;
-    /**
-     * The leg. Do not touch.
-     */
-    uint64_t opaque[UWML_LEG3_F32_WORDS];
-} UwmlLeg3F32;
-
-/**
- * `UwmlJointParamsF64` in f32.
- */
-typedef struct UwmlJointParamsF32 {
-    /**
-     * Position of the joint in the parent frame [m].
-     */
-    float origin[3];
-    /**
-     * Unit rotation axis in the parent frame.
-     */
-    float axis[3];
-} UwmlJointParamsF32;
-
-/**
- * `UwmlSegmentParamsF64` in f32.
- */
-typedef struct UwmlSegmentParamsF32 {
-    /**
-     * Start point [m].
-     */
-    float start[3];
-    /**
-     * Unit direction.
-     */
-    float axis[3];
-    /**
-     * The two principal normal directions.
-     */
-    float normals[2][3];
-    /**
-     * Length [m], positive.
-     */
-    float length;
-    /**
-     * Frontal width for flow along each normal [m], positive.
-     */
-    float widths[2];
-    /**
-     * Cross-section area for added mass [m²], positive.
-     */
-    float area;
-} UwmlSegmentParamsF32;
-
-/**
- * `UwmlLinkParamsF64` in f32.
- */
-typedef struct UwmlLinkParamsF32 {
-    /**
-     * Mass [kg], zero or positive.
-     */
-    float mass;
-    /**
-     * Centre of mass in the link frame [m].
-     */
-    float com[3];
-    /**
-     * Displaced volume [m³], zero or positive.
-     */
-    float volume;
-    /**
-     * Centre of buoyancy in the link frame [m].
-     */
-    float cob[3];
-    /**
-     * The segment; read only if `has_segment` is non-zero.
-     */
-    struct UwmlSegmentParamsF32 segment;
-    /**
-     * Non-zero if the link has a segment, 0 if not.
-     */
-    int32_t has_segment;
-} UwmlLinkParamsF32;
-
-/**
- * `UwmlDriveParamsF64` in f32.
- */
-typedef struct UwmlDriveParamsF32 {
-    /**
-     * Torque constant K_t [N·m/A], positive.
-     */
-    float torque_constant;
-    /**
-     * Gear ratio N, positive.
-     */
-    float ratio;
-    /**
-     * Gear efficiency η in (0, 1].
-     */
-    float efficiency;
-    /**
-     * Rated current [A], positive.
-     */
-    float rated_current;
-} UwmlDriveParamsF32;
-
-/**
- * `UwmlOilParamsF64` in f32.
- */
-typedef struct UwmlOilParamsF32 {
-    /**
-     * k [N·m·(rad/s)⁻ⁿ], zero or positive.
-     */
-    float k_oil;
-    /**
-     * Speed exponent n, in [1, 2].
-     */
-    float exponent;
-    /**
-     * a_p [1/Pa], zero or positive.
-     */
-    float pressure_sensitivity;
-    /**
-     * a_T [1/K], zero or positive.
-     */
-    float temperature_sensitivity;
-    /**
-     * p_ref [Pa], zero or positive.
-     */
-    float reference_pressure;
-    /**
-     * θ_ref [°C], above -273.15.
-     */
-    float reference_temperature;
-} UwmlOilParamsF32;
-
-/**
- * `UwmlSealParamsF64` in f32.
- */
-typedef struct UwmlSealParamsF32 {
-    /**
-     * Running level [N·m, N·m/Pa], zero or positive.
-     */
-    float c[2];
-    /**
-     * Breakaway level, at least the running level term by term.
-     */
-    float s[2];
-    /**
-     * Viscous slope [N·m·s/rad, N·m·s/(rad·Pa)], zero or positive.
-     */
-    float d[2];
-    /**
-     * Stribeck speed ω_s [rad/s], positive.
-     */
-    float stribeck_speed;
-} UwmlSealParamsF32;
-
-/**
- * `UwmlJointLossParamsF64` in f32.
- */
-typedef struct UwmlJointLossParamsF32 {
-    /**
-     * The drive.
-     */
-    struct UwmlDriveParamsF32 drive;
-    /**
-     * Oil drag; read only if `has_oil` is non-zero.
-     */
-    struct UwmlOilParamsF32 oil;
-    /**
-     * Seal; read only if `has_seal` is non-zero.
-     */
-    struct UwmlSealParamsF32 seal;
-    /**
-     * Width of the smooth sign [rad/s], zero or positive.
-     */
-    float epsilon;
-    /**
-     * Non-zero if the joint is oil-filled.
-     */
-    int32_t has_oil;
-    /**
-     * Non-zero if the joint has an output-shaft seal.
-     */
-    int32_t has_seal;
-} UwmlJointLossParamsF32;
-
-/**
- * `UwmlHydro3F64` in f32.
- */
-typedef struct UwmlHydro3F32 {
-    /**
-     * Drag.
-     */
-    float drag[3];
-    /**
-     * Added mass.
-     */
-    float added_mass[3];
-    /**
-     * Buoyancy.
-     */
-    float buoyancy[3];
-    /**
-     * Gravity of the links (not part of `total`).
-     */
-    float gravity[3];
-    /**
-     * `drag + added_mass + buoyancy`.
-     */
-    float total[3];
-} UwmlHydro3F32;
-
-/**
- * `UwmlEnvironment3F64` in f32.
- */
-typedef struct UwmlEnvironment3F32 {
-    /**
-     * Drag.
-     */
-    float drag[3];
-    /**
-     * Added mass.
-     */
-    float added_mass[3];
-    /**
-     * Buoyancy.
-     */
-    float buoyancy[3];
-    /**
-     * Gravity of the links (not part of `total`).
-     */
-    float gravity[3];
-    /**
-     * Oil drag reflected to the output.
-     */
-    float visc[3];
-    /**
-     * Seal friction.
-     */
-    float seal[3];
-    /**
-     * Loss current [A].
-     */
-    float current[3];
-    /**
-     * `drag + added_mass + buoyancy + visc + seal`.
-     */
-    float total[3];
-} UwmlEnvironment3F32;
-
-/**
- * A robot (tree, bodies, segments, water, added-mass form, joint losses) and its evaluation
- * workspace, in f64, for C to allocate (statically: `static UwmlRobotF64 robot;`). Opaque:
- * written only by `uwml_robot_paper_f64` or `uwml_robot_new_f64` and changed only by the setters;
- * `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` use its workspace.
- * It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
- * did not write (`UWML_ERR_UNINITIALIZED`).
- */
-typedef struct UwmlRobotF64 {
-    /**
-     * A tag saying that the library wrote this robot. Do not touch.
-     */
-    uint64_t opaque_tag;
-    /**
-     * The robot. Do not touch.
-     */
-    uint64_t opaque[UWML_ROBOT_F64_WORDS];
-} UwmlRobotF64;
 
 /**
  * A joint of a robot: joint `i` moves link `i`. Every frame is parallel to the base frame when
@@ -1007,7 +609,7 @@ typedef struct UwmlBaseWrenchF64 {
 /**
  * The environment's generalized force on one joint with its joint losses, in the joint's
  * positive direction [N·m for a revolute joint, N for a prismatic one], and the loss current [A]:
- * `UwmlJointForcesF64` and the leg's `UwmlEnvironment3F64` for one joint of a robot.
+ * `UwmlJointForcesF64` with the joint's losses.
  */
 typedef struct UwmlJointEnvironmentF64 {
     /**
@@ -1057,6 +659,124 @@ typedef struct UwmlRobotF32 {
      */
     uint64_t opaque[UWML_ROBOT_F32_WORDS];
 } UwmlRobotF32;
+
+/**
+ * A workspace in f32; as `UwmlWorkspaceF64`.
+ */
+typedef struct UwmlWorkspaceF32 {
+    /**
+     * A tag saying that the library wrote this workspace. Do not touch.
+     */
+    uint64_t opaque_tag;
+    /**
+     * The workspace. Do not touch.
+     */
+    uint64_t opaque[UWML_WORKSPACE_F32_WORDS];
+} UwmlWorkspaceF32;
+
+/**
+ * `UwmlDriveParamsF64` in f32.
+ */
+typedef struct UwmlDriveParamsF32 {
+    /**
+     * Torque constant K_t [N·m/A], positive.
+     */
+    float torque_constant;
+    /**
+     * Gear ratio N, positive.
+     */
+    float ratio;
+    /**
+     * Gear efficiency η in (0, 1].
+     */
+    float efficiency;
+    /**
+     * Rated current [A], positive.
+     */
+    float rated_current;
+} UwmlDriveParamsF32;
+
+/**
+ * `UwmlOilParamsF64` in f32.
+ */
+typedef struct UwmlOilParamsF32 {
+    /**
+     * k [N·m·(rad/s)⁻ⁿ], zero or positive.
+     */
+    float k_oil;
+    /**
+     * Speed exponent n, in [1, 2].
+     */
+    float exponent;
+    /**
+     * a_p [1/Pa], zero or positive.
+     */
+    float pressure_sensitivity;
+    /**
+     * a_T [1/K], zero or positive.
+     */
+    float temperature_sensitivity;
+    /**
+     * p_ref [Pa], zero or positive.
+     */
+    float reference_pressure;
+    /**
+     * θ_ref [°C], above -273.15.
+     */
+    float reference_temperature;
+} UwmlOilParamsF32;
+
+/**
+ * `UwmlSealParamsF64` in f32.
+ */
+typedef struct UwmlSealParamsF32 {
+    /**
+     * Running level [N·m, N·m/Pa], zero or positive.
+     */
+    float c[2];
+    /**
+     * Breakaway level, at least the running level term by term.
+     */
+    float s[2];
+    /**
+     * Viscous slope [N·m·s/rad, N·m·s/(rad·Pa)], zero or positive.
+     */
+    float d[2];
+    /**
+     * Stribeck speed ω_s [rad/s], positive.
+     */
+    float stribeck_speed;
+} UwmlSealParamsF32;
+
+/**
+ * `UwmlJointLossParamsF64` in f32.
+ */
+typedef struct UwmlJointLossParamsF32 {
+    /**
+     * The drive.
+     */
+    struct UwmlDriveParamsF32 drive;
+    /**
+     * Oil drag; read only if `has_oil` is non-zero.
+     */
+    struct UwmlOilParamsF32 oil;
+    /**
+     * Seal; read only if `has_seal` is non-zero.
+     */
+    struct UwmlSealParamsF32 seal;
+    /**
+     * Width of the smooth sign [rad/s], zero or positive.
+     */
+    float epsilon;
+    /**
+     * Non-zero if the joint is oil-filled.
+     */
+    int32_t has_oil;
+    /**
+     * Non-zero if the joint has an output-shaft seal.
+     */
+    int32_t has_seal;
+} UwmlJointLossParamsF32;
 
 /**
  * `UwmlTreeJointF64` in f32.
@@ -1380,143 +1100,6 @@ int32_t uwml_pressure_at_depth_f64(double depth,
                                    struct UwmlError *error);
 
 /**
- * Writes the paper's leg (Table II) to `*out`, with fresh water (1000 kg/m³, g = 9.81),
- * Cd = 2.2, Cm = 0.5 and no joint losses.
- *
- * # Safety
- * `out` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlLeg3F64`.
- */
-int32_t uwml_leg3_paper_f64(struct UwmlLeg3F64 *out);
-
-/**
- * Validates 3 joints and 3 links (joint `i` moves link `i`) and writes the leg to `*out`, with
- * the defaults of `uwml_leg3_paper_f64` for water, coefficients and losses. On error `*out` is
- * left as it was.
- *
- * # Safety
- * `joints` and `links` are NULL or point to 3 elements each; `out` is NULL or valid for
- * writes of a `UwmlLeg3F64`; `error` is NULL or valid for writes of a `UwmlError`.
- */
-int32_t uwml_leg3_new_f64(const struct UwmlJointParamsF64 *joints,
-                          const struct UwmlLinkParamsF64 *links,
-                          struct UwmlLeg3F64 *out,
-                          struct UwmlError *error);
-
-/**
- * Sets the water's density [kg/m³] (positive) and gravity [m/s²] (zero or positive).
- *
- * # Safety
- * `leg` is NULL or valid for reads and writes of a `UwmlLeg3F64`; `error` is NULL or valid for
- * writes of a `UwmlError`.
- */
-int32_t uwml_leg3_set_water_f64(struct UwmlLeg3F64 *leg,
-                                double density,
-                                double gravity,
-                                struct UwmlError *error);
-
-/**
- * Sets one drag and one added-mass coefficient for every link and direction (zero or positive).
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`.
- */
-int32_t uwml_leg3_set_coefficients_f64(struct UwmlLeg3F64 *leg,
-                                       double cd,
-                                       double cm,
-                                       struct UwmlError *error);
-
-/**
- * Sets the coefficients per link and normal direction: `cd` and `cm` are `double[3][2]`
- * (`[link][k]`, 6 values each), zero or positive.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`; `cd` and `cm` are NULL or point to 6 values.
- */
-int32_t uwml_leg3_set_coefficients_per_direction_f64(struct UwmlLeg3F64 *leg,
-                                                     const double *cd,
-                                                     const double *cm,
-                                                     struct UwmlError *error);
-
-/**
- * Fills `*out` with the core's illustrative default joint losses (`JointLosses::default()`:
- * drive K_t 0.40, ratio 160, η 0.80, 10.4 A; oil and seal as in docs/losses.md; ε = 1e-3), for a
- * leg's joint or a robot's (`uwml_robot_set_losses_f64`).
- *
- * # Safety
- * `out` is NULL or valid for writes of a `UwmlJointLossParamsF64`.
- */
-int32_t uwml_leg3_default_losses_f64(struct UwmlJointLossParamsF64 *out);
-
-/**
- * Gives joint `joint_index` (0, 1 or 2) the losses `*params` at gauge pressure `pressure_pa`
- * [Pa] (finite, zero or positive) and oil temperature `temperature_c` [°C] (above -273.15).
- * On error the leg is left as it was.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`; `params` is NULL or valid for reads of a
- * `UwmlJointLossParamsF64`.
- */
-int32_t uwml_leg3_set_losses_f64(struct UwmlLeg3F64 *leg,
-                                 uint32_t joint_index,
-                                 const struct UwmlJointLossParamsF64 *params,
-                                 double pressure_pa,
-                                 double temperature_c,
-                                 struct UwmlError *error);
-
-/**
- * Removes the losses of joint `joint_index` (0, 1 or 2).
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`.
- */
-int32_t uwml_leg3_clear_losses_f64(struct UwmlLeg3F64 *leg,
-                                   uint32_t joint_index,
-                                   struct UwmlError *error);
-
-/**
- * Moves every joint that has losses to a new gauge pressure [Pa] and oil temperature [°C]
- * (checked as in `uwml_leg3_set_losses_f64`): call it when the depth or temperature changes.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`.
- */
-int32_t uwml_leg3_set_conditions_f64(struct UwmlLeg3F64 *leg,
-                                     double pressure_pa,
-                                     double temperature_c,
-                                     struct UwmlError *error);
-
-/**
- * Drag, added-mass, buoyancy and gravity torques at joint state `q` [rad], `qd` [rad/s],
- * `qdd` [rad/s²] (3 values each). A non-finite state gives NaN torques and
- * `UWML_ERR_NON_FINITE` (field "q", "qd" or "qdd", index the element).
- *
- * # Safety
- * `leg` is NULL or valid for reads of a `UwmlLeg3F64`; `q`, `qd`, `qdd` are NULL or point to
- * 3 values; `out` is NULL or valid for writes of a `UwmlHydro3F64`; `error` is NULL or valid
- * for writes of a `UwmlError`.
- */
-int32_t uwml_leg3_hydro_f64(const struct UwmlLeg3F64 *leg,
-                            const double *q,
-                            const double *qd,
-                            const double *qdd,
-                            struct UwmlHydro3F64 *out,
-                            struct UwmlError *error);
-
-/**
- * Hydrodynamic torques plus joint losses (`uwml_core::environment_torques`) at joint state
- * `q`, `qd`, `qdd`; as `uwml_leg3_hydro_f64`.
- *
- * # Safety
- * As `uwml_leg3_hydro_f64`, with `out` valid for writes of a `UwmlEnvironment3F64`.
- */
-int32_t uwml_leg3_environment_f64(const struct UwmlLeg3F64 *leg,
-                                  const double *q,
-                                  const double *qd,
-                                  const double *qdd,
-                                  struct UwmlEnvironment3F64 *out,
-                                  struct UwmlError *error);
-
-/**
  * `uwml_pressure_at_depth_f64` in f32.
  *
  * # Safety
@@ -1529,134 +1112,34 @@ int32_t uwml_pressure_at_depth_f32(float depth,
                                    struct UwmlError *error);
 
 /**
- * `uwml_leg3_paper_f64` in f32.
- *
- * # Safety
- * `out` is NULL or valid for writes of a `UwmlLeg3F32`.
- */
-int32_t uwml_leg3_paper_f32(struct UwmlLeg3F32 *out);
-
-/**
- * `uwml_leg3_new_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_new_f64`, with the f32 types.
- */
-int32_t uwml_leg3_new_f32(const struct UwmlJointParamsF32 *joints,
-                          const struct UwmlLinkParamsF32 *links,
-                          struct UwmlLeg3F32 *out,
-                          struct UwmlError *error);
-
-/**
- * `uwml_leg3_set_water_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`, with the f32 types.
- */
-int32_t uwml_leg3_set_water_f32(struct UwmlLeg3F32 *leg,
-                                float density,
-                                float gravity,
-                                struct UwmlError *error);
-
-/**
- * `uwml_leg3_set_coefficients_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`, with the f32 types.
- */
-int32_t uwml_leg3_set_coefficients_f32(struct UwmlLeg3F32 *leg,
-                                       float cd,
-                                       float cm,
-                                       struct UwmlError *error);
-
-/**
- * `uwml_leg3_set_coefficients_per_direction_f64` in f32 (`float[3][2]`).
- *
- * # Safety
- * As `uwml_leg3_set_coefficients_per_direction_f64`, with the f32 types.
- */
-int32_t uwml_leg3_set_coefficients_per_direction_f32(struct UwmlLeg3F32 *leg,
-                                                     const float *cd,
-                                                     const float *cm,
-                                                     struct UwmlError *error);
-
-/**
- * `uwml_leg3_default_losses_f64` in f32.
- *
- * # Safety
- * `out` is NULL or valid for writes of a `UwmlJointLossParamsF32`.
- */
-int32_t uwml_leg3_default_losses_f32(struct UwmlJointLossParamsF32 *out);
-
-/**
- * `uwml_leg3_set_losses_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_set_losses_f64`, with the f32 types.
- */
-int32_t uwml_leg3_set_losses_f32(struct UwmlLeg3F32 *leg,
-                                 uint32_t joint_index,
-                                 const struct UwmlJointLossParamsF32 *params,
-                                 float pressure_pa,
-                                 float temperature_c,
-                                 struct UwmlError *error);
-
-/**
- * `uwml_leg3_clear_losses_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`, with the f32 types.
- */
-int32_t uwml_leg3_clear_losses_f32(struct UwmlLeg3F32 *leg,
-                                   uint32_t joint_index,
-                                   struct UwmlError *error);
-
-/**
- * `uwml_leg3_set_conditions_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_set_water_f64`, with the f32 types.
- */
-int32_t uwml_leg3_set_conditions_f32(struct UwmlLeg3F32 *leg,
-                                     float pressure_pa,
-                                     float temperature_c,
-                                     struct UwmlError *error);
-
-/**
- * `uwml_leg3_hydro_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_hydro_f64`, with the f32 types.
- */
-int32_t uwml_leg3_hydro_f32(const struct UwmlLeg3F32 *leg,
-                            const float *q,
-                            const float *qd,
-                            const float *qdd,
-                            struct UwmlHydro3F32 *out,
-                            struct UwmlError *error);
-
-/**
- * `uwml_leg3_environment_f64` in f32.
- *
- * # Safety
- * As `uwml_leg3_environment_f64`, with the f32 types.
- */
-int32_t uwml_leg3_environment_f32(const struct UwmlLeg3F32 *leg,
-                                  const float *q,
-                                  const float *qd,
-                                  const float *qdd,
-                                  struct UwmlEnvironment3F32 *out,
-                                  struct UwmlError *error);
-
-/**
- * Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
- * fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
- * water (1000 kg/m³, g = 9.81), Morison's added mass, no joint losses.
+ * Writes the paper's leg (Table II, the preset `uwml_core::presets::paper_leg`) to `*robot`: 3
+ * revolute joints in a chain on a fixed base without a body of its own, rectangular segments
+ * with Cd = 2.2, Cm = 0.5, fresh water (1000 kg/m³, g = 9.81), Morison's added mass, no joint
+ * losses.
  *
  * # Safety
  * `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
  */
-int32_t uwml_robot_paper_f64(struct UwmlRobotF64 *robot);
+int32_t uwml_robot_paper_leg_f64(struct UwmlRobotF64 *robot);
+
+/**
+ * Writes a fresh workspace to `*workspace`, for the evaluations of any robot of this API (in
+ * f64): once, before its first evaluation.
+ *
+ * # Safety
+ * `workspace` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlWorkspaceF64`.
+ */
+int32_t uwml_robot_workspace_init_f64(struct UwmlWorkspaceF64 *workspace);
+
+/**
+ * Fills `*out` with the core's illustrative default joint losses (`JointLosses::default()`:
+ * drive K_t 0.40, ratio 160, η 0.80, 10.4 A; oil and seal as in docs/losses.md; ε = 1e-3), a
+ * start for `uwml_robot_set_losses_f64`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writes of a `UwmlJointLossParamsF64`.
+ */
+int32_t uwml_robot_default_losses_f64(struct UwmlJointLossParamsF64 *out);
 
 /**
  * Validates a robot and writes it to `*robot`: `n_joints` joints (at most
@@ -1689,8 +1172,8 @@ int32_t uwml_robot_new_f64(struct UwmlRobotF64 *robot,
  * Generalized forces on every joint and the wrench on the base of `robot` at joint state `q`,
  * `qd`, `qdd` (`n` values each, `n` the robot's joint count; [rad] or [m] and their
  * derivatives), base motion `*motion` (NULL: a fixed, upright base) and current `*current`
- * (NULL: still water). Writes `n` `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench`
- * is not NULL, the base wrench.
+ * (NULL: still water), evaluated in `workspace` (written; the robot is only read). Writes `n`
+ * `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench` is not NULL, the base wrench.
  *
  * The motion and the current are validated on every call: an error ("base.orientation" not a
  * unit quaternion, "current.velocity" not finite, ...) writes nothing. A non-finite joint state
@@ -1698,13 +1181,15 @@ int32_t uwml_robot_new_f64(struct UwmlRobotF64 *robot,
  * element).
  *
  * # Safety
- * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
- * during the call (it holds the evaluation's workspace); `q`, `qd`, `qdd` are NULL or point to
- * `n` values; `joint_forces` is NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and
- * these allowed when `n` is 0); `motion`, `current` and `base_wrench` are NULL or valid for one
- * element; `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ * `robot` is NULL or valid for reads of a `UwmlRobotF64` that nothing writes during the call;
+ * `workspace` is NULL or valid for reads and writes of a `UwmlWorkspaceF64` that nothing else
+ * accesses during the call; `q`, `qd`, `qdd` are NULL or point to `n` values; `joint_forces` is
+ * NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and these allowed when `n` is 0);
+ * `motion`, `current` and `base_wrench` are NULL or valid for one element; `error` is NULL or
+ * valid for writes of a `UwmlError`. None of them overlaps `*robot` or `*workspace`.
  */
-int32_t uwml_robot_hydro_f64(struct UwmlRobotF64 *robot,
+int32_t uwml_robot_hydro_f64(const struct UwmlRobotF64 *robot,
+                             struct UwmlWorkspaceF64 *workspace,
                              const double *q,
                              const double *qd,
                              const double *qdd,
@@ -1734,10 +1219,10 @@ int32_t uwml_robot_set_added_mass_form_f64(struct UwmlRobotF64 *robot,
 
 /**
  * Gives joint `joint_index` (0 to the robot's joint count - 1) of `robot` the losses `*params`
- * (the leg API's struct: start from `uwml_leg3_default_losses_f64`) at gauge pressure
+ * (start from `uwml_robot_default_losses_f64`) at gauge pressure
  * `pressure_pa` [Pa] (finite, 0 to 1.2e8: `uwml_pressure_at_depth_f64` gives it from a depth) and
  * oil temperature `temperature_c` [°C] (finite, above -273.15), for every later
- * `uwml_robot_environment_f64`. Checked as `uwml_leg3_set_losses_f64` checks them, in that order:
+ * `uwml_robot_environment_f64`. Checked in this order:
  * the robot, `UWML_ERR_INDEX_OUT_OF_RANGE` (field "joint_index", index the value given),
  * `params` NULL, the parameters (field e.g. "drive.ratio", "oil.exponent (1 to 2)", "seal.s0",
  * "losses.epsilon", index the joint), the conditions (field "pressure_pa" or "temperature_c").
@@ -1795,7 +1280,8 @@ int32_t uwml_robot_set_conditions_f64(struct UwmlRobotF64 *robot,
  * As `uwml_robot_hydro_f64`, with `joint_environment` NULL or valid for writes of `n`
  * `UwmlJointEnvironmentF64`.
  */
-int32_t uwml_robot_environment_f64(struct UwmlRobotF64 *robot,
+int32_t uwml_robot_environment_f64(const struct UwmlRobotF64 *robot,
+                                   struct UwmlWorkspaceF64 *workspace,
                                    const double *q,
                                    const double *qd,
                                    const double *qdd,
@@ -1817,12 +1303,28 @@ int32_t uwml_robot_set_added_mass_form_f32(struct UwmlRobotF32 *robot,
                                            struct UwmlError *error);
 
 /**
- * `uwml_robot_paper_f64` in f32.
+ * `uwml_robot_paper_leg_f64` in f32.
  *
  * # Safety
  * `robot` is NULL or valid for writes of a `UwmlRobotF32`.
  */
-int32_t uwml_robot_paper_f32(struct UwmlRobotF32 *robot);
+int32_t uwml_robot_paper_leg_f32(struct UwmlRobotF32 *robot);
+
+/**
+ * `uwml_robot_workspace_init_f64` in f32.
+ *
+ * # Safety
+ * `workspace` is NULL or valid for writes of a `UwmlWorkspaceF32`.
+ */
+int32_t uwml_robot_workspace_init_f32(struct UwmlWorkspaceF32 *workspace);
+
+/**
+ * `uwml_robot_default_losses_f64` in f32.
+ *
+ * # Safety
+ * `out` is NULL or valid for writes of a `UwmlJointLossParamsF32`.
+ */
+int32_t uwml_robot_default_losses_f32(struct UwmlJointLossParamsF32 *out);
 
 /**
  * `uwml_robot_new_f64` in f32.
@@ -1847,7 +1349,8 @@ int32_t uwml_robot_new_f32(struct UwmlRobotF32 *robot,
  * # Safety
  * As `uwml_robot_hydro_f64`, with the f32 types.
  */
-int32_t uwml_robot_hydro_f32(struct UwmlRobotF32 *robot,
+int32_t uwml_robot_hydro_f32(const struct UwmlRobotF32 *robot,
+                             struct UwmlWorkspaceF32 *workspace,
                              const float *q,
                              const float *qd,
                              const float *qdd,
@@ -1898,7 +1401,8 @@ int32_t uwml_robot_set_conditions_f32(struct UwmlRobotF32 *robot,
  * # Safety
  * As `uwml_robot_environment_f64`, with the f32 types.
  */
-int32_t uwml_robot_environment_f32(struct UwmlRobotF32 *robot,
+int32_t uwml_robot_environment_f32(const struct UwmlRobotF32 *robot,
+                                   struct UwmlWorkspaceF32 *workspace,
                                    const float *q,
                                    const float *qd,
                                    const float *qdd,
@@ -1937,6 +1441,63 @@ int32_t uwml_robot_set_lumped_f32(struct UwmlRobotF32 *robot,
                                   const struct UwmlLumpedF32 *models,
                                   uint32_t count,
                                   struct UwmlError *error);
+
+/**
+ * Gives the `n_segments` segments of `robot` (exactly its segment count, in the order given to
+ * `uwml_robot_new_f64`; the paper's leg: thigh, calf) other drag and added-mass coefficients:
+ * `cd[k]` and `cm[k]` segment `k`'s per normal direction (a fit's; zero or positive, at most
+ * 1e3; a circular segment's two equal), for every later evaluation. Errors name the field and
+ * the segment ("segment.cd", "segment.cm"; "n_segments (the robot's segment count)"); on error
+ * the robot is left as it was. `cd` and `cm` may be NULL when `n_segments` is 0.
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `cd` and `cm` are NULL or valid for reads of `n_segments` pairs; `error` is
+ * NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+ */
+int32_t uwml_robot_set_coefficients_f64(struct UwmlRobotF64 *robot,
+                                        const double (*cd)[2],
+                                        const double (*cm)[2],
+                                        uint32_t n_segments,
+                                        struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_coefficients_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_set_coefficients_f64`, with the f32 types.
+ */
+int32_t uwml_robot_set_coefficients_f32(struct UwmlRobotF32 *robot,
+                                        const float (*cd)[2],
+                                        const float (*cm)[2],
+                                        uint32_t n_segments,
+                                        struct UwmlError *error);
+
+/**
+ * Sets the water of `robot`: density [kg/m³] (positive, at most 1e5) and gravity [m/s²] (zero or
+ * positive, at most 1e3), for every later evaluation (a new robot's: the density and gravity
+ * given to `uwml_robot_new_f64`, or fresh water for the paper's leg). On error ("water.density",
+ * "water.gravity") the robot is left as it was.
+ *
+ * # Safety
+ * `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+ * during the call; `error` is NULL or valid for writes of a `UwmlError`.
+ */
+int32_t uwml_robot_set_water_f64(struct UwmlRobotF64 *robot,
+                                 double density,
+                                 double gravity,
+                                 struct UwmlError *error);
+
+/**
+ * `uwml_robot_set_water_f64` in f32.
+ *
+ * # Safety
+ * As `uwml_robot_set_water_f64`, with `UwmlRobotF32`.
+ */
+int32_t uwml_robot_set_water_f32(struct UwmlRobotF32 *robot,
+                                 float density,
+                                 float gravity,
+                                 struct UwmlError *error);
 
 #ifdef __cplusplus
 }  // extern "C"

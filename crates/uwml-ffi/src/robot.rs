@@ -1,7 +1,7 @@
-//! The precision-generic implementation of the `uwml_robot_*` functions of the crate root: any
-//! robot up to `J` joints and `S` segments (docs/model.md section 10), with joint losses, in an
-//! opaque block that also holds the evaluation's workspace, so that an evaluation needs no other
-//! storage.
+//! The precision-generic implementation of the `uwml_robot_*` functions: any robot up to `J`
+//! joints and `S` segments (docs/model.md section 10), with joint losses, in an opaque block
+//! (the model: validated once, then only read by an evaluation), and the evaluation's workspace
+//! in another (what an evaluation writes), so that an evaluation needs no other storage.
 //!
 //! As in `imp`: every caller pointer is checked for null before anything else, inputs are copied
 //! by value, outputs are written at the end, and nothing is written on error (except NaN
@@ -9,9 +9,9 @@
 
 use uwml_core::nalgebra::{Matrix3, Matrix6, RealField, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, EnvironmentWrench, JointForces, JointKind,
-    JointLoss, JointLosses, LossState, LumpedBody, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment,
-    Section, TreeJoint, Water, robot_hydro,
+    AddedMassForm, BaseMotion, Conditions, Current, EnvironmentWrench, JointForces, JointKind, JointLoss, JointLosses,
+    LossState, LumpedBody, ModelError, Owner, RigidBody, Robot, RobotData, RobotSegment, Section, SegmentCoefficients,
+    TreeJoint, Water, presets, robot_hydro,
 };
 
 use crate::imp::{Failure, check_conditions, check_overflow, joint_slot, non_null, read_one};
@@ -20,8 +20,8 @@ use crate::{
     UWML_ERR_OVERFLOW, UWML_ERR_UNINITIALIZED, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_SECTION_CIRCULAR,
     UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32,
     UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlJointEnvironmentF32, UwmlJointEnvironmentF64, UwmlJointForcesF32,
-    UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlLumpedF32, UwmlLumpedF64, UwmlRobotF32,
-    UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64,
+    UwmlJointForcesF64, UwmlLumpedF32, UwmlLumpedF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32,
+    UwmlRobotSegmentF64, UwmlTreeJointF32, UwmlTreeJointF64, UwmlWorkspaceF32, UwmlWorkspaceF64,
 };
 
 /// The joint capacity of the C API's robot.
@@ -31,13 +31,13 @@ pub(crate) const S: usize = 32;
 /// The lumped-model capacity of the C API's robot (`UWML_ROBOT_MAX_LUMPED`).
 pub(crate) const B: usize = 4;
 
-/// A robot with everything its evaluation takes besides the joint state and a workspace: the
-/// water, the added-mass form and the joints' losses. The robot API's block holds one of up to
-/// `J` joints and `S` segments; the leg API's leg, one of 3 and 3 (the leg API is this API
-/// behind other arguments).
+/// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`: a robot with everything its
+/// evaluation takes besides the joint state, the base's motion, the current and a workspace: the
+/// water, the added-mass form and the joints' losses. Written by construction and the setters,
+/// only read by an evaluation.
 #[derive(Clone, Copy)]
-pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize, const BM: usize = 0> {
-    pub(crate) robot: Robot<T, JM, SM, BM>,
+pub(crate) struct Model<T: RealField + Copy> {
+    pub(crate) robot: Robot<T, J, S, B>,
     pub(crate) water: Water<T>,
     /// How the added-mass forces depend on the velocities (`uwml_robot_set_added_mass_form_*`):
     /// `UWML_ADDED_MASS_KIRCHHOFF` or else Morison's, kept as the C constant so that every bit
@@ -45,24 +45,16 @@ pub(crate) struct Model<T: RealField + Copy, const JM: usize, const SM: usize, c
     form: i32,
     /// Each joint's loss model (`uwml_robot_set_losses_*`), kept so that a change of conditions
     /// can recompute `states`; `None` for a joint without losses and beyond the robot's joints.
-    losses: [Option<JointLosses<T>>; JM],
+    losses: [Option<JointLosses<T>>; J],
     /// Each joint's losses at its current pressure and temperature.
-    states: [Option<LossState<T>>; JM],
+    states: [Option<LossState<T>>; J],
 }
 
-/// What lives in the opaque words of `UwmlRobotF64` / `UwmlRobotF32`.
-pub(crate) struct Block<T: RealField + Copy> {
-    model: Model<T, J, S, B>,
-    /// The workspace and results of the last evaluation.
-    data: RobotData<T, J>,
-}
+/// What lives in the opaque words of `UwmlWorkspaceF64` / `UwmlWorkspaceF32`: the workspace and
+/// results of an evaluation of any robot of the API (`uwml_core::RobotData`).
+pub(crate) type Workspace<T> = RobotData<T, J>;
 
-impl<T: RealField + uwml_core::Real, const JM: usize, const SM: usize, const BM: usize> Model<T, JM, SM, BM> {
-    /// `robot` in `water`, with Morison's added mass and no joint losses.
-    pub(crate) const fn new(robot: Robot<T, JM, SM, BM>, water: Water<T>) -> Self {
-        Self { robot, water, form: UWML_ADDED_MASS_MORISON, losses: [None; JM], states: [None; JM] }
-    }
-
+impl<T: RealField + uwml_core::Real> Model<T> {
     /// Joint `slot`'s losses (a joint of the robot), at `pressure` and `temperature` (checked).
     pub(crate) fn set_losses(&mut self, slot: usize, losses: JointLosses<T>, pressure: T, temperature: T) {
         if let (Some(model), Some(state)) = (self.losses.get_mut(slot), self.states.get_mut(slot)) {
@@ -94,11 +86,11 @@ impl<T: RealField + uwml_core::Real, const JM: usize, const SM: usize, const BM:
     /// if `with_losses` (zero otherwise), into `data`.
     pub(crate) fn evaluate(
         &self,
-        state: [&[T; JM]; 3],
+        state: [&[T; J]; 3],
         motion: BaseMotion<T>,
         current: Current<T>,
         with_losses: bool,
-        data: &mut RobotData<T, JM>,
+        data: &mut Workspace<T>,
     ) {
         let form =
             if self.form == UWML_ADDED_MASS_KIRCHHOFF { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison };
@@ -115,12 +107,8 @@ pub(crate) fn used<T>(state: &[T], n: usize) -> &[T] {
 
 /// After an evaluation into `data` at `state` (the robot's joints only): a non-finite state
 /// (its first element), else outputs that overflow: `total` (forces plus losses), `current`, and
-/// the base wrench if `base` (the leg API has none).
-pub(crate) fn check_evaluation<T: RealField + Copy, const JM: usize>(
-    data: &RobotData<T, JM>,
-    state: [&[T]; 3],
-    base: bool,
-) -> Result<(), Failure> {
+/// the base wrench.
+fn check_evaluation<T: RealField + Copy>(data: &Workspace<T>, state: [&[T]; 3]) -> Result<(), Failure> {
     let [q, qd, qdd] = state;
     check_states([(q, "q"), (qd, "qd"), (qdd, "qdd")])?;
     let none = JointLoss { visc: T::zero(), seal: T::zero(), current: T::zero() };
@@ -128,7 +116,7 @@ pub(crate) fn check_evaluation<T: RealField + Copy, const JM: usize>(
     let forces = data.joint_forces().iter().enumerate();
     check_overflow(forces.map(|(i, f)| environment_total(f, &loss(i))), "total")?;
     check_overflow((0..data.joint_forces().len()).map(|i| loss(i).current), "current")?;
-    if base && data.base_wrench().total().to_array().iter().any(|x| !x.is_finite()) {
+    if data.base_wrench().total().to_array().iter().any(|x| !x.is_finite()) {
         return Err(Failure::new(UWML_ERR_OVERFLOW, "base_wrench", None));
     }
     Ok(())
@@ -162,9 +150,11 @@ pub(crate) struct Evaluation<T: RobotPrecision, F> {
 }
 
 /// The f32 and f64 halves of the robot API.
-pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
-    /// The caller-allocated opaque robot: one tag word, then the `Block<Self>`.
+pub(crate) trait RobotPrecision: crate::imp::Precision {
+    /// The caller-allocated opaque robot: one tag word, then the `Model<Self>`.
     type Robot;
+    /// The caller-allocated opaque workspace: one tag word, then the `Workspace<Self>`.
+    type Workspace;
     type Joint: Copy;
     type Body: Copy;
     type Segment: Copy;
@@ -172,11 +162,12 @@ pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
     type Current: Copy;
     type JointForces: Copy;
     type BaseWrench: Copy;
-    type LossParams: Copy;
     type JointEnvironment: Copy;
     type Lumped: Copy;
     /// The tag word of a robot written by this library ("UWMLRF64" / "UWMLRF32" in ASCII).
     const TAG: u64;
+    /// The tag word of a workspace written by this library ("UWMLWF64" / "UWMLWF32").
+    const WORKSPACE_TAG: u64;
     /// # Errors
     /// A parent or kind that is not one of the documented values.
     fn joint(p: &Self::Joint, index: usize) -> Result<TreeJoint<Self>, Failure>;
@@ -192,9 +183,6 @@ pub(crate) trait RobotPrecision: RealField + Copy + uwml_core::Real {
     fn current(p: &Self::Current) -> Result<Current<Self>, ModelError>;
     fn joint_forces(f: &JointForces<Self>) -> Self::JointForces;
     fn base_wrench(w: &EnvironmentWrench<Self>) -> Self::BaseWrench;
-    /// # Errors
-    /// A parameter that the core rejects (as the leg API's).
-    fn losses(p: &Self::LossParams) -> Result<JointLosses<Self>, ModelError>;
     /// A joint's forces and losses; `total` is the core's `(hydro total + visc) + seal`, as
     /// `EnvironmentTorques::total` sums them.
     fn joint_environment(f: &JointForces<Self>, loss: &JointLoss<Self>) -> Self::JointEnvironment;
@@ -229,10 +217,11 @@ fn circular(value: i32, index: usize) -> Result<bool, Failure> {
 }
 
 macro_rules! robot_precision {
-    ($t:ty, $tag:expr, $robot:ty, $joint:ty, $body:ty, $segment:ty, $motion:ty, $current:ty, $forces:ident,
-     $wrench:ident, $loss:ty, $environment:ident, $lumped:ty) => {
+    ($t:ty, $tag:expr, $workspace_tag:expr, $robot:ty, $workspace:ty, $joint:ty, $body:ty, $segment:ty, $motion:ty,
+     $current:ty, $forces:ident, $wrench:ident, $environment:ident, $lumped:ty) => {
         impl RobotPrecision for $t {
             type Robot = $robot;
+            type Workspace = $workspace;
             type Joint = $joint;
             type Body = $body;
             type Segment = $segment;
@@ -240,10 +229,10 @@ macro_rules! robot_precision {
             type Current = $current;
             type JointForces = $forces;
             type BaseWrench = $wrench;
-            type LossParams = $loss;
             type JointEnvironment = $environment;
             type Lumped = $lumped;
             const TAG: u64 = $tag;
+            const WORKSPACE_TAG: u64 = $workspace_tag;
 
             fn joint(p: &$joint, index: usize) -> Result<TreeJoint<$t>, Failure> {
                 Ok(TreeJoint {
@@ -314,10 +303,6 @@ macro_rules! robot_precision {
                 }
             }
 
-            fn losses(p: &$loss) -> Result<JointLosses<$t>, ModelError> {
-                <$t as crate::imp::Precision>::losses(p)
-            }
-
             fn lumped(p: &$lumped, index: usize) -> Result<LumpedBody<$t>, Failure> {
                 let owner = body_index(p.owner, "lumped.owner", index)?.map_or(Owner::Base, Owner::Link);
                 // All-zero axes (as a zeroed struct has them): the body's own.
@@ -365,7 +350,9 @@ pub(crate) fn environment_total<T: RealField + Copy>(f: &JointForces<T>, loss: &
 robot_precision!(
     f64,
     u64::from_be_bytes(*b"UWMLRF64"),
+    u64::from_be_bytes(*b"UWMLWF64"),
     UwmlRobotF64,
+    UwmlWorkspaceF64,
     UwmlTreeJointF64,
     UwmlBodyF64,
     UwmlRobotSegmentF64,
@@ -373,14 +360,15 @@ robot_precision!(
     UwmlCurrentF64,
     UwmlJointForcesF64,
     UwmlBaseWrenchF64,
-    UwmlJointLossParamsF64,
     UwmlJointEnvironmentF64,
     UwmlLumpedF64
 );
 robot_precision!(
     f32,
     u64::from_be_bytes(*b"UWMLRF32"),
+    u64::from_be_bytes(*b"UWMLWF32"),
     UwmlRobotF32,
+    UwmlWorkspaceF32,
     UwmlTreeJointF32,
     UwmlBodyF32,
     UwmlRobotSegmentF32,
@@ -388,46 +376,102 @@ robot_precision!(
     UwmlCurrentF32,
     UwmlJointForcesF32,
     UwmlBaseWrenchF32,
-    UwmlJointLossParamsF32,
     UwmlJointEnvironmentF32,
     UwmlLumpedF32
 );
 
-/// Where the `Block<T>` starts: right after the tag word (offsets asserted in the crate root).
-fn storage_mut<T: RobotPrecision>(robot: *mut T::Robot) -> *mut Block<T> {
+/// Where the `Model<T>` starts: right after the tag word (offsets asserted in the crate root).
+fn storage_mut<T: RobotPrecision>(robot: *mut T::Robot) -> *mut Model<T> {
     robot.cast::<u64>().wrapping_add(1).cast()
 }
 
-/// The block behind a caller's pointer, if the pointer is not null and the robot was written by
+/// Where the `Workspace<T>` starts: right after the tag word.
+fn workspace_storage_mut<T: RobotPrecision>(workspace: *mut T::Workspace) -> *mut Workspace<T> {
+    workspace.cast::<u64>().wrapping_add(1).cast()
+}
+
+/// Whether the tag word at `p` (not null) is `tag`.
+///
+/// # Safety
+/// `p` is valid for reads of its first `u64`.
+unsafe fn tagged<P>(p: *const P, tag: u64) -> bool {
+    // SAFETY: valid for reads (contract); the tag is a plain `u64` at offset 0 of an 8-aligned
+    // `repr(C)` struct, for which every bit pattern is valid.
+    unsafe { p.cast::<u64>().read() == tag }
+}
+
+/// The model behind a caller's pointer, if the pointer is not null and the robot was written by
 /// this library (its tag word is right).
+///
+/// # Safety
+/// `robot` is null or valid for reads of a `T::Robot` not written during `'a`.
+unsafe fn model_ref<'a, T: RobotPrecision>(robot: *const T::Robot) -> Result<&'a Model<T>, Failure> {
+    if robot.is_null() {
+        return Err(Failure::null("robot"));
+    }
+    // SAFETY: not null, valid for reads (contract).
+    if !unsafe { tagged(robot, T::TAG) } {
+        return Err(Failure::new(UWML_ERR_UNINITIALIZED, "robot", None));
+    }
+    // SAFETY: the tag is only ever written by `finish`, right after a valid `Model<T>` was written
+    // at `storage_mut(robot)`, which is in bounds and aligned (compile-time assertions in the
+    // crate root); the caller does not write the robot during `'a` (contract).
+    Ok(unsafe { &*storage_mut::<T>(robot.cast_mut()) })
+}
+
+/// [`model_ref`], mutable.
 ///
 /// # Safety
 /// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
 /// `'a`.
-unsafe fn block_mut<'a, T: RobotPrecision>(robot: *mut T::Robot) -> Result<&'a mut Block<T>, Failure> {
-    let robot = non_null(robot, "robot")?;
-    // SAFETY: `robot` is valid for reads (contract) and starts with its tag word, a plain `u64`
-    // at offset 0 of an 8-aligned `repr(C)` struct, for which every bit pattern is valid.
-    let tag = unsafe { robot.cast::<u64>().read() };
-    if tag != T::TAG {
-        return Err(Failure::new(UWML_ERR_UNINITIALIZED, "robot", None));
-    }
-    // SAFETY: the tag is only ever written by `finish`, right after a valid `Block<T>` was written
-    // at `storage_mut(robot)`, which is in bounds and aligned (compile-time assertions in the
-    // crate root); the caller grants exclusive access during `'a` (contract).
+unsafe fn model_mut<'a, T: RobotPrecision>(robot: *mut T::Robot) -> Result<&'a mut Model<T>, Failure> {
+    // SAFETY: the contract of `model_ref` is implied by this function's.
+    unsafe { model_ref::<T>(robot) }?;
+    // SAFETY: as in `model_ref`, and the caller grants exclusive access during `'a`.
     Ok(unsafe { &mut *storage_mut::<T>(robot) })
 }
 
-/// Validates a robot and writes it into the block's robot field if valid (nothing otherwise).
+/// The workspace behind a caller's pointer, if not null and written by
+/// `uwml_robot_workspace_init_*` (its tag word is right).
+///
+/// # Safety
+/// `workspace` is null or valid for reads and writes of a `T::Workspace` not accessed otherwise
+/// during `'a`.
+unsafe fn workspace_mut<'a, T: RobotPrecision>(workspace: *mut T::Workspace) -> Result<&'a mut Workspace<T>, Failure> {
+    let workspace = non_null(workspace, "workspace")?;
+    // SAFETY: not null, valid for reads (contract).
+    if !unsafe { tagged(workspace, T::WORKSPACE_TAG) } {
+        return Err(Failure::new(UWML_ERR_UNINITIALIZED, "workspace", None));
+    }
+    // SAFETY: the tag is only ever written by `workspace_init`, right after a valid `Workspace<T>`
+    // was written at `workspace_storage_mut(workspace)` (in bounds and aligned: crate root); the
+    // caller grants exclusive access during `'a` (contract).
+    Ok(unsafe { &mut *workspace_storage_mut::<T>(workspace) })
+}
+
+/// # Safety
+/// `out` is null or valid for writes of a `T::Workspace`.
+pub(crate) unsafe fn workspace_init<T: RobotPrecision>(out: *mut T::Workspace) -> Result<(), Failure> {
+    let out = non_null(out, "workspace")?;
+    // SAFETY: not null, valid for writes (contract); the workspace is in bounds and aligned (crate
+    // root). The tag goes last, so a workspace carries it only once its contents are valid.
+    unsafe {
+        workspace_storage_mut::<T>(out).write(Workspace::<T>::new());
+        out.cast::<u64>().write(T::WORKSPACE_TAG);
+    }
+    Ok(())
+}
+
+/// Validates a robot and writes it into the model's robot field if valid (nothing otherwise).
 /// Not inlined, so that the core's robot under construction and its `Result` (each as large as
 /// the robot) live in this frame, not in the caller's beside the converted inputs: on a
 /// Cortex-M this halves the stack that construction needs.
 ///
 /// # Safety
-/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+/// `model` is valid for writes of a `Model<T>` (it may be uninitialized).
 #[inline(never)]
 unsafe fn write_robot<T: RobotPrecision>(
-    block: *mut Block<T>,
+    model: *mut Model<T>,
     joints: &[TreeJoint<T>],
     links: &[RigidBody<T>],
     base: RigidBody<T>,
@@ -436,43 +480,43 @@ unsafe fn write_robot<T: RobotPrecision>(
     let result = Robot::new(joints, links, base, segments);
     let robot = result.as_ref().map_err(|e| *e)?;
     // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
-    // computed without reading the block.
-    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).model.robot, 1) };
+    // computed without reading the model.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*model).robot, 1) };
     Ok(())
 }
 
-/// The paper's leg into the block's robot field; as [`write_robot`].
+/// The paper's leg (`presets::paper_leg`, in the API's capacity) into the model's robot field; as
+/// [`write_robot`].
 ///
 /// # Safety
-/// `block` is valid for writes of a `Block<T>` (it may be uninitialized).
+/// `model` is valid for writes of a `Model<T>` (it may be uninitialized).
 #[inline(never)]
-unsafe fn write_paper<T: RobotPrecision>(block: *mut Block<T>) -> Result<(), ModelError> {
-    let result = Robot::from_chain(&Chain::<T, 3>::paper(), &Coefficients::default());
+unsafe fn write_paper<T: RobotPrecision>(model: *mut Model<T>) -> Result<(), ModelError> {
+    let result = presets::paper_leg::<T>().to_capacity::<J, S, B>();
     let robot = result.as_ref().map_err(|e| *e)?;
     // SAFETY: valid for writes (contract), not overlapping the local `robot`; the place is
-    // computed without reading the block.
-    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*block).model.robot, 1) };
+    // computed without reading the model.
+    unsafe { core::ptr::copy_nonoverlapping(robot, &raw mut (*model).robot, 1) };
     Ok(())
 }
 
-/// Completes a block whose robot field was just written: the water, Morison's added mass, a fresh
-/// workspace, no joint losses, and the tag, last, so that a block carries the tag only once its contents are valid. Not inlined: the
-/// workspace built here does not add to the caller's frame.
+/// Completes a model whose robot field was just written: the water, Morison's added mass, no
+/// joint losses, and the tag, last, so that a robot carries the tag only once its contents are
+/// valid.
 ///
 /// # Safety
 /// `out` is not null and valid for writes of a `T::Robot` whose robot field holds a valid robot.
 #[inline(never)]
 unsafe fn finish<T: RobotPrecision>(out: *mut T::Robot, water: Water<T>) {
-    let block = storage_mut::<T>(out);
-    // SAFETY: `block` is in bounds and aligned for `Block<T>` (compile-time assertions in the
+    let model = storage_mut::<T>(out);
+    // SAFETY: `model` is in bounds and aligned for `Model<T>` (compile-time assertions in the
     // crate root) and `out` is valid for writes (contract); the field places are computed without
-    // reading or referencing the (possibly uninitialized) block.
+    // reading or referencing the (possibly uninitialized) model.
     unsafe {
-        (&raw mut (*block).model.water).write(water);
-        (&raw mut (*block).model.form).write(UWML_ADDED_MASS_MORISON);
-        (&raw mut (*block).model.losses).write([None; J]);
-        (&raw mut (*block).model.states).write([None; J]);
-        (&raw mut (*block).data).write(RobotData::new());
+        (&raw mut (*model).water).write(water);
+        (&raw mut (*model).form).write(UWML_ADDED_MASS_MORISON);
+        (&raw mut (*model).losses).write([None; J]);
+        (&raw mut (*model).states).write([None; J]);
         out.cast::<u64>().write(T::TAG);
     }
 }
@@ -602,27 +646,31 @@ type WriteJoint<'a, T> = dyn FnMut(usize, &JointForces<T>, &JointLoss<T>) + 'a;
 
 /// The evaluation behind `uwml_robot_hydro_*` (`with_losses` false: every joint's loss is
 /// zero, and the joint losses are not evaluated) and `uwml_robot_environment_*`: checks, and
-/// the core's `robot_hydro` with the joints' losses in its conditions; hands every joint's forces and losses to
-/// `write` (joint index, in order) and writes the base wrench; then reports a non-finite state
-/// or outputs that overflow (`total`: forces plus losses; `current`; `base_wrench`). One
-/// instance per precision, whatever the caller's output type (`write` is dynamic), so that the
-/// two evaluations share its code.
+/// the core's `robot_hydro` with the joints' losses in its conditions, into the workspace; hands
+/// every joint's forces and losses to `write` (joint index, in order) and writes the base wrench;
+/// then reports a non-finite state or outputs that overflow (`total`: forces plus losses;
+/// `current`; `base_wrench`). One instance per precision, whatever the caller's output type
+/// (`write` is dynamic), so that the two evaluations share its code.
 ///
 /// # Safety
-/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
-/// the call; the pointers of `io` are null or valid for their `n` elements (`motion`, `current`,
-/// `base_wrench`: one), reads or writes as their constness says, and do not overlap `robot`;
-/// `joints` says whether `io.joints` is null.
+/// `robot` is null or valid for reads of a `T::Robot` not written during the call; `workspace`
+/// is null or valid for reads and writes of a `T::Workspace` not accessed otherwise during the
+/// call; the pointers of `io` are null or valid for their `n` elements (`motion`, `current`,
+/// `base_wrench`: one), reads or writes as their constness says, and overlap neither the robot
+/// nor the workspace; `joints` says whether `io.joints` is null.
 #[inline(never)]
 unsafe fn evaluate<T: RobotPrecision>(
-    robot: *mut T::Robot,
+    robot: *const T::Robot,
+    workspace: *mut T::Workspace,
     io: &Evaluation<T, ()>,
     joints: Result<(), Failure>,
     with_losses: bool,
     write: &mut WriteJoint<'_, T>,
 ) -> Result<(), Failure> {
-    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let Block { model, data } = unsafe { block_mut::<T>(robot) }?;
+    // SAFETY: forwarded contract; the model is only read.
+    let model = unsafe { model_ref::<T>(robot) }?;
+    // SAFETY: forwarded contract; the reference is this call's only access to the workspace.
+    let data = unsafe { workspace_mut::<T>(workspace) }?;
     let n = model.robot.joint_count();
     if usize::try_from(io.n).ok() != Some(n) {
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n (the robot's joint count)", None));
@@ -654,7 +702,7 @@ unsafe fn evaluate<T: RobotPrecision>(
         // SAFETY: not null, valid for writes (contract).
         unsafe { io.base_wrench.write(T::base_wrench(data.base_wrench())) };
     }
-    check_evaluation(data, [used(&q, n), used(&qd, n), used(&qdd, n)], true)
+    check_evaluation(data, [used(&q, n), used(&qd, n), used(&qdd, n)])
 }
 
 /// [`evaluate`] writing `row` of every joint's forces and losses to `io.joints`.
@@ -662,7 +710,8 @@ unsafe fn evaluate<T: RobotPrecision>(
 /// # Safety
 /// As [`evaluate`]; `io.joints` is null or valid for writes of `io.n` elements.
 unsafe fn evaluate_into<T: RobotPrecision, F>(
-    robot: *mut T::Robot,
+    robot: *const T::Robot,
+    workspace: *mut T::Workspace,
     io: &Evaluation<T, F>,
     with_losses: bool,
     row: impl Fn(&JointForces<T>, &JointLoss<T>) -> F,
@@ -684,28 +733,31 @@ unsafe fn evaluate_into<T: RobotPrecision, F>(
         // null (when n > 0); it is then valid for writes of n elements (contract).
         unsafe { joints.add(i).write(row(forces, loss)) };
     };
+    let joints_ok = non_null(joints, joints_name).map(|_| ());
     // SAFETY: forwarded contract.
-    unsafe { evaluate(robot, &common, non_null(joints, joints_name).map(|_| ()), with_losses, &mut write) }
+    unsafe { evaluate(robot, workspace, &common, joints_ok, with_losses, &mut write) }
 }
 
 /// # Safety
 /// As [`evaluate_into`].
 pub(crate) unsafe fn hydro<T: RobotPrecision>(
-    robot: *mut T::Robot,
+    robot: *const T::Robot,
+    workspace: *mut T::Workspace,
     io: &Evaluation<T, T::JointForces>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate_into(robot, io, false, |forces, _| T::joint_forces(forces)) }
+    unsafe { evaluate_into(robot, workspace, io, false, |forces, _| T::joint_forces(forces)) }
 }
 
 /// # Safety
 /// As [`evaluate_into`].
 pub(crate) unsafe fn environment<T: RobotPrecision>(
-    robot: *mut T::Robot,
+    robot: *const T::Robot,
+    workspace: *mut T::Workspace,
     io: &Evaluation<T, T::JointEnvironment>,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract.
-    unsafe { evaluate_into(robot, io, true, T::joint_environment) }
+    unsafe { evaluate_into(robot, workspace, io, true, T::joint_environment) }
 }
 
 /// # Safety
@@ -719,13 +771,13 @@ pub(crate) unsafe fn set_losses<T: RobotPrecision>(
     temperature: T,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let block = unsafe { block_mut::<T>(robot) }?;
-    let slot = joint_slot(joint_index, block.model.robot.joint_count())?;
+    let model = unsafe { model_mut::<T>(robot) }?;
+    let slot = joint_slot(joint_index, model.robot.joint_count())?;
     // SAFETY: forwarded contract.
     let params = unsafe { read_one(params, "params") }?;
     let losses = T::losses(&params).map_err(|e| Failure::from_model(e, Some(slot)))?;
     check_conditions(pressure, temperature)?;
-    block.model.set_losses(slot, losses, pressure, temperature);
+    model.set_losses(slot, losses, pressure, temperature);
     Ok(())
 }
 
@@ -738,16 +790,65 @@ pub(crate) unsafe fn set_lumped<T: RobotPrecision>(
     count: u32,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let block = unsafe { block_mut::<T>(robot) }?;
+    let model = unsafe { model_mut::<T>(robot) }?;
     let n = self::count(count, B, "lumped (at most UWML_ROBOT_MAX_LUMPED)")?;
     // SAFETY: forwarded contract.
     let given = unsafe { read_slice(models, n, "models") }?;
     let mut bodies = [LumpedBody::none(Owner::Base); B];
-    for (index, (slot, model)) in bodies.iter_mut().zip(given).enumerate() {
-        *slot = T::lumped(model, index)?;
+    for (index, (slot, lumped)) in bodies.iter_mut().zip(given).enumerate() {
+        *slot = T::lumped(lumped, index)?;
     }
-    let robot = block.model.robot.with_lumped(bodies.get(..n).unwrap_or_default())?;
-    block.model.robot = robot;
+    let robot = model.robot.with_lumped(bodies.get(..n).unwrap_or_default())?;
+    model.robot = robot;
+    Ok(())
+}
+
+/// The coefficients of `n` segments, `cd[k]` and `cm[k]` segment `k`'s per normal direction.
+///
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call; `cd` and `cm` are null or valid for reads of `n` pairs that do not overlap it.
+pub(crate) unsafe fn set_coefficients<T: RobotPrecision>(
+    robot: *mut T::Robot,
+    cd: *const [T; 2],
+    cm: *const [T; 2],
+    n: u32,
+) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let model = unsafe { model_mut::<T>(robot) }?;
+    let segments = model.robot.segments();
+    if usize::try_from(n).ok() != Some(segments.len()) {
+        return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "n_segments (the robot's segment count)", None));
+    }
+    // SAFETY: forwarded contract.
+    let (cd, cm) = unsafe { (read_slice(cd, segments.len(), "cd")?, read_slice(cm, segments.len(), "cm")?) };
+    let (mut cd_table, mut cm_table) = ([[T::zero(); 2]; S], [[T::zero(); 2]; S]);
+    for (k, (((cd_slot, cm_slot), &cd), (&cm, segment))) in
+        cd_table.iter_mut().zip(cm_table.iter_mut()).zip(cd).zip(cm.iter().zip(segments)).enumerate()
+    {
+        // A circular segment has one coefficient of each kind (given twice), as at construction.
+        if let Section::Circular { .. } = segment.section {
+            if cd[0] != cd[1] {
+                return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "segment.cd", Some(k)));
+            }
+            if cm[0] != cm[1] {
+                return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "segment.cm", Some(k)));
+            }
+        }
+        (*cd_slot, *cm_slot) = (cd, cm);
+    }
+    let table = SegmentCoefficients::per_segment(cd_table, cm_table)?;
+    model.robot = model.robot.with_coefficients(&table);
+    Ok(())
+}
+
+/// # Safety
+/// `robot` is null or valid for reads and writes of a `T::Robot` not accessed otherwise during
+/// the call.
+pub(crate) unsafe fn set_water<T: RobotPrecision>(robot: *mut T::Robot, density: T, gravity: T) -> Result<(), Failure> {
+    // SAFETY: forwarded contract; the reference is this call's only access to the robot.
+    let model = unsafe { model_mut::<T>(robot) }?;
+    model.water = Water::new(density, gravity)?;
     Ok(())
 }
 
@@ -756,9 +857,9 @@ pub(crate) unsafe fn set_lumped<T: RobotPrecision>(
 /// the call.
 pub(crate) unsafe fn clear_losses<T: RobotPrecision>(robot: *mut T::Robot, joint_index: u32) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    let block = unsafe { block_mut::<T>(robot) }?;
-    let slot = joint_slot(joint_index, block.model.robot.joint_count())?;
-    block.model.clear_losses(slot);
+    let model = unsafe { model_mut::<T>(robot) }?;
+    let slot = joint_slot(joint_index, model.robot.joint_count())?;
+    model.clear_losses(slot);
     Ok(())
 }
 
@@ -771,7 +872,7 @@ pub(crate) unsafe fn set_conditions<T: RobotPrecision>(
     temperature: T,
 ) -> Result<(), Failure> {
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    unsafe { block_mut::<T>(robot) }?.model.set_conditions(pressure, temperature)
+    unsafe { model_mut::<T>(robot) }?.set_conditions(pressure, temperature)
 }
 
 /// # Safety
@@ -782,6 +883,6 @@ pub(crate) unsafe fn set_added_mass_form<T: RobotPrecision>(robot: *mut T::Robot
         return Err(Failure::new(UWML_ERR_OUT_OF_RANGE, "form (UWML_ADDED_MASS_MORISON or _KIRCHHOFF)", None));
     }
     // SAFETY: forwarded contract; the reference is this call's only access to the robot.
-    unsafe { block_mut::<T>(robot) }?.model.form = form;
+    unsafe { model_mut::<T>(robot) }?.form = form;
     Ok(())
 }

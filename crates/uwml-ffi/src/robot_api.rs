@@ -1,19 +1,19 @@
 //! The robot API of the C ABI (`uwml_robot_*`): its plain structs and functions, any tree of up
 //! to `UWML_ROBOT_MAX_JOINTS` joints and `UWML_ROBOT_MAX_SEGMENTS` segments on a base that may
-//! move, in a current, with joint losses (the implementation is `crate::robot`). The leg API, the
-//! loss parameters it shares with the robot API, the error codes and the constants are in the
-//! crate root.
+//! move, in a current, with joint losses (the implementation is `crate::robot`). The joint losses'
+//! parameters, the error codes and the constants are in the crate root.
 
 use crate::{
-    UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS, UwmlError, UwmlJointLossParamsF32, UwmlJointLossParamsF64, imp, robot,
+    UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS, UWML_WORKSPACE_F32_WORDS, UWML_WORKSPACE_F64_WORDS, UwmlError,
+    UwmlJointLossParamsF32, UwmlJointLossParamsF64, imp, robot,
 };
 
-/// A robot (tree, bodies, segments, water, added-mass form, joint losses) and its evaluation
-/// workspace, in f64, for C to allocate (statically: `static UwmlRobotF64 robot;`). Opaque:
-/// written only by `uwml_robot_paper_f64` or `uwml_robot_new_f64` and changed only by the setters;
-/// `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` use its workspace.
-/// It holds no pointer, so it may be copied with `memcpy`. Other functions refuse a block these
-/// did not write (`UWML_ERR_UNINITIALIZED`).
+/// A robot (tree, bodies, segments, water, added-mass form, joint losses) in f64: the model, for C
+/// to allocate (statically: `static UwmlRobotF64 robot;`). Opaque: written only by
+/// `uwml_robot_paper_leg_f64` or `uwml_robot_new_f64` and changed only by the setters; the
+/// evaluations only read it (`const UwmlRobotF64 *`), so several threads may evaluate one robot at
+/// once, each with its own `UwmlWorkspaceF64`. It holds no pointer, so it may be copied with
+/// `memcpy`. Other functions refuse a block these did not write (`UWML_ERR_UNINITIALIZED`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct UwmlRobotF64 {
@@ -31,6 +31,30 @@ pub struct UwmlRobotF32 {
     pub opaque_tag: u64,
     /// The robot. Do not touch.
     pub opaque: [u64; UWML_ROBOT_F32_WORDS],
+}
+
+/// The workspace of an evaluation in f64 (each link's frame and wrenches, the results), for any
+/// robot of the API: `uwml_robot_hydro_f64` and `uwml_robot_environment_f64` write it, and nothing
+/// else may use it during the call (one per thread that evaluates). Opaque: written first by
+/// `uwml_robot_workspace_init_f64` (others refuse a block it did not write,
+/// `UWML_ERR_UNINITIALIZED`); it holds no pointer.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct UwmlWorkspaceF64 {
+    /// A tag saying that the library wrote this workspace. Do not touch.
+    pub opaque_tag: u64,
+    /// The workspace. Do not touch.
+    pub opaque: [u64; UWML_WORKSPACE_F64_WORDS],
+}
+
+/// A workspace in f32; as `UwmlWorkspaceF64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct UwmlWorkspaceF32 {
+    /// A tag saying that the library wrote this workspace. Do not touch.
+    pub opaque_tag: u64,
+    /// The workspace. Do not touch.
+    pub opaque: [u64; UWML_WORKSPACE_F32_WORDS],
 }
 
 /// A joint of a robot: joint `i` moves link `i`. Every frame is parallel to the base frame when
@@ -205,7 +229,7 @@ pub struct UwmlBaseWrenchF64 {
 
 /// The environment's generalized force on one joint with its joint losses, in the joint's
 /// positive direction [N·m for a revolute joint, N for a prismatic one], and the loss current [A]:
-/// `UwmlJointForcesF64` and the leg's `UwmlEnvironment3F64` for one joint of a robot.
+/// `UwmlJointForcesF64` with the joint's losses.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UwmlJointEnvironmentF64 {
@@ -367,16 +391,40 @@ pub struct UwmlJointEnvironmentF32 {
     pub total: f32,
 }
 
-/// Writes the paper's leg (Table II) as a robot to `*robot`: 3 revolute joints in a chain on a
-/// fixed base without a body of its own, rectangular segments with Cd = 2.2, Cm = 0.5, fresh
-/// water (1000 kg/m³, g = 9.81), Morison's added mass, no joint losses.
+/// Writes the paper's leg (Table II, the preset `uwml_core::presets::paper_leg`) to `*robot`: 3
+/// revolute joints in a chain on a fixed base without a body of its own, rectangular segments
+/// with Cd = 2.2, Cm = 0.5, fresh water (1000 kg/m³, g = 9.81), Morison's added mass, no joint
+/// losses.
 ///
 /// # Safety
 /// `robot` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlRobotF64`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn uwml_robot_paper_f64(robot: *mut UwmlRobotF64) -> i32 {
+pub unsafe extern "C" fn uwml_robot_paper_leg_f64(robot: *mut UwmlRobotF64) -> i32 {
     // SAFETY: this function's contract is `robot::paper`'s.
     unsafe { imp::report(core::ptr::null_mut(), robot::paper::<f64>(robot)) }
+}
+
+/// Writes a fresh workspace to `*workspace`, for the evaluations of any robot of this API (in
+/// f64): once, before its first evaluation.
+///
+/// # Safety
+/// `workspace` is NULL (`UWML_ERR_NULL_POINTER`) or valid for writes of a `UwmlWorkspaceF64`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_workspace_init_f64(workspace: *mut UwmlWorkspaceF64) -> i32 {
+    // SAFETY: this function's contract is `robot::workspace_init`'s.
+    unsafe { imp::report(core::ptr::null_mut(), robot::workspace_init::<f64>(workspace)) }
+}
+
+/// Fills `*out` with the core's illustrative default joint losses (`JointLosses::default()`:
+/// drive K_t 0.40, ratio 160, η 0.80, 10.4 A; oil and seal as in docs/losses.md; ε = 1e-3), a
+/// start for `uwml_robot_set_losses_f64`.
+///
+/// # Safety
+/// `out` is NULL or valid for writes of a `UwmlJointLossParamsF64`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_default_losses_f64(out: *mut UwmlJointLossParamsF64) -> i32 {
+    // SAFETY: this function's contract is `imp::default_losses`'s.
+    unsafe { imp::report(core::ptr::null_mut(), imp::default_losses::<f64>(out)) }
 }
 
 /// Validates a robot and writes it to `*robot`: `n_joints` joints (at most
@@ -415,8 +463,8 @@ pub unsafe extern "C" fn uwml_robot_new_f64(
 /// Generalized forces on every joint and the wrench on the base of `robot` at joint state `q`,
 /// `qd`, `qdd` (`n` values each, `n` the robot's joint count; [rad] or [m] and their
 /// derivatives), base motion `*motion` (NULL: a fixed, upright base) and current `*current`
-/// (NULL: still water). Writes `n` `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench`
-/// is not NULL, the base wrench.
+/// (NULL: still water), evaluated in `workspace` (written; the robot is only read). Writes `n`
+/// `UwmlJointForcesF64` to `joint_forces` and, if `base_wrench` is not NULL, the base wrench.
 ///
 /// The motion and the current are validated on every call: an error ("base.orientation" not a
 /// unit quaternion, "current.velocity" not finite, ...) writes nothing. A non-finite joint state
@@ -424,15 +472,17 @@ pub unsafe extern "C" fn uwml_robot_new_f64(
 /// element).
 ///
 /// # Safety
-/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
-/// during the call (it holds the evaluation's workspace); `q`, `qd`, `qdd` are NULL or point to
-/// `n` values; `joint_forces` is NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and
-/// these allowed when `n` is 0); `motion`, `current` and `base_wrench` are NULL or valid for one
-/// element; `error` is NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+/// `robot` is NULL or valid for reads of a `UwmlRobotF64` that nothing writes during the call;
+/// `workspace` is NULL or valid for reads and writes of a `UwmlWorkspaceF64` that nothing else
+/// accesses during the call; `q`, `qd`, `qdd` are NULL or point to `n` values; `joint_forces` is
+/// NULL or valid for writes of `n` `UwmlJointForcesF64` (NULL and these allowed when `n` is 0);
+/// `motion`, `current` and `base_wrench` are NULL or valid for one element; `error` is NULL or
+/// valid for writes of a `UwmlError`. None of them overlaps `*robot` or `*workspace`.
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn uwml_robot_hydro_f64(
-    robot: *mut UwmlRobotF64,
+    robot: *const UwmlRobotF64,
+    workspace: *mut UwmlWorkspaceF64,
     q: *const f64,
     qd: *const f64,
     qdd: *const f64,
@@ -446,7 +496,7 @@ pub unsafe extern "C" fn uwml_robot_hydro_f64(
     let joints_name = "joint_forces";
     let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_forces, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
-    unsafe { imp::report(error, robot::hydro::<f64>(robot, &io)) }
+    unsafe { imp::report(error, robot::hydro::<f64>(robot, workspace, &io)) }
 }
 
 /// Chooses how the added-mass forces of `robot` depend on the velocities, for every later
@@ -471,10 +521,10 @@ pub unsafe extern "C" fn uwml_robot_set_added_mass_form_f64(
 }
 
 /// Gives joint `joint_index` (0 to the robot's joint count - 1) of `robot` the losses `*params`
-/// (the leg API's struct: start from `uwml_leg3_default_losses_f64`) at gauge pressure
+/// (start from `uwml_robot_default_losses_f64`) at gauge pressure
 /// `pressure_pa` [Pa] (finite, 0 to 1.2e8: `uwml_pressure_at_depth_f64` gives it from a depth) and
 /// oil temperature `temperature_c` [°C] (finite, above -273.15), for every later
-/// `uwml_robot_environment_f64`. Checked as `uwml_leg3_set_losses_f64` checks them, in that order:
+/// `uwml_robot_environment_f64`. Checked in this order:
 /// the robot, `UWML_ERR_INDEX_OUT_OF_RANGE` (field "joint_index", index the value given),
 /// `params` NULL, the parameters (field e.g. "drive.ratio", "oil.exponent (1 to 2)", "seal.s0",
 /// "losses.epsilon", index the joint), the conditions (field "pressure_pa" or "temperature_c").
@@ -546,7 +596,8 @@ pub unsafe extern "C" fn uwml_robot_set_conditions_f64(
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn uwml_robot_environment_f64(
-    robot: *mut UwmlRobotF64,
+    robot: *const UwmlRobotF64,
+    workspace: *mut UwmlWorkspaceF64,
     q: *const f64,
     qd: *const f64,
     qdd: *const f64,
@@ -560,7 +611,7 @@ pub unsafe extern "C" fn uwml_robot_environment_f64(
     let joints_name = "joint_environment";
     let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_environment, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::environment`'s and `imp::report`'s.
-    unsafe { imp::report(error, robot::environment::<f64>(robot, &io)) }
+    unsafe { imp::report(error, robot::environment::<f64>(robot, workspace, &io)) }
 }
 
 /// `uwml_robot_set_added_mass_form_f64` in f32.
@@ -577,14 +628,34 @@ pub unsafe extern "C" fn uwml_robot_set_added_mass_form_f32(
     unsafe { imp::report(error, robot::set_added_mass_form::<f32>(robot, form)) }
 }
 
-/// `uwml_robot_paper_f64` in f32.
+/// `uwml_robot_paper_leg_f64` in f32.
 ///
 /// # Safety
 /// `robot` is NULL or valid for writes of a `UwmlRobotF32`.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn uwml_robot_paper_f32(robot: *mut UwmlRobotF32) -> i32 {
+pub unsafe extern "C" fn uwml_robot_paper_leg_f32(robot: *mut UwmlRobotF32) -> i32 {
     // SAFETY: this function's contract is `robot::paper`'s.
     unsafe { imp::report(core::ptr::null_mut(), robot::paper::<f32>(robot)) }
+}
+
+/// `uwml_robot_workspace_init_f64` in f32.
+///
+/// # Safety
+/// `workspace` is NULL or valid for writes of a `UwmlWorkspaceF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_workspace_init_f32(workspace: *mut UwmlWorkspaceF32) -> i32 {
+    // SAFETY: this function's contract is `robot::workspace_init`'s.
+    unsafe { imp::report(core::ptr::null_mut(), robot::workspace_init::<f32>(workspace)) }
+}
+
+/// `uwml_robot_default_losses_f64` in f32.
+///
+/// # Safety
+/// `out` is NULL or valid for writes of a `UwmlJointLossParamsF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_default_losses_f32(out: *mut UwmlJointLossParamsF32) -> i32 {
+    // SAFETY: this function's contract is `imp::default_losses`'s.
+    unsafe { imp::report(core::ptr::null_mut(), imp::default_losses::<f32>(out)) }
 }
 
 /// `uwml_robot_new_f64` in f32.
@@ -617,7 +688,8 @@ pub unsafe extern "C" fn uwml_robot_new_f32(
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn uwml_robot_hydro_f32(
-    robot: *mut UwmlRobotF32,
+    robot: *const UwmlRobotF32,
+    workspace: *mut UwmlWorkspaceF32,
     q: *const f32,
     qd: *const f32,
     qdd: *const f32,
@@ -631,7 +703,7 @@ pub unsafe extern "C" fn uwml_robot_hydro_f32(
     let joints_name = "joint_forces";
     let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_forces, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::hydro`'s and `imp::report`'s.
-    unsafe { imp::report(error, robot::hydro::<f32>(robot, &io)) }
+    unsafe { imp::report(error, robot::hydro::<f32>(robot, workspace, &io)) }
 }
 
 /// `uwml_robot_set_losses_f64` in f32.
@@ -687,7 +759,8 @@ pub unsafe extern "C" fn uwml_robot_set_conditions_f32(
 #[unsafe(no_mangle)]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn uwml_robot_environment_f32(
-    robot: *mut UwmlRobotF32,
+    robot: *const UwmlRobotF32,
+    workspace: *mut UwmlWorkspaceF32,
     q: *const f32,
     qd: *const f32,
     qdd: *const f32,
@@ -701,7 +774,7 @@ pub unsafe extern "C" fn uwml_robot_environment_f32(
     let joints_name = "joint_environment";
     let io = robot::Evaluation { q, qd, qdd, n, motion, current, joints: joint_environment, joints_name, base_wrench };
     // SAFETY: this function's contract is `robot::environment`'s and `imp::report`'s.
-    unsafe { imp::report(error, robot::environment::<f32>(robot, &io)) }
+    unsafe { imp::report(error, robot::environment::<f32>(robot, workspace, &io)) }
 }
 
 /// Gives `robot`'s bodies the `count` lumped models `models` (docs/model.md section 12.1; at most
@@ -739,4 +812,77 @@ pub unsafe extern "C" fn uwml_robot_set_lumped_f32(
 ) -> i32 {
     // SAFETY: this function's contract is `robot::set_lumped`'s and `imp::report`'s.
     unsafe { imp::report(error, robot::set_lumped::<f32>(robot, models, count)) }
+}
+
+/// Gives the `n_segments` segments of `robot` (exactly its segment count, in the order given to
+/// `uwml_robot_new_f64`; the paper's leg: thigh, calf) other drag and added-mass coefficients:
+/// `cd[k]` and `cm[k]` segment `k`'s per normal direction (a fit's; zero or positive, at most
+/// 1e3; a circular segment's two equal), for every later evaluation. Errors name the field and
+/// the segment ("segment.cd", "segment.cm"; "n_segments (the robot's segment count)"); on error
+/// the robot is left as it was. `cd` and `cm` may be NULL when `n_segments` is 0.
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `cd` and `cm` are NULL or valid for reads of `n_segments` pairs; `error` is
+/// NULL or valid for writes of a `UwmlError`. None of them overlaps `*robot`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_coefficients_f64(
+    robot: *mut UwmlRobotF64,
+    cd: *const [f64; 2],
+    cm: *const [f64; 2],
+    n_segments: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_coefficients`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_coefficients::<f64>(robot, cd, cm, n_segments)) }
+}
+
+/// `uwml_robot_set_coefficients_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_set_coefficients_f64`, with the f32 types.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_coefficients_f32(
+    robot: *mut UwmlRobotF32,
+    cd: *const [f32; 2],
+    cm: *const [f32; 2],
+    n_segments: u32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_coefficients`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_coefficients::<f32>(robot, cd, cm, n_segments)) }
+}
+
+/// Sets the water of `robot`: density [kg/m³] (positive, at most 1e5) and gravity [m/s²] (zero or
+/// positive, at most 1e3), for every later evaluation (a new robot's: the density and gravity
+/// given to `uwml_robot_new_f64`, or fresh water for the paper's leg). On error ("water.density",
+/// "water.gravity") the robot is left as it was.
+///
+/// # Safety
+/// `robot` is NULL or valid for reads and writes of a `UwmlRobotF64` that nothing else accesses
+/// during the call; `error` is NULL or valid for writes of a `UwmlError`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_water_f64(
+    robot: *mut UwmlRobotF64,
+    density: f64,
+    gravity: f64,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_water`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_water::<f64>(robot, density, gravity)) }
+}
+
+/// `uwml_robot_set_water_f64` in f32.
+///
+/// # Safety
+/// As `uwml_robot_set_water_f64`, with `UwmlRobotF32`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn uwml_robot_set_water_f32(
+    robot: *mut UwmlRobotF32,
+    density: f32,
+    gravity: f32,
+    error: *mut UwmlError,
+) -> i32 {
+    // SAFETY: this function's contract is `robot::set_water`'s and `imp::report`'s.
+    unsafe { imp::report(error, robot::set_water::<f32>(robot, density, gravity)) }
 }

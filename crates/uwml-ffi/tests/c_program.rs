@@ -1,4 +1,5 @@
-//! Compiles `tests/c/paper_leg.c` (the leg API: reference torques, losses, error paths) and
+//! Compiles `tests/c/paper_leg.c` (the paper's leg preset: reference torques, the model read
+//! only, water and coefficients, losses, error paths) and
 //! `tests/c/robot.c` (the robot API: an arm on a moving vehicle, with and without joint losses,
 //! and the paper's leg against the core's values in `tests/c/robot_expected.h`, error paths, the
 //! robot examples of docs/firmware.md)
@@ -130,39 +131,26 @@ macro_rules! layouts {
 fn c_program_passes_and_sees_the_rust_layout() {
     let expected = layouts!(
         UwmlError,
-        UwmlLeg3F64,
-        UwmlJointParamsF64,
-        UwmlSegmentParamsF64,
-        UwmlLinkParamsF64,
         UwmlDriveParamsF64,
         UwmlOilParamsF64,
         UwmlSealParamsF64,
         UwmlJointLossParamsF64,
-        UwmlHydro3F64,
-        UwmlEnvironment3F64,
-        UwmlLeg3F32,
-        UwmlJointParamsF32,
-        UwmlSegmentParamsF32,
-        UwmlLinkParamsF32,
+        UwmlWorkspaceF64,
         UwmlDriveParamsF32,
         UwmlOilParamsF32,
         UwmlSealParamsF32,
         UwmlJointLossParamsF32,
-        UwmlHydro3F32,
-        UwmlEnvironment3F32,
+        UwmlWorkspaceF32,
     );
     let expected_offsets = [
         ("UwmlError.field", offset_of!(UwmlError, field)),
-        ("UwmlLinkParamsF64.segment", offset_of!(UwmlLinkParamsF64, segment)),
-        ("UwmlLinkParamsF64.has_segment", offset_of!(UwmlLinkParamsF64, has_segment)),
         ("UwmlJointLossParamsF64.has_seal", offset_of!(UwmlJointLossParamsF64, has_seal)),
-        ("UwmlLinkParamsF32.has_segment", offset_of!(UwmlLinkParamsF32, has_segment)),
         ("UwmlJointLossParamsF32.has_seal", offset_of!(UwmlJointLossParamsF32, has_seal)),
     ];
     check_program("paper_leg", &expected, &expected_offsets);
     // The sizes the header's preamble and docs/firmware.md state.
-    assert_eq!(size_of::<UwmlLeg3F64>(), 6152);
-    assert_eq!(size_of::<UwmlLeg3F32>(), 3208);
+    assert_eq!(size_of::<UwmlWorkspaceF64>(), 7568);
+    assert_eq!(size_of::<UwmlWorkspaceF32>(), 3792);
 }
 
 #[test]
@@ -207,8 +195,8 @@ fn c_robot_program_passes_and_sees_the_rust_layout() {
     let stdout = check_program("robot", &expected, &expected_offsets);
     assert!(stdout.lines().filter(|l| l.starts_with("ok ")).count() > 100, "the robot program runs its checks");
     // The sizes the header's preamble and docs/firmware.md state.
-    assert_eq!(size_of::<UwmlRobotF64>(), 32008);
-    assert_eq!(size_of::<UwmlRobotF32>(), 16656);
+    assert_eq!(size_of::<UwmlRobotF64>(), 24448);
+    assert_eq!(size_of::<UwmlRobotF32>(), 12872);
 }
 
 /// The robot examples of docs/firmware.md (the robot, its joint losses) are the ones

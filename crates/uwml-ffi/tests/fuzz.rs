@@ -1,10 +1,10 @@
 //! Fuzzing the C ABI (proptest): constructors, setters (joint losses and their conditions
-//! included) and evaluations of the leg and robot APIs, f64 and f32, from valid parameters with arbitrary words written over them (NaN, ±inf, huge,
+//! included) and evaluations of the robot API (the paper's leg preset among them), f64 and f32, from valid parameters with arbitrary words written over them (NaN, ±inf, huge,
 //! tiny, subnormal, negative zero, random bit patterns; any i32 in the enum and flag fields) and
 //! from arbitrary joint states, base motions and currents. Every parameter struct is plain old
 //! data (floats and i32), so any bytes are a valid value. What must hold: nothing panics (a
 //! panic across `extern "C"` aborts the test process), every return is one of the documented
-//! codes and the same as the `UwmlError` written, a failed constructor writes no leg or robot,
+//! codes and the same as the `UwmlError` written, a failed constructor writes no robot,
 //! and an evaluation that returns `UWML_OK` gives finite outputs.
 //!
 //! CI runs the default number of cases (`FUZZ_CASES` below); the long run:
@@ -16,6 +16,9 @@ use std::ptr::{null, null_mut};
 
 use proptest::prelude::*;
 use uwml_ffi::*;
+
+mod robots;
+use robots::{workspace32, workspace64};
 
 /// Cases per property in the default (CI) run; `PROPTEST_CASES` overrides it.
 const FUZZ_CASES: u32 = 600;
@@ -108,27 +111,6 @@ fn conditions() -> impl Strategy<Value = (f64, f64)> {
     )
 }
 
-fn leg_params() -> ([UwmlJointParamsF64; 3], [UwmlLinkParamsF64; 3]) {
-    let joint = |axis: [f64; 3]| UwmlJointParamsF64 { origin: [0.0, 0.0, 0.1], axis };
-    let segment = UwmlSegmentParamsF64 {
-        start: [0.0; 3],
-        axis: [1.0, 0.0, 0.0],
-        normals: [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-        length: 0.4,
-        widths: [0.1, 0.05],
-        area: 0.004,
-    };
-    let link = UwmlLinkParamsF64 {
-        mass: 2.0,
-        com: [0.2, 0.0, 0.0],
-        volume: 1e-3,
-        cob: [0.2, 0.0, 0.0],
-        has_segment: 1,
-        segment,
-    };
-    ([joint([0.0, 0.0, 1.0]), joint([0.0, 1.0, 0.0]), joint([0.0, 1.0, 0.0])], [link; 3])
-}
-
 fn robot_params() -> (Vec<UwmlTreeJointF64>, Vec<UwmlBodyF64>, UwmlBodyF64, Vec<UwmlRobotSegmentF64>) {
     let joint =
         |parent: i32, kind: i32, axis: [f64; 3]| UwmlTreeJointF64 { parent, kind, origin: [0.3, 0.0, 0.0], axis };
@@ -168,42 +150,37 @@ fn robot_params() -> (Vec<UwmlTreeJointF64>, Vec<UwmlBodyF64>, UwmlBodyF64, Vec<
 proptest! {
     #![proptest_config(ProptestConfig { cases: FUZZ_CASES, failure_persistence: None, ..ProptestConfig::default() })]
 
-    /// The leg API in f64: build, set water, coefficients, losses and conditions, evaluate.
+    /// The paper's leg (the preset) in f64: set water, coefficients, losses and conditions, evaluate.
     #[test]
-    fn leg_api_takes_any_input(
-        joint_edits in prop::collection::vec(edit(), 0..3),
-        link_edits in prop::collection::vec(edit(), 0..3),
+    fn paper_leg_takes_any_input(
         loss_edits in prop::collection::vec(edit(), 0..3),
         water in (float(), float()),
-        coefficients in (float(), float()),
+        coefficients in prop::array::uniform4(float()),
         conditions in (float(), float()),
         joint_index in prop_oneof![0..4u32, Just(u32::MAX), any::<u32>()],
         state in prop::array::uniform9(float()),
         depth in (float(), float(), float()),
     ) {
-        let (joints, links) = leg_params();
-        let joints = edited(joints, &joint_edits);
-        let links = edited(links, &link_edits);
-        let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
+        let mut robot = Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] });
+        let mut workspace = Box::new(UwmlWorkspaceF64 { opaque_tag: 0, opaque: [0; UWML_WORKSPACE_F64_WORDS] });
         let mut error = blank();
-        // SAFETY: live locals of the right types.
-        let code = unsafe { uwml_leg3_new_f64(joints.as_ptr(), links.as_ptr(), &mut leg, &mut error) };
-        check(code, &error);
-        if code != UWML_OK {
-            prop_assert_eq!(leg.opaque_tag, 0, "a failed construction writes no leg");
-            // SAFETY: a paper leg instead, to go on with the setters and evaluations.
-            prop_assert_eq!(unsafe { uwml_leg3_paper_f64(&mut leg) }, UWML_OK);
-        }
         let mut losses = UwmlJointLossParamsF64::default();
         // SAFETY: live locals.
         unsafe {
-            prop_assert_eq!(uwml_leg3_default_losses_f64(&mut losses), UWML_OK);
+            prop_assert_eq!(uwml_robot_paper_leg_f64(&mut *robot), UWML_OK);
+            prop_assert_eq!(uwml_robot_workspace_init_f64(&mut *workspace), UWML_OK);
+            prop_assert_eq!(uwml_robot_default_losses_f64(&mut losses), UWML_OK);
             let losses = edited(losses, &loss_edits);
+            let [cd0, cd1, cm0, cm1] = coefficients;
+            let (cd, cm) = ([[cd0, cd1], [cd1, cd0]], [[cm0, cm1], [cm1, cm0]]);
+            let before = robot.opaque;
+            let code = uwml_robot_set_coefficients_f64(&mut *robot, cd.as_ptr(), cm.as_ptr(), 2, &mut error);
+            check(code, &error);
+            prop_assert!(code == UWML_OK || robot.opaque == before, "a failed setter changes nothing");
             for code in [
-                uwml_leg3_set_water_f64(&mut leg, water.0, water.1, &mut error),
-                uwml_leg3_set_coefficients_f64(&mut leg, coefficients.0, coefficients.1, &mut error),
-                uwml_leg3_set_losses_f64(&mut leg, joint_index, &losses, conditions.0, conditions.1, &mut error),
-                uwml_leg3_set_conditions_f64(&mut leg, conditions.0, conditions.1, &mut error),
+                uwml_robot_set_water_f64(&mut *robot, water.0, water.1, &mut error),
+                uwml_robot_set_losses_f64(&mut *robot, joint_index, &losses, conditions.0, conditions.1, &mut error),
+                uwml_robot_set_conditions_f64(&mut *robot, conditions.0, conditions.1, &mut error),
             ] {
                 prop_assert!(CODES.contains(&code));
             }
@@ -212,17 +189,19 @@ proptest! {
             check(code, &error);
             prop_assert!(code != UWML_OK || (pressure.is_finite() && pressure >= 0.0));
             let (q, qd, qdd) = (&state[0..3], &state[3..6], &state[6..9]);
-            let mut out = UwmlEnvironment3F64::default();
-            let code = uwml_leg3_environment_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut out, &mut error);
+            let mut out = [UwmlJointEnvironmentF64::default(); 3];
+            let code = uwml_robot_environment_f64(&*robot, &mut *workspace, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), 3,
+                null(), null(), out.as_mut_ptr(), null_mut(), &mut error);
             check(code, &error);
             if code == UWML_OK {
-                prop_assert!(out.total.iter().chain(&out.current).all(|x| x.is_finite()));
+                prop_assert!(out.iter().all(|e| e.total.is_finite() && e.current.is_finite()));
             }
-            let mut hydro = UwmlHydro3F64::default();
-            let code = uwml_leg3_hydro_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut hydro, &mut error);
+            let mut forces = [UwmlJointForcesF64::default(); 3];
+            let code = uwml_robot_hydro_f64(&*robot, &mut *workspace, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), 3,
+                null(), null(), forces.as_mut_ptr(), null_mut(), &mut error);
             check(code, &error);
             if code == UWML_OK {
-                prop_assert!(hydro.total.iter().all(|x| x.is_finite()));
+                prop_assert!(forces.iter().all(|f| f.total.is_finite()));
             }
         }
     }
@@ -273,7 +252,7 @@ proptest! {
         prop_assert_eq!(code, if known { UWML_OK } else { UWML_ERR_OUT_OF_RANGE });
         let mut defaults = UwmlJointLossParamsF64::default();
         // SAFETY: a live local.
-        prop_assert_eq!(unsafe { uwml_leg3_default_losses_f64(&mut defaults) }, UWML_OK);
+        prop_assert_eq!(unsafe { uwml_robot_default_losses_f64(&mut defaults) }, UWML_OK);
         for (joint_index, loss_edits, (pressure, temperature)) in &losses {
             let params = edited(defaults, loss_edits);
             let before = robot.opaque;
@@ -302,7 +281,7 @@ proptest! {
         let (q, qd, qdd) = (&state[0..4], &state[4..8], &state[8..12]);
         // SAFETY: live locals; q, qd, qdd and forces hold at least n elements.
         let code = unsafe {
-            uwml_robot_hydro_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
+            uwml_robot_hydro_f64(&*robot, &mut *workspace64(), q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
                 if with_motion { &motion } else { null() }, &current, forces.as_mut_ptr(), &mut wrench, &mut error)
         };
         check(code, &error);
@@ -314,7 +293,7 @@ proptest! {
         let mut environment = vec![UwmlJointEnvironmentF64::default(); n.max(1)];
         // SAFETY: live locals; q, qd, qdd and environment hold at least n elements.
         let code = unsafe {
-            uwml_robot_environment_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
+            uwml_robot_environment_f64(&*robot, &mut *workspace64(), q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints,
                 if with_motion { &motion } else { null() }, &current, environment.as_mut_ptr(), &mut wrench, &mut error)
         };
         check(code, &error);
@@ -326,7 +305,7 @@ proptest! {
         // A joint count not the robot's is refused, not read past.
         // SAFETY: as above, with n + 1 <= 5 elements in every array.
         let code = unsafe {
-            uwml_robot_hydro_f64(&mut *robot, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints + 1, null(), null(),
+            uwml_robot_hydro_f64(&*robot, &mut *workspace64(), q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), n_joints + 1, null(), null(),
                 forces.as_mut_ptr(), null_mut(), &mut error)
         };
         prop_assert_eq!(code, UWML_ERR_OUT_OF_RANGE);
@@ -348,8 +327,8 @@ proptest! {
         let mut losses = UwmlJointLossParamsF32::default();
         // SAFETY: live locals.
         unsafe {
-            prop_assert_eq!(uwml_robot_paper_f32(&mut *robot), UWML_OK);
-            prop_assert_eq!(uwml_leg3_default_losses_f32(&mut losses), UWML_OK);
+            prop_assert_eq!(uwml_robot_paper_leg_f32(&mut *robot), UWML_OK);
+            prop_assert_eq!(uwml_robot_default_losses_f32(&mut losses), UWML_OK);
             let losses = edited(losses, &loss_edits);
             let (p, t) = (narrow(conditions.0), narrow(conditions.1));
             let code = uwml_robot_set_losses_f32(&mut *robot, joint_index, &losses, p, t, &mut error);
@@ -360,39 +339,12 @@ proptest! {
             let s = state.map(narrow);
             let mut out = [UwmlJointEnvironmentF32::default(); 3];
             let mut wrench = UwmlBaseWrenchF32::default();
-            let code = uwml_robot_environment_f32(&mut *robot, s[0..3].as_ptr(), s[3..6].as_ptr(), s[6..9].as_ptr(), 3,
+            let code = uwml_robot_environment_f32(&*robot, &mut *workspace32(), s[0..3].as_ptr(), s[3..6].as_ptr(), s[6..9].as_ptr(), 3,
                 null(), null(), out.as_mut_ptr(), &mut wrench, &mut error);
             check(code, &error);
             if code == UWML_OK {
                 prop_assert!(out.iter().all(|e| e.total.is_finite() && e.current.is_finite()));
                 prop_assert!(wrench.total.iter().all(|x| x.is_finite()));
-            }
-        }
-    }
-
-    /// The f32 leg: the same setters and evaluation in single precision.
-    #[test]
-    fn f32_leg_takes_any_input(
-        conditions in (float(), float()),
-        state in prop::array::uniform9(float()),
-    ) {
-        #[allow(clippy::cast_possible_truncation)]
-        let narrow = |x: f64| x as f32;
-        let mut leg = UwmlLeg3F32 { opaque_tag: 0, opaque: [0; UWML_LEG3_F32_WORDS] };
-        let mut error = blank();
-        let mut losses = UwmlJointLossParamsF32::default();
-        // SAFETY: live locals.
-        unsafe {
-            prop_assert_eq!(uwml_leg3_paper_f32(&mut leg), UWML_OK);
-            prop_assert_eq!(uwml_leg3_default_losses_f32(&mut losses), UWML_OK);
-            let code = uwml_leg3_set_losses_f32(&mut leg, 1, &losses, narrow(conditions.0), narrow(conditions.1), &mut error);
-            check(code, &error);
-            let s = state.map(narrow);
-            let mut out = UwmlEnvironment3F32::default();
-            let code = uwml_leg3_environment_f32(&leg, s[0..3].as_ptr(), s[3..6].as_ptr(), s[6..9].as_ptr(), &mut out, &mut error);
-            check(code, &error);
-            if code == UWML_OK {
-                prop_assert!(out.total.iter().chain(&out.current).all(|x| x.is_finite()));
             }
         }
     }

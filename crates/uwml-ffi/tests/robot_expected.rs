@@ -284,7 +284,7 @@ fn generate() -> String {
     .unwrap();
 
     out.push_str(
-        "\n/* The paper's leg: what uwml_robot_paper_* holds, fresh water 1000 kg/m^3, g = 9.81, at\n \
+        "\n/* The paper's leg: what uwml_robot_paper_leg_* holds, fresh water 1000 kg/m^3, g = 9.81, at\n \
                   * the state whose torques docs/model.md section 5 publishes. */\n",
     );
     let paper = paper();

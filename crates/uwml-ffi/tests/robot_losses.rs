@@ -16,8 +16,8 @@ mod robots;
 use robots::{
     ARM_CURRENT, ARM_STATE, DENSITY, GRAVITY, PAPER_CURRENT, PAPER_STATE, Real, WRENCH_SENTINEL64, arm, arm_conditions,
     arm_losses, arm_motion, built32, built64, core_current, core_environment, core_hydro_with, core_loss_states,
-    core_motion, core_robot, count, current32, default_losses, environment32, environment64, losses32, motion32,
-    paper_motion, wrench_bits32, wrench_bits64, wrench32, wrench64, zeroed32, zeroed64,
+    core_motion, core_robot, count, current32, default_losses, environment32, environment64, losses32, motion32, paper,
+    paper_motion, workspace32, workspace64, wrench_bits32, wrench_bits64, wrench32, wrench64, zeroed32, zeroed64,
 };
 
 fn expect_ok(code: i32, e: &UwmlError) {
@@ -103,6 +103,7 @@ fn environment_c64(
     let code = unsafe {
         uwml_robot_environment_f64(
             robot,
+            &mut *workspace64(),
             state[0].as_ptr(),
             state[1].as_ptr(),
             state[2].as_ptr(),
@@ -131,6 +132,7 @@ fn environment_c32(
     let code = unsafe {
         uwml_robot_environment_f32(
             robot,
+            &mut *workspace32(),
             state[0].as_ptr(),
             state[1].as_ptr(),
             state[2].as_ptr(),
@@ -153,6 +155,7 @@ fn hydro_c64(robot: &mut UwmlRobotF64, state: [&[f64]; 3]) -> (Vec<UwmlJointForc
     let code = unsafe {
         uwml_robot_hydro_f64(
             robot,
+            &mut *workspace64(),
             state[0].as_ptr(),
             state[1].as_ptr(),
             state[2].as_ptr(),
@@ -364,101 +367,89 @@ fn conditions_move_every_joint_and_clearing_removes_one() {
     }
     let mut paper = Box::new(*robot);
     // SAFETY: a live robot.
-    assert_eq!(unsafe { uwml_robot_paper_f64(&mut *paper) }, UWML_OK);
+    assert_eq!(unsafe { uwml_robot_paper_leg_f64(&mut *paper) }, UWML_OK);
     let [q, qd, qdd] = PAPER_STATE;
     let out = environment_c64(&mut paper, [&q, &qd, &qdd], None, None);
     assert!(out.joints.iter().all(|e| e.visc == 0.0 && e.seal == 0.0 && e.current == 0.0));
 }
 
 #[test]
-fn the_paper_robot_with_the_legs_losses_is_the_leg() {
+fn the_paper_leg_preset_with_losses_is_the_core_bit_for_bit() {
     let mut robot = zeroed64();
     let mut robot32 = zeroed32();
-    let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
-    let mut leg32 = UwmlLeg3F32 { opaque_tag: 0, opaque: [0; UWML_LEG3_F32_WORDS] };
     let mut p = UwmlJointLossParamsF64::default();
     let mut p32 = UwmlJointLossParamsF32::default();
     // SAFETY: live locals.
     unsafe {
-        assert_eq!(uwml_robot_paper_f64(&mut *robot), UWML_OK);
-        assert_eq!(uwml_robot_paper_f32(&mut *robot32), UWML_OK);
-        assert_eq!(uwml_leg3_paper_f64(&mut leg), UWML_OK);
-        assert_eq!(uwml_leg3_paper_f32(&mut leg32), UWML_OK);
-        assert_eq!(uwml_leg3_default_losses_f64(&mut p), UWML_OK);
-        assert_eq!(uwml_leg3_default_losses_f32(&mut p32), UWML_OK);
+        assert_eq!(uwml_robot_paper_leg_f64(&mut *robot), UWML_OK);
+        assert_eq!(uwml_robot_paper_leg_f32(&mut *robot32), UWML_OK);
+        assert_eq!(uwml_robot_default_losses_f64(&mut p), UWML_OK);
+        assert_eq!(uwml_robot_default_losses_f32(&mut p32), UWML_OK);
     }
     assert_eq!(p, default_losses(), "the tests' defaults are the library's");
+    assert_eq!(p32, losses32(&p), "in f32 too");
     let mut seal_only = (p, p32);
     (seal_only.0.has_oil, seal_only.1.has_oil) = (0, 0);
     let pressure = pressure_at_depth(1000.0, 1025.0, 9.81).unwrap();
     let pressure32 = pressure_at_depth(1000.0f32, 1025.0, 9.81).unwrap();
-    // The leg's losses (docs/firmware.md's example: joints 2 and 3 oil-filled) and a seal on joint 1.
-    for (joint, p, p32) in [(0, seal_only.0, seal_only.1), (1, p, p32), (2, p, p32)] {
+    // docs/firmware.md's example (joints 2 and 3 oil-filled) and a seal on joint 1.
+    let losses = [(0, seal_only.0), (1, p), (2, p)];
+    for (joint, p) in losses {
+        let p32 = losses32(&p);
         // SAFETY: live locals.
         unsafe {
             assert_eq!(uwml_robot_set_losses_f64(&mut *robot, joint, &p, pressure, 4.0, null_mut()), UWML_OK);
-            assert_eq!(uwml_leg3_set_losses_f64(&mut leg, joint, &p, pressure, 4.0, null_mut()), UWML_OK);
             assert_eq!(uwml_robot_set_losses_f32(&mut *robot32, joint, &p32, pressure32, 4.0, null_mut()), UWML_OK);
-            assert_eq!(uwml_leg3_set_losses_f32(&mut leg32, joint, &p32, pressure32, 4.0, null_mut()), UWML_OK);
         }
     }
+    let params = paper();
+    let (water, water32) = (Water::default(), Water::<f32>::default());
     let states =
         [PAPER_STATE, [[0.0; 3], [0.0; 3], [0.0; 3]], [[-0.5, 0.9, -1.2], [-1.5, 0.02, 2.5], [0.3, 0.0, -4.0]]];
-    for conditions in [None, Some((5e6, 2.0))] {
-        if let Some((pressure, temperature)) = conditions {
+    for conditions in [(pressure, 4.0), (5e6, 2.0)] {
+        if conditions.0 != pressure {
             // SAFETY: live locals.
             unsafe {
-                assert_eq!(uwml_robot_set_conditions_f64(&mut *robot, pressure, temperature, null_mut()), UWML_OK);
-                assert_eq!(uwml_leg3_set_conditions_f64(&mut leg, pressure, temperature, null_mut()), UWML_OK);
-                let (p, t) = (pressure as f32, temperature as f32);
+                assert_eq!(uwml_robot_set_conditions_f64(&mut *robot, conditions.0, conditions.1, null_mut()), UWML_OK);
+                let (p, t) = (conditions.0 as f32, conditions.1 as f32);
                 assert_eq!(uwml_robot_set_conditions_f32(&mut *robot32, p, t, null_mut()), UWML_OK);
-                assert_eq!(uwml_leg3_set_conditions_f32(&mut leg32, p, t, null_mut()), UWML_OK);
             }
         }
+        let states64 = core_loss_states::<f64>(&losses, conditions);
+        let mut states32 = core_loss_states::<f32>(&losses, conditions);
+        if conditions.0 == pressure {
+            // Set at the f32 pressure of the depth, as the C caller gave it.
+            states32 = core_loss_states::<f32>(&losses, (f64::from(pressure32), conditions.1));
+        }
         for [q, qd, qdd] in states {
-            let out = environment_c64(&mut robot, [&q, &qd, &qdd], None, None);
+            let state = [&q[..], &qd[..], &qdd[..]];
+            let out = environment_c64(&mut robot, state, None, None);
             expect_ok(out.code, &out.error);
-            let mut env = UwmlEnvironment3F64::default();
-            // SAFETY: live locals of 3 values.
-            let code =
-                unsafe { uwml_leg3_environment_f64(&leg, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut env, null_mut()) };
-            assert_eq!(code, UWML_OK);
-            // The same loss states at the same speeds: the losses bit for bit.
-            let e = &out.joints;
-            for (name, robot, leg) in [
-                ("visc", e.iter().map(|e| e.visc).collect::<Vec<_>>(), env.visc),
-                ("seal", e.iter().map(|e| e.seal).collect(), env.seal),
-                ("current", e.iter().map(|e| e.current).collect(), env.current),
-            ] {
-                assert_eq!(robot.iter().map(|x| x.to_bits()).collect::<Vec<_>>(), leg.map(f64::to_bits), "{name}");
-            }
-            // The leg API is the robot API's evaluation: its hydrodynamics bit for bit too.
-            let bits = |f: fn(&UwmlJointEnvironmentF64) -> f64| e.iter().map(|e| f(e).to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(|e| e.drag), env.drag.map(f64::to_bits), "drag");
-            assert_eq!(bits(|e| e.added_mass), env.added_mass.map(f64::to_bits), "added mass");
-            assert_eq!(bits(|e| e.buoyancy), env.buoyancy.map(f64::to_bits), "buoyancy");
-            assert_eq!(bits(|e| e.gravity), env.gravity.map(f64::to_bits), "gravity");
-            assert_eq!(bits(|e| e.total), env.total.map(f64::to_bits), "total");
+            let data = core_hydro_with(
+                &core_robot(&params),
+                &water,
+                AddedMassForm::Morison,
+                &core_motion(None),
+                &core_current(None),
+                state,
+            );
+            let want = environment64(&core_environment(&data, &states64, &qd));
+            assert_eq!(bits64(&out.joints), bits64(&want), "f64 at {state:?}");
 
-            // f32: the same, bit for bit.
             let (q, qd, qdd) = (q.map(f32::narrow), qd.map(f32::narrow), qdd.map(f32::narrow));
-            let (code, e, _) = environment_c32(&mut robot32, [&q, &qd, &qdd], None, None);
+            let state32 = [&q[..], &qd[..], &qdd[..]];
+            let (code, e, _) = environment_c32(&mut robot32, state32, None, None);
             assert_eq!(code, UWML_OK);
-            let mut env = UwmlEnvironment3F32::default();
-            // SAFETY: live locals of 3 values.
-            let code = unsafe {
-                uwml_leg3_environment_f32(&leg32, q.as_ptr(), qd.as_ptr(), qdd.as_ptr(), &mut env, null_mut())
-            };
-            assert_eq!(code, UWML_OK);
-            let losses = |e: &UwmlJointEnvironmentF32| [e.visc, e.seal, e.current].map(f32::to_bits);
-            for (i, joint) in e.iter().enumerate() {
-                assert_eq!(losses(joint), [env.visc[i], env.seal[i], env.current[i]].map(f32::to_bits));
-            }
-            let bits = |f: fn(&UwmlJointEnvironmentF32) -> f32| e.iter().map(|e| f(e).to_bits()).collect::<Vec<_>>();
-            assert_eq!(bits(|e| e.drag), env.drag.map(f32::to_bits), "f32 drag");
-            assert_eq!(bits(|e| e.added_mass), env.added_mass.map(f32::to_bits), "f32 added mass");
-            assert_eq!(bits(|e| e.buoyancy), env.buoyancy.map(f32::to_bits), "f32 buoyancy");
-            assert_eq!(bits(|e| e.total), env.total.map(f32::to_bits), "f32 total");
+            let data = core_hydro_with(
+                &core_robot::<f32>(&params),
+                &water32,
+                AddedMassForm::Morison,
+                &core_motion(None),
+                &core_current(None),
+                state32,
+            );
+            let want = environment32(&core_environment(&data, &states32, &qd));
+            assert_eq!(bits32(&e), bits32(&want), "f32 at {state32:?}");
         }
     }
     // The test can fail: at the reference state every joint has losses.
@@ -466,7 +457,7 @@ fn the_paper_robot_with_the_legs_losses_is_the_leg() {
     let out = environment_c64(&mut robot, [&q, &qd, &qdd], None, None);
     assert!(out.joints.iter().all(|e| e.seal != 0.0 && e.current != 0.0));
     assert!(out.joints[0].visc == 0.0 && out.joints[1].visc != 0.0 && out.joints[2].visc != 0.0);
-    // And a moving base is honoured (the leg API has none).
+    // And a moving base is honoured.
     let moving = environment_c64(&mut robot, [&q, &qd, &qdd], Some(&paper_motion()), Some(&PAPER_CURRENT));
     assert_eq!(moving.code, UWML_OK);
     assert!(moving.joints.iter().zip(&out.joints).all(|(m, f)| m.drag != f.drag && m.seal == f.seal));
@@ -621,14 +612,28 @@ fn null_pointers_and_unwritten_robots_are_refused() {
         expect_error(uwml_robot_set_losses_f64(r, 0, null(), 0.0, 20.0, &mut e), &e, (1, -1, "params"));
         expect_error(uwml_robot_clear_losses_f64(null_mut(), 0, &mut e), &e, (1, -1, "robot"));
         expect_error(uwml_robot_set_conditions_f64(null_mut(), 0.0, 20.0, &mut e), &e, (1, -1, "robot"));
-        let code = uwml_robot_environment_f64(null_mut(), q, qd, qdd, 6, m, c, j, null_mut(), &mut e);
+        let code =
+            uwml_robot_environment_f64(null_mut(), &mut *workspace64(), q, qd, qdd, 6, m, c, j, null_mut(), &mut e);
         expect_error(code, &e, (1, -1, "robot"));
-        expect_error(uwml_robot_environment_f64(r, null(), qd, qdd, 6, m, c, j, null_mut(), &mut e), &e, (1, -1, "q"));
-        expect_error(uwml_robot_environment_f64(r, q, null(), qdd, 6, m, c, j, null_mut(), &mut e), &e, (1, -1, "qd"));
-        expect_error(uwml_robot_environment_f64(r, q, qd, null(), 6, m, c, j, null_mut(), &mut e), &e, (1, -1, "qdd"));
-        let code = uwml_robot_environment_f64(r, q, qd, qdd, 6, m, c, null_mut(), null_mut(), &mut e);
+        expect_error(
+            uwml_robot_environment_f64(r, &mut *workspace64(), null(), qd, qdd, 6, m, c, j, null_mut(), &mut e),
+            &e,
+            (1, -1, "q"),
+        );
+        expect_error(
+            uwml_robot_environment_f64(r, &mut *workspace64(), q, null(), qdd, 6, m, c, j, null_mut(), &mut e),
+            &e,
+            (1, -1, "qd"),
+        );
+        expect_error(
+            uwml_robot_environment_f64(r, &mut *workspace64(), q, qd, null(), 6, m, c, j, null_mut(), &mut e),
+            &e,
+            (1, -1, "qdd"),
+        );
+        let code =
+            uwml_robot_environment_f64(r, &mut *workspace64(), q, qd, qdd, 6, m, c, null_mut(), null_mut(), &mut e);
         expect_error(code, &e, (1, -1, "joint_environment"));
-        let code = uwml_robot_environment_f64(r, q, qd, qdd, 5, m, c, j, null_mut(), &mut e);
+        let code = uwml_robot_environment_f64(r, &mut *workspace64(), q, qd, qdd, 5, m, c, j, null_mut(), &mut e);
         expect_error(code, &e, (UWML_ERR_OUT_OF_RANGE, -1, "n (the robot's joint count)"));
         // f32.
         let p32 = losses32(&p);
@@ -639,9 +644,33 @@ fn null_pointers_and_unwritten_robots_are_refused() {
         expect_error(uwml_robot_clear_losses_f32(null_mut(), 0, &mut e), &e, (1, -1, "robot"));
         expect_error(uwml_robot_set_conditions_f32(null_mut(), 0.0, 20.0, &mut e), &e, (1, -1, "robot"));
         let (z, zp) = (z.as_ptr(), null_mut::<UwmlJointEnvironmentF32>());
-        let code = uwml_robot_environment_f32(null_mut(), z, z, z, 6, null(), null(), zp, null_mut(), &mut e);
+        let code = uwml_robot_environment_f32(
+            null_mut(),
+            &mut *workspace32(),
+            z,
+            z,
+            z,
+            6,
+            null(),
+            null(),
+            zp,
+            null_mut(),
+            &mut e,
+        );
         expect_error(code, &e, (1, -1, "robot"));
-        let code = uwml_robot_environment_f32(&mut *robot32, z, z, z, 6, null(), null(), zp, null_mut(), &mut e);
+        let code = uwml_robot_environment_f32(
+            &*robot32,
+            &mut *workspace32(),
+            z,
+            z,
+            z,
+            6,
+            null(),
+            null(),
+            zp,
+            null_mut(),
+            &mut e,
+        );
         expect_error(code, &e, (1, -1, "joint_environment"));
     }
     assert!(joints.iter().all(|x| *x == SENTINEL64), "a failed evaluation writes nothing");
@@ -654,11 +683,8 @@ fn null_pointers_and_unwritten_robots_are_refused() {
     expect_error(out.code, &out.error, (UWML_ERR_NOT_UNIT, -1, "base.orientation"));
     assert!(out.joints.iter().all(|x| *x == SENTINEL64) && out.wrench == WRENCH_SENTINEL64);
 
-    // Blocks the library did not write, or wrote for the other precision or as a leg.
-    let mut leg = UwmlLeg3F64 { opaque_tag: 0, opaque: [0; UWML_LEG3_F64_WORDS] };
-    // SAFETY: a live local.
-    assert_eq!(unsafe { uwml_leg3_paper_f64(&mut leg) }, UWML_OK);
-    for tag in [0, built32(&params).opaque_tag, leg.opaque_tag] {
+    // Blocks the library did not write, or wrote for the other precision or as a workspace.
+    for tag in [0, built32(&params).opaque_tag, workspace64().opaque_tag] {
         let mut fake = zeroed64();
         fake.opaque_tag = tag;
         let f: *mut UwmlRobotF64 = &mut *fake;
@@ -688,7 +714,8 @@ fn null_pointers_and_unwritten_robots_are_refused() {
     // SAFETY: live locals; the joint arrays are NULL with n = 0, never read.
     let code = unsafe {
         uwml_robot_environment_f64(
-            &mut *vehicle,
+            &*vehicle,
+            &mut *workspace64(),
             null(),
             null(),
             null(),

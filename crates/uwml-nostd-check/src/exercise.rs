@@ -1,8 +1,8 @@
-//! Calls every public evaluation function of uwml-core, for `f32` and `f64` and for chains of 1,
-//! 3 (the paper's leg) and 6 joints and a tree with a prismatic joint and circular segments on a
-//! moving base in a current, and the torque paths over SIMD lanes (`WideF32x4`,
-//! `WideF64x4`), on inputs hidden from the optimizer by `black_box`, and counts the results that
-//! are not what they should be (finite, or NaN for a NaN state).
+//! Calls every public evaluation function of uwml-core, for `f32` and `f64` and for serial chains
+//! of 1, 3 (the paper's leg, `presets::paper_leg`) and 6 joints and a tree with a prismatic joint
+//! and circular segments on a moving base in a current, and the evaluation over SIMD lanes
+//! (`WideF32x4`, `WideF64x4`), on inputs hidden from the optimizer by `black_box`, and counts the
+//! results that are not what they should be (finite, or NaN for a NaN state).
 //!
 //! Shared by the no_std binary (src/main.rs: the link proof) and the hosted one
 //! (src/bin/no_panic_proof.rs: the no-panic proof), so both prove the same instantiations.
@@ -12,7 +12,7 @@ use core::hint::black_box;
 use simba::simd::{SimdRealField, WideF32x4, WideF64x4};
 use uwml_core::nalgebra::{Matrix3, Matrix6, RealField, SVector, Vector3, Vector6, convert};
 use uwml_core::strip::{added_mass_moments, circular_speed_moments, drag_moments};
-use uwml_core::{AddedMassForm, BaseMotion, Chain, Coefficients, Current, Joint, JointKind, JointLosses, Link, LossState, LumpedBody, OilDrag, Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, Segment, TreeJoint, Water, check_conditions, environment_jacobians, environment_torques, hydro_jacobians, hydro_regressors, hydro_torques, link_motions, loss_torques, point_jacobian, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_joint_added_mass_matrix, robot_hydro_regressors, robot_jacobians, smooth_sign, Conditions};
+use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, JointKind, JointLosses, KinematicsData, LossState, LumpedBody, OilDrag, Owner, RigidBody, Robot, RobotData, RobotJacobianData, RobotJacobians, RobotSegment, Section, SegmentCoefficients, TreeJoint, Water, check_conditions, forward_kinematics, loss_torques, point_jacobian, presets, pressure_at_depth, robot_added_mass_matrix, robot_hydro, robot_joint_added_mass_matrix, robot_hydro_regressors, robot_jacobians, smooth_sign};
 
 /// Counts unexpected results.
 struct Tally<T> {
@@ -58,11 +58,14 @@ fn vector<T: RealField + Copy, const N: usize>(base: f64, step: f64) -> SVector<
     SVector::from_fn(|i, _| c(base + step * i as f64))
 }
 
-/// A chain of `N` joints whose axes turn between z, −y and x, with segments along and across
-/// them (aligned and general body frames) and every third link without one.
-fn chain<T: RealField + Copy, const N: usize>() -> Option<Chain<T, N>> {
+/// A serial chain of `N` revolute joints on a fixed base whose axes turn between z, −y and x,
+/// with rectangular segments along and across them (aligned and general body frames) and every
+/// third link without one.
+fn chain<T: RealField + Copy, const N: usize>() -> Option<Robot<T, N, N>> {
     let v = |x: f64, y: f64, z: f64| Vector3::new(c(x), c(y), c(z));
-    let joints = core::array::from_fn(|i| Joint {
+    let joints: [TreeJoint<T>; N] = core::array::from_fn(|i| TreeJoint {
+        parent: i.checked_sub(1),
+        kind: JointKind::Revolute,
         origin: v(0.1 * i as f64, 0.02, -0.03 * i as f64),
         axis: match i % 3 {
             0 => v(0.0, 0.0, 1.0),
@@ -70,26 +73,34 @@ fn chain<T: RealField + Copy, const N: usize>() -> Option<Chain<T, N>> {
             _ => v(1.0, 0.0, 0.0),
         },
     });
-    let links = core::array::from_fn(|i| {
+    let links: [RigidBody<T>; N] = core::array::from_fn(|i| {
+        let mass = 2.0 + i as f64;
+        RigidBody { mass: c(mass), com: v(0.2, 0.01 * i as f64, -0.05), volume: c(mass / 2700.0), cob: v(0.2, 0.0, -0.04) }
+    });
+    let segment = |i: usize| {
         let tilt = 0.25 * i as f64;
         let (s, co) = (sin_series(tilt), cos_series(tilt));
-        let mass = 2.0 + i as f64;
-        Link {
-            mass: c(mass),
-            com: v(0.2, 0.01 * i as f64, -0.05),
-            volume: c(mass / 2700.0),
-            cob: v(0.2, 0.0, -0.04),
-            segment: (i % 3 != 2).then(|| Segment {
-                start: v(0.0, 0.0, 0.01 * i as f64),
-                axis: v(co, 0.0, s),
-                length: c(0.4 + 0.1 * i as f64),
-                normals: [v(0.0, 1.0, 0.0), v(-s, 0.0, co)],
-                widths: [c(0.1), c(0.2)],
-                area: c(0.02),
-            }),
+        RobotSegment {
+            owner: Owner::Link(i),
+            start: v(0.0, 0.0, 0.01 * i as f64),
+            axis: v(co, 0.0, s),
+            length: c(0.4 + 0.1 * i as f64),
+            area: c(0.02),
+            section: Section::Rectangular { normals: [v(0.0, 1.0, 0.0), v(-s, 0.0, co)], widths: [c(0.1), c(0.2)] },
+            cd: [c(2.2); 2],
+            cm: [c(0.5); 2],
+            cd_axial: T::zero(),
+            axial_area: T::zero(),
         }
-    });
-    Chain::new(black_box(joints), black_box(links)).ok()
+    };
+    // Every third link without a segment: the segments of the others, in link order.
+    let mut used = [segment(0); N];
+    let mut count = 0;
+    for (slot, i) in used.iter_mut().zip((0..N).filter(|i| i % 3 != 2)) {
+        *slot = segment(i);
+        count += 1;
+    }
+    Robot::new(black_box(&joints), black_box(&links), RigidBody::empty(), used.get(..count).unwrap_or(&[])).ok()
 }
 
 /// `sin` by its Taylor series, for the small test angles here: the check crate itself needs no
@@ -121,19 +132,19 @@ fn losses<T: RealField + Copy, const N: usize>(pressure: T, temperature: T) -> [
     })
 }
 
-/// Every evaluation function at one joint state of one chain.
-fn evaluate<T: RealField + uwml_core::Real, const N: usize>(chain: &Chain<T, N>, tally: &mut Tally<T>) {
+/// Every evaluation function at one joint state of one chain on a fixed base in still water.
+fn evaluate<T: RealField + uwml_core::Real, const N: usize, const S: usize>(chain: &Robot<T, N, S>, tally: &mut Tally<T>) {
     let water = black_box(Water::<T>::default());
-    let coefficients = black_box(Coefficients::<T, N>::default());
-    let (q, qd, qdd) = (black_box(vector(0.3, -0.2)), black_box(vector(0.8, -0.45)), black_box(vector(1.0, -0.7)));
-
-    let tau = hydro_torques(chain, &water, &coefficients, &q, &qd, &qdd);
-    tally.all_finite(tau.total().iter().chain(tau.gravity.iter()));
-
-    let regressors = hydro_regressors(chain, &water, &q, &qd, &qdd);
-    let applied = regressors.apply(&coefficients);
-    tally.all_finite(applied.total().iter().chain(applied.gravity.iter()));
-    tally.all_finite(regressors.drag_uniform().iter().chain(regressors.added_mass_uniform().iter()));
+    let (q, qd, qdd): ([T; N], [T; N], [T; N]) =
+        (vector::<T, N>(0.3, -0.2).into(), vector::<T, N>(0.8, -0.45).into(), vector::<T, N>(1.0, -0.7).into());
+    let (q, qd, qdd) = (black_box(q), black_box(qd), black_box(qdd));
+    let mut data = RobotData::<T, N>::new();
+    let table = black_box(SegmentCoefficients::<T, S>::uniform(c(1.0), c(0.8)));
+    let conditions = Conditions { coefficients: table.as_ref().ok(), ..Conditions::new(water) };
+    robot_hydro(chain, &conditions, [&q, &qd, &qdd], &mut data);
+    for forces in data.joint_forces() {
+        tally.all_finite([forces.total(), forces.gravity].iter());
+    }
 
     // Outside the domain the constructors refuse (a refusal counts as a failure here).
     let pressure = pressure_at_depth(c(1000.0), c(1025.0), c(9.81)).unwrap_or(c(f64::NAN));
@@ -141,45 +152,42 @@ fn evaluate<T: RealField + uwml_core::Real, const N: usize>(chain: &Chain<T, N>,
     tally.finite(pressure_at_depth::<T>(black_box(c(-1.0)), c(1025.0), c(9.81)).map_or(c(0.0), |_| c(f64::NAN)));
     tally.finite(check_conditions::<T>(black_box(pressure), black_box(c(-300.0))).map_or(c(0.0), |()| c(f64::NAN)));
     let losses = black_box(losses::<T, N>(pressure, c(4.0)));
-    let env = environment_torques(chain, &water, &coefficients, &losses, &q, &qd, &qdd);
-    tally.all_finite(env.total().iter().chain(env.current.iter()));
-    for (state, &speed) in losses.iter().flatten().zip(qd.iter()) {
-        let loss = state.evaluate(speed);
+    robot_hydro(chain, &Conditions { losses: Some(&losses), ..Conditions::new(water) }, [&q, &qd, &qdd], &mut data);
+    for loss in data.joint_losses() {
         tally.all_finite([loss.visc, loss.seal, loss.current].iter());
+    }
+    let (visc, seal, current) = loss_torques(&losses, &SVector::from(qd));
+    let same = data.joint_losses().iter().enumerate().all(|(i, l)| {
+        (Some(&l.visc), Some(&l.seal), Some(&l.current)) == (visc.get(i), seal.get(i), current.get(i))
+    });
+    tally.expect(same);
+    for (state, &speed) in losses.iter().flatten().zip(qd.iter()) {
         let split = state.dry_friction_split(speed);
         tally.all_finite([split.friction, split.damping].iter());
         tally.expect(state.dry_friction_split(black_box(c(0.0))).friction >= c(0.0));
     }
 
-    // Derivatives, by dual numbers through the same functions (instantiated at `Dual<T, N>`).
-    for jacobians in [
-        environment_jacobians(chain, &water, &coefficients, &losses, &q, &qd, &qdd),
-        hydro_jacobians(chain, &water, &coefficients, &q, &qd, &qdd),
-    ] {
-        let matrices = jacobians.d_q.iter().chain(jacobians.d_qd.iter()).chain(jacobians.added_mass_matrix.iter());
-        tally.all_finite(jacobians.value.iter().chain(matrices));
+    // A NaN state gives non-finite (NaN) forces everywhere, not only where the NaN reaches.
+    let mut nan = q;
+    if let Some(first) = nan.get_mut(0) {
+        *first = c(f64::NAN);
     }
-    tally.expect(environment_jacobians(chain, &water, &coefficients, &losses, &q, &qd, &qdd).value == env.total());
-    tally.expect(loss_torques(&losses, &qd) == (env.visc, env.seal, env.current));
+    robot_hydro(chain, &Conditions::new(water), [&black_box(nan), &qd, &qdd], &mut data);
+    tally.expect(data.joint_forces().iter().all(|f| !f.total().is_finite()));
 
-    // A NaN state gives non-finite (NaN) torques everywhere, not only where the NaN reaches.
-    let mut nan_q = q;
-    nan_q[0] = c(f64::NAN);
-    let nan = black_box(nan_q);
-    tally.expect(hydro_torques(chain, &water, &coefficients, &nan, &qd, &qdd).total().iter().all(|x| !x.is_finite()));
-    tally.expect(hydro_regressors(chain, &water, &nan, &qd, &qdd).buoyancy.iter().all(|x| !x.is_finite()));
-
-    let motions = link_motions(chain, &q, &qd, &qdd);
+    // Kinematics: every link's pose, and the last link's point Jacobian.
+    let mut kinematics = KinematicsData::<T, N>::new();
+    forward_kinematics(chain, &q, &mut kinematics);
     let point = black_box(Vector3::new(c(0.1), c(-0.05), c(0.2)));
-    for motion in &motions {
-        let (v, a) = motion.point_motion(&point);
-        tally.all_finite(motion.point(&point).iter().chain(v.iter()).chain(a.iter()));
+    for pose in kinematics.poses() {
+        tally.all_finite(pose.point(&point).iter().chain(pose.rotation.iter()));
     }
-    match point_jacobian(chain, &q, black_box(N - 1), &point) {
-        Some((position, jacobian)) => tally.all_finite(position.iter().chain(jacobian.iter())),
+    let mut jacobian = [c::<T>(f64::NAN); 36];
+    match point_jacobian(chain, &kinematics, black_box(N - 1), &point, &mut jacobian) {
+        Some(position) => tally.all_finite(position.iter().chain(jacobian.iter().take(6 * N))),
         None => tally.expect(false),
     }
-    tally.expect(point_jacobian(chain, &q, black_box(N), &point).is_none());
+    tally.expect(point_jacobian(chain, &kinematics, black_box(N), &point, &mut jacobian).is_none());
 }
 
 /// A tree of four joints (one prismatic, two from the base) with rectangular and circular
@@ -337,7 +345,7 @@ fn for_type<T: RealField + uwml_core::Real>() -> u32 {
         Some(chain) => evaluate(&black_box(chain), &mut tally),
         None => tally.expect(false),
     }
-    evaluate(&black_box(Chain::<T, 3>::paper()), &mut tally);
+    evaluate(&black_box(presets::paper_leg::<T>()), &mut tally);
     match chain::<T, 3>() {
         Some(chain) => evaluate(&black_box(chain), &mut tally),
         None => tally.expect(false),
@@ -353,16 +361,17 @@ fn for_type<T: RealField + uwml_core::Real>() -> u32 {
     tally.bad
 }
 
-/// The torque paths over SIMD lanes (four states per call, the batch path of the Python
-/// bindings), with a NaN in one lane, which must give NaN in that lane only.
-fn lanes<L: SimdRealField + uwml_core::Real, const N: usize>(chain: &Chain<L::Element, N>, tally: &mut Tally<L::Element>)
-where
+/// The evaluation over SIMD lanes (four states per call, the batch path of the Python bindings),
+/// with a NaN in one lane, which must give NaN in that lane only, and the regressors.
+fn lanes<L: SimdRealField + uwml_core::Real, const N: usize, const S: usize>(
+    chain: &Robot<L::Element, N, S>,
+    tally: &mut Tally<L::Element>,
+) where
     L::Element: RealField + uwml_core::Real,
 {
-    let (lane_chain, water, coefficients) =
-        (chain.splat::<L>(), Water::default().splat::<L>(), Coefficients::<_, N>::default().splat::<L>());
-    let lanes = |base: f64, step: f64| {
-        SVector::<L, N>::from_fn(|i, _| {
+    let (lane_chain, water) = (chain.splat::<L>(), Water::default().splat::<L>());
+    let lanes = |base: f64, step: f64| -> [L; N] {
+        core::array::from_fn(|i| {
             let mut lane = L::splat(c(base + step * i as f64));
             for l in 0..L::LANES {
                 lane.replace(l, c(base + step * i as f64 + 0.1 * l as f64));
@@ -376,16 +385,23 @@ where
         first.replace(0, c(f64::NAN));
     }
     let nan = black_box(nan_q);
-    let tau = hydro_torques(&lane_chain, &water, &coefficients, &nan, &qd, &qdd).total();
-    let regressors = hydro_regressors(&lane_chain, &water, &nan, &qd, &qdd).buoyancy;
-    for l in 0..L::LANES {
-        let (lane_tau, lane_regressor) = (tau.map(|x| x.extract(l)), regressors.map(|x| x.extract(l)));
-        if l == 0 {
-            for &x in lane_tau.iter().chain(lane_regressor.iter()) {
-                tally.nan(x);
-            }
-        } else {
-            tally.all_finite(lane_tau.iter().chain(lane_regressor.iter()));
+    let mut data = RobotData::<L, N>::new();
+    let (mut drag, mut added_mass) = ([L::zero(); 200], [L::zero(); 200]);
+    let conditions = Conditions::new(water);
+    robot_hydro_regressors(&lane_chain, &conditions, [&nan, &qd, &qdd], &mut data, &mut drag, &mut added_mass);
+    let width = (6 + N) * chain.regressor_column_count();
+    // Value by value, lane by lane (a short loop of a constant count: no bounds check left).
+    let forces = data.joint_forces().iter().map(|f| f.buoyancy);
+    for x in drag.iter().chain(added_mass.iter()).take(width).copied().chain(forces) {
+        tally.nan(x.extract(0));
+        for l in 1..L::LANES {
+            tally.finite(x.extract(l));
+        }
+    }
+    robot_hydro(&lane_chain, &conditions, [&q, &qd, &qdd], &mut data);
+    for forces in data.joint_forces() {
+        for l in 0..L::LANES {
+            tally.finite(forces.total().extract(l));
         }
     }
 }
@@ -395,10 +411,10 @@ fn for_lanes() -> u32 {
         Tally::<f32> { bad: 0, _real: core::marker::PhantomData },
         Tally::<f64> { bad: 0, _real: core::marker::PhantomData },
     );
-    lanes::<WideF32x4, 3>(&black_box(Chain::paper()), &mut single);
-    lanes::<WideF64x4, 3>(&black_box(Chain::paper()), &mut double);
+    lanes::<WideF32x4, 3, 2>(&black_box(presets::paper_leg()), &mut single);
+    lanes::<WideF64x4, 3, 2>(&black_box(presets::paper_leg()), &mut double);
     match chain::<f64, 6>() {
-        Some(chain) => lanes::<WideF64x4, 6>(&black_box(chain), &mut double),
+        Some(chain) => lanes::<WideF64x4, 6, 6>(&black_box(chain), &mut double),
         None => double.expect(false),
     }
     single.bad + double.bad

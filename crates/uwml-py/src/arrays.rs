@@ -8,7 +8,12 @@ use numpy::{IntoPyArray, PyArray, PyArray2, PyReadonlyArray1, PyReadonlyArray2, 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
-use crate::Array2;
+/// A 2-D float64 numpy array.
+pub(crate) type Array2<'py> = Bound<'py, PyArray<f64, numpy::Ix2>>;
+
+/// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64):
+/// the robot's batch evaluates four states per call, each lane its own state's scalar evaluation.
+pub(crate) type Lanes = simba::simd::WideF64x4;
 
 /// The first non-finite joint state found in a batch.
 pub(crate) struct NonFinite {

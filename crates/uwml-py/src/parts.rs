@@ -5,7 +5,9 @@
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use uwml_core::nalgebra::{Matrix3, Matrix6, Vector3};
-use uwml_core::{JointKind, LumpedBody, ModelError, Owner, Problem, RigidBody, RobotSegment, Section, TreeJoint};
+use uwml_core::{
+    JointKind, LumpedBody, ModelError, Owner, Problem, RigidBody, Robot, RobotSegment, Section, TreeJoint,
+};
 
 /// A `uwml.Joint` of a robot, its parent resolved (`-1`: the base).
 #[derive(FromPyObject)]
@@ -79,19 +81,6 @@ impl JointSpec {
     }
 }
 
-/// A `uwml.Joint` of a leg: its origin and axis (the parent is the previous link).
-#[derive(FromPyObject)]
-pub(crate) struct LegJointSpec {
-    origin: [f64; 3],
-    axis: [f64; 3],
-}
-
-impl LegJointSpec {
-    pub(crate) fn chain_joint(&self) -> uwml_core::Joint<f64> {
-        uwml_core::Joint { origin: self.origin.into(), axis: self.axis.into() }
-    }
-}
-
 impl BodySpec {
     pub(crate) fn rigid_body(&self) -> RigidBody<f64> {
         RigidBody { mass: self.mass, com: self.com.into(), volume: self.volume, cob: self.cob.into() }
@@ -138,40 +127,6 @@ impl SegmentSpec {
             axial_area: self.axial_area,
         })
     }
-
-    /// The chain's segment (a leg's link has at most one, rectangular).
-    pub(crate) fn chain_segment(&self) -> uwml_core::Segment<f64> {
-        uwml_core::Segment {
-            start: self.start.into(),
-            axis: self.axis.into(),
-            length: self.length,
-            normals: [self.normals.0.into(), self.normals.1.into()],
-            widths: [self.widths.0, self.widths.1],
-            area: self.area,
-        }
-    }
-}
-
-/// A `uwml.Link` of a leg: its body and its one segment, if any (`segment`).
-#[derive(FromPyObject)]
-pub(crate) struct LegLinkSpec {
-    mass: f64,
-    com: [f64; 3],
-    volume: f64,
-    cob: [f64; 3],
-    segment: Option<SegmentSpec>,
-}
-
-impl LegLinkSpec {
-    pub(crate) fn chain_link(&self) -> uwml_core::Link<f64> {
-        uwml_core::Link {
-            mass: self.mass,
-            com: self.com.into(),
-            volume: self.volume,
-            cob: self.cob.into(),
-            segment: self.segment.as_ref().map(SegmentSpec::chain_segment),
-        }
-    }
 }
 
 /// `v` as a Python tuple of three floats.
@@ -179,36 +134,86 @@ fn triple<'py>(py: Python<'py>, v: &Vector3<f64>) -> PyResult<Bound<'py, PyTuple
     PyTuple::new(py, [v.x, v.y, v.z])
 }
 
-/// A chain joint as the tuple `(origin, axis)`.
-pub(crate) fn joint_tuple<'py>(py: Python<'py>, joint: &uwml_core::Joint<f64>) -> PyResult<Bound<'py, PyTuple>> {
-    PyTuple::new(py, [triple(py, &joint.origin)?, triple(py, &joint.axis)?])
+/// A robot's validated parts as Python tuples (`uwml._core.Robot.parts`): its joints as `(parent,
+/// kind, origin, axis)` (`parent` -1 for the base), its links and its base as `(mass, com, volume,
+/// cob)`, its segments as `(owner, start, axis, length, area, section, normals, widths, diameter,
+/// cd, cm, cd_axial, axial_area)` (`owner` -1 for the base; `normals` and `widths` None for a
+/// circular section, `diameter` None for a rectangular one).
+pub(crate) type RobotParts<'py> =
+    (Vec<Bound<'py, PyTuple>>, Vec<Bound<'py, PyTuple>>, Bound<'py, PyTuple>, Vec<Bound<'py, PyTuple>>);
+
+/// A body index as Python has it: -1 for the base.
+fn python_index(index: Option<usize>) -> i64 {
+    index.and_then(|i| i64::try_from(i).ok()).unwrap_or(-1)
 }
 
-/// A chain link as the tuple `(mass, com, volume, cob, segment)`, `segment` None or
-/// `(start, axis, length, (normal0, normal1), (width0, width1), area)`.
-pub(crate) fn link_tuple<'py>(py: Python<'py>, link: &uwml_core::Link<f64>) -> PyResult<Bound<'py, PyTuple>> {
-    let segment = match &link.segment {
-        None => py.None().into_bound(py),
-        Some(s) => {
-            let normals = PyTuple::new(py, [triple(py, &s.normals[0])?, triple(py, &s.normals[1])?])?;
-            let widths = PyTuple::new(py, s.widths)?;
-            let items: [Bound<'py, PyAny>; 6] = [
+/// The validated parts of `robot` (see [`RobotParts`]).
+pub(crate) fn robot_parts<'py, const J: usize, const S: usize, const B: usize>(
+    py: Python<'py>,
+    robot: &Robot<f64, J, S, B>,
+) -> PyResult<RobotParts<'py>> {
+    let body = |b: &RigidBody<f64>| -> PyResult<Bound<'py, PyTuple>> {
+        let items: [Bound<'py, PyAny>; 4] = [
+            b.mass.into_pyobject(py)?.into_any(),
+            triple(py, &b.com)?.into_any(),
+            b.volume.into_pyobject(py)?.into_any(),
+            triple(py, &b.cob)?.into_any(),
+        ];
+        PyTuple::new(py, items)
+    };
+    let joints = robot
+        .joints()
+        .iter()
+        .map(|j| {
+            let kind = match j.kind {
+                JointKind::Revolute => "revolute",
+                JointKind::Prismatic => "prismatic",
+            };
+            let items: [Bound<'py, PyAny>; 4] = [
+                python_index(j.parent).into_pyobject(py)?.into_any(),
+                kind.into_pyobject(py)?.into_any(),
+                triple(py, &j.origin)?.into_any(),
+                triple(py, &j.axis)?.into_any(),
+            ];
+            PyTuple::new(py, items)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    let links = robot.links().iter().map(body).collect::<PyResult<Vec<_>>>()?;
+    let segments = robot
+        .segments()
+        .iter()
+        .map(|s| {
+            let owner = match s.owner {
+                Owner::Base => -1,
+                Owner::Link(i) => python_index(Some(i)),
+            };
+            let none = || py.None().into_bound(py);
+            let (section, normals, widths, diameter) = match s.section {
+                Section::Rectangular { normals, widths } => (
+                    "rectangular",
+                    PyTuple::new(py, [triple(py, &normals[0])?, triple(py, &normals[1])?])?.into_any(),
+                    PyTuple::new(py, widths)?.into_any(),
+                    none(),
+                ),
+                Section::Circular { diameter } => ("circular", none(), none(), diameter.into_pyobject(py)?.into_any()),
+            };
+            let items: [Bound<'py, PyAny>; 13] = [
+                owner.into_pyobject(py)?.into_any(),
                 triple(py, &s.start)?.into_any(),
                 triple(py, &s.axis)?.into_any(),
                 s.length.into_pyobject(py)?.into_any(),
-                normals.into_any(),
-                widths.into_any(),
                 s.area.into_pyobject(py)?.into_any(),
+                section.into_pyobject(py)?.into_any(),
+                normals,
+                widths,
+                diameter,
+                PyTuple::new(py, s.cd)?.into_any(),
+                PyTuple::new(py, s.cm)?.into_any(),
+                s.cd_axial.into_pyobject(py)?.into_any(),
+                s.axial_area.into_pyobject(py)?.into_any(),
             ];
-            PyTuple::new(py, items)?.into_any()
-        }
-    };
-    let items: [Bound<'py, PyAny>; 5] = [
-        link.mass.into_pyobject(py)?.into_any(),
-        triple(py, &link.com)?.into_any(),
-        link.volume.into_pyobject(py)?.into_any(),
-        triple(py, &link.cob)?.into_any(),
-        segment,
-    ];
-    PyTuple::new(py, items)
+            PyTuple::new(py, items)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    Ok((joints, links, body(robot.base())?, segments))
 }

@@ -113,7 +113,7 @@ class _HydroDesign:
         assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
         q, qd, qdd = (np.ascontiguousarray(a) for a in (log.q, log.qd, log.qdd))
         delta = np.ascontiguousarray(log.tau_water - log.tau_land)
-        return self._leg._chain.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
+        return self._leg._core.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
 
     def indexed_chunks(self) -> Iterator[tuple[int, Array]]:
         """``(index of the log, chunk)``: the problem chunk by chunk, joint-major ``(J, c, P + 1)``:

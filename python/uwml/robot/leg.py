@@ -37,14 +37,19 @@ def _vec(values: Sequence[float]) -> tuple[float, float, float]:
     return (float(values[0]), float(values[1]), float(values[2]))
 
 
-def _from_parts(joints: list[Any], links: list[Any]) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
-    """The validated ``Joint``s and ``Link``s of a native chain's :meth:`parts`."""
-    joint_list = tuple(Joint(origin=origin, axis=axis) for origin, axis in joints)
+def _from_parts(joints: list[Any], links: list[Any], base: Any, segments: list[Any]) -> tuple[tuple[Joint, ...], tuple[Link, ...]]:
+    """A leg's validated ``Joint``s and ``Link``s from its native robot's :meth:`parts` (a serial
+    chain on a fixed base, each link with at most one rectangular segment; the segments'
+    geometry, at the default coefficients as a leg's links have always been read)."""
+    joint_list = tuple(Joint(origin=origin, axis=axis) for _parent, _kind, origin, axis in joints)
+    by_link = {
+        owner: (start, axis, length, area, normals, widths) for owner, start, axis, length, area, _section, normals, widths, *_ in segments
+    }
     link_list = []
-    for mass, com, volume, cob, parts in links:
+    for index, (mass, com, volume, cob) in enumerate(links):
         segment = None
-        if parts is not None:
-            start, axis, length, normals, widths, area = parts
+        if index in by_link:
+            start, axis, length, area, normals, widths = by_link[index]
             segment = Segment(start=start, axis=axis, length=length, normals=normals, widths=widths, area=area)
         link_list.append(Link(mass=mass, com=com, volume=volume, cob=cob, segment=segment))
     return joint_list, tuple(link_list)
@@ -97,13 +102,13 @@ class Leg(Robot):
                 raise ValueError(f"links[{index}]: a uwml.Leg segment has no axial drag; use uwml.Robot for segments with cd_axial")
             if link.lumped is not None:
                 raise ValueError(f"links[{index}]: a uwml.Leg link has no lumped model (uwml.LumpedModel); use uwml.Robot for bluff bodies")
-        self._from_chain(_core.Chain(joints, links))
+        super().__init__(joints, links)  # validated by the core
+        self._from_validated(*_from_parts(*self._core.parts()))
 
-    def _from_chain(self, chain: _core.Chain) -> None:
-        """This leg from a validated native chain: its parameters as validated (axes normalized),
-        the robot they make, and the chain itself for the kinematics."""
-        self._chain = chain
-        self._leg_joints, self._leg_links = _from_parts(*chain.parts())
+    def _from_validated(self, joints: tuple[Joint, ...], links: tuple[Link, ...]) -> None:
+        """This leg from its parameters as the core validated them (axes normalized), and the
+        robot they make."""
+        self._leg_joints, self._leg_links = joints, links
         super().__init__(self._leg_joints, self._leg_links)
         #: The links that carry a segment, in segment order.
         self._owners = tuple(i for i, link in enumerate(self._leg_links) if link.segment is not None)
@@ -112,7 +117,7 @@ class Leg(Robot):
     def paper(cls) -> Leg:
         """The 3-DOF leg of the paper (Table II): hip yaw, hip roll, knee roll."""
         leg = cls.__new__(cls)
-        leg._from_chain(_core.Chain.paper())
+        leg._from_validated(*_from_parts(*_core.Robot.paper_leg().parts()))
         return leg
 
     @property
@@ -300,7 +305,7 @@ class Leg(Robot):
         if angles.ndim < 1 or angles.shape[-1] != n:
             raise ValueError(f"q must have shape (..., {n}), got {angles.shape}")
         shape = angles.shape[:-1]
-        positions, jacobians = self._chain.point_jacobian(np.ascontiguousarray(angles.reshape(-1, n)), index, np.ascontiguousarray(local))
+        positions, jacobians = self._core.point_jacobian(np.ascontiguousarray(angles.reshape(-1, n)), index, np.ascontiguousarray(local))
         return positions.reshape(shape + (3,)), jacobians.reshape(shape + (6, n))
 
     def forward_kinematics(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> FloatArray:

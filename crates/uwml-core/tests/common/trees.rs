@@ -1,7 +1,10 @@
 //! Random whole robots and states for the tests of the tree path.
 
 use uwml_core::nalgebra::UnitQuaternion;
-use uwml_core::{BaseMotion, JointKind, Owner, RigidBody, Robot, RobotSegment, Section, TreeJoint};
+use uwml_core::{
+    BaseMotion, Conditions, Current, JointKind, Owner, RigidBody, Robot, RobotData, RobotSegment, Section,
+    SegmentCoefficients, TreeJoint, Water, robot_added_mass_matrix, robot_hydro,
+};
 
 use super::Rng;
 
@@ -84,4 +87,36 @@ pub fn random_motion(rng: &mut Rng) -> BaseMotion<f64> {
         rng.vector::<3>(2.0),
     )
     .unwrap()
+}
+
+/// `robot_hydro` in default water, with `coefficients` (or the segments' own), on a base moving as
+/// `motion` in `current`.
+pub fn evaluate<const J: usize, const S: usize>(
+    robot: &Robot<f64, J, S>,
+    coefficients: Option<&SegmentCoefficients<f64, S>>,
+    motion: &BaseMotion<f64>,
+    current: &Current<f64>,
+    [q, qd, qdd]: &[[f64; J]; 3],
+) -> RobotData<f64, J> {
+    let mut data = RobotData::new();
+    robot_hydro(
+        robot,
+        &Conditions { motion: *motion, current: *current, coefficients, ..Conditions::new(Water::default()) },
+        [q, qd, qdd],
+        &mut data,
+    );
+    data
+}
+
+/// `|a − b| ≤ rel · scale`.
+pub fn assert_close(a: f64, b: f64, scale: f64, rel: f64, what: &str) {
+    assert!((a - b).abs() <= rel * scale, "{what}: {a} vs {b} (scale {scale})");
+}
+
+/// `M_A` of a robot, `(6 + n)²` row-major.
+pub fn added_mass_matrix<const J: usize, const S: usize>(robot: &Robot<f64, J, S>, q: &[f64; J]) -> Vec<f64> {
+    let size = 6 + robot.joint_count();
+    let mut out = vec![f64::NAN; size * size];
+    robot_added_mass_matrix(robot, &Water::default(), None, q, &mut out);
+    out
 }

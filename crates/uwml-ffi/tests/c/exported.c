@@ -7,10 +7,14 @@
 
 int main(void) {
     static UwmlRobotF64 robot;
+    static UwmlWorkspaceF64 workspace;
     UwmlError err;
     if (uwml_robot_new_f64(&robot, ARM_JOINTS, ARM_N_JOINTS, ARM_LINKS, ARM_BASE, ARM_SEGMENTS, ARM_N_SEGMENTS,
                            ARM_WATER_DENSITY, ARM_GRAVITY, &err) != UWML_OK) {
         printf("construction failed: %s %lld\n", err.field, (long long)err.index);
+        return 1;
+    }
+    if (uwml_robot_workspace_init_f64(&workspace) != UWML_OK) {
         return 1;
     }
     const double q[7] = {0.3, -0.4, 0.6, 0.2, -0.5, 0.1, 0.05};
@@ -28,7 +32,8 @@ int main(void) {
     const UwmlCurrentF64 current = {.velocity = {0.3, 0.1, 0.0}, .acceleration = {0.0, 0.0, 0.0}};
     UwmlJointForcesF64 forces[7];
     UwmlBaseWrenchF64 wrench;
-    if (uwml_robot_hydro_f64(&robot, q, qd, qdd, ARM_N_JOINTS, &motion, &current, forces, &wrench, &err) != UWML_OK) {
+    if (uwml_robot_hydro_f64(&robot, &workspace, q, qd, qdd, ARM_N_JOINTS, &motion, &current, forces, &wrench, &err) !=
+        UWML_OK) {
         printf("evaluation failed: %s %lld\n", err.field, (long long)err.index);
         return 1;
     }

@@ -194,11 +194,11 @@ static UwmlRobotF64 paper_built64;
 static UwmlRobotF32 paper32;
 static UwmlRobotF64 scratch64;
 static UwmlRobotF64 never_initialized;
-static UwmlLeg3F64 leg64;
 static UwmlRobotF64 losses64;
 static UwmlRobotF32 losses32;
 static UwmlRobotF64 paper_losses64;
-static UwmlLeg3F64 leg_losses64;
+static UwmlWorkspaceF64 workspace64; /* one workspace per precision: the evaluations write it */
+static UwmlWorkspaceF32 workspace32;
 
 static void print_sizes(void) {
 #define SIZE(T) printf("size %s %zu %zu\n", #T, sizeof(T), _Alignof(T))
@@ -248,13 +248,13 @@ static void arm_f64(void) {
                                       ARM_DENSITY, ARM_GRAVITY, &err);
     check(code == UWML_OK && err.code == UWML_OK && err.index == -1 && err.field[0] == '\0',
           "uwml_robot_new_f64: 6-joint arm on a vehicle, 8 segments");
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
                                 &err);
     check(code == UWML_OK, "uwml_robot_hydro_f64: vehicle moving in a current");
     check_forces("f64 arm, moving:", forces, ARM_MOVING_FORCES, ARM_JOINTS, F64_REL);
     check_wrench("f64 arm, moving:", &wrench, &ARM_MOVING_WRENCH, F64_REL);
 
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f64: motion and current NULL");
     check_forces("f64 arm, fixed base:", forces, ARM_FIXED_FORCES, ARM_JOINTS, F64_REL);
     check_wrench("f64 arm, fixed base:", &wrench, &ARM_FIXED_WRENCH, F64_REL);
@@ -291,14 +291,14 @@ static void arm_f32(void) {
     UwmlJointForcesF32 forces[ARM_JOINTS];
     UwmlBaseWrenchF32 wrench;
     UwmlJointForcesF64 as64[ARM_JOINTS];
-    code = uwml_robot_hydro_f32(&arm32, q, qd, qdd, ARM_JOINTS, &motion, &current, forces, &wrench, &err);
+    code = uwml_robot_hydro_f32(&arm32, &workspace32, q, qd, qdd, ARM_JOINTS, &motion, &current, forces, &wrench, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f32: vehicle moving in a current");
     forces_f64(forces, as64, ARM_JOINTS);
     UwmlBaseWrenchF64 wrench64 = wrench_f64(&wrench);
     check_forces("f32 arm, moving:", as64, ARM_MOVING_FORCES, ARM_JOINTS, F32_REL);
     check_wrench("f32 arm, moving:", &wrench64, &ARM_MOVING_WRENCH, F32_REL);
 
-    code = uwml_robot_hydro_f32(&arm32, q, qd, qdd, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
+    code = uwml_robot_hydro_f32(&arm32, &workspace32, q, qd, qdd, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f32: motion and current NULL");
     forces_f64(forces, as64, ARM_JOINTS);
     wrench64 = wrench_f64(&wrench);
@@ -319,8 +319,8 @@ static void paper(void) {
     UwmlError err;
     UwmlJointForcesF64 forces[PAPER_JOINTS], built[PAPER_JOINTS];
     UwmlBaseWrenchF64 wrench, built_wrench;
-    check(uwml_robot_paper_f64(&paper64) == UWML_OK, "uwml_robot_paper_f64");
-    int32_t code = uwml_robot_hydro_f64(&paper64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL, forces,
+    check(uwml_robot_paper_leg_f64(&paper64) == UWML_OK, "uwml_robot_paper_leg_f64");
+    int32_t code = uwml_robot_hydro_f64(&paper64, &workspace64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL, forces,
                                         &wrench, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f64: the paper's leg, fixed base, still water");
     check_forces("f64 paper, fixed base:", forces, PAPER_FIXED_FORCES, PAPER_JOINTS, F64_REL);
@@ -333,30 +333,17 @@ static void paper(void) {
     }
     check(published, "f64 paper: the published torques of docs/model.md section 5, to their last digit");
 
-    /* The leg API (the chain path) agrees to 1e-13. */
-    UwmlHydro3F64 hydro;
-    check(uwml_leg3_paper_f64(&leg64) == UWML_OK &&
-              uwml_leg3_hydro_f64(&leg64, PAPER_Q, PAPER_QD, PAPER_QDD, &hydro, NULL) == UWML_OK,
-          "uwml_leg3_hydro_f64");
-    int agree = 1;
-    for (int i = 0; i < 3; i++) {
-        agree &= fabs(forces[i].drag - hydro.drag[i]) <= 1e-13 * fabs(hydro.drag[i]);
-        agree &= fabs(forces[i].added_mass - hydro.added_mass[i]) <= 1e-13 * fabs(hydro.added_mass[i]);
-        agree &= fabs(forces[i].buoyancy - hydro.buoyancy[i]) <= 1e-13 * fabs(hydro.buoyancy[i]);
-    }
-    check(agree, "f64 paper robot equals the leg API to 1e-13");
-
     /* The same leg from plain structs is the same robot, bit for bit. */
     code = uwml_robot_new_f64(&paper_built64, PAPER_JOINT, PAPER_JOINTS, PAPER_LINK, NULL, PAPER_SEGMENT,
                               PAPER_SEGMENTS, 1000.0, 9.81, &err);
     check(code == UWML_OK, "uwml_robot_new_f64: the paper's leg from plain structs, no base body");
-    code = uwml_robot_hydro_f64(&paper_built64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL, built,
+    code = uwml_robot_hydro_f64(&paper_built64, &workspace64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL, built,
                                 &built_wrench, &err);
     check(code == UWML_OK && memcmp(built, forces, sizeof forces) == 0 &&
               memcmp(&built_wrench, &wrench, sizeof wrench) == 0,
-          "f64 paper from plain structs equals uwml_robot_paper_f64");
+          "f64 paper from plain structs equals uwml_robot_paper_leg_f64");
 
-    code = uwml_robot_hydro_f64(&paper64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, &PAPER_MOTION, &PAPER_CURRENT,
+    code = uwml_robot_hydro_f64(&paper64, &workspace64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, &PAPER_MOTION, &PAPER_CURRENT,
                                 forces, &wrench, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f64: the paper's leg on a moving base in a current");
     check_forces("f64 paper, moving:", forces, PAPER_MOVING_FORCES, PAPER_JOINTS, F64_REL);
@@ -371,14 +358,14 @@ static void paper(void) {
     const UwmlCurrentF32 current = current_f32(&PAPER_CURRENT);
     UwmlJointForcesF32 forces32[PAPER_JOINTS];
     UwmlBaseWrenchF32 wrench32;
-    check(uwml_robot_paper_f32(&paper32) == UWML_OK, "uwml_robot_paper_f32");
-    code = uwml_robot_hydro_f32(&paper32, q, qd, qdd, PAPER_JOINTS, NULL, NULL, forces32, &wrench32, &err);
+    check(uwml_robot_paper_leg_f32(&paper32) == UWML_OK, "uwml_robot_paper_leg_f32");
+    code = uwml_robot_hydro_f32(&paper32, &workspace32, q, qd, qdd, PAPER_JOINTS, NULL, NULL, forces32, &wrench32, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f32: the paper's leg, fixed base");
     forces_f64(forces32, forces, PAPER_JOINTS);
     wrench = wrench_f64(&wrench32);
     check_forces("f32 paper, fixed base:", forces, PAPER_FIXED_FORCES, PAPER_JOINTS, F32_REL);
     check_wrench("f32 paper, fixed base:", &wrench, &PAPER_FIXED_WRENCH, F32_REL);
-    code = uwml_robot_hydro_f32(&paper32, q, qd, qdd, PAPER_JOINTS, &motion, &current, forces32, &wrench32, &err);
+    code = uwml_robot_hydro_f32(&paper32, &workspace32, q, qd, qdd, PAPER_JOINTS, &motion, &current, forces32, &wrench32, &err);
     check(code == UWML_OK, "uwml_robot_hydro_f32: the paper's leg, moving");
     forces_f64(forces32, forces, PAPER_JOINTS);
     wrench = wrench_f64(&wrench32);
@@ -403,7 +390,7 @@ static void errors(void) {
     int32_t code = uwml_robot_new_f64(&scratch64, joints, ARM_JOINTS, links, &base, segments, ARM_SEGMENTS,
                                       ARM_DENSITY, ARM_GRAVITY, &err);
     check_error("joint 2's parent is a later link", code, &err, UWML_ERR_OUT_OF_RANGE, 2, "joint.parent");
-    code = uwml_robot_hydro_f64(&scratch64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
+    code = uwml_robot_hydro_f64(&scratch64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
     check_error("a failed construction leaves the block unwritten", code, &err, UWML_ERR_UNINITIALIZED, -1, "robot");
 
     memcpy(joints, ARM_JOINT, sizeof ARM_JOINT);
@@ -435,34 +422,34 @@ static void errors(void) {
 
     UwmlBaseMotionF64 motion = ARM_MOTION;
     motion.orientation[0] = 0.5;
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &motion, &ARM_CURRENT, forces, &wrench,
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &motion, &ARM_CURRENT, forces, &wrench,
                                 &err);
     check_error("orientation not a unit quaternion", code, &err, UWML_ERR_NOT_UNIT, -1, "base.orientation");
     UwmlCurrentF64 current = ARM_CURRENT;
     current.velocity[1] = NAN;
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &current, forces, &wrench,
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &current, forces, &wrench,
                                 &err);
     check_error("NaN current", code, &err, UWML_ERR_NON_FINITE, -1, "current.velocity");
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, 5, NULL, NULL, forces, &wrench, &err);
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, 5, NULL, NULL, forces, &wrench, &err);
     check_error("5 joint states for 6 joints", code, &err, UWML_ERR_OUT_OF_RANGE, -1, "n (the robot's joint count)");
-    code = uwml_robot_hydro_f64(&arm64, NULL, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, NULL, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench, &err);
     check_error("q = NULL", code, &err, UWML_ERR_NULL_POINTER, -1, "q");
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, NULL, &wrench, &err);
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, NULL, &wrench, &err);
     check_error("joint_forces = NULL", code, &err, UWML_ERR_NULL_POINTER, -1, "joint_forces");
-    code = uwml_robot_hydro_f64(&never_initialized, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench,
+    code = uwml_robot_hydro_f64(&never_initialized, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, forces, &wrench,
                                 &err);
     check_error("zeroed robot", code, &err, UWML_ERR_UNINITIALIZED, -1, "robot");
 
     double qd[ARM_JOINTS];
     memcpy(qd, ARM_QD, sizeof qd);
     qd[4] = INFINITY;
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, qd, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, qd, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
                                 &err);
     check_error("infinite qd[4]", code, &err, UWML_ERR_NON_FINITE, 4, "qd");
     check(isnan(forces[0].total) && isnan(wrench.total[0]), "a non-finite state gives NaN forces and wrench");
 
     /* The robot is unchanged by the failed calls. */
-    code = uwml_robot_hydro_f64(&arm64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
+    code = uwml_robot_hydro_f64(&arm64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, forces, &wrench,
                                 &err);
     check(code == UWML_OK, "the arm after errors");
     check_forces("f64 arm after errors:", forces, ARM_MOVING_FORCES, ARM_JOINTS, F64_REL);
@@ -538,7 +525,7 @@ static void robot_losses(void) {
     check(ok, "uwml_robot_set_losses_f64 on joints 0 to 3");
     code = uwml_robot_set_conditions_f64(&losses64, ARM_LOSS_PRESSURE, ARM_LOSS_TEMPERATURE, &err);
     check(code == UWML_OK, "uwml_robot_set_conditions_f64: 3000 m, 4 degC");
-    code = uwml_robot_environment_f64(&losses64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, env,
+    code = uwml_robot_environment_f64(&losses64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, env,
                                       &wrench, &err);
     check(code == UWML_OK, "uwml_robot_environment_f64: vehicle moving in a current");
     check_environment("f64 arm with losses:", env, ARM_LOSSES_ENVIRONMENT, ARM_JOINTS, F64_REL);
@@ -578,7 +565,7 @@ static void robot_losses(void) {
     check(ok, "uwml_robot_new_f32, uwml_robot_set_losses_f32: the arm with losses in float");
     UwmlJointEnvironmentF32 env32[ARM_JOINTS];
     UwmlBaseWrenchF32 wrench32;
-    code = uwml_robot_environment_f32(&losses32, q, qd, qdd, ARM_JOINTS, &motion, &current, env32, &wrench32, &err);
+    code = uwml_robot_environment_f32(&losses32, &workspace32, q, qd, qdd, ARM_JOINTS, &motion, &current, env32, &wrench32, &err);
     check(code == UWML_OK, "uwml_robot_environment_f32");
     for (int i = 0; i < ARM_JOINTS; i++) {
         env[i] = (UwmlJointEnvironmentF64){env32[i].drag, env32[i].added_mass, env32[i].buoyancy, env32[i].gravity,
@@ -593,7 +580,7 @@ static void robot_losses(void) {
     for (uint32_t i = 0; i < ARM_JOINTS; i++) {
         ok &= uwml_robot_clear_losses_f64(&losses64, i, &err) == UWML_OK;
     }
-    code = uwml_robot_environment_f64(&losses64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, env,
+    code = uwml_robot_environment_f64(&losses64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, &ARM_MOTION, &ARM_CURRENT, env,
                                       NULL, NULL);
     for (int i = 0; i < ARM_JOINTS; i++) {
         ok &= env[i].visc == 0.0 && env[i].seal == 0.0 && env[i].current == 0.0;
@@ -601,29 +588,29 @@ static void robot_losses(void) {
     }
     check(code == UWML_OK && ok, "uwml_robot_clear_losses_f64: every joint cleared, the hydrodynamic forces alone");
 
-    /* The paper's robot with the leg's losses is the leg. */
+    /* The paper's leg with losses: the losses are the joints' own, evaluated at their speeds;
+     * the forces those of uwml_robot_hydro_f64. */
     UwmlJointLossParamsF64 defaults;
-    check(uwml_leg3_default_losses_f64(&defaults) == UWML_OK, "uwml_leg3_default_losses_f64");
+    check(uwml_robot_default_losses_f64(&defaults) == UWML_OK, "uwml_robot_default_losses_f64");
     double pressure;
-    ok = uwml_robot_paper_f64(&paper_losses64) == UWML_OK && uwml_leg3_paper_f64(&leg_losses64) == UWML_OK;
+    ok = uwml_robot_paper_leg_f64(&paper_losses64) == UWML_OK;
     ok &= uwml_pressure_at_depth_f64(1000.0, 1025.0, 9.81, &pressure, &err) == UWML_OK;
     for (uint32_t i = 1; i < 3; i++) {
         ok &= uwml_robot_set_losses_f64(&paper_losses64, i, &defaults, pressure, 4.0, &err) == UWML_OK;
-        ok &= uwml_leg3_set_losses_f64(&leg_losses64, i, &defaults, pressure, 4.0, &err) == UWML_OK;
     }
-    check(ok, "the paper's robot and leg, the same losses on joints 1 and 2 at 1000 m");
+    check(ok, "the paper's leg, losses on joints 1 and 2 at 1000 m");
     UwmlJointEnvironmentF64 robot_env[PAPER_JOINTS];
-    UwmlEnvironment3F64 leg_env;
-    ok = uwml_robot_environment_f64(&paper_losses64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL,
-                                    robot_env, NULL, &err) == UWML_OK;
-    ok &= uwml_leg3_environment_f64(&leg_losses64, PAPER_Q, PAPER_QD, PAPER_QDD, &leg_env, &err) == UWML_OK;
+    UwmlJointForcesF64 paper_forces[PAPER_JOINTS];
+    ok = uwml_robot_environment_f64(&paper_losses64, &workspace64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL,
+                                    NULL, robot_env, NULL, &err) == UWML_OK;
+    ok &= uwml_robot_hydro_f64(&paper_losses64, &workspace64, PAPER_Q, PAPER_QD, PAPER_QDD, PAPER_JOINTS, NULL, NULL,
+                               paper_forces, NULL, &err) == UWML_OK;
     for (int i = 0; i < 3; i++) {
-        ok &= robot_env[i].visc == leg_env.visc[i] && robot_env[i].seal == leg_env.seal[i] &&
-              robot_env[i].current == leg_env.current[i];
-        ok &= fabs(robot_env[i].total - leg_env.total[i]) <= 1e-13 * fabs(leg_env.total[i]);
+        ok &= robot_env[i].drag == paper_forces[i].drag && robot_env[i].buoyancy == paper_forces[i].buoyancy;
+        ok &= robot_env[i].total == (paper_forces[i].total + robot_env[i].visc) + robot_env[i].seal;
     }
-    check(ok && robot_env[1].visc != 0.0 && robot_env[0].current == 0.0,
-          "f64 paper robot with losses equals the leg API (losses exactly, totals to 1e-13)");
+    check(ok && robot_env[1].visc < 0.0 && robot_env[2].seal != 0.0 && robot_env[0].current == 0.0,
+          "f64 paper leg with losses: the forces plus the joints' losses");
 
     /* Errors. */
     UwmlJointLossParamsF64 bad = ARM_LOSS[1];
@@ -656,17 +643,18 @@ static void robot_losses(void) {
     check_error("robot = NULL", code, &err, UWML_ERR_NULL_POINTER, -1, "robot");
     code = uwml_robot_clear_losses_f64(&never_initialized, 0, &err);
     check_error("zeroed robot", code, &err, UWML_ERR_UNINITIALIZED, -1, "robot");
-    code = uwml_robot_environment_f64(&losses64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, NULL, NULL, &err);
+    code = uwml_robot_environment_f64(&losses64, &workspace64, ARM_Q, ARM_QD, ARM_QDD, ARM_JOINTS, NULL, NULL, NULL, NULL, &err);
     check_error("joint_environment = NULL", code, &err, UWML_ERR_NULL_POINTER, -1, "joint_environment");
     double fast[ARM_JOINTS];
     memcpy(fast, ARM_QD, sizeof fast);
     fast[1] = 1e200;
-    code = uwml_robot_environment_f64(&losses64, ARM_Q, fast, ARM_QDD, ARM_JOINTS, NULL, NULL, env, NULL, &err);
+    code = uwml_robot_environment_f64(&losses64, &workspace64, ARM_Q, fast, ARM_QDD, ARM_JOINTS, NULL, NULL, env, NULL, &err);
     check_error("a speed of 1e200 rad/s", code, &err, UWML_ERR_OVERFLOW, 0, "total");
 }
 
 /* --- docs/firmware.md: robot */
-static UwmlRobotF32 robot; /* static storage: no heap */
+static UwmlRobotF32 robot;         /* the model: built once, then only read (static storage: no heap) */
+static UwmlWorkspaceF32 workspace; /* what an evaluation writes: one per task that evaluates */
 
 int robot_init(void) {
     /* A vehicle (base body and hull) with a turret and a sliding arm. */
@@ -695,7 +683,7 @@ int robot_init(void) {
         /* err.code, err.index (joint, link or segment), err.field, e.g. "segment.diameter" */
         return -1;
     }
-    return 0;
+    return uwml_robot_workspace_init_f32(&workspace) == UWML_OK ? 0 : -1;
 }
 
 /* Every control period, with the vehicle's attitude and twist from its navigation filter. */
@@ -703,7 +691,8 @@ int control_step(const float q[2], const float qd[2], const float qdd[2], const 
                  const UwmlCurrentF32 *current, float tau_ff[2], float on_vehicle[6]) {
     UwmlJointForcesF32 forces[2];
     UwmlBaseWrenchF32 wrench;
-    int32_t code = uwml_robot_hydro_f32(&robot, q, qd, qdd, 2, vehicle_motion, current, forces, &wrench, NULL);
+    int32_t code =
+        uwml_robot_hydro_f32(&robot, &workspace, q, qd, qdd, 2, vehicle_motion, current, forces, &wrench, NULL);
     for (int i = 0; i < 2; i++) {
         tau_ff[i] = -forces[i].total; /* the joint's motor supplies -total */
     }
@@ -719,14 +708,15 @@ int control_step(const float q[2], const float qd[2], const float qdd[2], const 
 #include <stddef.h> /* NULL */
 #include "uwml.h"
 
-extern UwmlRobotF32 robot; /* the robot of robot_init() above */
+extern UwmlRobotF32 robot;         /* the robot of robot_init() above */
+extern UwmlWorkspaceF32 workspace; /* and its workspace */
 
 /* Once, after robot_init(): the turret's drive is oil-filled and sealed. */
 int robot_losses_init(float depth_m, float oil_temperature_c) {
     UwmlError err;
     UwmlJointLossParamsF32 turret;
     float p;
-    uwml_leg3_default_losses_f32(&turret); /* or your fitted parameters */
+    uwml_robot_default_losses_f32(&turret); /* or your fitted parameters */
     if (uwml_pressure_at_depth_f32(depth_m, 1025.0f, 9.81f, &p, &err) != UWML_OK) return -1; /* 0-11000 m */
     if (uwml_robot_set_losses_f32(&robot, 0, &turret, p, oil_temperature_c, &err) != UWML_OK) {
         /* err.index (the joint), err.field, e.g. "seal.s0", "joint_index", "temperature_c" */
@@ -747,7 +737,8 @@ int control_step_with_losses(const float q[2], const float qd[2], const float qd
                              const UwmlBaseMotionF32 *vehicle_motion, const UwmlCurrentF32 *current,
                              float tau_ff[2], float loss_current[2]) {
     UwmlJointEnvironmentF32 joints[2];
-    int32_t code = uwml_robot_environment_f32(&robot, q, qd, qdd, 2, vehicle_motion, current, joints, NULL, NULL);
+    int32_t code =
+        uwml_robot_environment_f32(&robot, &workspace, q, qd, qdd, 2, vehicle_motion, current, joints, NULL, NULL);
     for (int i = 0; i < 2; i++) {
         tau_ff[i] = -joints[i].total;        /* water, oil drag and seal: the motor supplies -total */
         loss_current[i] = joints[i].current; /* [A], signed like the motion */
@@ -781,6 +772,8 @@ static void doc_example(void) {
 
 int main(void) {
     print_sizes();
+    check(uwml_robot_workspace_init_f64(&workspace64) == UWML_OK && uwml_robot_workspace_init_f32(&workspace32) == UWML_OK,
+          "uwml_robot_workspace_init_f64, _f32");
     arm_f64();
     arm_f32();
     paper();

@@ -166,7 +166,7 @@ static const UwmlJointEnvironmentF64 ARM_LOSSES_ENVIRONMENT[ARM_JOINTS] = {
      .visc = 0.0, .seal = 0.0, .current = 0.0, .total = 0.20702329695763308},
 };
 
-/* The paper's leg: what uwml_robot_paper_* holds, fresh water 1000 kg/m^3, g = 9.81, at
+/* The paper's leg: what uwml_robot_paper_leg_* holds, fresh water 1000 kg/m^3, g = 9.81, at
  * the state whose torques docs/model.md section 5 publishes. */
 #define PAPER_JOINTS 3
 #define PAPER_SEGMENTS 2

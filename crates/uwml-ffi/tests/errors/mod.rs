@@ -1,5 +1,5 @@
 //! The C API's error records, as every API test reads them: a record filled with junk before a
-//! call, its parts after, and the check that a call failed as expected. Shared by `api.rs`,
+//! call, its parts after, and the check that a call failed as expected. Shared by `helpers.rs`,
 //! `robot_api.rs` and `robot_losses.rs`.
 #![allow(dead_code, clippy::expect_used)]
 

@@ -4,24 +4,25 @@
 //! with joint losses on four of its joints; and the paper's leg. Shared by `robot_api.rs` and
 //! `robot_losses.rs` (the C API against the core, bit for bit) and `robot_expected.rs` (the
 //! core's values for `tests/c/robot.c`).
-#![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used)]
+#![allow(dead_code, clippy::indexing_slicing, clippy::unwrap_used, clippy::expect_used, clippy::panic)]
 
 use core::ptr::{null, null_mut};
 
 use uwml_core::nalgebra::{UnitQuaternion, Vector3};
 use uwml_core::{
-    AddedMassForm, BaseMotion, Chain, Coefficients, Conditions, Current, Drive, JointForces, JointKind, JointLosses,
-    LossState, OilDrag, Owner, RigidBody, Robot, RobotData, RobotSegment, Seal, Section, TreeJoint, Water,
-    loss_torques, robot_hydro,
+    AddedMassForm, BaseMotion, Conditions, Current, Drive, JointForces, JointKind, JointLosses, LossState, OilDrag,
+    Owner, RigidBody, Robot, RobotData, RobotSegment, Seal, Section, TreeJoint, Water, loss_torques, presets,
+    robot_hydro,
 };
 use uwml_ffi::{
     UWML_BASE, UWML_JOINT_PRISMATIC, UWML_JOINT_REVOLUTE, UWML_OK, UWML_ROBOT_F32_WORDS, UWML_ROBOT_F64_WORDS,
-    UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32,
-    UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64, UwmlCurrentF32, UwmlCurrentF64, UwmlDriveParamsF32,
-    UwmlDriveParamsF64, UwmlJointEnvironmentF32, UwmlJointEnvironmentF64, UwmlJointForcesF32, UwmlJointForcesF64,
-    UwmlJointLossParamsF32, UwmlJointLossParamsF64, UwmlOilParamsF32, UwmlOilParamsF64, UwmlRobotF32, UwmlRobotF64,
-    UwmlRobotSegmentF32, UwmlRobotSegmentF64, UwmlSealParamsF32, UwmlSealParamsF64, UwmlTreeJointF32, UwmlTreeJointF64,
-    uwml_robot_new_f32, uwml_robot_new_f64,
+    UWML_SECTION_CIRCULAR, UWML_SECTION_RECTANGULAR, UWML_WORKSPACE_F32_WORDS, UWML_WORKSPACE_F64_WORDS,
+    UwmlBaseMotionF32, UwmlBaseMotionF64, UwmlBaseWrenchF32, UwmlBaseWrenchF64, UwmlBodyF32, UwmlBodyF64,
+    UwmlCurrentF32, UwmlCurrentF64, UwmlDriveParamsF32, UwmlDriveParamsF64, UwmlJointEnvironmentF32,
+    UwmlJointEnvironmentF64, UwmlJointForcesF32, UwmlJointForcesF64, UwmlJointLossParamsF32, UwmlJointLossParamsF64,
+    UwmlOilParamsF32, UwmlOilParamsF64, UwmlRobotF32, UwmlRobotF64, UwmlRobotSegmentF32, UwmlRobotSegmentF64,
+    UwmlSealParamsF32, UwmlSealParamsF64, UwmlTreeJointF32, UwmlTreeJointF64, UwmlWorkspaceF32, UwmlWorkspaceF64,
+    uwml_robot_new_f32, uwml_robot_new_f64, uwml_robot_workspace_init_f32, uwml_robot_workspace_init_f64,
 };
 
 pub const J: usize = 16;
@@ -357,46 +358,49 @@ pub fn losses32(p: &UwmlJointLossParamsF64) -> UwmlJointLossParamsF32 {
     }
 }
 
-/// The paper's leg as C would give it (what `uwml_robot_paper_*` holds): 3 revolute joints in a chain, rectangular segments with
-/// Cd 2.2, Cm 0.5, no base body.
+/// The paper's leg as C would give it (what `uwml_robot_paper_leg_*` holds: the core's preset,
+/// `presets::paper_leg`): 3 revolute joints in a chain, rectangular segments with Cd 2.2, Cm 0.5,
+/// no base body.
 pub fn paper() -> Params {
-    let chain = Chain::<f64, 3>::paper();
-    let coefficients = Coefficients::<f64, 3>::default();
-    let joints = chain
+    let leg = presets::paper_leg::<f64>();
+    let index = |i: Option<usize>| i.map_or(UWML_BASE, |i| i32::try_from(i).unwrap());
+    let joints = leg
         .joints()
         .iter()
-        .enumerate()
-        .map(|(i, j)| UwmlTreeJointF64 {
-            parent: i32::try_from(i).unwrap() - 1,
+        .map(|j| UwmlTreeJointF64 {
+            parent: index(j.parent),
             kind: UWML_JOINT_REVOLUTE,
             origin: j.origin.into(),
             axis: j.axis.into(),
         })
         .collect();
-    let links = chain.links().iter().map(|l| UwmlBodyF64 {
+    let links = leg.links().iter().map(|l| UwmlBodyF64 {
         mass: l.mass,
         com: l.com.into(),
         volume: l.volume,
         cob: l.cob.into(),
     });
-    let segments = chain
-        .links()
+    let segments = leg
+        .segments()
         .iter()
-        .enumerate()
-        .filter_map(|(i, l)| {
-            l.segment.map(|s| UwmlRobotSegmentF64 {
-                owner: i32::try_from(i).unwrap(),
+        .map(|s| {
+            let Section::Rectangular { normals, widths } = s.section else {
+                panic!("the paper's segments are rectangular")
+            };
+            let Owner::Link(owner) = s.owner else { panic!("on links") };
+            UwmlRobotSegmentF64 {
+                owner: index(Some(owner)),
                 section: UWML_SECTION_RECTANGULAR,
                 start: s.start.into(),
                 axis: s.axis.into(),
                 length: s.length,
                 area: s.area,
-                normals: s.normals.map(Into::into),
-                widths: s.widths,
-                cd: coefficients.cd()[i],
-                cm: coefficients.cm()[i],
+                normals: normals.map(Into::into),
+                widths,
+                cd: s.cd,
+                cm: s.cm,
                 ..Default::default()
-            })
+            }
         })
         .collect();
     Params { joints, links: links.collect(), base: None, segments }
@@ -650,6 +654,22 @@ pub fn zeroed64() -> Box<UwmlRobotF64> {
 
 pub fn zeroed32() -> Box<UwmlRobotF32> {
     Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
+}
+
+/// A workspace written by the library, for any robot's evaluation in f64.
+pub fn workspace64() -> Box<UwmlWorkspaceF64> {
+    let mut workspace = Box::new(UwmlWorkspaceF64 { opaque_tag: 0, opaque: [0; UWML_WORKSPACE_F64_WORDS] });
+    // SAFETY: a live, writable workspace.
+    assert_eq!(unsafe { uwml_robot_workspace_init_f64(&mut *workspace) }, UWML_OK);
+    workspace
+}
+
+/// A workspace written by the library, in f32.
+pub fn workspace32() -> Box<UwmlWorkspaceF32> {
+    let mut workspace = Box::new(UwmlWorkspaceF32 { opaque_tag: 0, opaque: [0; UWML_WORKSPACE_F32_WORDS] });
+    // SAFETY: a live, writable workspace.
+    assert_eq!(unsafe { uwml_robot_workspace_init_f32(&mut *workspace) }, UWML_OK);
+    workspace
 }
 
 pub fn count(n: usize) -> u32 {

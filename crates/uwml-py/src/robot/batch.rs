@@ -8,7 +8,7 @@ use uwml_core::{AddedMassForm, BaseMotion, Conditions, Current, Water, robot_hyd
 
 use super::inputs::{LaneRow, LossStates, Losses, SampleError, StateRow, Surroundings, write_joint_losses};
 use super::{Coefficients, Data, LaneData, LaneModel, Model};
-use crate::batch::Lanes;
+use crate::arrays::Lanes;
 
 /// Evaluates samples `range` into `out`, four per evaluation (one per SIMD lane; a last group
 /// of fewer repeats its first sample in the lanes left over): 4 joint arrays `n`-wide, 4 base

@@ -12,7 +12,7 @@ use uwml_core::{BaseMotion, Current, JointLosses, LossState, ModelError};
 use super::MAX_ROBOT_JOINTS;
 use simba::simd::SimdValue;
 
-use crate::batch::Lanes;
+use crate::arrays::Lanes;
 use crate::{contiguous, contiguous1, parse_losses};
 
 /// The first three values (NaN for missing ones) as a vector.

@@ -9,22 +9,28 @@ use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMe
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyType;
+use uwml_core::nalgebra::Vector3;
 use uwml_core::{
     AddedMassForm, Conditions, Owner, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients,
-    robot_added_mass_matrix, robot_jacobians,
+    presets, robot_added_mass_matrix, robot_jacobians,
 };
 
 mod batch;
 mod coupling;
+mod design;
 mod inputs;
+mod kinematics;
 pub(crate) mod one;
 mod rk4;
 mod view;
 
-use crate::batch::Lanes;
-use crate::parts::{BodySpec, JointSpec, SegmentSpec};
+use crate::arrays::Lanes;
+use crate::parts::{BodySpec, JointSpec, RobotParts, SegmentSpec, robot_parts};
 use crate::single::finite_number;
-use crate::{Array2, PyLosses, contiguous, in_parallel, model_error, parse_losses, water, writable, zeroed};
+use crate::{
+    Array2, NonFinite, PyLosses, contiguous, contiguous1, in_parallel, model_error, parse_losses, to_numpy, water,
+    writable, zeroed,
+};
 use batch::{hydro_range, regressor_range};
 pub(crate) use coupling::MujocoCoupling;
 use inputs::{
@@ -113,15 +119,104 @@ impl PyRobot {
         let robot = Model::new(&tree.map_err(model_error)?, &bodies, base.rigid_body(), &pieces.map_err(model_error)?)
             .and_then(|robot| if lumped.is_empty() { Ok(robot) } else { robot.with_lumped(&lumped) })
             .map_err(model_error)?;
-        Ok(Self {
-            coefficient_table: Mutex::new(Box::new(Coefficients::own(&robot))),
-            robot: Box::new(robot),
-            bounds,
-            data: Mutex::new(Box::new(Data::new())),
-            lanes: OnceLock::new(),
-            lane_data: Mutex::new(None),
-            jacobian_data: Mutex::new(None),
-        })
+        Ok(Self::of(robot, bounds))
+    }
+
+    /// The paper's leg (`uwml_core::presets::paper_leg`: Table II, Cd 2.2 and Cm 0.5), its joints
+    /// unbounded for the one-state path (`uwml.Leg.paper` builds its robot from these `parts`).
+    #[staticmethod]
+    fn paper_leg() -> PyResult<Self> {
+        let robot = presets::paper_leg::<f64>().to_capacity().map_err(model_error)?;
+        Ok(Self::of(robot, vec![[f64::INFINITY; 3]; 3]))
+    }
+
+    /// The validated parts (axes and normals as the core made them exact): `(joints, links, base,
+    /// segments)`, each joint `(parent, kind, origin, axis)` (`parent` -1 for the base), each link
+    /// and the base `(mass, com, volume, cob)`, each segment `(owner, start, axis, length, area,
+    /// section, normals, widths, diameter, cd, cm, cd_axial, axial_area)` (`owner` -1 for the
+    /// base; `normals`, `widths` None for a circular section, `diameter` None for a rectangular
+    /// one). The lumped models are not among them.
+    fn parts<'py>(&self, py: Python<'py>) -> PyResult<RobotParts<'py>> {
+        robot_parts(py, &self.robot)
+    }
+
+    /// World positions `(n_samples, 3)` and geometric Jacobians `(n_samples, 6, N)` (rows 0-2
+    /// linear, 3-5 angular; zero columns for the joints that do not carry the link) of `point`,
+    /// given in link `link`'s frame, at the joint positions `q` `(n_samples, N)`, the base fixed
+    /// and upright (`uwml_core::forward_kinematics`, `point_jacobian`).
+    fn point_jacobian<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        link: i64,
+        point: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<(Array2<'py>, Bound<'py, numpy::PyArray<f64, numpy::Ix3>>)> {
+        let n = self.robot.joint_count();
+        let n_samples = q.shape().first().copied().unwrap_or(0);
+        if q.shape().get(1) != Some(&n) {
+            return Err(PyValueError::new_err(format!("q must have shape (n_samples, {n}), got {:?}", q.shape())));
+        }
+        let link = usize::try_from(link).ok().filter(|&l| l < n).ok_or_else(|| {
+            PyValueError::new_err(format!("link must be in 0..{n} (one of the {n} links), got {link}"))
+        })?;
+        let point = contiguous1(&point, "point", 3)?;
+        if !point.iter().all(|v| v.is_finite()) {
+            return Err(PyValueError::new_err(format!("point must be finite, got {point:?}")));
+        }
+        let point = Vector3::from_column_slice(point);
+        let q = contiguous(&q, "q")?;
+        let robot = &*self.robot;
+        let (positions, jacobians) = py.detach(|| kinematics::jacobian_batch(robot, q, link, &point))?;
+        Ok((to_numpy(py, positions, (n_samples, 3))?, to_numpy(py, jacobians, (n_samples, 6, n))?))
+    }
+
+    /// The identification problem of the joints `joints` in one pass (a leg's fit, docs/model.md
+    /// section 4): `(len(joints), n_samples, P + 1)`, each row the regressors of one joint's force
+    /// (Cd columns then Cm columns; `per`: "leg" P = 2, "link" P = 2N, "direction" P = 4N,
+    /// link-major then direction, each segment's columns given to the link that carries it) and,
+    /// last, the target `−delta − buoyancy`; `delta` `(n_samples, N)` is `τ_water − τ_land`. A
+    /// fixed base in still water.
+    #[allow(clippy::too_many_arguments)]
+    fn hydro_design<'py>(
+        &self,
+        py: Python<'py>,
+        q: PyReadonlyArray2<'py, f64>,
+        qd: PyReadonlyArray2<'py, f64>,
+        qdd: PyReadonlyArray2<'py, f64>,
+        delta: PyReadonlyArray2<'py, f64>,
+        density: f64,
+        gravity: f64,
+        joints: Vec<usize>,
+        per: &str,
+    ) -> PyResult<Bound<'py, numpy::PyArray<f64, numpy::Ix3>>> {
+        let n = self.robot.joint_count();
+        let per = design::Per::parse(per)?;
+        if let Some(bad) = joints.iter().find(|&&j| j >= n) {
+            return Err(PyValueError::new_err(format!(
+                "joints must be indices in 0..{}, got {bad}",
+                n.saturating_sub(1)
+            )));
+        }
+        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
+        if delta.shape() != q.shape() {
+            return Err(PyValueError::new_err(format!(
+                "delta must have shape (n_samples, {n}) like q, got {:?} (q: {:?})",
+                delta.shape(),
+                q.shape()
+            )));
+        }
+        let water = water(density, gravity)?;
+        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
+        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
+        let delta = contiguous(&delta, "delta")?;
+        if let Some(index) = delta.iter().position(|v| !v.is_finite()) {
+            let value = delta.get(index).copied().unwrap_or(f64::NAN);
+            let (sample, joint) = (index / n.max(1), index % n.max(1));
+            return Err(NonFinite { argument: "delta", sample, joint, value }.into());
+        }
+        let robot = &**self.lanes.get_or_init(|| Box::new(self.robot.splat()));
+        let design = py.detach(|| design::design(robot, &water, states, delta, &joints, per));
+        to_numpy(py, design, (joints.len(), n_samples, per.columns(n) + 1))
     }
 
     /// Number of joints.
@@ -566,6 +661,19 @@ impl PyRobot {
 }
 
 impl PyRobot {
+    /// The binding of a validated robot whose joints have the plausible `bounds`.
+    fn of(robot: Model, bounds: Vec<one::Bounds>) -> Self {
+        Self {
+            coefficient_table: Mutex::new(Box::new(robot.coefficients())),
+            robot: Box::new(robot),
+            bounds,
+            data: Mutex::new(Box::new(Data::new())),
+            lanes: OnceLock::new(),
+            lane_data: Mutex::new(None),
+            jacobian_data: Mutex::new(None),
+        }
+    }
+
     /// The kept workspace for a one-state call made with the GIL held, or a new one if another
     /// thread is using it: a thread holding the GIL never waits for a lock (no deadlock with a
     /// detached batch, none when the result's construction runs Python that calls back in).
@@ -575,7 +683,7 @@ impl PyRobot {
 
     /// The kept coefficient table, or a new one while another thread holds it.
     fn coefficient_workspace(&self) -> Workspace<'_, Coefficients> {
-        Workspace::of(&self.coefficient_table, || Box::new(Coefficients::own(&self.robot)))
+        Workspace::of(&self.coefficient_table, || Box::new(self.robot.coefficients()))
     }
 
     /// Per-segment coefficients `(S, 2)`, or `None` for `(0, 2)` (the segments' own).

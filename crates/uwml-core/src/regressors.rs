@@ -1,12 +1,14 @@
 //! The regressors of a whole robot's drag and added-mass forces (docs/model.md sections 4, 10
-//! and 12), by the evaluation of `crate::tree`.
+//! and 12), by the evaluation of `crate::hydro`.
 
 use crate::conditions::Conditions;
+use crate::hydro::{RobotData, finite_lanes, hydro_in, used};
 use crate::lumped::LUMPED_COLUMNS;
+use crate::model::Robot;
+use crate::parts::{JointKind, Owner};
 use crate::real::Real;
-use crate::robot::{JointKind, Owner, Robot, SegmentCoefficients};
+use crate::segment_coefficients::SegmentCoefficients;
 use crate::segment_forces::{axial_drag, segment_wrenches};
-use crate::tree::{RobotData, finite_lanes, hydro_in, used};
 use crate::wrench::Wrench;
 
 /// Regressors of the drag and added-mass forces (docs/model.md sections 4, 10 and 12): with
