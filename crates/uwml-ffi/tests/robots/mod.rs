@@ -25,6 +25,11 @@ use uwml_ffi::{
     uwml_robot_new_f32, uwml_robot_new_f64, uwml_robot_workspace_init_f32, uwml_robot_workspace_init_f64,
 };
 
+mod c_api;
+mod single;
+pub use c_api::*;
+pub use single::*;
+
 pub const J: usize = 16;
 pub const S: usize = 32;
 
@@ -173,6 +178,20 @@ pub const ARM_STATE: [[f64; 6]; 3] =
     [[0.4, -0.7, 1.1, 0.12, -0.5, 0.3], [0.5, -0.3, 0.8, 0.1, 1.5, -0.6], [1.0, -0.5, 0.3, 0.2, -2.0, 0.7]];
 
 /// A rotation as a unit quaternion `(w, x, y, z)`.
+/// The arm's states of the tests: the reference state, rest, and one far from both.
+pub fn arm_states() -> Vec<[Vec<f64>; 3]> {
+    let [q, qd, qdd] = ARM_STATE;
+    vec![
+        [q.to_vec(), qd.to_vec(), qdd.to_vec()],
+        [vec![0.0; 6], vec![0.0; 6], vec![0.0; 6]],
+        [
+            vec![-1.3, 0.4, -0.2, -0.05, 2.5, -1.0],
+            vec![-0.2, 1.1, -0.6, -0.3, 0.0, 2.0],
+            vec![0.0, 3.0, -1.0, 0.0, 0.5, -0.4],
+        ],
+    ]
+}
+
 pub fn quaternion(scaled_axis: [f64; 3]) -> [f64; 4] {
     let q = UnitQuaternion::from_scaled_axis(Vector3::from(scaled_axis));
     [q.w, q.i, q.j, q.k]
@@ -330,32 +349,6 @@ pub fn environment32(e: &[(JointForces<f32>, [f32; 4])]) -> Vec<UwmlJointEnviron
             total: *total,
         })
         .collect()
-}
-
-/// The f32 loss parameters, as C would convert them.
-pub fn losses32(p: &UwmlJointLossParamsF64) -> UwmlJointLossParamsF32 {
-    let n = f32::narrow;
-    let (d, o, s) = (&p.drive, &p.oil, &p.seal);
-    UwmlJointLossParamsF32 {
-        drive: UwmlDriveParamsF32 {
-            torque_constant: n(d.torque_constant),
-            ratio: n(d.ratio),
-            efficiency: n(d.efficiency),
-            rated_current: n(d.rated_current),
-        },
-        oil: UwmlOilParamsF32 {
-            k_oil: n(o.k_oil),
-            exponent: n(o.exponent),
-            pressure_sensitivity: n(o.pressure_sensitivity),
-            temperature_sensitivity: n(o.temperature_sensitivity),
-            reference_pressure: n(o.reference_pressure),
-            reference_temperature: n(o.reference_temperature),
-        },
-        seal: UwmlSealParamsF32 { c: s.c.map(n), s: s.s.map(n), d: s.d.map(n), stribeck_speed: n(s.stribeck_speed) },
-        epsilon: n(p.epsilon),
-        has_oil: p.has_oil,
-        has_seal: p.has_seal,
-    }
 }
 
 /// The paper's leg as C would give it (what `uwml_robot_paper_leg_*` holds: the core's preset,
@@ -534,205 +527,4 @@ impl Real for f32 {
     fn narrow(x: f64) -> Self {
         x as f32
     }
-}
-
-fn f3(x: [f64; 3]) -> [f32; 3] {
-    x.map(f32::narrow)
-}
-
-/// The f32 parameters, as C would convert them.
-pub struct Params32 {
-    pub joints: Vec<UwmlTreeJointF32>,
-    pub links: Vec<UwmlBodyF32>,
-    pub base: Option<UwmlBodyF32>,
-    pub segments: Vec<UwmlRobotSegmentF32>,
-}
-
-pub fn body32(b: &UwmlBodyF64) -> UwmlBodyF32 {
-    UwmlBodyF32 { mass: f32::narrow(b.mass), com: f3(b.com), volume: f32::narrow(b.volume), cob: f3(b.cob) }
-}
-
-pub fn params32(p: &Params) -> Params32 {
-    Params32 {
-        joints: p
-            .joints
-            .iter()
-            .map(|j| UwmlTreeJointF32 { parent: j.parent, kind: j.kind, origin: f3(j.origin), axis: f3(j.axis) })
-            .collect(),
-        links: p.links.iter().map(body32).collect(),
-        base: p.base.as_ref().map(body32),
-        segments: p
-            .segments
-            .iter()
-            .map(|s| UwmlRobotSegmentF32 {
-                owner: s.owner,
-                section: s.section,
-                start: f3(s.start),
-                axis: f3(s.axis),
-                length: f32::narrow(s.length),
-                area: f32::narrow(s.area),
-                normals: s.normals.map(f3),
-                widths: s.widths.map(f32::narrow),
-                diameter: f32::narrow(s.diameter),
-                cd: s.cd.map(f32::narrow),
-                cm: s.cm.map(f32::narrow),
-                cd_axial: f32::narrow(s.cd_axial),
-                axial_area: f32::narrow(s.axial_area),
-            })
-            .collect(),
-    }
-}
-
-pub fn motion32(m: &UwmlBaseMotionF64) -> UwmlBaseMotionF32 {
-    UwmlBaseMotionF32 {
-        orientation: m.orientation.map(f32::narrow),
-        velocity: f3(m.velocity),
-        angular_velocity: f3(m.angular_velocity),
-        acceleration: f3(m.acceleration),
-        angular_acceleration: f3(m.angular_acceleration),
-    }
-}
-
-pub fn current32(c: &UwmlCurrentF64) -> UwmlCurrentF32 {
-    UwmlCurrentF32 { velocity: f3(c.velocity), acceleration: f3(c.acceleration) }
-}
-
-/// The core's results in the C API's structs (`total` as the core sums it).
-pub fn forces64(data: &RobotData<f64, J>) -> Vec<UwmlJointForcesF64> {
-    data.joint_forces()
-        .iter()
-        .map(|f| UwmlJointForcesF64 {
-            drag: f.drag,
-            added_mass: f.added_mass,
-            buoyancy: f.buoyancy,
-            gravity: f.gravity,
-            total: f.total(),
-        })
-        .collect()
-}
-
-pub fn wrench64(data: &RobotData<f64, J>) -> UwmlBaseWrenchF64 {
-    let w = data.base_wrench();
-    UwmlBaseWrenchF64 {
-        drag: w.drag.to_array(),
-        added_mass: w.added_mass.to_array(),
-        buoyancy: w.buoyancy.to_array(),
-        gravity: w.gravity.to_array(),
-        total: w.total().to_array(),
-    }
-}
-
-pub fn forces32(data: &RobotData<f32, J>) -> Vec<UwmlJointForcesF32> {
-    data.joint_forces()
-        .iter()
-        .map(|f| UwmlJointForcesF32 {
-            drag: f.drag,
-            added_mass: f.added_mass,
-            buoyancy: f.buoyancy,
-            gravity: f.gravity,
-            total: f.total(),
-        })
-        .collect()
-}
-
-pub fn wrench32(data: &RobotData<f32, J>) -> UwmlBaseWrenchF32 {
-    let w = data.base_wrench();
-    UwmlBaseWrenchF32 {
-        drag: w.drag.to_array(),
-        added_mass: w.added_mass.to_array(),
-        buoyancy: w.buoyancy.to_array(),
-        gravity: w.gravity.to_array(),
-        total: w.total().to_array(),
-    }
-}
-
-// --- building robots through the C API and reading its outputs (robot_api.rs, robot_losses.rs) ---
-
-pub fn zeroed64() -> Box<UwmlRobotF64> {
-    Box::new(UwmlRobotF64 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F64_WORDS] })
-}
-
-pub fn zeroed32() -> Box<UwmlRobotF32> {
-    Box::new(UwmlRobotF32 { opaque_tag: 0, opaque: [0; UWML_ROBOT_F32_WORDS] })
-}
-
-/// A workspace written by the library, for any robot's evaluation in f64.
-pub fn workspace64() -> Box<UwmlWorkspaceF64> {
-    let mut workspace = Box::new(UwmlWorkspaceF64 { opaque_tag: 0, opaque: [0; UWML_WORKSPACE_F64_WORDS] });
-    // SAFETY: a live, writable workspace.
-    assert_eq!(unsafe { uwml_robot_workspace_init_f64(&mut *workspace) }, UWML_OK);
-    workspace
-}
-
-/// A workspace written by the library, in f32.
-pub fn workspace32() -> Box<UwmlWorkspaceF32> {
-    let mut workspace = Box::new(UwmlWorkspaceF32 { opaque_tag: 0, opaque: [0; UWML_WORKSPACE_F32_WORDS] });
-    // SAFETY: a live, writable workspace.
-    assert_eq!(unsafe { uwml_robot_workspace_init_f32(&mut *workspace) }, UWML_OK);
-    workspace
-}
-
-pub fn count(n: usize) -> u32 {
-    u32::try_from(n).unwrap()
-}
-
-pub fn built32(p: &Params) -> Box<UwmlRobotF32> {
-    let p = params32(p);
-    let mut robot = zeroed32();
-    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF32);
-    // SAFETY: live locals; the arrays hold their counts of elements.
-    let code = unsafe {
-        uwml_robot_new_f32(
-            &mut *robot,
-            p.joints.as_ptr(),
-            count(p.joints.len()),
-            p.links.as_ptr(),
-            base,
-            p.segments.as_ptr(),
-            count(p.segments.len()),
-            DENSITY as f32,
-            GRAVITY as f32,
-            null_mut(),
-        )
-    };
-    assert_eq!(code, UWML_OK);
-    robot
-}
-
-pub const WRENCH_SENTINEL64: UwmlBaseWrenchF64 = UwmlBaseWrenchF64 {
-    drag: [-7.0; 6],
-    added_mass: [-7.0; 6],
-    buoyancy: [-7.0; 6],
-    gravity: [-7.0; 6],
-    total: [-7.0; 6],
-};
-
-pub fn wrench_bits64(w: &UwmlBaseWrenchF64) -> [[u64; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f64::to_bits))
-}
-
-pub fn wrench_bits32(w: &UwmlBaseWrenchF32) -> [[u32; 6]; 5] {
-    [w.drag, w.added_mass, w.buoyancy, w.gravity, w.total].map(|x| x.map(f32::to_bits))
-}
-
-pub fn built64(p: &Params) -> Box<UwmlRobotF64> {
-    let mut robot = zeroed64();
-    let base = p.base.as_ref().map_or(null(), |b| b as *const UwmlBodyF64);
-    // SAFETY: live locals; the arrays hold their counts of elements.
-    let code = unsafe {
-        uwml_robot_new_f64(
-            &mut *robot,
-            p.joints.as_ptr(),
-            count(p.joints.len()),
-            p.links.as_ptr(),
-            base,
-            p.segments.as_ptr(),
-            count(p.segments.len()),
-            DENSITY,
-            GRAVITY,
-            null_mut(),
-        )
-    };
-    assert_eq!(code, UWML_OK);
-    robot
 }
