@@ -1,7 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code, missing_docs)]
 
-use uwml_core::nalgebra::{SVector, SimdRealField, Vector3};
+use uwml_core::nalgebra::{Matrix6, SVector, SimdRealField, Vector3, Vector6};
 use uwml_core::{
     Conditions, JointForces, JointKind, Owner, Real, RigidBody, Robot, RobotData, RobotSegment, Section,
     SegmentCoefficients, TreeJoint, Water, robot_hydro,
@@ -139,4 +139,14 @@ pub fn hydro<T: Real, const N: usize, const S: usize, const B: usize>(
     qdd: &SVector<T, N>,
 ) -> Forces<T, N> {
     forces(robot, &Conditions { coefficients, ..Conditions::new(*water) }, q, qd, qdd)
+}
+
+/// A random symmetric positive semi-definite matrix, `A Aᵀ` (rank `rank`) at scale `scale`.
+pub fn random_psd(rng: &mut Rng, rank: usize, scale: f64) -> Matrix6<f64> {
+    let mut m = Matrix6::zeros();
+    for _ in 0..rank {
+        let a: Vector6<f64> = rng.vector(scale.sqrt());
+        m += a * a.transpose();
+    }
+    m
 }
