@@ -331,9 +331,9 @@ def test_the_documented_example_hydro_file_reads() -> None:
 
 
 def test_the_readme_own_robot_section_runs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """README "Your own robot, from its URDF": its URDF and hydro file and its Python, run as
-    written, the numbers checked."""
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    """The tour's "Your own robot, from its URDF" (docs/tour.md): its URDF and hydro file and its
+    Python, run as written, the numbers checked."""
+    readme = (Path(__file__).resolve().parents[1] / "docs" / "tour.md").read_text(encoding="utf-8")
     section = readme.split("## Your own robot, from its URDF", 1)[1].split("\n## ", 1)[0]
 
     def block(language: str) -> str:
@@ -344,7 +344,7 @@ def test_the_readme_own_robot_section_runs(tmp_path: Path, monkeypatch: pytest.M
     (tmp_path / "examples" / "my_arm" / "my_arm.hydro.toml").write_text(block("toml"))
     monkeypatch.chdir(tmp_path)
     namespace: dict = {}
-    exec(compile(block("python"), "README.md", "exec"), namespace)  # noqa: S102 - the README's own example
+    exec(compile(block("python"), "docs/tour.md", "exec"), namespace)  # noqa: S102 - the tour's own example
     arm, tau = namespace["arm"], namespace["tau"]
     assert arm.joint_names == ("shoulder", "elbow") and arm.link_names == ("upper_arm", "forearm")
     assert arm.water == uwml.Water(1025.0) and arm.base is not None and arm.base.volume == pytest.approx(0.48, rel=1e-14)

@@ -1,4 +1,4 @@
-"""The package's layout (README, "What is inside"): layers, each a subpackage, importing only from
+"""The package's layout (docs/index.md, "What is inside"): layers, each a subpackage, importing only from
 the layers below; every module in one layer; no module that only re-exports another's names, no
 package that re-exports another package's; no two modules of one name; the numpy reference
 standing alone and, with matplotlib, out of ``import uwml``; short modules; one

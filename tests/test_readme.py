@@ -1,8 +1,8 @@
-"""The README's examples run as written: every Python snippet on its own, in order, in a fresh
-interpreter, in a folder holding the repository's ``examples/``; the command-line block line by
-line after them (it uses the files they and ``examples/my_arm/make_logs.py`` make); the URDF and
-hydro file shown are the example's files. (Its Rust snippet is a doctest of uwml-core; the site's
-pages are ``tests/test_site_snippets.py``'s.)"""
+"""The README's example runs as written, in a fresh interpreter, in a folder holding the
+repository's ``examples/``; so does the tour's own-robot section (``docs/tour.md``, moved there
+from the README): its command-line block line by line after its Python (it uses the files they
+and ``examples/my_arm/make_logs.py`` make), and the URDF and hydro file it shows are the
+example's files. (The site's other checks are ``tests/test_site_snippets.py``'s.)"""
 
 import re
 import shlex
@@ -16,8 +16,10 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 PYTHON = re.findall(r"```python\n(.*?)```", README, re.DOTALL)
+#: The tour's page, which holds the own-robot walk-through that the README held.
+TOUR = (ROOT / "docs" / "tour.md").read_text(encoding="utf-8")
 #: The command-line block of "Your own robot, from its URDF".
-COMMANDS = next(block for block in re.findall(r"```bash\n(.*?)```", README, re.DOTALL) if "make_logs.py" in block)
+COMMANDS = next(block for block in re.findall(r"```bash\n(.*?)```", TOUR, re.DOTALL) if "make_logs.py" in block)
 
 
 @pytest.fixture(scope="module")
@@ -41,9 +43,9 @@ def test_each_python_snippet_runs_on_its_own(index: int, folder: Path) -> None:
 
 def test_the_command_line_block_runs_line_by_line(folder: Path) -> None:
     pytest.importorskip("mujoco")
-    # my_arm.toml: written by the snippet of "Your own robot" (run here first if not yet).
+    # my_arm.toml: written by the tour's snippet of "Your own robot".
     if not (folder / "my_arm.toml").exists():
-        snippet = next(block for block in PYTHON if 'arm.save("my_arm.toml")' in block)
+        snippet = next(block for block in re.findall(r"```python\n(.*?)```", TOUR, re.DOTALL) if 'arm.save("my_arm.toml")' in block)
         assert run([sys.executable, "-c", snippet], folder).returncode == 0
     for line in COMMANDS.strip().splitlines():
         command = line.split("  #")[0].strip()
@@ -60,17 +62,16 @@ def test_the_command_line_block_runs_line_by_line(folder: Path) -> None:
 
 
 def test_the_files_shown_are_the_examples_files() -> None:
-    urdf = re.search(r"```xml\n(<robot name=\"my_arm\">.*?)```", README, re.DOTALL)
-    hydro = re.search(r"```toml\n(# examples/my_arm/my_arm.hydro.toml.*?)```", README, re.DOTALL)
+    urdf = re.search(r"```xml\n(<robot name=\"my_arm\">.*?)```", TOUR, re.DOTALL)
+    hydro = re.search(r"```toml\n(# examples/my_arm/my_arm.hydro.toml.*?)```", TOUR, re.DOTALL)
     assert urdf is not None and hydro is not None
     assert urdf.group(1) == (ROOT / "examples/my_arm/my_arm.urdf").read_text(encoding="utf-8")
     assert hydro.group(1) == (ROOT / "examples/my_arm/my_arm.hydro.toml").read_text(encoding="utf-8")
 
 
-def test_the_study_the_readme_runs_is_a_valid_study() -> None:
+def test_the_examples_study_is_a_valid_study() -> None:
     from uwml import study
 
-    assert "uwml study examples/study.toml" in README
     assert study.load(ROOT / "examples/study.toml").n_runs == 36
 
 

@@ -467,14 +467,14 @@ def test_the_example_arm_on_an_rov_matches_the_reference() -> None:
     np.testing.assert_allclose(still.base.buoyancy[2], 1000.0 * total_volume * 9.81, rtol=1e-14)
 
 
-def test_the_readme_example_of_an_arm_on_a_moving_rov_runs() -> None:
+def test_the_tours_example_of_an_arm_on_a_moving_rov_runs() -> None:
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    readme = (Path(__file__).resolve().parents[1] / "docs" / "tour.md").read_text(encoding="utf-8")
     section = readme.split("## Whole robots", 1)[1]
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
     namespace: dict = {}
-    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the README's own example
+    exec(compile(code, "docs/tour.md", "exec"), namespace)  # noqa: S102 - the tour's own example
     result = namespace["result"]
     assert result.total.shape == (7,) and result.base.total.shape == (6,)
     assert np.all(np.isfinite(result.base.total)) and abs(result.base.total[1]) > 0.0

@@ -277,16 +277,16 @@ def test_the_forward_pass_solves_rigid_plus_environment_on_a_floating_base(file:
     assert np.max(np.abs(env.added_mass)) > 1e-3 * np.max(np.abs(env.total))  # the added mass matters here
 
 
-def test_the_readme_simulation_example_runs(monkeypatch: pytest.MonkeyPatch) -> None:
-    """README "Simulating in water": run as written, from the repository's root (examples/)."""
+def test_the_tours_simulation_example_runs(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The tour's "Simulating in water" (docs/tour.md): run as written, from the repository's root (examples/)."""
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[1]
-    section = (root / "README.md").read_text(encoding="utf-8").split("## Simulating in water", 1)[1]
+    section = (root / "docs" / "tour.md").read_text(encoding="utf-8").split("## Simulating in water", 1)[1]
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
     monkeypatch.chdir(root)
     namespace: dict = {}
-    exec(compile(code, "README.md", "exec"), namespace)  # noqa: S102 - the README's own example
+    exec(compile(code, "docs/tour.md", "exec"), namespace)  # noqa: S102 - the tour's own example
     sim = namespace["sim"]
     assert sim.data.time == pytest.approx(1000 * sim.model.opt.timestep) and sim.depth == 1000.0
     assert np.all(np.isfinite(sim.data.qvel)) and abs(sim.data.qvel[0]) > 1e-3  # the current pushes the hull
