@@ -247,7 +247,7 @@ def test_the_tolerances_are_one_rule_in_the_core_the_model_and_the_reference() -
     from uwml.model import lumped
     from uwml.reference import _inputs
 
-    source = (Path(__file__).resolve().parents[1] / "crates/uwml-core/src/lumped.rs").read_text()
+    source = (Path(__file__).resolve().parents[1] / "crates/uwml-core/src/bounds.rs").read_text()
     core = {name: float(value) for name, value in re.findall(r"pub const (LUMPED_\w+_TOLERANCE): f64 = ([-+.\deE_]+);", source)}
     python = {name: getattr(lumped, name) for name in core}
     reference = {name: getattr(_inputs, f"_{name}") for name in core}
