@@ -1,28 +1,31 @@
-"""Throughput of the batch calls ``Leg.hydro`` and ``Leg.environment`` (with the default losses on
-all three joints) on one and on two threads, against the numpy reference; and of ``Robot.hydro``:
-the paper's leg as a robot (fixed, and on a moving base in a current) and the 7-joint arm of 14
-segments on an ROV of :func:`uwml.robot.examples.arm_on_rov` (moving, in a current); and what the
-checks against a description's joint limits cost (``uwml.plausibility``): the README's arm of
-``examples/my_arm`` from its URDF (velocity and effort limits, ranges) against the same robot
-without its limits, alternately (needs MuJoCo; skipped without it). And what a leg's result alone
-costs, its arrays allocated and written with nothing computed: a robot's (four joint arrays and
-the base wrench's four 6-wide arrays, 36 numbers a state) against the chain path's former one
-(the four joint arrays, 12 numbers a state).
+"""Throughput of the batch evaluations from Python, per state: the paper's leg (``hydro`` on one and
+two threads, ``environment`` with the default losses on all three joints, ``hydro_regressors``,
+on a moving base in a current) and the 7-joint arm of 15 segments on an ROV of
+:func:`uwml.robot.examples.arm_on_rov` (moving, in a current, one and two threads); against the
+numpy reference; and what the checks against a description's joint limits cost
+(``uwml.plausibility``): the arm of ``examples/my_arm`` from its URDF with and without its limits
+(needs MuJoCo; skipped without it).
 
-Run: ``python benches/batch.py [n_states]`` (default 1e6). Prints states per second for each and
-the ratios, measured in this one run (best of 3 for the Rust paths, 1 run of the reference).
+Run: ``python benches/batch.py [n_states] [--against REF] [--rounds K]`` (default 1e6 states).
+Each figure is the best of 3 calls. With ``--against REF`` (a git revision: the commit before a
+change, or the last with the chain path, ``e7430d7^``) the same measurements of the package
+built at ``REF`` (``benches/_against.py``) are taken in the same run, alternately with this
+build's, ``K`` rounds each (default 3), and printed side by side.
 """
+
+from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
 
 import numpy as np
-import uwml
-from uwml import reference
-from uwml.robot.examples import arm_on_rov
+from _against import arm_on_rov, paper_leg, run
 
 
-def best_of(runs: int, call) -> float:
+def best_of(runs: int, call: Callable[[], Any]) -> float:
     best = np.inf
     for _ in range(runs):
         start = time.perf_counter()
@@ -31,16 +34,17 @@ def best_of(runs: int, call) -> float:
     return best
 
 
-def main() -> None:
-    n = int(float(sys.argv[1])) if len(sys.argv) > 1 else 1_000_000
+def evaluations(n: int) -> dict[str, Callable[[], Any]]:
+    """The batch calls measured, on ``n`` states each (every revision's API)."""
+    import uwml
+
     rng = np.random.default_rng(0)
     q = rng.uniform(-np.pi, np.pi, (n, 3))
     qd = rng.uniform(-3, 3, (n, 3))
     qdd = rng.uniform(-10, 10, (n, 3))
-    leg = uwml.Leg.paper()
+    leg, arm = paper_leg(uwml), arm_on_rov()
+    robot = uwml.Robot(leg.joints, leg.links)
     losses = uwml.JointLosses()
-    leg.hydro(q[:10], qd[:10], qdd[:10])
-    robot, arm = uwml.Robot.from_leg(leg), arm_on_rov()
     q7, qd7, qdd7 = (rng.uniform(-1, 1, (n, 7)) * scale for scale in (1.0, 0.5, 2.0))
     quaternion = rng.normal(size=(n, 4))
     motion = uwml.BaseMotion(
@@ -49,50 +53,55 @@ def main() -> None:
         angular_velocity=rng.normal(0, 0.1, (n, 3)),
     )
     current = (0.3, 0.1, 0.0)
-
-    print(f"states: {n:,}")
-    timings = {}
-    for label, call in [
-        ("Leg.hydro, 1 thread", lambda: leg.hydro(q, qd, qdd)),
-        ("Leg.hydro, 2 threads", lambda: leg.hydro(q, qd, qdd, threads=2)),
-        ("Leg.environment (losses), 1 thread", lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses)),
-        (
-            "Leg.environment (losses), 2 threads",
-            lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses, threads=2),
+    return {
+        "paper leg, hydro, 1 thread": lambda: leg.hydro(q, qd, qdd),
+        "paper leg, hydro, 2 threads": lambda: leg.hydro(q, qd, qdd, threads=2),
+        "paper leg, environment (losses), 1 thread": lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses),
+        "paper leg, environment (losses), 2 threads": lambda: leg.environment(
+            q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses, threads=2
         ),
-        ("Leg.hydro_regressors, 1 thread", lambda: leg.hydro_regressors(q, qd, qdd)),
-        ("Robot.hydro, paper leg, fixed", lambda: robot.hydro(q, qd, qdd)),
-        ("Robot.hydro, paper leg, moving, current", lambda: robot.hydro(q, qd, qdd, base_motion=motion, current=current)),
-        ("Robot.hydro, 7-joint arm on ROV", lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current)),
-        ("Robot.hydro, 7-joint arm on ROV, 2 thr.", lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current, threads=2)),
-    ]:
-        t = timings[label] = best_of(3, call)
-        print(f"uwml {label:42s} {t:7.3f} s  {n / t / 1e6:7.2f} M states/s  {t / n * 1e9:7.1f} ns/state")
+        "paper leg, hydro_regressors, 1 thread": lambda: leg.hydro_regressors(q, qd, qdd),
+        "paper leg, moving base, current": lambda: robot.hydro(q, qd, qdd, base_motion=motion, current=current),
+        "7-joint arm on a moving ROV, current, 1 thread": lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current),
+        "7-joint arm on a moving ROV, current, 2 threads": lambda: arm.hydro(q7, qd7, qdd7, base_motion=motion, current=current, threads=2),
+    }
 
-    limits_cost(n, rng)
-    result_cost(n)
 
+def measure(n: int) -> dict[str, float]:
+    """Seconds per state of each evaluation, best of 3 calls."""
+    calls = evaluations(n)
+    for call in calls.values():
+        call()  # warm: the lanes' robot, the conditions
+    return {label: best_of(3, call) / n for label, call in calls.items()}
+
+
+def main() -> None:
+    n = int(float(sys.argv[1])) if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else 1_000_000
+    timings = run(__file__, lambda size: measure(int(float(size))), str(n), "ns per state", 1e9)
+    if timings is None:
+        return
+    print(f"states: {n:,}")
+    for label, t in timings.items():
+        print(f"uwml {label:52s} {t * n:7.3f} s  {1e-6 / t:7.2f} M states/s  {t * 1e9:7.1f} ns/state")
+    limits_cost(n, np.random.default_rng(1))
+    reference_cost(n, timings["paper leg, hydro, 1 thread"])
+
+
+def reference_cost(n: int, one_thread: float) -> None:
+    """The numpy reference on the paper's leg, for scale."""
+    import uwml
+    from uwml import reference
+
+    leg = uwml.paper_leg()
     m = min(n, 200_000)
+    rng = np.random.default_rng(0)
+    q, qd, qdd = (rng.uniform(-3, 3, (m, 3)) for _ in range(3))
     start = time.perf_counter()
-    reference.hydro(leg.joints, leg.links, q[:m], qd[:m], qdd[:m])
-    numpy_time = (time.perf_counter() - start) * n / m
-    print(f"uwml.reference.hydro (numpy){'':15s} {numpy_time:7.3f} s  {n / numpy_time / 1e6:7.2f} M states/s  (timed on {m:,} states)")
-    one, two = timings["Leg.hydro, 1 thread"], timings["Leg.hydro, 2 threads"]
-    print(f"speed-up of Leg.hydro over the numpy reference: {numpy_time / one:.1f}x; 2 threads over 1: {one / two:.2f}x")
-
-
-def result_cost(n: int) -> None:
-    """Allocating and writing a leg's result arrays, with nothing computed (a floor under any
-    batch call that returns them): all of them held at once, as a result holds them."""
-
-    def written(widths: list[int]) -> None:
-        arrays = [np.zeros((n, width)) for width in widths]
-        for array in arrays:
-            array.fill(1.0)
-
-    for label, widths in (("a robot's (joints and base wrench)", [3] * 4 + [6] * 4), ("joints only (the former chain path's)", [3] * 4)):
-        t = best_of(3, lambda widths=widths: written(widths))
-        print(f"a leg's result arrays alone, {label:38s} {t / n * 1e9:7.1f} ns/state")
+    reference.hydro(leg.joints, leg.links, q, qd, qdd)
+    per_state = (time.perf_counter() - start) / m
+    print(
+        f"uwml.reference.hydro (numpy){'':25s} {per_state * 1e9:7.1f} ns/state (on {m:,} states): the core {per_state / one_thread:.0f}x faster"
+    )
 
 
 def limits_cost(n: int, rng: np.random.Generator) -> None:
@@ -105,7 +114,8 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
         return
     import dataclasses
     import functools
-    from pathlib import Path
+
+    import uwml
 
     folder = Path(__file__).resolve().parents[1] / "examples" / "my_arm"
     limited = uwml.Robot.from_urdf(folder / "my_arm.urdf", folder / "my_arm.hydro.toml")
@@ -116,7 +126,7 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
         ("hydro", lambda robot: robot.hydro(q, qd, qdd)),
         ("environment", lambda robot: robot.environment(q, qd, qdd, depth=100.0)),
     ]:
-        times = {"without": [], "with": []}
+        times: dict[str, list[float]] = {"without": [], "with": []}
         for _ in range(3):
             for name, robot in (("without", free), ("with", limited)):
                 times[name].append(best_of(1, functools.partial(call, robot)))

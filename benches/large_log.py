@@ -68,7 +68,7 @@ def fit_settings(n: int) -> None:
     from uwml import fit
     from uwml.paper import synthetic
 
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     start = time.perf_counter()
     rate = 1000.0
     period = uwml.WalkingGait().period
@@ -113,7 +113,7 @@ def _child(kind: str, n: int, path: str) -> None:
     if kind == "write":
         from uwml.paper import synthetic
 
-        leg = uwml.Leg.paper()
+        leg = uwml.paper_leg()
         rate = 1000.0
         log = synthetic.land_water_experiment(leg, cycles=n / rate / uwml.WalkingGait().period + 1.0, rate_hz=rate, seed=1)
         log = uwml.Log(

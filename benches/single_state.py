@@ -1,79 +1,86 @@
 """Cost of one state per call from Python (a controller or a simulator stepping one state at a
-time): ``Leg.hydro`` and ``Leg.environment`` on the paper's leg with 1-D states, default
-coefficients and water, against the batch path's cost per state; and ``Robot.hydro`` (the paper's
-leg as a robot, fixed and on a moving base in a current; the 7-joint arm of
-:func:`uwml.robot.examples.arm_on_rov` on a moving ROV in a current).
+time): the paper's leg (``hydro`` with lists or 1-D arrays, ``environment`` at depth, with one
+``JointLosses``, coefficients per segment) and the 7-joint arm of
+:func:`uwml.robot.examples.arm_on_rov` on a moving ROV in a current, in every coefficient form
+(the segments' own, a number, one per segment, one per segment and direction). Each is called
+with keyword shortcuts, and, where the revision has ``uwml.Conditions``, with the conditions made
+once and passed to every call (what a controller does).
 
-Run: ``python benches/single_state.py [repeats]`` (default 7). Each figure is the best of
-``repeats`` ``timeit`` runs of 20,000 calls (and the median, for the spread); the batch figures
-are the best of ``repeats`` calls on 100,000 states, divided by 100,000.
+Run: ``python benches/single_state.py [repeats] [--against REF] [--rounds K]`` (default 7).
+Each figure is the best of ``repeats`` ``timeit`` runs of 20,000 calls. With ``--against REF``
+the same calls on the package built at the git revision ``REF`` (``benches/_against.py``) are
+timed in the same run, alternately with this build's, ``K`` rounds each (default 3).
 """
 
-import statistics
+from __future__ import annotations
+
 import sys
 import timeit
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
-import uwml
-from uwml.robot.examples import arm_on_rov
+from _against import arm_on_rov, paper_leg, run
 
 CALLS = 20_000
-BATCH = 100_000
 
 
-def per_call(statement, repeats: int) -> tuple[float, float]:
-    """Best and median seconds per call over ``repeats`` runs of ``CALLS`` calls."""
-    runs = timeit.repeat(statement, number=CALLS, repeat=repeats)
-    return min(runs) / CALLS, statistics.median(runs) / CALLS
+def calls() -> dict[str, Callable[[], Any]]:
+    """The one-state calls measured (every revision's API; those with ``uwml.Conditions`` too)."""
+    import uwml
 
-
-def main() -> None:
-    repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 7
-    leg = uwml.Leg.paper()
+    leg, arm = paper_leg(uwml), arm_on_rov()
     losses = uwml.JointLosses()
     q, qd, qdd = [0.3, -0.6, 1.1], [0.8, -1.5, 2.0], [2.0, 4.0, -3.0]
     qa, qda, qdda = np.array(q), np.array(qd), np.array(qdd)
-    cd_per_link = [2.2, 2.2, 2.2]
-    print(f"uwml.Leg.paper(), one state per call; best (median) of {repeats} timeit runs of {CALLS:,} calls")
-    for label, statement in [
-        ("hydro(q, qd, qdd), lists", lambda: leg.hydro(q, qd, qdd)),
-        ("hydro(q, qd, qdd), 1-D arrays", lambda: leg.hydro(qa, qda, qdda)),
-        ("environment(..., depth, temperature_c), lists", lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0)),
-        ("environment(..., depth, temperature_c), 1-D arrays", lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0)),
-        (
-            "environment(..., losses=JointLosses()), 1-D arrays",
-            lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0, losses=losses),
-        ),
-        # Per-link coefficients (the one-state path takes arrays too).
-        ("hydro(q, qd, qdd, cd=[per link])", lambda: leg.hydro(qa, qda, qdda, cd=cd_per_link)),
-        (
-            "environment(..., cd=[per link])",
-            lambda: leg.environment(qa, qda, qdda, depth=1000.0, temperature_c=4.0, cd=cd_per_link),
-        ),
-    ]:
-        best, median = per_call(statement, repeats)
-        print(f"  {label:52s} {best * 1e6:6.2f} µs  ({median * 1e6:.2f})")
-
-    robot, arm = uwml.Robot.from_leg(leg), arm_on_rov()
     motion = uwml.BaseMotion(velocity=(0.5, 0.0, 0.0), angular_velocity=(0.0, 0.02, 0.0))
     q7 = [0.2, 0.4, -0.8, 0.0, 0.3, 0.0, 0.05]
-    for label, statement in [
-        ("Robot.hydro, paper leg, fixed base, lists", lambda: robot.hydro(q, qd, qdd)),
-        ("Robot.hydro, paper leg, moving base, current", lambda: robot.hydro(q, qd, qdd, base_motion=motion, current=(0.2, 0.0, 0.0))),
-        ("Robot.hydro, 7-joint arm, moving ROV, current", lambda: arm.hydro(q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0))),
-    ]:
-        best, median = per_call(statement, repeats)
-        print(f"  {label:52s} {best * 1e6:6.2f} µs  ({median * 1e6:.2f})")
+    s = len(arm.segments)
+    per_segment = [1.1] * s
+    per_direction = [[1.1, 1.1]] * s
+    result: dict[str, Callable[[], Any]] = {
+        "paper leg, hydro, lists": lambda: leg.hydro(q, qd, qdd),
+        "paper leg, hydro, 1-D arrays": lambda: leg.hydro(qa, qda, qdda),
+        "paper leg, hydro, cd=2.0": lambda: leg.hydro(q, qd, qdd, cd=2.0),
+        "paper leg, environment at depth": lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0),
+        "paper leg, environment, one JointLosses": lambda: leg.environment(q, qd, qdd, depth=1000.0, temperature_c=4.0, losses=losses),
+        "paper leg, moving base, current": lambda: leg.hydro(q, qd, qdd, base_motion=motion, current=(0.2, 0.0, 0.0)),
+        "arm on a moving ROV, current": lambda: arm.hydro(q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0)),
+        "arm on a moving ROV, current, cd=1.1": lambda: arm.hydro(q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0), cd=1.1),
+        "arm on a moving ROV, current, cd per segment": lambda: arm.hydro(
+            q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0), cd=per_segment
+        ),
+        "arm on a moving ROV, current, cd per direction": lambda: arm.hydro(
+            q7, q7, q7, base_motion=motion, current=(0.2, 0.0, 0.0), cd=per_direction
+        ),
+    }
+    if hasattr(uwml, "Conditions"):
+        at_depth = uwml.Conditions(depth=1000.0, temperature_c=4.0, losses=losses)
+        moving = uwml.Conditions(base_motion=motion, current=(0.2, 0.0, 0.0))
+        forms = {"": moving, ", cd=1.1": moving.replace(cd=1.1)}
+        forms |= {", cd per segment": moving.replace(cd=per_segment), ", cd per direction": moving.replace(cd=per_direction)}
+        result |= {
+            "paper leg, environment, one JointLosses, Conditions once": lambda: leg.environment(q, qd, qdd, at_depth),
+            "paper leg, moving base, current, Conditions once": lambda: leg.hydro(q, qd, qdd, moving),
+        }
+        for suffix, conditions in forms.items():
+            result[f"arm on a moving ROV, current{suffix}, Conditions once"] = lambda c=conditions: arm.hydro(q7, q7, q7, c)
+    return result
 
-    rng = np.random.default_rng(0)
-    qb, qdb, qddb = rng.uniform(-3.0, 3.0, (3, BATCH, 3))
-    print(f"the batch path, for context: best of {repeats} calls on {BATCH:,} states, per state")
-    for label, statement in [
-        ("hydro, 1 thread", lambda: leg.hydro(qb, qdb, qddb)),
-        ("environment (depth, temperature_c), 1 thread", lambda: leg.environment(qb, qdb, qddb, depth=1000.0, temperature_c=4.0)),
-    ]:
-        best = min(timeit.repeat(statement, number=1, repeat=repeats)) / BATCH
-        print(f"  {label:52s} {best * 1e9:6.0f} ns")
+
+def measure(repeats: int) -> dict[str, float]:
+    """Seconds per call of each, the best of ``repeats`` runs of ``CALLS`` calls."""
+    return {label: min(timeit.repeat(call, number=CALLS, repeat=repeats)) / CALLS for label, call in calls().items()}
+
+
+def main() -> None:
+    repeats = sys.argv[1] if len(sys.argv) > 1 and not sys.argv[1].startswith("-") else "7"
+    timings = run(__file__, lambda size: measure(int(size)), repeats, "µs per call", 1e6)
+    if timings is None:
+        return
+    print(f"one state per call; best of {repeats} timeit runs of {CALLS:,} calls")
+    for label, seconds in timings.items():
+        print(f"  {label:60s} {seconds * 1e6:6.2f} µs")
 
 
 if __name__ == "__main__":

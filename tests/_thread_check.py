@@ -32,7 +32,7 @@ def _arrays(result: Any) -> list[np.ndarray]:
 
 def _evaluations() -> dict[str, Callable[[], Any]]:
     rng = np.random.default_rng(7)
-    leg, arm = uwml.Leg.paper(), arm_on_rov()
+    leg, arm = uwml.paper_leg(), arm_on_rov()
     losses = [None, uwml.JointLosses(), uwml.JointLosses()]
     q, qd, qdd = (rng.uniform(-1, 1, (200, 3)) for _ in range(3))
     aq, aqd, aqdd = (rng.uniform(-1, 1, (200, 7)) for _ in range(3))
@@ -40,15 +40,17 @@ def _evaluations() -> dict[str, Callable[[], Any]]:
     current = (0.2, -0.1, 0.05)
     joint = uwml.JointLosses()
     speeds = rng.uniform(-2, 2, 200)
+    conditions = uwml.Conditions(cd=2.0, current=current)
     return {
-        "Leg.hydro": lambda: leg.hydro(q, qd, qdd),
-        "Leg.hydro one state": lambda: leg.hydro(q[0], qd[0], qdd[0]),
-        "Leg.environment": lambda: leg.environment(q, qd, qdd, depth=3000.0, losses=losses),
-        "Leg.environment one state": lambda: leg.environment(q[0], qd[0], qdd[0], depth=3000.0, losses=losses),
-        "Leg.jacobians": lambda: leg.jacobians(q, qd, qdd, depth=3000.0, losses=losses),
-        "Leg.jacobians kirchhoff": lambda: leg.jacobians(q, qd, qdd, added_mass="kirchhoff"),
-        "Leg.hydro_regressors": lambda: leg.hydro_regressors(q, qd, qdd, per="direction"),
-        "Leg.jacobian": lambda: leg.jacobian(q),
+        "paper leg hydro": lambda: leg.hydro(q, qd, qdd),
+        "paper leg hydro one state": lambda: leg.hydro(q[0], qd[0], qdd[0]),
+        "paper leg hydro, one conditions value": lambda: leg.hydro(q[0], qd[0], qdd[0], conditions),
+        "paper leg environment": lambda: leg.environment(q, qd, qdd, depth=3000.0, losses=losses),
+        "paper leg environment one state": lambda: leg.environment(q[0], qd[0], qdd[0], depth=3000.0, losses=losses),
+        "paper leg jacobians": lambda: leg.jacobians(q, qd, qdd, depth=3000.0, losses=losses),
+        "paper leg jacobians kirchhoff": lambda: leg.jacobians(q, qd, qdd, added_mass="kirchhoff"),
+        "paper leg hydro_regressors": lambda: leg.hydro_regressors(q, qd, qdd),
+        "paper leg point_jacobian": lambda: leg.point_jacobian(q),
         "Robot.hydro": lambda: arm.hydro(aq, aqd, aqdd, base_motion=motion, current=current),
         "Robot.hydro one state": lambda: arm.hydro(aq[0], aqd[0], aqdd[0], current=current),
         "Robot.hydro kirchhoff": lambda: arm.hydro(aq, aqd, aqdd, base_motion=motion, added_mass="kirchhoff"),

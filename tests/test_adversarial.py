@@ -85,34 +85,29 @@ def _call(function: Callable[..., Any], argument: str, kwargs: dict[str, Any]) -
     assert _finite(result), f"{function.__qualname__}({argument}={kwargs[argument]!r}) returned a non-finite number"
 
 
-LEG = uwml.Leg.paper()
-ROBOT = uwml.Robot.from_leg(LEG)
+ROBOT = uwml.paper_leg()
 STATE = {"q": [0.1, 0.2, 0.3], "qd": [0.4, -0.2, 0.1], "qdd": [0.0, 1.0, -1.0]}
 
 # Each entry point, its valid keyword arguments, and the width of each argument fuzzed.
 ENTRY_POINTS: list[tuple[str, Callable[..., Any], dict[str, Any], dict[str, int]]] = [
-    ("Leg.hydro", LEG.hydro, STATE | {"cd": 2.2, "cm": 0.5}, {"q": 3, "qd": 3, "qdd": 3, "cd": 0, "cm": 0}),
-    (
-        "Leg.environment",
-        LEG.environment,
-        STATE | {"depth": 100.0, "temperature_c": 4.0, "losses": uwml.JointLosses()},
-        {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0, "sea_density": 0},
-    ),
-    ("Leg.jacobians", LEG.jacobians, STATE | {"depth": 100.0}, {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0}),
-    ("Leg.hydro_regressors", LEG.hydro_regressors, dict(STATE), {"q": 3, "qd": 3, "qdd": 3}),
     (
         "Robot.hydro",
         ROBOT.hydro,
-        STATE | {"current": (0.1, 0.0, 0.0)},
+        STATE | {"cd": 2.2, "cm": 0.5, "current": (0.1, 0.0, 0.0)},
         {"q": 3, "qd": 3, "qdd": 3, "cd": 0, "cm": 0, "current": 3, "current_acceleration": 3},
     ),
     (
         "Robot.environment",
         ROBOT.environment,
-        STATE | {"depth": 100.0, "temperature_c": 4.0},
+        STATE | {"depth": 100.0, "temperature_c": 4.0, "losses": uwml.JointLosses()},
+        {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0, "sea_density": 0, "current": 3},
+    ),
+    (
+        "Robot.jacobians",
+        ROBOT.jacobians,
+        STATE | {"depth": 100.0},
         {"q": 3, "qd": 3, "qdd": 3, "depth": 0, "temperature_c": 0, "current": 3},
     ),
-    ("Robot.jacobians", ROBOT.jacobians, dict(STATE), {"q": 3, "qd": 3, "qdd": 3, "current": 3}),
     ("Robot.hydro_regressors", ROBOT.hydro_regressors, dict(STATE), {"q": 3, "qd": 3, "qdd": 3, "current": 3}),
     ("Robot.link_wrenches", ROBOT.link_wrenches, dict(STATE), {"q": 3, "qd": 3, "qdd": 3}),
     ("Robot.added_mass_matrix", ROBOT.added_mass_matrix, {"q": [0.1, 0.2, 0.3]}, {"q": 3, "cm": 0}),
@@ -181,7 +176,7 @@ def _arm_with(change: str, value: float) -> uwml.Robot:
     else:
         tube, housing = links[1].segments  # the rectangular housing (a circular one's cd is one number)
         changed = dataclasses.replace(housing, **{name: (0.0, value, 0.0) if name == "start" else value})
-        links[1] = dataclasses.replace(links[1], segment=None, segments=(tube, changed))
+        links[1] = dataclasses.replace(links[1], segments=(tube, changed))
     return uwml.Robot(joints, links, base=base)
 
 

@@ -1,31 +1,27 @@
 """The public Python API of uwml: bad input is rejected with the right exception type and a
-message that names the argument; the paper preset, chains built from Python, the docstring
-example and the command line behave as documented.
+message that names the argument; chains built from Python and single rods give the reference's
+and closed-form strip theory's numbers; ``import uwml`` stays light. (The paper's preset is
+``test_paper_leg.py``'s, the command line's demo ``test_cli_demo.py``'s.)
 
 Expected numbers come from the numpy reference (``uwml.reference``), from docs/model.md (typed
 here), or from closed-form strip theory worked out in the docstrings below.
 """
 
 import math
-import os
 import re
-import shutil
 import subprocess
 import sys
-import textwrap
-from pathlib import Path
 
 import numpy as np
 import pytest
 import uwml
 import uwml.cli
 from uwml import reference as ref
-from uwml.paper.analysis import gait_like_motion
 
 RHO, G = 1000.0, 9.81
 RHO_M = 2700.0
 
-PAPER = uwml.Leg.paper()
+PAPER = uwml.paper_leg()
 M = 4  # samples in the good batch
 GOOD = {"q": np.zeros((M, 3)), "qd": np.full((M, 3), 0.5), "qdd": np.ones((M, 3))}
 
@@ -82,14 +78,14 @@ BAD_STATES = [
 
 
 @pytest.mark.parametrize("override, error, match", BAD_STATES)
-@pytest.mark.parametrize("entry", ["hydro", "hydro_regressors leg", "hydro_regressors direction"])
+@pytest.mark.parametrize("entry", ["hydro", "hydro_regressors"])
 def test_bad_states_are_rejected(entry: str, override: dict, error: type, match: str) -> None:
     state = {**GOOD, **override}
     with pytest.raises(error, match=match):
         if entry == "hydro":
             PAPER.hydro(**state)
         else:
-            PAPER.hydro_regressors(**state, per=entry.split()[1])
+            PAPER.hydro_regressors(**state)
 
 
 def test_non_finite_index_names_the_first_bad_entry_of_a_large_batch() -> None:
@@ -99,7 +95,7 @@ def test_non_finite_index_names_the_first_bad_entry_of_a_large_batch() -> None:
     qd[900, 0] = math.inf
     with pytest.raises(ValueError, match=r"(?<!\w)qd\[617, 2\]"):
         PAPER.hydro(q, qd, qdd)
-    chain = uwml.Leg([uwml.Joint(origin=(0, 0, 0), axis=(0, 0, 1))] * 5, [uwml.Link(mass=1.0, com=(0.1, 0, 0), volume=0.001)] * 5)
+    chain = uwml.Robot([uwml.Joint(origin=(0, 0, 0), axis=(0, 0, 1))] * 5, [uwml.Link(mass=1.0, com=(0.1, 0, 0), volume=0.001)] * 5)
     q5 = np.zeros((10, 5))
     q5[7, 4] = -math.inf
     with pytest.raises(ValueError, match=r"(?<!\w)q\[7, 4\]"):
@@ -107,24 +103,24 @@ def test_non_finite_index_names_the_first_bad_entry_of_a_large_batch() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# Coefficients, water, per
+# Coefficients (the paper's leg has two segments)
 # --------------------------------------------------------------------------------------------
 
 BAD_COEFFICIENTS = [
     pytest.param(-1.0, ValueError, id="negative"),
     pytest.param(math.nan, ValueError, id="NaN"),
     pytest.param(math.inf, ValueError, id="inf"),
-    pytest.param(np.ones(2), ValueError, id="2 per link for 3 links"),
-    pytest.param(np.ones(4), ValueError, id="4 per link for 3 links"),
-    pytest.param(np.ones((3, 3)), ValueError, id="(3, 3)"),
-    pytest.param(np.ones((2, 3)), ValueError, id="(2, 3) transposed"),
-    pytest.param(np.ones((1, 3, 2)), ValueError, id="3-D"),
-    pytest.param(np.array([[1.0, 2.0], [1.0, -0.1], [1.0, 2.0]]), ValueError, id="one negative entry"),
-    pytest.param(np.array([1.0, math.nan, 1.0]), ValueError, id="NaN per link"),
+    pytest.param(np.ones(1), ValueError, id="1 per segment for 2 segments"),
+    pytest.param(np.ones(3), ValueError, id="3 per segment for 2 segments"),
+    pytest.param(np.ones((2, 3)), ValueError, id="(2, 3)"),
+    pytest.param(np.ones((3, 2)), ValueError, id="(3, 2)"),
+    pytest.param(np.ones((1, 2, 2)), ValueError, id="3-D"),
+    pytest.param(np.array([[1.0, 2.0], [1.0, -0.1]]), ValueError, id="one negative entry"),
+    pytest.param(np.array([1.0, math.nan]), ValueError, id="NaN per segment"),
     pytest.param("big", TypeError, id="string"),
     pytest.param(1.0 + 1.0j, TypeError, id="complex"),
     pytest.param([object()] * 3, TypeError, id="objects"),
-    pytest.param([[1.0, 2.0], [1.0], [1.0, 2.0]], (TypeError, ValueError), id="ragged"),
+    pytest.param([[1.0, 2.0], [1.0]], (TypeError, ValueError), id="ragged"),
 ]
 
 
@@ -139,73 +135,13 @@ def test_bad_coefficients_are_rejected_by_hydro(name: str, value: object, error:
 @pytest.mark.parametrize("value, error", BAD_COEFFICIENTS)
 @pytest.mark.parametrize("name", ["cd", "cm"])
 def test_bad_coefficients_are_rejected_by_regressor_torques(name: str, value: object, error: type) -> None:
-    regressors = PAPER.hydro_regressors(**GOOD, per="direction")
+    regressors = PAPER.hydro_regressors(**GOOD)
     with pytest.raises(error, match=argument(name)):
-        regressors.torques(**{name: value})
-
-
-@pytest.mark.parametrize("name", ["cd", "cm"])
-def test_per_link_coefficients_need_per_direction_regressors(name: str) -> None:
-    """Per-link or per-direction coefficients cannot be applied to per-leg regressors; the
-    message should say which argument was per-link."""
-    regressors = PAPER.hydro_regressors(**GOOD, per="leg")
-    for value in ([1.0, 2.0, 3.0], np.ones((3, 2)) * [1.0, 2.0]):
-        with pytest.raises(ValueError, match=argument(name)):
-            regressors.torques(**{name: value})
-    # The same value everywhere is a single coefficient, whatever its layout.
-    same = regressors.torques(**{name: np.full((3, 2), 0.7)})
-    single = regressors.torques(**{name: 0.7})
-    np.testing.assert_array_equal(same.total, single.total)
-
-
-BAD_WATER = [
-    pytest.param({"density": 0.0}, ValueError, "water.density", id="density 0"),
-    pytest.param({"density": -1000.0}, ValueError, "water.density", id="density negative"),
-    pytest.param({"density": math.nan}, ValueError, "water.density", id="density NaN"),
-    pytest.param({"density": math.inf}, ValueError, "water.density", id="density inf"),
-    pytest.param({"density": "salty"}, TypeError, "water.density", id="density string"),
-    pytest.param({"density": None}, TypeError, "water.density", id="density None"),
-    pytest.param({"gravity": -9.81}, ValueError, "water.gravity", id="gravity negative"),
-    pytest.param({"gravity": math.nan}, ValueError, "water.gravity", id="gravity NaN"),
-    pytest.param({"gravity": -math.inf}, ValueError, "water.gravity", id="gravity -inf"),
-    pytest.param({"gravity": [9.81]}, TypeError, "water.gravity", id="gravity list"),
-]
-
-
-@pytest.mark.parametrize("kwargs, error, name", BAD_WATER)
-def test_bad_water_is_rejected(kwargs: dict, error: type, name: str) -> None:
-    with pytest.raises(error, match=argument(name)):
-        uwml.Water(**kwargs)
-
-
-@pytest.mark.parametrize("water", [1000.0, {"density": 1000.0, "gravity": 9.81}, (1000.0, 9.81)], ids=["float", "dict", "tuple"])
-def test_water_must_be_a_water_object(water: object) -> None:
-    """(``None`` is the leg's own water, as for every robot.)"""
-    with pytest.raises(TypeError, match=argument("water")):
-        PAPER.hydro(**GOOD, water=water)
-    with pytest.raises(TypeError, match=argument("water")):
-        PAPER.hydro_regressors(**GOOD, water=water)
-
-
-def test_water_defaults_and_zero_gravity() -> None:
-    water = uwml.Water()
-    assert (water.density, water.gravity) == (1000.0, 9.81)
-    weightless = PAPER.hydro(**GOOD, water=uwml.Water(gravity=0.0))
-    assert np.all(weightless.buoyancy == 0.0) and np.all(weightless.gravity == 0.0)
-
-
-@pytest.mark.parametrize("per", ["link", "", "LEG", "directions", None, 1])
-def test_bad_per_is_rejected(per: object) -> None:
-    with pytest.raises(ValueError, match=argument("per")):
-        PAPER.hydro_regressors(**GOOD, per=per)
-
-
-def test_model_error_is_a_value_error() -> None:
-    assert issubclass(uwml.ModelError, ValueError)
+        regressors.torques(**{"cd": 1.0, "cm": 1.0, name: value})
 
 
 # --------------------------------------------------------------------------------------------
-# Joint, Segment, Link, Leg
+# Joint, Segment, Link, Robot
 # --------------------------------------------------------------------------------------------
 
 SEGMENT = {
@@ -277,6 +213,46 @@ def test_bad_segment_is_rejected(kwargs: dict, error: type, name: str) -> None:
         uwml.Segment(**{**SEGMENT, **kwargs})
 
 
+BAD_WATER = [
+    pytest.param({"density": 0.0}, ValueError, "water.density", id="density 0"),
+    pytest.param({"density": -1000.0}, ValueError, "water.density", id="density negative"),
+    pytest.param({"density": math.nan}, ValueError, "water.density", id="density NaN"),
+    pytest.param({"density": math.inf}, ValueError, "water.density", id="density inf"),
+    pytest.param({"density": "salty"}, TypeError, "water.density", id="density string"),
+    pytest.param({"density": None}, TypeError, "water.density", id="density None"),
+    pytest.param({"gravity": -9.81}, ValueError, "water.gravity", id="gravity negative"),
+    pytest.param({"gravity": math.nan}, ValueError, "water.gravity", id="gravity NaN"),
+    pytest.param({"gravity": -math.inf}, ValueError, "water.gravity", id="gravity -inf"),
+    pytest.param({"gravity": [9.81]}, TypeError, "water.gravity", id="gravity list"),
+]
+
+
+@pytest.mark.parametrize("kwargs, error, name", BAD_WATER)
+def test_bad_water_is_rejected(kwargs: dict, error: type, name: str) -> None:
+    with pytest.raises(error, match=argument(name)):
+        uwml.Water(**kwargs)
+
+
+@pytest.mark.parametrize("water", [1000.0, {"density": 1000.0, "gravity": 9.81}, (1000.0, 9.81)], ids=["float", "dict", "tuple"])
+def test_water_must_be_a_water_object(water: object) -> None:
+    """(``None`` is the robot's own water.)"""
+    with pytest.raises(TypeError, match=argument("water")):
+        PAPER.hydro(**GOOD, water=water)
+    with pytest.raises(TypeError, match=argument("water")):
+        PAPER.hydro_regressors(**GOOD, water=water)
+
+
+def test_water_defaults_and_zero_gravity() -> None:
+    water = uwml.Water()
+    assert (water.density, water.gravity) == (1000.0, 9.81)
+    weightless = PAPER.hydro(**GOOD, water=uwml.Water(gravity=0.0))
+    assert np.all(weightless.buoyancy == 0.0) and np.all(weightless.gravity == 0.0)
+
+
+def test_model_error_is_a_value_error() -> None:
+    assert issubclass(uwml.ModelError, ValueError)
+
+
 BAD_LINKS = [
     pytest.param({"mass": -1.0}, ValueError, "link.mass", id="mass negative"),
     pytest.param({"mass": math.nan}, ValueError, "link.mass", id="mass NaN"),
@@ -288,8 +264,9 @@ BAD_LINKS = [
     pytest.param({"com": (0.5, math.nan, 0.0)}, ValueError, "link.com", id="com NaN"),
     pytest.param({"cob": (0.5, 0.0, math.inf)}, ValueError, "link.cob", id="cob inf"),
     pytest.param({"cob": (0.5, 0.0, 0.0, 1.0)}, ValueError, "link.cob", id="cob 4 components"),
-    pytest.param({"segment": "rod"}, TypeError, "link.segment", id="segment string"),
-    pytest.param({"segment": SEGMENT}, TypeError, "link.segment", id="segment dict"),
+    pytest.param({"segments": "rod"}, TypeError, "link.segments[0]", id="segments string"),
+    pytest.param({"segments": [SEGMENT]}, TypeError, "link.segments[0]", id="segments dict"),
+    pytest.param({"segments": 5}, TypeError, "link.segments", id="segments int"),
 ]
 
 
@@ -304,15 +281,19 @@ def _joint() -> uwml.Joint:
 
 
 def _link() -> uwml.Link:
-    return uwml.Link(**LINK, segment=uwml.Segment(**SEGMENT))
+    return uwml.Link(**LINK, segments=(uwml.Segment(**SEGMENT),))
 
 
-BAD_LEGS = [
+BAD_ROBOTS = [
     pytest.param([_joint()] * 3, [_link()] * 2, ValueError, r"joints.*links|links.*joints", id="3 joints 2 links"),
     pytest.param([_joint()] * 1, [_link()] * 2, ValueError, r"joints.*links|links.*joints", id="1 joint 2 links"),
     pytest.param([], [], ValueError, argument("joints"), id="no joints"),
     pytest.param(
-        [_joint()] * (uwml.MAX_JOINTS + 1), [_link()] * (uwml.MAX_JOINTS + 1), ValueError, str(uwml.MAX_JOINTS), id="too many joints"
+        [_joint()] * (uwml.MAX_ROBOT_JOINTS + 1),
+        [_link()] * (uwml.MAX_ROBOT_JOINTS + 1),
+        ValueError,
+        str(uwml.MAX_ROBOT_JOINTS),
+        id="too many joints",
     ),
     pytest.param([_joint(), "joint"], [_link()] * 2, TypeError, argument("joints"), id="string joint"),
     pytest.param([_link()], [_link()], TypeError, argument("joints"), id="link as joint"),
@@ -324,15 +305,15 @@ BAD_LEGS = [
 ]
 
 
-@pytest.mark.parametrize("joints, links, error, match", BAD_LEGS)
-def test_bad_leg_is_rejected(joints: object, links: object, error: type, match: str) -> None:
+@pytest.mark.parametrize("joints, links, error, match", BAD_ROBOTS)
+def test_bad_robot_is_rejected(joints: object, links: object, error: type, match: str) -> None:
     with pytest.raises(error, match=match):
-        uwml.Leg(joints, links)
+        uwml.Robot(joints, links)
 
 
-def test_leg_of_max_joints_works() -> None:
-    n = uwml.MAX_JOINTS
-    leg = uwml.Leg([_joint()] * n, [_link()] * n)
+def test_a_chain_of_max_joints_works() -> None:
+    n = uwml.MAX_ROBOT_JOINTS
+    leg = uwml.Robot([_joint()] * n, [_link()] * n)
     assert leg.n_joints == n
     rng = np.random.default_rng(0)
     q, qd, qdd = rng.normal(size=(3, 20, n))
@@ -343,52 +324,8 @@ def test_leg_of_max_joints_works() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# The paper preset, round trips, chains built from Python
+# Chains built from Python
 # --------------------------------------------------------------------------------------------
-
-
-def test_paper_leg_is_table_ii() -> None:
-    """Typed from docs/model.md section 2."""
-    leg = uwml.Leg.paper()
-    assert leg.n_joints == 3 and len(leg.joints) == len(leg.links) == 3
-    assert repr(leg) == "Leg(n_joints=3)"
-    assert all(isinstance(j, uwml.Joint) for j in leg.joints) and all(isinstance(link, uwml.Link) for link in leg.links)
-    hip_yaw, hip_roll, knee = leg.joints
-    assert hip_yaw.axis == (0.0, 0.0, 1.0) and hip_yaw.origin == (0.0, 0.0, 0.0)
-    assert hip_roll.axis == (0.0, -1.0, 0.0) and hip_roll.origin == (0.0, 0.0, 0.0)  # L1 = 0, about −e_t
-    assert knee.axis == (0.0, -1.0, 0.0) and knee.origin == pytest.approx((0.660, 0.0, 0.0), abs=1e-15)
-    base, thigh, calf = leg.links
-    assert [link.mass for link in leg.links] == pytest.approx([10.758, 19.261, 10.375], rel=1e-15)
-    assert [link.volume for link in leg.links] == pytest.approx([10.758 / RHO_M, 19.261 / RHO_M, 10.375 / RHO_M], rel=1e-14)
-    assert base.segment is None and base.com == (0.0, 0.0, 0.0)
-    assert thigh.com == pytest.approx((0.506, 0.0, 0.0), abs=1e-15) and thigh.cob == thigh.com
-    assert calf.com == pytest.approx((0.0, 0.0, -0.560), abs=1e-15) and calf.cob == calf.com
-    for link, length, axis, widths, in_plane in (
-        (thigh, 0.660, (1.0, 0.0, 0.0), (0.131, 0.238), (0.0, 0.0, 1.0)),
-        (calf, 0.714, (0.0, 0.0, -1.0), (0.131, 0.279), (1.0, 0.0, 0.0)),
-    ):
-        s = link.segment
-        assert s.start == (0.0, 0.0, 0.0) and s.axis == axis
-        assert s.length == pytest.approx(length, rel=1e-15)
-        assert s.widths == pytest.approx(widths, rel=1e-15)
-        assert s.area == pytest.approx(widths[0] * widths[1], rel=1e-14)
-        # Column 0 is out of the leg plane (±y, width D_i1), column 1 in the plane (width D_i2).
-        assert np.abs(s.normals[0]) == pytest.approx((0.0, 1.0, 0.0), abs=1e-15)
-        assert np.abs(s.normals[1]) == pytest.approx(in_plane, abs=1e-15)
-
-
-def test_paper_leg_round_trip_gives_identical_torques() -> None:
-    rebuilt = uwml.Leg(PAPER.joints, PAPER.links)
-    assert rebuilt.joints == PAPER.joints and rebuilt.links == PAPER.links
-    rng = np.random.default_rng(1)
-    q, qd, qdd = rng.uniform(-3.0, 3.0, (3, 500, 3))
-    for cd, cm in ((2.2, 0.5), (rng.uniform(1, 3, 3), rng.uniform(0, 1, 3)), (rng.uniform(1, 3, (3, 2)), rng.uniform(0, 1, (3, 2)))):
-        a, b = PAPER.hydro(q, qd, qdd, cd=cd, cm=cm), rebuilt.hydro(q, qd, qdd, cd=cd, cm=cm)
-        for key in ("drag", "added_mass", "buoyancy", "gravity", "total"):
-            np.testing.assert_array_equal(getattr(a, key), getattr(b, key), err_msg=key)
-    a, b = PAPER.hydro_regressors(q, qd, qdd, per="direction"), rebuilt.hydro_regressors(q, qd, qdd, per="direction")
-    np.testing.assert_array_equal(a.drag, b.drag)
-    np.testing.assert_array_equal(a.added_mass, b.added_mass)
 
 
 def _arm() -> tuple[list, list]:
@@ -402,35 +339,39 @@ def _arm() -> tuple[list, list]:
         uwml.Joint(origin=(0.0, 0.1, -0.05), axis=(0.0, 1.0, 0.0)),
     ]
     links = [
-        uwml.Link(mass=5.0, com=(0.0, 0.0, 0.05), volume=0.002, segment=None),
+        uwml.Link(mass=5.0, com=(0.0, 0.0, 0.05), volume=0.002),
         uwml.Link(
             mass=3.0,
             com=(0.2, 0.0, 0.0),
             volume=0.004,
             cob=(0.21, 0.01, 0.0),
-            segment=uwml.Segment(
-                start=(0.0, 0.0, 0.0),
-                axis=(1.0, 0.0, 0.0),
-                length=0.4,
-                normals=((0.0, s, -s), (0.0, s, s)),
-                widths=(0.08, 0.12),
-                area=0.0096,
-            ),
+            segments=[
+                uwml.Segment(
+                    start=(0.0, 0.0, 0.0),
+                    axis=(1.0, 0.0, 0.0),
+                    length=0.4,
+                    normals=((0.0, s, -s), (0.0, s, s)),
+                    widths=(0.08, 0.12),
+                    area=0.0096,
+                )
+            ],
         ),
-        uwml.Link(mass=1.0, com=(0.0, 0.05, 0.0), volume=0.0003, segment=None),
+        uwml.Link(mass=1.0, com=(0.0, 0.05, 0.0), volume=0.0003),
         uwml.Link(
             mass=2.0,
             com=(0.0, 0.0, -0.3),
             volume=0.0012,
             cob=(0.0, 0.005, -0.28),
-            segment=uwml.Segment(
-                start=(0.0, 0.0, -0.02),
-                axis=(0.0, 0.0, -1.0),
-                length=0.6,
-                normals=((1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
-                widths=(0.07, 0.07),
-                area=math.pi * 0.035**2,
-            ),
+            segments=[
+                uwml.Segment(
+                    start=(0.0, 0.0, -0.02),
+                    axis=(0.0, 0.0, -1.0),
+                    length=0.6,
+                    normals=((1.0, 0.0, 0.0), (0.0, 1.0, 0.0)),
+                    widths=(0.07, 0.07),
+                    area=math.pi * 0.035**2,
+                )
+            ],
         ),
     ]
     return joints, links
@@ -438,13 +379,16 @@ def _arm() -> tuple[list, list]:
 
 def test_chain_built_from_python_equals_reference() -> None:
     joints, links = _arm()
-    leg = uwml.Leg(joints, links)
-    assert leg.n_joints == 4 and leg.joints == tuple(joints) and leg.links == tuple(links)
+    leg = uwml.Robot(joints, links)
+    assert leg.n_joints == 4 and leg.links == tuple(links)
+    assert [j.origin for j in leg.joints] == [j.origin for j in joints] and [j.axis for j in leg.joints] == [j.axis for j in joints]
     rng = np.random.default_rng(2)
     q = rng.uniform(-math.pi, math.pi, (800, 4))
     qd, qdd = rng.uniform(-3.0, 3.0, (800, 4)), rng.uniform(-10.0, 10.0, (800, 4))
     for cd, cm in ((1.1, 1.0), (rng.uniform(0.5, 2.0, (4, 2)), rng.uniform(0.5, 1.5, (4, 2)))):
-        out = leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=uwml.Water(density=1025.0, gravity=9.80665))
+        # The reference's coefficients per link, the robot's per segment (links 1 and 3 have one).
+        per_segment = (cd, cm) if np.ndim(cd) == 0 else (cd[[1, 3]], cm[[1, 3]])
+        out = leg.hydro(q, qd, qdd, cd=per_segment[0], cm=per_segment[1], water=uwml.Water(density=1025.0, gravity=9.80665))
         expected = ref.hydro(joints, links, q, qd, qdd, cd=cd, cm=cm, density=1025.0, gravity=9.80665)
         for key in ("drag", "added_mass", "buoyancy", "gravity", "total"):
             # Relative to each sample's largest entry (not below 1e-3 of the batch's largest).
@@ -457,7 +401,7 @@ def test_chain_built_from_python_equals_reference() -> None:
 def test_joint_axes_are_normalized() -> None:
     joint = uwml.Joint(origin=(0, 0, 0), axis=(0.0, 0.6, 0.8 * (1 + 5e-7)))
     assert math.isclose(math.hypot(*joint.axis), 1.0, rel_tol=0, abs_tol=1e-15)
-    leg = uwml.Leg([joint], [_link()])
+    leg = uwml.Robot([joint], [_link()])
     assert math.isclose(math.hypot(*leg.joints[0].axis), 1.0, rel_tol=0, abs_tol=1e-15)
     # Integer components are accepted and stored as floats.
     joint = uwml.Joint(origin=[0, 0, 1], axis=np.array([0, 0, 1]))
@@ -471,32 +415,8 @@ def test_total_is_drag_plus_added_mass_plus_buoyancy() -> None:
 
 
 # --------------------------------------------------------------------------------------------
-# The docstring example and closed-form single rods
+# Closed-form single rods
 # --------------------------------------------------------------------------------------------
-
-
-def _docstring_example() -> str:
-    doc = uwml.Leg.__doc__
-    assert doc is not None and "::" in doc
-    block = doc.split("::", 1)[1]
-    lines = []
-    for line in block.splitlines()[1:]:
-        if line.strip() and not line.startswith(" " * 8):
-            break
-        lines.append(line)
-    return textwrap.dedent("\n".join(lines)).strip()
-
-
-def test_docstring_example_runs_and_is_right() -> None:
-    """The example's rod (L = 1, w = 0.1) turning about world z at q̇ = 1 sees, per unit length,
-    the normal velocity s (along y), so drag = −½ ρ Cd w ∫₀¹ s · s|s| ds = −½·1000·1.2·0.1/4 = −15."""
-    code = _docstring_example()
-    assert "uwml.Leg" in code
-    *body, last = code.splitlines()
-    namespace: dict = {}
-    exec("\n".join(body), namespace)  # noqa: S102 - running the documented example is the point
-    value = eval(last, namespace)
-    np.testing.assert_allclose(value, [-15.0], rtol=1e-12)
 
 
 def test_single_rods_against_closed_forms() -> None:
@@ -506,13 +426,13 @@ def test_single_rods_against_closed_forms() -> None:
     ρ V g · 0.5 cos q, gravity −m g · 0.5 cos q, drag −½ ρ Cd w q̇|q̇|/4."""
     area, volume, mass = 0.00785, 0.00785, 20.0
     segment = uwml.Segment(start=(0, 0, 0), axis=(1, 0, 0), length=1.0, normals=((0, 1, 0), (0, 0, 1)), widths=(0.1, 0.1), area=area)
-    link = uwml.Link(mass=mass, com=(0.5, 0, 0), volume=volume, segment=segment)
-    yaw = uwml.Leg([uwml.Joint(origin=(0, 0, 0), axis=(0, 0, 1))], [link])
+    link = uwml.Link(mass=mass, com=(0.5, 0, 0), volume=volume, segments=(segment,))
+    yaw = uwml.Robot([uwml.Joint(origin=(0, 0, 0), axis=(0, 0, 1))], [link])
     out = yaw.hydro(q=[[0.3], [1.0], [-2.0]], qd=[[0.0], [1.0], [2.0]], qdd=[[1.0], [0.0], [-3.0]], cd=1.2, cm=1.0)
     np.testing.assert_allclose(out.added_mass[:, 0], [-RHO * area / 3.0, 0.0, 3.0 * RHO * area / 3.0], rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(out.drag[:, 0], [0.0, -15.0, -60.0], rtol=1e-12, atol=1e-12)
     assert np.all(out.buoyancy == 0.0) and np.all(out.gravity == 0.0)
-    lift = uwml.Leg([uwml.Joint(origin=(0, 0, 0), axis=(0, -1, 0))], [link])
+    lift = uwml.Robot([uwml.Joint(origin=(0, 0, 0), axis=(0, -1, 0))], [link])
     q = np.linspace(-math.pi, math.pi, 13)[:, None]
     out = lift.hydro(q=q, qd=-2.0 * np.ones_like(q), qdd=np.zeros_like(q), cd=1.2, cm=1.0)
     np.testing.assert_allclose(out.buoyancy[:, 0], RHO * volume * G * 0.5 * np.cos(q[:, 0]), rtol=1e-12, atol=1e-12)
@@ -520,104 +440,9 @@ def test_single_rods_against_closed_forms() -> None:
     np.testing.assert_allclose(out.drag[:, 0], 0.5 * RHO * 1.2 * 0.1 * 4.0 / 4.0, rtol=1e-12)
 
 
-# --------------------------------------------------------------------------------------------
-# The command line
-# --------------------------------------------------------------------------------------------
-
-
-def _run(command: list[str]) -> subprocess.CompletedProcess:
-    env = {**os.environ, "PYTHONIOENCODING": "utf-8", "PYTHONWARNINGS": "error"}
-    return subprocess.run(command, capture_output=True, text=True, encoding="utf-8", env=env, timeout=120, check=False)
-
-
-def _console_script() -> str:
-    script = shutil.which("uwml", path=str(Path(sys.executable).parent)) or shutil.which("uwml")
-    assert script is not None, "the `uwml` console script is not installed"
-    return script
-
-
-def _check_demo_output(stdout: str, samples: int, period: float, cd: float, cm: float, density: float) -> None:
-    """Every table row parses as 8 numbers, and the torques are the reference's, to the 3
-    decimals printed; the RMS lines too."""
-    rows = []
-    rms = {}
-    for line in stdout.splitlines():
-        tokens = line.split()
-        try:
-            numbers = [float(t) for t in tokens]
-        except ValueError:
-            numbers = None
-        if numbers is not None and len(numbers) == 8:
-            rows.append(numbers)
-        elif tokens and tokens[0] in ("drag", "added_mass", "buoyancy"):
-            rms[tokens[0]] = [float(t) for t in tokens[1:]]
-    rows = np.array(rows)
-    assert rows.shape == (samples * 3, 8), stdout
-    t, q, qd, qdd = gait_like_motion(samples, period)
-    expected = ref.hydro(PAPER.joints, PAPER.links, q, qd, qdd, cd=cd, cm=cm, density=density, gravity=G)
-    half_digit = 0.5e-3 + 1e-9
-    np.testing.assert_allclose(rows[:, 0], np.repeat(t, 3), atol=0.5e-2 + 1e-9)
-    np.testing.assert_array_equal(rows[:, 1], np.tile([1, 2, 3], samples))
-    for column, key in ((4, "drag"), (5, "added_mass"), (6, "buoyancy"), (7, "total")):
-        np.testing.assert_allclose(rows[:, column], expected[key].ravel(), rtol=0, atol=half_digit, err_msg=key)
-    assert set(rms) == {"drag", "added_mass", "buoyancy"}, stdout
-    for key, values in rms.items():
-        np.testing.assert_allclose(values, np.sqrt(np.mean(expected[key] ** 2, axis=0)), rtol=0, atol=half_digit, err_msg=key)
-
-
-def test_cli_module_demo() -> None:
-    result = _run([sys.executable, "-m", "uwml", "demo"])
-    assert result.returncode == 0, result.stderr
-    _check_demo_output(result.stdout, samples=9, period=2.0, cd=2.2, cm=0.5, density=RHO)
-
-
-def test_cli_console_script_with_options() -> None:
-    result = _run([_console_script(), "demo", "--samples", "5", "--period", "3", "--cd", "1.5", "--cm", "0.8", "--density", "1025"])
-    assert result.returncode == 0, result.stderr
-    _check_demo_output(result.stdout, samples=5, period=3.0, cd=1.5, cm=0.8, density=1025.0)
-
-
-@pytest.mark.parametrize(
-    "args, option",
-    [(["--samples", "1"], "--samples"), (["--cd", "-1"], "--cd")],
-    ids=["samples 1", "cd -1"],
-)
-def test_cli_rejects_bad_arguments_in_a_subprocess(args: list[str], option: str) -> None:
-    result = _run([sys.executable, "-m", "uwml", "demo", *args])
-    assert result.returncode != 0
-    assert option in result.stderr, result.stderr
-    assert "Traceback" not in result.stderr, result.stderr
-
-
-@pytest.mark.parametrize(
-    "args, option",
-    [
-        (["demo", "--samples", "0"], "--samples"),
-        (["demo", "--samples", "2.5"], "--samples"),
-        (["demo", "--samples", "many"], "--samples"),
-        (["demo", "--period", "0"], "--period"),
-        (["demo", "--period", "nan"], "--period"),
-        (["demo", "--cm", "-0.5"], "--cm"),
-        (["demo", "--cd", "inf"], "--cd"),
-        (["demo", "--density", "-1000"], "--density"),
-        (["demo", "--density", "water"], "--density"),
-        (["demo", "--unknown"], "--unknown"),
-        (["fly"], "fly"),
-        ([], "command"),
-    ],
-)
-def test_cli_rejects_bad_arguments(args: list[str], option: str, capsys: pytest.CaptureFixture[str]) -> None:
-    with pytest.raises(SystemExit) as exit_info:
-        uwml.cli.main(args)
-    assert exit_info.value.code not in (0, None)
-    assert option in capsys.readouterr().err
-
-
 def test_import_uwml_loads_neither_the_reference_nor_matplotlib() -> None:
     """``import uwml`` is light: the numpy reference (for tests and checks) and matplotlib (for
     plots) are imported when used; ``uwml.reference`` still works after a bare ``import uwml``."""
-    import subprocess
-    import sys
 
     code = (
         "import sys, uwml; loaded = [m for m in ('uwml.reference', 'matplotlib') if m in sys.modules]; "
@@ -625,15 +450,3 @@ def test_import_uwml_loads_neither_the_reference_nor_matplotlib() -> None:
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
     assert done.returncode == 0 and done.stdout.strip() == "ok", done.stderr
-
-
-def test_the_gaits_leg_lengths_are_the_papers() -> None:
-    """The walking gait's own copy of Table II's lengths equals the core's paper leg and the numpy
-    reference's."""
-    from uwml import reference
-    from uwml.paper import gait
-
-    leg = uwml.Leg.paper()
-    assert (gait.PAPER_L2, gait.PAPER_L3) == (reference.PAPER_L2, reference.PAPER_L3)
-    assert leg.joints[2].origin == (gait.PAPER_L2, 0.0, 0.0)
-    assert leg.links[2].segment is not None and leg.links[2].segment.length == gait.PAPER_L3

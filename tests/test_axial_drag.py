@@ -1,7 +1,7 @@
 """The axial drag of a segment (docs/model.md section 12.2) from Python: ``uwml.Segment(...,
 cd_axial=, axial_area=)`` checked, held against the numpy reference (``tests/test_robot.py`` on
-random trees) and the closed form here, kept by the model file, given by a hydro file, refused
-where it has no columns yet (regressors) or no place (a ``uwml.Leg``)."""
+random trees) and the closed form here, kept by the model file, given by a hydro file, in its
+own column of the regressors."""
 
 from pathlib import Path
 
@@ -67,7 +67,7 @@ def test_a_hydro_file_gives_a_links_segments_an_axial_drag(tmp_path: Path) -> No
         uwml.Robot.from_mjcf(DATA / "arm.xml", hydro)
 
 
-def test_the_axial_column_times_cd_axial_is_the_axial_drag_and_a_leg_refuses_one() -> None:
+def test_the_axial_column_times_cd_axial_is_the_axial_drag() -> None:
     robot = rod(0.8)
     q, qd, qdd = [0.3], [1.5], [0.0]
     motion = uwml.BaseMotion(velocity=(0.7, -0.2, 0.4))
@@ -78,10 +78,3 @@ def test_the_axial_column_times_cd_axial_is_the_axial_drag_and_a_leg_refuses_one
     np.testing.assert_allclose(rebuilt.base.drag, forces.base.drag, rtol=1e-12, atol=1e-12)
     without = regressors.torques([s.cd for s in robot.segments], [s.cm for s in robot.segments])
     assert np.max(np.abs(without.base.drag - forces.base.drag)) > 1e-3, "the axial drag is in its own column"
-    paper = uwml.Leg.paper()
-    segment = paper.links[1].segment
-    assert segment is not None
-    axial = uwml.Segment(segment.start, segment.axis, segment.length, segment.normals, segment.widths, segment.area, cd_axial=0.5)
-    links = [paper.links[0], uwml.Link(paper.links[1].mass, paper.links[1].com, paper.links[1].volume, segment=axial), paper.links[2]]
-    with pytest.raises(ValueError, match=r"links\[1\]: a uwml.Leg segment has no axial drag"):
-        uwml.Leg(paper.joints, links)

@@ -1,16 +1,13 @@
 """The ``uwml`` command line's subcommands, each run in a subprocess on small generated inputs:
-``paper``, ``torques``, ``fit hydro``, ``fit losses`` (``demo`` is tested in test_api.py)."""
+``paper``, ``torques``, ``fit hydro``, and hostile logs and arguments (``demo`` is
+``test_cli_demo.py``'s, ``fit losses`` ``test_cli_fit_losses.py``'s)."""
 
 from __future__ import annotations
 
-import csv
-import importlib.util
 import json
 import math
-import os
 import re
 import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -18,75 +15,11 @@ import numpy as np
 import pytest
 import uwml
 import uwml.cli
-from uwml import fit
+from cli_runs import assert_bad_file, in_process, read_csv, replace_cell, run_uwml, run_uwml_all
 from uwml.io.logs import Log, write_log
 from uwml.paper import synthetic
 
-LEG = uwml.Leg.paper()
-
-
-def _command(args: tuple[str | os.PathLike[str], ...]) -> list[str]:
-    return [sys.executable, "-m", "uwml", *(os.fspath(a) for a in args)]
-
-
-_ENV = {**os.environ, "PYTHONIOENCODING": "utf-8", "PYTHONWARNINGS": "error"}
-
-
-def _uwml(*args: str | os.PathLike[str]) -> subprocess.CompletedProcess:
-    """``python -m uwml ARGS`` in a subprocess."""
-    return subprocess.run(_command(args), capture_output=True, text=True, encoding="utf-8", env=_ENV, timeout=120, check=False)
-
-
-def _uwml_all(*commands: tuple[str | os.PathLike[str], ...]) -> list[subprocess.CompletedProcess]:
-    """Several ``python -m uwml`` runs in concurrent subprocesses (each pays the start-up once)."""
-    processes = [
-        subprocess.Popen(_command(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, encoding="utf-8", env=_ENV)
-        for args in commands
-    ]
-    results = []
-    try:
-        for process in processes:
-            stdout, stderr = process.communicate(timeout=120)
-            results.append(subprocess.CompletedProcess(process.args, process.returncode, stdout, stderr))
-    finally:
-        for process in processes:
-            if process.poll() is None:
-                process.kill()
-                process.wait()
-    return results
-
-
-def _in_process(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    """``uwml.cli.main(args)`` in this process: the exit status (argparse's SystemExit too), stdout, stderr."""
-    try:
-        status = uwml.cli.main(args)
-    except SystemExit as exit_info:
-        status = exit_info.code if isinstance(exit_info.code, int) else 0
-    captured = capsys.readouterr()
-    return status, captured.out, captured.err
-
-
-def _read_csv(path: Path) -> tuple[list[str], np.ndarray]:
-    with open(path, newline="", encoding="utf-8") as handle:
-        rows = list(csv.reader(handle))
-    return rows[0], np.array(rows[1:], dtype=np.float64)
-
-
-def _assert_bad_file(result: subprocess.CompletedProcess, path: Path, row: int, column: str) -> None:
-    assert result.returncode == 2, (result.stdout, result.stderr)
-    assert "Traceback" not in result.stderr, result.stderr
-    message = result.stderr.strip()
-    assert message.startswith("uwml: error: "), message
-    assert str(path) in message and f"row {row}" in message and repr(column) in message, message
-
-
-def _replace_cell(path: Path, out: Path, row: int, column: str, value: str) -> None:
-    """Copy a CSV file with one cell (spreadsheet row, header = 1) replaced."""
-    with open(path, newline="", encoding="utf-8") as handle:
-        rows = list(csv.reader(handle))
-    rows[row - 1][rows[0].index(column)] = value
-    with open(out, "w", newline="", encoding="utf-8") as handle:
-        csv.writer(handle, lineterminator="\n").writerows(rows)
+LEG = uwml.paper_leg()
 
 
 @pytest.fixture(scope="module")
@@ -111,14 +44,14 @@ _HELP = [
 
 @pytest.mark.parametrize("command, words", _HELP, ids=[" ".join(c) or "uwml" for c, _ in _HELP])
 def test_help_describes_each_subcommand(command: list[str], words: list[str], capsys: pytest.CaptureFixture[str]) -> None:
-    status, out, _ = _in_process([*command, "--help"], capsys)
+    status, out, _ = in_process([*command, "--help"], capsys)
     assert status == 0
     for word in words:
         assert word in out, (word, out)
 
 
 def test_help_in_a_subprocess() -> None:
-    result = _uwml("fit", "hydro", "--help")
+    result = run_uwml("fit", "hydro", "--help")
     assert result.returncode == 0 and "usage: uwml fit hydro" in result.stdout and not result.stderr, result.stderr
 
 
@@ -129,7 +62,7 @@ def test_help_in_a_subprocess() -> None:
 
 def test_paper_writes_figures_report_and_summary(tmp_path: Path) -> None:
     out = tmp_path / "paper"
-    result = _uwml("paper", "--out", out)
+    result = run_uwml("paper", "--out", out)
     assert result.returncode == 0, result.stderr
     for name in ("fig8_torques.png", "fig7_fit.png", "fig13_14_loss_maps.png", "efficiency_map.png"):
         assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", name
@@ -187,9 +120,9 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
     path = tmp_path / "trajectory.csv"
     write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), path)
     out = tmp_path / "torques.csv"
-    result = _uwml("torques", path, "--out", out, "--cd", "1.8", "--cm", "0.7")
+    result = run_uwml("torques", path, "--out", out, "--cd", "1.8", "--cm", "0.7")
     assert result.returncode == 0, result.stderr
-    header, table = _read_csv(out)
+    header, table = read_csv(out)
     assert header == ["time"] + [f"{f}{k}" for f in ("drag", "added_mass", "buoyancy") for k in (1, 2, 3)]
     assert table.shape == (experiment.n_samples, 10)
     expected = LEG.hydro(experiment.q, experiment.qd, experiment.qdd, cd=1.8, cm=0.7, water=uwml.Water(density=1025.0))  # sea water
@@ -214,18 +147,18 @@ def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
     path = tmp_path / "trajectory.csv"
     write_log(Log(time=t, q=q, qd=qd, qdd=qdd), path)
     out = tmp_path / "torques.csv"
-    result = _uwml("torques", path, "--robot", model, "--joints", "7", "--out", out)
+    result = run_uwml("torques", path, "--robot", model, "--joints", "7", "--out", out)
     assert result.returncode == 0, result.stderr
-    header, table = _read_csv(out)
+    header, table = read_csv(out)
     assert header[-6:] == ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] and table.shape == (50, 1 + 21 + 6)
     expected = arm.hydro(q, qd, qdd)  # the segments' own coefficients
     np.testing.assert_allclose(table[:, 1:8], expected.drag, rtol=1e-10, atol=1e-10)
     np.testing.assert_allclose(table[:, -6:], expected.base.total, rtol=1e-10, atol=1e-9)
     # The robot's joint count is the log's by default; a file that is not a model file is refused.
-    assert _uwml("torques", path, "--robot", model).returncode == 0
-    result = _uwml("torques", path, "--robot", tmp_path / "arm.stl")
+    assert run_uwml("torques", path, "--robot", model).returncode == 0
+    result = run_uwml("torques", path, "--robot", tmp_path / "arm.stl")
     assert result.returncode == 2 and "--robot takes a uwml model file" in result.stderr
-    result = _uwml("torques", path, "--robot", model, "--hydro", tmp_path / "hydro.toml")
+    result = run_uwml("torques", path, "--robot", model, "--hydro", tmp_path / "hydro.toml")
     assert result.returncode == 2 and "--hydro goes with a URDF or MJCF" in result.stderr
 
 
@@ -233,9 +166,9 @@ def test_torques_with_losses_and_estimated_derivatives(tmp_path: Path, experimen
     path = tmp_path / "positions.csv"
     write_log(Log(time=experiment.time, q=experiment.q), path)  # no qd, qdd: estimated
     out = tmp_path / "torques.csv"
-    result = _uwml("torques", path, "--out", out, "--losses", "--depth", "500", "--temperature", "4", "--joints", "3")
+    result = run_uwml("torques", path, "--out", out, "--losses", "--depth", "500", "--temperature", "4", "--joints", "3")
     assert result.returncode == 0, result.stderr
-    header, table = _read_csv(out)
+    header, table = read_csv(out)
     families = ("drag", "added_mass", "buoyancy", "visc", "seal", "current", "total")
     assert header == ["time"] + [f"{f}{k}" for f in families for k in (1, 2, 3)]
     assert table.shape == (experiment.n_samples, 22) and np.all(np.isfinite(table))
@@ -257,7 +190,7 @@ def test_torques_to_standard_output_and_progress_on_long_inputs(tmp_path: Path) 
     qd = np.column_stack([0.2 * np.pi * np.cos(angle), -0.1 * np.pi * np.sin(angle), 0.1 * np.pi * np.cos(angle)])
     path = tmp_path / "long.csv"
     write_log(Log(time=time, q=q, qd=qd, qdd=np.zeros_like(q)), path)
-    result = _uwml("torques", path)
+    result = run_uwml("torques", path)
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
     assert lines[0].startswith("time,drag1,") and len(lines) == n + 1
@@ -269,7 +202,7 @@ def test_torques_parquet(tmp_path: Path, experiment: Log) -> None:
     path = tmp_path / "trajectory.csv"
     write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), path)
     out = tmp_path / "torques.parquet"
-    result = _uwml("torques", path, "--out", out)
+    result = run_uwml("torques", path, "--out", out)
     try:
         import pyarrow.parquet
     except ImportError:
@@ -304,11 +237,11 @@ def test_torques_in_chunks_equal_one_chunk(
     extra = {"qd": experiment.qd, "qdd": experiment.qdd} if derivatives else {}
     write_log(Log(time=experiment.time, q=experiment.q, **extra), path)
     one, chunked = tmp_path / f"one{suffix}", tmp_path / f"chunked{suffix}"
-    status, _, err = _in_process(["torques", str(path), "--out", str(one), "--losses", "--depth", "300"], capsys)
+    status, _, err = in_process(["torques", str(path), "--out", str(one), "--losses", "--depth", "300"], capsys)
     assert status == 0 and "rows (" not in err, err  # one chunk: no progress
     monkeypatch.setattr(uwml.cli.robot_commands, "CHUNK_ROWS", rows)
     monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
-    status, _, err = _in_process(["torques", str(path), "--out", str(chunked), "--losses", "--depth", "300"], capsys)
+    status, _, err = in_process(["torques", str(path), "--out", str(chunked), "--losses", "--depth", "300"], capsys)
     n = experiment.n_samples
     assert status == 0 and err.count(" rows (") == -(-n // rows) > 2 and f"{n}/{n} rows (100 %)" in err, err
     if suffix == ".csv":
@@ -325,13 +258,13 @@ def test_torques_bad_cell_half_way_writes_no_file(
     good = tmp_path / "good.csv"
     write_log(Log(time=experiment.time, q=experiment.q, qd=experiment.qd, qdd=experiment.qdd), good)
     bad = tmp_path / "bad.csv"
-    _replace_cell(good, bad, 350, "qdd2", "")
+    replace_cell(good, bad, 350, "qdd2", "")
     from uwml.io import _arrow_csv
 
     monkeypatch.setattr(uwml.cli.robot_commands, "CHUNK_ROWS", 50)
     monkeypatch.setattr(_arrow_csv, "STREAM_BLOCK_BYTES", 4096)
     out = tmp_path / "torques.csv"
-    status, _, err = _in_process(["torques", str(bad), "--out", str(out)], capsys)
+    status, _, err = in_process(["torques", str(bad), "--out", str(out)], capsys)
     assert status == 2 and f"{bad}: row 350, column 'qdd2': expected a number, got ''" in err, err
     assert "300/400 rows" in err  # chunks before the bad cell were evaluated
     assert sorted(tmp_path.iterdir()) == sorted([good, bad])  # no output, no partial file
@@ -341,17 +274,17 @@ def test_torques_bad_files(tmp_path: Path, experiment: Log, capsys: pytest.Captu
     good = tmp_path / "good.csv"
     write_log(Log(time=experiment.time, q=experiment.q), good)
     cell = tmp_path / "cell.csv"
-    _replace_cell(good, cell, 7, "q2", "1.2.3")
+    replace_cell(good, cell, 7, "q2", "1.2.3")
     missing = tmp_path / "missing.csv"
     missing.write_text(good.read_text(encoding="utf-8").replace("q2", "x2", 1), encoding="utf-8")
     two = tmp_path / "two.csv"
     write_log(Log(time=experiment.time, q=experiment.q[:, :2]), two)  # the leg has 3 joints
-    results = _uwml_all(("torques", cell), ("torques", missing), ("torques", two), ("torques", two, "--joints", "2"))
-    _assert_bad_file(results[0], cell, 7, "q2")
-    _assert_bad_file(results[1], missing, 1, "q2")
-    _assert_bad_file(results[2], two, 1, "q3")
-    _assert_bad_file(results[3], two, 1, "q3")
-    status, _, err = _in_process(["torques", str(tmp_path / "absent.csv")], capsys)
+    results = run_uwml_all(("torques", cell), ("torques", missing), ("torques", two), ("torques", two, "--joints", "2"))
+    assert_bad_file(results[0], cell, 7, "q2")
+    assert_bad_file(results[1], missing, 1, "q2")
+    assert_bad_file(results[2], two, 1, "q3")
+    assert_bad_file(results[3], two, 1, "q3")
+    status, _, err = in_process(["torques", str(tmp_path / "absent.csv")], capsys)
     assert status == 2 and err.startswith("uwml: error: ") and "absent.csv" in err, err
 
 
@@ -365,7 +298,7 @@ def test_fit_hydro_report_json_and_plot(tmp_path: Path) -> None:
     path = tmp_path / "both.csv"
     write_log(log, path)
     figure = tmp_path / "fig7.png"
-    result, json_result = _uwml_all(("fit", "hydro", path, "--plot", figure), ("fit", "hydro", path, "--json", "--robust"))
+    result, json_result = run_uwml_all(("fit", "hydro", path, "--plot", figure), ("fit", "hydro", path, "--json", "--robust"))
     assert result.returncode == 0, result.stderr
     assert "[[Fit Statistics]]" in result.stdout and "R-squared (COD)" in result.stdout
     values = {
@@ -390,7 +323,7 @@ def test_fit_hydro_two_logs_per_link(tmp_path: Path) -> None:
     land, water = tmp_path / "land.csv", tmp_path / "water.csv"
     write_log(log.land(), land)
     write_log(log.water(), water)
-    result = _uwml("fit", "hydro", land, water, "--joints", "1,2,3", "--per", "link", "--json")
+    result = run_uwml("fit", "hydro", land, water, "--joints", "1,2,3", "--per", "link", "--json")
     assert result.returncode == 0, result.stderr
     summary = json.loads(result.stdout)
     assert summary["joints"] == [0, 1, 2] and summary["per"] == "link"
@@ -402,78 +335,16 @@ def test_fit_hydro_bad_files(tmp_path: Path, experiment: Log, capsys: pytest.Cap
     good = tmp_path / "good.csv"
     write_log(experiment, good)
     cell = tmp_path / "cell.csv"
-    _replace_cell(good, cell, 12, "tau_water1", "n/a")
+    replace_cell(good, cell, 12, "tau_water1", "n/a")
     trajectory = tmp_path / "trajectory.csv"
     write_log(Log(time=experiment.time, q=experiment.q), trajectory)  # no torques
-    results = _uwml_all(("fit", "hydro", cell), ("fit", "hydro", trajectory))
-    _assert_bad_file(results[0], cell, 12, "tau_water1")
-    _assert_bad_file(results[1], trajectory, 1, "tau_land1")
-    status, _, err = _in_process(["fit", "hydro", str(good), "--joints", "4"], capsys)
+    results = run_uwml_all(("fit", "hydro", cell), ("fit", "hydro", trajectory))
+    assert_bad_file(results[0], cell, 12, "tau_water1")
+    assert_bad_file(results[1], trajectory, 1, "tau_land1")
+    status, _, err = in_process(["fit", "hydro", str(good), "--joints", "4"], capsys)
     assert status == 2 and "--joints" in err, err
-    status, _, err = _in_process(["fit", "hydro", str(good), "--per", "joint"], capsys)
+    status, _, err = in_process(["fit", "hydro", str(good), "--per", "joint"], capsys)
     assert status == 2 and "--per" in err, err
-
-
-# --------------------------------------------------------------------------------------------
-# uwml fit losses
-# --------------------------------------------------------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def loss_csv(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    path = tmp_path_factory.mktemp("losses") / "losses.csv"
-    fit.write_loss_csv(synthetic.three_configuration_experiment(repeats=3, startup=3, rng=0), path)
-    return path
-
-
-def test_fit_losses_report_json_and_plots(tmp_path: Path, loss_csv: Path) -> None:
-    figures = tmp_path / "figures"
-    result, json_result = _uwml_all(("fit", "losses", loss_csv, "--plot", figures), ("fit", "losses", loss_csv, "--json"))
-    assert result.returncode == 0, result.stderr
-    assert result.stdout.count("[[Fit Statistics]]") == 2
-    for name in ("k_oil:", "exponent:", "c0:", "s0:", "stribeck_speed:"):
-        assert name in result.stdout, name
-    for name in ("oil_drag_fit.png", "seal_fit.png"):
-        assert (figures / name).read_bytes()[:4] == b"\x89PNG", name
-
-    result = json_result
-    assert result.returncode == 0, result.stderr
-    summary = json.loads(result.stdout)
-    assert set(summary) == {"oil_drag", "seal"}
-    assert {"k_oil", "exponent", "pressure_sensitivity_per_mpa"} <= set(summary["oil_drag"]["params"])
-    assert {"c0", "s0", "stribeck_speed"} <= set(summary["seal"]["params"])
-    assert all(isinstance(v, float) for v in summary["seal"]["params"].values())
-
-
-def test_fit_losses_hostile_files(tmp_path: Path, loss_csv: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    bom = tmp_path / "bom.csv"
-    bom.write_bytes(b"\xef\xbb\xbf" + loss_csv.read_bytes())  # Excel's "CSV UTF-8": read
-    status, out, err = _in_process(["fit", "losses", str(bom), "--json"], capsys)
-    assert status == 0 and set(json.loads(out)) == {"oil_drag", "seal"}, err
-    latin = tmp_path / "latin.csv"
-    latin.write_bytes(loss_csv.read_bytes().replace(b"\n", b"\n\xb1", 1))
-    long_cell = tmp_path / "long.csv"
-    long_cell.write_bytes(loss_csv.read_bytes().replace(b"\n", b'\n"' + b"x" * 200_000, 1))
-    for path, words in [
-        (latin, [f"{latin}: row 2, column 'configuration': not UTF-8 text (byte 0xb1)"]),
-        (long_cell, [f"{long_cell}: not CSV"]),
-        (tmp_path / "absent.csv", [f"{tmp_path / 'absent.csv'}: no such file"]),
-        (tmp_path, [f"{tmp_path}: is a directory"]),
-    ]:
-        status, _, err = _in_process(["fit", "losses", str(path)], capsys)
-        assert status == 2 and err.count("\n") == 1 and err.startswith("uwml: error: "), err
-        for word in words:
-            assert word in err, (word, err)
-
-
-def test_fit_losses_bad_files(tmp_path: Path, loss_csv: Path) -> None:
-    cell = tmp_path / "cell.csv"
-    _replace_cell(loss_csv, cell, 9, "current_a", "1,5A")
-    missing = tmp_path / "missing.csv"
-    missing.write_text(loss_csv.read_text(encoding="utf-8").replace("pressure_mpa", "pressure", 1), encoding="utf-8")
-    results = _uwml_all(("fit", "losses", cell), ("fit", "losses", missing))
-    _assert_bad_file(results[0], cell, 9, "current_a")
-    _assert_bad_file(results[1], missing, 1, "pressure_mpa")
 
 
 # --------------------------------------------------------------------------------------------
@@ -501,7 +372,7 @@ def test_hostile_logs_in_a_subprocess(tmp_path: Path, experiment: Log) -> None:
     write_log(Log(time=5e297 * np.arange(experiment.n_samples), q=experiment.q), huge)
     both = tmp_path / "both.csv"
     write_log(Log(time=5e297 * np.arange(experiment.n_samples), q=experiment.q, tau_land=experiment.q, tau_water=experiment.q), both)
-    results = _uwml_all(("torques", latin), ("fit", "hydro", fake), ("torques", huge), ("fit", "hydro", both), ("torques", tmp_path))
+    results = run_uwml_all(("torques", latin), ("fit", "hydro", fake), ("torques", huge), ("fit", "hydro", both), ("torques", tmp_path))
     _assert_one_line_error(results[0], f"{latin}: row 2, column 'time': not UTF-8 text (byte 0xb1)")
     _assert_one_line_error(results[1], f"{fake}: not a Parquet file")
     _assert_one_line_error(results[2], f"{huge}: row 3, column 'time'")
@@ -515,9 +386,9 @@ def test_hostile_logs_in_process(tmp_path: Path, experiment: Log, capsys: pytest
     bom = tmp_path / "bom.csv"
     bom.write_bytes(b"\xef\xbb\xbf" + good.read_bytes())
     out = tmp_path / "out.csv"
-    status, _, err = _in_process(["torques", str(bom), "--out", str(out)], capsys)
+    status, _, err = in_process(["torques", str(bom), "--out", str(out)], capsys)
     assert status == 0 and out.exists(), err
-    status, out_text, err = _in_process(["fit", "hydro", str(bom), "--json"], capsys)
+    status, out_text, err = in_process(["fit", "hydro", str(bom), "--json"], capsys)
     assert status == 0 and json.loads(out_text)["params"]["cd"] > 0.0, err
     for args, words in [
         (["torques", str(tmp_path / "absent.csv")], [f"{tmp_path / 'absent.csv'}: no such file"]),
@@ -527,7 +398,7 @@ def test_hostile_logs_in_process(tmp_path: Path, experiment: Log, capsys: pytest
         (["torques", str(good), "--out", str(tmp_path / "no" / "x.csv")], [f"{tmp_path / 'no' / 'x.csv'}: no such directory"]),
         (["fit", "hydro", str(good), "--plot", str(tmp_path / "no" / "x.png")], [f"{tmp_path / 'no' / 'x.png'}: no such directory"]),
     ]:
-        status, _, err = _in_process(args, capsys)
+        status, _, err = in_process(args, capsys)
         assert status == 2 and err.count("\n") == 1 and err.startswith("uwml: error: "), err
         for word in words:
             assert word in err, (word, err)
@@ -555,7 +426,7 @@ def test_hostile_logs_in_process(tmp_path: Path, experiment: Log, capsys: pytest
     ids=lambda v: " ".join(v)[:40] if isinstance(v, list) and v and v[0] in ("simulate", "demo", "torques", "fit", "paper") else None,
 )
 def test_size_like_arguments_are_bounded(args: list[str], words: list[str], capsys: pytest.CaptureFixture[str]) -> None:
-    status, _, err = _in_process(args, capsys)
+    status, _, err = in_process(args, capsys)
     assert status == 2, err
     message = err.strip().splitlines()[-1]
     assert "invalid _" not in message and len(message) < 300, message
@@ -576,30 +447,5 @@ def test_out_of_memory_is_a_one_line_error(monkeypatch: pytest.MonkeyPatch, caps
         raise MemoryError
 
     monkeypatch.setattr(uwml.cli.paper_commands, "_demo", exhausted)
-    status, _, err = _in_process(["demo"], capsys)
+    status, _, err = in_process(["demo"], capsys)
     assert status == 1 and err.startswith("uwml: error: out of memory") and err.count("\n") == 1, err
-
-
-def test_fit_losses_takes_several_files_and_patterns(tmp_path: Path, loss_csv: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """Several CSV files (or a pattern) are their rows together: the fit of one file holding them."""
-    lines = loss_csv.read_text().splitlines()
-    header, rows = lines[0], lines[1:]
-    half = len(rows) // 2
-    (tmp_path / "part1.csv").write_text("\n".join([header, *rows[:half]]) + "\n")
-    (tmp_path / "part2.csv").write_text("\n".join([header, *rows[half:]]) + "\n")
-    status, out, err = _in_process(["fit", "losses", str(loss_csv), "--json"], capsys)
-    assert status == 0, err
-    whole = json.loads(out)
-    for arguments in ([str(tmp_path / "part1.csv"), str(tmp_path / "part2.csv")], [str(tmp_path / "part*.csv")]):
-        status, out, err = _in_process(["fit", "losses", *arguments, "--json"], capsys)
-        assert status == 0, err
-        split = json.loads(out)
-        for model in ("oil_drag", "seal"):
-            for name, value in whole[model]["params"].items():
-                assert split[model]["params"][name] == pytest.approx(value, rel=1e-9), (model, name)
-    status, out, err = _in_process(["fit", "losses", str(tmp_path / "none*.csv")], capsys)
-    assert status == 2 and "none*.csv: no file matches the pattern" in err
-    if importlib.util.find_spec("ray") is not None:  # the files read by Ray's workers
-        status, out, err = _in_process(["fit", "losses", str(tmp_path / "part*.csv"), "--ray", "--workers", "2", "--json"], capsys)
-        assert status == 0, err
-        assert json.loads(out)["seal"]["params"] == pytest.approx(whole["seal"]["params"], rel=1e-9)

@@ -29,7 +29,7 @@ CURRENT = {"current": (0.3, -0.2, 0.05), "current_acceleration": (0.02, 0.01, -0
 
 def assert_same_forces(a: uwml.Robot, b: uwml.Robot, q: list[float], qd: list[float], qdd: list[float], **kwargs: object) -> None:
     """Every joint force and the base wrench agree to 1e-12 of the largest."""
-    ta, tb = a.hydro(q, qd, qdd, **kwargs), b.hydro(q, qd, qdd, **kwargs)  # type: ignore[arg-type]
+    ta, tb = a.hydro(q, qd, qdd, base=True, **kwargs), b.hydro(q, qd, qdd, base=True, **kwargs)  # type: ignore[arg-type]
     for name in ("drag", "added_mass", "buoyancy", "gravity"):
         x = np.concatenate([getattr(ta, name), getattr(ta.base, name)])
         y = np.concatenate([getattr(tb, name), getattr(tb.base, name)])
@@ -39,7 +39,7 @@ def assert_same_forces(a: uwml.Robot, b: uwml.Robot, q: list[float], qd: list[fl
 
 @pytest.fixture(scope="module")
 def paper() -> uwml.Robot:
-    return uwml.Robot.from_leg(uwml.Leg.paper())
+    return uwml.paper_leg()
 
 
 @pytest.mark.parametrize("loader, file", [(uwml.Robot.from_urdf, "paper_leg.urdf"), (uwml.Robot.from_mjcf, "paper_leg.xml")])
@@ -110,7 +110,7 @@ def hand_built_arm() -> uwml.Robot:
         (0, 0, -0.05),
         1.2 * 0.8 * 0.4,
         cob=(0, 0, 0),
-        segment=uwml.Segment((-0.6, 0, 0), (1, 0, 0), 1.2, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.8), area=0.32, cd=(2.0, 2.1)),
+        segments=[uwml.Segment((-0.6, 0, 0), (1, 0, 0), 1.2, normals=((0, 1, 0), (0, 0, 1)), widths=(0.4, 0.8), area=0.32, cd=(2.0, 2.1))],
     )
     r1 = rpy(0, 0, math.pi / 2)
     o1 = np.array([0.5, 0, -0.2])
@@ -118,7 +118,7 @@ def hand_built_arm() -> uwml.Robot:
         3.0,
         t(r1 @ (0.2 * x)),
         math.pi * 0.05**2 * 0.4,
-        segment=uwml.Segment(t(r1 @ (0.2 * x) - 0.2 * (r1 @ x)), t(r1 @ x), 0.4, section="circular", diameter=0.1, cd=1.1, cm=0.9),
+        segments=[uwml.Segment(t(r1 @ (0.2 * x) - 0.2 * (r1 @ x)), t(r1 @ x), 0.4, section="circular", diameter=0.1, cd=1.1, cm=0.9)],
     )
     r2 = r1 @ rpy(0.3, 0.2, -0.4)
     o2 = o1 + r1 @ (0.4 * x)
@@ -132,7 +132,7 @@ def hand_built_arm() -> uwml.Robot:
         t((2.0 * fore_com + 0.5 * wrist_com) / 2.5),
         cylinder_volume + 0.0006,
         cob=t((cylinder_volume * fore_com + 0.0006 * wrist_cob) / (cylinder_volume + 0.0006)),
-        segment=uwml.Segment(t(r2 @ (0.15 * x) - 0.15 * (r2 @ x)), t(r2 @ x), 0.3, section="circular", diameter=0.08),
+        segments=[uwml.Segment(t(r2 @ (0.15 * x) - 0.15 * (r2 @ x)), t(r2 @ x), 0.3, section="circular", diameter=0.08)],
     )
     o4 = p3 + r3 @ (0.05 * x)
     fingers = [
@@ -285,7 +285,7 @@ def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
     assert robot.losses == (None, None, knee)
     q, qd = [0.3, -0.4, 0.6], [0.5, -0.8, 1.1]
     own = robot.environment(q, qd, [0.0] * 3, depth=3000.0, temperature_c=4.0)
-    given = uwml.Robot.from_leg(uwml.Leg.paper()).environment(q, qd, [0.0] * 3, depth=3000.0, temperature_c=4.0, losses=[None, None, knee])
+    given = uwml.paper_leg().environment(q, qd, [0.0] * 3, depth=3000.0, temperature_c=4.0, losses=[None, None, knee])
     np.testing.assert_allclose(own.seal, given.seal, rtol=1e-14)
     assert own.seal[2] * qd[2] < 0.0 and own.seal[0] == 0.0
     # The model file keeps them.

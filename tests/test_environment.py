@@ -11,6 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from uwml import _core, reference
 from uwml.model.losses import rpm_to_rad_s
+from uwml.robot.examples import arm_on_rov
 
 
 def assert_close(actual, expected, rel=1e-12, atol=0.0):
@@ -93,7 +94,7 @@ def test_the_papers_27_4_percent_at_10_rpm_and_10_mpa():
 
 
 def test_environment_adds_losses_to_hydrodynamics():
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     rng = np.random.default_rng(4)
     q, qd, qdd = rng.uniform(-1, 1, (3, 50, 3))
     depth = rng.uniform(0, 3000, 50)
@@ -118,11 +119,34 @@ def test_environment_adds_losses_to_hydrodynamics():
     np.testing.assert_array_equal(none.total, leg.hydro(q[0], qd[0], qdd[0]).total)
 
 
-def test_environment_defaults_to_the_legs_one_water_for_the_hydrodynamics_and_the_pressure() -> None:
+def test_environment_on_a_moving_base_is_hydro_plus_the_joints_losses() -> None:
+    """The losses of each joint depend on its speed, depth and temperature only: on a moving
+    base (and on two threads) a robot's environment is its hydro plus the reference's losses at
+    the same joint speeds, and the base wrench is the hydro's (losses act inside the robot)."""
+    robot = uwml.paper_leg()
+    rng = np.random.default_rng(8)
+    q, qd, qdd = rng.uniform(-2, 2, (40, 3)), rng.uniform(-1, 1, (40, 3)), rng.uniform(-3, 3, (40, 3))
+    depth, temperature = rng.uniform(0, 6000, 40), rng.uniform(0, 20, 40)
+    joint = uwml.JointLosses()
+    motion = uwml.BaseMotion(velocity=(0.3, 0.0, 0.1))
+    env = robot.environment(q, qd, qdd, depth=depth, temperature_c=temperature, losses=[None, joint, joint], base_motion=motion, threads=2)
+    hydro = robot.hydro(q, qd, qdd, base_motion=motion)
+    pressure = reference.hydrostatic_pressure_mpa(depth, robot.water.density, robot.water.gravity)
+    for j in (1, 2):
+        ref = reference.joint_loss_torques(joint.drive, joint.oil, joint.seal, qd[:, j], pressure, temperature, joint.epsilon)
+        for name in ("visc", "seal", "current"):
+            assert_close(getattr(env, name)[:, j], ref[name], rel=1e-11, atol=1e-12)
+    assert np.all(env.seal[:, 0] == 0.0) and np.all(env.seal[:, 1:] * qd[:, 1:] <= 0.0)
+    np.testing.assert_array_equal(env.hydro, hydro.total)
+    np.testing.assert_array_equal(env.base.total, hydro.base.total)
+    np.testing.assert_array_equal(env.total, hydro.total + env.visc + env.seal)
+
+
+def test_environment_defaults_to_the_robots_one_water_for_the_hydrodynamics_and_the_pressure() -> None:
     """At depth the links move in the water whose column gives the pressure: by default the
-    leg's water (a Leg is a Robot: fresh water, 1000 kg/m³, as for every evaluation) for both;
+    robot's water (the paper's leg: fresh water, 1000 kg/m³, as for every evaluation) for both;
     ``sea_density`` defaults to ``water``'s density, so a water given is used for both too."""
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     rng = np.random.default_rng(3)
     q, qd, qdd = rng.uniform(-1, 1, (6, 3)), rng.uniform(-1, 1, (6, 3)), rng.uniform(-2, 2, (6, 3))
     joint = uwml.JointLosses(epsilon=1e-2)
@@ -148,7 +172,7 @@ def test_environment_defaults_to_the_legs_one_water_for_the_hydrodynamics_and_th
 
 
 def test_losses_grow_with_depth():
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     state = ([0.2, -0.3, 0.5], [0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
     shallow = leg.environment(*state, depth=10.0, losses=uwml.JointLosses())
     deep = leg.environment(*state, depth=3000.0, losses=uwml.JointLosses())
@@ -191,9 +215,10 @@ STATE = ([0.2, -0.3, 0.5], [0.5, 0.5, 0.5], [0.0, 0.0, 0.0])
 def test_conditions_outside_the_physics_are_refused(kwargs: dict, match: str, one_state: bool) -> None:
     """Depth from 0 to the deepest ocean (11 km), temperature above absolute zero, a positive
     sea density: outside, a ValueError naming the argument (it was inf, 1e11 N·m or 1.5e10 N·m),
-    on the one-state path and the batch path, for the leg and the robot."""
+    for one state and a batch, for the leg and the arm on an ROV."""
     state = STATE if one_state else tuple(np.array([x, x]) for x in STATE)
-    for model in (uwml.Leg.paper(), uwml.Robot.from_leg(uwml.Leg.paper())):
+    for model in (uwml.paper_leg(), arm_on_rov()):
+        state = tuple(np.resize(x, (*np.shape(x)[:-1], model.n_joints)) for x in state)
         with pytest.raises(ValueError, match=match):
             model.environment(*state, losses=uwml.JointLosses(), **kwargs)
         with pytest.raises(ValueError, match=match):
@@ -203,9 +228,9 @@ def test_conditions_outside_the_physics_are_refused(kwargs: dict, match: str, on
 def test_per_sample_conditions_name_the_sample() -> None:
     q = np.zeros((3, 3))
     with pytest.raises(ValueError, match=r"depth\[2\] is 20000.0 m"):
-        uwml.Leg.paper().environment(q, q, q, depth=[10.0, 20.0, 20000.0])
+        uwml.paper_leg().environment(q, q, q, depth=[10.0, 20.0, 20000.0])
     with pytest.raises(ValueError, match=r"temperature_c\[1\] is -280.0"):
-        uwml.Robot.from_leg(uwml.Leg.paper()).environment(q, q, q, temperature_c=[4.0, -280.0, 4.0])
+        uwml.paper_leg().environment(q, q, q, temperature_c=[4.0, -280.0, 4.0])
 
 
 @pytest.mark.parametrize("temperature", [-5.0, 60.0])
@@ -213,7 +238,7 @@ def test_oil_temperatures_outside_the_sea_warn_and_still_evaluate(temperature: f
     """Inside the physics but outside the oil model's range (−2 to 40 °C): the losses are
     evaluated (the exponential law extrapolates) with an ExtrapolationWarning naming the value;
     inside the range, no warning. The one-state path gives the batch path's numbers."""
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     with pytest.warns(uwml.ExtrapolationWarning, match=f"temperature_c is {temperature} °C, outside the oil model's range"):
         one = leg.environment(*STATE, temperature_c=temperature, losses=uwml.JointLosses())
     with pytest.warns(uwml.ExtrapolationWarning):
@@ -247,7 +272,7 @@ def test_joint_losses_refuse_pressures_beyond_the_ocean() -> None:
         ({"losses": 3}, TypeError, "losses"),
         ({"losses": [None, "seal", None]}, TypeError, r"losses\[1\]"),
         ({"depth": -5.0}, ValueError, "depth"),
-        ({"depth": [1.0, 2.0]}, ValueError, "depth"),
+        ({"depth": [[1.0, 2.0]]}, ValueError, "depth"),
         ({"depth": "deep"}, TypeError, "depth"),
         ({"temperature_c": [[1.0]]}, ValueError, "temperature_c"),
         ({"temperature_c": math.nan}, ValueError, "temperature"),
@@ -256,7 +281,7 @@ def test_joint_losses_refuse_pressures_beyond_the_ocean() -> None:
     ],
 )
 def test_environment_bad_inputs(kwargs, error, match):
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     with pytest.raises(error, match=match):
         leg.environment([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0], **kwargs)
 
@@ -287,17 +312,19 @@ def test_forces_that_overflow_raise_naming_the_sample(one_state: bool) -> None:
     """A finite state whose forces exceed float64 (a joint speed of 1e300 rad/s: the drag goes
     as its square) is outside the physics' domain: a ValueError naming the sample, not inf or NaN
     returned silently; a large but representable one evaluates."""
-    leg, robot = uwml.Leg.paper(), uwml.Robot.from_leg(uwml.Leg.paper())
+    leg = uwml.paper_leg()
     q, qd, qdd = np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3))
     qd[2, 1] = 1e300
     if one_state:
         q, qd, qdd = q[2], qd[2], qdd[2]
     where = "the state" if one_state else "sample 2"
-    for evaluate in (leg.hydro, leg.environment, leg.jacobians, robot.hydro, robot.environment, robot.jacobians):
+    for evaluate in (leg.hydro, leg.environment, leg.jacobians, leg.hydro_regressors, leg.link_wrenches):
         with pytest.raises(ValueError, match=f"the forces of {where} overflow float64 .joint speeds up to 1e\\+300"):
             evaluate(q, qd, qdd)
+    with pytest.raises(ValueError, match=f"the forces of {where} overflow float64"):
+        leg.hydro(q, qd, qdd, base=True)
     qd = np.where(qd == 1e300, 1e100, qd)
-    for evaluate in (leg.hydro, robot.environment):
+    for evaluate in (leg.hydro, leg.environment):
         assert np.all(np.isfinite(evaluate(q, qd, qdd).total))
 
 

@@ -61,10 +61,10 @@ def test_warnings_stay_warnings() -> None:
 
 
 def _negative_mass() -> None:
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     link = copy.copy(leg.links[0])
     object.__setattr__(link, "mass", -1.0)  # past the dataclass's own check, to the core's
-    uwml.Leg(leg.joints, [link, *leg.links[1:]])
+    uwml.Robot(leg.joints, [link, *leg.links[1:]])
 
 
 def _bad_model_file() -> None:

@@ -47,7 +47,7 @@ def test_every_literal_reads_back_to_the_models_number() -> None:
         assert not missing, f"{precision}: {missing[:3]}"
     assert "TreeJoint<f32>" in to_rust(arm, "f32") and "Section::Circular { diameter: 0.6 }" in to_rust(arm)
     # The robot's water goes with it.
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     sea = uwml.Robot(leg.joints, leg.links, water=uwml.Water(1025.5, 9.80665))
     assert "pub const WATER_DENSITY: f64 = 1025.5;\npub const GRAVITY: f64 = 9.80665;" in to_rust(sea)
     assert "#define ROBOT_WATER_DENSITY 1025.5f\n#define ROBOT_GRAVITY 9.80665f" in to_c(sea, "f32")

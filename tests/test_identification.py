@@ -64,11 +64,11 @@ def test_recovery_joint_1(seed: int) -> None:
 def test_recovery_per_link_all_joints(seed: int) -> None:
     """One Cd and one Cm per link, every joint; different true values on the two links with a
     segment (link 0, the hip-yaw link of the paper's leg, has none: its columns are dropped)."""
-    leg = uwml.Leg.paper()
-    cd, cm = np.array([0.0, 1.8, 2.6]), np.array([0.0, 0.4, 0.7])
+    leg = uwml.paper_leg()
+    cd, cm = np.array([1.8, 2.6]), np.array([0.4, 0.7])  # per segment: links 1 and 2
     log = synthetic.land_water_experiment(leg=leg, cd=cd, cm=cm, seed=seed)
     result = fit.hydro_coefficients(log, leg=leg, joints=(0, 1, 2), per="link")
-    without_segment = [f"{p}_link{i}" for p in ("cd", "cm") for i, link in enumerate(leg.links) if link.segment is None]
+    without_segment = [f"{p}_link{i}" for p in ("cd", "cm") for i, link in enumerate(leg.links) if not link.segments]
     assert without_segment == ["cd_link0", "cm_link0"]
     assert result.dropped == tuple(without_segment) and "cd_link0" in result.message
     _within_three_stderr(result, {"cd_link1": 1.8, "cd_link2": 2.6, "cm_link1": 0.4, "cm_link2": 0.7})
@@ -370,15 +370,17 @@ def test_hydro_fit_plot(tmp_path) -> None:
 
 @pytest.mark.parametrize("per", ["leg", "link", "direction"])
 def test_one_pass_design_is_the_regressors(per: str) -> None:
-    """The core's one-pass design equals the regressors of ``Leg.hydro_regressors`` (held
-    against the numpy reference elsewhere), grouped as ``per`` says, with the target last."""
+    """The core's one-pass design equals the regressors of ``Robot.hydro_regressors`` (held
+    against the numpy reference elsewhere), grouped per link as ``per`` says (each segment's
+    columns its link's; the paper leg's link 0 has none), with the target last."""
     log = synthetic.land_water_experiment(cycles=0.5, seed=3)
-    leg, joints = uwml.Leg.paper(), [2, 0]
+    leg, joints = uwml.paper_leg(), [2, 0]
     delta = log.tau_water - log.tau_land
-    design = leg._core.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, joints, per)
-    reg = leg.hydro_regressors(log.q, log.qd, log.qdd, per="direction")  # (n, joint, link, k)
+    design = leg._core.hydro_design(log.q, log.qd, log.qdd, delta, leg._native(uwml.Conditions()), joints, per)
+    reg = leg.hydro_regressors(log.q, log.qd, log.qdd)  # (n, joint, segment, k)
     for block, joint in zip(design, joints, strict=True):
-        drag, added = reg.drag[:, joint], reg.added_mass[:, joint]
+        drag, added = (np.zeros((len(log.q), 3, 2)) for _ in range(2))
+        drag[:, 1:], added[:, 1:] = reg.drag[:, joint], reg.added_mass[:, joint]
         if per == "leg":
             columns = [drag.sum(axis=(1, 2)), added.sum(axis=(1, 2))]
         elif per == "link":
@@ -391,17 +393,18 @@ def test_one_pass_design_is_the_regressors(per: str) -> None:
 
 def test_design_input_errors() -> None:
     log = synthetic.land_water_experiment(cycles=0.1, seed=3)
-    chain, delta = uwml.Leg.paper()._core, log.tau_water - log.tau_land
+    leg, delta = uwml.paper_leg(), log.tau_water - log.tau_land
+    chain, conditions = leg._core, leg._native(uwml.Conditions())
     bad = delta.copy()
     bad[3, 1] = np.nan
     with pytest.raises(ValueError, match=r"delta\[3, 1\] is NaN: every value must be finite"):
-        chain.hydro_design(log.q, log.qd, log.qdd, bad, 1000.0, 9.81, [0], "leg")
+        chain.hydro_design(log.q, log.qd, log.qdd, bad, conditions, [0], "leg")
     with pytest.raises(ValueError, match="delta must have shape"):
-        chain.hydro_design(log.q, log.qd, log.qdd, delta[:-1], 1000.0, 9.81, [0], "leg")
+        chain.hydro_design(log.q, log.qd, log.qdd, delta[:-1], conditions, [0], "leg")
     with pytest.raises(ValueError, match="joints must be indices in 0..2, got 3"):
-        chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, [0, 3], "leg")
+        chain.hydro_design(log.q, log.qd, log.qdd, delta, conditions, [0, 3], "leg")
     with pytest.raises(ValueError, match="per must be"):
-        chain.hydro_design(log.q, log.qd, log.qdd, delta, 1000.0, 9.81, [0], "joint")
+        chain.hydro_design(log.q, log.qd, log.qdd, delta, conditions, [0], "joint")
 
 
 @pytest.mark.parametrize("robust", [False, True])
@@ -432,8 +435,8 @@ def test_huber_iteration_finds_the_minimum_scipy_finds() -> None:
     outliers = rng.choice(log.n_samples, 40, replace=False)
     log.tau_water[outliers, 0] += rng.normal(0.0, 40.0, outliers.size)
     result = fit.hydro_coefficients(log, robust=True, sigma=0.7)
-    leg = uwml.Leg.paper()
-    design = leg._core.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, [0], "leg")[0]
+    leg = uwml.paper_leg()
+    design = leg._core.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, leg._native(uwml.Conditions()), [0], "leg")[0]
     x, y = design[:, :2] / 0.7, design[:, 2] / 0.7
     reference = scipy.optimize.least_squares(
         lambda b: x @ b - y, [1.0, 1.0], loss="huber", f_scale=fit.HUBER_SCALE, xtol=1e-14, ftol=1e-14, gtol=1e-14
@@ -451,18 +454,23 @@ def test_huber_iteration_finds_the_minimum_scipy_finds() -> None:
 
 
 @pytest.mark.parametrize("per", ["leg", "link", "direction"])
-def test_fitted_torques_are_the_design_times_the_coefficients(per: str) -> None:
-    """The fit's values come from the torques at the fitted coefficients (linearity), also for
-    negative ones: they equal the one-pass design times the coefficients."""
+def test_the_one_pass_design_is_the_robots_design_from_its_regressors(per: str) -> None:
+    """A robot whose columns are its segments' Cd and Cm on its joints takes the core's one-pass
+    design: the same chunks, names and fitted values as its design summed from the regressors;
+    a design kept in memory gives the values of one computed again."""
     log = synthetic.land_water_experiment(cycles=0.5, seed=5)
-    leg, joints = uwml.Leg.paper(), [0, 2]
-    design = fit.design._HydroDesign(leg, log_set(log, 3, "the leg", True, False), uwml.Water(), per, joints, cache_bytes=0)
-    x = np.random.default_rng(2).normal(0.0, 2.0, len(design.names))
-    assert np.any(x < 0.0) and np.any(x > 0.0)
-    values, targets = design.fitted(x)
-    problem = leg._core.hydro_design(log.q, log.qd, log.qdd, log.tau_water - log.tau_land, 1000.0, 9.81, joints, per)
-    np.testing.assert_allclose(values, (problem[..., :-1] @ x).T.reshape(-1), rtol=1e-10, atol=1e-10)
-    np.testing.assert_array_equal(targets, problem[..., -1].T.reshape(-1))
+    leg, rows = uwml.paper_leg(), [6, 8]
+    logs = log_set(log, 3, "the robot", True, False)
+    one_pass = fit.robot_design._RobotHydroDesign(leg, logs, uwml.Water(), per, rows, cache_bytes=0)
+    summed = fit.robot_design._RobotHydroDesign(leg, logs, uwml.Water(), per, rows, cache_bytes=1 << 30)
+    assert one_pass._one_pass
+    summed._one_pass = False
+    assert one_pass.names == summed.names
+    for a, b in zip(one_pass.chunks(), summed.chunks(), strict=True):
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-10)
+    x = np.random.default_rng(2).normal(0.0, 2.0, len(one_pass.names))
+    for got, want in zip(one_pass.fitted(x), summed.fitted(x), strict=True):
+        np.testing.assert_allclose(got, want, rtol=1e-10, atol=1e-9)
 
 
 def test_unweighted_statistics_are_ordinary_least_squares_in_the_datas_units() -> None:
@@ -470,13 +478,13 @@ def test_unweighted_statistics_are_ordinary_least_squares_in_the_datas_units() -
     without error bars (the paper's reduced χ² 2.425 N·m² and COD 0.826): the residual sum of
     squares, ``RSS / (N − p)``, ``1 − RSS / TSS`` and the adjusted COD. Held against an
     ordinary least-squares solve with numpy of the same regression built here from the log and
-    ``Leg.hydro_regressors`` (joint 1: −(τ_water − τ_land) − buoyancy = Cd·drag + Cm·added mass)."""
+    ``Robot.hydro_regressors`` (joint 1: −(τ_water − τ_land) − buoyancy = Cd·drag + Cm·added mass)."""
     log = synthetic.land_water_experiment(seed=5, torque_noise=2.0)
     result = fit.hydro_coefficients(log)
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     regressors = leg.hydro_regressors(log.q, log.qd, log.qdd)
     y = -(log.tau_water[:, 0] - log.tau_land[:, 0]) - regressors.buoyancy[:, 0]
-    x = np.column_stack([regressors.drag[:, 0], regressors.added_mass[:, 0]])
+    x = np.column_stack([regressors.drag[:, 0].sum(axis=(-2, -1)), regressors.added_mass[:, 0].sum(axis=(-2, -1))])
     coefficients, *_ = np.linalg.lstsq(x, y, rcond=None)
     rss = float(np.sum((y - x @ coefficients) ** 2))
     n, p = len(y), 2

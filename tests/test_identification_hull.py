@@ -138,8 +138,8 @@ def test_bad_base_rows_and_logs_without_the_base_columns_are_refused(tmp_path: P
         fit.hydro_coefficients(log, robot, joints=(), base=[6])
     with pytest.raises(ValueError, match="lumped must be"):
         fit.hydro_coefficients(log, robot, joints=(), base=[0], lumped="diag")  # type: ignore[arg-type]
-    with pytest.raises(ValueError, match="a uwml.Leg stands on a fixed base"):
-        fit.hydro_coefficients(log, uwml.Leg.paper(), base=[0])
+    with pytest.raises(ValueError, match="the log has 2 joints, the robot 3"):
+        fit.hydro_coefficients(log, uwml.paper_leg(), base=[0])
     without = Log(time=log.time, q=log.q, tau_land=log.tau_land, tau_water=log.tau_water, base_twist=log.base_twist, source="plain")
     with pytest.raises(ValueError, match=r"plain: row 1 \(header\), column 'wrench_land1': need wrench_land and wrench_water"):
         fit.hydro_coefficients(without, robot, joints=(), base=[0])

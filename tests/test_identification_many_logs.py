@@ -106,7 +106,7 @@ def test_bad_sets_of_logs_are_refused_naming_the_file(tmp_path: Path) -> None:
     good = tmp_path / "good.csv"
     write_log(synthetic.land_water_experiment(cycles=1, seed=1), good)
     four = tmp_path / "four.csv"
-    robot = uwml.Robot.from_leg(uwml.Leg.paper())
+    robot = uwml.paper_leg()
     with pytest.raises(TypeError, match="a log must be a uwml.io.logs.Log, a file or a glob pattern"):
         fit.hydro_coefficients([str(good), 3])  # type: ignore[list-item]
     four.write_text("time,q1,q2,q3,q4,tau_land1,tau_land2,tau_land3,tau_land4\n0,0,0,0,0,0,0,0,0\n")

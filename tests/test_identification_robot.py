@@ -40,8 +40,8 @@ def test_the_paper_leg_as_a_robot_fits_as_the_leg(per: str) -> None:
     design) give the same fit of the same log."""
     log = synthetic.land_water_experiment(seed=3, cycles=2)
     joints = (0, 1, 2)
-    as_leg = fit.hydro_coefficients(log, uwml.Leg.paper(), joints=joints, per=per)
-    as_robot = fit.hydro_coefficients(log, uwml.Robot.from_leg(uwml.Leg.paper()), joints=joints, per=per)
+    as_leg = fit.hydro_coefficients(log, uwml.paper_leg(), joints=joints, per=per)
+    as_robot = fit.hydro_coefficients(log, uwml.paper_leg(), joints=joints, per=per)
     assert as_robot.var_names == as_leg.var_names and as_robot.dropped == as_leg.dropped
     for name in as_leg.var_names:
         assert as_robot.params[name] == pytest.approx(as_leg.params[name], rel=1e-9), name

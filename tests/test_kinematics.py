@@ -17,7 +17,7 @@ from uwml import WalkingGait, _core, paper_leg_foot, paper_leg_ik
 
 # docs/model.md section 2 (Table II).
 L2, L3 = 0.660, 0.714
-PAPER = uwml.Leg.paper()
+PAPER = uwml.paper_leg()
 
 
 def closed_form_foot(q: np.ndarray, s: float = L3) -> np.ndarray:
@@ -36,7 +36,7 @@ def rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * (k @ k)
 
 
-def numpy_frames(leg: uwml.Leg, q: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+def numpy_frames(leg: uwml.Robot, q: np.ndarray) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
     """World (rotation, origin, axis) of every link frame: the chain's convention, written here."""
     frames = []
     rot, origin = np.eye(3), np.zeros(3)
@@ -48,7 +48,7 @@ def numpy_frames(leg: uwml.Leg, q: np.ndarray) -> list[tuple[np.ndarray, np.ndar
     return frames
 
 
-def random_leg(rng: np.random.Generator, n: int) -> uwml.Leg:
+def random_leg(rng: np.random.Generator, n: int) -> uwml.Robot:
     """A chain of ``n`` joints with random axes and offsets; every other link has a segment."""
     joints, links = [], []
     for i in range(n):
@@ -66,8 +66,8 @@ def random_leg(rng: np.random.Generator, n: int) -> uwml.Leg:
                 widths=(0.1, 0.1),
                 area=0.01,
             )
-        links.append(uwml.Link(mass=1.0, com=(0.0, 0.0, 0.0), volume=0.0, segment=segment))
-    return uwml.Leg(joints, links)
+        links.append(uwml.Link(mass=1.0, com=(0.0, 0.0, 0.0), volume=0.0, segments=() if segment is None else (segment,)))
+    return uwml.Robot(joints, links)
 
 
 angles = st.lists(st.floats(-math.pi, math.pi), min_size=3, max_size=3).map(np.array)
@@ -89,7 +89,7 @@ def test_paper_foot_and_knee_match_the_closed_form(q):
 
 def test_forward_kinematics_keeps_the_leading_shape():
     q = np.random.default_rng(1).uniform(-3, 3, (2, 4, 5, 3))
-    p, jac = PAPER.jacobian(q)
+    p, jac = PAPER.point_jacobian(q)
     assert p.shape == (2, 4, 5, 3) and jac.shape == (2, 4, 5, 6, 3)
     np.testing.assert_allclose(p, closed_form_foot(q), atol=1e-14)
     assert PAPER.forward_kinematics(q[0, 0, 0]).shape == (3,)
@@ -98,18 +98,18 @@ def test_forward_kinematics_keeps_the_leading_shape():
 
 def test_paper_jacobian_angular_rows_are_the_typed_axes():
     q = np.random.default_rng(2).uniform(-3, 3, (50, 3))
-    _, jac = PAPER.jacobian(q)
+    _, jac = PAPER.point_jacobian(q)
     q1 = q[:, 0]
     minus_e_t = np.stack([np.sin(q1), -np.cos(q1), np.zeros_like(q1)], axis=-1)
     np.testing.assert_allclose(jac[:, 3:, 0], np.broadcast_to([0, 0, 1.0], (50, 3)), atol=1e-15)
     np.testing.assert_allclose(jac[:, 3:, 1], minus_e_t, atol=1e-15)
     np.testing.assert_allclose(jac[:, 3:, 2], minus_e_t, atol=1e-15)
     # The knee does not move the thigh.
-    _, knee_jac = PAPER.jacobian(q, link=1)
+    _, knee_jac = PAPER.point_jacobian(q, link=1)
     assert np.all(knee_jac[:, :, 2] == 0.0)
 
 
-def finite_difference_jacobian(leg: uwml.Leg, q: np.ndarray, link: int, point, step: float) -> np.ndarray:
+def finite_difference_jacobian(leg: uwml.Robot, q: np.ndarray, link: int, point, step: float) -> np.ndarray:
     columns = []
     for j in range(leg.n_joints):
         dq = np.zeros(leg.n_joints)
@@ -122,12 +122,12 @@ def finite_difference_jacobian(leg: uwml.Leg, q: np.ndarray, link: int, point, s
 def test_paper_jacobian_matches_finite_differences(q):
     step = 1e-6
     for link in range(3):
-        _, jac = PAPER.jacobian(q, link)
+        _, jac = PAPER.point_jacobian(q, link)
         np.testing.assert_allclose(jac[:3], finite_difference_jacobian(PAPER, q, link, None, step), atol=1e-3 * math.sqrt(step))
 
 
 @settings(max_examples=50)
-@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, uwml.MAX_JOINTS))
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(1, 8))
 def test_random_chain_jacobian_matches_numpy_kinematics_and_finite_differences(seed, n):
     rng = np.random.default_rng(seed)
     leg = random_leg(rng, n)
@@ -136,7 +136,7 @@ def test_random_chain_jacobian_matches_numpy_kinematics_and_finite_differences(s
     step = 1e-6
     for link in range(n):
         point = rng.uniform(-0.5, 0.5, 3)
-        p, jac = leg.jacobian(q, link - n if link % 2 else link, point)
+        p, jac = leg.point_jacobian(q, link - n if link % 2 else link, point)
         rot, origin, _ = frames[link]
         np.testing.assert_allclose(p, origin + rot @ point, atol=1e-12)
         np.testing.assert_allclose(jac[:3], finite_difference_jacobian(leg, q, link, point, step), atol=1e-3 * math.sqrt(step))
@@ -148,7 +148,7 @@ def test_random_chain_jacobian_matches_numpy_kinematics_and_finite_differences(s
             else:
                 assert np.all(jac[:, j] == 0.0)
         # The default point: the segment's tip, or the frame origin.
-        segment = leg.links[link].segment
+        segment = leg.links[link].segments[0] if leg.links[link].segments else None
         local = np.zeros(3) if segment is None else np.array(segment.start) + segment.length * np.array(segment.axis)
         np.testing.assert_allclose(leg.forward_kinematics(q, link), origin + rot @ local, atol=1e-12)
 
@@ -295,7 +295,7 @@ def test_joint_states_are_consistent_with_finite_differences(gait, knee):
     q, qd, qdd = GAIT.joint_states(t, knee=knee)
     np.testing.assert_allclose(PAPER.forward_kinematics(q), GAIT.foot(t), atol=1e-12)
     # The Rust Jacobian maps qd to the foot velocity.
-    _, jac = PAPER.jacobian(q)
+    _, jac = PAPER.point_jacobian(q)
     np.testing.assert_allclose(np.einsum("nij,nj->ni", jac[:, :3], qd), GAIT.foot_velocity(t), atol=1e-12)
     step = 1e-5
     q_plus, qd_plus, _ = GAIT.joint_states(t + step, knee=knee)
@@ -318,7 +318,7 @@ def test_joint_states_are_consistent_with_finite_differences(gait, knee):
 
 
 def test_bad_inputs_to_the_jacobian_and_forward_kinematics():
-    for method in (PAPER.jacobian, PAPER.forward_kinematics):
+    for method in (PAPER.point_jacobian, PAPER.forward_kinematics):
         with pytest.raises(ValueError, match="link"):
             method(np.zeros(3), link=3)
         with pytest.raises(ValueError, match="link"):

@@ -11,7 +11,7 @@ import uwml
 from uwml import WalkingGait, fit
 from uwml.paper import synthetic
 
-LEG = uwml.Leg.paper()
+LEG = uwml.paper_leg()
 GAIT = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT, period=3.0)
 QUIET = {"leg": LEG, "gait": GAIT, "cycles": 1, "rate_hz": 100.0, "torque_noise": 0.0}
 

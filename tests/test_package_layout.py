@@ -385,10 +385,9 @@ def test_the_pressures_are_the_one_formula_bit_for_bit() -> None:
     pascal = conditions.hydrostatic_pressure(depth, 1025.0, 9.81)
     assert np.array_equal(pascal, 1025.0 * 9.81 * depth)  # the core's order: density · gravity · depth
     assert np.array_equal(uwml.hydrostatic_pressure_mpa(depth), pascal / 1e6)
-    pressure, temperature = conditions.loss_conditions(depth, 4.0, 1025.0, 9.81, len(depth))
-    assert np.array_equal(pressure, pascal) and np.array_equal(temperature, np.full(len(depth), 4.0))
-    # A batch (pressure from Python) and one state at a time (pressure from the core) agree in every bit.
-    leg, losses = uwml.Leg.paper(), uwml.JointLosses()
+    # The joint losses' pressure is the core's (`pressure_at_depth`), for a batch and one state
+    # at a time alike: their losses agree in every bit.
+    leg, losses = uwml.paper_leg(), uwml.JointLosses()
     q = np.tile([0.1, -0.4, 0.7], (len(depth), 1))
     qd = np.tile([0.3, 0.2, -0.5], (len(depth), 1))
     batch = leg.environment(q, qd, np.zeros_like(q), depth=depth, temperature_c=4.0, losses=losses)

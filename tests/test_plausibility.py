@@ -21,7 +21,7 @@ def quietly(call):  # type: ignore[no-untyped-def]
 
 @pytest.mark.parametrize("batch", [False, True])
 def test_degrees_given_as_radians_warn_and_change_nothing(batch: bool) -> None:
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     q, qd, qdd = np.radians([30.0, -40.0, 60.0]), np.radians([45.0, 30.0, -40.0]), np.zeros(3)
     degrees = (np.degrees(q), np.degrees(qd), qdd)
     if batch:
@@ -76,5 +76,5 @@ def test_a_batch_is_checked_on_rows_spread_over_it() -> None:
     qd = np.full((100_000, 3), 0.5)
     qd[:, 1] = 80.0  # every row: a unit mistake shows in all of them
     with pytest.warns(uwml.PlausibilityWarning, match="joint 2's speed reaches 80 rad/s"):
-        plausibility.check_states(q, qd, plausibility.joint_bounds(uwml.Leg.paper().joints))
+        plausibility.check_states(q, qd, plausibility.joint_bounds(uwml.paper_leg().joints))
     assert plausibility.CHECKED_ROWS <= 1024 and math.isclose(plausibility.PLAUSIBLE_ANGLE, 4 * math.pi)

@@ -171,5 +171,5 @@ def test_the_joint_losses_count_towards_the_effort() -> None:
 def test_the_bounds_follow_the_descriptions_limits() -> None:
     bounds = plausibility.joint_bounds(uwml.Robot.from_urdf(ARM, ARM_HYDRO).joints)
     assert bounds.speed == (6.0, 6.0) and bounds.angle == (2 * math.pi, 2 * math.pi) and bounds.effort == (100.0, 50.0)
-    paper = plausibility.joint_bounds(uwml.Leg.paper().joints)
+    paper = plausibility.joint_bounds(uwml.paper_leg().joints)
     assert paper.speed == (30.0,) * 3 and paper.angle == (4 * math.pi,) * 3 and paper.effort == (math.inf,) * 3

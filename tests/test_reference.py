@@ -129,8 +129,8 @@ def _brute_force(joints: Any, links: Any, q: np.ndarray, qd: np.ndarray, qdd: np
     drag = np.zeros((len(joints), len(links), 2))
     added_mass = np.zeros((len(joints), len(links), 2))
     for i, link in enumerate(links):
-        if link.segment is not None:
-            drag[:, i], added_mass[:, i] = _link_brute_force(joints, i, link.segment, q, qd, qdd, nodes)
+        for segment in link.segments:
+            drag[:, i], added_mass[:, i] = _link_brute_force(joints, i, segment, q, qd, qdd, nodes)
     return drag, added_mass
 
 
@@ -162,7 +162,15 @@ def _random_chain(rng: np.random.Generator) -> tuple[list[Any], list[Any]]:
                 widths=widths,
                 area=widths[0] * widths[1],
             )
-        links.append(SimpleNamespace(mass=mass, com=com, volume=mass / 2700.0, cob=tuple(rng.uniform(-0.4, 0.4, 3)), segment=segment))
+        links.append(
+            SimpleNamespace(
+                mass=mass,
+                com=com,
+                volume=mass / 2700.0,
+                cob=tuple(rng.uniform(-0.4, 0.4, 3)),
+                segments=() if segment is None else (segment,),
+            )
+        )
     return joints, links
 
 
@@ -199,7 +207,7 @@ def test_paper_leg_matches_model_section2(q1: float, q2: float, q3: float) -> No
     n2 = -math.sin(q2) * e_r + math.cos(q2) * z
     n3 = math.cos(q2 + q3) * e_r + math.sin(q2 + q3) * z
     (r2, o2), (r3, o3) = frames[1], frames[2]
-    thigh, calf = LINKS[1].segment, LINKS[2].segment
+    (thigh,), (calf,) = LINKS[1].segments, LINKS[2].segments
     np.testing.assert_allclose(r2 @ thigh.axis, u2, atol=1e-15)
     np.testing.assert_allclose(r3 @ calf.axis, u3, atol=1e-15)
     np.testing.assert_allclose(r2 @ np.array(thigh.normals).T, np.stack([e_t, n2], axis=1), atol=1e-15)
@@ -384,7 +392,7 @@ def test_regressors_consistency_and_coefficient_broadcasting() -> None:
         assert np.all(reg["drag"][:, link + 1 :, link] == 0.0)
         assert np.all(reg["added_mass"][:, link + 1 :, link] == 0.0)
     for link, item in enumerate(links):
-        if item.segment is None:
+        if not item.segments:
             assert np.all(reg["drag"][..., link, :] == 0.0)
 
 

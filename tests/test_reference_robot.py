@@ -1,7 +1,7 @@
 """Tests of the whole-robot numpy reference ``python/uwml/reference/robot_hydro.py`` (docs/model.md section 10).
 
 The package is loaded standalone from its directory (as in ``test_reference.py``), so these tests
-need no compiled extension, except the one against ``uwml.Leg.paper()``. No expected value comes
+need no compiled extension, except the one against ``uwml.paper_leg()``. No expected value comes
 from the code under test:
 
 * against the serial-chain reference ``reference.hydro`` (a different algorithm) and the numbers
@@ -93,7 +93,7 @@ def _chain_states(rng: np.random.Generator, m: int, n: int) -> tuple[np.ndarray,
 def test_paper_leg_equals_the_chain_reference_and_model_md_section_5():
     import uwml
 
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     joints, links = leg.joints, leg.links
     q, qd, qdd = _chain_states(np.random.default_rng(5), 64, 3)
     got = ref.robot_hydro(joints, links, None, q, qd, qdd, cd=2.2, cm=0.5)
@@ -110,7 +110,7 @@ def test_paper_leg_equals_the_chain_reference_and_model_md_section_5():
     for key, values in table.items():
         assert one[key].shape == (3,)
         np.testing.assert_allclose(one[key], values, rtol=1e-6, atol=1e-9, err_msg=key)
-    # The same leg as the reference's own description (no parent/kind/segments/section attributes).
+    # The same leg as the reference's own description (no parent, kind or section attributes).
     ref_joints, ref_links = ref.paper_leg()
     again = ref.robot_hydro(ref_joints, ref_links, None, q, qd, qdd, cd=2.2, cm=0.5)
     for key in KEYS:
@@ -119,7 +119,7 @@ def test_paper_leg_equals_the_chain_reference_and_model_md_section_5():
 
 def _random_chain(rng: np.random.Generator) -> tuple[list, list, np.ndarray]:
     """A serial chain of revolute joints (parents default) with one rectangular segment or none
-    per link, as RefJoint/RefLink-like objects (``segment``), and per-link coefficients."""
+    per link, as RefJoint/RefLink-like objects (``segments``), and per-link coefficients."""
     n = int(rng.integers(1, 7))
     joints, links = [], []
     for i in range(n):
@@ -140,8 +140,16 @@ def _random_chain(rng: np.random.Generator) -> tuple[list, list, np.ndarray]:
             )
         mass = float(rng.uniform(0.2, 20.0))
         com = rng.uniform(-0.4, 0.4, 3)
-        links.append(NS(mass=mass, com=tuple(com), volume=mass / 3000.0, cob=tuple(com + rng.uniform(-0.1, 0.1, 3)), segment=segment))
-    return joints, links, np.array([link.segment is not None for link in links])
+        links.append(
+            NS(
+                mass=mass,
+                com=tuple(com),
+                volume=mass / 3000.0,
+                cob=tuple(com + rng.uniform(-0.1, 0.1, 3)),
+                segments=() if segment is None else (segment,),
+            )
+        )
+    return joints, links, np.array([bool(link.segments) for link in links])
 
 
 @pytest.mark.parametrize("seed", range(6))

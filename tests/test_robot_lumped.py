@@ -334,10 +334,3 @@ def test_regressors_name_their_lumped_coefficients_and_check_their_shapes() -> N
         regressors.torques(2.0, 1.0, 0.0, np.zeros((len(robot.lumped_models) + 1, 63)))
     with pytest.raises(ValueError, match="cd_axial must be a scalar or"):
         regressors.torques(2.0, 1.0, [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0][: len(robot.segments) + 1])
-
-
-def test_a_leg_refuses_a_lumped_model_rather_than_dropping_it() -> None:
-    paper = uwml.Leg.paper()
-    links = [*paper.links[:2], dataclasses.replace(paper.links[2], lumped=uwml.LumpedModel(added_mass=np.eye(6)))]
-    with pytest.raises(ValueError, match=r"links\[2\]: a uwml.Leg link has no lumped model"):
-        uwml.Leg(paper.joints, links)

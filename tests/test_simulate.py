@@ -26,7 +26,7 @@ def test_the_plant_is_table_ii_with_box_inertias() -> None:
     expected = 19.261 / 12 * np.array([b * b + c * c, a * a + c * c, a * a + b * b])
     np.testing.assert_allclose(model.body_inertia[3], expected, rtol=1e-12)
     # The hip housing: a cube of its displaced volume.
-    side = (uwml.Leg.paper().links[0].volume) ** (1 / 3)
+    side = (uwml.paper_leg().links[0].volume) ** (1 / 3)
     np.testing.assert_allclose(model.body_inertia[2], 10.758 * side**2 / 6 * np.ones(3), rtol=1e-12)
     np.testing.assert_allclose(model.body_ipos[3], (0.506, 0.0, 0.0), atol=1e-15)
     np.testing.assert_allclose(model.jnt_axis[1], (0.0, -1.0, 0.0), atol=1e-15)

@@ -14,7 +14,7 @@ kind (README, "Documentation"; the README's own Python and command-line blocks r
   ``ENVIRONMENT_COMMANDS`` (installers, compilers, a cluster's), which set up a machine and are
   not run by the tests;
 - TOML: parses; a study configuration (``[scenario]``) is checked whole by ``uwml.study``;
-- the API reference's docstring examples (``Example ...::``) of ``uwml.Robot`` and ``uwml.Leg``
+- the API reference's docstring examples (``Example ...::``) of ``uwml.Robot`` and ``uwml.Conditions``
   run too.
 
 A block of any other language, or without one, fails the test: each kind has its check here.
@@ -94,7 +94,7 @@ def test_each_python_block_of_the_site_runs_on_its_own(where: str, code: str, fo
     assert done.returncode == 0, f"{where}:\n{code}\n{done.stderr[-3000:]}"
 
 
-@pytest.mark.parametrize("name", ["Robot", "Leg"])
+@pytest.mark.parametrize("name", ["Robot", "Conditions"])
 def test_the_api_references_docstring_examples_run(name: str, folder: Path) -> None:
     doc = getattr(uwml, name).__doc__
     match = re.search(r"Example[^\n]*::\n\n((?:    .*\n|\n)+)", doc)

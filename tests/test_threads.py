@@ -18,13 +18,13 @@ import uwml
 
 
 def test_batch_call_releases_the_gil():
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     rng = np.random.default_rng(0)
     n = 1_000_000
     q, qd, qdd = (rng.uniform(-1, 1, (n, 3)) for _ in range(3))
-    # The native call itself (a Leg is a Robot: the robot's batch), its arguments laid out before,
-    # so that no Python runs in this thread during it.
-    arguments, _, _ = leg._evaluation(q, qd, qdd, None, None, None, None, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+    # The native call itself, its conditions read before, so that no Python runs in this thread
+    # during it.
+    conditions = leg._native(uwml.Conditions())
     native = leg._core
 
     count = 0
@@ -44,7 +44,7 @@ def test_batch_call_releases_the_gil():
         rate = (count - start_count) / (time.perf_counter() - start)
         # Its progress during the batch call.
         start_count, start = count, time.perf_counter()
-        native.hydro(*arguments, 1, False, kirchhoff=False)
+        native.hydro(q, qd, qdd, conditions, checked=True)
         duration = time.perf_counter() - start
         progress = count - start_count
     finally:
@@ -65,7 +65,7 @@ def _states(n: int, seed: int = 1) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def test_threads_give_the_same_results_bit_for_bit():
     """Splitting a batch over threads changes nothing: each sample is the same evaluation."""
-    leg, losses = uwml.Leg.paper(), [None, uwml.JointLosses(), uwml.JointLosses()]
+    leg, losses = uwml.paper_leg(), [None, uwml.JointLosses(), uwml.JointLosses()]
     q, qd, qdd = _states(10_007)  # not a multiple of any thread count below
     depth = np.linspace(0.0, 3000.0, len(q))
     one = leg.hydro(q, qd, qdd)
@@ -86,12 +86,12 @@ def test_threads_give_the_same_results_bit_for_bit():
 def test_each_row_is_its_states_own_evaluation(n: int):
     """The batch evaluates four states at once, one per SIMD lane, and pads a last group of fewer
     than four: a state's row does not depend on its neighbours, its place, or the padding."""
-    leg, losses = uwml.Leg.paper(), [None, uwml.JointLosses(), uwml.JointLosses()]
+    leg, losses = uwml.paper_leg(), [None, uwml.JointLosses(), uwml.JointLosses()]
     q, qd, qdd = _states(n, seed=n)
     depth = np.linspace(0.0, 3000.0, n)
     batch = leg.hydro(q, qd, qdd)
     env = leg.environment(q, qd, qdd, depth=depth, losses=losses)
-    regressors = leg.hydro_regressors(q, qd, qdd, per="direction")
+    regressors = leg.hydro_regressors(q, qd, qdd)
     order = np.random.default_rng(n).permutation(n)
     shuffled = leg.hydro(q[order], qd[order], qdd[order])
     for s in range(n):
@@ -102,13 +102,13 @@ def test_each_row_is_its_states_own_evaluation(n: int):
         single_env = leg.environment(q[s], qd[s], qdd[s], depth=depth[s], losses=losses)
         for name in ("drag", "buoyancy", "visc", "seal", "current"):
             np.testing.assert_array_equal(getattr(env, name)[s], getattr(single_env, name))
-        single_regressors = leg.hydro_regressors(q[s], qd[s], qdd[s], per="direction")
+        single_regressors = leg.hydro_regressors(q[s], qd[s], qdd[s])
         for name in ("drag", "added_mass", "buoyancy"):
             np.testing.assert_array_equal(getattr(regressors, name)[s], getattr(single_regressors, name))
 
 
 def test_threads_report_the_first_bad_sample_of_the_whole_batch():
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     q, qd, qdd = _states(1000)
     qd[700, 2] = np.nan  # in the last of 4 parts
     qdd[900, 0] = np.inf
@@ -122,7 +122,7 @@ def test_threads_report_the_first_bad_sample_of_the_whole_batch():
 
 @pytest.mark.parametrize("threads", [0, -1, 1.5, True, "2", None])
 def test_bad_thread_counts(threads):
-    leg = uwml.Leg.paper()
+    leg = uwml.paper_leg()
     with pytest.raises(ValueError, match="threads must be an integer >= 1"):
         leg.hydro([0.1, 0.2, 0.3], [0.0] * 3, [0.0] * 3, threads=threads)
     with pytest.raises(ValueError, match="threads must be an integer >= 1"):

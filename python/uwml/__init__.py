@@ -12,7 +12,7 @@ The package, one idea per subpackage, each importing only those before it: :mod:
 sea's conditions at a joint: depth, temperature, hydrostatic pressure; sea water, oil),
 :mod:`uwml.model` (joints, links, segments, the water; the joint losses), :mod:`uwml.io` (model
 files, robot descriptions, hydro files, exported code, logs), :mod:`uwml.robot` (:class:`Robot`,
-:class:`Leg` and their results), then :mod:`uwml.fit` (identification), :mod:`uwml.viz` (figures,
+:class:`Conditions`, the results, the paper's leg :func:`paper_leg`), then :mod:`uwml.fit` (identification), :mod:`uwml.viz` (figures,
 descriptions), :mod:`uwml.sim` (MuJoCo with uwml's forces, prescribed motion, replay, control),
 :mod:`uwml.paper` (the paper's gait, synthetic experiments, analysis and control study),
 :mod:`uwml.study` (scenarios over grids of parameters, on Ray) and the command line
@@ -30,38 +30,25 @@ from .model.parts import Joint, Link, Segment, Water
 from .paper.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .plausibility import PlausibilityWarning
 from .robot.base_motion import BaseMotion
-from .robot.leg import MAX_JOINTS, Leg
-from .robot.results import (
-    BaseWrench,
-    EnvironmentJacobians,
-    EnvironmentTorques,
-    HydroRegressors,
-    HydroTorques,
-    RobotEnvironment,
-    RobotJacobians,
-    RobotRegressors,
-    RobotTorques,
-)
+from .robot.evaluation_conditions import Conditions
+from .robot.presets import paper_leg
+from .robot.results import BaseWrench, Jacobians, Regressors, Torques
 from .robot.tree import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
 from .sea.conditions import ExtrapolationWarning, hydrostatic_pressure_mpa
 
 __all__ = [
-    "MAX_JOINTS",
     "MAX_LUMPED_BODIES",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
     "BaseMotion",
     "BaseWrench",
+    "Conditions",
     "DescriptionError",
     "Drive",
-    "EnvironmentJacobians",
-    "EnvironmentTorques",
     "ExtrapolationWarning",
-    "HydroRegressors",
-    "HydroTorques",
+    "Jacobians",
     "Joint",
     "JointLosses",
-    "Leg",
     "Link",
     "Log",
     "LossTorques",
@@ -70,17 +57,16 @@ __all__ = [
     "ModelFileError",
     "OilDrag",
     "PlausibilityWarning",
+    "Regressors",
     "Robot",
-    "RobotEnvironment",
-    "RobotJacobians",
-    "RobotRegressors",
-    "RobotTorques",
     "Seal",
     "Segment",
+    "Torques",
     "UwmlError",
     "WalkingGait",
     "Water",
     "hydrostatic_pressure_mpa",
+    "paper_leg",
     "paper_leg_foot",
     "paper_leg_ik",
     "read_log",

@@ -1,13 +1,15 @@
 """Type stubs of the native module ``uwml._core`` (the Rust bindings). Use :mod:`uwml` instead."""
 
 from collections.abc import Sequence
-from typing import Self, TypeAlias, TypeVar, final
+from typing import Self, TypeAlias, final
 
 import numpy as np
 from numpy.typing import NDArray
 
 from .model.joint_losses import JointLosses
-from .model.parts import Joint, Link, Segment
+from .model.parts import Joint, Link, Segment, Water
+from .robot.evaluation_conditions import Conditions as _Conditions
+from .robot.results import Jacobians, Regressors, Torques
 
 _Vec3: TypeAlias = tuple[float, float, float]
 #: A robot's validated parts (`Robot.parts`): a joint (parent, kind, origin, axis), a body (mass,
@@ -38,7 +40,6 @@ __all__ = [
     "MAX_DENSITY",
     "MAX_DEPTH",
     "MAX_GRAVITY",
-    "MAX_JOINTS",
     "MAX_LENGTH",
     "MAX_LUMPED_BODIES",
     "MAX_MASS",
@@ -47,6 +48,7 @@ __all__ = [
     "MAX_SEGMENTS",
     "MAX_VOLUME",
     "OIL_TEMPERATURE_RANGE_C",
+    "Conditions",
     "Losses",
     "ModelError",
     "MujocoCoupling",
@@ -55,9 +57,6 @@ __all__ = [
     "joint_losses",
 ]
 
-_Result = TypeVar("_Result")
-
-MAX_JOINTS: int
 MAX_DEPTH: float
 MAX_PRESSURE: float
 MAX_LENGTH: float
@@ -86,6 +85,12 @@ class Losses:
     def n_joints(self) -> int: ...
 
 @final
+class Conditions:
+    def __new__(cls, robot: Robot, conditions: _Conditions, water: Water, losses: Losses | None) -> Self: ...
+    @property
+    def n_samples(self) -> int | None: ...
+
+@final
 class Robot:
     def __new__(
         cls,
@@ -109,113 +114,20 @@ class Robot:
         qd: NDArray[np.float64],
         qdd: NDArray[np.float64],
         delta: NDArray[np.float64],
-        density: float,
-        gravity: float,
+        conditions: Conditions,
         joints: Sequence[int],
         per: str,
     ) -> NDArray[np.float64]: ...
     def hydro(
-        self,
-        q: NDArray[np.float64],
-        qd: NDArray[np.float64],
-        qdd: NDArray[np.float64],
-        cd: NDArray[np.float64],
-        cm: NDArray[np.float64],
-        density: float,
-        gravity: float,
-        orientation: NDArray[np.float64],
-        velocity: NDArray[np.float64],
-        angular_velocity: NDArray[np.float64],
-        acceleration: NDArray[np.float64],
-        angular_acceleration: NDArray[np.float64],
-        current: NDArray[np.float64],
-        current_acceleration: NDArray[np.float64],
-        threads: int,
-        body_wrenches: bool,
-        losses: Losses | None = None,
-        pressure: NDArray[np.float64] | None = None,
-        temperature: NDArray[np.float64] | None = None,
-        kirchhoff: bool = False,
-    ) -> list[NDArray[np.float64]]: ...
-    def hydro_one(
-        self,
-        result_type: type[_Result],
-        base_type: type,
-        q: object,
-        qd: object,
-        qdd: object,
-        cd: object,
-        cm: object,
-        density: object,
-        gravity: object,
-        motion: object,
-        current: object,
-        current_acceleration: object,
-        threads: object,
-        kirchhoff: bool = False,
-        per_link: bool = False,
-    ) -> _Result | None: ...
-    def environment_one(
-        self,
-        result_type: type[_Result],
-        base_type: type,
-        q: object,
-        qd: object,
-        qdd: object,
-        depth: object,
-        temperature: object,
-        losses: object,
-        cd: object,
-        cm: object,
-        density: object,
-        gravity: object,
-        sea_density: object,
-        motion: object,
-        current: object,
-        current_acceleration: object,
-        threads: object,
-        kirchhoff: bool = False,
-        per_link: bool = False,
-    ) -> _Result | None: ...
-    def regressors(
-        self,
-        q: NDArray[np.float64],
-        qd: NDArray[np.float64],
-        qdd: NDArray[np.float64],
-        density: float,
-        gravity: float,
-        orientation: NDArray[np.float64],
-        velocity: NDArray[np.float64],
-        angular_velocity: NDArray[np.float64],
-        acceleration: NDArray[np.float64],
-        angular_acceleration: NDArray[np.float64],
-        current: NDArray[np.float64],
-        current_acceleration: NDArray[np.float64],
-        threads: int,
-        kirchhoff: bool = False,
-    ) -> list[NDArray[np.float64]]: ...
-    def jacobians(
-        self,
-        q: NDArray[np.float64],
-        qd: NDArray[np.float64],
-        qdd: NDArray[np.float64],
-        cd: NDArray[np.float64],
-        cm: NDArray[np.float64],
-        density: float,
-        gravity: float,
-        orientation: NDArray[np.float64],
-        velocity: NDArray[np.float64],
-        angular_velocity: NDArray[np.float64],
-        acceleration: NDArray[np.float64],
-        angular_acceleration: NDArray[np.float64],
-        current: NDArray[np.float64],
-        current_acceleration: NDArray[np.float64],
-        losses: Losses,
-        pressure: NDArray[np.float64],
-        temperature: NDArray[np.float64],
-        kirchhoff: bool = False,
-    ) -> list[NDArray[np.float64]]: ...
-    def added_mass_matrix(self, q: NDArray[np.float64], cm: NDArray[np.float64], density: float) -> NDArray[np.float64]: ...
+        self, q: object, qd: object, qdd: object, conditions: Conditions, *, threads: int = 1, base: bool = False, checked: bool = False
+    ) -> Torques | None: ...
+    def environment(
+        self, q: object, qd: object, qdd: object, conditions: Conditions, *, threads: int = 1, base: bool = False, checked: bool = False
+    ) -> Torques | None: ...
+    def link_wrenches(self, q: object, qd: object, qdd: object, conditions: Conditions, *, threads: int = 1) -> NDArray[np.float64]: ...
+    def regressors(self, q: object, qd: object, qdd: object, conditions: Conditions, *, threads: int = 1) -> Regressors: ...
+    def jacobians(self, q: object, qd: object, qdd: object, conditions: Conditions) -> Jacobians: ...
+    def added_mass_matrix(self, q: object, conditions: Conditions) -> NDArray[np.float64]: ...
 
 @final
 class MujocoCoupling:

@@ -4,12 +4,9 @@
 use std::ops::Range;
 
 use numpy::ndarray::{Array, Dimension, IntoDimension};
-use numpy::{IntoPyArray, PyArray, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyReadwriteArray2};
+use numpy::{IntoPyArray, PyArray, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-
-/// A 2-D float64 numpy array.
-pub(crate) type Array2<'py> = Bound<'py, PyArray<f64, numpy::Ix2>>;
 
 /// Four float64 samples side by side, one per SIMD lane (two SSE2 registers on baseline x86-64):
 /// the robot's batch evaluates four states per call, each lane its own state's scalar evaluation.
@@ -48,8 +45,6 @@ pub(crate) fn check_conditions(pressure: &[f64], temperature: &[f64]) -> Result<
     }
     Ok(())
 }
-
-impl NonFinite {}
 
 impl From<NonFinite> for PyErr {
     fn from(e: NonFinite) -> Self {
@@ -105,28 +100,17 @@ pub(crate) fn in_parallel<const K: usize, E: Send>(
     errors.into_iter().collect()
 }
 
-/// `K` zeroed float64 arrays `rows × columns`, allocated by numpy (which asks for huge pages:
-/// a fresh output then costs far fewer page faults than one from Rust's allocator).
-pub(crate) fn zeroed<'py, const K: usize>(py: Python<'py>, rows: usize, columns: usize) -> [Array2<'py>; K] {
-    core::array::from_fn(|_| PyArray2::zeros(py, (rows, columns), false))
-}
-
-/// Write access to `K` fresh arrays' data.
-pub(crate) fn writable<'a, 'py, const K: usize>(
-    guards: &'a mut [PyReadwriteArray2<'py, f64>; K],
-) -> PyResult<[&'a mut [f64]; K]> {
-    let mut slices = guards.each_mut().map(|guard| guard.as_slice_mut().ok());
-    if slices.iter().any(Option::is_none) {
-        return Err(PyValueError::new_err("internal error: a fresh output array is not contiguous"));
-    }
-    Ok(slices.each_mut().map(|slice| slice.take().unwrap_or_default()))
-}
-
+/// `values` as a numpy array of `shape` (an empty one made by numpy: ndarray gives an empty array
+/// zero strides, which numpy's BLAS calls take as a leading dimension of 0).
 pub(crate) fn to_numpy<'py, D: Dimension>(
     py: Python<'py>,
     values: Vec<f64>,
     shape: impl IntoDimension<Dim = D>,
 ) -> PyResult<Bound<'py, PyArray<f64, D>>> {
+    let shape = shape.into_dimension();
+    if values.is_empty() {
+        return Ok(PyArray::zeros(py, shape, false));
+    }
     let array = Array::from_shape_vec(shape, values).map_err(|e| PyValueError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
 }
@@ -143,4 +127,30 @@ pub(crate) fn contiguous1<'a>(array: &'a PyReadonlyArray1<'_, f64>, argument: &s
         return Err(PyValueError::new_err(format!("{argument} must have {n} entries, got {}", values.len())));
     }
     Ok(values)
+}
+
+/// `x` as Python's `format(x, ".3g")` writes it: three significant digits, in exponent form
+/// (`1e+300`) below 1e-4 and from 1e3 on, trailing zeros dropped.
+pub(crate) fn general(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return if x.is_nan() {
+            "nan".to_owned()
+        } else if x == 0.0 {
+            "0".to_owned()
+        } else {
+            format!("{}inf", if x < 0.0 { "-" } else { "" })
+        };
+    }
+    let scientific = format!("{x:.2e}");
+    let (mantissa, exponent) = scientific.split_once('e').unwrap_or((&scientific, "0"));
+    let exponent: i32 = exponent.parse().unwrap_or(0);
+    let trim = |s: &str| -> String {
+        if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_owned() } else { s.to_owned() }
+    };
+    if (-4..3).contains(&exponent) {
+        let decimals = usize::try_from(2 - exponent).unwrap_or(0);
+        trim(&format!("{x:.decimals$}"))
+    } else {
+        format!("{}e{}{:02}", trim(mantissa), if exponent < 0 { '-' } else { '+' }, exponent.abs())
+    }
 }

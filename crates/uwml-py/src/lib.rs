@@ -9,30 +9,14 @@ mod parts;
 mod robot;
 mod single;
 
-pub(crate) use arrays::{
-    Array2, NonFinite, check_conditions, contiguous, contiguous1, in_parallel, to_numpy, writable, zeroed,
-};
+pub(crate) use arrays::{NonFinite, check_conditions, contiguous, contiguous1, in_parallel, to_numpy};
 pub(crate) use losses::{PyLosses, joint_losses, parse_losses};
 
 use pyo3::prelude::*;
 use uwml_core::{ModelError, Water};
 
-/// Largest number of joints of a `uwml.Leg` (a serial chain of revolute joints).
-const MAX_JOINTS: usize = 8;
-
 fn model_error(error: ModelError) -> PyErr {
     errors::ModelError::new_err(error.to_string())
-}
-
-/// Loss conditions the one-state paths take: depth from 0 to the deepest ocean, a positive sea
-/// density, the pressure in the core's domain and the temperature within the oil model's range.
-/// Anything else goes to the general path, which refuses it or warns, naming the argument.
-fn usual_conditions(depth: f64, temperature: f64, sea_density: f64, pressure: f64) -> bool {
-    let [low, high] = uwml_core::OIL_TEMPERATURE_RANGE_C;
-    (0.0..=uwml_core::MAX_DEPTH).contains(&depth)
-        && sea_density > 0.0
-        && (low..=high).contains(&temperature)
-        && uwml_core::check_conditions(pressure, temperature).is_ok()
 }
 
 fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
@@ -42,6 +26,7 @@ fn water(density: f64, gravity: f64) -> PyResult<Water<f64>> {
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::PyRobot>()?;
+    m.add_class::<robot::PyConditions>()?;
     m.add_class::<robot::MujocoCoupling>()?;
     m.add_class::<PyLosses>()?;
     m.add("MAX_ROBOT_JOINTS", robot::MAX_ROBOT_JOINTS)?;
@@ -61,6 +46,5 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(joint_losses, m)?)?;
     m.add("UwmlError", m.py().get_type::<errors::UwmlError>())?;
     m.add("ModelError", m.py().get_type::<errors::ModelError>())?;
-    m.add("MAX_JOINTS", MAX_JOINTS)?;
     Ok(())
 }

@@ -1,13 +1,10 @@
-//! One state per call, for a controller or a simulator that steps one state at a time: the
-//! Python objects read and checked in one pass (no numpy conversion), and the result object built
-//! without `__init__` (the robot's one-state path, `robot::one`, uses these).
+//! Plain Python objects read without numpy's conversions (one state of a controller or a
+//! simulator stepping one state at a time, `robot::states`), and result objects built without
+//! `__init__` (`robot::results`).
 //!
-//! Only the plain kinds of arguments are taken: joint states as lists or tuples of Python floats
-//! (or ints), or 1-D float64 arrays; scalar coefficients, depth and temperature as Python floats
-//! (or ints). Anything else, and any value that fails a check, gives `None`: the caller then
-//! takes its general path, which accepts every other valid kind and raises the error of a bad
-//! one, so that the errors and their messages are the general path's, whichever path an
-//! argument first reached.
+//! Only the plain kinds of values are taken: lists or tuples of Python floats (or ints), or 1-D
+//! float64 arrays. Anything else, and any value that is not finite, gives `None`: the caller then
+//! has the Python package check the values (and raise the error of a bad one, naming it).
 
 use numpy::{PyArray1, PyArrayDescrMethods, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::intern;
@@ -55,11 +52,6 @@ pub(crate) fn fill_values(value: &Bound<'_, PyAny>, out: &mut [f64]) -> Option<(
         return None;
     }
     Some(())
-}
-
-/// `threads` as the general path takes it without conversion: an int ≥ 1 (not a bool).
-pub(crate) fn threads_ok(threads: &Bound<'_, PyAny>) -> bool {
-    threads.is_exact_instance_of::<PyInt>() && threads.extract::<i64>().is_ok_and(|t| t >= 1)
 }
 
 /// A new instance of the (dataclass) type `cls` with `fields` as its attributes, set directly

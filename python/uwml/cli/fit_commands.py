@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from ..fit.robot_design import BASE_ROWS
-from ..robot.leg import Leg
+from ..robot.presets import paper_leg
 from .argument_types import _base_rows, _joint_list_or_none, _workers
 from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 
@@ -19,7 +19,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
     from .. import fit
 
     _check_output(args.plot, "--plot")
-    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
+    leg: Any = paper_leg() if args.robot is None else load_robot(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     joints = ([] if args.base else [1]) if args.joints is None else args.joints
     if any(j > leg.n_joints for j in joints):

@@ -14,7 +14,7 @@ import numpy as np
 from ..model.parts import Water
 from ..paper.analysis import _component_table, _rms, gait_like_motion
 from ..paper.control_study import CONTROLLERS, MAX_CYCLES, fluid_models, preset, run, write_report
-from ..robot.leg import Leg
+from ..robot.presets import paper_leg
 from ..sim.control import ROV_CURRENT, TEMPERATURE_C, rov_drift
 from .argument_types import (
     MAX_DEMO_SAMPLES,
@@ -31,7 +31,7 @@ from .common import _EXIT
 
 
 def _demo(args: argparse.Namespace) -> int:
-    leg = Leg.paper()
+    leg = paper_leg()
     water = Water(density=args.density, gravity=9.81)
     t, q, qd, qdd = gait_like_motion(args.samples, args.period)
     tau = leg.hydro(q, qd, qdd, cd=args.cd, cm=args.cm, water=water)

@@ -13,8 +13,7 @@ import numpy as np
 
 from ..domains import MAX_ROBOT_JOINTS
 from ..model.parts import SEA_WATER, Water
-from ..robot.leg import Leg
-from ..robot.tree import Robot
+from ..robot.presets import paper_leg
 from .argument_types import _depth, _finite, _n_joints, _non_negative, _positive
 from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 
@@ -35,7 +34,7 @@ def _torques(args: argparse.Namespace) -> int:
             import pyarrow
         except ImportError:
             raise _UsageError(f"{out}: Parquet output needs pyarrow (pip install pyarrow); write CSV instead") from None
-    leg: Any = Leg.paper() if args.robot is None else load_robot(args.robot, args.hydro)
+    leg: Any = paper_leg() if args.robot is None else load_robot(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
     cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
@@ -76,8 +75,9 @@ def _torques(args: argparse.Namespace) -> int:
         for log in chunks:
             assert log.qd is not None and log.qdd is not None
             tau = leg.environment(
-                log.q, log.qd, log.qdd, depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm, water=water
-            )
+                log.q, log.qd, log.qdd, base=bool(base_names),
+                depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm, water=water,
+            )  # fmt: skip
             blocks = [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
             columns = [log.time] + [block[:, k] for block in blocks for k in range(block.shape[1])]
             if parquet:
@@ -113,7 +113,7 @@ def _torques(args: argparse.Namespace) -> int:
 def _export(args: argparse.Namespace) -> int:
     from ..io.export import to_c, to_rust
 
-    robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
+    robot = load_robot(args.robot, args.hydro) if args.robot else paper_leg()
     source = args.robot or "the paper's leg"
     precision = "f32" if args.f32 else "f64"
     text = to_rust(robot, precision, source=source) if args.rust else to_c(robot, precision, prefix=args.name, source=source)
@@ -125,7 +125,7 @@ def _describe(args: argparse.Namespace) -> int:
     from ..viz.describe import describe, draw
 
     _check_output(args.plot, "--plot")
-    robot = load_robot(args.robot, args.hydro) if args.robot else Robot.from_leg(Leg.paper())
+    robot = load_robot(args.robot, args.hydro) if args.robot else paper_leg()
     water = robot.water if args.density is None else Water(density=args.density, gravity=robot.water.gravity)
     print(describe(robot, water))
     if args.plot:

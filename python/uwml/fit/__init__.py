@@ -63,14 +63,14 @@ Hydrodynamic coefficients
 :func:`hydro_coefficients` fits docs/model.md section 4, ``−Δτ_motor − τ_buoy = Cd R_d + Cm R_m``
 with ``Δτ_motor = τ_water − τ_land`` from a log of :mod:`uwml.io.logs`, on the selected joints
 (default joint index 0, the paper's joint 1, hip yaw, whose vertical axis gravity and
-buoyancy do not act about). ``per="link"`` gives one Cd and one Cm per link (``cd_link<l>``,
-``cm_link<l>``, ``l`` the 0-based link index), ``per="direction"`` one per link and normal
-direction (``cd_link<l>_n<k>``, ``k`` as in :meth:`uwml.Leg.hydro`); columns that are zero on
-every selected sample (a link without a segment, a direction that never moves) are dropped and
-named in ``message`` and ``dropped``. Any :class:`uwml.Robot` (a tree, from a URDF, MJCF or
-model file) fits the same way on a fixed base, with the whole-robot core's regressors summed per
-body: ``cd_<link name>`` (``cd_link<i>`` if unnamed), ``cd_base`` for the base's own segments
-(dropped on a fixed base); a circular segment counts in ``n0``.
+buoyancy do not act about), of any :class:`uwml.Robot` (default :func:`uwml.paper_leg`; a tree,
+from a URDF, MJCF or model file) on a fixed base, with the core's regressors summed per body.
+``per="link"`` gives one Cd and one Cm per body (``cd_<link name>``, ``cd_link<l>`` for an
+unnamed link ``l``, 0-based; ``cd_base`` for the base's own segments, dropped on a fixed base),
+``per="direction"`` one per body and normal direction (``cd_link<l>_n<k>``, ``k`` the
+segment's normal, as in :attr:`uwml.Segment.normals`; a circular segment counts in ``n0``);
+columns that are zero on every selected sample (a link without a segment, a direction that
+never moves) are dropped and named in ``message`` and ``dropped``.
 
 Weights: each joint ``j`` gets ``1/σ_j²``. Given ``sigma`` (the standard error of ``−Δτ``, a
 scalar or one per selected joint [N·m]), those are used and the covariance is scaled by the

@@ -1,8 +1,8 @@
 """The identification design of the land/water experiment (docs/model.md section 4): the
 regressors of every coefficient and the target ``y = −Δτ_motor − τ_buoy`` on the selected
 joints, assembled by the Rust core chunk by chunk in one pass over a log, reduced to the normal
-equations (:class:`_Moments`), and iteratively reweighted for Huber's loss. The paper leg's
-design is here; a whole robot's (its base's wrench too) is :mod:`uwml.fit.robot_design`."""
+equations (:class:`_Moments`), and iteratively reweighted for Huber's loss: what every design
+shares. A robot's own (its columns, its base's wrench too) is :mod:`uwml.fit.robot_design`."""
 
 from __future__ import annotations
 
@@ -14,7 +14,6 @@ from numpy.typing import NDArray
 
 from ..io.logs import Log
 from ..model.parts import Water
-from ..robot.leg import Leg
 from ._types import Array
 from .log_set import LogSet
 
@@ -60,22 +59,9 @@ class _Moments:
 
 class _HydroDesign:
     """The identification design of a set of logs (docs/model.md section 4) and its target
-    ``y = −Δτ_motor − τ_buoy`` on the selected joints, assembled by the Rust core in one pass per
-    chunk of samples; the chunks are kept while they fit into ``cache_bytes``. The first pass
-    also keeps the logs' time stamps and each log's own moments (:attr:`log_moments`)."""
-
-    def __init__(self, leg: Leg, log: LogSet, water: Water, per: str, joints: list[int], cache_bytes: int) -> None:
-        self._leg = leg
-        n_links = leg.n_joints
-        names: list[str] = []
-        for prefix in ("cd", "cm"):
-            if per == "leg":
-                names.append(prefix)
-            elif per == "link":
-                names += [f"{prefix}_link{link}" for link in range(n_links)]
-            else:
-                names += [f"{prefix}_link{link}_n{k}" for link in range(n_links) for k in range(2)]
-        self._setup(log, water, per, joints, cache_bytes, names)
+    ``y = −Δτ_motor − τ_buoy`` on the selected rows, assembled chunk by chunk (:meth:`_compute`,
+    a subclass's); the chunks are kept while they fit into ``cache_bytes``. The first pass also
+    keeps the logs' time stamps and each log's own moments (:attr:`log_moments`)."""
 
     def _setup(self, log: LogSet, water: Water, per: str, joints: list[int], cache_bytes: int, names: list[str]) -> None:
         """What every design keeps: the logs, the water, the columns' names, the chunk cache."""
@@ -110,10 +96,8 @@ class _HydroDesign:
         return full
 
     def _compute(self, log: Log) -> Array:
-        assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
-        q, qd, qdd = (np.ascontiguousarray(a) for a in (log.q, log.qd, log.qdd))
-        delta = np.ascontiguousarray(log.tau_water - log.tau_land)
-        return self._leg._core.hydro_design(q, qd, qdd, delta, self._water.density, self._water.gravity, self._joints, self._per)
+        """The problem of one chunk, joint-major ``(J, c, P + 1)`` (a subclass's)."""
+        raise NotImplementedError
 
     def indexed_chunks(self) -> Iterator[tuple[int, Array]]:
         """``(index of the log, chunk)``: the problem chunk by chunk, joint-major ``(J, c, P + 1)``:
@@ -157,48 +141,12 @@ class _HydroDesign:
         self.log_moments = logs
         return _Moments(sum(m.gram for m in logs), sum(m.xty for m in logs), sum(m.yty for m in logs))  # type: ignore[arg-type]
 
-    def _table(self, values: Array) -> Array:
-        """One kind of coefficient (the Cd or the Cm half of the columns) as a per link and
-        direction table ``(n_links, 2)``."""
-        n_links = self._leg.n_joints
-        if self._per == "leg":
-            return np.full((n_links, 2), values[0])
-        if self._per == "link":
-            return np.repeat(values[:, None], 2, axis=1)
-        return values.reshape(n_links, 2)
-
     def fitted(self, x: Array) -> tuple[Array, Array]:
-        """``(Xx, y)``, sample-major (all selected joints of sample 0, then sample 1, …).
-
-        The torques are linear in the coefficients, so ``Xx`` is the drag plus added-mass torque
-        at coefficients ``x`` (negative ones by a second evaluation at their magnitudes): a
-        third of the cost of the design's regressors, and nothing to keep between passes."""
+        """``(Xx, y)``, sample-major, from the design's chunks (kept in memory, or computed
+        again)."""
         if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
             return self._last_fit[1]
-        if self._cached:
-            # The design is in memory: its product with the coefficients, not another pass
-            # over the logs.
-            return self._fitted_from_chunks(x)
-        full = self._full(x)
-        half = full.size // 2
-        cd, cm = self._table(full[:half]), self._table(full[half:])
-        leg, joints = self._leg, self._joints
-        signs = (1.0, -1.0) if np.any(full < 0.0) else (1.0,)
-        fits, targets = [], []
-        for _, log in self._log.chunks(CHUNK_SAMPLES):
-            assert log.qd is not None and log.qdd is not None and log.tau_land is not None and log.tau_water is not None
-            fit = np.zeros((log.n_samples, leg.n_joints))
-            buoyancy = fit
-            for sign in signs:
-                tau = leg.hydro(log.q, log.qd, log.qdd, np.clip(sign * cd, 0.0, None), np.clip(sign * cm, 0.0, None), self._water)
-                fit += sign * (tau.drag + tau.added_mass)
-                buoyancy = tau.buoyancy
-            target = -(log.tau_water - log.tau_land) - buoyancy
-            fits.append(fit[:, joints].reshape(-1))
-            targets.append(target[:, joints].reshape(-1))
-        result = np.concatenate(fits), np.concatenate(targets)
-        self._last_fit = (np.array(x), result)
-        return result
+        return self._fitted_from_chunks(x)
 
     def _fitted_from_chunks(self, x: Array) -> tuple[Array, Array]:
         """``(Xx, y)``, sample-major, from the design's chunks."""

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..io.logs import Log
 from ..model.parts import Water
-from ..robot.leg import Leg
+from ..robot.presets import paper_leg
 from ..robot.tree import Robot
 from ._types import Array, PathOrFile
 from .design import DESIGN_CACHE_BYTES, _HydroDesign
@@ -207,7 +207,7 @@ def _huber_covariance(gram: Array, residual: Array, scale: float) -> Array | Non
 
 def hydro_coefficients(
     log_or_path: Log | PathOrFile | tuple[Log | PathOrFile, Log | PathOrFile],
-    leg: Leg | Robot | None = None,
+    leg: Robot | None = None,
     joints: ArrayLike = (0,),
     per: Literal["leg", "link", "direction"] = "leg",
     water: Water | None = None,
@@ -234,8 +234,8 @@ def hydro_coefficients(
         or a file (:func:`uwml.io.logs.read_log`); or a pair of logs of one environment each
         (``tau*``), aligned by time (:func:`uwml.io.logs.align_logs`). Missing velocities and
         accelerations are estimated (:meth:`uwml.io.logs.Log.with_derivatives`).
-    leg : Leg or Robot, optional
-        Default :meth:`uwml.Leg.paper`. A :class:`uwml.Robot` (any tree, from a URDF, MJCF or
+    leg : Robot, optional
+        Default :func:`uwml.paper_leg`. Any :class:`uwml.Robot` (a tree, from a URDF, MJCF or
         model file) is on a fixed, upright base in still water, as the leg on its test stand;
         its columns are per body: the base (``base``, if it has segments: on a fixed base they
         are zero and dropped) and every link (``cd_<name>``, or ``cd_link<i>`` for an unnamed
@@ -290,12 +290,10 @@ def hydro_coefficients(
         bad joints, ``per`` or ``sigma``, or when no coefficient has a regressor on the
         selected joints.
     """
-    leg = Leg.paper() if leg is None else leg
-    if not isinstance(leg, (Leg, Robot)):
-        raise TypeError(f"leg must be a uwml.Leg or a uwml.Robot, got {type(leg).__name__}")
-    # A Leg is a Robot; it keeps the leg's design (columns per leg, link or direction).
-    whole_robot = not isinstance(leg, Leg)
-    what = "the robot" if whole_robot else "the leg"
+    leg = paper_leg() if leg is None else leg
+    if not isinstance(leg, Robot):
+        raise TypeError(f"leg must be a uwml.Robot, got {type(leg).__name__}")
+    what = "the robot"
     if water is None:
         water = leg.water
     if per not in ("leg", "link", "direction"):
@@ -307,8 +305,6 @@ def hydro_coefficients(
     components = [int(c) for c in np.atleast_1d(np.asarray(base))]
     if len(set(components)) != len(components) or any(not 0 <= c < 6 for c in components):
         raise ValueError(f"base must be distinct components in 0..5 (fx, fy, fz, mx, my, mz), got {base!r}")
-    if components and not whole_robot:
-        raise ValueError("base: a uwml.Leg stands on a fixed base; fit the base's wrench of a uwml.Robot")
     if lumped not in ("diagonal", "full", "given"):
         raise ValueError(f"lumped must be 'diagonal', 'full' or 'given', got {lumped!r}")
     if robust and not points:
@@ -335,21 +331,14 @@ def hydro_coefficients(
             raise ValueError(
                 f"sigma must be a positive number or one per selected row ({n_selected}: the joints, then the base components), got {sigma!r}"
             )
-    # The leg's design takes the joints' indices, a robot's the rows of its regressors.
-    design_rows = selected if isinstance(leg, Leg) else rows
     what_is_fitted = (log, selected, selected_joints, components, per, robust, known, given_sigma, scale_covar, points)
     if not on_ray:
-        design: _HydroDesign = (
-            _HydroDesign(leg, log, water, per, design_rows, cache_bytes)
-            if isinstance(leg, Leg)
-            else _RobotHydroDesign(leg, log, water, per, design_rows, cache_bytes, lumped)
-        )
-        return _fit(design, *what_is_fitted)
+        return _fit(_RobotHydroDesign(leg, log, water, per, rows, cache_bytes, lumped), *what_is_fitted)
     from .._ray import ray_session
     from .on_ray import RayDesign
 
     with ray_session(address, workers) as ray:
-        spread = RayDesign(ray, leg, log, water, per, design_rows, cache_bytes, lumped)
+        spread = RayDesign(ray, leg, log, water, per, rows, cache_bytes, lumped)
         try:
             return _fit(spread, *what_is_fitted)
         finally:

@@ -21,7 +21,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..model.parts import Water
-from ..robot.leg import Leg
 from ..robot.tree import Robot
 from ._types import Array
 from .design import _HydroDesign, _Moments
@@ -31,10 +30,9 @@ from .robot_design import _RobotHydroDesign
 __all__ = ["RayDesign"]
 
 
-def _spec(robot: Leg | Robot, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str) -> dict[str, Any]:
+def _spec(robot: Robot, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str) -> dict[str, Any]:
     """What a worker needs to build a log's design: the robot's parts (plain, picklable data)."""
     return {
-        "leg": isinstance(robot, Leg),
         "joints": robot.joints,
         "links": robot.links,
         "base": robot.base,
@@ -48,8 +46,6 @@ def _spec(robot: Leg | Robot, water: Water, per: str, rows: list[int], cache_byt
 
 def _design(spec: dict[str, Any], logs: LogSet) -> _HydroDesign:
     s = spec
-    if s["leg"]:
-        return _HydroDesign(Leg(s["joints"], s["links"]), logs, s["water"], s["per"], s["rows"], s["cache_bytes"])
     robot = Robot(s["joints"], s["links"], base=s["base"], water=s["water"])
     return _RobotHydroDesign(robot, logs, s["water"], s["per"], s["rows"], s["cache_bytes"], s["lumped"])
 
@@ -86,7 +82,7 @@ class RayDesign(_HydroDesign):
     """The design of a set of logs shared out among Ray actors (module docstring)."""
 
     def __init__(
-        self, ray: Any, robot: Leg | Robot, logs: LogSet, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str
+        self, ray: Any, robot: Robot, logs: LogSet, water: Water, per: str, rows: list[int], cache_bytes: int, lumped: str
     ) -> None:
         spec = _spec(robot, water, per, rows, cache_bytes, lumped)
         # The columns' names, from a design of the first log alone (built here, nothing computed).

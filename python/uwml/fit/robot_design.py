@@ -16,6 +16,11 @@ The coefficients:
   its diagonals (``lumped="diagonal"``: ``M_A`` and ``D_L`` on their diagonal and the six
   quadratic dampings, Fossen's decoupled model), every entry (``"full"``: 63), or the entries
   that are not zero in the robot's model (``"given"``).
+
+Where the columns are the segments' Cd and Cm alone on the joints of a robot on a fixed base (no
+base rows, no segments on the base, no axial drag, no lumped model, no base twist in the log),
+the core assembles them in one pass over the samples (``uwml._core.Robot.hydro_design``, four
+states per evaluation), the same columns as the regressors give.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ from ..io.logs import Log
 from ..model.lumped import LUMPED_COEFFICIENTS
 from ..model.parts import Water
 from ..robot.base_motion import BaseMotion
+from ..robot.evaluation_conditions import Conditions
 from ..robot.tree import Robot
 from . import design
 from ._types import Array
@@ -89,13 +95,23 @@ class _RobotHydroDesign(_HydroDesign):
         self._setup(log, water, per, rows, cache_bytes, names)
         width = 3 * n_segments + 63 * len(robot.lumped_models)
         self._rows = max(64, self.REGRESSOR_BYTES // (2 * (6 + robot.n_joints) * max(width, 1) * 8))
+        #: Whether the core's one-pass design gives these columns (module docstring).
+        self._one_pass = not names[2 * len(half) :] and owners[:1] != [-1] and all(r >= 6 for r in rows)
+        self._conditions = Conditions(water=water)
 
     def _chunk_samples(self) -> int:
-        return min(design.CHUNK_SAMPLES, self._rows)
+        return design.CHUNK_SAMPLES if self._one_pass else min(design.CHUNK_SAMPLES, self._rows)
 
     def _compute(self, log: Log) -> Array:
         robot = self._robot
         assert log.qd is not None and log.qdd is not None
+        if self._one_pass and log.base_twist is None:
+            assert log.tau_land is not None and log.tau_water is not None
+            q, qd, qdd = (np.ascontiguousarray(a, dtype=np.float64) for a in (log.q, log.qd, log.qdd))
+            delta = np.ascontiguousarray(log.tau_water - log.tau_land, dtype=np.float64)
+            joints = [row - 6 for row in self._joints]
+            one_pass: Array = robot._core.hydro_design(q, qd, qdd, delta, robot._native(self._conditions), joints, self._per)
+            return one_pass
         motion = None if log.base_twist is None else BaseMotion(**log.base_motion())
         regressors = robot.hydro_regressors(log.q, log.qd, log.qdd, water=self._water, base_motion=motion)
         n = log.n_samples
@@ -132,12 +148,6 @@ class _RobotHydroDesign(_HydroDesign):
             axis=2,
         )
         return np.ascontiguousarray(problem.transpose(1, 0, 2))
-
-    def fitted(self, x: Array) -> tuple[Array, Array]:
-        """``(Xx, y)``, sample-major, from the design's chunks."""
-        if self._last_fit is not None and np.array_equal(self._last_fit[0], x):
-            return self._last_fit[1]
-        return self._fitted_from_chunks(x)
 
 
 def _label(robot: Robot, body: int) -> str:

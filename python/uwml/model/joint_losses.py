@@ -1,7 +1,7 @@
 """A joint's losses as the Rust core evaluates them: :class:`JointLosses` bundles one joint's
 :class:`~uwml.model.losses.Drive` with its optional :class:`~uwml.model.losses.OilDrag` and
 :class:`~uwml.model.losses.Seal`, and evaluates them (:meth:`JointLosses.torques`); the robots'
-evaluations (:meth:`uwml.Leg.environment`, :meth:`uwml.Robot.environment`) take them read and
+evaluations (:meth:`uwml.Robot.environment`) take them read and
 validated by the core once per set (:func:`pack_leg_losses`, a native ``Losses``).
 """
 

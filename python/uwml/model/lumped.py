@@ -57,7 +57,7 @@ LUMPED_ABSOLUTE_TOLERANCE = 1e-2
 Matrix6 = tuple[tuple[float, ...], ...]
 
 #: The names of a lumped model's 63 coefficients, in the order of its regressor columns
-#: (:attr:`uwml.RobotRegressors.lumped`, :meth:`LumpedModel.coefficients`): the added mass's 21
+#: (:attr:`uwml.Regressors.lumped`, :meth:`LumpedModel.coefficients`): the added mass's 21
 #: independent entries (upper triangle, row by row: ``added_mass[0][0]``, ``added_mass[0][1]``,
 #: …, ``added_mass[5][5]``; an off-diagonal one stands for both of its symmetric entries), the
 #: linear damping's 36 (row by row), the quadratic damping's 6. Every entry is in the model's own

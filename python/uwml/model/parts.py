@@ -42,8 +42,8 @@ SECTIONS = ("rectangular", "circular")
 JOINT_KINDS = ("revolute", "prismatic")
 
 #: Default ``(Cd, Cm)`` of a rectangular section: the paper's fitted values, rounded (Cd =
-#: 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344 on the UWML's box-section links; the defaults of
-#: :class:`uwml.Leg`).
+#: 2.19747 ± 0.00551, Cm = 0.50025 ± 0.00344 on the UWML's box-section links; those of
+#: :func:`uwml.paper_leg`).
 RECTANGULAR_DEFAULTS = (2.2, 0.5)
 #: Default ``(Cd, Cm)`` of a circular section: Cm = 1 is the potential-flow added-mass
 #: coefficient of a circular cylinder in cross-flow (exact; DNV-RP-C205, appendix D, the
@@ -333,18 +333,16 @@ class Link:
     """A rigid body: mass and centre of mass, displaced volume and centre of buoyancy, and the
     straight segments that meet the water.
 
-    ``cob`` defaults to ``com`` (as the paper assumes). Give one segment as ``segment=`` or any
-    number as ``segments=(...)``; ``segments`` always holds them all (``segment`` is the single
-    one, or ``None`` when there are none or several). ``lumped``: Fossen's lumped model of the
-    body (:class:`uwml.LumpedModel`, docs/model.md section 12.1), for what is not slender; its
-    reference point defaults to ``cob``.
+    ``cob`` defaults to ``com`` (as the paper assumes). ``segments``: any number of them, in the
+    link's frame. ``lumped``: Fossen's lumped model of the body (:class:`uwml.LumpedModel`,
+    docs/model.md section 12.1), for what is not slender; its reference point defaults to
+    ``cob``.
     """
 
     mass: float
     com: Vec3
     volume: float
     cob: Vec3 | None = None
-    segment: Segment | None = None
     segments: tuple[Segment, ...] = field(default=())
     #: A name (a URDF link's, an MJCF body's), or None.
     name: str | None = None
@@ -357,8 +355,6 @@ class Link:
         object.__setattr__(self, "volume", _scalar(self.volume, "link.volume", positive=False))
         cob = self.com if self.cob is None else self.cob
         object.__setattr__(self, "cob", _vec3(cob, "link.cob"))
-        if self.segment is not None and not isinstance(self.segment, Segment):
-            raise TypeError(f"link.segment must be a uwml.Segment or None, got {type(self.segment).__name__}")
         try:
             segments = tuple(self.segments)
         except TypeError:
@@ -366,12 +362,7 @@ class Link:
         for index, segment in enumerate(segments):
             if not isinstance(segment, Segment):
                 raise TypeError(f"link.segments[{index}] must be a uwml.Segment, got {type(segment).__name__}")
-        if self.segment is not None and segments and segments != (self.segment,):
-            raise ValueError("give a link's segments either as segment= (one) or as segments=(...), not both")
-        if self.segment is not None:
-            segments = (self.segment,)
         object.__setattr__(self, "segments", segments)
-        object.__setattr__(self, "segment", segments[0] if len(segments) == 1 else None)
         if self.lumped is not None:
             if not isinstance(self.lumped, LumpedModel):
                 raise TypeError(f"link.lumped must be a uwml.LumpedModel or None, got {type(self.lumped).__name__}")
@@ -397,6 +388,5 @@ class Water:
 
 #: The default fluid: fresh water as in the paper, 1000 kg/m³ under g = 9.81 m/s² (immutable).
 FRESH_WATER = Water()
-#: The water of :meth:`uwml.Leg.environment` and :meth:`uwml.Leg.jacobians` by default: sea
-#: water, for the hydrodynamics and the pressure at depth alike.
+#: Sea water (1025 kg/m³), for the hydrodynamics and the pressure at depth alike.
 SEA_WATER = Water(density=SEA_WATER_DENSITY)

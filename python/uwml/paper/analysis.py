@@ -15,7 +15,8 @@ from numpy.typing import NDArray
 from ..io.logs import write_log
 from ..model.joint_losses import JointLosses
 from ..model.losses import RPM, Drive, OilDrag, Seal
-from ..robot.leg import Leg
+from ..robot.presets import paper_leg
+from ..robot.tree import Robot
 from . import synthetic
 from .gait import WalkingGait
 
@@ -68,11 +69,12 @@ _COMPONENTS = (("total", "total"), ("drag", "drag"), ("added_mass", "added mass"
 
 
 def _every(tau: Any, step: int) -> Any:
-    """Every ``step``-th sample of a torque result (and of the base wrench it holds)."""
-    return replace(
-        tau,
-        **{f.name: _every(value, step) if is_dataclass(value) else value[::step] for f in fields(tau) for value in [getattr(tau, f.name)]},
-    )
+    """Every ``step``-th sample of a torque result (and of the base wrench it holds, if any)."""
+
+    def every(value: Any) -> Any:
+        return None if value is None else _every(value, step) if is_dataclass(value) else value[::step]
+
+    return replace(tau, **{f.name: every(getattr(tau, f.name)) for f in fields(tau)})
 
 
 def _torque_figure(t: np.ndarray, tau: Any, path: Path) -> None:
@@ -106,7 +108,7 @@ def run(out_dir: str, seed: int) -> int:
     start = time.perf_counter()
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    leg = Leg.paper()
+    leg = paper_leg()
     cd_true, cm_true = 2.2, 0.5
 
     # Component torques over one cycle of the experiment's gait (Fig. 8).
@@ -199,7 +201,7 @@ def run(out_dir: str, seed: int) -> int:
     return 0
 
 
-def _error_parts(leg: Leg, gait: Any, seed: int, everything: Any) -> list[dict[str, Any]]:
+def _error_parts(leg: Robot, gait: Any, seed: int, everything: Any) -> list[dict[str, Any]]:
     """Fits of the experiment with no model error and each part of ``PAPER_LIKE_ERROR`` alone,
     then ``everything``, the fit of the experiment with all of it: the same gait, noise and seed,
     so only the model error differs."""

@@ -15,7 +15,7 @@ losses of :class:`uwml.JointLosses` at the depth's pressure), under five control
   Cm 30 % too high (robustness).
 
 **The plant** (stated, the paper gives no inertias): the links' masses and centres of mass of
-Table II (``uwml.Leg.paper()``); each link's inertia about its centre of mass that of a uniform
+Table II (``uwml.paper_leg()``); each link's inertia about its centre of mass that of a uniform
 box of its section sizes and length (the hip housing, without a segment: a uniform cube of its
 displaced volume); Cd = 2.2, Cm = 0.5 (the paper's fit); sea water of 1025 kg/m³ at 4 °C; the
 illustrative ``JointLosses()`` on every joint. PD gains: a critically damped 4 Hz loop on each
@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..model.joint_losses import JointLosses
-from ..robot.leg import Leg
+from ..robot.presets import paper_leg
 from ..robot.tree import Robot
 from ..sim.control import ROV_CURRENT, SEA, TEMPERATURE_C, Drift, track
 from ..sim.mujoco import Simulation
@@ -80,16 +80,16 @@ TIMESTEP = 1e-3
 MAX_CYCLES = 100
 
 
-def leg_model(leg: Leg | None = None, fluid: str | None = None) -> str:
+def leg_model(leg: Robot | None = None, fluid: str | None = None) -> str:
     """The MJCF of the paper's leg on a fixed stand (module docstring, "The plant"), its frames
-    those of ``uwml.Robot.from_leg(leg)`` (parallel to the base at ``q = 0``). Each link carries
+    those of ``uwml.paper_leg()`` (parallel to the base at ``q = 0``). Each link carries
     its box as a geom without contacts. ``fluid``: None (no fluid: uwml is the water), or
     ``"box"`` / ``"ellipsoid"`` for MuJoCo's own fluid models in the study's sea water (for the
     comparison of :func:`fluid_models`)."""
-    leg = Leg.paper() if leg is None else leg
+    leg = paper_leg() if leg is None else leg
     bodies = []
     for joint, link in zip(leg.joints, leg.links, strict=True):
-        segment = link.segment
+        segment = link.segments[0] if link.segments else None
         if segment is None:
             side = link.volume ** (1.0 / 3.0)
             extents = np.array([side, side, side])
@@ -200,7 +200,7 @@ def run(
         raise ValueError(f"payload must be between 0 and 100 kg, got {payload!r}")
     import mujoco
 
-    leg = Leg.paper()
+    leg = paper_leg()
     robot = Robot(leg.joints, leg.links, losses=JointLosses(), water=SEA)
     plant = robot if plant_losses else Robot(leg.joints, leg.links, water=SEA)
     xml = model_xml or leg_model(leg)
@@ -283,7 +283,7 @@ def fluid_models(samples: int = 200) -> FluidComparison:
     gait = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
     time = np.linspace(0.0, gait.period, samples, endpoint=False)
     q, qd, qdd = gait.joint_states(time)
-    leg = Leg.paper()
+    leg = paper_leg()
     hydro = Robot(leg.joints, leg.links, water=SEA).hydro(q, qd, qdd)
     theirs = {}
     for fluid in ("box", "ellipsoid"):

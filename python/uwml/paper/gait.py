@@ -1,7 +1,7 @@
 """Inverse kinematics of the paper's leg and a walking foot trajectory with its joint states.
 
 Everything here is for the paper's 3-DOF leg (docs/model.md section 2) in its hip frame, which is the
-world frame of :meth:`uwml.Leg.paper`: x forward, z up, origin at the hip (the intersection of
+world frame of :func:`uwml.paper_leg`: x forward, z up, origin at the hip (the intersection of
 the yaw and roll axes). The foot is the calf's tip,
 
     foot = L2 u2 + L3 u3,   u2 = cos q2 e_r + sin q2 z,   u3 = sin(q2+q3) e_r − cos(q2+q3) z,
@@ -25,7 +25,7 @@ FloatArray = NDArray[np.float64]
 Knee = Literal["up", "down"]
 
 #: The paper leg's thigh and shank lengths [m] (Table II of Liao et al.; docs/model.md section 2),
-#: as the core's ``Leg.paper()`` holds them (a test holds the three equal). Here, not taken from
+#: as the core's ``presets::paper_leg`` holds them (a test holds the three equal). Here, not taken from
 #: ``uwml.reference``, so that ``import uwml`` does not load the numpy reference.
 PAPER_L2 = 0.660
 PAPER_L3 = 0.714
@@ -96,7 +96,7 @@ def _jacobian_and_bias(q: FloatArray, qd: FloatArray | None, l2: float, l3: floa
 def paper_leg_ik(foot: ArrayLike, knee: Knee = "up", lengths: ArrayLike = (PAPER_L2, PAPER_L3)) -> FloatArray:
     """Joint angles ``q`` ``(..., 3)`` [rad] that put the paper leg's foot at ``foot`` ``(..., 3)`` [m].
 
-    Closed form. The foot is given in the hip frame (the world frame of :meth:`uwml.Leg.paper`).
+    Closed form. The foot is given in the hip frame (the world frame of :func:`uwml.paper_leg`).
 
     Conventions:
 

@@ -46,8 +46,8 @@ from ..io.logs import Log
 from ..model.joint_losses import JointLosses
 from ..model.losses import RPM, Drive, OilDrag, Seal
 from ..model.parts import Water
-from ..robot.leg import Leg
-from ..robot.results import HydroTorques
+from ..robot.presets import paper_leg
+from ..robot.results import Torques
 from ..robot.tree import Robot
 from ..sim.prescribed import SineTrajectory
 from .gait import WalkingGait
@@ -267,7 +267,7 @@ PAPER_LIKE_NOISE = 1.08
 PAPER_LIKE_PERIOD = 5.65
 
 
-def paper_like_experiment(leg: Leg | None = None, seed: np.random.Generator | int | None = None) -> Log:
+def paper_like_experiment(leg: Robot | None = None, seed: np.random.Generator | int | None = None) -> Log:
     """A synthetic land/water experiment sized and spoiled like the paper's (**synthetic**).
 
     :func:`land_water_experiment` of the paper's leg (default) over 3 cycles of
@@ -279,7 +279,7 @@ def paper_like_experiment(leg: Leg | None = None, seed: np.random.Generator | in
 
 
 def land_water_experiment(
-    leg: Leg | Robot | None = None,
+    leg: Robot | None = None,
     gait: WalkingGait | SineTrajectory | None = None,
     cycles: float = 3,
     rate_hz: float = 200.0,
@@ -299,7 +299,7 @@ def land_water_experiment(
     joint states ``q, q̇, q̈`` (analytic) sampled at ``rate_hz`` from ``start_time``:
 
     * land: ``τ_land = −τ_gravity + I q̈ + b q̇ + c tanh(q̇ / 0.05)`` with ``τ_gravity`` the
-      weight's torque (:meth:`uwml.Leg.hydro`'s ``gravity``, which the motor holds) and the
+      weight's torque (:meth:`uwml.Robot.hydro`'s ``gravity``, which the motor holds) and the
       illustrative ``I = LAND_INERTIA``, ``b = LAND_VISCOUS``, ``c = LAND_COULOMB`` on every
       joint: an arbitrary but deterministic rigid-body-like torque, identical in both runs, that
       the difference cancels;
@@ -312,8 +312,8 @@ def land_water_experiment(
 
     Parameters
     ----------
-    leg : Leg or Robot, optional
-        Default :meth:`uwml.Leg.paper`. A robot is on a fixed, upright base in still water.
+    leg : Robot, optional
+        Default :func:`uwml.paper_leg`. The robot is on a fixed, upright base in still water.
     gait : WalkingGait or SineTrajectory, optional
         Anything with ``joint_states(t)``; default ``WalkingGait(nominal_foot=YAW_STEP_FOOT)``
         (the paper leg's: a robot needs its own).
@@ -322,8 +322,8 @@ def land_water_experiment(
     rate_hz : float
         Sample rate [Hz].
     cd, cm : array_like
-        True coefficients, in any layout :meth:`uwml.Leg.hydro` (or :meth:`uwml.Robot.hydro`:
-        None for the segments' own) accepts.
+        True coefficients, in any layout :class:`uwml.Conditions` accepts (None for the
+        segments' own).
     torque_noise : float
         See above [N·m]; ≥ 0.
     model_error : float or ModelDiscrepancy
@@ -343,7 +343,7 @@ def land_water_experiment(
     Log
         A log of the whole experiment (``tau_land`` and ``tau_water``), source ``"<synthetic>"``.
     """
-    leg = Leg.paper() if leg is None else leg
+    leg = paper_leg() if leg is None else leg
     gait = WalkingGait(nominal_foot=YAW_STEP_FOOT) if gait is None else gait
     for name, value in (("cycles", cycles), ("rate_hz", rate_hz)):
         if not (np.isfinite(value) and value > 0.0):
@@ -359,7 +359,7 @@ def land_water_experiment(
     t = float(start_time) + np.arange(round(duration * rate_hz)) / float(rate_hz)
     q, qd, qdd = (np.asarray(a, dtype=np.float64) for a in gait.joint_states(t))
     if q.shape[-1] != leg.n_joints:
-        raise ValueError(f"the gait gives {q.shape[-1]} joints, the {type(leg).__name__.lower()} has {leg.n_joints}")
+        raise ValueError(f"the gait gives {q.shape[-1]} joints, the robot has {leg.n_joints}")
     land = _hydro(leg, q, qd, qdd, cd, cm, water)
     tau_land = _motor_torque(land.gravity, qd, qdd)
     # The water run: the same trajectory, model_error.water_lag later; the log keeps the land's.
@@ -386,9 +386,7 @@ def land_water_experiment(
     )
 
 
-def _hydro(
-    leg: Leg | Robot, q: FloatArray, qd: FloatArray, qdd: FloatArray, cd: ArrayLike, cm: ArrayLike, water: Water | None
-) -> HydroTorques:
+def _hydro(leg: Robot, q: FloatArray, qd: FloatArray, qdd: FloatArray, cd: ArrayLike, cm: ArrayLike, water: Water | None) -> Torques:
     return leg.hydro(q, qd, qdd, cd=cd, cm=cm) if water is None else leg.hydro(q, qd, qdd, cd=cd, cm=cm, water=water)
 
 

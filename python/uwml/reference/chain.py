@@ -19,7 +19,8 @@ the joint* (docs/model.md section 1), so drag satisfies ``q̇ · τ_drag ≤ 0``
 
 Joints and links are duck-typed: any objects with the attributes of :class:`uwml.model.Joint`
 and :class:`uwml.model.Link` (``origin``, ``axis``; ``mass``, ``com``, ``volume``, ``cob``,
-``segment`` with ``start``, ``axis``, ``length``, ``normals``, ``widths``, ``area``) will do.
+``segments``, at most one per link, each with ``start``, ``axis``, ``length``, ``normals``,
+``widths``, ``area``) will do.
 """
 
 # No ``from __future__ import annotations``: dataclasses with string annotations look their module
@@ -80,13 +81,14 @@ class RefSegment:
 
 @dataclass(frozen=True)
 class RefLink:
-    """A rigid link: mass and COM, displaced volume and centre of buoyancy, optional segment."""
+    """A rigid link: mass and COM, displaced volume and centre of buoyancy, and its segment
+    (none or one)."""
 
     mass: float
     com: Vec3
     volume: float
     cob: Vec3
-    segment: RefSegment | None = None
+    segments: tuple[RefSegment, ...] = ()
 
 
 def paper_leg() -> tuple[tuple[RefJoint, RefJoint, RefJoint], tuple[RefLink, RefLink, RefLink]]:
@@ -132,8 +134,8 @@ def paper_leg() -> tuple[tuple[RefJoint, RefJoint, RefJoint], tuple[RefLink, Ref
     calf_com = (0.0, 0.0, -PAPER_L3C)
     links = (
         RefLink(masses[0], (0.0, 0.0, 0.0), masses[0] / PAPER_LINK_DENSITY, (0.0, 0.0, 0.0)),
-        RefLink(masses[1], thigh_com, masses[1] / PAPER_LINK_DENSITY, thigh_com, thigh),
-        RefLink(masses[2], calf_com, masses[2] / PAPER_LINK_DENSITY, calf_com, calf),
+        RefLink(masses[1], thigh_com, masses[1] / PAPER_LINK_DENSITY, thigh_com, (thigh,)),
+        RefLink(masses[2], calf_com, masses[2] / PAPER_LINK_DENSITY, calf_com, (calf,)),
     )
     return joints, links
 
@@ -197,7 +199,12 @@ def _chain(joints: Sequence[Any], links: Sequence[Any]) -> _Chain:
     joints, links = list(joints), list(links)
     if not joints or len(joints) != len(links):
         raise ValueError(f"joints and links must be non-empty and of equal length, got {len(joints)} joints and {len(links)} links")
-    segments = tuple(None if link.segment is None else _segment(link.segment, f"links[{i}].segment") for i, link in enumerate(links))
+    for i, link in enumerate(links):
+        if len(tuple(link.segments)) > 1:
+            raise ValueError(f"links[{i}] has {len(tuple(link.segments))} segments: a chain's link has at most one")
+    segments = tuple(
+        _segment(link.segments[0], f"links[{i}].segments[0]") if tuple(link.segments) else None for i, link in enumerate(links)
+    )
     coms = np.array([_vector(link.com, f"links[{i}].com") for i, link in enumerate(links)])
     return _Chain(
         origins=np.array([_vector(j.origin, f"joints[{i}].origin") for i, j in enumerate(joints)]),

@@ -169,11 +169,7 @@ def _lumped_arrays(lumped: Any, name: str, cob: Array) -> dict[str, Array]:
 
 
 def _segments_of(body: Any) -> tuple[Any, ...]:
-    segments = getattr(body, "segments", None)
-    if segments is None:
-        single = getattr(body, "segment", None)
-        return () if single is None else (single,)
-    return tuple(segments)
+    return tuple(getattr(body, "segments", ()))
 
 
 def _robot(joints: Sequence[Any], links: Sequence[Any], base: Any | None) -> _Robot:

@@ -1,39 +1,26 @@
-"""The robots and what they compute, by the Rust core: :class:`Robot` (:mod:`uwml.robot.tree`: a
-kinematic tree on a moving base, in a current) and :class:`Leg` (:mod:`uwml.robot.leg`: a serial
-chain of revolute joints, the paper's leg), the base's motion (:mod:`uwml.robot.base_motion`),
-the results (:mod:`uwml.robot.results`), robots from files (:mod:`uwml.robot.files`) and example
-robots (:mod:`uwml.robot.examples`).
+"""The robot and what it computes, by the Rust core: :class:`Robot` (:mod:`uwml.robot.tree`: a
+kinematic tree on a moving base, in a current), the conditions of its evaluations
+(:mod:`uwml.robot.evaluation_conditions`), the base's motion (:mod:`uwml.robot.base_motion`),
+the results (:mod:`uwml.robot.results`), the paper's leg as a preset
+(:mod:`uwml.robot.presets`), robots from files (:mod:`uwml.robot.files`) and example robots
+(:mod:`uwml.robot.examples`).
 """
 
 from .base_motion import BaseMotion
-from .leg import MAX_JOINTS, Leg
-from .results import (
-    BaseWrench,
-    EnvironmentJacobians,
-    EnvironmentTorques,
-    HydroRegressors,
-    HydroTorques,
-    RobotEnvironment,
-    RobotJacobians,
-    RobotRegressors,
-    RobotTorques,
-)
+from .evaluation_conditions import Conditions
+from .presets import paper_leg
+from .results import BaseWrench, Jacobians, Regressors, Torques
 from .tree import MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
 
 __all__ = [
-    "MAX_JOINTS",
     "MAX_ROBOT_JOINTS",
     "MAX_SEGMENTS",
     "BaseMotion",
     "BaseWrench",
-    "EnvironmentJacobians",
-    "EnvironmentTorques",
-    "HydroRegressors",
-    "HydroTorques",
-    "Leg",
+    "Conditions",
+    "Jacobians",
+    "Regressors",
     "Robot",
-    "RobotEnvironment",
-    "RobotJacobians",
-    "RobotRegressors",
-    "RobotTorques",
+    "Torques",
+    "paper_leg",
 ]

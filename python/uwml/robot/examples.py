@@ -1,4 +1,4 @@
-"""Example robots beyond the paper's leg (:meth:`uwml.Leg.paper`), for documentation, benchmarks
+"""Example robots beyond the paper's leg (:func:`uwml.paper_leg`), for documentation, benchmarks
 and first experiments. Their numbers are illustrative, not a vehicle's datasheet."""
 
 from __future__ import annotations

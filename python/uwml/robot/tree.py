@@ -8,36 +8,29 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 
 from __future__ import annotations
 
+import operator
 import os
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any, SupportsIndex
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .. import _core
-from .._checks import check_overflow
 from .._checks import real_array as _real_array
 from ..io import descriptions, modelfile
 from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
 from ..plausibility import check_efforts, check_states, joint_bounds
-from ..sea.conditions import loss_conditions
-from ._arguments import (
-    _Inputs,
-    _kirchhoff,
-    _per_joint_losses,
-    _short_path,
-    _threads,
-    _water,
-    one_state_losses,
-    robot_inputs,
-    robot_parts,
-    segment_coefficients,
-)
-from .base_motion import BaseMotion
-from .results import BaseWrench, RobotEnvironment, RobotJacobians, RobotRegressors, RobotTorques
+from ._arguments import _per_joint_losses, _threads, _water, robot_parts
+from .evaluation_conditions import Conditions
+from .results import Jacobians, Regressors, Torques
+
+if TYPE_CHECKING:
+    from typing_extensions import Unpack
+
+    from .evaluation_conditions import ConditionFields
 
 __all__ = [
     "MAX_LUMPED_BODIES",
@@ -54,12 +47,6 @@ MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
 #: The most lumped models (:class:`uwml.LumpedModel`) a robot may carry, on all its bodies.
 MAX_LUMPED_BODIES: int = _core.MAX_LUMPED_BODIES
-
-
-def _base_wrench(out: Sequence[FloatArray], lead: tuple[int, ...]) -> BaseWrench:
-    """The base wrench of a native ``hydro`` result (items 4 to 7), shaped ``(*lead, 6)``."""
-    drag, mass, buoyancy, gravity = (a.reshape(*lead, 6) for a in out[4:8])
-    return BaseWrench(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity)
 
 
 class Robot:
@@ -91,9 +78,6 @@ class Robot:
         result.total, result.base.total   # joint torques; base force and moment
     """
 
-    #: The last ``JointLosses`` of a one-state call, and the core's reading of it.
-    _losses_cache: tuple[JointLosses, _core.Losses] | None = None
-
     def __init__(
         self,
         joints: Sequence[Joint],
@@ -121,15 +105,8 @@ class Robot:
         first = self._losses[0] if self._losses else None
         self._own_losses = first if all(item is first for item in self._losses) else self._losses
         self._water = FRESH_WATER if water is None else _water(water)
-        self._circular = np.array([s.section == "circular" for s in self._segments], dtype=bool)
-        #: The segments' own coefficients, ``(S, 2)`` each: for an evaluation given only one of them.
-        self._own_cd = np.array([s.cd for s in self._segments], dtype=np.float64).reshape(-1, 2)
-        self._own_cm = np.array([s.cm for s in self._segments], dtype=np.float64).reshape(-1, 2)
-
-    @classmethod
-    def from_leg(cls, leg: Any) -> Robot:
-        """The serial chain of a :class:`uwml.Leg` as a robot on a fixed base."""
-        return cls(leg.joints, leg.links)
+        #: The conditions of an evaluation given none (the robot's own water and losses).
+        self._default_conditions = Conditions()
 
     @property
     def joints(self) -> tuple[Joint, ...]:
@@ -168,31 +145,6 @@ class Robot:
         ``water=``. Default fresh water (1000 kg/m³, 9.81 m/s²); a hydro file's or model file's
         ``[water]`` sets it."""
         return self._water
-
-    def _the_water(self, water: Water | None) -> Water:
-        return self._water if water is None else _water(water)
-
-    def _effective_losses(
-        self, losses: JointLosses | Sequence[JointLosses | None] | None
-    ) -> JointLosses | Sequence[JointLosses | None] | None:
-        """``losses`` if given, else the joints' own: one object when they all share one."""
-        return self._own_losses if losses is None else losses
-
-    def _loss_inputs(
-        self,
-        losses: JointLosses | Sequence[JointLosses | None] | None,
-        depth: ArrayLike,
-        temperature_c: ArrayLike,
-        water: Water | None,
-        sea_density: float | None,
-        n_samples: int,
-    ) -> tuple[Any, FloatArray, FloatArray]:
-        """The native losses arguments of a batch: the joints' losses packed, and the pressure [Pa]
-        and temperature [°C] per sample (hydrostatic, over ``sea_density`` or the water's)."""
-        water = self._the_water(water)
-        column = water.density if sea_density is None else sea_density
-        pressure, temperature = loss_conditions(depth, temperature_c, column, water.gravity, n_samples)
-        return pack_leg_losses(losses, self.n_joints), pressure, temperature
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Robot):
@@ -238,7 +190,7 @@ class Robot:
     @property
     def lumped_models(self) -> tuple[tuple[int, LumpedModel], ...]:
         """Every lumped model with its body (-1 the base, else the link), base first: the
-        regressors' order (:attr:`RobotRegressors.lumped`)."""
+        regressors' order (:attr:`uwml.Regressors.lumped`)."""
         return self._lumped
 
     @property
@@ -249,57 +201,87 @@ class Robot:
     def __repr__(self) -> str:
         return f"Robot(n_joints={self.n_joints}, n_segments={len(self._segments)}, base={'body' if self._base is not None else None})"
 
-    # Whether ``cd`` and ``cm`` arrays are per link (each segment taking its link's), not per
-    # segment: a :class:`uwml.Leg`'s layout (see :meth:`_segment_values`).
-    _COEFFICIENTS_BY_LINK = False
+    # --- evaluation: (q, qd, qdd, conditions) ------------------------------------------------
 
-    def _segment_values(self, value: ArrayLike | None, name: str) -> ArrayLike | None:
-        """``cd`` or ``cm`` as an evaluation was given it, in the robot's layout (None, a scalar,
-        per segment or per segment and direction): as given here; a :class:`uwml.Leg` takes them
-        per link."""
-        return value
+    def _conditions(self, conditions: Conditions | None, shortcuts: ConditionFields) -> Conditions:
+        """The conditions of an evaluation: ``conditions`` (None: the defaults) with the fields
+        ``shortcuts`` replaced."""
+        if conditions is None:
+            return Conditions(**shortcuts) if shortcuts else self._default_conditions
+        if not isinstance(conditions, Conditions):
+            raise TypeError(
+                f"conditions must be a uwml.Conditions or None, got {type(conditions).__name__} "
+                "(give cd=, cm=, water=, base_motion=, current=, ... as keywords)"
+            )
+        return conditions.replace(**shortcuts) if shortcuts else conditions
 
-    def _coefficients(self, value: ArrayLike | None, name: str) -> FloatArray:
-        """``(S, 2)`` per segment and direction, or ``(0, 2)`` for the segments' own."""
-        return segment_coefficients(self._segment_values(value, name), name, self._circular)
+    def _native(self, conditions: Conditions) -> _core.Conditions:
+        """``conditions`` as the core reads them for this robot (its own water and losses where
+        they give none), made once and kept on them."""
+        kept: tuple[_core.Robot, _core.Conditions] | None = conditions.__dict__.get("_native")
+        if kept is not None and kept[0] is self._core:
+            return kept[1]
+        water = self._water if conditions.water is None else conditions.water
+        losses = self._own_losses if conditions.losses is None else conditions.losses
+        native = _core.Conditions(self._core, conditions, water, pack_leg_losses(losses, self.n_joints))
+        object.__setattr__(conditions, "_native", (self._core, native))
+        return native
 
-    def _evaluation(
+    def _states(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The joint states checked, as C-contiguous float64 arrays ``(n_joints,)`` or
+        ``(n_samples, n_joints)``, with a warning for states beyond the joints' plausible bounds
+        (:mod:`uwml.plausibility`)."""
+        n = self.n_joints
+        arrays = []
+        for name, value in (("q", q), ("qd", qd), ("qdd", qdd)):
+            array = _real_array(value, name, "a rectangular array of real numbers")
+            if array.ndim not in (1, 2) or array.shape[-1] != n:
+                raise ValueError(f"{name} must have shape ({n},) or (n_samples, {n}), got {array.shape}")
+            arrays.append(np.require(array, np.float64, ("C_CONTIGUOUS", "ALIGNED")))
+        for name, array in zip(("qd", "qdd"), arrays[1:]):
+            if array.shape != arrays[0].shape:
+                raise ValueError(f"{name} must have the same shape as q {arrays[0].shape}, got {array.shape}")
+        check_states(arrays[0], arrays[1], self._bounds, stacklevel=5)
+        return arrays[0], arrays[1], arrays[2]
+
+    def _forces(
         self,
-        q: ArrayLike,
-        qd: ArrayLike,
-        qdd: ArrayLike,
-        cd: ArrayLike | None,
-        cm: ArrayLike | None,
-        water: Water | None,
-        base_motion: BaseMotion | None,
-        current: ArrayLike,
-        current_acceleration: ArrayLike,
-    ) -> tuple[_Inputs, bool, int]:
-        """The native ``Robot.hydro`` arguments (before ``threads``), whether the inputs had a
-        sample axis, and the number of samples (:func:`uwml.robot._arguments.robot_inputs`)."""
-        the_water = self._the_water(water)
-        cd, cm = self._segment_values(cd, "cd"), self._segment_values(cm, "cm")
-        if (cd is None) != (cm is None):
-            # One given: the other is the segments' own.
-            cd, cm = (self._own_cd, cm) if cd is None else (cd, self._own_cm)
-        inputs = robot_inputs(self.n_joints, self._circular, the_water, q, qd, qdd, cd, cm, base_motion, current, current_acceleration)
-        check_states(inputs[0][0], inputs[0][1], self._bounds, stacklevel=4)
-        return inputs
+        losses: bool,
+        states: tuple[ArrayLike, ArrayLike, ArrayLike],
+        conditions: Conditions | None,
+        shortcuts: ConditionFields,
+        threads: int,
+        base: bool | None,
+    ) -> Torques:
+        """:meth:`hydro` (``losses`` False) or :meth:`environment`: one native call for one
+        plain state (lists, tuples or 1-D float64 arrays within the joints' bounds), else the
+        states checked here first; the same evaluation either way."""
+        the_conditions = self._conditions(conditions, shortcuts)
+        native = self._native(the_conditions)
+        if type(threads) is not int or threads < 1:
+            threads = _threads(threads)
+        if base is None:
+            base = self._base is not None or the_conditions.base_motion is not None
+        evaluate = self._core.environment if losses else self._core.hydro
+        result: Torques | None = evaluate(*states, native, threads=threads, base=bool(base))
+        if result is None:
+            result = evaluate(*self._states(*states), native, threads=threads, base=bool(base), checked=True)
+            assert result is not None
+            parts = [result.drag, result.added_mass, result.buoyancy]
+            check_efforts(parts if result.visc is None or result.seal is None else [*parts, result.visc, result.seal], self._bounds)
+        return result
 
     def hydro(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        cd: ArrayLike | None = None,
-        cm: ArrayLike | None = None,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        conditions: Conditions | None = None,
+        *,
         threads: int = 1,
-        added_mass: str = "morison",
-    ) -> RobotTorques:
+        base: bool | None = None,
+        **shortcuts: Unpack[ConditionFields],
+    ) -> Torques:
         """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the
         base, each apart: ``total`` is the water's (drag, added mass and buoyancy), without the
         weight (``gravity``); the base's buoyancy is the gross ``ρ V g``, not net of the weight.
@@ -309,239 +291,91 @@ class Robot:
         q, qd, qdd
             Joint positions, velocities, accelerations [rad or m]: ``(n_joints,)`` or
             ``(n_samples, n_joints)``, the same shape for all three.
-        cd, cm
-            ``None`` (default): each segment's own coefficients. Otherwise a scalar for all, an
-            array ``(n_segments,)`` per segment or ``(n_segments, 2)`` per segment and normal
-            direction (a circular segment takes one: its two entries must be equal).
-        water
-            Density and gravity; default the robot's own (:attr:`water`: fresh water,
-            1000 kg/m³ and 9.81 m/s², unless its hydro or model file says otherwise).
-        base_motion
-            How the base moves (:class:`BaseMotion`); default a fixed, upright base.
-        current, current_acceleration
-            The water's velocity [m/s] and acceleration [m/s²], WORLD frame: ``(3,)`` or
-            ``(n_samples, 3)``. Drag acts on the velocity relative to the water, added mass on
-            the acceleration relative to it, and every body's centre of buoyancy carries
-            ``ρ V (current_acceleration − g)``.
+        conditions
+            The water, coefficients, added-mass form, base motion and current
+            (:class:`uwml.Conditions`); None: the defaults (the robot's own water and the
+            segments' own coefficients, a fixed base in still water).
         threads
             Threads to split a batch over (≥ 1).
-        added_mass
-            ``"morison"`` (default): the paper's form, added mass on the normal components of
-            each slice's acceleration. ``"kirchhoff"``: the form derived from the water's kinetic
-            energy (docs/simulation.md, "Energy-consistent added mass"; the core's
-            ``AddedMassForm``): the same added-mass matrix, other velocity terms,
-            energy-consistent. Also taken by :meth:`environment`, :meth:`link_wrenches`,
-            :meth:`hydro_regressors` and :meth:`jacobians`.
+        base
+            Whether to evaluate the wrench on the base (``result.base``, a
+            :class:`uwml.BaseWrench`; None where not evaluated). Default: where the robot has a
+            base body or the conditions move its base.
+        **shortcuts
+            Fields of :class:`uwml.Conditions` (``cd=``, ``water=``, ``base_motion=``,
+            ``current=``, ...): they replace those of ``conditions``.
 
         Notes
         -----
-        Any argument with a sample axis gives results with one; the others are broadcast. One
-        state (lists, tuples or 1-D float64 arrays; ``cd``, ``cm`` None or numbers; a base motion
-        of single values) is read, checked and evaluated in one short native call, with the same
-        checks and the same bits as that state's row of a batch.
+        Any input with a sample axis gives results with one; the others are broadcast. One state
+        (lists, tuples or 1-D float64 arrays) is read and evaluated in one native call, with the
+        same checks and the same bits as that state's row of a batch; made once and passed to
+        every call, ``conditions`` are read by the core once.
         """
-        water = self._the_water(water)
-        kirchhoff = _kirchhoff(added_mass)
-        short, motion = _short_path(water, base_motion)
-        if short:
-            one: RobotTorques | None = self._core.hydro_one(
-                RobotTorques,
-                BaseWrench,
-                q,
-                qd,
-                qdd,
-                cd,
-                cm,
-                water.density,
-                water.gravity,
-                motion,
-                current,
-                current_acceleration,
-                threads,
-                kirchhoff,
-                per_link=self._COEFFICIENTS_BY_LINK,
-            )
-            if one is not None:
-                return one
-        threads = _threads(threads)
-        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        out = self._core.hydro(*arguments, threads, False, kirchhoff=kirchhoff)
-        check_overflow((out[0], out[1], out[4], out[5]), n_samples, arguments[1], arguments[2])
-        lead = (n_samples,) if batched else ()
-        drag, mass, buoyancy, gravity = (a.reshape(*lead, self.n_joints) for a in out[:4])
-        result = RobotTorques(drag=drag, added_mass=mass, buoyancy=buoyancy, gravity=gravity, base=_base_wrench(out, lead))
-        check_efforts((drag, mass, buoyancy), self._bounds)
-        return result
+        return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base)
 
     def environment(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        depth: ArrayLike = 0.0,
-        temperature_c: ArrayLike = 20.0,
-        losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike | None = None,
-        cm: ArrayLike | None = None,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        sea_density: float | None = None,
+        conditions: Conditions | None = None,
+        *,
         threads: int = 1,
-        added_mass: str = "morison",
-    ) -> RobotEnvironment:
-        """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call.
-
-        ``depth`` [m], 0 to 11000, and ``temperature_c`` [°C]: a scalar or one per sample (the
-        pressure is the hydrostatic ``sea_density · g · depth``, as for
-        :meth:`uwml.Leg.environment`; ``sea_density`` defaults to the water's, the robot's own
-        unless ``water`` is given, so that one water is used for both).
-        ``losses``: one :class:`uwml.JointLosses` for every joint, a sequence with one (or None)
-        per joint, or None for the joints' own (:attr:`losses`; ``[None] * n_joints`` for none). The other arguments as for :meth:`hydro`; one state (with scalar
-        ``depth``, ``temperature_c``, ``sea_density`` and ``losses`` None or one
-        :class:`uwml.JointLosses`) takes the short path of :meth:`hydro`.
-        """
-        losses = self._effective_losses(losses)
-        water = self._the_water(water)
-        kirchhoff = _kirchhoff(added_mass)
-        short, motion = _short_path(water, base_motion)
-        if short:
-            one: RobotEnvironment | None = self._core.environment_one(
-                RobotEnvironment,
-                BaseWrench,
-                q,
-                qd,
-                qdd,
-                depth,
-                temperature_c,
-                None if losses is None else one_state_losses(self, losses, self.n_joints),
-                cd,
-                cm,
-                water.density,
-                water.gravity,
-                water.density if sea_density is None else sea_density,
-                motion,
-                current,
-                current_acceleration,
-                threads,
-                kirchhoff,
-                per_link=self._COEFFICIENTS_BY_LINK,
-            )
-            if one is not None:
-                return one
-        threads = _threads(threads)
-        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        loss_inputs = self._loss_inputs(losses, depth, temperature_c, water, sea_density, n_samples)
-        out = self._core.hydro(*arguments, threads, False, *loss_inputs, kirchhoff=kirchhoff)
-        check_overflow((out[0], out[1], out[4], out[5], out[9], out[10], out[11]), n_samples, arguments[1], arguments[2])
-        lead = (n_samples,) if batched else ()
-        drag, mass, buoyancy, gravity, visc, seal, current_a = (out[i].reshape(*lead, self.n_joints) for i in (0, 1, 2, 3, 9, 10, 11))
-        result = RobotEnvironment(
-            drag=drag,
-            added_mass=mass,
-            buoyancy=buoyancy,
-            gravity=gravity,
-            visc=visc,
-            seal=seal,
-            current=current_a,
-            base=_base_wrench(out, lead),
-        )
-        check_efforts((drag, mass, buoyancy, visc, seal), self._bounds)
-        return result
+        base: bool | None = None,
+        **shortcuts: Unpack[ConditionFields],
+    ) -> Torques:
+        """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call: the
+        result's ``visc``, ``seal`` and ``current`` (docs/losses.md), at the conditions'
+        ``depth``, ``temperature_c`` and ``losses`` (the robot's own, :attr:`losses`, unless
+        they give others; the pressure ``sea_density · g · depth``, ``sea_density`` the water's
+        unless given, so that one water is used for both). Arguments as for :meth:`hydro`."""
+        return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base)
 
     def jacobians(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        depth: ArrayLike = 0.0,
-        temperature_c: ArrayLike = 20.0,
-        losses: JointLosses | Sequence[JointLosses | None] | None = None,
-        cd: ArrayLike | None = None,
-        cm: ArrayLike | None = None,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
-        sea_density: float | None = None,
-        added_mass: str = "morison",
-    ) -> RobotJacobians:
+        conditions: Conditions | None = None,
+        **shortcuts: Unpack[ConditionFields],
+    ) -> Jacobians:
         """The forces of :meth:`environment` on base and joints and their derivatives
-        (:class:`RobotJacobians`); arguments as for :meth:`environment`."""
-        kirchhoff = _kirchhoff(added_mass)
-        losses = self._effective_losses(losses)
-        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        loss_inputs = self._loss_inputs(losses, depth, temperature_c, water, sea_density, n_samples)
-        value, d_q, d_velocity, matrix = self._core.jacobians(*arguments, *loss_inputs, kirchhoff=kirchhoff)
-        check_overflow((value, d_q, d_velocity), n_samples, arguments[1], arguments[2])
-        n = self.n_joints
-        m = 6 + n
-        lead = (n_samples,) if batched else ()
-        return RobotJacobians(
-            value=value.reshape(*lead, m),
-            d_q=d_q.reshape(*lead, m, n),
-            d_velocity=d_velocity.reshape(*lead, m, m),
-            added_mass_matrix=matrix.reshape(*lead, m, m),
-        )
+        (:class:`uwml.Jacobians`): exact (forward-mode dual numbers through the same Rust code,
+        not finite differences); at a joint speed of exactly zero with a hard sign
+        (``epsilon=0``) the losses jump and their slope is not meaningful. The joint-space block
+        (a fixed base) is ``[..., 6:, 6:]`` of the matrices. Arguments as for :meth:`hydro`."""
+        native = self._native(self._conditions(conditions, shortcuts))
+        result: Jacobians = self._core.jacobians(*self._states(q, qd, qdd), native)
+        return result
 
     def hydro_regressors(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        conditions: Conditions | None = None,
+        *,
         threads: int = 1,
-        added_mass: str = "morison",
-    ) -> RobotRegressors:
-        """Regressors of the hydrodynamic forces (:class:`RobotRegressors`): a column per segment
+        **shortcuts: Unpack[ConditionFields],
+    ) -> Regressors:
+        """Regressors of the hydrodynamic forces (:class:`uwml.Regressors`): a column per segment
         and normal direction (Cd and Cm), per segment for its axial drag, and per coefficient of
         each lumped model (:attr:`lumped_models`), on the joints and on the base. Arguments as
-        for :meth:`hydro`."""
-        kirchhoff = _kirchhoff(added_mass)
-        threads = _threads(threads)
-        arguments, batched, n_samples = self._evaluation(q, qd, qdd, None, None, water, base_motion, current, current_acceleration)
-        states, (density, gravity), motion = arguments[:3], arguments[5:7], arguments[7:]
-        out = self._core.regressors(*states, density, gravity, *motion, threads, kirchhoff=kirchhoff)
-        check_overflow((out[4], out[5]), n_samples, arguments[1], arguments[2])
-        n, s, m = self.n_joints, len(self._segments), len(self._lumped)
-        lead = (n_samples,) if batched else ()
-        drag, added = (a.reshape(*lead, 6 + n, 3 * s + 63 * m) for a in (out[4], out[5]))
-        segments = [a[..., : 2 * s].reshape(*lead, 6 + n, s, 2) for a in (drag, added)]
-        axial = drag[..., 2 * s : 3 * s]
-        # A lumped coefficient's column is in one of the two tables and zero in the other.
-        lumped = (drag[..., 3 * s :] + added[..., 3 * s :]).reshape(*lead, 6 + n, m, 63)
-        return RobotRegressors(
-            buoyancy=out[0].reshape(*lead, n),
-            gravity=out[1].reshape(*lead, n),
-            drag=segments[0][..., 6:, :, :],
-            added_mass=segments[1][..., 6:, :, :],
-            base_buoyancy=out[2].reshape(*lead, 6),
-            base_gravity=out[3].reshape(*lead, 6),
-            base_drag=segments[0][..., :6, :, :],
-            base_added_mass=segments[1][..., :6, :, :],
-            axial_drag=axial[..., 6:, :],
-            base_axial_drag=axial[..., :6, :],
-            lumped=lumped[..., 6:, :, :],
-            base_lumped=lumped[..., :6, :, :],
-        )
+        for :meth:`hydro` (the conditions' coefficients are not used)."""
+        native = self._native(self._conditions(conditions, shortcuts))
+        result: Regressors = self._core.regressors(*self._states(q, qd, qdd), native, threads=_threads(threads))
+        return result
 
     def link_wrenches(
         self,
         q: ArrayLike,
         qd: ArrayLike,
         qdd: ArrayLike,
-        cd: ArrayLike | None = None,
-        cm: ArrayLike | None = None,
-        water: Water | None = None,
-        base_motion: BaseMotion | None = None,
-        current: ArrayLike = (0.0, 0.0, 0.0),
-        current_acceleration: ArrayLike = (0.0, 0.0, 0.0),
+        conditions: Conditions | None = None,
+        *,
         threads: int = 1,
-        added_mass: str = "morison",
+        **shortcuts: Unpack[ConditionFields],
     ) -> FloatArray:
         """The environment's wrench on every body, for coupling to a simulator.
 
@@ -550,29 +384,95 @@ class Robot:
         (drag, added mass, buoyancy with Froude-Krylov, and gravity) [N] and its moment about the
         body's centre of mass [N·m], in WORLD components.
         """
-        threads = _threads(threads)
-        arguments, batched, n_samples = self._evaluation(q, qd, qdd, cd, cm, water, base_motion, current, current_acceleration)
-        wrenches = self._core.hydro(*arguments, threads, True, kirchhoff=_kirchhoff(added_mass))[8]
-        check_overflow((wrenches,), n_samples, arguments[1], arguments[2])
-        shape = (n_samples, self.n_joints + 1, 6) if batched else (self.n_joints + 1, 6)
-        return wrenches.reshape(shape)
+        native = self._native(self._conditions(conditions, shortcuts))
+        wrenches: FloatArray = self._core.link_wrenches(*self._states(q, qd, qdd), native, threads=_threads(threads))
+        return wrenches
 
-    def added_mass_matrix(self, q: ArrayLike, cm: ArrayLike | None = None, water: Water | None = None) -> FloatArray:
+    def added_mass_matrix(self, q: ArrayLike, conditions: Conditions | None = None, **shortcuts: Unpack[ConditionFields]) -> FloatArray:
         """The added-mass matrix over base and joints, ``M_A = −∂(W_am, τ_am)/∂(ν̇, q̈)``
         (docs/model.md section 10, "What is computed").
 
         ``(6 + n_joints)²`` (or one per sample of ``q``), base first (linear, then angular, base
         frame), then the joints: symmetric, positive semi-definite, independent of the base's
         orientation and motion. A simulator adds it to the rigid-body mass matrix; the added-mass
-        forces are then ``−M_A (ν̇, q̈)`` plus terms in the velocities. ``cm`` as for :meth:`hydro`.
+        forces are then ``−M_A (ν̇, q̈)`` plus terms in the velocities. Of the conditions, the
+        water's density and ``cm`` are used.
         """
-        water = self._the_water(water)
         n = self.n_joints
         array = _real_array(q, "q", "a rectangular array of real numbers")
         if array.ndim not in (1, 2) or array.shape[-1] != n:
             raise ValueError(f"q must have shape ({n},) or (n_samples, {n}), got {array.shape}")
-        rows = np.ascontiguousarray(array.reshape(-1, n), dtype=np.float64)
-        matrices = self._core.added_mass_matrix(rows, self._coefficients(cm, "cm"), water.density)
-        check_overflow((matrices,), len(rows), np.zeros_like(rows), np.zeros_like(rows))
-        size = 6 + n
-        return matrices.reshape((len(rows), size, size) if array.ndim == 2 else (size, size))
+        native = self._native(self._conditions(conditions, shortcuts))
+        matrices: FloatArray = self._core.added_mass_matrix(np.require(array, np.float64, ("C_CONTIGUOUS", "ALIGNED")), native)
+        return matrices
+
+    # --- kinematics --------------------------------------------------------------------------
+
+    def _link_index(self, link: object) -> int:
+        """``link`` as an index in ``0..n_joints`` (negative counts from the end)."""
+        if isinstance(link, (bool, np.bool_)):
+            raise TypeError(f"link must be an integer, got {link!r}")
+        try:
+            if not isinstance(link, SupportsIndex):
+                raise TypeError(f"{type(link).__name__!r} object cannot be interpreted as an integer")
+            index = operator.index(link)
+        except TypeError:
+            raise TypeError(f"link must be an integer, got {type(link).__name__}") from None
+        n = self.n_joints
+        if not -n <= index < n:
+            raise ValueError(f"link must be in -{n}..{n - 1} (this robot has {n} links), got {index}")
+        return index % n
+
+    def point_jacobian(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
+        """Position and geometric Jacobian of a point on a link, in the base frame (a fixed,
+        upright base: the world frame).
+
+        Parameters
+        ----------
+        q
+            Joint positions [rad or m], shape ``(..., n_joints)`` (any number of leading axes).
+        link
+            The link carrying the point, ``0 .. n_joints - 1``; negative counts from the end
+            (default ``-1``, the last link).
+        point
+            The point in the link's frame [m], shape ``(3,)``. ``None`` (default): the far end
+            of the link's first segment, ``start + length * axis``, if the link has one, else
+            the link frame's origin (its joint). For :func:`uwml.paper_leg`, link ``-1``'s is
+            the foot.
+
+        Returns
+        -------
+        positions, jacobians
+            Shapes ``(..., 3)`` and ``(..., 6, n_joints)``. Column ``j`` of a Jacobian maps
+            ``qd[j]`` to the point's velocity (rows 0-2: ``z_j × (p − o_j)`` for a revolute
+            joint, ``z_j`` for a prismatic one) and to the link's angular velocity (rows 3-5:
+            ``z_j``, or zero); joints that do not carry the link have zero columns.
+
+        The batch is evaluated in one call into Rust (``uwml_core::forward_kinematics`` and
+        ``point_jacobian``), with the GIL released.
+        """
+        index = self._link_index(link)
+        if point is None:
+            segments = self._links[index].segments
+            local = np.zeros(3) if not segments else np.array(segments[0].start) + segments[0].length * np.array(segments[0].axis)
+        else:
+            local = _real_array(point, "point", "three real numbers")
+            if local.shape != (3,):
+                raise ValueError(f"point must have shape (3,), got {local.shape}")
+            if not np.all(np.isfinite(local)):
+                raise ValueError(f"point must be finite, got {local.tolist()}")
+        angles = _real_array(q, "q", "a rectangular array of real numbers")
+        n = self.n_joints
+        if angles.ndim < 1 or angles.shape[-1] != n:
+            raise ValueError(f"q must have shape (..., {n}), got {angles.shape}")
+        shape = angles.shape[:-1]
+        positions, jacobians = self._core.point_jacobian(np.ascontiguousarray(angles.reshape(-1, n)), index, np.ascontiguousarray(local))
+        return positions.reshape(shape + (3,)), jacobians.reshape(shape + (6, n))
+
+    def forward_kinematics(self, q: ArrayLike, link: int = -1, point: ArrayLike | None = None) -> FloatArray:
+        """Position of a point on a link in the base frame, shape ``q.shape[:-1] + (3,)``.
+
+        Arguments as for :meth:`point_jacobian`: by default the far end of the last link's
+        segment (the paper leg's foot, ``L2 u2 + L3 u3`` of docs/model.md section 2).
+        """
+        return self.point_jacobian(q, link, point)[0]

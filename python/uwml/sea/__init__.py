@@ -11,7 +11,7 @@ from .conditions import (
     check_temperatures,
     hydrostatic_pressure,
     hydrostatic_pressure_mpa,
-    loss_conditions,
+    positive_number,
 )
 
 __all__ = [
@@ -20,5 +20,5 @@ __all__ = [
     "check_temperatures",
     "hydrostatic_pressure",
     "hydrostatic_pressure_mpa",
-    "loss_conditions",
+    "positive_number",
 ]

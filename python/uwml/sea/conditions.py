@@ -4,8 +4,8 @@ Depths are checked against the deepest ocean (:data:`MAX_DEPTH`), oil temperatur
 absolute zero, with an :class:`ExtrapolationWarning` outside the oil model's range
 (:data:`OIL_TEMPERATURE_RANGE_C`). :func:`hydrostatic_pressure` is the one formula of the gauge
 pressure at depth, ``ρ g z``, written in the Rust core's order (``pressure_at_depth``) so that
-the pressures given to the core are the bits it would compute itself; every uniform-sea pressure
-of the package (:func:`hydrostatic_pressure_mpa`, :func:`loss_conditions`) is computed by it.
+the pressures are the bits the core computes itself (the joint losses' pressure at depth is the
+core's own); :func:`hydrostatic_pressure_mpa` is computed by it.
 :mod:`uwml.sea.seawater` gives the oceanographers' TEOS-10 pressure instead.
 """
 
@@ -34,7 +34,7 @@ __all__ = [
     "check_temperatures",
     "hydrostatic_pressure",
     "hydrostatic_pressure_mpa",
-    "loss_conditions",
+    "positive_number",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -59,7 +59,9 @@ class ExtrapolationWarning(UserWarning):
     :data:`OIL_TEMPERATURE_RANGE_C`)."""
 
 
-def _positive_number(value: object, name: str) -> float:
+def positive_number(value: object, name: str) -> float:
+    """``value`` as a finite, positive float; else a TypeError (not a real number) or a
+    ValueError, naming ``name``."""
     real = isinstance(value, numbers.Real) or (isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu")
     if not real or isinstance(value, (bool, np.bool_)):
         raise TypeError(f"{name} must be a real number, got {value!r}")
@@ -116,8 +118,8 @@ def hydrostatic_pressure_mpa(depth_m: ArrayLike, *, sea_density: float = SEA_WAT
     """
     depth = _real_array(depth_m, "depth_m", "a real number or array")
     check_depths(depth, "depth_m")
-    density = _positive_number(sea_density, "sea_density")
-    g = _positive_number(gravity, "gravity")
+    density = positive_number(sea_density, "sea_density")
+    g = positive_number(gravity, "gravity")
     with np.errstate(over="ignore", invalid="ignore"):
         pressure = hydrostatic_pressure(depth, density, g) / _MPA
     if not np.all(pressure <= MAX_PRESSURE_MPA):
@@ -126,23 +128,3 @@ def hydrostatic_pressure_mpa(depth_m: ArrayLike, *, sea_density: float = SEA_WAT
             f"beyond the deepest ocean's ({MAX_PRESSURE_MPA:g} MPa): a water far from the sea's"
         )
     return pressure
-
-
-def loss_conditions(
-    depth: ArrayLike, temperature_c: ArrayLike, sea_density: float, gravity: float, n_samples: int
-) -> tuple[FloatArray, FloatArray]:
-    """The hydrostatic pressure [Pa] (``sea_density · gravity · depth``) and the temperature
-    [°C] of every sample, checked: depth and temperature a scalar or one per sample, finite,
-    depth ≥ 0, ``sea_density`` positive."""
-    conditions, given = [], []
-    for name, value in (("depth", depth), ("temperature_c", temperature_c)):
-        array = _real_array(value, name, "a real number or one per sample")
-        if array.ndim > 1 or (array.ndim == 1 and array.shape[0] != n_samples):
-            raise ValueError(f"{name} must be a scalar or have one entry per sample ({n_samples}), got shape {array.shape}")
-        given.append(array)
-        conditions.append(np.ascontiguousarray(np.broadcast_to(array, (n_samples,))))
-    depth_m, temperature = conditions
-    sea_density = _positive_number(sea_density, "sea_density")
-    check_depths(given[0])
-    check_temperatures(given[1], stacklevel=4)
-    return np.ascontiguousarray(hydrostatic_pressure(depth_m, sea_density, gravity)), temperature

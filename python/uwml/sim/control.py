@@ -138,7 +138,8 @@ def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3, c
             q, qd = d.qpos[7:].copy(), d.qvel[6:].copy()
             v_body, w_body = rotation.T @ d.qvel[:3], d.qvel[3:6].copy()
             motion = BaseMotion(orientation=np.array(d.qpos[3:7]), velocity=v_body, angular_velocity=w_body)
-            wrench = robot.hydro(q, qd, np.zeros_like(q), base_motion=motion, current=(current, 0.0, 0.0)).base
+            wrench = robot.hydro(q, qd, np.zeros_like(q), base=True, base_motion=motion, current=(current, 0.0, 0.0)).base
+            assert wrench is not None
             predicted = wrench.total + wrench.gravity
             thrust[:3] -= rotation @ predicted[:3]
             thrust[3:6] -= predicted[3:6]

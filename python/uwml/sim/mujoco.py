@@ -69,7 +69,7 @@ from __future__ import annotations
 import copy
 import threading
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -80,8 +80,8 @@ from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.parts import Water
 from ..robot._arguments import _per_joint_losses
 from ..robot.base_motion import BaseMotion, _trusted_motion
+from ..robot.evaluation_conditions import Conditions
 from ..robot.files import model_and_robot
-from ..robot.results import BaseWrench, RobotEnvironment
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
 from ._dof_map import map_degrees_of_freedom, sparse_inertia_entries
@@ -187,7 +187,7 @@ class Simulation:
         water: Water | None = None,
         scheme: str = "matrix",
         integrator: str = "euler",
-        added_mass: str = "morison",
+        added_mass: Literal["morison", "kirchhoff"] = "morison",
     ) -> None:
         mujoco = _mujoco()
         if not isinstance(model, mujoco.MjModel):
@@ -227,10 +227,16 @@ class Simulation:
         self._scheme, self._integrator, self._added_mass = scheme, integrator, added_mass
         self._euler, self._lagged = integrator == "euler", scheme == "lagged"
         self._position_stage = mujoco.mjtStage.mjSTAGE_POS  # looked up once: a step's own cost is small
-        # The joint losses, read by the core once for the one-state native path.
-        self._losses = robot._effective_losses(losses)
+        # The joint losses (the robot's own unless given), read by the core once.
+        self._losses = robot.losses if losses is None else losses
         self._compiled_losses = pack_leg_losses(self._losses, robot.n_joints)
         self._joint_losses = _per_joint_losses(self._losses, robot.n_joints)
+        #: The conditions of :meth:`environment` but the base's motion (the water column above
+        #: is the robot's water, as in Robot.environment).
+        self._conditions = Conditions(
+            water=self._water, added_mass=added_mass, current=self._current, current_acceleration=self._current_acceleration,
+            depth=self._depth, temperature_c=self._temperature_c, losses=self._losses,
+        )  # fmt: skip
         if any(loss is not None and loss.seal is not None for loss in self._joint_losses):
             # The seal's friction is a MuJoCo friction constraint (module docstring): the noslip
             # solver removes the creep of soft constraints, so that a held joint stays at rest.
@@ -239,7 +245,6 @@ class Simulation:
             opt.noslip_tolerance = min(float(opt.noslip_tolerance), NOSLIP_TOLERANCE)
         #: The friction constraints the seals need each step: fewer means MuJoCo dropped them.
         self._seal_rows = sum(loss is not None and loss.seal is not None for loss in self._joint_losses)
-        self._no_coefficients = np.zeros((0, 2))
         dofs = map_degrees_of_freedom(mujoco, self.model, robot)
         self._root, self._free_dof, self._free_qpos = dofs.root, dofs.free_dof, dofs.free_qpos
         self._joint_dofs, self._joint_qpos = dofs.joint_dofs, dofs.joint_qpos
@@ -361,8 +366,8 @@ class Simulation:
     def environment(self) -> tuple[FloatArray, FloatArray]:
         """``(τ_env,0 without gravity, M_A)`` in uwml's coordinates at the data's state: the
         generalized forces (base wrench, then joints) at zero MuJoCo acceleration, and the
-        added-mass matrix. Two native calls (the one-state path of ``Robot.environment`` with
-        the losses read by the core once, and the added-mass matrix), the same numbers as the public API.
+        added-mass matrix: :meth:`uwml.Robot.environment` and :meth:`uwml.Robot.added_mass_matrix`
+        in the simulation's conditions.
         Waits for a step under way in another thread."""
         with self._lock:
             return self._environment()
@@ -371,37 +376,11 @@ class Simulation:
         q = np.array(self.data.qpos[self._joint_qpos])
         qd = np.array(self.data.qvel[self._joint_dofs])
         motion = self._base_motion()
-        core = self.robot._core
-        result = core.environment_one(
-            RobotEnvironment,
-            BaseWrench,
-            q,
-            qd,
-            np.zeros_like(q),
-            self.depth,
-            self.temperature_c,
-            self._compiled_losses,
-            None,
-            None,
-            self.water.density,
-            self.water.gravity,
-            self.water.density,  # the water column above is the robot's water, as in Robot.environment
-            motion._single(),
-            self._current,
-            self._current_acceleration,
-            1,
-            self.added_mass == "kirchhoff",
-        )
-        if result is None:  # a state the short path does not take: the general path answers
-            result = self.robot.environment(
-                q, qd, np.zeros_like(q), depth=self.depth, temperature_c=self.temperature_c, losses=self._losses,
-                water=self.water, base_motion=motion, current=self.current, current_acceleration=self.current_acceleration,
-                added_mass=self.added_mass,
-            )  # fmt: skip
+        result = self.robot.environment(q, qd, np.zeros_like(q), self._conditions._moved(motion), base=True)
+        assert result.base is not None
         # ``total`` is drag + added mass + buoyancy (+ losses on the joints): no gravity.
         forces = np.concatenate([result.base.total, result.total])
-        size = 6 + self.robot.n_joints
-        return forces, core.added_mass_matrix(q.reshape(1, -1), self._no_coefficients, self.water.density).reshape(size, size)
+        return forces, self.robot.added_mass_matrix(q, self._conditions)
 
     def forward(self, torque: ArrayLike | None = None, qfrc: ArrayLike | None = None) -> None:
         """MuJoCo's forward dynamics at the data's state with uwml's forces: fills

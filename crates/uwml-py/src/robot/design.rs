@@ -11,7 +11,7 @@ use pyo3::prelude::*;
 use simba::simd::SimdValue;
 use uwml_core::{Conditions, Owner, SegmentCoefficients, Water, robot_hydro, robot_hydro_regressors};
 
-use super::inputs::LaneRow;
+use super::evaluate::{Row, States};
 use super::{LaneData, LaneModel, MAX_SEGMENTS};
 use crate::arrays::Lanes;
 
@@ -44,7 +44,7 @@ impl Per {
     }
 }
 
-/// The identification problem of the selected joints over the samples `[q, qd, qdd]` (each
+/// The identification problem of the selected joints over the samples `states` (each
 /// `n_samples × n`, finite), in one pass: `J × n_samples × (P + 1)`, joint-major so that each
 /// joint's block is contiguous; a row holds the regressors of the force on joint `joints[j]` (Cd
 /// columns then Cm columns, grouped as `per` says) and, last, the target `−delta − buoyancy`, where
@@ -52,7 +52,7 @@ impl Per {
 pub(super) fn design(
     robot: &LaneModel,
     water: &Water<f64>,
-    states: [&[f64]; 3],
+    states: &States<'_>,
     delta: &[f64],
     joints: &[usize],
     per: Per,
@@ -82,10 +82,10 @@ pub(super) fn design(
         })
         .collect();
     let mut data = Box::new(LaneData::new());
-    let mut lanes = LaneRow::new();
+    let mut lanes = Row::<Lanes>::new();
     for first in (0..n_samples).step_by(4) {
         let samples: Range<usize> = first..(first + 4).min(n_samples);
-        lanes.load(states, &samples, n);
+        lanes.load(states, &samples);
         let state = [&lanes.q, &lanes.qd, &lanes.qdd];
         if per == Per::Leg {
             robot_hydro(robot, &conditions, state, &mut data);

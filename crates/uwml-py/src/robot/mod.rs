@@ -1,46 +1,44 @@
 //! `uwml._core.Robot`: a whole robot (tree, base body, segments of any section) in moving water.
-//! Thin: unpacks the model, broadcasts the per-sample base motion and current, loops over samples
-//! with the GIL released (optionally on several threads), writes numpy arrays.
+//! Thin: every evaluation takes the joint states and one `Conditions` (`conditions.rs`), reads
+//! the states once (`states.rs`), loops over the samples in one loop (`evaluate.rs`: one state
+//! alone, a batch four per evaluation with the GIL released, optionally on several threads) and
+//! returns the Python package's result objects (`results.rs`).
 
-use std::ops::{Deref, DerefMut};
+use std::ops::{Deref, DerefMut, Range};
 use std::sync::{Mutex, MutexGuard, OnceLock, TryLockError};
 
-use numpy::{PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::exceptions::PyValueError;
-use pyo3::prelude::*;
-use pyo3::types::PyType;
-use uwml_core::nalgebra::Vector3;
-use uwml_core::{
-    AddedMassForm, Conditions, Owner, Robot, RobotData, RobotJacobianData, RobotJacobians, SegmentCoefficients,
-    presets, robot_added_mass_matrix, robot_jacobians,
+use numpy::{
+    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods,
 };
+use pyo3::exceptions::PyValueError;
+use pyo3::intern;
+use pyo3::prelude::*;
+use uwml_core::nalgebra::Vector3;
+use uwml_core::{Owner, Robot, RobotData, RobotJacobianData, SegmentCoefficients, presets, robot_added_mass_matrix};
 
-mod batch;
+mod conditions;
 mod coupling;
+mod derived;
 mod design;
+mod evaluate;
 mod inputs;
 mod kinematics;
-pub(crate) mod one;
+mod results;
 mod rk4;
+mod states;
 mod view;
 
-use crate::arrays::Lanes;
+use crate::arrays::{Lanes, general};
 use crate::parts::{BodySpec, JointSpec, RobotParts, SegmentSpec, robot_parts};
-use crate::single::finite_number;
-use crate::{
-    Array2, NonFinite, PyLosses, contiguous, contiguous1, in_parallel, model_error, parse_losses, to_numpy, water,
-    writable, zeroed,
-};
-use batch::{hydro_range, regressor_range};
+use crate::{NonFinite, contiguous, contiguous1, in_parallel, model_error, to_numpy};
+pub(crate) use conditions::PyConditions;
 pub(crate) use coupling::MujocoCoupling;
-use inputs::{
-    LossStates, SampleError, StateRow, Surroundings, check_losses, check_state_shapes, check_states, write_joint_losses,
-};
-use one::{Layout, OneState, one_result};
+use evaluate::{LOSSES, OUTPUTS, Overflow, Setting, hydro_range};
+use states::{Bounds, Read};
 
 /// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
-fn added_mass_form(kirchhoff: bool) -> AddedMassForm {
-    if kirchhoff { AddedMassForm::Kirchhoff } else { AddedMassForm::Morison }
+fn added_mass_form(kirchhoff: bool) -> uwml_core::AddedMassForm {
+    if kirchhoff { uwml_core::AddedMassForm::Kirchhoff } else { uwml_core::AddedMassForm::Morison }
 }
 
 /// Largest number of joints of a robot built from Python.
@@ -55,20 +53,20 @@ type Data = RobotData<f64, MAX_ROBOT_JOINTS>;
 type LaneModel = Robot<Lanes, MAX_ROBOT_JOINTS, MAX_SEGMENTS, MAX_LUMPED_BODIES>;
 type LaneData = RobotData<Lanes, MAX_ROBOT_JOINTS>;
 type Coefficients = SegmentCoefficients<f64, MAX_SEGMENTS>;
+type LaneCoefficients = SegmentCoefficients<Lanes, MAX_SEGMENTS>;
+/// A float64 numpy array of dimension `D`.
+type Array<'py, D> = Bound<'py, numpy::PyArray<f64, D>>;
 
 /// A whole robot (validated, immutable): `Robot(joints, links, base, segments)` from packed
 /// arrays (see `uwml.Robot`).
 #[pyclass(frozen, module = "uwml._core", name = "Robot")]
 pub(crate) struct PyRobot {
     robot: Box<Model>,
-    /// Each joint's plausible bounds (`uwml.plausibility.JointBounds.rows`): the one-state path
-    /// leaves a state or a result beyond them to the general path, which warns.
-    bounds: Vec<one::Bounds>,
+    /// Each joint's plausible bounds (`uwml.plausibility.JointBounds.rows`): one plain state
+    /// beyond them is left to the Python package, which checks it and warns.
+    bounds: Vec<Bounds>,
     /// A workspace kept for one-thread calls, so that they do not set up a new one.
     data: Mutex<Box<Data>>,
-    /// A coefficient table kept for one-state calls given `cd` or `cm` (8 kB: made once, and
-    /// only the robot's segments' entries written by each call).
-    coefficient_table: Mutex<Box<Coefficients>>,
     /// The robot over SIMD lanes, made at the first batch.
     lanes: OnceLock<Box<LaneModel>>,
     /// A lane workspace kept for one-thread batches.
@@ -89,7 +87,7 @@ impl PyRobot {
         links: Vec<BodySpec>,
         base: BodySpec,
         segments: Vec<(i64, SegmentSpec)>,
-        bounds: Vec<one::Bounds>,
+        bounds: Vec<Bounds>,
     ) -> PyResult<Self> {
         let (n, s) = (joints.len(), segments.len());
         if bounds.len() != n || bounds.iter().flatten().any(|x| x.is_nan()) {
@@ -123,7 +121,7 @@ impl PyRobot {
     }
 
     /// The paper's leg (`uwml_core::presets::paper_leg`: Table II, Cd 2.2 and Cm 0.5), its joints
-    /// unbounded for the one-state path (`uwml.Leg.paper` builds its robot from these `parts`).
+    /// unbounded (`uwml.paper_leg` builds its robot from these `parts`).
     #[staticmethod]
     fn paper_leg() -> PyResult<Self> {
         let robot = presets::paper_leg::<f64>().to_capacity().map_err(model_error)?;
@@ -150,7 +148,7 @@ impl PyRobot {
         q: PyReadonlyArray2<'py, f64>,
         link: i64,
         point: PyReadonlyArray1<'py, f64>,
-    ) -> PyResult<(Array2<'py>, Bound<'py, numpy::PyArray<f64, numpy::Ix3>>)> {
+    ) -> PyResult<(Array<'py, numpy::Ix2>, Array<'py, numpy::Ix3>)> {
         let n = self.robot.joint_count();
         let n_samples = q.shape().first().copied().unwrap_or(0);
         if q.shape().get(1) != Some(&n) {
@@ -170,22 +168,21 @@ impl PyRobot {
         Ok((to_numpy(py, positions, (n_samples, 3))?, to_numpy(py, jacobians, (n_samples, 6, n))?))
     }
 
-    /// The identification problem of the joints `joints` in one pass (a leg's fit, docs/model.md
-    /// section 4): `(len(joints), n_samples, P + 1)`, each row the regressors of one joint's force
-    /// (Cd columns then Cm columns; `per`: "leg" P = 2, "link" P = 2N, "direction" P = 4N,
+    /// The identification problem of the joints `joints` in one pass (docs/model.md section 4):
+    /// `(len(joints), n_samples, P + 1)`, each row the regressors of one joint's force (Cd
+    /// columns then Cm columns; `per`: "leg" P = 2, "link" P = 2N, "direction" P = 4N,
     /// link-major then direction, each segment's columns given to the link that carries it) and,
     /// last, the target `−delta − buoyancy`; `delta` `(n_samples, N)` is `τ_water − τ_land`. A
-    /// fixed base in still water.
+    /// fixed base in still water of `conditions`.
     #[allow(clippy::too_many_arguments)]
     fn hydro_design<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
         delta: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
+        conditions: PyRef<'py, PyConditions>,
         joints: Vec<usize>,
         per: &str,
     ) -> PyResult<Bound<'py, numpy::PyArray<f64, numpy::Ix3>>> {
@@ -197,17 +194,14 @@ impl PyRobot {
                 n.saturating_sub(1)
             )));
         }
-        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
-        if delta.shape() != q.shape() {
+        let read = Read::arrays([q, qd, qdd], n)?;
+        let n_samples = read.rows().unwrap_or(1);
+        if delta.shape() != [n_samples, n] {
             return Err(PyValueError::new_err(format!(
-                "delta must have shape (n_samples, {n}) like q, got {:?} (q: {:?})",
+                "delta must have shape (n_samples, {n}) like q, got {:?}",
                 delta.shape(),
-                q.shape()
             )));
         }
-        let water = water(density, gravity)?;
-        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
-        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
         let delta = contiguous(&delta, "delta")?;
         if let Some(index) = delta.iter().position(|v| !v.is_finite()) {
             let value = delta.get(index).copied().unwrap_or(f64::NAN);
@@ -215,7 +209,9 @@ impl PyRobot {
             return Err(NonFinite { argument: "delta", sample, joint, value }.into());
         }
         let robot = &**self.lanes.get_or_init(|| Box::new(self.robot.splat()));
-        let design = py.detach(|| design::design(robot, &water, states, delta, &joints, per));
+        let states = read.states(n);
+        let water = conditions.water;
+        let design = py.detach(|| design::design(robot, &water, &states, delta, &joints, per));
         to_numpy(py, design, (joints.len(), n_samples, per.columns(n) + 1))
     }
 
@@ -225,446 +221,139 @@ impl PyRobot {
         self.robot.joint_count()
     }
 
-    /// Drag, added mass, buoyancy, gravity on the joints (each `(n_samples, N)`), then on the
-    /// base (each `(n_samples, 6)`). Base motion and current: `(1, k)` for all samples or
-    /// `(n_samples, k)`. `cd`, `cm`: `(S, 2)`, or `(0, 2)` for the segments' own.
+    /// Drag, added mass, buoyancy and gravity on every joint and, with `base`, on the base: a
+    /// `uwml.Torques` (its `base` a `uwml.BaseWrench`), for the joint states `q`, `qd`, `qdd` in
+    /// `conditions` (a `Conditions` made for this robot). Unless `checked`, the states are one
+    /// state as plain objects (lists or tuples of numbers, or 1-D float64 arrays) within the
+    /// joints' bounds, or the answer is `None` (the Python package then checks them and calls
+    /// again, `checked`, with float64 arrays `(N,)` or `(n_samples, N)`).
+    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1, base = false, checked = false))]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, body_wrenches, losses=None, pressure=None, temperature=None, kirchhoff=false))]
     fn hydro<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        cd: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        orientation: PyReadonlyArray2<'py, f64>,
-        velocity: PyReadonlyArray2<'py, f64>,
-        angular_velocity: PyReadonlyArray2<'py, f64>,
-        acceleration: PyReadonlyArray2<'py, f64>,
-        angular_acceleration: PyReadonlyArray2<'py, f64>,
-        current: PyReadonlyArray2<'py, f64>,
-        current_acceleration: PyReadonlyArray2<'py, f64>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        conditions: PyRef<'py, PyConditions>,
         threads: usize,
-        body_wrenches: bool,
-        losses: Option<PyRef<'py, PyLosses>>,
-        pressure: Option<PyReadonlyArray1<'py, f64>>,
-        temperature: Option<PyReadonlyArray1<'py, f64>>,
-        kirchhoff: bool,
-    ) -> PyResult<Vec<Array2<'py>>> {
-        let form = added_mass_form(kirchhoff);
-        let n = self.robot.joint_count();
-        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
-        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
-        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
-        let surroundings = Surroundings::new(
-            [
-                &orientation,
-                &velocity,
-                &angular_velocity,
-                &acceleration,
-                &angular_acceleration,
-                &current,
-                &current_acceleration,
-            ],
-            n_samples,
-        )?;
-        let coefficients = self.coefficients(&cd, &cm)?;
-        let water = water(density, gravity)?;
-        let losses = match (&losses, &pressure, &temperature) {
-            (Some(losses), Some(pressure), Some(temperature)) => {
-                Some(check_losses(losses, pressure, temperature, n, n_samples)?)
-            }
-            (None, None, None) => None,
-            _ => return Err(PyValueError::new_err("losses, pressure and temperature come together")),
-        };
-        let loss_width = if losses.is_some() { n } else { 0 };
-        let robot = &**self.lanes.get_or_init(|| Box::new(self.robot.splat()));
-        let [drag, added_mass, buoyancy, weight] = zeroed::<4>(py, n_samples, n);
-        let [base_drag, base_added_mass, base_buoyancy, base_weight] = zeroed::<4>(py, n_samples, 6);
-        let wrench_width = if body_wrenches { (n + 1) * 6 } else { 0 };
-        let [wrenches] = zeroed::<1>(py, n_samples, wrench_width);
-        let [visc, seal, loss_current] = zeroed::<3>(py, n_samples, loss_width);
-        let arrays = [
-            drag,
-            added_mass,
-            buoyancy,
-            weight,
-            base_drag,
-            base_added_mass,
-            base_buoyancy,
-            base_weight,
-            wrenches,
-            visc,
-            seal,
-            loss_current,
-        ];
-        let mut guards = arrays.each_ref().map(|a| a.readwrite());
-        let out = writable(&mut guards)?;
-        let coefficients = coefficients.as_ref();
-        let losses = losses.as_ref();
-        let shared = &self.lane_data;
-        let result = py.detach(|| {
-            if threads <= 1 {
-                let mut kept = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                let data = kept.get_or_insert_with(|| Box::new(LaneData::new()));
-                hydro_range(
-                    robot,
-                    &water,
-                    coefficients,
-                    form,
-                    &surroundings,
-                    states,
-                    losses,
-                    &(0..n_samples),
-                    data,
-                    out,
-                )
-            } else {
-                // Samples are numbered in the whole batch already.
-                let shift = |e: SampleError, _start: usize| e;
-                let widths = [n, n, n, n, 6, 6, 6, 6, wrench_width, loss_width, loss_width, loss_width];
-                in_parallel(
-                    n_samples,
-                    widths,
-                    threads,
-                    out,
-                    |range, out| {
-                        let mut data = Box::new(LaneData::new());
-                        hydro_range(
-                            robot,
-                            &water,
-                            coefficients,
-                            form,
-                            &surroundings,
-                            states,
-                            losses,
-                            range,
-                            &mut data,
-                            out,
-                        )
-                    },
-                    shift,
-                )
-            }
-        });
-        drop(guards);
-        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
-        Ok(arrays.into())
+        base: bool,
+        checked: bool,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let wanted = Wanted { joints: true, base, wrenches: false, losses: false };
+        self.torques(py, [q, qd, qdd], &conditions, threads, wanted, checked)
     }
 
-    /// One state, for a controller or a simulator stepping one state at a time: `q`, `qd`,
-    /// `qdd` lists, tuples or 1-D float64 arrays of N finite numbers; `cd`, `cm` None (the
-    /// segments' own) or finite non-negative numbers, one for all, or one per segment (per link
-    /// with `per_link`, each segment taking its link's) or per segment and direction, as lists,
-    /// tuples or float64 arrays; `motion` None (a fixed, upright base) or
-    /// the five 1-D arrays of a `uwml.BaseMotion`; `current`, `current_acceleration` like the
-    /// states, of 3. Returns a `result_type` (`uwml.RobotTorques`) with a `base_type`
-    /// (`uwml.BaseWrench`), the same bits as the batch path; or `None` when any argument is of
-    /// another kind or fails a check (the general path then answers, with its errors).
+    /// [`PyRobot::hydro`] with the joint losses of `conditions` (`visc`, `seal`, `current`).
+    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1, base = false, checked = false))]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (result_type, base_type, q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads, kirchhoff=false, per_link=false))]
-    fn hydro_one<'py>(
+    fn environment<'py>(
         &self,
-        result_type: &Bound<'py, PyType>,
-        base_type: &Bound<'py, PyType>,
+        py: Python<'py>,
         q: &Bound<'py, PyAny>,
         qd: &Bound<'py, PyAny>,
         qdd: &Bound<'py, PyAny>,
-        cd: &Bound<'py, PyAny>,
-        cm: &Bound<'py, PyAny>,
-        density: &Bound<'py, PyAny>,
-        gravity: &Bound<'py, PyAny>,
-        motion: &Bound<'py, PyAny>,
-        current: &Bound<'py, PyAny>,
-        current_acceleration: &Bound<'py, PyAny>,
-        threads: &Bound<'py, PyAny>,
-        kirchhoff: bool,
-        per_link: bool,
+        conditions: PyRef<'py, PyConditions>,
+        threads: usize,
+        base: bool,
+        checked: bool,
     ) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
-        let mut table = self.coefficient_workspace();
-        let Some(one) = OneState::read(&self.robot, &self.bounds, layout(per_link), arguments, &mut table) else {
-            return Ok(None);
-        };
-        let mut data = self.one_state_workspace();
-        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data, &table);
-        if !one::answered(&data, &self.bounds, None) {
-            return Ok(None); // forces that overflow: the general path names the sample
-        }
-        one_result(result_type, base_type, &data, None).map(Some)
+        let wanted = Wanted { joints: true, base, wrenches: false, losses: true };
+        self.torques(py, [q, qd, qdd], &conditions, threads, wanted, checked)
     }
 
-    /// [`PyRobot::hydro_one`] with the joint losses of `Robot.environment`: `depth` ≥ 0,
-    /// `temperature`, `sea_density` > 0 numbers, `losses` None or a `Losses` of `N` joints;
-    /// a `result_type` (`uwml.RobotEnvironment`) or `None`, as there.
-    #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (result_type, base_type, q, qd, qdd, depth, temperature, losses, cd, cm, density, gravity, sea_density, motion, current, current_acceleration, threads, kirchhoff=false, per_link=false))]
-    fn environment_one<'py>(
+    /// Every body's world wrench about its centre of mass, `(n_samples, N + 1, 6)` or `(N + 1, 6)`
+    /// (base first); the states as float64 arrays.
+    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1))]
+    fn link_wrenches<'py>(
         &self,
-        result_type: &Bound<'py, PyType>,
-        base_type: &Bound<'py, PyType>,
+        py: Python<'py>,
         q: &Bound<'py, PyAny>,
         qd: &Bound<'py, PyAny>,
         qdd: &Bound<'py, PyAny>,
-        depth: &Bound<'py, PyAny>,
-        temperature: &Bound<'py, PyAny>,
-        losses: &Bound<'py, PyAny>,
-        cd: &Bound<'py, PyAny>,
-        cm: &Bound<'py, PyAny>,
-        density: &Bound<'py, PyAny>,
-        gravity: &Bound<'py, PyAny>,
-        sea_density: &Bound<'py, PyAny>,
-        motion: &Bound<'py, PyAny>,
-        current: &Bound<'py, PyAny>,
-        current_acceleration: &Bound<'py, PyAny>,
-        threads: &Bound<'py, PyAny>,
-        kirchhoff: bool,
-        per_link: bool,
-    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        conditions: PyRef<'py, PyConditions>,
+        threads: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let n = self.robot.joint_count();
-        let arguments = [q, qd, qdd, cd, cm, density, gravity, motion, current, current_acceleration, threads];
-        let mut table = self.coefficient_workspace();
-        let (Some(one), Some(depth), Some(temperature), Some(sea_density)) = (
-            OneState::read(&self.robot, &self.bounds, layout(per_link), arguments, &mut table),
-            finite_number(depth),
-            finite_number(temperature),
-            finite_number(sea_density),
-        ) else {
-            return Ok(None);
+        let read = Read::arrays([q, qd, qdd], n)?;
+        let wanted = Wanted { joints: false, base: false, wrenches: true, losses: false };
+        let outputs = self.evaluate(py, &read, &conditions, threads, wanted)?;
+        let [.., Some(wrenches), _, _, _] = outputs.unwrap_or_default() else {
+            return Err(PyValueError::new_err("internal error: no wrenches"));
         };
-        if !crate::usual_conditions(depth, temperature, sea_density, sea_density * one.water.gravity() * depth) {
-            return Ok(None);
-        }
-        let compiled = if losses.is_none() {
-            None
-        } else {
-            let Ok(compiled) = losses.cast::<PyLosses>() else { return Ok(None) };
-            Some(compiled)
-        };
-        let parsed = match &compiled {
-            Some(compiled) => match parse_losses(compiled.get(), n) {
-                Ok(parsed) => parsed,
-                Err(_) => return Ok(None),
-            },
-            None => &[],
-        };
-        let mut data = self.one_state_workspace();
-        one.evaluate(&self.robot, added_mass_form(kirchhoff), &mut data, &table);
-        // The batch path's pressure and loss states (the same operations), so that the bits are
-        // its; the robot's joints only.
-        let pressure = sea_density * one.water.gravity() * depth;
-        let (mut visc, mut seal, mut loss_current) =
-            ([0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS], [0.0; MAX_ROBOT_JOINTS]);
-        let states = parsed.iter().map(|losses| losses.and_then(|l| l.at(pressure, temperature).ok()));
-        write_joint_losses(states, &one.row.qd, [&mut visc, &mut seal, &mut loss_current], 0);
-        let losses = [&visc, &seal, &loss_current].map(|v| v.as_slice());
-        if !one::answered(&data, &self.bounds, Some(losses)) {
-            return Ok(None);
-        }
-        one_result(result_type, base_type, &data, Some(losses)).map(Some)
+        let shape: Vec<usize> = wrenches.cast::<PyUntypedArray>()?.shape().to_vec();
+        let mut shape = shape.split_last().map_or(vec![], |(_, lead)| lead.to_vec());
+        shape.extend([n + 1, 6]);
+        wrenches.call_method1(intern!(py, "reshape"), (shape,))
     }
 
-    /// Regressors: buoyancy, gravity (`(n_samples, N)`), base buoyancy, base gravity
-    /// (`(n_samples, 6)`), drag and added mass (`(n_samples, (6 + N)·2S)`: rows base then joints,
-    /// columns segment and direction).
-    #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, threads, kirchhoff=false))]
+    /// The regressors of the forces (a `uwml.Regressors`; docs/model.md sections 4, 10 and 12)
+    /// for float64 arrays of states in `conditions` (its coefficients are not used).
+    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1))]
     fn regressors<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        orientation: PyReadonlyArray2<'py, f64>,
-        velocity: PyReadonlyArray2<'py, f64>,
-        angular_velocity: PyReadonlyArray2<'py, f64>,
-        acceleration: PyReadonlyArray2<'py, f64>,
-        angular_acceleration: PyReadonlyArray2<'py, f64>,
-        current: PyReadonlyArray2<'py, f64>,
-        current_acceleration: PyReadonlyArray2<'py, f64>,
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        conditions: PyRef<'py, PyConditions>,
         threads: usize,
-        kirchhoff: bool,
-    ) -> PyResult<Vec<Array2<'py>>> {
-        let form = added_mass_form(kirchhoff);
-        let n = self.robot.joint_count();
-        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
-        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
-        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
-        let surroundings = Surroundings::new(
-            [
-                &orientation,
-                &velocity,
-                &angular_velocity,
-                &acceleration,
-                &angular_acceleration,
-                &current,
-                &current_acceleration,
-            ],
-            n_samples,
-        )?;
-        let water = water(density, gravity)?;
-        let width = (6 + n) * self.robot.regressor_column_count();
-        let [buoyancy, weight] = zeroed::<2>(py, n_samples, n);
-        let [base_buoyancy, base_weight] = zeroed::<2>(py, n_samples, 6);
-        let [drag, added_mass] = zeroed::<2>(py, n_samples, width);
-        let arrays = [buoyancy, weight, base_buoyancy, base_weight, drag, added_mass];
-        let mut guards = arrays.each_ref().map(|a| a.readwrite());
-        let out = writable(&mut guards)?;
-        let robot = &*self.robot;
-        let result = py.detach(|| {
-            let shift = |e: SampleError, _start: usize| e;
-            in_parallel(
-                n_samples,
-                [n, n, 6, 6, width, width],
-                threads,
-                out,
-                |range, out| {
-                    let mut data = Box::new(Data::new());
-                    regressor_range(robot, &water, form, &surroundings, states, range, &mut data, out)
-                },
-                shift,
-            )
-        });
-        drop(guards);
-        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
-        Ok(arrays.into())
+    ) -> PyResult<Bound<'py, PyAny>> {
+        conditions.check_robot(&self.robot)?;
+        let read = Read::arrays([q, qd, qdd], self.robot.joint_count())?;
+        derived::regressors(py, &self.robot, &read, &conditions, threads)
     }
 
-    /// `(value (m), d_q (m·N), d_velocity (m²), added_mass_matrix (m²))` per sample, `m = 6 + N`,
-    /// rows base then joints, velocity columns `(ν, q̇)`; arguments as for `hydro` with losses.
-    #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (q, qd, qdd, cd, cm, density, gravity, orientation, velocity, angular_velocity, acceleration, angular_acceleration, current, current_acceleration, losses, pressure, temperature, kirchhoff=false))]
+    /// The forces of `environment` on base and joints and their exact derivatives (a
+    /// `uwml.Jacobians`), for float64 arrays of states in `conditions`.
     fn jacobians<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        qd: PyReadonlyArray2<'py, f64>,
-        qdd: PyReadonlyArray2<'py, f64>,
-        cd: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-        gravity: f64,
-        orientation: PyReadonlyArray2<'py, f64>,
-        velocity: PyReadonlyArray2<'py, f64>,
-        angular_velocity: PyReadonlyArray2<'py, f64>,
-        acceleration: PyReadonlyArray2<'py, f64>,
-        angular_acceleration: PyReadonlyArray2<'py, f64>,
-        current: PyReadonlyArray2<'py, f64>,
-        current_acceleration: PyReadonlyArray2<'py, f64>,
-        losses: PyRef<'py, PyLosses>,
-        pressure: PyReadonlyArray1<'py, f64>,
-        temperature: PyReadonlyArray1<'py, f64>,
-        kirchhoff: bool,
-    ) -> PyResult<Vec<Array2<'py>>> {
-        let form = added_mass_form(kirchhoff);
-        let n = self.robot.joint_count();
-        let m = 6 + n;
-        let n_samples = check_state_shapes([&q, &qd, &qdd], n)?;
-        let states = [contiguous(&q, "q")?, contiguous(&qd, "qd")?, contiguous(&qdd, "qdd")?];
-        check_states(&[("q", states[0]), ("qd", states[1]), ("qdd", states[2])], n)?;
-        let surroundings = Surroundings::new(
-            [
-                &orientation,
-                &velocity,
-                &angular_velocity,
-                &acceleration,
-                &angular_acceleration,
-                &current,
-                &current_acceleration,
-            ],
-            n_samples,
-        )?;
-        let coefficients = self.coefficients(&cd, &cm)?;
-        let water = water(density, gravity)?;
-        let losses = check_losses(&losses, &pressure, &temperature, n, n_samples)?;
-        let [value] = zeroed::<1>(py, n_samples, m);
-        let [d_q] = zeroed::<1>(py, n_samples, m * n);
-        let [d_velocity, matrix] = zeroed::<2>(py, n_samples, m * m);
-        let arrays = [value, d_q, d_velocity, matrix];
-        let mut guards = arrays.each_ref().map(|a| a.readwrite());
-        let [value, d_q, d_velocity, matrix] = writable(&mut guards)?;
+        q: &Bound<'py, PyAny>,
+        qd: &Bound<'py, PyAny>,
+        qdd: &Bound<'py, PyAny>,
+        conditions: PyRef<'py, PyConditions>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        conditions.check_robot(&self.robot)?;
+        let read = Read::arrays([q, qd, qdd], self.robot.joint_count())?;
         let robot = &*self.robot;
-        let shared = &self.jacobian_data;
-        let result = py.detach(|| -> Result<(), SampleError> {
-            // Locked only while detached: a thread that waits for the workspace holds no GIL
-            // that the thread holding the workspace needs to return (no deadlock).
-            let mut work = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-            let work = work.get_or_insert_with(|| Box::new(RobotJacobianData::new(robot)));
-            let mut row = StateRow::new();
-            let mut loss_states = LossStates::new();
-            let rows = value
-                .chunks_exact_mut(m)
-                .zip(d_q.chunks_exact_mut(m * n))
-                .zip(d_velocity.chunks_exact_mut(m * m).zip(matrix.chunks_exact_mut(m * m)));
-            for (sample, ((value, d_q), (d_velocity, added_mass_matrix))) in rows.enumerate() {
-                row.load(states, sample, n);
-                let (motion, current) = surroundings.at(sample)?;
-                let out = RobotJacobians { value, d_q, d_velocity, added_mass_matrix };
-                let conditions = Conditions {
-                    water,
-                    motion,
-                    current,
-                    coefficients: coefficients.as_ref(),
-                    form,
-                    losses: Some(loss_states.at(&losses, sample)),
-                };
-                robot_jacobians(robot, &conditions, [&row.q, &row.qd, &row.qdd], work, out);
-            }
-            Ok(())
-        });
-        drop(guards);
-        result.map_err(|e| PyValueError::new_err(format!("sample {}: {}", e.sample, e.message)))?;
-        Ok(arrays.into())
+        derived::jacobians(py, robot, &self.jacobian_data, &read, &conditions)
     }
 
-    /// The added-mass matrices `(n_samples, (6 + N)²)` (row-major, base first) at joint
-    /// positions `q` `(n_samples, N)`; `cm` as for `hydro` (`(0, 2)`: the segments' own).
+    /// The added-mass matrices `(n_samples, 6 + N, 6 + N)` (or one, for `q` of shape `(N,)`;
+    /// base first) at the joint positions `q` (a float64 array), with the coefficients (`cm`)
+    /// and water of `conditions`.
     fn added_mass_matrix<'py>(
         &self,
         py: Python<'py>,
-        q: PyReadonlyArray2<'py, f64>,
-        cm: PyReadonlyArray2<'py, f64>,
-        density: f64,
-    ) -> PyResult<Array2<'py>> {
+        q: &Bound<'py, PyAny>,
+        conditions: PyRef<'py, PyConditions>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        conditions.check_robot(&self.robot)?;
         let n = self.robot.joint_count();
-        let shape = q.shape();
-        if shape.get(1) != Some(&n) {
-            return Err(PyValueError::new_err(format!("q must have shape (n_samples, {n}), got {shape:?}")));
-        }
-        let n_samples = shape.first().copied().unwrap_or(0);
-        let values = contiguous(&q, "q")?;
-        check_states(&[("q", values)], n)?;
-        let coefficients = self.coefficients(&cm, &cm)?;
-        let water = water(density, 0.0)?;
+        let read = Read::arrays([q, q, q], n)?;
+        let states = read.states(n);
+        let n_samples = conditions.sample_count(read.rows())?;
         let size = (6 + n) * (6 + n);
-        let [matrices] = zeroed::<1>(py, n_samples, size);
-        let mut guards = [matrices.readwrite()];
-        let [out] = writable(&mut guards)?;
+        let mut out = vec![0.0; n_samples * size];
         let robot = &*self.robot;
+        let conditions = &*conditions;
         py.detach(|| {
-            let mut qs = [0.0; MAX_ROBOT_JOINTS];
-            for (row, matrix) in values.chunks_exact(n.max(1)).zip(out.chunks_exact_mut(size)) {
-                for (slot, x) in qs.iter_mut().zip(row) {
-                    *slot = *x;
-                }
-                robot_added_mass_matrix(robot, &water, coefficients.as_ref(), &qs, matrix);
+            let mut row = evaluate::Row::<f64>::new();
+            for (sample, matrix) in out.chunks_exact_mut(size).enumerate() {
+                row.load(&states, &(sample..sample + 1));
+                robot_added_mass_matrix(robot, &conditions.water, conditions.coefficients.as_deref(), &row.q, matrix);
             }
         });
-        drop(guards);
-        Ok(matrices)
+        let lead: &[usize] = if read.rows().is_some() { &[n_samples] } else { &[] };
+        derived::shaped(py, out, lead, &[6 + n, 6 + n])
     }
 }
 
 impl PyRobot {
     /// The binding of a validated robot whose joints have the plausible `bounds`.
-    fn of(robot: Model, bounds: Vec<one::Bounds>) -> Self {
+    fn of(robot: Model, bounds: Vec<Bounds>) -> Self {
         Self {
-            coefficient_table: Mutex::new(Box::new(robot.coefficients())),
             robot: Box::new(robot),
             bounds,
             data: Mutex::new(Box::new(Data::new())),
@@ -681,35 +370,159 @@ impl PyRobot {
         Workspace::of(&self.data, || Box::new(Data::new()))
     }
 
-    /// The kept coefficient table, or a new one while another thread holds it.
-    fn coefficient_workspace(&self) -> Workspace<'_, Coefficients> {
-        Workspace::of(&self.coefficient_table, || Box::new(self.robot.coefficients()))
-    }
-
-    /// Per-segment coefficients `(S, 2)`, or `None` for `(0, 2)` (the segments' own).
-    fn coefficients(
+    /// The result object of `hydro` or `environment` (see there): `None` for states not read
+    /// (unless `checked`) or, for one plain state, forces beyond a joint's effort bound (the
+    /// Python package then warns).
+    fn torques<'py>(
         &self,
-        cd: &PyReadonlyArray2<'_, f64>,
-        cm: &PyReadonlyArray2<'_, f64>,
-    ) -> PyResult<Option<Coefficients>> {
-        let segments = self.robot.segments().len();
-        match (cd.shape(), cm.shape()) {
-            ([0, 2], [0, 2]) => Ok(None),
-            (a, b) if a == [segments, 2] && b == [segments, 2] => {
-                let (mut cd_table, mut cm_table) = ([[0.0; 2]; MAX_SEGMENTS], [[0.0; 2]; MAX_SEGMENTS]);
-                for (slot, pair) in cd_table.iter_mut().zip(contiguous(cd, "cd")?.chunks_exact(2)) {
-                    slot.copy_from_slice(pair);
-                }
-                for (slot, pair) in cm_table.iter_mut().zip(contiguous(cm, "cm")?.chunks_exact(2)) {
-                    slot.copy_from_slice(pair);
-                }
-                Ok(Some(Coefficients::per_segment(cd_table, cm_table).map_err(model_error)?))
+        py: Python<'py>,
+        states: [&Bound<'py, PyAny>; 3],
+        conditions: &PyConditions,
+        threads: usize,
+        wanted: Wanted,
+        checked: bool,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let n = self.robot.joint_count();
+        let read = if checked {
+            Read::arrays(states, n)?
+        } else {
+            match Read::plain(states, n, &self.bounds) {
+                Some(read) => read,
+                None => return Ok(None),
             }
-            (a, b) => Err(PyValueError::new_err(format!(
-                "cd and cm must have shape ({segments}, 2) (one pair per segment), got {a:?} and {b:?}"
-            ))),
+        };
+        match self.evaluate(py, &read, conditions, threads, wanted)? {
+            Some(outputs) => results::torques(py, outputs).map(Some),
+            None => Ok(None),
         }
     }
+
+    /// The outputs `wanted` (see `evaluate::OUTPUTS`; None where not wanted) of the states
+    /// `read` in `conditions`: one state evaluated on this thread into arrays of its own shape
+    /// (`(width,)`), a batch into `(n_samples, width)` arrays, four states per evaluation, with
+    /// the GIL released, on `threads` threads. `None` for one plain state whose forces are
+    /// beyond a joint's effort bound.
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        read: &Read<'py>,
+        conditions: &PyConditions,
+        threads: usize,
+        wanted: Wanted,
+    ) -> PyResult<Option<[Option<Bound<'py, PyAny>>; OUTPUTS]>> {
+        conditions.check_robot(&self.robot)?;
+        if threads == 0 {
+            return Err(PyValueError::new_err("threads must be an integer >= 1, got 0"));
+        }
+        let n = self.robot.joint_count();
+        let n_samples = conditions.sample_count(read.rows())?;
+        let batched = read.rows().is_some() || conditions.samples.is_some();
+        let states = read.states(n);
+        let widths = wanted.widths(n);
+        let overflow = |e: Overflow| overflow_error(&e, &states, batched);
+        if !batched {
+            let mut buffer = vec![0.0; widths.iter().sum()];
+            let setting =
+                Setting { robot: &self.robot, coefficients: conditions.coefficients.as_deref(), conditions, states };
+            let mut data = self.one_state_workspace();
+            hydro_range(&setting, &(0..1), &mut data, split(&mut buffer, widths)).map_err(overflow)?;
+            drop(data);
+            if matches!(read, Read::One(_)) && !within_effort(&buffer, widths, &self.bounds) {
+                return Ok(None);
+            }
+            let mut rest = buffer.as_slice();
+            return Ok(Some(widths.map(|width| {
+                let (values, after) = rest.split_at(width.min(rest.len()));
+                rest = after;
+                (width > 0).then(|| PyArray1::from_slice(py, values).into_any())
+            })));
+        }
+        let arrays = widths.map(|width| (width > 0).then(|| PyArray2::<f64>::zeros(py, (n_samples, width), false)));
+        let mut guards: Vec<_> = arrays.iter().flatten().map(|a| a.readwrite()).collect();
+        let mut slices = guards.iter_mut().map(|g| g.as_slice_mut().ok());
+        let out: [&mut [f64]; OUTPUTS] =
+            arrays.each_ref().map(|a| if a.is_some() { slices.next().flatten().unwrap_or_default() } else { &mut [] });
+        let robot = &**self.lanes.get_or_init(|| Box::new(self.robot.splat()));
+        let setting = Setting { robot, coefficients: conditions.lane_coefficients(), conditions, states };
+        let shared = &self.lane_data;
+        let result = py.detach(|| {
+            if threads <= 1 {
+                let mut kept = shared.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+                let data = kept.get_or_insert_with(|| Box::new(LaneData::new()));
+                hydro_range(&setting, &(0..n_samples), data, out)
+            } else {
+                // Samples are numbered in the whole batch already.
+                let part = |range: &Range<usize>, out: [&mut [f64]; OUTPUTS]| {
+                    hydro_range(&setting, range, &mut Box::new(LaneData::new()), out)
+                };
+                in_parallel(n_samples, widths, threads, out, part, |e, _| e)
+            }
+        });
+        drop(guards);
+        result.map_err(overflow)?;
+        Ok(Some(arrays.map(|a| a.map(Bound::into_any))))
+    }
+}
+
+/// Which outputs an evaluation writes (see `evaluate::OUTPUTS`).
+#[derive(Clone, Copy)]
+struct Wanted {
+    joints: bool,
+    base: bool,
+    wrenches: bool,
+    losses: bool,
+}
+
+impl Wanted {
+    /// The width of each output for a robot of `n` joints (0: not wanted).
+    fn widths(self, n: usize) -> [usize; OUTPUTS] {
+        let [j, b, w, l] = [(self.joints, n), (self.base, 6), (self.wrenches, (n + 1) * 6), (self.losses, n)]
+            .map(|(on, w)| if on { w } else { 0 });
+        [j, j, j, j, b, b, b, b, w, l, l, l]
+    }
+}
+
+/// `buffer` cut into consecutive parts of `widths`.
+fn split(buffer: &mut [f64], widths: [usize; OUTPUTS]) -> [&mut [f64]; OUTPUTS] {
+    let mut rest = buffer;
+    widths.map(|width| {
+        let all = core::mem::take(&mut rest);
+        let (part, after) = all.split_at_mut(width.min(all.len()));
+        rest = after;
+        part
+    })
+}
+
+/// Whether every joint's environment force in one state's outputs (`buffer`, cut by `widths`:
+/// the water's, and the losses' where evaluated) is within its effort bound.
+fn within_effort(buffer: &[f64], widths: [usize; OUTPUTS], bounds: &[Bounds]) -> bool {
+    let mut starts = [0; OUTPUTS];
+    let mut at = 0;
+    for (start, width) in starts.iter_mut().zip(widths) {
+        *start = at;
+        at += width;
+    }
+    let value = |output: usize, j: usize| {
+        if widths.get(output).copied().unwrap_or(0) == 0 {
+            return 0.0;
+        }
+        buffer.get(starts.get(output).copied().unwrap_or(0) + j).copied().unwrap_or(0.0)
+    };
+    bounds.iter().enumerate().all(|(j, &[_, _, effort])| {
+        let total = value(0, j) + value(1, j) + value(2, j) + value(LOSSES, j) + value(LOSSES + 1, j);
+        total.abs() <= effort
+    })
+}
+
+/// The error of forces that overflow float64 from a finite state.
+fn overflow_error(e: &Overflow, states: &evaluate::States<'_>, batched: bool) -> PyErr {
+    let (speed, acceleration) = states.largest_rates(e.sample);
+    let place = if batched { format!("sample {}", e.sample) } else { "the state".to_owned() };
+    PyValueError::new_err(format!(
+        "the forces of {place} overflow float64 (joint speeds up to {}, accelerations up to {}; or the base's motion, the current or the coefficients): the inputs are outside the physics' domain",
+        general(speed),
+        general(acceleration)
+    ))
 }
 
 /// A one-state call's workspace: the robot's kept one, or a new one (see `one_state_workspace`).
@@ -747,9 +560,4 @@ impl<T> DerefMut for Workspace<'_, T> {
             Self::New(value) => value,
         }
     }
-}
-
-/// How a one-state call's coefficient arrays are laid out.
-fn layout(per_link: bool) -> Layout {
-    if per_link { Layout::Links } else { Layout::Segments }
 }
