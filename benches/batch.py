@@ -15,6 +15,12 @@ build's, ``K`` rounds each (default 3), and printed side by side.
 
 from __future__ import annotations
 
+import os
+
+# numpy's BLAS threads, left spinning after a call, would take the second core from ``threads=2``
+# and from the other build's subprocess.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import sys
 import time
 from collections.abc import Callable

@@ -14,6 +14,12 @@ timed in the same run, alternately with this build's, ``K`` rounds each (default
 
 from __future__ import annotations
 
+import os
+
+# numpy's BLAS threads, left spinning after a call, would take the second core from ``threads=2``
+# and from the other build's subprocess.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 import sys
 import timeit
 from collections.abc import Callable

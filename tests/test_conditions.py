@@ -132,3 +132,22 @@ def test_the_base_wrench_is_evaluated_where_asked_for() -> None:
     np.testing.assert_allclose(asked.base.gravity[2], -9.81 * sum(link.mass for link in leg.links), rtol=1e-14)
     robot = random_robot(np.random.default_rng(8), 2)
     assert robot.base is not None and robot.hydro([0.1, 0.2], [0.0, 0.0], [0.0, 0.0]).base is not None
+
+
+def test_the_same_keywords_call_after_call_make_their_conditions_once() -> None:
+    """A controller passing the same keywords every call has them checked and read by the core
+    once; a list or an array changed in place between calls is seen (compared by value)."""
+    leg = uwml.paper_leg()
+    cd, cm = [2.0, 2.0], np.array([0.5, 0.5])
+    first = leg.hydro(*STATE, cd=cd, cm=cm, current=(0.1, 0.0, 0.0))
+    made = leg._last_shortcuts[2]
+    again = leg.hydro(*STATE, cd=[2.0, 2.0], cm=cm.copy(), current=(0.1, 0.0, 0.0))
+    assert leg._last_shortcuts[2] is made
+    np.testing.assert_array_equal(again.total, first.total)
+    cd[0] = 3.0
+    cm[1] = 1.0
+    changed = leg.hydro(*STATE, cd=cd, cm=cm, current=(0.1, 0.0, 0.0))
+    assert leg._last_shortcuts[2] is not made
+    expected = leg.hydro(*STATE, uwml.Conditions(cd=[3.0, 2.0], cm=[0.5, 1.0], current=(0.1, 0.0, 0.0)))
+    np.testing.assert_array_equal(changed.total, expected.total)
+    assert not np.array_equal(changed.total, first.total)

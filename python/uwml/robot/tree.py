@@ -8,6 +8,7 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 
 from __future__ import annotations
 
+import copy
 import operator
 import os
 from collections.abc import Sequence
@@ -47,6 +48,38 @@ MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
 #: The most lumped models (:class:`uwml.LumpedModel`) a robot may carry, on all its bodies.
 MAX_LUMPED_BODIES: int = _core.MAX_LUMPED_BODIES
+
+
+def _kept(value: object) -> object:
+    """A shortcut's value as kept to compare the next call's with: a copy of what may change in
+    place (lists, arrays), the object itself otherwise (numbers, tuples, frozen parts)."""
+    if isinstance(value, np.ndarray):
+        return value.copy()
+    if isinstance(value, list):
+        return copy.deepcopy(value)
+    return value
+
+
+def _same_value(kept: object, given: object) -> bool:
+    """Whether a shortcut's value ``given`` is the one ``kept`` (:func:`_kept`): equal numbers,
+    strings, tuples, lists or arrays, or the same object (frozen: a water, a base motion)."""
+    kind = type(given)
+    if kind is float or kind is int or kind is str:
+        return type(kept) is kind and kept == given
+    if isinstance(kept, np.ndarray):
+        return isinstance(given, np.ndarray) and kept.shape == given.shape and kept.dtype == given.dtype and bool(np.all(kept == given))
+    if kind is tuple or kind is list:
+        try:
+            return type(kept) is kind and bool(kept == given)
+        except ValueError:  # sequences of arrays: no single truth value
+            return False
+    return kept is given
+
+
+def _same_shortcuts(kept: dict[str, Any], given: ConditionFields) -> bool:
+    if kept.keys() != given.keys():
+        return False
+    return all(_same_value(kept[name], value) for name, value in given.items())
 
 
 class Robot:
@@ -107,6 +140,10 @@ class Robot:
         self._water = FRESH_WATER if water is None else _water(water)
         #: The conditions of an evaluation given none (the robot's own water and losses).
         self._default_conditions = Conditions()
+        #: The last keyword shortcuts of an evaluation (the conditions they replaced, a copy of
+        #: them) and the conditions they made: a controller passing the same keywords every
+        #: call has its conditions checked and read by the core once.
+        self._last_shortcuts: tuple[Conditions | None, dict[str, Any], Conditions] | None = None
 
     @property
     def joints(self) -> tuple[Joint, ...]:
@@ -205,15 +242,20 @@ class Robot:
 
     def _conditions(self, conditions: Conditions | None, shortcuts: ConditionFields) -> Conditions:
         """The conditions of an evaluation: ``conditions`` (None: the defaults) with the fields
-        ``shortcuts`` replaced."""
-        if conditions is None:
-            return Conditions(**shortcuts) if shortcuts else self._default_conditions
-        if not isinstance(conditions, Conditions):
+        ``shortcuts`` replaced (the same as the last call's: the same conditions)."""
+        if conditions is not None and not isinstance(conditions, Conditions):
             raise TypeError(
                 f"conditions must be a uwml.Conditions or None, got {type(conditions).__name__} "
                 "(give cd=, cm=, water=, base_motion=, current=, ... as keywords)"
             )
-        return conditions.replace(**shortcuts) if shortcuts else conditions
+        if not shortcuts:
+            return self._default_conditions if conditions is None else conditions
+        last = self._last_shortcuts
+        if last is not None and last[0] is conditions and _same_shortcuts(last[1], shortcuts):
+            return last[2]
+        made = Conditions(**shortcuts) if conditions is None else conditions.replace(**shortcuts)
+        self._last_shortcuts = (conditions, {name: _kept(value) for name, value in shortcuts.items()}, made)
+        return made
 
     def _native(self, conditions: Conditions) -> _core.Conditions:
         """``conditions`` as the core reads them for this robot (its own water and losses where
@@ -257,15 +299,15 @@ class Robot:
         plain state (lists, tuples or 1-D float64 arrays within the joints' bounds), else the
         states checked here first; the same evaluation either way."""
         the_conditions = self._conditions(conditions, shortcuts)
-        native = self._native(the_conditions)
+        kept = the_conditions.__dict__.get("_native")
+        native = kept[1] if kept is not None and kept[0] is self._core else self._native(the_conditions)
         if type(threads) is not int or threads < 1:
             threads = _threads(threads)
-        if base is None:
-            base = self._base is not None or the_conditions.base_motion is not None
+        with_base = (self._base is not None or the_conditions.base_motion is not None) if base is None else bool(base)
         evaluate = self._core.environment if losses else self._core.hydro
-        result: Torques | None = evaluate(*states, native, threads=threads, base=bool(base))
+        result: Torques | None = evaluate(*states, native, threads, with_base)
         if result is None:
-            result = evaluate(*self._states(*states), native, threads=threads, base=bool(base), checked=True)
+            result = evaluate(*self._states(*states), native, threads, with_base, True)
             assert result is not None
             parts = [result.drag, result.added_mass, result.buoyancy]
             check_efforts(parts if result.visc is None or result.seal is None else [*parts, result.visc, result.seal], self._bounds)

@@ -5,11 +5,12 @@
 use std::sync::Mutex;
 
 use numpy::ndarray::IxDyn;
+use numpy::{PyArrayDyn, PyArrayMethods};
 use pyo3::prelude::*;
 use uwml_core::{Conditions, RobotJacobianData, RobotJacobians, robot_jacobians};
 
 use super::conditions::{LossStates, PyConditions};
-use super::evaluate::{Overflow, Row, Setting, regressor_range};
+use super::evaluate::{Overflow, REGRESSOR_OUTPUTS, Row, Setting, regressor_range, regressor_widths};
 use super::states::Read;
 use super::{Data, MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS, Model, overflow_error, results};
 use crate::{in_parallel, to_numpy};
@@ -25,25 +26,6 @@ pub(super) fn shaped<'py>(
     to_numpy(py, values, IxDyn(&full)).map(Bound::into_any)
 }
 
-/// The entries `[sample][row][column]` of `table` (each sample `rows_per_sample × columns`) for
-/// the rows `rows` and columns `picked`, sample-major.
-fn gather(
-    table: &[f64],
-    n_samples: usize,
-    (rows_per_sample, columns): (usize, usize),
-    rows: std::ops::Range<usize>,
-    picked: std::ops::Range<usize>,
-) -> Vec<f64> {
-    let mut out = Vec::with_capacity(n_samples * rows.len() * picked.len());
-    for sample in 0..n_samples {
-        for row in rows.clone() {
-            let start = (sample * rows_per_sample + row) * columns;
-            out.extend_from_slice(table.get(start + picked.start..start + picked.end).unwrap_or(&[]));
-        }
-    }
-    out
-}
-
 /// A `uwml.Regressors` (see `uwml.robot.results`), one state per evaluation, on `threads`
 /// threads with the GIL released.
 pub(super) fn regressors<'py>(
@@ -57,49 +39,59 @@ pub(super) fn regressors<'py>(
     let n_samples = conditions.sample_count(read.rows())?;
     let batched = read.rows().is_some() || conditions.samples.is_some();
     let states = read.states(n);
-    let columns = robot.regressor_column_count();
-    let width = (6 + n) * columns;
-    let widths = [n, n, 6, 6, width, width];
-    let mut buffers: [Vec<f64>; 6] = widths.map(|w| vec![0.0; n_samples * w]);
+    let s = robot.segments().len();
+    let m = robot.regressor_column_count().saturating_sub(3 * s) / uwml_core::LUMPED_COLUMNS;
+    let widths = regressor_widths(n, s, m);
+    let lead: &[usize] = if batched { &[n_samples] } else { &[] };
+    let shapes: [&[usize]; REGRESSOR_OUTPUTS] = [
+        &[n],
+        &[n],
+        &[n, s, 2],
+        &[n, s, 2],
+        &[6],
+        &[6],
+        &[6, s, 2],
+        &[6, s, 2],
+        &[n, s],
+        &[6, s],
+        &[n, m, uwml_core::LUMPED_COLUMNS],
+        &[6, m, uwml_core::LUMPED_COLUMNS],
+    ];
+    // The outputs allocated by numpy (a fresh output then costs fewer page faults), written in
+    // place.
+    let arrays = shapes.map(|shape| {
+        let full: Vec<usize> = lead.iter().chain(shape).copied().collect();
+        PyArrayDyn::<f64>::zeros(py, IxDyn(&full), false)
+    });
+    let mut guards = arrays.each_ref().map(|a| a.readwrite());
+    let mut slices = guards.iter_mut().map(|g| g.as_slice_mut().ok());
+    let out: [&mut [f64]; REGRESSOR_OUTPUTS] = core::array::from_fn(|_| slices.next().flatten().unwrap_or_default());
     let setting = Setting { robot, coefficients: None, conditions, states };
     let result = py.detach(|| {
-        let out = buffers.each_mut().map(Vec::as_mut_slice);
-        let part = |range: &std::ops::Range<usize>, out: [&mut [f64]; 6]| {
+        let part = |range: &std::ops::Range<usize>, out: [&mut [f64]; REGRESSOR_OUTPUTS]| {
             regressor_range(&setting, range, &mut Box::new(Data::new()), out)
         };
         in_parallel(n_samples, widths, threads.max(1), out, part, |e, _| e)
     });
+    drop(guards);
     result.map_err(|e| overflow_error(&e, &states, batched))?;
-    let [buoyancy, gravity, base_buoyancy, base_gravity, drag, added_mass] = buffers;
-    let s = robot.segments().len();
-    let m = columns.saturating_sub(3 * s) / uwml_core::LUMPED_COLUMNS;
-    let lead: &[usize] = if batched { &[n_samples] } else { &[] };
-    let layout = (6 + n, columns);
-    let part = |table: &[f64], base: bool, picked: std::ops::Range<usize>| {
-        gather(table, n_samples, layout, if base { 0..6 } else { 6..6 + n }, picked)
-    };
-    // A lumped coefficient's column is in one of the two tables and zero in the other.
-    let lumped = |base: bool| -> Vec<f64> {
-        let (d, a) = (
-            part(&drag, base, 3 * s..3 * s + uwml_core::LUMPED_COLUMNS * m),
-            part(&added_mass, base, 3 * s..3 * s + uwml_core::LUMPED_COLUMNS * m),
-        );
-        d.iter().zip(&a).map(|(x, y)| x + y).collect()
-    };
-    let fields = [
-        ("buoyancy", shaped(py, buoyancy, lead, &[n])?),
-        ("gravity", shaped(py, gravity, lead, &[n])?),
-        ("drag", shaped(py, part(&drag, false, 0..2 * s), lead, &[n, s, 2])?),
-        ("added_mass", shaped(py, part(&added_mass, false, 0..2 * s), lead, &[n, s, 2])?),
-        ("base_buoyancy", shaped(py, base_buoyancy, lead, &[6])?),
-        ("base_gravity", shaped(py, base_gravity, lead, &[6])?),
-        ("base_drag", shaped(py, part(&drag, true, 0..2 * s), lead, &[6, s, 2])?),
-        ("base_added_mass", shaped(py, part(&added_mass, true, 0..2 * s), lead, &[6, s, 2])?),
-        ("axial_drag", shaped(py, part(&drag, false, 2 * s..3 * s), lead, &[n, s])?),
-        ("base_axial_drag", shaped(py, part(&drag, true, 2 * s..3 * s), lead, &[6, s])?),
-        ("lumped", shaped(py, lumped(false), lead, &[n, m, 63])?),
-        ("base_lumped", shaped(py, lumped(true), lead, &[6, m, 63])?),
+    let names = [
+        "buoyancy",
+        "gravity",
+        "drag",
+        "added_mass",
+        "base_buoyancy",
+        "base_gravity",
+        "base_drag",
+        "base_added_mass",
+        "axial_drag",
+        "base_axial_drag",
+        "lumped",
+        "base_lumped",
     ];
+    let mut arrays = arrays.into_iter();
+    let fields: [(&str, Bound<'py, PyAny>); REGRESSOR_OUTPUTS] =
+        names.map(|name| (name, arrays.next().map_or_else(|| py.None().into_bound(py), Bound::into_any)));
     results::regressors(py, fields)
 }
 

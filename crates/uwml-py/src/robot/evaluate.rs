@@ -152,7 +152,7 @@ pub(super) fn hydro_range<T: Lane>(
     let bodies = (n + 1) * 6;
     let water = conditions.water.splat::<T>();
     let losses = conditions.losses.as_ref().filter(|_| !visc.is_empty());
-    let mut loss_states = LossStates::new();
+    let mut loss_states = losses.map(|_| LossStates::new());
     let mut lanes = Row::<T>::new();
     let mut overflow = None;
     let constant = conditions.constant().map(|(m, c)| (BaseMotion::from_lanes(&[m]), Current::from_lanes(&[c])));
@@ -208,7 +208,7 @@ pub(super) fn hydro_range<T: Lane>(
         }
         // The first lane whose losses are not finite.
         let mut bad_loss = None;
-        if let Some(losses) = losses {
+        if let (Some(losses), Some(loss_states)) = (losses, loss_states.as_mut()) {
             for (lane, sample) in chunk.clone().enumerate() {
                 let row = (first + lane) * n;
                 let states_here = loss_states.at(losses, sample);
@@ -236,34 +236,97 @@ pub(super) fn hydro_range<T: Lane>(
     overflow.map_or(Ok(()), |sample| Err(Overflow { sample }))
 }
 
-/// Evaluates the regressors of samples `range` into `out` (row 0 of each is sample
-/// `range.start`): buoyancy and gravity on the joints (`n` wide) and on the base (6 wide), then
-/// the drag and added-mass regressors (`(6 + n) · c` wide for `c` columns, see
-/// `robot_hydro_regressors`).
+/// The regressors' outputs, in the order of `uwml.Regressors`' fields: buoyancy and gravity on the
+/// joints, drag and added mass per segment and direction on the joints, the same four on the
+/// base, the axial drag per segment on the joints and on the base, the lumped models' columns on
+/// the joints and on the base.
+pub(super) const REGRESSOR_OUTPUTS: usize = 12;
+
+/// The width of each regressor output (see [`REGRESSOR_OUTPUTS`]) of a robot of `n` joints, `s`
+/// segments and `m` lumped models.
+pub(super) const fn regressor_widths(n: usize, s: usize, m: usize) -> [usize; REGRESSOR_OUTPUTS] {
+    let lumped = uwml_core::LUMPED_COLUMNS * m;
+    [n, n, 2 * n * s, 2 * n * s, 6, 6, 12 * s, 12 * s, n * s, 6 * s, n * lumped, 6 * lumped]
+}
+
+/// The entries `start + picked` of `table`.
+fn part_of(table: &[f64], start: usize, picked: Range<usize>) -> &[f64] {
+    table.get(start + picked.start..start + picked.end).unwrap_or(&[])
+}
+
+/// Evaluates the regressors of samples `range` into `out` (see [`REGRESSOR_OUTPUTS`]; row 0 of
+/// each is sample `range.start`), one state per evaluation, each sample's table of columns
+/// (`robot_hydro_regressors`) taken apart into its outputs.
 pub(super) fn regressor_range(
     setting: &Setting<'_, f64>,
     range: &Range<usize>,
     data: &mut Data,
-    [buoyancy, gravity, base_buoyancy, base_gravity, drag, added_mass]: [&mut [f64]; 6],
+    out: [&mut [f64]; REGRESSOR_OUTPUTS],
 ) -> Result<(), Overflow> {
     let Setting { robot, conditions, states, .. } = setting;
+    let [
+        buoyancy,
+        gravity,
+        drag,
+        added_mass,
+        base_buoyancy,
+        base_gravity,
+        base_drag,
+        base_added_mass,
+        axial,
+        base_axial,
+        lumped,
+        base_lumped,
+    ] = out;
     let n = robot.joint_count();
-    let width = (6 + n) * robot.regressor_column_count();
+    let s = robot.segments().len();
+    let columns = robot.regressor_column_count();
+    let lumped_width = columns.saturating_sub(3 * s);
+    let (mut drag_table, mut added_table) = (vec![0.0; (6 + n) * columns], vec![0.0; (6 + n) * columns]);
     let water: Water<f64> = conditions.water;
     let mut row = Row::<f64>::new();
     let mut overflow = None;
     for (k, sample) in range.clone().enumerate() {
         row.load(states, &(sample..sample + 1));
         let (motion, current) = conditions.at(sample);
-        let (Some(drag), Some(added_mass)) =
-            (drag.get_mut(k * width..(k + 1) * width), added_mass.get_mut(k * width..(k + 1) * width))
-        else {
-            continue;
-        };
         let form = conditions.form;
-        let conditions = Conditions { water, motion, current, coefficients: None, form, losses: None };
-        robot_hydro_regressors(robot, &conditions, [&row.q, &row.qd, &row.qdd], data, drag, added_mass);
-        let finite = drag.iter().chain(added_mass.iter()).all(|x| x.is_finite());
+        let core = Conditions { water, motion, current, coefficients: None, form, losses: None };
+        drag_table.fill(0.0);
+        added_table.fill(0.0);
+        robot_hydro_regressors(robot, &core, [&row.q, &row.qd, &row.qdd], data, &mut drag_table, &mut added_table);
+        let finite = drag_table.iter().chain(added_table.iter()).all(|x| x.is_finite());
+        // Each row of the tables (the base's six, then the joints) to its outputs.
+        for r in 0..6 + n {
+            let (at, rows, outputs) = if r < 6 {
+                (r, 6, [&mut *base_drag, &mut *base_added_mass, &mut *base_axial, &mut *base_lumped])
+            } else {
+                (r - 6, n, [&mut *drag, &mut *added_mass, &mut *axial, &mut *lumped])
+            };
+            let [drag_out, added_out, axial_out, lumped_out] = outputs;
+            let row_of = |table, picked| part_of(table, r * columns, picked);
+            for (out, values, width) in [
+                (&mut *drag_out, row_of(&drag_table, 0..2 * s), 2 * s),
+                (&mut *added_out, row_of(&added_table, 0..2 * s), 2 * s),
+                (&mut *axial_out, row_of(&drag_table, 2 * s..3 * s), s),
+            ] {
+                let start = (k * rows + at) * width;
+                if let Some(slot) = out.get_mut(start..start + width) {
+                    slot.copy_from_slice(values);
+                }
+            }
+            // A lumped coefficient's column is in one of the two tables and zero in the other.
+            let start = (k * rows + at) * lumped_width;
+            let lumped_columns = 3 * s..columns;
+            if let Some(slot) = lumped_out.get_mut(start..start + lumped_width) {
+                for ((out, d), a) in slot
+                    .iter_mut()
+                    .zip(row_of(&drag_table, lumped_columns.clone()))
+                    .zip(row_of(&added_table, lumped_columns.clone()))
+                {
+                    *out = d + a;
+                }
+            }
+        }
         for (out, value) in [
             (&mut *buoyancy, (|f: &uwml_core::JointForces<f64>| f.buoyancy) as fn(&uwml_core::JointForces<f64>) -> f64),
             (&mut *gravity, |f: &uwml_core::JointForces<f64>| f.gravity),

@@ -13,6 +13,7 @@ use numpy::{
 use pyo3::exceptions::PyValueError;
 use pyo3::intern;
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use uwml_core::nalgebra::Vector3;
 use uwml_core::{Owner, Robot, RobotData, RobotJacobianData, SegmentCoefficients, presets, robot_added_mass_matrix};
 
@@ -73,6 +74,8 @@ pub(crate) struct PyRobot {
     lane_data: Mutex<Option<Box<LaneData>>>,
     /// The derivatives' workspace (the robot over dual numbers), made at the first call.
     jacobian_data: Mutex<Option<Box<RobotJacobianData<f64, MAX_ROBOT_JOINTS, MAX_SEGMENTS, MAX_LUMPED_BODIES>>>>,
+    /// The joint losses of one state's `hydro`: zeros, one read-only array made once.
+    no_losses: PyOnceLock<Py<PyAny>>,
 }
 
 #[pymethods]
@@ -227,7 +230,7 @@ impl PyRobot {
     /// state as plain objects (lists or tuples of numbers, or 1-D float64 arrays) within the
     /// joints' bounds, or the answer is `None` (the Python package then checks them and calls
     /// again, `checked`, with float64 arrays `(N,)` or `(n_samples, N)`).
-    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1, base = false, checked = false))]
+    #[pyo3(signature = (q, qd, qdd, conditions, threads = 1, base = false, checked = false))]
     #[allow(clippy::too_many_arguments)]
     fn hydro<'py>(
         &self,
@@ -245,7 +248,7 @@ impl PyRobot {
     }
 
     /// [`PyRobot::hydro`] with the joint losses of `conditions` (`visc`, `seal`, `current`).
-    #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1, base = false, checked = false))]
+    #[pyo3(signature = (q, qd, qdd, conditions, threads = 1, base = false, checked = false))]
     #[allow(clippy::too_many_arguments)]
     fn environment<'py>(
         &self,
@@ -360,6 +363,7 @@ impl PyRobot {
             lanes: OnceLock::new(),
             lane_data: Mutex::new(None),
             jacobian_data: Mutex::new(None),
+            no_losses: PyOnceLock::new(),
         }
     }
 
@@ -391,10 +395,20 @@ impl PyRobot {
                 None => return Ok(None),
             }
         };
-        match self.evaluate(py, &read, conditions, threads, wanted)? {
-            Some(outputs) => results::torques(py, outputs).map(Some),
-            None => Ok(None),
-        }
+        let Some(outputs) = self.evaluate(py, &read, conditions, threads, wanted)? else { return Ok(None) };
+        // One state's zeros for the losses not evaluated are the robot's, made once.
+        let one_state = read.rows().is_none() && conditions.samples.is_none();
+        let no_losses = if one_state && !wanted.losses {
+            let zeros = self.no_losses.get_or_try_init(py, || {
+                let zeros = PyArray1::<f64>::zeros(py, n, false).into_any();
+                zeros.call_method1(intern!(py, "setflags"), (false,))?;
+                Ok::<_, PyErr>(zeros.unbind())
+            })?;
+            Some(zeros.bind(py).clone())
+        } else {
+            None
+        };
+        results::torques(py, outputs, no_losses).map(Some)
     }
 
     /// The outputs `wanted` (see `evaluate::OUTPUTS`; None where not wanted) of the states

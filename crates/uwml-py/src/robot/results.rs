@@ -21,11 +21,13 @@ static REGRESSORS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
 static JACOBIANS: PyOnceLock<Py<PyType>> = PyOnceLock::new();
 
 /// A `uwml.robot.results.Torques` of the outputs of an evaluation (see `evaluate::OUTPUTS`):
-/// the joints' forces, the joint losses (zeros where not evaluated) and the base wrench (a
-/// `BaseWrench`, or None where not evaluated).
+/// the joints' forces, the joint losses (where not evaluated: `no_losses`, or zeros shaped like
+/// the joints' forces, one read-only array) and the base wrench (a `BaseWrench`, or None where not
+/// evaluated).
 pub(super) fn torques<'py>(
     py: Python<'py>,
     outputs: [Option<Bound<'py, PyAny>>; OUTPUTS],
+    no_losses: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     // The outputs in their order: the joints' four, the base's four, the bodies' wrenches, the
     // joint losses' three.
@@ -47,6 +49,10 @@ pub(super) fn torques<'py>(
     let joints = joints.map(|a| a.unwrap_or_else(none));
     let losses = match losses {
         [Some(visc), Some(seal), Some(current)] => [visc, seal, current],
+        _ if no_losses.is_some() => {
+            let zeros = no_losses.unwrap_or_else(none);
+            [zeros.clone(), zeros.clone(), zeros]
+        }
         // No losses evaluated: zeros shaped like the joints' forces, one read-only array.
         _ => {
             let shape = joints[0].cast::<PyUntypedArray>()?.shape().to_vec();

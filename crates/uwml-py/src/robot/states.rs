@@ -20,10 +20,11 @@ fn plausible(bounds: &[Bounds], q: &[f64], qd: &[f64]) -> bool {
     bounds.iter().zip(q).zip(qd).all(|((&[angle, speed, _], q), qd)| q.abs() <= angle && qd.abs() <= speed)
 }
 
-/// The joint states of a call, as read.
+/// The joint states of a call, as read (one state on the stack: no allocation per call).
+#[allow(clippy::large_enum_variant)]
 pub(super) enum Read<'py> {
     /// One state read from plain objects.
-    One(Box<StateRow>),
+    One(StateRow),
     /// Arrays `(N,)` or `(n_samples, N)`.
     Arrays([PyReadonlyArrayDyn<'py, f64>; 3]),
 }
@@ -33,7 +34,7 @@ impl<'py> Read<'py> {
     /// for anything else: the Python package then checks the arguments (and warns of a state
     /// beyond its bounds) and calls again with arrays ([`Read::arrays`]).
     pub(super) fn plain(states: [&Bound<'py, PyAny>; 3], n: usize, bounds: &[Bounds]) -> Option<Self> {
-        let mut row = Box::new(StateRow::new());
+        let mut row = StateRow::new();
         for (value, out) in states.into_iter().zip([&mut row.q, &mut row.qd, &mut row.qdd]) {
             fill_values(value, out.get_mut(..n)?)?;
         }
