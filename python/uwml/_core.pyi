@@ -149,15 +149,7 @@ class MujocoCoupling:
         joint_dofs: Sequence[int],
         free_dof: int | None,
         mass_pairs: NDArray[np.int64],
-        losses: Losses | None,
-        depth: float,
-        temperature: float,
-        density: float,
-        gravity: float,
-        sea_density: float,
-        current: tuple[float, float, float],
-        current_acceleration: tuple[float, float, float],
-        kirchhoff: bool,
+        conditions: Conditions,
         lagged: bool,
     ) -> Self: ...
     def write_joint_losses(self) -> None: ...

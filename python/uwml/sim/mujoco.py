@@ -76,7 +76,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .. import _core
 from .._checks import shown
-from ..model.joint_losses import JointLosses, pack_leg_losses
+from ..model.joint_losses import JointLosses
 from ..model.parts import Water
 from ..robot._arguments import _per_joint_losses
 from ..robot.base_motion import BaseMotion, _trusted_motion
@@ -229,7 +229,6 @@ class Simulation:
         self._position_stage = mujoco.mjtStage.mjSTAGE_POS  # looked up once: a step's own cost is small
         # The joint losses (the robot's own unless given), read by the core once.
         self._losses = robot.losses if losses is None else losses
-        self._compiled_losses = pack_leg_losses(self._losses, robot.n_joints)
         self._joint_losses = _per_joint_losses(self._losses, robot.n_joints)
         #: The conditions of :meth:`environment` but the base's motion (the water column above
         #: is the robot's water, as in Robot.environment).
@@ -256,9 +255,7 @@ class Simulation:
             robot._core, d.qpos, d.qvel, d.qacc, d.xquat, d.xmat, d.M, d.qfrc_applied,
             self.model.dof_damping, self.model.dof_frictionloss, self.model.opt.gravity,
             None if self._base_is_world else self._root, self._joint_qpos.tolist(), self._joint_dofs.tolist(),
-            self._free_dof, inertia_entries, self._compiled_losses,
-            self.depth, self.temperature_c, self.water.density, self.water.gravity, self.water.density,
-            tuple(self.current), tuple(self.current_acceleration), added_mass == "kirchhoff", scheme == "lagged",
+            self._free_dof, inertia_entries, robot._native(self._conditions), scheme == "lagged",
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
         #: The prescribed joints' degrees of freedom, qpos entries and motion (:meth:`prescribe`).
@@ -398,8 +395,7 @@ class Simulation:
 
     def _forward(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d, coupling = self._mj, self._model, self._data, self._coupling
-        if self._compiled_losses is not None:  # the friction constraints take the levels
-            coupling.write_joint_losses()
+        coupling.write_joint_losses()  # the friction constraints take the levels (nothing without losses)
         mj.mj_fwdPosition(m, d)
         if self._seal_rows and d.nefc < self._seal_rows:
             self._check_constraint_memory()

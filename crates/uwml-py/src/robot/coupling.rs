@@ -12,15 +12,15 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use uwml_core::nalgebra::{Matrix3, Vector3};
 use uwml_core::{
-    BaseMotion, Conditions, Current, LossState, Water, robot_added_mass_matrix, robot_hydro,
+    AddedMassForm, BaseMotion, Conditions, Current, LossState, Water, robot_added_mass_matrix, robot_hydro,
     robot_joint_added_mass_matrix,
 };
 
+use super::conditions::{LossStates, PyConditions};
 use super::inputs::StateRow;
 use super::rk4::Rk4;
 use super::view::View;
-use super::{Data, MAX_ROBOT_JOINTS, PyRobot, added_mass_form};
-use crate::parse_losses;
+use super::{Coefficients, Data, MAX_ROBOT_JOINTS, PyRobot};
 use crate::single::fill_values;
 
 /// The `MjData` arrays the coupling reads and writes (kept for the coupling's life).
@@ -71,7 +71,9 @@ pub(crate) struct MujocoCoupling {
     /// `opt.gravity` when the coupling was made.
     gravity: [f64; 3],
     current: Current<f64>,
-    kirchhoff: bool,
+    form: AddedMassForm,
+    /// The conditions' coefficients (None: the segments' own).
+    coefficients: Option<Box<Coefficients>>,
     /// `(ν̇, q̈)` of the previous step, subtracted through `M_A` (the lagged scheme), if any.
     lagged: Option<Vec<f64>>,
     /// `M_A` over uwml's coordinates, `(6 + n)²`; on a fixed base only its joint block is
@@ -103,11 +105,12 @@ fn values<'a>(array: &'a numpy::PyReadonlyArrayDyn<'_, f64>, name: &str, n: usiz
 impl MujocoCoupling {
     /// The coupling of `robot` to one `MjData`'s arrays (checked here; the Python caller builds
     /// the map). `mass_pairs`: `(nM, 2)` degrees of freedom of each entry of `data.M`;
-    /// `losses`: a `Losses` of `N` joints or None, evaluated at the pressure of `depth` in
-    /// water of `sea_density` and at `temperature`.
+    /// `conditions`: the simulation's (made for `robot`, one value of each for every step: the
+    /// water, the coefficients, the added-mass form, the current, and the joint losses at their
+    /// depth and temperature); the base's motion is MuJoCo's.
     #[new]
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, dof_damping, dof_frictionloss, model_gravity, root, joint_qpos, joint_dofs, free_dof, mass_pairs, losses, depth, temperature, density, gravity, sea_density, current, current_acceleration, kirchhoff, lagged))]
+    #[pyo3(signature = (robot, qpos, qvel, qacc, xquat, xmat, mass_matrix, qfrc_applied, dof_damping, dof_frictionloss, model_gravity, root, joint_qpos, joint_dofs, free_dof, mass_pairs, conditions, lagged))]
     fn new(
         robot: Bound<'_, PyRobot>,
         qpos: Bound<'_, PyArrayDyn<f64>>,
@@ -125,18 +128,14 @@ impl MujocoCoupling {
         joint_dofs: Vec<usize>,
         free_dof: Option<usize>,
         mass_pairs: PyReadonlyArray2<'_, i64>,
-        losses: Option<PyRef<'_, crate::PyLosses>>,
-        depth: f64,
-        temperature: f64,
-        density: f64,
-        gravity: f64,
-        sea_density: f64,
-        current: [f64; 3],
-        current_acceleration: [f64; 3],
-        kirchhoff: bool,
+        conditions: PyRef<'_, PyConditions>,
         lagged: bool,
     ) -> PyResult<Self> {
         let n = robot.get().robot.joint_count();
+        conditions.check_robot(&robot.get().robot)?;
+        let Some((_, current)) = conditions.constant() else {
+            return Err(PyValueError::new_err("a simulation's conditions are one value of each for every step"));
+        };
         if joint_qpos.len() != n || joint_dofs.len() != n {
             return Err(PyValueError::new_err(format!("the map must give {n} joints' qpos and dof entries")));
         }
@@ -174,24 +173,10 @@ impl MujocoCoupling {
                 _ => return Err(PyValueError::new_err("mass_pairs must name degrees of freedom in 0..nv")),
             }
         }
-        let water = crate::water(density, gravity)?;
-        let current =
-            Current::new(Vector3::from(current), Vector3::from(current_acceleration)).map_err(crate::model_error)?;
-        if !(depth.is_finite()
-            && depth >= 0.0
-            && temperature.is_finite()
-            && sea_density.is_finite()
-            && sea_density > 0.0)
-        {
-            return Err(PyValueError::new_err("depth (>= 0), temperature and sea_density (> 0) must be finite"));
-        }
-        let mut states = [None; MAX_ROBOT_JOINTS];
-        if let Some(compiled) = &losses {
-            let pressure = sea_density * water.gravity() * depth;
-            for (slot, joint) in states.iter_mut().zip(parse_losses(compiled, n)?) {
-                *slot = joint.map(|l| l.at(pressure, temperature)).transpose().map_err(crate::model_error)?;
-            }
-        }
+        // The joint losses at the conditions' pressure (the core's, from their depth) and
+        // temperature.
+        let states =
+            conditions.losses.as_ref().map_or([None; MAX_ROBOT_JOINTS], |losses| *LossStates::new().at(losses, 0));
         let own = |array: &Bound<'_, PyArrayDyn<f64>>, name: &str| -> PyResult<Vec<f64>> {
             let array = array.try_readonly()?;
             let all = values(&array, name, nv)?;
@@ -226,10 +211,11 @@ impl MujocoCoupling {
             losses: states,
             own_damping,
             own_frictionloss,
-            water,
+            water: conditions.water,
             gravity: gravity_at_start,
             current,
-            kirchhoff,
+            form: conditions.form,
+            coefficients: conditions.coefficients.clone(),
             lagged: lagged.then(|| vec![0.0; size]),
             added_mass: vec![0.0; size * size],
             joint_added_mass: vec![0.0; n * n],
@@ -298,11 +284,18 @@ impl MujocoCoupling {
         let motion = self.base_motion(pose.as_ref(), &self.qvel)?;
         let robot = self.robot.get();
         if self.map.free_dof.is_some() {
-            robot_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.added_mass);
+            robot_added_mass_matrix(
+                &robot.robot,
+                &self.water,
+                self.coefficients.as_deref(),
+                &row.q,
+                &mut self.added_mass,
+            );
         } else {
             // A fixed base: ν̇ = 0 and the base has no degree of freedom in MuJoCo, so only the
             // joints' block of M_A acts.
-            robot_joint_added_mass_matrix(&robot.robot, &self.water, None, &row.q, &mut self.joint_added_mass);
+            let coefficients = self.coefficients.as_deref();
+            robot_joint_added_mass_matrix(&robot.robot, &self.water, coefficients, &row.q, &mut self.joint_added_mass);
             for (i, block_row) in self.joint_added_mass.chunks(n.max(1)).enumerate().take(n) {
                 let start = (6 + i) * size + 6;
                 if let Some(slots) = self.added_mass.get_mut(start..start + n) {
@@ -310,9 +303,14 @@ impl MujocoCoupling {
                 }
             }
         }
-        let form = added_mass_form(self.kirchhoff);
-        let conditions =
-            Conditions { water: self.water, motion, current: self.current, coefficients: None, form, losses: None };
+        let conditions = Conditions {
+            water: self.water,
+            motion,
+            current: self.current,
+            coefficients: self.coefficients.as_deref(),
+            form: self.form,
+            losses: None,
+        };
         robot_hydro(&robot.robot, &conditions, [&row.q, &row.qd, &row.qdd], &mut self.data);
         // uwml's generalized forces: the base wrench's hydrodynamic part, then the joints'
         // hydrodynamics and motor torques. The joint losses are MuJoCo's: the seal's dry

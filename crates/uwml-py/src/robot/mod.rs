@@ -37,11 +37,6 @@ pub(crate) use coupling::MujocoCoupling;
 use evaluate::{LOSSES, OUTPUTS, Overflow, Setting, hydro_range};
 use states::{Bounds, Read};
 
-/// The added-mass form a call asks for (`kirchhoff=True`: Kirchhoff's, else the paper's Morison).
-fn added_mass_form(kirchhoff: bool) -> uwml_core::AddedMassForm {
-    if kirchhoff { uwml_core::AddedMassForm::Kirchhoff } else { uwml_core::AddedMassForm::Morison }
-}
-
 /// Largest number of joints of a robot built from Python.
 pub(crate) const MAX_ROBOT_JOINTS: usize = 64;
 /// Largest number of segments of a robot built from Python.
