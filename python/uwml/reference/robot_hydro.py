@@ -470,6 +470,28 @@ def _prepare(
     return robot, state, _kinematics(robot, state), density, gravity
 
 
+def _prepared_wrenches(
+    joints: Sequence[Any],
+    links: Sequence[Any],
+    base: Any | None,
+    q: ArrayLike,
+    qd: ArrayLike,
+    qdd: ArrayLike,
+    cd: ArrayLike | None,
+    cm: ArrayLike | None,
+    density: float,
+    gravity: float,
+    **motion: ArrayLike,
+) -> tuple[_Robot, _Motion, _Kinematics, Array, float, dict[str, tuple[Array, Array]]]:
+    """The checked robot, motion and kinematics, the segments' Cm, the density and each part's
+    body wrenches (Morison's added mass): what :func:`robot_hydro` and
+    :func:`robot_link_wrenches` share."""
+    robot, state, kin, density, gravity = _prepare(joints, links, base, q, qd, qdd, density, gravity, **motion)
+    cd_ = _coefficients(cd, "cd", robot.seg_cd, robot.seg_circular)
+    cm_ = _coefficients(cm, "cm", robot.seg_cm, robot.seg_circular)
+    return robot, state, kin, cm_, density, _body_wrenches(robot, state, kin, cd_, cm_, density, gravity)
+
+
 def robot_hydro(
     joints: Sequence[Any],
     links: Sequence[Any],
@@ -544,26 +566,11 @@ def robot_hydro(
         ``orientation``, inputs disagreeing on the number of samples, bad coefficients,
         ``density <= 0`` or ``gravity < 0``.
     """
-    robot, motion, kin, density, gravity = _prepare(
-        joints,
-        links,
-        base,
-        q,
-        qd,
-        qdd,
-        density,
-        gravity,
-        orientation=orientation,
-        velocity=velocity,
-        angular_velocity=angular_velocity,
-        acceleration=acceleration,
-        angular_acceleration=angular_acceleration,
-        current=current,
-        current_acceleration=current_acceleration,
-    )
-    cd_ = _coefficients(cd, "cd", robot.seg_cd, robot.seg_circular)
-    cm_ = _coefficients(cm, "cm", robot.seg_cm, robot.seg_circular)
-    wrenches = _body_wrenches(robot, motion, kin, cd_, cm_, density, gravity)
+    robot, motion, kin, cm_, density, wrenches = _prepared_wrenches(
+        joints, links, base, q, qd, qdd, cd, cm, density, gravity,
+        orientation=orientation, velocity=velocity, angular_velocity=angular_velocity, acceleration=acceleration,
+        angular_acceleration=angular_acceleration, current=current, current_acceleration=current_acceleration,
+    )  # fmt: skip
     if added_mass not in ("morison", "kirchhoff"):
         raise ValueError(f"added_mass must be 'morison' or 'kirchhoff', got {added_mass!r}")
     if added_mass == "kirchhoff":
@@ -606,26 +613,11 @@ def robot_link_wrenches(
     about that body's COM (the base origin for a base of ``None``, whose row is zero), in world
     components.
     """
-    robot, motion, kin, density, gravity = _prepare(
-        joints,
-        links,
-        base,
-        q,
-        qd,
-        qdd,
-        density,
-        gravity,
-        orientation=orientation,
-        velocity=velocity,
-        angular_velocity=angular_velocity,
-        acceleration=acceleration,
-        angular_acceleration=angular_acceleration,
-        current=current,
-        current_acceleration=current_acceleration,
-    )
-    cd_ = _coefficients(cd, "cd", robot.seg_cd, robot.seg_circular)
-    cm_ = _coefficients(cm, "cm", robot.seg_cm, robot.seg_circular)
-    wrenches = _body_wrenches(robot, motion, kin, cd_, cm_, density, gravity)
+    robot, motion, kin, _, _, wrenches = _prepared_wrenches(
+        joints, links, base, q, qd, qdd, cd, cm, density, gravity,
+        orientation=orientation, velocity=velocity, angular_velocity=angular_velocity, acceleration=acceleration,
+        angular_acceleration=angular_acceleration, current=current, current_acceleration=current_acceleration,
+    )  # fmt: skip
     force = sum((wrenches[part][0] for part in _PARTS), np.zeros_like(wrenches["drag"][0]))
     moment = sum((wrenches[part][1] for part in _PARTS), np.zeros_like(wrenches["drag"][1]))
     com = kin.positions + np.einsum("nbij,bj->nbi", kin.rotations, robot.coms)
