@@ -28,7 +28,7 @@ from .model.losses import Drive, OilDrag, Seal
 from .model.lumped import LumpedModel
 from .model.parts import Joint, Link, Segment, Water
 from .paper.gait import WalkingGait, paper_leg_foot, paper_leg_ik
-from .plausibility import PlausibilityWarning
+from .plausibility import DescriptionWarning, PlausibilityWarning
 from .robot.base_motion import BaseMotion
 from .robot.evaluation_conditions import Conditions
 from .robot.presets import paper_leg
@@ -44,6 +44,7 @@ __all__ = [
     "BaseWrench",
     "Conditions",
     "DescriptionError",
+    "DescriptionWarning",
     "Drive",
     "ExtrapolationWarning",
     "Jacobians",

@@ -50,6 +50,7 @@ __all__ = [
     "PLAUSIBLE_DENSITY",
     "PLAUSIBLE_LINEAR_SPEED",
     "PLAUSIBLE_TIME_STEP",
+    "DescriptionWarning",
     "JointBounds",
     "PlausibilityWarning",
     "check_density",
@@ -81,6 +82,13 @@ _SILENCE = 'silence with warnings.filterwarnings("ignore", category=uwml.Plausib
 class PlausibilityWarning(UserWarning):
     """A value that is computable but hardly ever right: most likely a unit mistake (module
     docstring)."""
+
+
+class DescriptionWarning(PlausibilityWarning):
+    """A robot description with its hydro file that maps, but most likely not to what was meant:
+    a link fused into a body with a lumped model adding its collision geometry's volume and
+    strips beside that model (:mod:`uwml.io.hydrofile`). A :class:`PlausibilityWarning`, so one
+    filter silences both."""
 
 
 @dataclass(frozen=True)

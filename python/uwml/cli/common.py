@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import UwmlError
+from ..io.descriptions import DescriptionParts, mjcf_parts, urdf_parts
 from ..robot.tree import Robot
 
 
@@ -29,15 +30,20 @@ def _check_output(path: str | None, option: str) -> None:
 def load_robot(path: str, hydro: str | None = None) -> Any:
     """The robot of a description file given with ``--robot``: a uwml model file (``.toml``), a
     URDF (``.urdf``) or an MJCF (``.xml``, ``.mjcf``), with ``--hydro`` for the last two."""
+    return load_described(path, hydro)[0]
+
+
+def load_described(path: str, hydro: str | None = None) -> tuple[Robot, DescriptionParts | None]:
+    """:func:`load_robot`'s robot, and for a URDF or MJCF its parts (the hydro file's point items
+    and mass overrides with them; None for a uwml model file)."""
     suffix = Path(path).suffix.lower()
     if suffix == ".toml":
         if hydro is not None:
             raise _UsageError("--hydro goes with a URDF or MJCF --robot; a uwml model file holds its hydrodynamic parameters")
-        return Robot.load(path)
-    if suffix == ".urdf":
-        return Robot.from_urdf(path, hydro=hydro)
-    if suffix in (".xml", ".mjcf"):
-        return Robot.from_mjcf(path, hydro=hydro)
+        return Robot.load(path), None
+    if suffix in (".urdf", ".xml", ".mjcf"):
+        parts = (urdf_parts if suffix == ".urdf" else mjcf_parts)(path, hydro)
+        return parts.build(Robot), parts
     raise ValueError(
         f"{path}: --robot takes a uwml model file (.toml), a URDF (.urdf) or an MJCF (.xml, .mjcf); got a {suffix or 'suffix-less'} file"
     )

@@ -15,7 +15,7 @@ from ..domains import MAX_ROBOT_JOINTS
 from ..model.parts import SEA_WATER, Water
 from ..robot.presets import paper_leg
 from .argument_types import _depth, _finite, _n_joints, _non_negative, _positive
-from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
+from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_described, load_robot
 
 #: Rows per chunk of ``uwml torques``, which reads, evaluates and writes one chunk at a time;
 #: longer inputs report progress on stderr.
@@ -125,9 +125,9 @@ def _describe(args: argparse.Namespace) -> int:
     from ..viz.describe import describe, draw
 
     _check_output(args.plot, "--plot")
-    robot = load_robot(args.robot, args.hydro) if args.robot else paper_leg()
+    robot, parts = load_described(args.robot, args.hydro) if args.robot else (paper_leg(), None)
     water = robot.water if args.density is None else Water(density=args.density, gravity=robot.water.gravity)
-    print(describe(robot, water))
+    print(describe(robot, water, items=parts.items if parts else (), overrides=parts.overrides if parts else ()))
     if args.plot:
         draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0")
         print(f"\nwrote {args.plot}")

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -14,8 +15,10 @@ from numpy.typing import NDArray
 
 from ..model.lumped import LumpedModel
 from ..model.parts import Segment
+from ..plausibility import DescriptionWarning
 from ._description_io import DescriptionError, quoted
-from .hydrofile import HydroLink
+from ._description_masses import MassOverride, OwnInertial, PlacedItem
+from .hydrofile import HydroItem, HydroLink, _table
 
 FloatArray = NDArray[np.float64]
 
@@ -48,6 +51,12 @@ class _Body:
     segments: list[Segment] = field(default_factory=list)
     #: Its lumped model (hydro file), in the link's frame.
     lumped: LumpedModel | None = None
+    #: Its point items (hydro file) in the link's frame: (item, position); their mass is in
+    #: ``mass`` and ``com`` (the compiled model's), their volume not in ``volume``.
+    items: list[tuple[HydroItem, FloatArray]] = field(default_factory=list)
+    #: Mass and centre of mass before the items (the description's, or the hydro file's override).
+    own_mass: float = 0.0
+    own_com: FloatArray = field(default_factory=lambda: np.zeros(3))
 
 
 def _with_coefficients(segment: Segment, cd: Any, cm: Any, where: str) -> Segment:
@@ -141,9 +150,15 @@ def _body(
     entry: HydroLink | None,
     source: str,
     hydro_source: str,
+    own: OwnInertial | None = None,
 ) -> _Body:
-    """Body ``i``'s mass, volume and segments in its uwml link's frame (points ``R v + offset``)."""
-    body = _Body(name=name, mass=float(model.body_mass[i]), com=rotation @ model.body_ipos[i] + offset)
+    """Body ``i``'s mass, volume, segments and items in its uwml link's frame (points ``R v +
+    offset``); ``own``: its inertial before the items, where the hydro file changed it."""
+    mass, com = float(model.body_mass[i]), rotation @ model.body_ipos[i] + offset
+    own_mass, own_com = (mass, com) if own is None else (own.mass, rotation @ own.com + offset)
+    body = _Body(name=name, mass=mass, com=com, own_mass=own_mass, own_com=own_com)
+    if entry is not None:
+        body.items = [(item, rotation @ np.asarray(item.position) + offset) for item in entry.items]
     if entry is not None and entry.dry:
         return body
     if entry is not None and entry.lumped is not None:
@@ -181,7 +196,7 @@ def _body(
             elif volume > 0.0:
                 cob = moment / volume
             else:
-                cob = body.com
+                cob = body.own_com
             volume, moment = entry.volume, entry.volume * cob
         where = f"{hydro_source}: [links.{name}]"
         for key, per_segment in (("segment_cd", entry.segment_cd), ("segment_cm", entry.segment_cm)):
@@ -202,3 +217,75 @@ def _body(
         segments = coefficients
     body.volume, body.cob_moment, body.segments = volume, moment, segments
     return body
+
+
+def _assembled(
+    bodies: list[_Body], link: str, hydro: dict[str, HydroLink], hydro_source: str, density: float, gravity: float
+) -> dict[str, Any]:
+    """The :class:`uwml.Link` fields (``mass``, ``com``, ``volume``, ``cob``, ``segments``,
+    ``lumped``) of the description bodies fused into link ``link`` (``bodies[0]`` its own): masses
+    with their centres mass-weighted, volumes (items' too) with their centres volume-weighted; a
+    lumped model's point, when not given, the centre of buoyancy without the items (they add
+    nothing to its hydrodynamics). Warns of bodies that add geometry beside a lumped model."""
+    mass = sum(x.mass for x in bodies)
+    com = sum((x.mass * x.com for x in bodies), np.zeros(3)) / mass if mass > 0.0 else np.zeros(3)
+    items = [(item, position) for x in bodies for item, position in x.items]
+    own_volume = sum(x.volume for x in bodies)
+    own_moment = sum((x.cob_moment for x in bodies), np.zeros(3))
+    volume = own_volume + sum(item.volume for item, _ in items)
+    moment = own_moment + sum((item.volume * position for item, position in items), np.zeros(3))
+    cob = _t(moment / volume) if volume > 0.0 else None
+    segments = tuple(s for x in bodies for s in x.segments)
+    lumped_bodies = [x for x in bodies if x.lumped is not None]
+    if len(lumped_bodies) > 1:
+        names = ", ".join(_table("links", x.name) for x in lumped_bodies)
+        raise DescriptionError(
+            f"{hydro_source}: {names} give lumped models to bodies fused into one link ({quoted(link)}); "
+            "a link takes one lumped model: give it once, on one of them"
+        )
+    lumped = lumped_bodies[0].lumped if lumped_bodies else None
+    if lumped is not None and lumped.point is None and items:
+        own_mass = sum(x.own_mass for x in bodies)
+        own_com = sum((x.own_mass * x.own_com for x in bodies), np.zeros(3)) / own_mass if own_mass > 0.0 else np.zeros(3)
+        lumped = dataclasses.replace(lumped, point=_t(own_moment / own_volume if own_volume > 0.0 else own_com))
+    if lumped_bodies:
+        _warn_fused(bodies, lumped_bodies[0], link, hydro, hydro_source, density * gravity)
+    return {"mass": mass, "com": _t(com), "volume": volume, "cob": cob, "segments": segments, "lumped": lumped}
+
+
+def _warn_fused(bodies: list[_Body], lumped: _Body, link: str, hydro: dict[str, HydroLink], hydro_source: str, weight: float) -> None:
+    """A :class:`uwml.DescriptionWarning` for each body of a link with a lumped model that adds
+    collision geometry (volume, strips) beside it while its hydro table (if any) says nothing of
+    its water: the model most likely counts it already."""
+    for x in bodies:
+        entry = hydro.get(x.name)
+        if x is lumped or (entry is not None and entry.describes_water) or (x.volume <= 0.0 and not x.segments):
+            continue
+        if x is bodies[0]:
+            where = f"link {quoted(x.name)} has collision geometry beside the lumped model of link {quoted(lumped.name)}, fused into it"
+        else:
+            where = f"link {quoted(x.name)} is fused into link {quoted(link)} (a fixed joint), whose lumped model ({_table('links', lumped.name)}) describes the body"
+        strips = f"{len(x.segments)} strip segment{'s' if len(x.segments) != 1 else ''} with the default coefficients"
+        warnings.warn(
+            f"{hydro_source}: {where}; its collision geometry adds {1000.0 * x.volume:.4g} L ({x.volume:.4g} m³, "
+            f"{weight * x.volume:.4g} N of buoyancy) and {strips} beside that model, which most likely counts them already. "
+            f"Set dry = true in {_table('links', x.name)} if the lumped model covers it, or strips = false there to keep its volume "
+            "without strips",
+            DescriptionWarning,
+            stacklevel=5,
+        )
+
+
+def _records(
+    parts: dict[int, list[_Body]], body_name: list[str], own: dict[str, OwnInertial]
+) -> tuple[tuple[PlacedItem, ...], tuple[MassOverride, ...]]:
+    """The hydro file's items and mass overrides as the robot carries them (``uwml describe``)."""
+    items, overrides = [], []
+    for b, bodies in parts.items():
+        link = body_name[b]
+        for x in bodies:
+            items += [PlacedItem(x.name, link, item.name, item.mass, item.volume, _t(position)) for item, position in x.items]
+            inertial = own.get(x.name)
+            if inertial is not None and inertial.overridden:
+                overrides.append(MassOverride(x.name, link, inertial.described_mass, inertial.mass, _t(x.own_com), inertial.inertia_given))
+    return tuple(items), tuple(overrides)

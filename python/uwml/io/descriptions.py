@@ -23,7 +23,8 @@ by the fixed rules of docs/model.md section 10 ("From URDF and MJCF"):
   mass from its collision geometry, and does not here); a link moved by a joint with no mass,
   neither its own nor a fixed child's, is an error naming it (MuJoCo cannot move it). An MJCF
   body without ``<inertial>`` takes its mass from its geoms, as MuJoCo does. A negative mass is an
-  error (MuJoCo would clamp it to 0).
+  error (MuJoCo would clamp it to 0). A hydro file's mass override and point items are written
+  into the body's inertial before the final compile (:mod:`uwml.io._description_masses`).
 - Frames. uwml's link frames are parallel to the base frame at ``q = 0``; a description's body
   frames may be rotated (URDF ``rpy``, MJCF ``quat``/``euler``/``axisangle``/...). With ``R_i``
   the orientation of body ``i`` relative to the base at ``q = 0`` (the product of the fixed
@@ -88,10 +89,11 @@ from typing import Any, NoReturn, TypeVar
 import numpy as np
 
 from ..domains import MAX_MASS
-from ..model.parts import Joint, Link
+from ..model.parts import Joint, Link, Water
 from ..plausibility import PlausibilityWarning
-from ._description_geometry import _Body, _body, _rotation, _t
+from ._description_geometry import _assembled, _Body, _body, _records, _rotation, _t
 from ._description_io import DescriptionError, clipped, quoted
+from ._description_masses import MassOverride, OwnInertial, PlacedItem, apply_masses, massless_overrides
 from ._description_xml import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS, limits_exceeded, scan
 from ._robot_like import RobotLike
 from .hydrofile import HydroFile, HydroLink, _table, read_hydro
@@ -103,6 +105,8 @@ __all__ = [
     "DescriptionParts",
     "HydroFile",
     "HydroLink",
+    "MassOverride",
+    "PlacedItem",
     "mjcf_parts",
     "model_and_parts",
     "mujoco_parts",
@@ -133,6 +137,10 @@ class DescriptionParts:
     hydro: HydroFile
     #: Raises the DescriptionError of a failed assembly (called while handling its exception).
     refused: Callable[[Exception], NoReturn]
+    #: The hydro file's point items and mass overrides as the robot carries them (in its links'
+    #: frames), for ``uwml describe`` (:func:`uwml.viz.describe.describe`).
+    items: tuple[PlacedItem, ...] = ()
+    overrides: tuple[MassOverride, ...] = ()
 
     def build(self, make: Callable[..., _R]) -> _R:
         """``make(joints, links, base=)`` (the class :class:`uwml.Robot`), then with the hydro
@@ -252,8 +260,10 @@ def _compile_error(exc: ValueError, spec: Any, fmt: str, source: str) -> Descrip
 
 def _spec(
     path: str | os.PathLike[str], what: str, hydro: dict[str, HydroLink], hydro_source: str, floating: bool = False
-) -> tuple[Any, dict[str, dict[str, float]]]:
-    """The compiled model of the description, and its joints' limits by name as written (URDF)."""
+) -> tuple[Any, dict[str, dict[str, float]], dict[str, OwnInertial]]:
+    """The compiled model of the description (with the hydro file's masses: mass overrides and
+    items, :mod:`uwml.io._description_masses`), its joints' limits by name as written (URDF), and
+    the inertial before the items of each body whose masses the hydro file changed."""
     mujoco = _mujoco()
     source = str(path)
     fmt, written_limits = scan(path, what)  # the XML as written: files, sizes, names, numbers (uwml.io._description_xml)
@@ -264,11 +274,12 @@ def _spec(
     spec.compiler.fusestatic = False
     if fmt == "URDF":  # URDF's rule: no <inertial>, no mass (MuJoCo would compute one from the geoms)
         spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_FALSE
-    _check_masses(spec, fmt, source)
     names = {body.name for body in spec.bodies[1:]}
     for name in hydro:
         if name not in names:
             raise _unknown_link(hydro_source, name, source, names)
+    massless_overrides(mujoco, spec, hydro, fmt, hydro_source)
+    _check_masses(spec, fmt, source)
     kept_meshes: set[str] = set()
     for geom in list(spec.geoms):
         body = geom.parent
@@ -300,6 +311,15 @@ def _spec(
             spec.delete(mesh)
     if floating:
         _float_root(spec, source)
+    model = _compiled(spec, fmt, source)
+    own = apply_masses(mujoco, spec, model, hydro, hydro_source)
+    if own:  # the same spec with the hydro file's masses in its bodies' inertials
+        model = _compiled(spec, fmt, source)
+    return model, written_limits, own
+
+
+def _compiled(spec: Any, fmt: str, source: str) -> Any:
+    """``spec`` compiled; its errors and warnings DescriptionErrors naming the element."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
@@ -308,7 +328,7 @@ def _spec(
             raise _compile_error(exc, spec, fmt, source) from None
     if caught:  # MuJoCo's warnings while compiling ("inertia matrix too close to singular"): a broken model
         raise DescriptionError(f"{source}: MuJoCo warns while compiling this {fmt} file: {clipped(str(caught[0].message))}")
-    return model, written_limits
+    return model
 
 
 def _float_root(spec: Any, source: str) -> None:
@@ -328,13 +348,15 @@ def _float_root(spec: Any, source: str) -> None:
 def urdf_parts(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> DescriptionParts:
     """The robot of the URDF file at ``path`` with the hydro file ``hydro``, in parts."""
     file = HydroFile() if hydro is None else read_hydro(hydro)
-    return _from_model(*_spec(path, "URDF", file.links, str(hydro)), file, str(path), str(hydro))
+    model, written_limits, own = _spec(path, "URDF", file.links, str(hydro))
+    return _from_model(model, written_limits, file, str(path), str(hydro), own)
 
 
 def mjcf_parts(path: str | os.PathLike[str], hydro: str | os.PathLike[str] | None = None) -> DescriptionParts:
     """The robot of the MJCF file at ``path`` with the hydro file ``hydro``, in parts."""
     file = HydroFile() if hydro is None else read_hydro(hydro)
-    return _from_model(*_spec(path, "MJCF", file.links, str(hydro)), file, str(path), str(hydro))
+    model, written_limits, own = _spec(path, "MJCF", file.links, str(hydro))
+    return _from_model(model, written_limits, file, str(path), str(hydro), own)
 
 
 def model_and_parts(
@@ -351,8 +373,8 @@ def model_and_parts(
     file = HydroFile() if hydro is None else read_hydro(hydro)
     if floating is not None and not isinstance(floating, bool):
         raise TypeError(f"floating must be true, false or None, got {type(floating).__name__}")
-    model, written_limits = _spec(path, what, file.links, str(hydro), file.floating if floating is None else floating)
-    return model, _from_model(model, written_limits, file, str(path), str(hydro))
+    model, written_limits, own = _spec(path, what, file.links, str(hydro), file.floating if floating is None else floating)
+    return model, _from_model(model, written_limits, file, str(path), str(hydro), own)
 
 
 def mujoco_parts(model: Any, hydro: str | os.PathLike[str] | None = None) -> DescriptionParts:
@@ -367,19 +389,26 @@ def mujoco_parts(model: Any, hydro: str | os.PathLike[str] | None = None) -> Des
         raise error
     file = HydroFile() if hydro is None else read_hydro(hydro)
     names = {model.body(i).name for i in range(1, model.nbody)}
-    for name in file.links:
+    for name, entry in file.links.items():
         if name not in names:
             raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
-    return _from_model(model, {}, file, source, str(hydro))
+        if entry.mass is not None or any(item.mass > 0.0 for item in entry.items):
+            what = "a mass override" if entry.mass is not None else "items with mass"
+            raise DescriptionError(
+                f"{hydro}: {_table('links', name)} gives {what}, which a compiled mujoco.MjModel cannot take (its masses are "
+                "compiled in, and a simulation of it would not carry them): read the description with uwml.Robot.from_urdf, "
+                "from_mjcf or uwml.robot.files.model_and_robot"
+            )
+    return _from_model(model, {}, file, source, str(hydro), {})
 
 
 def _from_model(
-    model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str
+    model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str, own: dict[str, OwnInertial]
 ) -> DescriptionParts:
     # A huge coordinate overflows to inf in the frames' products: the model's checks then refuse
     # it by name (a numpy warning would say nothing of where).
     with np.errstate(all="ignore"):
-        return _mapped(model, written_limits, file, source, hydro_source)
+        return _mapped(model, written_limits, file, source, hydro_source, own)
 
 
 def _split_joint(first: str, second: str) -> str | None:
@@ -408,7 +437,9 @@ def _limits(model: Any, j: int, written_limits: dict[str, dict[str, float]]) -> 
     return limits
 
 
-def _mapped(model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str) -> DescriptionParts:
+def _mapped(
+    model: Any, written_limits: dict[str, dict[str, float]], file: HydroFile, source: str, hydro_source: str, own: dict[str, OwnInertial]
+) -> DescriptionParts:
     hydro = file.links
     mujoco = _mujoco()
     jt = mujoco.mjtJoint
@@ -504,7 +535,18 @@ def _mapped(model: Any, written_limits: dict[str, dict[str, float]], file: Hydro
         k = owner[i]
         try:
             parts[k].append(
-                _body(mujoco, model, i, rotation[i], position[i] - origin[k], body_name[i], hydro.get(body_name[i]), source, hydro_source)
+                _body(
+                    mujoco,
+                    model,
+                    i,
+                    rotation[i],
+                    position[i] - origin[k],
+                    body_name[i],
+                    hydro.get(body_name[i]),
+                    source,
+                    hydro_source,
+                    own.get(body_name[i]),
+                )
             )
         except DescriptionError:
             raise
@@ -516,24 +558,12 @@ def _mapped(model: Any, written_limits: dict[str, dict[str, float]], file: Hydro
         tables = [_table("links", x.name) for x in parts.get(b, ()) if x.name in hydro]
         return f" (with {hydro_source} {', '.join(tables)})" if tables else ""
 
+    water = file.water if file.water is not None else Water()
+
     def link(b: int) -> Link:
-        bodies = parts[b]
-        mass = sum(x.mass for x in bodies)
-        com = sum((x.mass * x.com for x in bodies), np.zeros(3)) / mass if mass > 0.0 else np.zeros(3)
-        volume = sum(x.volume for x in bodies)
-        cob = _t(sum((x.cob_moment for x in bodies), np.zeros(3)) / volume) if volume > 0.0 else None
-        segments = tuple(s for x in bodies for s in x.segments)
-        lumped = [x for x in bodies if x.lumped is not None]
-        if len(lumped) > 1:
-            names = ", ".join(_table("links", x.name) for x in lumped)
-            raise DescriptionError(
-                f"{hydro_source}: {names} give lumped models to bodies fused into one link ({quoted(body_name[b])}); "
-                "a link takes one lumped model: give it once, on one of them"
-            )
+        fields = _assembled(parts[b], body_name[b], hydro, hydro_source, water.density, water.gravity)
         try:
-            return Link(
-                mass, _t(com), volume, cob=cob, segments=segments, name=body_name[b] or None, lumped=lumped[0].lumped if lumped else None
-            )
+            return Link(name=body_name[b] or None, **fields)
         except (TypeError, ValueError) as exc:
             raise DescriptionError(f"{source}: link {quoted(body_name[b])}{with_hydro(b)}: {clipped(str(exc))}") from None
 
@@ -558,4 +588,5 @@ def _mapped(model: Any, written_limits: dict[str, dict[str, float]], file: Hydro
             message = f"link {quoted(body_name[base_body])} (the base){with_hydro(base_body)}: {message}"
         raise DescriptionError(f"{source}: {message}") from None
 
-    return DescriptionParts(tuple(joints), tuple(links), base, file, refused)
+    items, overrides = _records(parts, body_name, own)
+    return DescriptionParts(tuple(joints), tuple(links), base, file, refused, items, overrides)

@@ -51,6 +51,19 @@ frames)::
     cd = [1.1, 1.3]
     cm = [1.0, 1.0]
 
+    [links.frame]             # masses (docs/model.md section 13), also on a dry link
+    mass = 11.2               # kg, the link's mass in place of the description's inertial
+    com = [0.0, 0.0, -0.02]   # m, its centre of mass (default: the description's)
+    inertia = [0.21, 0.25, 0.3]   # kg·m², principal moments about the COM along the frame's axes
+                              # (default: the description's inertia scaled by the new mass)
+
+    [[links.frame.items]]     # a point item: lead, foam, a DVL, a battery can
+    name = "lead"             # optional: a label for messages and uwml describe
+    mass = 0.8                # kg, at least 0: its mass at position (parallel axis theorem)
+    volume = 0.00007          # m³, at least 0: ρ V of buoyancy at position
+    position = [0.1, 0.0, -0.1]
+    inertia = [1e-4, 1e-4, 1e-4]  # optional: its own moments about position (a point has none)
+
 A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, else the link's
 ``cd``/``cm``, else its own (hydro segments), else the documented defaults per section
 (:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
@@ -58,7 +71,23 @@ segment takes one number (a pair must have two equal entries); every coefficient
 and ``MAX_COEFFICIENT`` (1e3: measured ones are of order 1), a ``volume`` at most ``MAX_VOLUME``
 (1e6 m³), a ``cob`` coordinate at most ``MAX_LENGTH`` (1e4 m): the model's own bounds
 (``uwml._core``), checked here so that the error names the key. A link takes at most
-:data:`uwml.MAX_SEGMENTS` segments (and as many per-segment coefficients). Unknown link names
+:data:`uwml.MAX_SEGMENTS` segments (and as many per-segment coefficients) and :data:`MAX_ITEMS`
+(64) items.
+
+Masses. ``mass`` (above 0; ``com`` and ``inertia`` need it) replaces the description's inertial
+of that link before its items are added; ``inertia``'s moments are positive and each at most the
+sum of the other two; a link the description leaves massless needs ``inertia`` with its mass.
+Each item adds its mass at its position to the link's rigid-body inertia (the parallel axis
+theorem; its own ``inertia`` besides) and ``ρ V`` of buoyancy there: the link's volume and centre
+of buoyancy become the volume-weighted combination of its own and its items'. Items add nothing
+to drag or added mass (a lumped model's point, when not given, stays the centre of buoyancy
+without them). The robot's link masses, centres of mass, volumes and centres of buoyancy include
+them, and so does the MuJoCo model compiled from the description
+(:func:`uwml.robot.files.model_and_robot`, a simulation's); a compiled ``mujoco.MjModel``
+(``from_mujoco``) keeps its own masses, so a mass override or items with mass are refused there.
+A link fused into a body with a lumped model whose table says nothing of its water (no ``dry``,
+``strips``, ``volume``, segments or coefficients) adds its collision geometry's volume and strips
+beside the model: a :class:`uwml.DescriptionWarning` names it, what it adds and the fix. Unknown link names
 (``world`` too: the world is not a link of the robot), unknown keys, missing values and wrong
 types are :class:`DescriptionError`\\ s naming the file, the table and the key. Per joint by
 name, ``[joints.NAME]`` gives that joint's losses (``uwml.JointLosses``: the same tables as the
@@ -93,16 +122,45 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .._checks import shown
-from .._core import MAX_COEFFICIENT, MAX_LENGTH, MAX_SEGMENTS, MAX_VOLUME
+from .._core import MAX_COEFFICIENT, MAX_SEGMENTS, MAX_VOLUME
 from ..model.joint_losses import JointLosses
 from ..model.lumped import LumpedModel
 from ..model.parts import Segment, Water
 from ._description_io import DescriptionError, clipped, read_regular
-from ._model_tables import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _vec3, _water
+from ._hydro_masses import MAX_ITEMS, HydroItem, _point, _volume, read_items, read_override
+from ._model_tables import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _water
 
-__all__ = ["WATER_DENSITY_RANGE", "WATER_GRAVITY_RANGE", "DescriptionError", "HydroFile", "HydroLink", "read_hydro"]
+__all__ = [
+    "MAX_ITEMS",
+    "WATER_DENSITY_RANGE",
+    "WATER_GRAVITY_RANGE",
+    "DescriptionError",
+    "HydroFile",
+    "HydroItem",
+    "HydroLink",
+    "read_hydro",
+]
 
-_LINK_KEYS = ("cd", "cm", "cd_axial", "segment_cd", "segment_cm", "volume", "cob", "dry", "segments", "strips", "lumped")
+_LINK_KEYS = (
+    "cd",
+    "cm",
+    "cd_axial",
+    "segment_cd",
+    "segment_cm",
+    "volume",
+    "cob",
+    "dry",
+    "segments",
+    "strips",
+    "lumped",
+    "mass",
+    "com",
+    "inertia",
+    "items",
+)
+#: The keys that say how a link meets the water (a link fused into a lumped body without any of
+#: them adds its collision geometry unasked, and is warned of).
+_WATER_KEYS = ("cd", "cm", "cd_axial", "segment_cd", "segment_cm", "volume", "dry", "segments", "strips", "lumped")
 
 
 @dataclass(frozen=True)
@@ -124,6 +182,17 @@ class HydroLink:
     strips: bool = True
     #: Fossen's lumped model, in the link's description frame.
     lumped: LumpedModel | None = None
+    #: The link's mass [kg] in place of the description's (None: the description's), its centre
+    #: of mass [m] and principal moments about it along the frame's axes [kg·m²] (None: the
+    #: description's centre of mass; its inertia scaled by the new mass).
+    mass: float | None = None
+    com: tuple[float, float, float] | None = None
+    inertia: tuple[float, float, float] | None = None
+    #: Point items (lead, foam, a DVL): mass and buoyancy at a point (docs/model.md section 13).
+    items: tuple[HydroItem, ...] = field(default=())
+    #: Whether the table says how the link meets the water (any of the keys that set its
+    #: segments, coefficients or volume, or ``dry``), not only its masses.
+    describes_water: bool = False
 
     @property
     def describes_geometry(self) -> bool:
@@ -171,20 +240,6 @@ def _boolean(value: Any) -> bool:
     if not isinstance(value, bool):
         raise TypeError("not true or false")
     return value
-
-
-def _volume(value: Any) -> float:
-    x = _float(value)
-    if not (math.isfinite(x) and 0.0 <= x <= MAX_VOLUME):
-        raise ValueError(f"between 0 and {MAX_VOLUME:g} m³")
-    return x
-
-
-def _point(value: Any) -> tuple[float, float, float]:
-    point = _vec3(value)
-    if not all(math.isfinite(x) and abs(x) <= MAX_LENGTH for x in point):
-        raise ValueError(f"each coordinate finite, at most {MAX_LENGTH:g} m in magnitude")
-    return point
 
 
 def _hydro_lumped(source: str, where: str, table: object) -> LumpedModel:
@@ -237,6 +292,7 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
         for key in ("segments", "segment_cd", "segment_cm"):  # refused before reading a thousand of them
             if isinstance(r.table.get(key), list) and len(r.table[key]) > MAX_SEGMENTS:
                 r.fail(key, f"has {len(r.table[key])} entries; a link has at most {MAX_SEGMENTS} segments (uwml.MAX_SEGMENTS)")
+        mass, com, inertia = read_override(r)
         raw_segments: list[Any] = r.get(
             "segments", lambda v: v if isinstance(v, list) else _not("an array of tables"), "[[...segments]]", required=False, default=[]
         )
@@ -253,11 +309,19 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             segments=segments,
             strips=r.get("strips", _boolean, "true or false", required=False, default=True),
             lumped=None if "lumped" not in r.table else _hydro_lumped(source, f"{where}, lumped", r.table["lumped"]),
+            mass=mass,
+            com=com,
+            inertia=inertia,
+            items=read_items(r, source, where),
+            describes_water=any(key in r.table for key in _WATER_KEYS),
         )
         if entry.dry:
             for key in ("volume", "cob", "segments", "segment_cd", "segment_cm", "cd", "cm", "cd_axial", "strips", "lumped"):
                 if key in r.table:
                     r.fail(key, "a dry link has no segments and no volume: remove this key or dry = true")
+            for index, item in enumerate(entry.items):
+                if item.volume > 0.0:
+                    r.fail("items", f"items[{index}] has a volume, but a dry link has none: give it volume = 0, or remove dry = true")
         if entry.cob is not None and entry.volume is None:
             r.fail("cob", "needs volume (give the displaced volume with its centre of buoyancy)")
         out[name] = entry

@@ -298,7 +298,11 @@ class Robot:
         """:meth:`hydro` (``losses`` False) or :meth:`environment`: one native call for one
         plain state (lists, tuples or 1-D float64 arrays within the joints' bounds), else the
         states checked here first; the same evaluation either way."""
-        the_conditions = self._conditions(conditions, shortcuts)
+        # A Conditions given alone (a controller's loop) is taken as it is, without a call.
+        if shortcuts or type(conditions) is not Conditions:
+            the_conditions = self._conditions(conditions, shortcuts)
+        else:
+            the_conditions = conditions
         kept = the_conditions.__dict__.get("_native")
         native = kept[1] if kept is not None and kept[0] is self._core else self._native(the_conditions)
         if type(threads) is not int or threads < 1:

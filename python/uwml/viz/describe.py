@@ -4,10 +4,12 @@ the net buoyancy of every body, and a 3-D drawing of the robot at ``q = 0`` with
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from ..io.descriptions import MassOverride, PlacedItem
 from ..model.parts import Joint, Link, Segment, Water
 from ..robot.tree import Robot
 
@@ -53,9 +55,11 @@ def _limits(joint: Joint) -> str:
     return f"  limits: {', '.join(parts)}" if parts else ""
 
 
-def describe(robot: Robot, water: Water | None = None) -> str:
+def describe(robot: Robot, water: Water | None = None, *, items: Sequence[PlacedItem] = (), overrides: Sequence[MassOverride] = ()) -> str:
     """A plain-text account of ``robot``: joints, bodies (mass, volume, net buoyancy in
-    ``water``, fresh water by default), segments with their coefficients, and lumped models."""
+    ``water``, fresh water by default), segments with their coefficients, and lumped models;
+    with a description's hydro file's point items and mass overrides (``items``, ``overrides``:
+    :class:`uwml.io.descriptions.DescriptionParts`' own), what each contributes."""
     water = water if water is not None else Water()
     lines = [
         f"{robot.n_joints} joints, {len(robot.segments)} segments; water {water.density:g} kg/m³, g = {water.gravity:g} m/s²",
@@ -90,6 +94,7 @@ def describe(robot: Robot, water: Water | None = None) -> str:
             f"  in the water without drag or added mass (a volume, no segment, no lumped model): {', '.join(dragless)}; "
             "give them segments or a lumped model (a hydro file's [links.NAME]) if they move through the water"
         )
+    lines += _masses(robot, water, items, overrides)
     lines += ["", "segments (in their body's frame)"]
     index = 0
     for name, body, _ in _bodies(robot):
@@ -114,6 +119,37 @@ def describe(robot: Robot, water: Water | None = None) -> str:
             f"D_Q {_fmt(model.quadratic_damping)}{coupled}"
         )
     return "\n".join(lines)
+
+
+def _masses(robot: Robot, water: Water, items: Sequence[PlacedItem], overrides: Sequence[MassOverride]) -> list[str]:
+    """The hydro file's point items (each one's mass, buoyancy and net force, upwards, at its
+    place) and mass overrides, their bodies named as in the bodies' listing."""
+
+    def label(link: str) -> str:
+        return "base" if robot.base is not None and robot.base.name == link else link
+
+    def source(body: str, link: str) -> str:
+        return "" if body == link else f"  (of {body}, fused into {link})"
+
+    lines = []
+    if overrides:
+        lines += ["", "mass overrides (the hydro file's mass, in place of the description's inertial; before items)"]
+    for o in overrides:
+        inertia = "its inertia given" if o.inertia_given else "its inertia the description's, scaled"
+        lines.append(
+            f"  {label(o.link):16s} mass {o.mass:9.4g} kg (the description's {o.described_mass:.4g} kg)  COM {_fmt(o.com)}  "
+            f"{inertia}{source(o.body, o.link)}"
+        )
+    if items:
+        lines += ["", "point items (the hydro file's; in their body's frame; buoyancy = ρ V g, net = ρ V g − m g, upwards)"]
+    for index, item in enumerate(items):
+        gross = water.density * item.volume * water.gravity
+        net = gross - item.mass * water.gravity
+        lines.append(
+            f"  {label(item.link):16s} {item.name or f'item {index}':16s} mass {item.mass:9.4g} kg  volume {item.volume:9.4g} m³  "
+            f"buoyancy {gross:9.4g} N  net {_number(net, '+10.4g')} N  at {_fmt(item.position)}{source(item.body, item.link)}"
+        )
+    return lines
 
 
 def _fmt(v: object) -> str:
