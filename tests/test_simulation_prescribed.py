@@ -90,6 +90,22 @@ def test_a_trajectory_of_samples_interpolates_and_estimates_what_is_not_given() 
         trajectory(2.5)
 
 
+def test_a_clock_past_the_end_by_rounding_reads_the_end() -> None:
+    """A simulation's clock sums its steps: 8,430 steps of 2 ms from 0.134635 s pass the end of a
+    motion sampled up to 0.134635 + 8430 × 0.002 s by rounding (about 1e-11 s). That time reads the
+    motion's end (not extrapolated); a time truly past it is refused, with digits that tell them
+    apart."""
+    clock = 0.134635
+    for _ in range(8430):
+        clock += 0.002
+    grid = np.linspace(0.134635, 0.134635 + 8430 * 0.002, 60)
+    motion = Trajectory(grid, np.sin(grid))
+    assert clock > motion.end and clock - motion.end < motion.rounding() < 1e-7
+    np.testing.assert_array_equal(motion(clock)[0], motion(motion.end)[0])
+    with pytest.raises(ValueError, match=r"given from t = 0\.134635 to 16\.994635 s, not at t = 16\.99464"):
+        motion(motion.end + 1e-5)
+
+
 @pytest.mark.parametrize(
     "call, error, message",
     [

@@ -19,6 +19,7 @@ vehicle of :func:`uwml.sim.control.rov_drift`).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -55,7 +56,8 @@ class Trajectory:
     [s], ``q`` ``(n, k)`` (``(n,)`` for one joint); velocities and accelerations interpolated by
     the cubic splines of those given (``qd`` and ``qdd`` given: each its own spline; not given:
     the derivatives of ``q``'s spline, which is "not-a-knot" like scipy's default). Outside the
-    samples' span the motion is refused, not extrapolated. ``Trajectory.of(function, k)``: any
+    samples' span the motion is refused, not extrapolated (a time past an end by no more than a
+    simulation clock's rounding, :meth:`rounding`, is that end). ``Trajectory.of(function, k)``: any
     callable ``t -> (q, qd, qdd)`` of ``k`` numbers each."""
 
     joints: int
@@ -91,6 +93,15 @@ class Trajectory:
         object.__setattr__(self, "end", float(t[-1]))
         object.__setattr__(self, "_function", motion)
 
+    def rounding(self) -> float:
+        """How far past an end [s] a time still counts as the end: a simulation's clock, the sum
+        of its steps, drifts from the step grid by rounding (about 1e-11 s after 10,000 steps to
+        17 s); 1e-9 of the span (at least 1e-9 s) and 64 units in the last place of the times'
+        magnitude cover that, far below any step."""
+        if not math.isfinite(self.end - self.start):
+            return 0.0
+        return 1e-9 * max(self.end - self.start, 1.0) + 64.0 * float(np.spacing(max(abs(self.start), abs(self.end))))
+
     @classmethod
     def of(cls, function: MotionFunction, joints: int) -> Trajectory:
         """The motion of ``joints`` joints given by ``function(t) -> (q, qd, qdd)``, at any time."""
@@ -106,10 +117,12 @@ class Trajectory:
         return trajectory
 
     def __call__(self, t: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """``(q, qd, qdd)`` at time ``t``, each ``(joints,)``, checked."""
-        if not self.start - 1e-12 <= t <= self.end + 1e-12:
-            raise ValueError(f"the prescribed motion is given from t = {self.start:g} to {self.end:g} s, not at t = {t:g} s")
-        values = self._function(t)
+        """``(q, qd, qdd)`` at time ``t``, each ``(joints,)``, checked. A time past either end by
+        no more than the rounding of a simulation's clock (:meth:`rounding`) is the end."""
+        slack = self.rounding()
+        if not self.start - slack <= t <= self.end + slack:
+            raise ValueError(f"the prescribed motion is given from t = {self.start:.9g} to {self.end:.9g} s, not at t = {t:.9g} s")
+        values = self._function(min(max(t, self.start), self.end))
         out = []
         for name, value in zip(("q", "qd", "qdd"), values, strict=True):
             array = np.asarray(value, dtype=np.float64).reshape(-1)
