@@ -17,7 +17,8 @@ pytest.importorskip("mujoco")
 
 from test_replay import HYDRO, URDF, pool_trial
 from uwml.cli import main
-from uwml.sim.replay import read_vehicle_pose, replay
+from uwml.sim.replay import replay
+from uwml.sim.replay_inputs import read_vehicle_pose
 
 #: 30 samples at 100 Hz: 0.29 s of replay.
 TIME = np.arange(30) * 0.01

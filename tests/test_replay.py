@@ -16,7 +16,8 @@ mujoco = pytest.importorskip("mujoco")
 from uwml.cli import main
 from uwml.sim.mujoco import Simulation
 from uwml.sim.prescribed import Trajectory
-from uwml.sim.replay import MAX_GAP_S, read_vehicle_pose, replay
+from uwml.sim.replay import replay
+from uwml.sim.replay_inputs import MAX_GAP_S, read_vehicle_pose
 
 ROOT = Path(__file__).resolve().parents[1]
 URDF, HYDRO = ROOT / "examples/bluerov2/bluerov2_arm.urdf", ROOT / "examples/bluerov2/bluerov2_arm.hydro.toml"
@@ -43,7 +44,7 @@ def pool_trial(path: Path, seconds: float = 2.0, euler: bool = False) -> np.ndar
             sim.step()
     table = np.array(rows)
     if euler:
-        from uwml.sim.replay import _euler
+        from uwml.sim.replay_inputs import _euler
 
         angles = _euler(table[:, 10:14])
         header = "time,q1,q2,qd1,qd2,qdd1,qdd2,x,y,z,roll,pitch,yaw"
@@ -59,14 +60,21 @@ def pool_trial(path: Path, seconds: float = 2.0, euler: bool = False) -> np.ndar
 def test_the_replay_reproduces_a_recorded_trial(tmp_path: Path, euler: bool) -> None:
     log = tmp_path / "trial.csv"
     heave = pool_trial(log, euler=euler)
-    result = replay(log, URDF, HYDRO)
-    assert result.errors is not None
-    # The same physics: the replay's pose is the trial's, to the spline of 100 Hz samples and the
-    # starting twist estimated from the first three poses.
-    assert result.errors["roll"] < 2e-4 and result.errors["pitch"] < 2e-4, result.errors
-    assert result.errors["yaw_rate"] < 1e-3 and result.errors["heave"] < 1e-4, result.errors
+    result = replay(log, URDF, HYDRO, start_at_rest=True)
+    assert result.errors is not None and result.start is not None and result.start.how == "rest"
+    # The same physics: the trial starts at rest, the log gives the joints' rates and
+    # accelerations, the step is the trial's: the replay's pose is the trial's, to rounding.
+    assert result.errors["roll"] < 1e-9 and result.errors["pitch"] < 1e-9, result.errors
+    assert result.errors["yaw_rate"] < 1e-3 and result.errors["heave"] < 1e-9, result.errors
     # And the vehicle did answer the arm (the test can fail).
     assert np.ptp(result.euler()[:, 0]) > 1e-3 and np.ptp(heave) > 1e-4
+    # The start twist fitted to the first 0.5 s of poses instead: the vehicle, at rest at t = 0, is
+    # jerked by the arm starting at full speed, which the cubic fit smooths into a start twist
+    # (measured 3.6e-3 rad/s, 0.4 mm/s): roll and pitch RMS 2.8e-4 and 6.9e-4 rad.
+    fitted = replay(log, URDF, HYDRO)
+    assert fitted.start is not None and fitted.start.how == "fit" and fitted.start.samples == 51
+    assert np.abs(fitted.start.twist[:3]).max() < 1e-3 and np.abs(fitted.start.twist[3:]).max() < 5e-3, fitted.start
+    assert fitted.errors is not None and fitted.errors["roll"] < 1e-3 and fitted.errors["pitch"] < 1e-3, fitted.errors
 
 
 def test_a_replay_differs_from_the_trial_when_the_vehicle_differs(tmp_path: Path) -> None:
@@ -80,8 +88,8 @@ def test_a_replay_differs_from_the_trial_when_the_vehicle_differs(tmp_path: Path
     )
     other = tmp_path / "other.hydro.toml"
     other.write_text(doubled)
-    result = replay(log, URDF, other)
-    # (The same vehicle's replay: pitch below 2e-4 rad and heave below 1e-4 m, above.)
+    result = replay(log, URDF, other, start_at_rest=True)
+    # (The same vehicle's replay: pitch and heave below 1e-9, above.)
     assert result.errors is not None and result.errors["pitch"] > 5e-4 and result.errors["heave"] > 3e-4, result.errors
 
 
@@ -104,9 +112,11 @@ def test_the_command_line_writes_the_pose_and_a_figure(tmp_path: Path, capsys: p
     log = tmp_path / "trial.csv"
     pool_trial(log, seconds=0.5)
     out = tmp_path / "out"
-    assert main(["replay", str(log), "--robot", str(URDF), "--hydro", str(HYDRO), "--out", str(out), "--json"]) == 0
-    errors = json.loads(capsys.readouterr().out)
-    assert set(errors) == {"roll", "pitch", "yaw_rate", "heave"} and errors["roll"] < 2e-4
+    assert main(["replay", str(log), "--robot", str(URDF), "--hydro", str(HYDRO), "--out", str(out), "--json", "--start-at-rest"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    errors = summary["errors"]
+    assert set(errors) == {"roll", "pitch", "yaw_rate", "heave"} and errors["roll"] < 1e-9
+    assert summary["start"]["how"] == "rest" and summary["start"]["twist"] == dict.fromkeys(("vx", "vy", "vz", "wx", "wy", "wz"), 0.0)
     written = (out / "replay.csv").read_text().splitlines()
     assert written[0] == "time,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz" and len(written) > 100
     assert (out / "replay.png").stat().st_size > 1000

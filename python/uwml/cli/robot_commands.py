@@ -14,6 +14,8 @@ import numpy as np
 from ..domains import MAX_ROBOT_JOINTS
 from ..model.parts import SEA_WATER, Water
 from ..robot.presets import paper_leg
+from ..sim.mujoco import INTEGRATORS
+from ..sim.replay_inputs import MAX_GAP_S, SMOOTHING_S, START_WINDOW_S
 from .argument_types import _depth, _finite, _n_joints, _non_negative, _positive
 from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_described, load_robot
 
@@ -137,7 +139,9 @@ def _describe(args: argparse.Namespace) -> int:
 def _replay(args: argparse.Namespace) -> int:
     from ..sim.replay import command
 
-    return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json)
+    settings = {"smoothing": args.smoothing, "max_gap": args.max_gap, "start_window": args.start_window}
+    settings |= {"start_at_rest": args.start_at_rest, "timestep": args.timestep, "integrator": args.integrator}
+    return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json, **settings)
 
 
 def add_robot_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
@@ -235,7 +239,10 @@ the description's root floats freely, thrusters off, while the joints follow the
 the vehicle's pose and twist over time go to replay.csv (or replay.parquet with --parquet) and a figure,
 replay.png, in --out. When the log also holds the measured pose (x, y, z and qw, qx, qy, qz or roll,
 pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against measured, is printed
-(--json: as JSON). The log's format and how to join streams recorded apart: uwml.sim.replay.""",
+(--json: as JSON, with the start twist and how the log was read). The log's format and how to join
+streams recorded apart: uwml.sim.replay; how it is cleaned (repeated samples collapsed, the joints'
+rates from a smoothing fit, gaps, the start twist fitted to the first poses): uwml.sim.replay_inputs
+and docs/simulation.md.""",
         epilog=_EXIT,
     )
     replay.add_argument(
@@ -245,5 +252,24 @@ pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against
     replay.add_argument("--hydro", default=None, metavar="FILE", help="its hydro file")
     replay.add_argument("--out", default="uwml-replay", metavar="DIR", help="directory for the outputs (default uwml-replay)")
     replay.add_argument("--parquet", action="store_true", help="write replay.parquet instead of replay.csv")
-    replay.add_argument("--json", action="store_true", help="print the errors (or null) as JSON only")
+    replay.add_argument(
+        "--json", action="store_true", help="print as JSON only: the errors (or null), the start twist, how the log was read"
+    )
+    replay.add_argument(
+        "--smoothing", type=_positive, default=SMOOTHING_S, metavar="S",
+        help=f"window of the joints' smoothing fit [s], for their rates and accelerations (default {SMOOTHING_S:g})",
+    )  # fmt: skip
+    replay.add_argument(
+        "--max-gap", type=_positive, default=MAX_GAP_S, metavar="S",
+        help=f"longest step between joint samples [s]; gaps in a pose stream are bridged (default {MAX_GAP_S:g})",
+    )  # fmt: skip
+    replay.add_argument(
+        "--start-window", type=_positive, default=START_WINDOW_S, metavar="S",
+        help=f"the first poses the start twist is fitted over [s] (default {START_WINDOW_S:g})",
+    )  # fmt: skip
+    replay.add_argument("--start-at-rest", action="store_true", help="start the vehicle at rest instead of fitting its start twist")
+    replay.add_argument(
+        "--timestep", type=_positive, default=None, metavar="S", help="the simulation's time step [s] (default the description's)"
+    )
+    replay.add_argument("--integrator", choices=INTEGRATORS, default="euler", type=str.lower, help="semi-implicit euler (default) or rk4")
     replay.set_defaults(run=_replay)
