@@ -141,20 +141,20 @@ def test_bad_base_rows_and_logs_without_the_base_columns_are_refused(tmp_path: P
     with pytest.raises(ValueError, match="the log has 2 joints, the robot 3"):
         fit.hydro_coefficients(log, uwml.paper_leg(), base=[0])
     without = Log(time=log.time, q=log.q, tau_land=log.tau_land, tau_water=log.tau_water, base_twist=log.base_twist, source="plain")
-    with pytest.raises(ValueError, match=r"plain: row 1 \(header\), column 'wrench_land1': need wrench_land and wrench_water"):
+    with pytest.raises(ValueError, match=r"plain: row 1 \(header\), column 'fx_land': need fx_land … and fx_water … columns"):
         fit.hydro_coefficients(without, robot, joints=(), base=[0])
     still = Log(time=log.time, q=log.q, wrench_land=log.wrench_land, wrench_water=log.wrench_water, source="still")
-    with pytest.raises(ValueError, match=r"still: row 1 \(header\), column 'base_twist1'"):
+    with pytest.raises(ValueError, match=r"still: row 1 \(header\), column 'u': a fit of the vehicle's wrench needs its twist"):
         fit.hydro_coefficients(still, robot, joints=(), base=[0])
     with pytest.raises(ValueError, match="at least one, or base rows"):
         fit.hydro_coefficients(log, robot, joints=())
-    # A header with a base family cut short names the missing column.
+    # A header with a vehicle group cut short names the missing column.
     path = tmp_path / "short.csv"
-    path.write_text("time,q1,q2,base_twist1,base_twist2\n0,0,0,0,0\n")
-    with pytest.raises(ValueError, match=r"column 'base_twist3': missing column \(base_twist has 6 columns\)"):
+    path.write_text("time,q1,q2,u,v\n0,0,0,0,0\n")
+    with pytest.raises(ValueError, match=r"column 'w': missing column \(the vehicle's twist is u, v, w, p, q, r; the header has u, v\)"):
         read_log(path)
-    path.write_text("time,q1,base_orientation1,base_orientation2,base_orientation3,base_orientation4,base_orientation5\n0,0,1,0,0,0,0\n")
-    with pytest.raises(ValueError, match=r"column 'base_orientation5': base_orientation has 4 columns"):
+    path.write_text("time,q1,qw,qx,qy,qz,roll,pitch,yaw\n0,0,1,0,0,0,0,0,0\n")
+    with pytest.raises(ValueError, match=r"column 'roll': the orientation is given twice"):
         read_log(path)
 
 
@@ -199,8 +199,8 @@ def test_an_orientation_that_is_not_a_unit_quaternion_names_the_file_row_and_col
     for name in ("captive.csv", "captive.parquet"):
         path = tmp_path / name
         write_log(replace(log, base_orientation=orientation), path)
-        where = f"{path}: row 39, column 'base_orientation1': "
-        with pytest.raises(ValueError, match="^" + re.escape(where) + ".*norm 1 within 1e-06, got 2"):
+        where = f"{path}: row 39, column 'qw': "
+        with pytest.raises(ValueError, match="^" + re.escape(where) + ".*norm 1 within 0.001, got 2"):
             read_log(path)
         with pytest.raises(ValueError, match="^" + re.escape(where)):
             list(log_chunks(path, rows=16)[2])

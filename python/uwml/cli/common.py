@@ -49,8 +49,28 @@ def load_described(path: str, hydro: str | None = None) -> tuple[Robot, Descript
     )
 
 
-_LOG_FORMAT = """Log format (uwml.io.logs, docs/identification.md): CSV with a header row; columns
+def load_robot_floating(path: str, hydro: str | None = None) -> tuple[Any, bool]:
+    """The robot of ``--robot`` (:func:`load_robot`) and whether its base floats: a URDF or MJCF
+    whose root is on a free joint (an MJCF ``<freejoint/>``, or the hydro file's ``[base]
+    floating = true``); a uwml model file with a base body (it holds no such flag: its base body
+    is taken for the vehicle)."""
+    suffix = Path(path).suffix.lower()
+    if suffix not in (".urdf", ".xml", ".mjcf"):
+        robot = load_robot(path, hydro)
+        return robot, robot.base is not None
+    import mujoco
+
+    from ..robot.files import model_and_robot
+
+    model, robot = model_and_robot(path, hydro)
+    return robot, any(int(kind) == int(mujoco.mjtJoint.mjJNT_FREE) for kind in model.jnt_type)
+
+
+_LOG_FORMAT = """Log format (uwml.io.logs, docs/logs.md): CSV with a header row; columns
 time [s] (strictly increasing), q1..qN [rad], optionally qd1..qdN [rad/s] and qdd1..qddN
-[rad/s²] (else estimated by a Savitzky-Golay filter, which needs uniform sampling); extra
-columns are ignored. Parquet (.parquet) holds the same columns."""
+[rad/s²] (else estimated by a Savitzky-Golay filter, which needs uniform sampling), and the
+vehicle's x, y, z [m], qw, qx, qy, qz (or roll, pitch, yaw [rad]), twist u, v, w [m/s], p, q, r
+[rad/s] (body frame) and its rate u_dot..r_dot; extra columns are ignored. Parquet (.parquet)
+holds the same columns. A file recorded with other names, signs, offsets, units or streams:
+--columns MAP.toml (docs/logs.md)."""
 _EXIT = "Exit status: 0 on success, 2 for usage errors and bad input files (the message names file, row and column), 1 otherwise."

@@ -30,7 +30,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         raise _UsageError("--no-points: a robust fit and the figure need the points (leave out --robust and --plot)")
     if not joints and not args.base:
         raise _UsageError("--joints none: give --base, or at least one joint")
-    source: Any = _pair(args.logs) or (args.logs[0] if len(args.logs) == 1 else list(args.logs))
+    source: Any = _pair(args.logs, args.columns) or (args.logs[0] if len(args.logs) == 1 else list(args.logs))
     result = fit.hydro_coefficients(
         source,
         leg,
@@ -43,6 +43,7 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         address=args.address,
         workers=args.workers,
         points=not args.no_points,
+        columns=args.columns,
     )
     if args.plot is not None:
         from ..viz import plot
@@ -138,17 +139,20 @@ def _fit_losses(args: argparse.Namespace) -> int:
     return 0
 
 
-def _pair(logs: list[str]) -> tuple[str, str] | None:
-    """Two logs of one environment each (``tau*`` columns, not ``tau_land*``): a (land, water)
-    pair; anything else: None."""
+def _pair(logs: list[str], columns: str | None = None) -> tuple[str, str] | None:
+    """Two logs of one environment each (``tau*`` columns, not ``tau_land*``; or a column map
+    ``columns`` giving those): a (land, water) pair; anything else: None."""
     from ..io._log_stream import _header
+    from ..io.column_map import load_column_map
     from ..io.logs import _check_file, _layout
 
     if len(logs) != 2 or not all(os.path.isfile(path) for path in logs):
         return None
+    mapped = None if columns is None else load_column_map(columns)
     for path in logs:
         _check_file(path, path)
-        _, families, _ = _layout(_header(path, path), None, path)
+        header = _header(path, path) if mapped is None else mapped.targets
+        _, families, _ = _layout(header, None, path if mapped is None else mapped.source)
         if "tau" not in families and "wrench" not in families:
             return None
     return logs[0], logs[1]
@@ -174,10 +178,10 @@ residual RMS, the logs whose own fit disagrees with the pooled one by more than 
 over 64 MiB are read chunk by chunk on every pass, in bounded memory. Or two logs (land, then
 water) of one run each (columns tau1..N), paired by time. With --base, a
 captive test of the robot's base (its hull) on a rig: the rig's wrench on the base
-(wrench_land1..6 and wrench_water1..6, or wrench1..6: force [N], moment [N·m] about the base
-origin, base components), the base's twist base_twist1..6 (v [m/s], w [rad/s], base
-components; its derivative base_twist_dot1..6 estimated where absent) and orientation
-base_orientation1..4 (a quaternion w, x, y, z; upright where absent).
+(fx_land..mz_land and fx_water..mz_water, or fx..mz: force [N], moment [N·m] about the body
+origin, body components), the vehicle's twist u, v, w [m/s], p, q, r [rad/s] (body frame; its
+rate u_dot..r_dot estimated where absent) and orientation qw, qx, qy, qz or roll, pitch, yaw
+(upright where absent); docs/logs.md.
 
 {_LOG_FORMAT}
 
@@ -224,6 +228,9 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
     )
     hydro.add_argument("--hydro", metavar="FILE", help="the hydro file of a URDF or MJCF robot")
     hydro.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
+    hydro.add_argument(
+        "--columns", metavar="MAP", help="a column map (TOML) each LOG is read through, whole: names, signs, offsets, units (docs/logs.md)"
+    )
     hydro.add_argument(
         "--no-points",
         action="store_true",

@@ -24,9 +24,44 @@ from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_describ
 CHUNK_ROWS = 100_000
 
 
+def _vehicle_motion(present: dict[str, tuple[str, ...]], estimated: bool, floating: bool, what: str) -> bool:
+    """Whether ``uwml torques`` moves the base as the log's vehicle columns say (``present``:
+    the vehicle's fields the log has, with their columns; ``estimated``: the twist's rate is
+    estimated), saying so on standard error in one line: the columns used, or, on a fixed
+    base, the columns ignored (a warning)."""
+    motion = {field: columns for field, columns in present.items() if field in ("base_position", *_MOTION)}
+    if not motion:
+        return False
+    named = "; ".join(", ".join(columns) for columns in motion.values())
+    if not floating:
+        print(f"uwml torques: warning: {what} has a fixed base (its description does not float it): the log's vehicle columns "
+              f"{named} are ignored", file=sys.stderr)  # fmt: skip
+        return False
+    used = [f"{', '.join(present[field])} ({label})" for field, label in _MOTION.items() if field in present]
+    if not used:
+        print(f"uwml torques: the log's vehicle position {named} is not used (no orientation or twist columns)", file=sys.stderr)
+        return False
+    if estimated:
+        used.append("its rate estimated (Savitzky-Golay)")
+    left = [note for field, note in (("base_orientation", "upright"), ("base_twist", "at rest")) if field not in present]
+    unused = ["x, y, z not used"] if "base_position" in present else []
+    extra = f" [{'; '.join(left + unused)}]" if left or unused else ""
+    print(f"uwml torques: the vehicle's motion from the log's columns {'; '.join(used)}{extra}", file=sys.stderr)
+    return True
+
+
+#: The vehicle's fields that move the base in ``uwml torques``, and what they are.
+_MOTION = {"base_orientation": "orientation", "base_twist": "twist", "base_twist_dot": "its rate"}
+
+
 def _torques(args: argparse.Namespace) -> int:
-    from ..io._log_stream import log_chunks
+    from ..io._log_stream import check_log
+    from ..io.column_map import load_column_map
+    from ..io.logs import log_rows, read_log
+    from ..io.vehicle_columns import vehicle_layout
     from ..model.joint_losses import JointLosses
+    from ..robot.base_motion import BaseMotion
+    from .common import load_robot_floating
 
     out = args.out
     _check_output(out, "--out")
@@ -36,15 +71,29 @@ def _torques(args: argparse.Namespace) -> int:
             import pyarrow
         except ImportError:
             raise _UsageError(f"{out}: Parquet output needs pyarrow (pip install pyarrow); write CSV instead") from None
-    leg: Any = paper_leg() if args.robot is None else load_robot(args.robot, args.hydro)
+    leg: Any
+    leg, floating = (paper_leg(), False) if args.robot is None else load_robot_floating(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     # Coefficients: the paper's fit for its leg; a robot's segments carry their own.
     cd = args.cd if args.cd is not None else (2.2 if args.robot is None else None)
     cm = args.cm if args.cm is not None else (0.5 if args.robot is None else None)
     # The water: the paper's leg at depth moves in sea water; a robot in its own.
     water = SEA_WATER if args.robot is None else None
-    # The log is checked (header, time column) here, and read chunk by chunk below.
-    n, n_joints, chunks = log_chunks(args.log, leg.n_joints if args.joints is None else args.joints, rows=CHUNK_ROWS)
+    expected = leg.n_joints if args.joints is None else args.joints
+    chunks: Any
+    if args.columns is not None:
+        # Through a column map: the log is read whole, its streams joined.
+        column_map = load_column_map(args.columns)
+        whole = read_log(args.log, expected, columns=column_map).with_derivatives()
+        n, n_joints = whole.n_samples, whole.n_joints
+        chunks = (log_rows(whole, slice(start, start + CHUNK_ROWS)) for start in range(0, n, CHUNK_ROWS))
+        present = vehicle_layout(column_map.targets, column_map.source)
+    else:
+        # The log is checked (header, time column) here, and read chunk by chunk below.
+        checked = check_log(args.log, expected)
+        n, n_joints, chunks = checked.count, checked.n_joints, checked.chunks(CHUNK_ROWS)
+        present = {field: columns for field, columns in checked.families.items() if field.startswith("base_")}
+    moving = _vehicle_motion(present, "base_twist" in present and "base_twist_dot" not in present, floating, what)
     if n_joints != leg.n_joints:
         raise ValueError(
             f"{args.log}: row 1 (header), column 'q{min(n_joints, leg.n_joints) + 1}': the log has {n_joints} joints, {what} {leg.n_joints}"
@@ -76,8 +125,9 @@ def _torques(args: argparse.Namespace) -> int:
             writer = CsvColumnsWriter(handle, names)
         for log in chunks:
             assert log.qd is not None and log.qdd is not None
+            motion = BaseMotion(**log.base_motion()) if moving else None
             tau = leg.environment(
-                log.q, log.qd, log.qdd, base=bool(base_names),
+                log.q, log.qd, log.qdd, base=bool(base_names), base_motion=motion,
                 depth=args.depth, temperature_c=args.temperature, losses=losses, cd=cd, cm=cm, water=water,
             )  # fmt: skip
             blocks = [getattr(tau, family) for family in families] + ([tau.base.total] if base_names else [])
@@ -159,8 +209,12 @@ Torque columns are not needed.
 Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet): columns time,
 drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses visc1..N, seal1..N [N·m],
 current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + seal). With
---robot (a uwml model file, a URDF or an MJCF), the robot on a fixed, upright base, and six more columns
-base_fx..base_mz: the hydrodynamic force [N] and moment [N·m] on the base (about its origin).
+--robot (a uwml model file, a URDF or an MJCF), six more columns base_fx..base_mz: the hydrodynamic
+force [N] and moment [N·m] on the base (about its origin). The base moves as the log's vehicle
+columns say (orientation, twist u..r and its rate; docs/logs.md) where the robot's base floats (a
+free root, or [base] floating = true in its hydro file; a model file with a base body), and
+standard error names the columns used; on a fixed base (the paper's leg too) they are named as
+ignored. Without them the base is fixed and upright.
 Sign: the environment's torque on each joint, in the joint's positive direction. Losses use
 the illustrative defaults of uwml.model.losses on every joint (uwml.JointLosses()). The paper's leg
 moves in sea water (1025 kg/m³), a --robot in its own water (its description's); that water's
@@ -173,6 +227,9 @@ not written (standard output has the rows before it).""",
         epilog=_EXIT,
     )
     torques.add_argument("log", metavar="LOG", help="trajectory log (CSV, or .parquet)")
+    torques.add_argument(
+        "--columns", metavar="MAP", help="a column map (TOML) to read LOG as recorded: names, signs, offsets, units, streams (docs/logs.md)"
+    )
     torques.add_argument("--out", metavar="FILE", help="output file (.csv, or .parquet); default: standard output")
     torques.add_argument(
         "--depth", type=_depth, default=0.0, metavar="M", help="depth [m] for the pressure of the losses, 0 to 11000 (default 0)"

@@ -223,6 +223,7 @@ def hydro_coefficients(
     address: str | None = None,
     workers: int | None = None,
     points: bool = True,
+    columns: Any = None,
 ) -> HydroFit:
     """Fit Cd and Cm (and a robot's axial drag and lumped models) to a land/water experiment
     (module docstring, "Hydrodynamic coefficients").
@@ -240,7 +241,8 @@ def hydro_coefficients(
         its columns are per body: the base (``base``, if it has segments: on a fixed base they
         are zero and dropped) and every link (``cd_<name>``, or ``cd_link<i>`` for an unnamed
         link), a circular segment's in ``n0``'s column; with its axial drag and lumped models
-        (:mod:`uwml.fit.robot_design`), and its base moving as the log's ``base_twist`` says.
+        (:mod:`uwml.fit.robot_design`), and its base moving as the log's vehicle columns say
+        (twist ``u … r``, orientation ``qw … qz``: docs/logs.md).
     joints : sequence of int
         The joints whose torques are fitted (0-based; default joint 0, the paper's joint 1; may
         be empty when ``base`` is not).
@@ -260,9 +262,10 @@ def hydro_coefficients(
         Scale the covariance by the reduced χ² (always done when ``sigma`` is estimated).
     base : sequence of int
         A robot's base wrench components fitted too (0 … 5: fx, fy, fz, mx, my, mz): a captive
-        test, the rig's wrench on the base in both runs (``wrench_land*``, ``wrench_water*``)
-        with the base's twist (``base_twist*``, its derivative estimated where absent) and
-        orientation (``base_orientation*``, upright where absent); how a hull is identified.
+        test, the rig's wrench on the vehicle in both runs (``fx_land … mz_land``, ``fx_water …
+        mz_water``) with its twist (``u, v, w, p, q, r``, its rate ``u_dot … r_dot`` estimated
+        where absent) and orientation (``qw, qx, qy, qz`` or ``roll, pitch, yaw``, upright where
+        absent; docs/logs.md); how a hull is identified.
     lumped : {"diagonal", "full", "given"}
         Which entries of a robot's lumped models are fitted (:mod:`uwml.fit.robot_design`).
     on_ray, address, workers : bool, str, int
@@ -274,6 +277,9 @@ def hydro_coefficients(
         False: the statistics come from sums over the logs (:func:`_reduced_statistics`), and the
         result's per-point arrays are empty, so that memory stays bounded whatever the logs'
         length; plain least squares only (a robust fit's scale is a median of the points).
+    columns : path, dict or ColumnMap, optional
+        A column map (:mod:`uwml.io.column_map`) every file is read through (each then read
+        whole).
     cache_bytes : int
         The design is computed by the Rust core chunk by chunk and, while it takes no more than
         this, kept for the later passes; above, each pass computes it again (memory stays
@@ -315,7 +321,7 @@ def hydro_coefficients(
         or any(not 0 <= j < leg.n_joints for j in selected_joints)
     ):
         raise ValueError(f"joints must be distinct indices in 0..{leg.n_joints - 1} (at least one, or base rows), got {joints!r}")
-    log = log_set(log_or_path, expected, what, torques=bool(selected_joints), wrench=bool(components))
+    log = log_set(log_or_path, expected, what, torques=bool(selected_joints), wrench=bool(components), columns=columns)
     # The rows fitted: the selected joints, then the base's components; as rows of the whole
     # robot's regressors (base 0 … 5, joint j at 6 + j) and as the points' labels.
     selected = selected_joints + [-1 - c for c in components]

@@ -17,7 +17,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..io._log_stream import CheckedLog, _header, check_log
-from ..io.logs import Log, _check_file, _layout, _source, align_logs, read_log
+from ..io.logs import Log, _check_file, _layout, _source, align_logs, first_column, log_rows, read_log
+from ..io.vehicle_columns import FIELDS, TWIST
 
 #: The largest number of log files one fit takes.
 MAX_LOGS = 100_000
@@ -62,28 +63,23 @@ class LogSet:
             if item.log is not None:
                 log = item.log
                 for start in range(0, log.n_samples, rows):
-                    yield index, _rows(log, slice(start, start + rows))
+                    yield index, log_rows(log, slice(start, start + rows))
             else:
                 assert item.file is not None
                 for chunk in item.file.chunks(rows):
                     yield index, chunk
 
 
-def _rows(log: Log, rows: slice) -> Log:
-    """The rows ``rows`` of every column of ``log``."""
-    fields: dict[str, Any] = {name: getattr(log, name) for name in log.__dataclass_fields__}
-    return Log(**{name: value[rows] if hasattr(value, "ndim") else value for name, value in fields.items()})
-
-
-def log_set(given: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> LogSet:
+def log_set(given: Any, n_joints: int, what: str, torques: bool, wrench: bool, columns: Any = None) -> LogSet:
     """The :class:`LogSet` of a fit's first argument: a :class:`Log`, a file, a glob pattern, a
     list of those (every one a log of the whole experiment), or a (land, water) pair of logs of
     one environment each (a tuple of two), each checked for the joints' torques of both runs
-    (``torques``) and the base's wrench and twist (``wrench``)."""
+    (``torques``) and the vehicle's wrench and twist (``wrench``). Files are read through the
+    column map ``columns`` where given (:mod:`uwml.io.column_map`; each then read whole)."""
     if isinstance(given, tuple):
         if len(given) != 2:
             raise ValueError(f"give one log of the whole experiment or a (land, water) pair of logs, got {len(given)} items")
-        land, water = (item if isinstance(item, Log) else read_log(item, n_joints) for item in given)
+        land, water = (item if isinstance(item, Log) else read_log(item, n_joints, columns=columns) for item in given)
         for item in (land, water):
             _check_joints(item.source, item.n_joints, n_joints, what)
         log = _with_columns(align_logs(land, water), torques, wrench).with_derivatives()
@@ -94,7 +90,7 @@ def log_set(given: Any, n_joints: int, what: str, torques: bool, wrench: bool) -
     items: list[_Item] = []
     for entry in entries:
         for one in _expanded(entry):
-            items.append(_item(one, n_joints, what, torques, wrench))
+            items.append(_item(one, n_joints, what, torques, wrench, columns))
             if len(items) > MAX_LOGS:
                 raise ValueError(f"a fit takes at most {MAX_LOGS} logs")
     return LogSet(items)
@@ -116,7 +112,7 @@ def _expanded(entry: Any) -> list[Any]:
     return [entry]
 
 
-def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> _Item:
+def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool, columns: Any = None) -> _Item:
     """One checked log: in memory with its derivatives, or a file whose header and time column
     are checked now (and every cell when it is read)."""
     if isinstance(entry, Log):
@@ -127,8 +123,8 @@ def _item(entry: Any, n_joints: int, what: str, torques: bool, wrench: bool) -> 
         raise TypeError(f"a log must be a uwml.io.logs.Log, a file or a glob pattern, got {type(entry).__name__}")
     source = _source(entry)
     _check_file(entry, source)
-    if os.path.getsize(entry) <= STREAM_BYTES:
-        return _item(read_log(entry, n_joints), n_joints, what, torques, wrench)
+    if columns is not None or os.path.getsize(entry) <= STREAM_BYTES:
+        return _item(read_log(entry, n_joints, columns=columns), n_joints, what, torques, wrench)
     n, families, _ = _layout(_header(entry, source), n_joints, source)
     _check_joints(source, n, n_joints, what)
     _check_columns(source, set(families).__contains__, torques, wrench)
@@ -155,11 +151,10 @@ def _check_columns(source: str, has: Callable[[str], bool], torques: bool, wrenc
     needs += [("wrench_land", "wrench_water", "wrench")] if wrench else []
     for land, water, one in needs:
         if not has(land) or not has(water):
+            named = [f"{first_column(field)} …" if field in FIELDS else f"{field}1 …" for field in (land, water, one)]
             raise ValueError(
-                f"{source}: row 1 (header), column '{land}1': need {land} and {water} columns "
-                f"(or give a (land, water) pair of logs of one environment each, with {one} columns)"
+                f"{source}: row 1 (header), column {first_column(land)!r}: need {named[0]} and {named[1]} columns "
+                f"(or give a (land, water) pair of logs of one environment each, with {named[2]} columns)"
             )
     if wrench and not has("base_twist"):
-        raise ValueError(
-            f"{source}: row 1 (header), column 'base_twist1': a fit of the base's wrench needs the base's twist (base_twist1 … base_twist6)"
-        )
+        raise ValueError(f"{source}: row 1 (header), column 'u': a fit of the vehicle's wrench needs its twist ({', '.join(TWIST)})")

@@ -31,9 +31,10 @@ from typing import Any
 import numpy as np
 
 from .logs import (
-    _BASE_FAMILIES,
     Array,
+    Families,
     Log,
+    _arrays,
     _check_file,
     _is_parquet,
     _layout,
@@ -41,9 +42,9 @@ from .logs import (
     _parquet_columns,
     _parquet_error,
     _source,
-    check_orientation,
 )
 from .sampling import POLYORDER, WINDOW_S, _check_derivatives, _check_time, _sampling, _savgol
+from .vehicle_columns import TWIST
 
 
 def _blocks(path: str | os.PathLike[str], names: Sequence[str], source: str) -> Iterator[dict[str, Array]]:
@@ -105,14 +106,13 @@ def _rechunk(blocks: Iterator[dict[str, Array]], rows: int) -> Iterator[dict[str
         yield {name: np.concatenate([b[name] for b in pending]) for name in pending[0]}
 
 
-def _oriented(chunks: Iterator[dict[str, Array]], source: str) -> Iterator[dict[str, Array]]:
-    """The chunks, each one's base orientation (where the log has one) checked a unit quaternion."""
+def _logs(chunks: Iterator[dict[str, Array]], families: Families, source: str) -> Iterator[Log]:
+    """The chunks as logs (:func:`uwml.io.logs._arrays`: the orientation checked, row by row of
+    the file, or converted from Euler angles)."""
     row = 2
     for chunk in chunks:
-        if "base_orientation1" in chunk:
-            check_orientation(np.column_stack([chunk[f"base_orientation{k}"] for k in range(1, 5)]), source, row)
+        yield Log(time=chunk["time"], source=source, **_arrays(chunk, families, source, row))
         row += len(chunk["time"])
-        yield chunk
 
 
 @dataclass(frozen=True)
@@ -125,7 +125,7 @@ class CheckedLog:
     source: str
     count: int
     n_joints: int
-    families: list[str]
+    families: Families
     names: list[str]
     sampling: tuple[float, int] | None
     polyorder: int
@@ -134,10 +134,9 @@ class CheckedLog:
         """The log's chunks of ``rows`` rows, read anew (module docstring)."""
         if rows < 1:
             raise ValueError(f"rows must be >= 1, got {rows!r}")
-        chunks = _oriented(_rechunk(_blocks(self.path, self.names, self.source), rows), self.source)
+        chunks = _logs(_rechunk(_blocks(self.path, self.names, self.source), rows), self.families, self.source)
         if self.sampling is None:
-            for chunk in chunks:
-                yield _log(chunk, self.n_joints, self.families, self.source)
+            yield from chunks
         else:
             yield from _with_derivatives(chunks, self.n_joints, self.families, self.source, self.sampling, self.polyorder)
 
@@ -174,14 +173,8 @@ def log_chunks(
     return checked.count, checked.n_joints, checked.chunks(rows)
 
 
-def _log(chunk: dict[str, Array], n: int, families: Sequence[str], source: str) -> Log:
-    width = {family: _BASE_FAMILIES.get(family, n) for family in families}
-    arrays = {family: np.column_stack([chunk[f"{family}{k}"] for k in range(1, width[family] + 1)]) for family in families}
-    return Log(time=chunk["time"], source=source, **arrays)
-
-
 def _with_derivatives(
-    chunks: Iterator[dict[str, Array]], n: int, families: Sequence[str], source: str, sampling: tuple[float, int], polyorder: int
+    chunks: Iterator[Log], n: int, families: Families, source: str, sampling: tuple[float, int], polyorder: int
 ) -> Iterator[Log]:
     """Chunks with qd and qdd estimated over overlapping segments (module docstring)."""
     dt, window = sampling
@@ -210,8 +203,9 @@ def _with_derivatives(
             rates = first[rows, n:]
             if not np.all(np.isfinite(rates)):
                 i = int(np.flatnonzero(~np.isfinite(rates).all(axis=1))[0])
+                k = int(np.flatnonzero(~np.isfinite(rates[i]))[0])
                 raise ValueError(
-                    f"{source}: row {done + i + 2}, column 'base_twist1': its estimated rate is not finite for a time step of {dt:.6g} s"
+                    f"{source}: row {done + i + 2}, column {TWIST[k]!r}: its estimated rate is not finite for a time step of {dt:.6g} s"
                 )
         before = np.concatenate([before, values], axis=0)[-window:]
         done += log.n_samples
@@ -223,7 +217,7 @@ def _with_derivatives(
         )
 
     for chunk in chunks:
-        pending.append(_log(chunk, n, families, source))
+        pending.append(chunk)
         while len(pending) > 1 and sum(p.n_samples for p in pending[1:]) >= window:
             yield emit(pending[0], pending[1:])
             pending.pop(0)

@@ -20,7 +20,13 @@ column                required     meaning
 ``tau_land1`` …       see below    motor torque on land [N·m]
 ``tau_water1`` …      see below    motor torque in water [N·m], same trajectory
 ``tau1`` … ``tauN``   see below    motor torque of a log of one environment [N·m]
+vehicle columns       no           the vehicle's pose, twist, wrench and thruster commands
+                                   (:mod:`uwml.io.vehicle_columns`: ``x``, ``qw``, ``u``, …)
 ====================  ===========  =========================================================
+
+The whole schema, the vehicle's included, is docs/logs.md. A file recorded with other names,
+signs, offsets, units or several streams is read through a column map (``columns=``,
+:mod:`uwml.io.column_map`).
 
 Torques are the **motor's** torque on the joint (what the drive supplies, positive in the
 joint's positive direction), not the environment's. A log of the whole experiment carries
@@ -48,8 +54,8 @@ a file that is missing, a directory, not UTF-8 or not Parquet though named ``.pa
 
 Parquet (``.parquet`` files) holds the same columns, of integers or floating point (a boolean,
 text or time stamp column is refused). A CSV cell is a decimal number in ASCII digits (``1_0``,
-which Python's ``float`` reads as 10, is refused). A base orientation is a unit quaternion within
-``ORIENTATION_TOLERANCE`` (1e-6), checked where it is read. Both formats are read and written with
+which Python's ``float`` reads as 10, is refused). The vehicle's quaternion is of norm 1 within
+``ORIENTATION_TOLERANCE`` (1e-3), checked where it is read. Both formats are read and written with
 ``pyarrow`` (a dependency): CSV columns are parsed straight into float64 and written in the
 shortest form that reads back to the same float64 (``uwml.io._arrow_csv``); a file that does not
 parse is scanned again, slowly, only to name the row and column of its first bad cell.
@@ -98,6 +104,7 @@ from .sampling import (
     estimate_rates,
     savgol_window,
 )
+from .vehicle_columns import FIELDS, TWIST, is_vehicle_column, orientation, thruster_columns, vehicle_layout
 
 __all__ = [
     "MAX_ROBOT_JOINTS",
@@ -118,12 +125,16 @@ PathOrFile = str | os.PathLike[str] | IO[str]
 
 #: The joints' column families, in the order they are written (one column per joint).
 _JOINT_FAMILIES = ("q", "qd", "qdd", "tau_land", "tau_water", "tau")
-#: The base's column families and their widths, in the order they are written.
-_BASE_FAMILIES = {"base_orientation": 4, "base_twist": 6, "base_twist_dot": 6, "wrench_land": 6, "wrench_water": 6, "wrench": 6}
-_FAMILIES = (*_JOINT_FAMILIES, *_BASE_FAMILIES)
-_COLUMN = re.compile(r"^(" + "|".join(sorted(_FAMILIES, key=len, reverse=True)) + r")(\d+)$")
-#: The environments' pairs of columns: (land, water, one environment).
+#: The vehicle's fields (:mod:`uwml.io.vehicle_columns`), then its thruster commands.
+_FAMILIES = (*_JOINT_FAMILIES, *FIELDS, "thruster_commands")
+_COLUMN = re.compile(r"^(" + "|".join(sorted(_JOINT_FAMILIES, key=len, reverse=True)) + r")(\d+)$")
+#: The environments' pairs of fields: (land, water, one environment).
 _PAIRS = (("tau_land", "tau_water", "tau"), ("wrench_land", "wrench_water", "wrench"))
+
+
+def first_column(field: str) -> str:
+    """The first column of a :class:`Log` field, for the messages (``q1``, ``fx_land``, ``u``)."""
+    return FIELDS[field][0] if field in FIELDS else "u1" if field == "thruster_commands" else f"{field}1"
 
 
 @dataclass(frozen=True, eq=False)
@@ -143,16 +154,21 @@ class Log:
     tau: Array | None = None
     #: Where the log came from (a file name), for error messages.
     source: str = "<log>"
-    #: The base's orientation, world from base, a unit quaternion ``(w, x, y, z)``.
+    #: The vehicle's (the base's) orientation, world from body, a quaternion ``(w, x, y, z)``
+    #: (columns ``qw, qx, qy, qz``, or ``roll, pitch, yaw`` converted).
     base_orientation: Array | None = None
-    #: The base's twist ``ν = (v, ω)`` in base components [m/s, rad/s], and its time derivative.
+    #: Its twist ``ν = (u, v, w, p, q, r)`` in body components [m/s, rad/s], and ``ν̇``.
     base_twist: Array | None = None
     base_twist_dot: Array | None = None
-    #: The rig's wrench on the base (force [N], moment about the base origin [N·m], base
-    #: components) on land and in water, or of a log of one environment.
+    #: The measured wrench on the vehicle (``fx … mz``: force [N], moment about the body origin
+    #: [N·m], body components) on land and in water, or of a log of one environment.
     wrench_land: Array | None = None
     wrench_water: Array | None = None
     wrench: Array | None = None
+    #: The vehicle's position ``(x, y, z)`` [m], world frame, z up.
+    base_position: Array | None = None
+    #: Thruster commands ``u1 … un``, ``(n_samples, n_thrusters)``.
+    thruster_commands: Array | None = None
 
     def __post_init__(self) -> None:
         time = np.asarray(self.time, dtype=np.float64)
@@ -161,11 +177,12 @@ class Log:
             raise ValueError(f"{self.source}: time must have shape (n,) and q (n, n_joints), got {time.shape} and {q.shape}")
         object.__setattr__(self, "time", time)
         object.__setattr__(self, "q", q)
-        shapes = {name: q.shape for name in _JOINT_FAMILIES[1:]} | {name: (q.shape[0], w) for name, w in _BASE_FAMILIES.items()}
-        for name, shape in shapes.items():
+        shapes = {name: q.shape for name in _JOINT_FAMILIES[1:]} | {name: (q.shape[0], len(c)) for name, c in FIELDS.items()}
+        for name in (*shapes, "thruster_commands"):
             value = getattr(self, name)
             if value is not None:
                 array = np.asarray(value, dtype=np.float64)
+                shape = shapes.get(name, (q.shape[0], array.shape[-1] if array.ndim == 2 and array.shape[-1] >= 1 else 1))
                 if array.shape != shape:
                     raise ValueError(f"{self.source}: {name} must have shape {shape}, got {array.shape}")
                 object.__setattr__(self, name, array)
@@ -190,25 +207,28 @@ class Log:
 
     def _half(self, which: int, name: str) -> Log:
         if all(getattr(self, pair[which]) is None for pair in _PAIRS):
-            raise ValueError(f"{self.source}: no tau_{name} (or wrench_{name}) columns")
+            raise ValueError(f"{self.source}: no tau_{name} (or fx_{name} … mz_{name}) columns")
         halves = {pair[2]: getattr(self, pair[which]) for pair in _PAIRS}
         return replace(self, tau_land=None, tau_water=None, wrench_land=None, wrench_water=None, **halves)
 
     def base_motion(self) -> dict[str, Array]:
-        """The base's motion as :class:`uwml.BaseMotion`'s arguments (orientation upright where
-        absent); needs ``base_twist`` and ``base_twist_dot`` (:meth:`with_derivatives`)."""
-        if self.base_twist is None or self.base_twist_dot is None:
-            raise ValueError(
-                f"{self.source}: row 1 (header), column 'base_twist1': the base's twist is missing (base_twist1 … base_twist6)"
-            )
-        orientation = np.array([1.0, 0.0, 0.0, 0.0]) if self.base_orientation is None else self.base_orientation
-        nu, nu_dot = self.base_twist, self.base_twist_dot
+        """The vehicle's motion as :class:`uwml.BaseMotion`'s arguments: its orientation
+        (normalized; upright where absent) and twist (at rest where absent); a twist needs its
+        rate (given, or :meth:`with_derivatives`)."""
+        if self.base_twist is not None and self.base_twist_dot is None:
+            raise ValueError(f"{self.source}: row 1 (header), column 'u_dot': the twist's rate is missing (estimate it: with_derivatives)")
+        if self.base_orientation is None:
+            orientation = np.array([1.0, 0.0, 0.0, 0.0])
+        else:
+            orientation = self.base_orientation / np.linalg.norm(self.base_orientation, axis=1, keepdims=True)
+        nu = np.zeros(6) if self.base_twist is None else self.base_twist
+        nu_dot = np.zeros(6) if self.base_twist_dot is None else self.base_twist_dot
         return {
             "orientation": orientation,
-            "velocity": nu[:, :3],
-            "angular_velocity": nu[:, 3:],
-            "acceleration": nu_dot[:, :3],
-            "angular_acceleration": nu_dot[:, 3:],
+            "velocity": nu[..., :3],
+            "angular_velocity": nu[..., 3:],
+            "acceleration": nu_dot[..., :3],
+            "angular_acceleration": nu_dot[..., 3:],
         }
 
     def with_derivatives(self, window_s: float = WINDOW_S, polyorder: int = POLYORDER) -> Log:
@@ -219,8 +239,15 @@ class Log:
             qd, qdd = estimate_derivatives(log.time, log.q, window_s, polyorder, source=log.source)
             log = replace(log, qd=qd if log.qd is None else log.qd, qdd=qdd if log.qdd is None else log.qdd)
         if log.base_twist is not None and log.base_twist_dot is None:
-            log = replace(log, base_twist_dot=estimate_rates(log.time, log.base_twist, window_s, polyorder, source=log.source))
+            rates = estimate_rates(log.time, log.base_twist, window_s, polyorder, source=log.source, columns=TWIST)
+            log = replace(log, base_twist_dot=rates)
         return log
+
+
+def log_rows(log: Log, rows: slice) -> Log:
+    """The rows ``rows`` of every column of ``log``."""
+    fields: dict[str, Any] = {name: getattr(log, name) for name in log.__dataclass_fields__}
+    return Log(**{name: value[rows] if hasattr(value, "ndim") else value for name, value in fields.items()})
 
 
 def align_logs(land: Log, water: Log) -> Log:
@@ -253,7 +280,7 @@ def align_logs(land: Log, water: Log) -> Log:
         if on_land is None or in_water is None:
             log, which = (land, "land") if on_land is None else (water, "water")
             what = "torque" if one == "tau" else "wrench"
-            raise ValueError(f"{log.source}: row 1 (header), column '{one}1': the {which} log has no {what} columns")
+            raise ValueError(f"{log.source}: row 1 (header), column {first_column(one)!r}: the {which} log has no {what} columns")
         paired[land_name] = on_land[inside]
         paired[water_name] = np.column_stack([np.interp(t, water.time, column) for column in in_water.T])
     if not paired:
@@ -270,6 +297,8 @@ def align_logs(land: Log, water: Log) -> Log:
         base_orientation=cut(land.base_orientation),
         base_twist=cut(land.base_twist),
         base_twist_dot=cut(land.base_twist_dot),
+        base_position=cut(land.base_position),
+        thruster_commands=cut(land.thruster_commands),
         source=f"{land.source} + {water.source}",
         **paired,
     )
@@ -336,18 +365,22 @@ def _parquet_table(path: Any, source: str) -> Any:
         raise _parquet_error(exc, source) from None
 
 
-def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[int, list[str], list[str]]:
-    """Check a log's header: the number of joints, the column families present (in ``_FAMILIES``
-    order) and the names of the columns to read."""
+#: A log's fields present, each with the columns of the file it is read from.
+Families = dict[str, tuple[str, ...]]
+
+
+def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[int, Families, list[str]]:
+    """Check a log's header: the number of joints, the fields present (in ``_FAMILIES`` order,
+    each with its columns) and the names of the columns to read."""
     if n_joints is not None and not (isinstance(n_joints, int | np.integer) and 1 <= n_joints <= MAX_ROBOT_JOINTS):
         raise ValueError(f"n_joints must be 1 to {MAX_ROBOT_JOINTS}, got {n_joints!r}")
     if "time" not in header:
         raise ValueError(f"{source}: row 1 (header), column 'time': missing column{_header_hint(header)}")
     first: dict[str, int] = {}
-    present: dict[str, dict[int, str]] = {family: {} for family in _FAMILIES}
+    present: dict[str, dict[int, str]] = {family: {} for family in _JOINT_FAMILIES}
     for index, name in enumerate(header):
         match = _COLUMN.match(name)
-        if name != "time" and not match:
+        if name != "time" and not match and not is_vehicle_column(name):
             continue  # an extra column, ignored
         if name in first:
             raise ValueError(
@@ -372,30 +405,29 @@ def _layout(header: Sequence[str], n_joints: int | None, source: str) -> tuple[i
     for family, numbers in present.items():
         if not numbers:
             continue
-        width = _BASE_FAMILIES.get(family, n)
-        extra = sorted(k for k in numbers if k > width)
-        if extra and family in _BASE_FAMILIES:
-            raise ValueError(
-                f"{source}: row 1 (header), column {shown(numbers[extra[0]])}: {family} has {width} columns ({family}1 … {family}{width})"
-            )
+        extra = sorted(k for k in numbers if k > n)
         if extra:
             raise ValueError(f"{source}: row 1 (header), column {shown(numbers[extra[0]])}: the log has more joints than the {n} expected")
-        for k in range(1, width + 1):
+        for k in range(1, n + 1):
             if k not in numbers:
-                what = f"{family} has {width} columns" if family in _BASE_FAMILIES else f"the log has {n} joints"
-                raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column ({what})")
+                raise ValueError(f"{source}: row 1 (header), column '{family}{k}': missing column (the log has {n} joints)")
+    families: Families = {family: tuple(f"{family}{k}" for k in range(1, n + 1)) for family in _JOINT_FAMILIES if present[family]}
+    families |= vehicle_layout(header, source)
+    thrusters = thruster_columns(header, source)
+    if thrusters:
+        families["thruster_commands"] = thrusters
     for land, water, one in _PAIRS:
-        given = {family for family in (land, water, one) if present[family]}
+        given = {family for family in (land, water, one) if family in families}
         if given and given not in ({land, water}, {one}):
-            name = f"{water}1" if water not in given else f"{land}1"
+            name = first_column(water) if water not in given else first_column(land)
             if given == {land, water, one}:
-                name = f"{one}1"
+                name = first_column(one)
+            columns = [f"{first_column(f)} …" for f in (land, water, one)]
             raise ValueError(
-                f"{source}: row 1 (header), column {name!r}: a log carries either {land} and {water} (both environments) "
-                f"or {one} (one environment)"
+                f"{source}: row 1 (header), column {name!r}: a log carries either {columns[0]} and {columns[1]} (both environments) "
+                f"or {columns[2]} (one environment)"
             )
-    families = [family for family in _FAMILIES if present[family]]
-    names = ["time"] + [f"{family}{k}" for family in families for k in range(1, _BASE_FAMILIES.get(family, n) + 1)]
+    names = ["time"] + [name for columns in families.values() for name in columns]
     return n, families, names
 
 
@@ -409,7 +441,7 @@ def _header_hint(header: Sequence[str]) -> str:
     return hint
 
 
-def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], source: str) -> Log:
+def _from_columns(columns: Mapping[str, Any], n: int, families: Families, source: str) -> Log:
     """A :class:`Log` from checked float64 columns (array-likes, e.g. Arrow columns): the family
     arrays are filled column by column, so that one copy of the data exists at a time besides
     the source columns."""
@@ -419,34 +451,19 @@ def _from_columns(columns: Mapping[str, Any], n: int, families: Sequence[str], s
     _check_time(time, source)
     if time.size > 1:
         check_time_step(float(np.median(np.diff(time))), source, stacklevel=4)
+    return Log(time=time, source=source, **_arrays(columns, families, source, 2))
+
+
+def _arrays(columns: Mapping[str, Any], families: Families, source: str, first_row: int) -> dict[str, Array]:
+    """The fields' arrays of float64 columns (the first row ``first_row`` of the file): the
+    orientation as quaternions (Euler angles converted, a quaternion checked)."""
     arrays: dict[str, Array] = {}
-    for family in families:
-        width = _BASE_FAMILIES.get(family, n)
-        out = np.empty((time.size, width))
-        for k in range(width):
-            out[:, k] = np.asarray(columns[f"{family}{k + 1}"], dtype=np.float64)
-        arrays[family] = out
-    if "base_orientation" in arrays:
-        check_orientation(arrays["base_orientation"], source, 2)
-    return Log(time=time, source=source, **arrays)
-
-
-#: How far from 1 a base orientation's norm may be (as :class:`uwml.BaseMotion` takes it).
-ORIENTATION_TOLERANCE = 1e-6
-
-
-def check_orientation(orientation: Array, source: str, first_row: int) -> None:
-    """The rows of ``base_orientation`` (``(n, 4)``, its first row ``first_row`` of the file)
-    unit quaternions within ``ORIENTATION_TOLERANCE``, or a ValueError naming the first other row."""
-    with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
-        norms = np.linalg.norm(orientation, axis=1)
-    bad = np.flatnonzero(~(np.abs(norms - 1.0) <= ORIENTATION_TOLERANCE))
-    if bad.size:
-        k = int(bad[0])
-        raise ValueError(
-            f"{source}: row {first_row + k}, column 'base_orientation1': the base's orientation (base_orientation1 … "
-            f"base_orientation4, a quaternion w, x, y, z) must be of norm 1 within {ORIENTATION_TOLERANCE:g}, got {norms[k]:.6g}"
-        )
+    for family, names in families.items():
+        out = np.empty((len(columns["time"]), len(names)))
+        for k, name in enumerate(names):
+            out[:, k] = np.asarray(columns[name], dtype=np.float64)
+        arrays[family] = orientation(out, names, source, first_row) if family == "base_orientation" else out
+    return arrays
 
 
 def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: int = 2) -> dict[str, Any]:
@@ -466,7 +483,7 @@ def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: i
     return {name: float64_column(table.column(name), name, f"{source}: ", first_row) for name in names}
 
 
-def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
+def read_log(path_or_file: PathOrFile, n_joints: int | None = None, *, columns: Any = None) -> Log:
     """Read and check a log (format in the module docstring).
 
     Parameters
@@ -475,6 +492,9 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
         A CSV file (or ``.parquet``), or an open text stream of CSV.
     n_joints : int, optional
         The number of joints the log must have; None: as many as its ``q`` columns.
+    columns : path, dict or ColumnMap, optional
+        A column map (:mod:`uwml.io.column_map`, docs/logs.md): the file as recorded, its
+        columns renamed, signed, offset and scaled, its streams joined on one time base.
 
     Raises
     ------
@@ -485,6 +505,10 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None) -> Log:
         increasing or beyond ``±MAX_TIME_S``, text that is not UTF-8; or naming the file alone: no
         such file, a directory, not a Parquet file.
     """
+    if columns is not None:
+        from .column_map import read_mapped_log
+
+        return read_mapped_log(path_or_file, columns, n_joints)
     source = _source(path_or_file)
     _check_file(path_or_file, source)
     if _is_parquet(path_or_file):
@@ -511,7 +535,8 @@ def write_log(log: Log, path_or_file: PathOrFile) -> None:
     for family in _FAMILIES:
         value = getattr(log, family)
         if value is not None:
-            names += [f"{family}{k}" for k in range(1, value.shape[1] + 1)]
+            prefix = "u" if family == "thruster_commands" else family
+            names += list(FIELDS.get(family, [f"{prefix}{k}" for k in range(1, value.shape[1] + 1)]))
             columns += [value[:, k] for k in range(value.shape[1])]
     if not isinstance(path_or_file, str | os.PathLike):
         buffer = io.BytesIO()

@@ -4,6 +4,7 @@ Savitzky-Golay filter (the rules are in :mod:`uwml.io.logs`, "Derivatives")."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -122,16 +123,17 @@ def estimate_rates(
     polyorder: int = POLYORDER,
     *,
     source: str = "<log>",
-    column: str = "base_twist",
+    columns: Sequence[str] = ("u", "v", "w", "p", "q", "r"),
 ) -> Array:
-    """The time derivative of ``x`` (shape ``(n, k)``: a base's twist) by the Savitzky-Golay
-    filter of :func:`estimate_derivatives`, with its checks; errors name ``column``."""
-    dt, rates, _ = _filtered(time, x, f"{column} (n, k)", window_s, polyorder, source)
+    """The time derivative of ``x`` (shape ``(n, k)``: a vehicle's twist) by the Savitzky-Golay
+    filter of :func:`estimate_derivatives`, with its checks; errors name the column of ``columns``
+    (one per column of ``x``)."""
+    dt, rates, _ = _filtered(time, x, f"{', '.join(columns)} (n, {len(columns)})", window_s, polyorder, source)
     bad = np.flatnonzero(~np.isfinite(rates).all(axis=1))
     if bad.size:
         i = int(bad[0])
         k = int(np.flatnonzero(~np.isfinite(rates[i]))[0])
-        raise ValueError(f"{source}: row {i + 2}, column '{column}{k + 1}': its estimated rate is not finite for a time step of {dt:.6g} s")
+        raise ValueError(f"{source}: row {i + 2}, column {columns[k]!r}: its estimated rate is not finite for a time step of {dt:.6g} s")
     return rates
 
 
