@@ -24,6 +24,7 @@ import numpy as np
 import uwml
 from uwml.robot.files import model_and_robot
 from uwml.sim.mujoco import Simulation
+from uwml.sim.prescribed import Trajectory
 
 DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
 ROBOTS = {"paper leg (fixed base)": ("paper_leg.xml", "paper_leg.hydro.toml"), "arm on a floating hull": ("arm.xml", "arm.hydro.toml")}
@@ -110,6 +111,27 @@ def main() -> None:
             f"  {'uwml forward pass alone':28s} {forward:9.1f} µs   {forward / rows[0][1]:6.2f} ×   "
             f"(four, an RK4 step's least: {4 * forward / rows[0][1]:.2f} ×)"
         )
+    vehicle_steps(args.steps)
+
+
+def vehicle_steps(steps: int) -> None:
+    """The BlueROV2 example with its arm, floating (examples/bluerov2): a plain uwml step against
+    one with the arm's two joints on a prescribed motion of samples (docs/model.md section 12.4)
+    and one with its eight thrusters pushing (section 13.1); issue 33 asks each within 2× the
+    plain step."""
+    example = Path(__file__).resolve().parents[1] / "examples" / "bluerov2"
+    urdf, hydro = example / "bluerov2_arm.urdf", example / "bluerov2_arm.hydro.toml"
+    sim = Simulation.from_file(urdf, hydro)
+    plain = per_step(sim.step, steps, sim.data)
+    sim.command_thrusters([0.3, -0.2, 0.1, 0.4, 0.2, 0.2, -0.1, 0.3])
+    thrust = per_step(sim.step, steps, sim.data)
+    sim = Simulation.from_file(urdf, hydro)
+    t = np.linspace(0.0, 1000.0, 200_001)
+    sim.prescribe(["shoulder", "elbow"], Trajectory(t, np.stack([0.4 * np.sin(t), 0.3 * np.sin(2.0 * t)], axis=1)))
+    prescribed = per_step(sim.step, steps, sim.data)
+    print("\nBlueROV2 with its arm, floating (examples/bluerov2); ratio to the plain uwml step")
+    for label, micro in (("uwml step", plain), ("with thrust (8 thrusters)", thrust), ("with a prescribed motion", prescribed)):
+        print(f"  {label:28s} {micro:9.1f} µs   {micro / plain:6.2f} ×")
 
 
 if __name__ == "__main__":

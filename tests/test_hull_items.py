@@ -241,7 +241,7 @@ def test_a_link_the_description_leaves_massless_takes_an_override_with_its_inert
         ("[links.hull]\ninertia = [1.0, 1.0, 1.0]\n", r"\[links\.hull\], key 'inertia': needs mass"),
         (
             "[links.hull]\nballast = 1.0\n",
-            r"\[links\.hull\], key 'ballast': is not a key of this table \(allowed: .*mass, com, inertia, items\)",
+            r"\[links\.hull\], key 'ballast': is not a key of this table \(allowed: .*mass, com, inertia, items, thrusters\)",
         ),
         (
             "[[links.hull.items]]\nweight = 1.0\n",

@@ -126,3 +126,28 @@ def test_bad_prescriptions_are_refused(call, error: type, message: str) -> None:
     sim = arm_simulation("euler")
     with pytest.raises(error, match=message):
         call(sim)
+
+
+@pytest.mark.parametrize("integrator", ["euler", "rk4"])
+def test_a_motion_of_samples_is_imposed_natively_as_its_spline(integrator: str) -> None:
+    """The coupling evaluates a sampled motion's cubics itself (``Trajectory.pieces``): the same
+    simulation, to rounding, as the same spline evaluated by scipy through ``Trajectory.of``;
+    the joints sit on the spline after every step."""
+    t = np.linspace(0.0, 1.2, 241)
+    q, _, _ = waving(t[:, None])
+    sampled = Trajectory(t, q)
+    native, called = arm_simulation(integrator), arm_simulation(integrator)
+    native.prescribe(["shoulder", "elbow", "gripper"], sampled)
+    called.prescribe(["shoulder", "elbow", "gripper"], Trajectory.of(sampled, 3))
+    for _ in range(1000):
+        native.step()
+        called.step()
+        position, velocity, _ = sampled(native.data.time)
+        np.testing.assert_allclose(native.data.qpos[native._joint_qpos], position, rtol=0, atol=1e-14)
+        np.testing.assert_allclose(native.data.qvel[native._joint_dofs], velocity, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(native.data.qpos, called.data.qpos, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(native.data.qvel, called.data.qvel, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(native.prescribed_torque, called.prescribed_torque, rtol=1e-9, atol=1e-12)
+    assert np.abs(native.data.qvel[:6]).max() > 1e-3
+    native.prescribe(["shoulder"], None)
+    assert native.prescribed_torque.shape == (0,)

@@ -4,11 +4,14 @@ import csv
 import math
 import os
 import re
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import IO, Any, SupportsFloat, SupportsIndex
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+#: Three numbers: a point or a vector.
+Vec3 = tuple[float, float, float]
 
 
 def to_float(value: object) -> float:
@@ -150,3 +153,44 @@ def check_overflow(
         f"the forces of {where} overflow float64 (joint speeds up to {speed:.3g}, accelerations up to {acceleration:.3g}; "
         "or the base's motion, the current or the coefficients): the inputs are outside the physics' domain"
     )
+
+
+def vec3(value: object, name: str) -> Vec3:
+    """``value`` as three finite numbers, or an error naming ``name``."""
+    try:
+        if not isinstance(value, Iterable):
+            raise TypeError(f"{type(value).__name__!r} object is not iterable")
+        items = tuple(to_float(v) for v in value)
+    except TypeError as exc:
+        raise TypeError(f"{name} must be a sequence of 3 numbers, got {value!r}") from exc
+    except ValueError as exc:
+        raise ValueError(f"{name} must be a sequence of 3 numbers, got {value!r}") from exc
+    if len(items) != 3:
+        raise ValueError(f"{name} must have 3 components, got {len(items)}")
+    if not all(math.isfinite(v) for v in items):
+        raise ValueError(f"{name} must be finite, got {items}")
+    return (items[0], items[1], items[2])
+
+
+def scalar(value: object, name: str, *, positive: bool, signed: bool = False) -> float:
+    """``value`` as a finite number: positive, or non-negative (``positive`` False), or of
+    either sign (``signed``); or an error naming ``name``."""
+    try:
+        x = to_float(value)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a number, got {value!r}") from exc
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {x}")
+    if signed:
+        return x
+    if positive and not x > 0.0:
+        raise ValueError(f"{name} must be positive, got {x}")
+    if not positive and x < 0.0:
+        raise ValueError(f"{name} must be non-negative, got {x}")
+    return x
+
+
+def check_name(name: object, field_name: str) -> None:
+    """A name: a non-empty string, or None."""
+    if name is not None and (not isinstance(name, str) or not name):
+        raise TypeError(f"{field_name} must be a non-empty string or None, got {name!r}")

@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from ..model.lumped import LumpedModel
 from ..model.parts import Segment
+from ..model.thrusters import Thruster
 from ..plausibility import DescriptionWarning
 from ._description_io import DescriptionError, quoted
 from ._description_masses import MassOverride, OwnInertial, PlacedItem
@@ -54,6 +55,8 @@ class _Body:
     #: Its point items (hydro file) in the link's frame: (item, position); their mass is in
     #: ``mass`` and ``com`` (the compiled model's), their volume not in ``volume``.
     items: list[tuple[HydroItem, FloatArray]] = field(default_factory=list)
+    #: Its thrusters (hydro file), in the link's frame.
+    thrusters: list[Thruster] = field(default_factory=list)
     #: Mass and centre of mass before the items (the description's, or the hydro file's override).
     own_mass: float = 0.0
     own_com: FloatArray = field(default_factory=lambda: np.zeros(3))
@@ -159,6 +162,10 @@ def _body(
     body = _Body(name=name, mass=mass, com=com, own_mass=own_mass, own_com=own_com)
     if entry is not None:
         body.items = [(item, rotation @ np.asarray(item.position) + offset) for item in entry.items]
+        body.thrusters = [
+            dataclasses.replace(t, position=_t(rotation @ np.asarray(t.position) + offset), direction=_t(rotation @ np.asarray(t.direction)))
+            for t in entry.thrusters
+        ]
     if entry is not None and entry.dry:
         return body
     if entry is not None and entry.lumped is not None:
@@ -250,7 +257,8 @@ def _assembled(
         lumped = dataclasses.replace(lumped, point=_t(own_moment / own_volume if own_volume > 0.0 else own_com))
     if lumped_bodies:
         _warn_fused(bodies, lumped_bodies[0], link, hydro, hydro_source, density * gravity)
-    return {"mass": mass, "com": _t(com), "volume": volume, "cob": cob, "segments": segments, "lumped": lumped}
+    thrusters = tuple(t for x in bodies for t in x.thrusters)
+    return {"mass": mass, "com": _t(com), "volume": volume, "cob": cob, "segments": segments, "lumped": lumped, "thrusters": thrusters}
 
 
 def _warn_fused(bodies: list[_Body], lumped: _Body, link: str, hydro: dict[str, HydroLink], hydro_source: str, weight: float) -> None:

@@ -17,6 +17,7 @@ from ..model.joint_losses import JointLosses
 from ..model.losses import Drive, OilDrag, Seal
 from ..model.lumped import LumpedModel
 from ..model.parts import Link, Segment, Water
+from ..model.thrusters import ThrustCurve, Thruster
 
 _T = TypeVar("_T")
 
@@ -121,7 +122,11 @@ def _integer(value: Any) -> int:
 
 
 _SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm", "cd_axial", "axial_area")
-_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped")
+_BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped", "thrusters")
+_THRUSTER_KEYS = ("name", "position", "direction", "curve", "max_forward", "max_reverse", "time_constant")
+_CURVE_KEYS = ("kind", "commands", "thrusts", "forward", "reverse", "dead_band")
+#: The most thrusters one body may carry in a file.
+MAX_THRUSTERS = 64
 _LUMPED_KEYS = ("point", "axes", "added_mass", "linear_damping", "quadratic_damping")
 
 
@@ -208,6 +213,50 @@ def _segment(source: str, where: str, table: object, error: type[ValueError] = M
     )
 
 
+def _numbers(value: Any) -> tuple[float, ...]:
+    if not isinstance(value, list):
+        raise TypeError("not an array")
+    return tuple(_float(x) for x in value)
+
+
+def _curve(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> ThrustCurve:
+    r = _Reader(source, where, table, error)
+    r.check_keys(_CURVE_KEYS)
+    kind = r.get("kind", _text, 'a string, "table" or "polynomial"')
+    if kind == "table":
+        commands = r.get("commands", _numbers, "an array of commands, increasing")
+        thrusts = r.get("thrusts", _numbers, "an array of thrusts [N], one per command")
+        return r.build(lambda: ThrustCurve.table(commands, thrusts))
+    forward = r.get("forward", _numbers, "the forward coefficients, lowest degree first")
+    reverse = r.get("reverse", _numbers, "the reverse coefficients, lowest degree first", required=False)
+    dead_band = r.get("dead_band", _float, "a command", required=False, default=0.0)
+    if kind != "polynomial":
+        r.fail("kind", f'must be "table" or "polynomial", got {shown(kind)}')
+    return r.build(lambda: ThrustCurve.polynomial(forward, reverse, dead_band))
+
+
+def thrusters(source: str, where: str, value: object, error: type[ValueError] = ModelFileError) -> tuple[Thruster, ...]:
+    """A body's ``[[...thrusters]]`` (docs/model.md section 13.1), each with its optional
+    ``curve`` table (default: :meth:`uwml.ThrustCurve.t200`)."""
+    if not isinstance(value, list):
+        raise error(f"{source}: {where}: thrusters must be an array of tables [[...thrusters]], got {shown(value)}")
+    if len(value) > MAX_THRUSTERS:
+        raise error(f"{source}: {where}: at most {MAX_THRUSTERS} thrusters per body, got {len(value)}")
+    out = []
+    for i, table in enumerate(value):
+        r = _Reader(source, f"{where}, thrusters[{i}]", table, error)
+        r.check_keys(_THRUSTER_KEYS)
+        name = r.get("name", _text, "a string", required=False)
+        position = r.get("position", _vec3, "an array of 3 numbers [m]")
+        direction = r.get("direction", _vec3, "an array of 3 numbers (normalized)")
+        raw_curve = r.get("curve", lambda table: table, "a table", required=False)
+        curve = ThrustCurve.t200() if raw_curve is None else _curve(source, f"{where}, thrusters[{i}], curve", raw_curve, error)
+        limits = [r.get(key, _float, "a thrust [N]", required=False, default=math.inf) for key in ("max_forward", "max_reverse")]
+        lag = r.get("time_constant", _float, "a time [s]", required=False, default=0.0)
+        out.append(r.build(lambda: Thruster(position, direction, curve, limits[0], limits[1], lag, name)))  # noqa: B023 (built at once)
+    return tuple(out)
+
+
 def _body(source: str, where: str, table: object) -> Link:
     r = _Reader(source, where, table)
     r.check_keys(_BODY_KEYS)
@@ -220,7 +269,9 @@ def _body(source: str, where: str, table: object) -> Link:
     cob = r.get("cob", _vec3, "an array of 3 numbers [m]")
     raw_lumped = r.get("lumped", lambda table: table, "a table", required=False)
     lumped = None if raw_lumped is None else _lumped(source, f"{where}, lumped", raw_lumped)
-    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name, lumped=lumped))
+    raw_thrusters: object = r.get("thrusters", lambda value: value, "[[...thrusters]]", required=False, default=[])
+    carried = thrusters(source, where, raw_thrusters)
+    return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name, lumped=lumped, thrusters=carried))
 
 
 def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:

@@ -64,6 +64,18 @@ frames)::
     position = [0.1, 0.0, -0.1]
     inertia = [1e-4, 1e-4, 1e-4]  # optional: its own moments about position (a point has none)
 
+    [[links.frame.thrusters]] # a thruster (docs/model.md section 13.1): up to 64 per link
+    name = "t1"               # optional
+    position = [0.156, -0.111, 0.085]   # m, where it pushes
+    direction = [0.7071, -0.7071, 0.0]  # its positive thrust's direction (normalized)
+    max_forward = 51.5        # N, optional limits on |thrust| (default none)
+    max_reverse = 40.2
+    time_constant = 0.05      # s, optional first-order lag (default none)
+    [links.frame.thrusters.curve]       # optional; default uwml.ThrustCurve.t200()
+    kind = "table"            # linear interpolation; or kind = "polynomial" with forward,
+    commands = [-1.0, 0.0, 1.0]         # reverse (coefficients in u − dead_band, lowest degree
+    thrusts = [-40.2, 0.0, 51.5]        # first) and dead_band
+
 A segment's coefficients: ``segment_cd``/``segment_cm`` of its link if given, else the link's
 ``cd``/``cm``, else its own (hydro segments), else the documented defaults per section
 (:data:`uwml.model.RECTANGULAR_DEFAULTS`, :data:`uwml.model.CIRCULAR_DEFAULTS`). A circular
@@ -126,9 +138,10 @@ from .._core import MAX_COEFFICIENT, MAX_SEGMENTS, MAX_VOLUME
 from ..model.joint_losses import JointLosses
 from ..model.lumped import LumpedModel
 from ..model.parts import Segment, Water
+from ..model.thrusters import Thruster
 from ._description_io import DescriptionError, clipped, read_regular
 from ._hydro_masses import MAX_ITEMS, HydroItem, _point, _volume, read_items, read_override
-from ._model_tables import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _water
+from ._model_tables import WATER_DENSITY_RANGE, WATER_GRAVITY_RANGE, _float, _losses, _lumped, _pair, _Reader, _segment, _water, thrusters
 
 __all__ = [
     "MAX_ITEMS",
@@ -157,6 +170,7 @@ _LINK_KEYS = (
     "com",
     "inertia",
     "items",
+    "thrusters",
 )
 #: The keys that say how a link meets the water (a link fused into a lumped body without any of
 #: them adds its collision geometry unasked, and is warned of).
@@ -190,6 +204,8 @@ class HydroLink:
     inertia: tuple[float, float, float] | None = None
     #: Point items (lead, foam, a DVL): mass and buoyancy at a point (docs/model.md section 13).
     items: tuple[HydroItem, ...] = field(default=())
+    #: Thrusters (docs/model.md section 13.1), in the link's description frame.
+    thrusters: tuple[Thruster, ...] = field(default=())
     #: Whether the table says how the link meets the water (any of the keys that set its
     #: segments, coefficients or volume, or ``dry``), not only its masses.
     describes_water: bool = False
@@ -313,6 +329,7 @@ def _hydro_loads(text: str, source: str) -> HydroFile:
             com=com,
             inertia=inertia,
             items=read_items(r, source, where),
+            thrusters=thrusters(source, where, r.table["thrusters"], DescriptionError) if "thrusters" in r.table else (),
             describes_water=any(key in r.table for key in _WATER_KEYS),
         )
         if entry.dry:

@@ -93,6 +93,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import math
 import os
 import tomllib
 import unicodedata
@@ -105,6 +106,7 @@ from ..errors import ModelFileError
 from ..model.joint_losses import JointLosses
 from ..model.lumped import LumpedModel
 from ..model.parts import Joint, Link, Segment, Water
+from ..model.thrusters import Thruster
 from ._file_access import read_regular, write_atomically
 from ._model_tables import (
     _DENSITY_HINT,
@@ -207,6 +209,21 @@ def _lumped_lines(lumped: LumpedModel) -> list[str]:
     ]
 
 
+def _thruster_lines(thruster: Thruster, table: str, where: str) -> list[str]:
+    lines = ["", f"[[{table}]]"]
+    if thruster.name is not None:
+        lines.append(f"name = {_string(thruster.name, f'{where}.name')}")
+    lines += [f"position = {_vector(thruster.position)}", f"direction = {_vector(thruster.direction)}"]
+    lines += [f"{key} = {_number(value)}" for key in ("max_forward", "max_reverse") if math.isfinite(value := getattr(thruster, key))]
+    if thruster.time_constant:
+        lines.append(f"time_constant = {_number(thruster.time_constant)}")
+    curve = thruster.curve
+    lines += ["", f"[{table}.curve]", f"kind = {_string(curve.kind)}"]
+    if curve.kind == "table":
+        return [*lines, f"commands = {_vector(curve.commands)}", f"thrusts = {_vector(curve.thrusts)}"]
+    return [*lines, f"forward = {_vector(curve.forward)}", f"reverse = {_vector(curve.reverse)}", f"dead_band = {_number(curve.dead_band)}"]
+
+
 def _segment_lines(segment: Segment) -> list[str]:
     lines = [f"section = {_string(segment.section)}", f"start = {_vector(segment.start)}", f"axis = {_vector(segment.axis)}"]
     lines.append(f"length = {_number(segment.length)}")
@@ -259,6 +276,8 @@ def dumps(robot: RobotLike) -> str:
             out += ["", "[base.lumped]", *_lumped_lines(robot.base.lumped)]
         for segment in robot.base.segments:
             out += ["", "[[base.segments]]", *_segment_lines(segment)]
+        for k, thruster in enumerate(robot.base.thrusters):
+            out += _thruster_lines(thruster, "base.thrusters", f"base.thrusters[{k}]")
     for i, (joint, losses) in enumerate(zip(robot.joints, robot.losses)):
         out += ["", "[[joints]]"]
         if joint.name is not None:
@@ -281,6 +300,8 @@ def dumps(robot: RobotLike) -> str:
             out += ["", "[links.lumped]", *_lumped_lines(link.lumped)]
         for segment in link.segments:
             out += ["", "[[links.segments]]", *_segment_lines(segment)]
+        for k, thruster in enumerate(link.thrusters):
+            out += _thruster_lines(thruster, "links.thrusters", f"links[{i}].thrusters[{k}]")
     return "\n".join(out) + "\n"
 
 

@@ -20,13 +20,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._checks import to_float
+from .._checks import Vec3
+from .._checks import check_name as _check_name
+from .._checks import scalar as _scalar
+from .._checks import vec3 as _vec3
 from ..domains import MAX_COEFFICIENT, MAX_DENSITY, MAX_GRAVITY
 from ..plausibility import check_density
 from ..sea.conditions import SEA_WATER_DENSITY
 from .lumped import LumpedModel
-
-Vec3 = tuple[float, float, float]
+from .thrusters import Thruster
 
 __all__ = ["CIRCULAR_DEFAULTS", "FRESH_WATER", "RECTANGULAR_DEFAULTS", "SEA_WATER", "SECTIONS", "Joint", "Link", "Segment", "Vec3", "Water"]
 
@@ -56,38 +58,6 @@ RECTANGULAR_DEFAULTS = (2.2, 0.5)
 CIRCULAR_DEFAULTS = (1.2, 1.0)
 
 
-def _vec3(value: object, name: str) -> Vec3:
-    try:
-        if not isinstance(value, Iterable):
-            raise TypeError(f"{type(value).__name__!r} object is not iterable")
-        items = tuple(to_float(v) for v in value)
-    except TypeError as exc:
-        raise TypeError(f"{name} must be a sequence of 3 numbers, got {value!r}") from exc
-    except ValueError as exc:
-        raise ValueError(f"{name} must be a sequence of 3 numbers, got {value!r}") from exc
-    if len(items) != 3:
-        raise ValueError(f"{name} must have 3 components, got {len(items)}")
-    if not all(math.isfinite(v) for v in items):
-        raise ValueError(f"{name} must be finite, got {items}")
-    return (items[0], items[1], items[2])
-
-
-def _scalar(value: object, name: str, *, positive: bool, signed: bool = False) -> float:
-    try:
-        x = to_float(value)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a number, got {value!r}") from exc
-    if not math.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {x}")
-    if signed:
-        return x
-    if positive and not x > 0.0:
-        raise ValueError(f"{name} must be positive, got {x}")
-    if not positive and x < 0.0:
-        raise ValueError(f"{name} must be non-negative, got {x}")
-    return x
-
-
 def _pair(value: object, name: str) -> tuple[object, ...]:
     try:
         if not isinstance(value, Iterable):
@@ -98,11 +68,6 @@ def _pair(value: object, name: str) -> tuple[object, ...]:
     if len(items) != 2:
         raise ValueError(f"{name} must hold 2 items, got {len(items)}")
     return items
-
-
-def _check_name(name: object, field_name: str) -> None:
-    if name is not None and (not isinstance(name, str) or not name):
-        raise TypeError(f"{field_name} must be a non-empty string or None, got {name!r}")
 
 
 def _dot(a: Vec3, b: Vec3) -> float:
@@ -336,7 +301,8 @@ class Link:
     ``cob`` defaults to ``com`` (as the paper assumes). ``segments``: any number of them, in the
     link's frame. ``lumped``: Fossen's lumped model of the body (:class:`uwml.LumpedModel`,
     docs/model.md section 12.1), for what is not slender; its reference point defaults to
-    ``cob``.
+    ``cob``. ``thrusters``: the :class:`uwml.Thruster` s it carries, in its frame (docs/model.md
+    section 13.1).
     """
 
     mass: float
@@ -347,6 +313,7 @@ class Link:
     #: A name (a URDF link's, an MJCF body's), or None.
     name: str | None = None
     lumped: LumpedModel | None = None
+    thrusters: tuple[Thruster, ...] = field(default=())
 
     def __post_init__(self) -> None:
         _check_name(self.name, "link.name")
@@ -363,6 +330,14 @@ class Link:
             if not isinstance(segment, Segment):
                 raise TypeError(f"link.segments[{index}] must be a uwml.Segment, got {type(segment).__name__}")
         object.__setattr__(self, "segments", segments)
+        try:
+            thrusters = tuple(self.thrusters)
+        except TypeError:
+            raise TypeError(f"link.thrusters must be a sequence of uwml.Thruster, got {type(self.thrusters).__name__}") from None
+        for index, thruster in enumerate(thrusters):
+            if not isinstance(thruster, Thruster):
+                raise TypeError(f"link.thrusters[{index}] must be a uwml.Thruster, got {type(thruster).__name__}")
+        object.__setattr__(self, "thrusters", thrusters)
         if self.lumped is not None:
             if not isinstance(self.lumped, LumpedModel):
                 raise TypeError(f"link.lumped must be a uwml.LumpedModel or None, got {type(self.lumped).__name__}")

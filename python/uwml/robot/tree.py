@@ -23,6 +23,7 @@ from ..io import descriptions, modelfile
 from ..model.joint_losses import JointLosses, pack_leg_losses
 from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
+from ..model.thrusters import Thruster
 from ..plausibility import check_efforts, check_states, joint_bounds
 from ._arguments import _per_joint_losses, _threads, _water, robot_parts
 from .evaluation_conditions import Conditions
@@ -133,6 +134,8 @@ class Robot:
         self._segments = tuple(s for _, s in owned)
         #: The lumped models (body: -1 the base, else the link; model), in the regressors' order.
         self._lumped = tuple((b - 1, body.lumped) for b, body in enumerate((base_body, *links)) if body.lumped is not None)
+        #: The thrusters (body: -1 the base, else the link; thruster), base first: the allocation's columns.
+        self._thrusters = tuple((b - 1, t) for b, body in enumerate((base_body, *links)) for t in body.thrusters)
         self._losses = _per_joint_losses(losses, len(self._joints))
         # The joints' own losses as an evaluation takes them: one object when they all share one.
         first = self._losses[0] if self._losses else None
@@ -229,6 +232,38 @@ class Robot:
         """Every lumped model with its body (-1 the base, else the link), base first: the
         regressors' order (:attr:`uwml.Regressors.lumped`)."""
         return self._lumped
+
+    @property
+    def thrusters(self) -> tuple[tuple[int, Thruster], ...]:
+        """Every thruster with its body (-1 the base, else the link), base first: the order of
+        :meth:`thruster_allocation`'s columns and of a simulation's commands."""
+        return self._thrusters
+
+    def thruster_allocation(self, q: ArrayLike | None = None) -> FloatArray:
+        """The allocation matrix ``B`` ``(6, n_thrusters)`` (docs/model.md section 13.1): column
+        ``k`` is the wrench on the base, force and moment about the base origin in base
+        components, of thruster ``k`` (:attr:`thrusters`) pushing with 1 N, so that ``W = B T``.
+        A thruster on the base gives ``(d, r × d)``; one on a link, the same of its position and
+        direction carried into the base frame at the joint positions ``q`` ``(n_joints,)``, which
+        such a thruster needs."""
+        joints = None
+        if any(body >= 0 for body, _ in self._thrusters):
+            if q is None:
+                raise ValueError("a thruster sits on a link: give the joint positions q (n_joints,) to place it")
+            joints = _real_array(q, "q", "joint positions")
+            if joints.shape != (self.n_joints,) or not np.all(np.isfinite(joints)):
+                raise ValueError(f"q must be {self.n_joints} finite joint positions, got shape {joints.shape}")
+        columns = np.zeros((6, len(self._thrusters)))
+        for k, (body, thruster) in enumerate(self._thrusters):
+            r, d = np.asarray(thruster.position), np.asarray(thruster.direction)
+            if joints is not None and body >= 0:
+                # Two points of the rigid link carried into the base frame: the direction is
+                # their difference (the map is affine).
+                start = self.forward_kinematics(joints, body, r)
+                r, d = start, self.forward_kinematics(joints, body, r + d) - start
+            columns[:3, k] = d
+            columns[3:, k] = np.cross(r, d)
+        return columns
 
     @property
     def n_joints(self) -> int:

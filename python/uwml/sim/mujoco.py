@@ -86,7 +86,8 @@ from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
 from ._dof_map import map_degrees_of_freedom, sparse_inertia_entries
 from .mjcf import mjcf_of
-from .prescribed import Trajectory, imposing_torque
+from .prescribed import PrescribedJoints, Trajectory
+from .thrust import SimulatedThrusters
 
 __all__ = ["SCHEMES", "Simulation", "mjcf_of"]
 
@@ -248,6 +249,9 @@ class Simulation:
         self._root, self._free_dof, self._free_qpos = dofs.root, dofs.free_dof, dofs.free_qpos
         self._joint_dofs, self._joint_qpos = dofs.joint_dofs, dofs.joint_qpos
         self._base_is_world, self._floating = dofs.base_is_world, dofs.floating
+        #: During a step with thrust: the pushed bodies' rows of ``xfrc_applied`` without it.
+        self._under_thrust: FloatArray | None = None
+        self._thrusters = SimulatedThrusters(mujoco, self._model, robot, None if self._base_is_world else self._root, self._joint_dofs)
         inertia_entries = sparse_inertia_entries(mujoco, self.model, self.data)
         # The per-step arithmetic, native: it keeps views of the data's arrays (module docstring).
         d = self.data
@@ -259,8 +263,8 @@ class Simulation:
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
         #: The prescribed joints' degrees of freedom, qpos entries and motion (:meth:`prescribe`).
-        self._prescribed: tuple[NDArray[np.int64], NDArray[np.int64], Trajectory] | None = None
-        self._prescribed_torque = np.zeros(0)
+        #: The joints on a prescribed motion (:meth:`prescribe`), if any.
+        self._prescribed: PrescribedJoints | None = None
         try:  # a current so strong that the water's forces overflow is outside the physics
             self.environment()
         except ValueError as error:
@@ -397,6 +401,8 @@ class Simulation:
         mj, m, d, coupling = self._mj, self._model, self._data, self._coupling
         coupling.write_joint_losses()  # the friction constraints take the levels (nothing without losses)
         mj.mj_fwdPosition(m, d)
+        if self._under_thrust is not None:
+            self._thrusters.push(d.xfrc_applied, d.xmat, self._under_thrust)
         if self._seal_rows and d.nefc < self._seal_rows:
             self._check_constraint_memory()
         status = coupling.apply(torque)
@@ -425,11 +431,7 @@ class Simulation:
             # The prescribed joints' accelerations imposed by the torque that gives them, added to
             # the applied forces and the pass run again, so that every stage (constraints,
             # MuJoCo's implicit damping) sees it (sim/prescribed.py).
-            dofs, _, motion = self._prescribed
-            _, _, target = motion(float(d.time))
-            torque = imposing_torque(mj, m, d, dofs, target)
-            d.qfrc_applied[dofs] += torque
-            self._prescribed_torque = torque
+            self._prescribed.impose(mj, m, d)
             mj.mj_forwardSkip(m, d, self._position_stage, 0)
 
     def _check_constraint_memory(self) -> None:
@@ -455,27 +457,49 @@ class Simulation:
         components at the body's centre of mass (MuJoCo's ``data.xfrc_applied``), held for this
         step only: those bodies' rows of ``xfrc_applied`` are restored after it. Errors as
         :meth:`forward`'s; one thread at a time."""
-        if wrenches is None:
-            with self._lock:
+        with self._lock:
+            if wrenches is None and self._thrusters.idle:
                 if self._prescribed is None:  # the common step: no motion to put the joints back on
                     self._integrate(torque, qfrc)
                 else:
                     self._step(torque, qfrc)
-            return
-        with self._lock:
+                return
             self._step_with_wrenches(torque, qfrc, wrenches)
 
-    def _step_with_wrenches(self, torque: ArrayLike | None, qfrc: ArrayLike | None, wrenches: Mapping[str, ArrayLike]) -> None:
-        rows = self._wrench_rows(wrenches)
-        d = self.data
-        kept = {body: d.xfrc_applied[body].copy() for body in rows}
+    def _step_with_wrenches(self, torque: ArrayLike | None, qfrc: ArrayLike | None, wrenches: Mapping[str, ArrayLike] | None) -> None:
+        """A step with ``wrenches`` set on their bodies and the thrusters' added (module
+        :mod:`uwml.sim.thrust`), every row touched restored after it."""
+        d, thrusters = self.data, self._thrusters
+        if wrenches is None:  # thrust alone: the thrusters' rows (a slice, usually)
+            touched: slice | NDArray[np.int64] = thrusters.rows
+            rows: dict[int, FloatArray] = {}
+        else:
+            rows = self._wrench_rows(wrenches)
+            touched = np.array(sorted(set(rows) | ({*thrusters.bodies.tolist()} if not thrusters.idle else set())), dtype=np.int64)
+        kept = d.xfrc_applied[touched].copy()
         try:
             for body, wrench in rows.items():
                 d.xfrc_applied[body] = wrench
+            if not thrusters.idle:  # added in each forward pass, at the pose of its position stage
+                self._under_thrust = d.xfrc_applied[thrusters.rows].copy()
             self._step(torque, qfrc)
         finally:
-            for body, row in kept.items():
-                d.xfrc_applied[body] = row
+            self._under_thrust = None
+            d.xfrc_applied[touched] = kept
+        thrusters.advance(self._model.opt.timestep)
+
+    def command_thrusters(self, command: ArrayLike) -> None:
+        """Hold ``command`` (one number per thruster of ``robot.thrusters``, in its curve's
+        units) from the next step on, as an ESC holds it: each thruster's thrust lags its
+        steady value by its time constant (:mod:`uwml.sim.thrust`)."""
+        with self._lock:
+            self._thrusters.set_command(command)
+
+    @property
+    def thrust(self) -> FloatArray:
+        """Each thruster's thrust [N] now (``robot.thrusters``' order)."""
+        with self._lock:
+            return self._thrusters.thrust
 
     def _wrench_rows(self, wrenches: Mapping[str, ArrayLike]) -> dict[int, FloatArray]:
         """``wrenches`` by body id, checked."""
@@ -503,45 +527,30 @@ class Simulation:
         torque that imposed it is :attr:`prescribed_torque`."""
         if motion is None:
             with self._lock:
-                self._prescribed, self._prescribed_torque = None, np.zeros(0)
+                self._prescribed = None
+                self._coupling.prescribe([], [], np.zeros(0))
             return
-        if not isinstance(motion, Trajectory):
-            raise TypeError(f"motion must be a uwml.sim.prescribed.Trajectory or None, got {type(motion).__name__}")
         names = [joint.name for joint in self.robot.joints]
-        indices = []
-        for joint in joints:
-            if isinstance(joint, str) and joint in names:
-                indices.append(names.index(joint))
-            elif isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
-                indices.append(joint)
-            else:
-                raise ValueError(
-                    f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})"
-                )
-        if len(set(indices)) != len(indices) or not indices:
-            raise ValueError(f"joints must name each prescribed joint once, got {list(joints)!r}")
-        if motion.joints != len(indices):
-            raise ValueError(f"the motion is of {motion.joints} joints, {len(indices)} are prescribed")
-        dofs, qpos = self._joint_dofs[indices], self._joint_qpos[indices]
         with self._lock:
+            prescribed = PrescribedJoints(joints, motion, names, self._joint_dofs, self._joint_qpos, self.model.nv, self._coupling)
             q, qd, _ = motion(float(self.data.time))  # refused here if the data's time is outside the motion
-            self._prescribed = (dofs, qpos, motion)
-            self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
+            self._prescribed = prescribed
+            self.data.qpos[prescribed.qpos], self.data.qvel[prescribed.dofs] = q, qd
 
     @property
     def prescribed_torque(self) -> FloatArray:
         """The generalized force that imposed the prescribed joints' accelerations at the last
         forward pass, one per prescribed joint [N·m or N] (empty without a prescribed motion):
         what their motors deliver, beyond the other forces on those joints."""
-        return self._prescribed_torque.copy()
+        with self._lock:
+            torque: FloatArray = self._coupling.prescribed_torque()
+        return torque
 
     def _step(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         self._integrate(torque, qfrc)
         if self._prescribed is not None:
             # On the motion, exactly (the integration of imposed accelerations drifts by its error).
-            dofs, qpos, motion = self._prescribed
-            q, qd, _ = motion(float(self.data.time))
-            self.data.qpos[qpos], self.data.qvel[dofs] = q, qd
+            self._prescribed.put_on_motion(float(self.data.time))
 
     def _integrate(self, torque: ArrayLike | None, qfrc: ArrayLike | None) -> None:
         mj, m, d = self._mj, self._model, self._data

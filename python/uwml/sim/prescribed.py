@@ -5,12 +5,13 @@ vehicle's response to a recorded arm motion is simulated (pool trials with the t
 
 :class:`Trajectory` holds the motion: samples of time and angle (and, if known, velocity and
 acceleration) interpolated by a cubic spline, whose derivatives estimate what is not given; or
-any callable ``t -> (q, q̇, q̈)``. :func:`imposing_torque` is the one computation: with ``qacc₀``
-MuJoCo's accelerations at the state without it, the torque on the prescribed joints that makes
-their accelerations the trajectory's is ``τ_p = [(M⁻¹)_pp]⁻¹ (q̈_target − qacc₀_p)``, and the
-accelerations of every degree of freedom change by ``M⁻¹[:, p] τ_p`` (``M`` MuJoCo's mass matrix with
-the added mass in it, factored). It is exact where no constraint (contact, limit, joint friction)
-acts; where one does, the constraint's force is that of the motion without the torque.
+any callable ``t -> (q, q̇, q̈)``. The simulation imposes it (natively, each step: the motion's
+cubics are evaluated there, :attr:`Trajectory.pieces`): with ``qacc₀`` MuJoCo's accelerations at
+the state without it, the torque on the prescribed joints that makes their accelerations the
+trajectory's is ``τ_p = [(M⁻¹)_pp]⁻¹ (q̈_target − qacc₀_p)``, and the accelerations of every degree
+of freedom change by ``M⁻¹[:, p] τ_p`` (``M`` MuJoCo's mass matrix with the added mass in it,
+factored). It is exact where no constraint (contact, limit, joint friction) acts; where one does,
+the constraint's force is that of the motion without the torque.
 
 :class:`SineTrajectory` is a motion in closed form: sines, one harmonic of a period per joint, an
 exciting trajectory for any robot (the synthetic experiments of :mod:`uwml.paper.synthetic`, the
@@ -28,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-__all__ = ["SineTrajectory", "Trajectory", "imposing_torque"]
+__all__ = ["PrescribedJoints", "SineTrajectory", "Trajectory"]
 
 FloatArray = NDArray[np.float64]
 MotionFunction = Callable[[float], tuple[ArrayLike, ArrayLike, ArrayLike]]
@@ -63,6 +64,10 @@ class Trajectory:
     joints: int
     start: float
     end: float
+    #: The motion from samples as cubics: its knots (the sample times) and the coefficients of
+    #: ``q``, ``q̇``, ``q̈`` on each interval, each ``(4, n_samples - 1, joints)`` (scipy's
+    #: ``PPoly.c``, highest degree first, in ``t - knots[i]``); None for ``Trajectory.of``.
+    pieces: tuple[FloatArray, tuple[FloatArray, FloatArray, FloatArray]] | None
     _function: MotionFunction
 
     def __init__(self, time: ArrayLike, q: ArrayLike, qd: ArrayLike | None = None, qdd: ArrayLike | None = None) -> None:
@@ -88,6 +93,12 @@ class Trajectory:
         def motion(at: float) -> tuple[ArrayLike, ArrayLike, ArrayLike]:
             return spline(at), rate(at), acceleration(at)
 
+        def cubic(piecewise: Any) -> FloatArray:
+            # A derivative's pieces are of lower degree: zeros for the missing leading powers.
+            c = np.asarray(piecewise.c, dtype=np.float64)
+            return np.concatenate([np.zeros((4 - c.shape[0], *c.shape[1:])), c]) if c.shape[0] < 4 else c
+
+        object.__setattr__(self, "pieces", (t.copy(), tuple(cubic(p) for p in (spline, rate, acceleration))))
         object.__setattr__(self, "joints", k)
         object.__setattr__(self, "start", float(t[0]))
         object.__setattr__(self, "end", float(t[-1]))
@@ -110,6 +121,7 @@ class Trajectory:
         if isinstance(joints, bool) or not isinstance(joints, int) or joints < 1:
             raise ValueError(f"joints must be a positive integer, got {joints!r}")
         trajectory = cls.__new__(cls)
+        object.__setattr__(trajectory, "pieces", None)
         object.__setattr__(trajectory, "joints", joints)
         object.__setattr__(trajectory, "start", -np.inf)
         object.__setattr__(trajectory, "end", np.inf)
@@ -179,18 +191,81 @@ class SineTrajectory:
         return q, qd, qdd
 
 
-def imposing_torque(mujoco: Any, model: Any, data: Any, dofs: NDArray[np.int64], target: FloatArray) -> FloatArray:
-    """The generalized force on the degrees of freedom ``dofs`` that makes their accelerations
-    ``target`` (see the module), and ``data.qacc`` changed accordingly; ``data`` after a forward
-    pass whose mass matrix is factored (``mj_factorM``)."""
-    nv = model.nv
-    unit = np.zeros((len(dofs), nv))
-    unit[np.arange(len(dofs)), dofs] = 1.0
-    solved = np.zeros((len(dofs), nv))
-    mujoco.mj_solveM(model, data, solved, unit)  # one row per prescribed dof: M⁻¹ e_p
-    columns = solved.T  # M⁻¹[:, p]
-    block = columns[dofs, :]  # (M⁻¹)_pp
-    torque = np.linalg.solve(block, target - data.qacc[dofs])
-    data.qacc[:] += columns @ torque
-    data.qacc[dofs] = target  # exact, not to rounding
-    return torque
+class PrescribedJoints:
+    """Joints of a simulation held on a :class:`Trajectory` (what :meth:`uwml.sim.mujoco.
+    Simulation.prescribe` makes): the joints by name or index among ``names``, their degrees of
+    freedom and ``qpos`` entries among ``dofs`` and ``qpos``; the native ``coupling`` imposes
+    the motion (its cubics where it has them, else the values this evaluates) and puts the
+    joints back on it after each step. ``nv``: the model's degrees of freedom."""
+
+    def __init__(
+        self,
+        joints: Any,
+        motion: Trajectory,
+        names: list[str | None],
+        dofs: NDArray[np.int64],
+        qpos: NDArray[np.int64],
+        nv: int,
+        coupling: Any,
+    ) -> None:
+        if not isinstance(motion, Trajectory):
+            raise TypeError(f"motion must be a uwml.sim.prescribed.Trajectory or None, got {type(motion).__name__}")
+        indices = []
+        for joint in joints:
+            if isinstance(joint, str) and joint in names:
+                indices.append(names.index(joint))
+            elif isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
+                indices.append(joint)
+            else:
+                raise ValueError(
+                    f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})"
+                )
+        if len(set(indices)) != len(indices) or not indices:
+            raise ValueError(f"joints must name each prescribed joint once, got {list(joints)!r}")
+        if motion.joints != len(indices):
+            raise ValueError(f"the motion is of {motion.joints} joints, {len(indices)} are prescribed")
+        self.motion, self.dofs, self.qpos = motion, dofs[indices], qpos[indices]
+        #: ``M⁻¹``'s rows of the prescribed degrees of freedom are solved from these unit rows,
+        #: into ``solved``, which the coupling reads.
+        self.unit = np.zeros((len(indices), nv))
+        self.unit[np.arange(len(indices)), self.dofs] = 1.0
+        self.solved = np.zeros_like(self.unit)
+        self._coupling = coupling
+        pieces: dict[str, Any] = {}
+        if motion.pieces is not None:
+            knots, coefficients = motion.pieces
+            pieces = {
+                "knots": knots.tolist(),
+                "coefficients": [np.ascontiguousarray(c).ravel() for c in coefficients],
+                "slack": motion.rounding(),
+            }
+        coupling.prescribe(self.dofs.tolist(), self.qpos.tolist(), self.solved, **pieces)
+
+    def impose(self, mujoco: Any, model: Any, data: Any) -> None:
+        """The imposing torque at the data's time, after a forward pass whose ``M`` is factored
+        (``data.qacc`` and ``data.qfrc_applied`` changed: see the module)."""
+        mujoco.mj_solveM(model, data, self.solved, self.unit)
+        t = float(data.time)
+        status = self._coupling.impose(t) if self.motion.pieces is not None else self._coupling.impose(t, self.motion(t)[2].tolist())
+        if status:
+            self._refused(t, status)
+
+    def put_on_motion(self, time: float) -> None:
+        """The joints' ``qpos`` and ``qvel`` the motion's at ``time``."""
+        if self.motion.pieces is not None:
+            status = self._coupling.put_on_motion(time)
+        else:
+            q, qd, _ = self.motion(time)
+            status = self._coupling.put_on_motion(time, q.tolist(), qd.tolist())
+        if status:
+            self._refused(time, status)
+
+    def _refused(self, t: float, status: int) -> None:
+        """The error of a motion the coupling could not impose (``status`` 1: ``t`` outside it;
+        2: the prescribed joints' block of ``M⁻¹`` singular, or a value not finite)."""
+        if status == 1:
+            self.motion(t)  # raises the motion's own error
+        raise FloatingPointError(
+            f"the prescribed motion cannot be imposed at t = {t:.9g} s: its accelerations are not finite, or the prescribed "
+            "joints' inverse inertia is singular"
+        )

@@ -18,6 +18,7 @@ use uwml_core::{
 
 use super::conditions::{LossStates, PyConditions};
 use super::inputs::StateRow;
+use super::prescribed::{OUTSIDE, Pieces, PrescribedMotion};
 use super::rk4::Rk4;
 use super::view::View;
 use super::{Coefficients, Data, MAX_ROBOT_JOINTS, PyRobot};
@@ -88,6 +89,8 @@ pub(crate) struct MujocoCoupling {
     qvel: Vec<f64>,
     scratch: Vec<f64>,
     scratch2: Vec<f64>,
+    /// The prescribed joints and their motion, if any (`prescribe`).
+    prescribed: Option<PrescribedMotion>,
 }
 
 /// `array`'s values, C-contiguous, with at least `n` of them.
@@ -224,6 +227,7 @@ impl MujocoCoupling {
             qvel: Vec::with_capacity(nv),
             scratch: Vec::new(),
             scratch2: Vec::new(),
+            prescribed: None,
         })
     }
 
@@ -397,6 +401,74 @@ impl MujocoCoupling {
             Some(rk4) => rk4.finish(py, h, &self.views.qpos, &self.views.qvel),
             None => Err(PyValueError::new_err("rk4_begin must come first")),
         }
+    }
+
+    /// Prescribe the joints at degrees of freedom `dofs` (their `qpos` entries `qpos`), their
+    /// motion the piecewise cubics `coefficients` (`q`, `q̇`, `q̈`, each `(4, len(knots) − 1,
+    /// k)` flattened, highest degree first) over `knots`, times within `slack` past an end being
+    /// that end; without `knots`, the caller gives the motion's values to `impose` and
+    /// `put_on_motion`. `solved`: the `(k, nv)` array that receives `M⁻¹[:, p]` each step.
+    /// `dofs` empty: no prescribed motion.
+    #[pyo3(signature = (dofs, qpos, solved, knots=None, coefficients=None, slack=0.0))]
+    fn prescribe(
+        &mut self,
+        dofs: Vec<usize>,
+        qpos: Vec<usize>,
+        solved: Bound<'_, PyArrayDyn<f64>>,
+        knots: Option<Vec<f64>>,
+        coefficients: Option<[numpy::PyReadonlyArray1<'_, f64>; 3]>,
+        slack: f64,
+    ) -> PyResult<()> {
+        if dofs.is_empty() {
+            self.prescribed = None;
+            return Ok(());
+        }
+        let nv = self.views.qvel.len();
+        if dofs.len() != qpos.len() || dofs.iter().any(|&d| d >= nv) || qpos.iter().any(|&p| p >= self.views.qpos.len())
+        {
+            return Err(PyValueError::new_err("dofs and qpos must name as many degrees of freedom and qpos entries"));
+        }
+        let view = View::new(&solved, "solved")?;
+        if view.len() != dofs.len() * nv {
+            return Err(PyValueError::new_err("solved must hold k x nv numbers"));
+        }
+        let pieces = match (knots, coefficients) {
+            (Some(knots), Some(arrays)) => {
+                let [q, qd, qdd] = arrays.map(|a| a.as_slice().map(<[f64]>::to_vec).unwrap_or_default());
+                Some(Pieces::new(knots, [q, qd, qdd], dofs.len(), slack).map_err(PyValueError::new_err)?)
+            }
+            (None, None) => None,
+            _ => return Err(PyValueError::new_err("give both knots and coefficients, or neither")),
+        };
+        self.prescribed = Some(PrescribedMotion::new(dofs, qpos, pieces, view));
+        Ok(())
+    }
+
+    /// The imposing torque of the prescribed motion at `time` (see `prescribed.rs`; `target`: the
+    /// accelerations, for a motion the caller evaluates), after a forward pass whose `M` is
+    /// factored and `solved` written. 0 done, 1 `time` outside the motion, 2 singular.
+    #[pyo3(signature = (time, target=None))]
+    fn impose(&mut self, py: Python<'_>, time: f64, target: Option<Vec<f64>>) -> PyResult<u8> {
+        let Some(motion) = self.prescribed.as_mut() else { return Ok(0) };
+        motion.impose(py, &self.views.qacc, &self.views.qfrc_applied, time, target.as_deref())
+    }
+
+    /// The prescribed joints put on the motion at `time` (or on `q`, `qd` given). 0 done, 1
+    /// `time` outside the motion.
+    #[pyo3(signature = (time, q=None, qd=None))]
+    fn put_on_motion(&mut self, py: Python<'_>, time: f64, q: Option<Vec<f64>>, qd: Option<Vec<f64>>) -> PyResult<u8> {
+        let Some(motion) = self.prescribed.as_mut() else { return Ok(0) };
+        let given = match (&q, &qd) {
+            (Some(q), Some(qd)) => Some((q.as_slice(), qd.as_slice())),
+            (None, None) => None,
+            _ => return Ok(OUTSIDE),
+        };
+        motion.put_on_motion(py, &self.views.qpos, &self.views.qvel, time, given)
+    }
+
+    /// The last imposing torque, one per prescribed joint (empty without a prescribed motion).
+    fn prescribed_torque<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_slice(py, self.prescribed.as_ref().map_or(&[][..], |m| m.torque.as_slice()))
     }
 
     /// For the lagged scheme: keep `(ν̇, q̈)` of the step just computed (`data.qacc` in uwml's

@@ -24,6 +24,7 @@ mod design;
 mod evaluate;
 mod inputs;
 mod kinematics;
+mod prescribed;
 mod results;
 mod rk4;
 mod states;
