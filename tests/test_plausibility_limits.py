@@ -101,6 +101,7 @@ def both_paths(robot: uwml.Robot, q: list[float], qd: list[float], qdd: list[flo
     seen = []
     results = []
     for state in ((q, qd, qdd), tuple(np.array([x]) for x in (q, qd, qdd))):
+        robot._bounds.warned.clear()  # a robot warns once per cause: each path as the first call
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             results.append(robot.hydro(*state).total)
@@ -115,8 +116,8 @@ def test_a_speed_beyond_the_velocity_limit_warns_on_both_paths() -> None:
     assert both_paths(robot, [0.1, 0.2], [5.9, -5.9], [0.0, 0.0])[0] == []  # within 1.5 times: estimated speeds overshoot
     messages, _ = both_paths(robot, [0.1, 0.2], [0.2, 6.2], [0.0, 0.0])
     assert len(messages) == 1
-    assert "joint 2 ('elbow')'s speed reaches 6.2 rad/s, above 1.5 times its velocity limit of 4 rad/s" in messages[0]
-    assert "degrees per second" in messages[0] and "PlausibilityWarning" in messages[0]
+    assert "joint 2 ('elbow')'s speed reaches 6.2 rad/s, above 1.5 times its own velocity limit of 4 rad/s" in messages[0]
+    assert "noisy log" in messages[0] and "degrees" not in messages[0] and "PlausibilityWarning" in messages[0]
     # The same speed on a joint without a limit: 30 rad/s is the bound.
     free = uwml.Robot([uwml.Joint(j.origin, j.axis, parent=j.parent, name=j.name) for j in robot.joints], robot.links)
     assert both_paths(free, [0.1, 0.2], [0.2, 6.2], [0.0, 0.0])[0] == []
@@ -163,6 +164,7 @@ def test_the_joint_losses_count_towards_the_effort() -> None:
     robot = uwml.Robot(joints, arm.links, base=arm.base, losses=uwml.JointLosses(), water=arm.water)
     robot.hydro(q, qd, qdd)  # the water alone: within the limit
     for state in ((q, qd, qdd), tuple(np.array([x]) for x in (q, qd, qdd))):
+        robot._bounds.warned.clear()  # a robot warns once per cause: each path as the first call
         with pytest.warns(uwml.PlausibilityWarning, match=rf"up to {whole:.4g} N·m on joint 1 \('shoulder'\), beyond its effort limit"):
             again = robot.environment(*state, depth=200.0)
         np.testing.assert_array_equal(np.ravel(again.total), env.total)
@@ -173,3 +175,26 @@ def test_the_bounds_follow_the_descriptions_limits() -> None:
     assert bounds.speed == (6.0, 6.0) and bounds.angle == (2 * math.pi, 2 * math.pi) and bounds.effort == (100.0, 50.0)
     paper = plausibility.joint_bounds(uwml.paper_leg().joints)
     assert paper.speed == (30.0,) * 3 and paper.angle == (4 * math.pi,) * 3 and paper.effort == (math.inf,) * 3
+
+
+def plausibility_messages(call) -> list[str]:  # type: ignore[no-untyped-def]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        call()
+    return [str(w.message) for w in caught if issubclass(w.category, uwml.PlausibilityWarning)]
+
+
+def test_a_robot_warns_once_per_cause_and_names_the_cause() -> None:
+    robot = uwml.Robot.from_urdf(ARM, ARM_HYDRO)  # velocity limits 4 rad/s
+    fast = lambda qd: lambda: robot.hydro([0.1, 0.2], qd, [0.0, 0.0])
+    (first,) = plausibility_messages(fast([0.0, 6.2]))
+    # Beyond its own limit but not any joint's: the limit or the estimate, not a unit.
+    assert "its own velocity limit of 4 rad/s" in first and "noisy log" in first and "degrees" not in first
+    assert plausibility_messages(fast([0.0, 6.2])) == []  # the same cause: said once
+    assert plausibility_messages(fast([0.0, -7.0])) == []  # the same joint's speed, again
+    (other,) = plausibility_messages(fast([6.5, 0.0]))  # another joint: another cause
+    assert other.startswith("joint 1")
+    # Beyond any joint's 30 rad/s too: degrees per second, then.
+    fresh = uwml.Robot.from_urdf(ARM, ARM_HYDRO)
+    (unit,) = [m for m in plausibility_messages(lambda: fresh.hydro([0.1, 0.2], [0.0, 120.0], [0.0, 0.0])) if "speed" in m]
+    assert "degrees per second" in unit and "its own velocity limit" in unit

@@ -1,7 +1,8 @@
 """Warnings for likely unit mistakes (:class:`PlausibilityWarning`): values that uwml can compute
 with but that a robot in water hardly ever has, and that the usual mistakes give.
 
-uwml warns, once per call, when
+uwml warns, once per robot and cause (a joint's speed, angle or effort; a robot made anew warns
+anew), when
 
 * a revolute joint turns faster than ``PLAUSIBLE_ANGULAR_SPEED`` (30 rad/s, about 290 r/min:
   beyond any manipulator's or leg's joint; degrees per second are far above it), or a prismatic
@@ -36,7 +37,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -103,6 +104,16 @@ class JointBounds:
     speed: tuple[float, ...]
     #: The largest plausible ``|τ|`` of the environment [N·m or N].
     effort: tuple[float, ...]
+    #: The causes already warned of, ``(what, joint)``: each is warned of once.
+    warned: set[tuple[str, int]] = field(default_factory=set, compare=False, repr=False)
+
+    def first_time(self, what: str, joint: int) -> bool:
+        """Whether ``what`` of ``joint`` has not been warned of yet (and now counts as warned)."""
+        key = (what, joint)
+        if key in self.warned:
+            return False
+        self.warned.add(key)
+        return True
 
     def rows(self) -> list[tuple[float, float, float]]:
         """``(angle, speed, effort)`` per joint: the compiled core's one-state path takes a
@@ -155,18 +166,10 @@ def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointB
     for j, joint in enumerate(bounds.joints):
         label, turns = _label(j, joint), joint.kind == "revolute"
         if speeds[j] > bounds.speed[j]:
-            unit = "rad/s" if turns else "m/s"
-            if joint.velocity_limit is not None:
-                above = f"above {LIMIT_MARGIN:g} times its velocity limit of {joint.velocity_limit:.4g} {unit}"
-            else:
-                above = f"above {bounds.speed[j]:g} {unit}" + (" (about 290 r/min)" if turns else "")
-            if turns:
-                seen, cause = f"{label}'s speed reaches {speeds[j]:.4g} rad/s", "degrees per second? uwml takes rad/s"
-            else:
-                seen, cause = f"{label} (prismatic) moves at up to {speeds[j]:.4g} m/s", "mm/s? uwml takes m/s"
-            _warn(f"{seen}, {above}: are the speeds in {cause}; {_SILENCE} if they are right", stacklevel)
+            if bounds.first_time("speed", j):
+                _warn(_speed_message(label, joint, speeds[j], bounds.speed[j], turns), stacklevel)
             return
-        if angles[j] > bounds.angle[j]:
+        if angles[j] > bounds.angle[j] and bounds.first_time("angle", j):
             ranged = " (beyond ±2π and its range)" if joint.range is not None else ""
             _warn(
                 f"{label}'s angle reaches {angles[j]:.4g} rad, {angles[j] / (2 * math.pi):.3g} turns{ranged}: are the angles in "
@@ -174,6 +177,25 @@ def check_states(q: NDArray[np.float64], qd: NDArray[np.float64], bounds: JointB
                 stacklevel,
             )
             return
+
+
+def _speed_message(label: str, joint: Any, speed: float, bound: float, turns: bool) -> str:
+    """The warning of a joint moving at ``speed`` beyond its ``bound``: its own velocity limit
+    (a noisy estimate, or a limit that is wrong) unless the speed is beyond any joint's too (a
+    unit: degrees, mm)."""
+    unit, generic = ("rad/s", PLAUSIBLE_ANGULAR_SPEED) if turns else ("m/s", PLAUSIBLE_LINEAR_SPEED)
+    seen = f"{label}'s speed reaches {speed:.4g} {unit}" if turns else f"{label} (prismatic) moves at up to {speed:.4g} m/s"
+    unit_hint = "degrees per second? uwml takes rad/s" if turns else "mm/s? uwml takes m/s"
+    if joint.velocity_limit is not None:
+        above = f"above {LIMIT_MARGIN:g} times its own velocity limit of {joint.velocity_limit:.4g} {unit}"
+        if speed <= generic:
+            return (
+                f"{seen}, {above}, faster than the joint can turn: is the speed estimated from a noisy log, or the "
+                f"description's limit wrong? {_SILENCE} if it is right"
+            )
+        return f"{seen}, {above} and beyond any joint's {generic:g} {unit}: are the speeds in {unit_hint}; {_SILENCE} if they are right"
+    above = f"above {bound:g} {unit}" + (" (about 290 r/min)" if turns else "")
+    return f"{seen}, {above}: are the speeds in {unit_hint}; {_SILENCE} if they are right"
 
 
 def check_efforts(parts: Sequence[NDArray[np.float64]], bounds: JointBounds, stacklevel: int = 3) -> None:
@@ -187,6 +209,8 @@ def check_efforts(parts: Sequence[NDArray[np.float64]], bounds: JointBounds, sta
     largest = _largest(force)
     for j, joint in enumerate(bounds.joints):
         if largest[j] > bounds.effort[j]:
+            if not bounds.first_time("effort", j):
+                return
             unit = "N·m" if joint.kind == "revolute" else "N"
             _warn(
                 f"the environment puts up to {largest[j]:.4g} {unit} on {_label(j, joint)}, beyond its effort limit of "
