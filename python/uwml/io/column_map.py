@@ -61,6 +61,7 @@ __all__ = [
     "join_streams",
     "load_column_map",
     "open_table",
+    "read_map_streams",
     "read_mapped_log",
     "resample",
 ]
@@ -367,9 +368,10 @@ def _same(path_or_file: Any, path: str) -> bool:
         return False
 
 
-def read_mapped_log(path_or_file: PathOrFile | None, columns: Any, n_joints: int | None = None) -> Log:
-    """The log of a recorded file (or of several streams) read through the column map
-    ``columns`` (module docstring), checked as :func:`uwml.io.logs.read_log` checks a log."""
+def read_map_streams(path_or_file: PathOrFile | None, columns: Any) -> tuple[ColumnMap, list[tuple[str, Array, dict[str, Array]]]]:
+    """The checked map of ``columns`` and its streams as recorded, each ``(file name, time [s],
+    uwml columns)`` with every row of its file (not joined: :func:`join_streams` does that);
+    a stream without a file reads ``path_or_file``."""
     column_map = load_column_map(columns)
     files = [os.path.join(column_map.folder, stream.file) for stream in column_map.streams if stream.file is not None]
     if path_or_file is not None and len(files) == len(column_map.streams) and not any(_same(path_or_file, f) for f in files):
@@ -386,6 +388,13 @@ def read_mapped_log(path_or_file: PathOrFile | None, columns: Any, n_joints: int
         else:
             target = os.path.join(column_map.folder, stream.file)
         read.append(_read_stream(stream, target, column_map.source))
+    return column_map, read
+
+
+def read_mapped_log(path_or_file: PathOrFile | None, columns: Any, n_joints: int | None = None) -> Log:
+    """The log of a recorded file (or of several streams) read through the column map
+    ``columns`` (module docstring), checked as :func:`uwml.io.logs.read_log` checks a log."""
+    column_map, read = read_map_streams(path_or_file, columns)
     names = " + ".join(name for name, _, _ in read)
     source = f"{names} (through {column_map.source})"
     if len(read) == 1:
