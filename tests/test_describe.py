@@ -100,3 +100,28 @@ def test_a_joint_that_mujoco_split_is_named_as_the_planar_joint_it_was(tmp_path:
     assert main(["describe", "--robot", str(path)]) == 2
     err = capsys.readouterr().err
     assert "joint 'j3_elbow' is a planar or floating joint" in err and "uwml takes revolute, continuous and prismatic joints" in err
+
+
+def test_the_picture_draws_a_lumped_hull_its_thrusters_and_names_every_body() -> None:
+    pytest.importorskip("mujoco")
+    import matplotlib.pyplot as plt
+    from uwml.robot.files import from_urdf
+    from uwml.viz.describe import _lumped_surface, figure
+
+    example = Path(__file__).parent.parent / "examples" / "bluerov2"
+    robot = from_urdf(example / "bluerov2_arm.urdf", example / "bluerov2_arm.hydro.toml")
+    fig = figure(robot)
+    try:
+        (ax,) = fig.axes  # type: ignore[attr-defined]
+        assert {"hull", "upper_arm", "forearm"} <= {t.get_text().strip() for t in ax.texts}
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert any("lumped body" in label for label in labels) and any("thruster" in label for label in labels)
+        gids = [c.get_gid() or "" for c in ax.collections]
+        assert gids.count("lumped hull") == 1 and sum(g.startswith("thruster") for g in gids) == 8
+        # The hull's sphere holds its volume, about the lumped model's point.
+        x, _, z = _lumped_surface(robot.base, np.zeros(3))
+        diameter = 2.0 * (3.0 * robot.base.volume / (4.0 * np.pi)) ** (1.0 / 3.0)
+        np.testing.assert_allclose([np.ptp(x), np.ptp(z)], diameter, rtol=0.05)
+        np.testing.assert_allclose([np.mean([z.max(), z.min()])], robot.base.lumped.point[2], atol=1e-12)
+    finally:
+        plt.close(fig)  # type: ignore[arg-type]

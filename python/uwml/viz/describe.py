@@ -13,7 +13,7 @@ from ..io.descriptions import MassOverride, PlacedItem
 from ..model.parts import Joint, Link, Segment, Water
 from ..robot.tree import Robot
 
-__all__ = ["describe", "draw", "frame_origins"]
+__all__ = ["describe", "draw", "figure", "frame_origins"]
 
 
 def frame_origins(robot: Robot) -> np.ndarray:
@@ -30,7 +30,7 @@ def _bodies(robot: Robot) -> list[tuple[str, Link, np.ndarray]]:
     """(name, body, frame origin at q = 0) of the base (if it has a body) and every link."""
     out: list[tuple[str, Link, np.ndarray]] = []
     if robot.base is not None:
-        out.append(("base", robot.base, np.zeros(3)))
+        out.append((robot.base.name or "base", robot.base, np.zeros(3)))
     out += [(name, link, origin) for name, link, origin in zip(robot.link_names, robot.links, frame_origins(robot))]
     return out
 
@@ -187,11 +187,18 @@ def _box(start: np.ndarray, axis: np.ndarray, segment: Segment) -> np.ndarray:
     return np.asarray(corners)
 
 
-def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
-    """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up), with a legend: circular
-    segments as thick blue lines (width by their diameter), rectangular ones as their boxes'
-    outlines (orange), joints as black dots with their axes, centres of mass (x) and buoyancy
-    (o). Written to ``path`` (format from the extension)."""
+def _lumped_surface(body: Link, origin: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A lumped body's drawing: the sphere of its volume (the model has no shape of its own) about
+    the model's reference point, as three ``(12, 12)`` grids of x, y, z."""
+    assert body.lumped is not None
+    radius = (3.0 * max(body.volume, 1e-9) / (4.0 * np.pi)) ** (1.0 / 3.0)
+    centre = origin + np.asarray(body.lumped.point if body.lumped.point is not None else body.cob or body.com)
+    u, v = np.meshgrid(np.linspace(0.0, 2.0 * np.pi, 12), np.linspace(0.0, np.pi, 12))
+    return centre[0] + radius * np.cos(u) * np.sin(v), centre[1] + radius * np.sin(u) * np.sin(v), centre[2] + radius * np.cos(v)
+
+
+def figure(robot: Robot, title: str | None = None) -> object:
+    """The matplotlib figure of :func:`draw` (closed by the caller)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -201,7 +208,20 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
     ax = fig.add_subplot(projection="3d")
     points = [np.zeros(3)]
     scale = max((s.length for s in robot.segments), default=0.5)
-    for _, body, origin in _bodies(robot):
+    # Thrusters' arrows: a quarter of the largest part (a segment, or a lumped body's sphere).
+    sizes = [2.0 * (3.0 * body.volume / (4.0 * np.pi)) ** (1.0 / 3.0) for _, body, _ in _bodies(robot) if body.lumped is not None]
+    push_length = 0.25 * max([scale, *sizes])
+    for name, body, origin in _bodies(robot):
+        if body.lumped is not None:
+            x, y, z = _lumped_surface(body, origin)
+            ax.plot_wireframe(x, y, z, color="tab:purple", linewidth=0.5, alpha=0.6, gid=f"lumped {name}")
+            points += [np.array([x.min(), y.min(), z.min()]), np.array([x.max(), y.max(), z.max()])]
+        label_at = origin + np.asarray(body.com)
+        ax.text(*label_at, f" {name}", fontsize=7, color="0.2")
+        for thruster in body.thrusters:
+            at, push = origin + np.asarray(thruster.position), push_length * np.asarray(thruster.direction)
+            ax.quiver(*at, *push, color="tab:red", linewidth=1.0, arrow_length_ratio=0.3, gid=f"thruster {thruster.name or ''}")
+            points += [at]
         for segment in body.segments:
             start = origin + np.asarray(segment.start)
             end = start + segment.length * np.asarray(segment.axis)
@@ -239,8 +259,25 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
         Line2D([], [], color="k", marker="x", linestyle="none", label="centre of mass"),
         Line2D([], [], markeredgecolor="tab:green", markerfacecolor="none", marker="o", linestyle="none", label="centre of buoyancy"),
     ]
+    if robot.lumped_models:
+        legend.append(Line2D([], [], color="tab:purple", linewidth=0.8, label="lumped body (the sphere of its volume)"))
+    if robot.thrusters:
+        legend.append(Line2D([], [], color="tab:red", marker=">", linewidth=1.0, label="thruster (its push)"))
     ax.legend(handles=legend, loc="upper left", fontsize=7)
     ax.set_title(title or f"{robot.n_joints} joints, {len(robot.segments)} segments at q = 0", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    return fig
+
+
+def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
+    """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up), with a legend: circular
+    segments as thick blue lines (width by their diameter), rectangular ones as their boxes'
+    outlines (orange), lumped bodies as the sphere of their volume about their reference point
+    (purple wireframe), thrusters as arrows along their push (red), joints as black dots with
+    their axes, centres of mass (x) and buoyancy (o), each body named at its centre of mass.
+    Written to ``path`` (format from the extension)."""
+    import matplotlib.pyplot as plt
+
+    fig = figure(robot, title)
+    fig.savefig(path, dpi=110)  # type: ignore[attr-defined]
+    plt.close(fig)  # type: ignore[arg-type]
