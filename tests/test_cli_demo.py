@@ -105,3 +105,26 @@ def test_cli_rejects_bad_arguments(args: list[str], option: str, capsys: pytest.
         uwml.cli.main(args)
     assert exit_info.value.code not in (0, None)
     assert option in capsys.readouterr().err
+
+
+def test_fig8_puts_buoyancy_on_its_own_scale() -> None:
+    """Joint 2's buoyancy (tens of N·m) and the drag and added mass (a few) on separate axes: one
+    row per joint, drag and added mass on the left, buoyancy and the total on the right."""
+    import numpy as np
+    import uwml
+    from uwml.paper.analysis import torque_figure
+
+    t = np.linspace(0.0, 1.0, 50)
+    q = np.stack([0.3 * np.sin(2 * np.pi * t), 0.5 + 0.4 * np.sin(2 * np.pi * t), -1.0 + 0.3 * np.cos(2 * np.pi * t)], axis=1)
+    qd = np.gradient(q, t, axis=0)
+    tau = uwml.paper_leg().hydro(q, qd, np.gradient(qd, t, axis=0))
+    figure = torque_figure(t, tau)
+    axes = np.asarray(figure.axes).reshape(3, 2)
+    for j in range(3):
+        left = {line.get_label() for line in axes[j, 0].get_lines()}
+        right = {line.get_label() for line in axes[j, 1].get_lines()}
+        assert left == {"drag", "added mass"} and right == {"buoyancy", "total"}
+        # The left axis is scaled to the drag and the added mass, not to the buoyancy.
+        low, high = axes[j, 0].get_ylim()
+        reach = max(np.abs(tau.drag[:, j]).max(), np.abs(tau.added_mass[:, j]).max())
+        assert high - low < 3.0 * reach or reach == 0.0

@@ -77,24 +77,32 @@ def _every(tau: Any, step: int) -> Any:
     return replace(tau, **{f.name: every(getattr(tau, f.name)) for f in fields(tau)})
 
 
-def _torque_figure(t: np.ndarray, tau: Any, path: Path) -> None:
-    """The component torques over one cycle, one panel per joint (the paper's Fig. 8)."""
+def torque_figure(t: np.ndarray, tau: Any) -> Any:
+    """The component torques over one cycle (the paper's Fig. 8), a row per joint: on the left
+    the drag and the added mass (the motion's), on the right the buoyancy and the total on their
+    own scale (joint 2's buoyancy is ten times the rest, and would flatten them)."""
     from matplotlib.figure import Figure
 
     n_joints = tau.drag.shape[1]
-    figure = Figure(figsize=(8.0, 2.4 * n_joints), layout="constrained")
-    axes = figure.subplots(n_joints, 1, sharex=True, squeeze=False)[:, 0]
+    figure = Figure(figsize=(10.0, 2.4 * n_joints), layout="constrained")
+    axes = figure.subplots(n_joints, 2, sharex=True, squeeze=False)
     styles = {"total": ("k", "-", 1.8), "drag": ("C0", "--", 1.2), "added_mass": ("C1", "-.", 1.2), "buoyancy": ("C2", ":", 1.5)}
-    for j, ax in enumerate(axes):
-        for name, label in _COMPONENTS:
-            color, style, width = styles[name]
-            ax.plot(t, getattr(tau, name)[:, j], color=color, ls=style, lw=width, label=label)
-        ax.set_ylabel(f"joint {j + 1} [N·m]")
-        ax.grid(alpha=0.3)
-    axes[0].legend(fontsize="small", ncol=4, loc="lower left")
-    axes[0].set_title("Hydrodynamic torque components over one gait cycle (Cd = 2.2, Cm = 0.5; cf. paper Fig. 8)", fontsize="medium")
-    axes[-1].set_xlabel("time [s]")
-    figure.savefig(path, dpi=120)
+    panels = (("drag", "added_mass"), ("buoyancy", "total"))
+    labels = dict(_COMPONENTS)
+    for j in range(n_joints):
+        for ax, names in zip(axes[j], panels, strict=True):
+            for name in names:
+                color, style, width = styles[name]
+                ax.plot(t, getattr(tau, name)[:, j], color=color, ls=style, lw=width, label=labels[name])
+            ax.set_ylabel(f"joint {j + 1} [N·m]")
+            ax.grid(alpha=0.3)
+    for ax, title in zip(axes[0], ("Drag and added mass", "Buoyancy and the total"), strict=True):
+        ax.legend(fontsize="small", ncol=2, loc="lower left")
+        ax.set_title(title, fontsize="medium")
+    for ax in axes[-1]:
+        ax.set_xlabel("time [s]")
+    figure.suptitle("Hydrodynamic torque components over one gait cycle (Cd = 2.2, Cm = 0.5; cf. paper Fig. 8)", fontsize="medium")
+    return figure
 
 
 def run(out_dir: str, seed: int) -> int:
@@ -116,7 +124,7 @@ def run(out_dir: str, seed: int) -> int:
     t = np.linspace(0.0, gait.period, _PAPER_SAMPLES, endpoint=False)
     q, qd, qdd = gait.joint_states(t)
     tau = leg.hydro(q, qd, qdd, cd=cd_true, cm=cm_true)
-    _torque_figure(t, tau, out / "fig8_torques.png")
+    torque_figure(t, tau).savefig(out / "fig8_torques.png", dpi=120)
     rms = {name: _rms(getattr(tau, name)) for name, _ in _COMPONENTS}
 
     # Synthetic land/water experiment, sized and spoiled like the paper's, and its fit on joint
