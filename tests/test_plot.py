@@ -78,3 +78,41 @@ def test_fit_plot(tmp_path, method: str) -> None:
     drawn = np.concatenate([line.get_ydata() for line in residual_axes.lines if line.get_marker() == "o"])
     np.testing.assert_allclose(np.sort(drawn), np.sort((result.data - result.best_fit) / result.sigma))
     assert "R²" in data_axes.get_title()
+
+
+def _text_boxes(figure: Figure) -> list[tuple[str, object]]:
+    """Every visible, non-empty text of ``figure`` with its extent on the drawn canvas."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = FigureCanvasAgg(figure)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    texts = [figure._suptitle] if figure._suptitle is not None else []
+    for ax in figure.axes:
+        texts += [ax.title, ax.xaxis.label, ax.yaxis.label]
+    return [(t.get_text(), t.get_window_extent(renderer)) for t in texts if t.get_visible() and t.get_text().strip()]
+
+
+@pytest.mark.parametrize("per", ["leg", "direction"])
+def test_the_hydro_fit_figures_texts_stay_inside_it_and_apart(per: str) -> None:
+    """A fit per direction has a dozen parameters: their values wrap above the panels; no title
+    or axis label overlaps another or leaves the figure (extents after the constrained layout is
+    drawn)."""
+    result = fit.hydro_coefficients(synthetic.land_water_experiment(seed=0), joints=(0, 1, 2), per=per)
+    figure = plot.hydro_fit_plot(result)
+    boxes = _text_boxes(figure)
+    page = figure.bbox
+    for text, box in boxes:
+        assert page.x0 - 1 <= box.x0 and box.x1 <= page.x1 + 1, f"{text!r} leaves the figure"
+    for i, (a, box_a) in enumerate(boxes):
+        for b, box_b in boxes[i + 1 :]:
+            assert not box_a.overlaps(box_b), f"{a!r} overlaps {b!r}"
+    assert any("COD" in text for text, _ in boxes)
+
+
+def test_the_efficiency_map_resolves_the_breakaway_below_one_rpm() -> None:
+    figure = plot.efficiency_map(losses.OilDrag(), losses.Seal())
+    ax = figure.axes[0]
+    assert ax.get_xscale() == "log"
+    speeds = plot._MAP_SPEEDS_RPM
+    assert np.count_nonzero(speeds < 1.0) >= 50 and speeds.min() <= 0.05

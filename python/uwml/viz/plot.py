@@ -9,6 +9,7 @@ format follows the file's extension).
 from __future__ import annotations
 
 import os
+import textwrap
 from collections.abc import Sequence
 
 import numpy as np
@@ -30,8 +31,10 @@ _SPEEDS_RPM = np.linspace(0.0, 10.0, 201)[1:]
 _PRESSURES_MPA = (0.0, 2.0, 4.0, 6.0, 8.0, 10.0)
 #: Speed and depth grid of the efficiency map [r/min, m]: the paper's speeds, and depths to
 #: twice its kilometre (the illustrative defaults are calibrated at 10 MPa only).
-_MAP_SPEEDS_RPM = np.linspace(0.5, 10.0, 39)
-_MAP_DEPTHS_M = np.linspace(0.0, 2000.0, 41)
+#: The seal's breakaway makes the losses change fastest below 1 r/min: the speeds are
+#: geometric there (from 0.05 r/min), even beyond it.
+_MAP_SPEEDS_RPM = np.unique(np.concatenate([np.geomspace(0.05, 1.0, 60), np.linspace(1.0, 10.0, 73)]))
+_MAP_DEPTHS_M = np.linspace(0.0, 2000.0, 81)
 #: The default drive (the paper's hip-roll joint, illustrative K_t and η).
 _DRIVE = Drive()
 
@@ -159,6 +162,7 @@ def efficiency_map(
     ax.clabel(lines, fmt="%.0f %%", fontsize="small")
     figure.colorbar(filled, ax=ax, label="rated current left after losses [%]")
     ax.invert_yaxis()
+    ax.set_xscale("log")  # the breakaway below 1 r/min, where the share changes fastest
     ax.set_xlabel("output speed [r/min]")
     ax.set_ylabel("depth [m]")
     ax.set_title(f"Joint current budget at depth (oil at {temperature_c:g} °C, TEOS-10 pressure)")
@@ -259,9 +263,10 @@ def hydro_fit_plot(result: HydroFit, path: str | os.PathLike[str] | None = None)
         ax_residual.set_ylabel(f"measured − fitted [{unit if joint < 0 else 'N·m'}]")
         ax_residual.grid(alpha=0.3)
         if row == 0:
-            ax.set_title(f"hydrodynamic torque −Δτ − τ_buoy: {values}", fontsize="small")
-            ax_residual.set_title(
-                f"residuals; unweighted: reduced χ² = {result.redchi_unweighted:.4g} {result.squared_unit}, COD = {result.cod:.4f}",
-                fontsize="small",
-            )
+            ax.set_title("hydrodynamic torque −Δτ − τ_buoy", fontsize="small")
+            ax_residual.set_title("residuals", fontsize="small")
+    # The values and statistics above the panels, wrapped to the figure's width (a fit per link
+    # and direction has dozens of parameters).
+    statistics = f"unweighted: reduced χ² = {result.redchi_unweighted:.4g} {result.squared_unit}, COD = {result.cod:.4f}"
+    figure.suptitle("\n".join(textwrap.wrap(f"{values}; {statistics}", width=150)), fontsize="small")
     return _save(figure, path)
