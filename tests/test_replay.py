@@ -101,8 +101,13 @@ def test_gaps_and_partial_poses_are_refused(tmp_path: Path) -> None:
         replay(log, URDF, HYDRO)
     partial = tmp_path / "partial.csv"
     partial.write_text("time,q1,q2,x,y,z,qw\n" + "".join(f"{float(t)!r},0,0,0,0,0,1\n" for t in np.arange(0.0, 0.2, 0.01)))
-    with pytest.raises(ValueError, match="missing qx, qy, qz"):
+    # The log schema's check of a group given in part (uwml.io.vehicle_columns, as read_log says it).
+    with pytest.raises(ValueError, match=r"partial\.csv: row 1 \(header\), column 'qx': missing column \(the vehicle's orientation"):
         read_vehicle_pose(partial)
+    unturned = tmp_path / "unturned.csv"
+    unturned.write_text("time,q1,q2,x,y,z\n" + "".join(f"{float(t)!r},0,0,0,0,0\n" for t in np.arange(0.0, 0.2, 0.01)))
+    with pytest.raises(ValueError, match=r"unturned\.csv: row 1 \(header\), column 'qw': missing column \(the vehicle's pose needs"):
+        replay(unturned, URDF, HYDRO)
     plain = tmp_path / "plain.csv"
     plain.write_text("time,q1\n0,0\n")
     assert read_vehicle_pose(plain) is None

@@ -190,7 +190,7 @@ def _replay(args: argparse.Namespace) -> int:
     from ..sim.replay import command
 
     settings = {"smoothing": args.smoothing, "max_gap": args.max_gap, "start_window": args.start_window}
-    settings |= {"start_at_rest": args.start_at_rest, "timestep": args.timestep, "integrator": args.integrator}
+    settings |= {"start_at_rest": args.start_at_rest, "timestep": args.timestep, "integrator": args.integrator, "columns": args.columns}
     return command(args.log, args.robot, args.hydro, args.out, parquet=args.parquet, as_json=args.json, **settings)
 
 
@@ -292,18 +292,27 @@ not written (standard output has the rows before it).""",
         help="simulate the vehicle floating freely while its arm follows a log's joint angles (needs uwml[mujoco])",
         formatter_class=formatter,
         description="""The vehicle's response to a recorded arm motion (uwml.sim.replay; docs/model.md section 12.4):
-the description's root floats freely, thrusters off, while the joints follow the log's angles exactly;
-the vehicle's pose and twist over time go to replay.csv (or replay.parquet with --parquet) and a figure,
-replay.png, in --out. When the log also holds the measured pose (x, y, z and qw, qx, qy, qz or roll,
-pitch, yaw), the RMS error of roll, pitch, yaw rate and heave, simulated against measured, is printed
-(--json: as JSON, with the start twist and how the log was read). The log's format and how to join
-streams recorded apart: uwml.sim.replay; how it is cleaned (repeated samples collapsed, the joints'
+the description's root floats freely while the joints follow the log's angles exactly, its thrusters
+driven by the log's commands u1..un (one per thruster of the robot, each held until the next sample,
+as an ESC holds it) or idle without them; the vehicle's pose and twist over time go to replay.csv (or
+replay.parquet with --parquet) and a figure, replay.png, in --out. When the log also holds the measured
+pose (x, y, z and qw, qx, qy, qz or roll, pitch, yaw), the RMS error of roll, pitch, yaw rate and heave,
+simulated against measured, is printed (--json: as JSON, with the start twist, the thrusters and how the
+log was read). A file recorded with other names, signs, offsets, units or in streams is read through a
+column map (--columns, docs/logs.md). The log's format and how to join streams recorded apart:
+uwml.sim.replay; how it is cleaned (repeated samples collapsed, the joints'
 rates from a smoothing fit, gaps, the start twist fitted to the first poses): uwml.sim.replay_inputs
 and docs/simulation.md.""",
         epilog=_EXIT,
     )
     replay.add_argument(
-        "log", nargs="+", help="the joint log (CSV or Parquet): time, q1..qN, optionally the vehicle's pose; or one file per stream"
+        "log",
+        nargs="+",
+        help="the joint log (CSV or Parquet): time, q1..qN, optionally the vehicle's pose and thruster commands u1..un; or one file "
+        "per stream (with --columns: one log, the map's stream without a file)",
+    )
+    replay.add_argument(
+        "--columns", metavar="MAP", help="a column map (TOML) to read LOG as recorded: names, signs, offsets, units, streams (docs/logs.md)"
     )
     replay.add_argument("--robot", required=True, metavar="DESCRIPTION", help="the robot's URDF or MJCF file")
     replay.add_argument("--hydro", default=None, metavar="FILE", help="its hydro file")

@@ -1,30 +1,43 @@
-"""Replaying a recorded arm motion on a floating vehicle (``uwml replay``, :func:`replay`): the
-vehicle floats freely, thrusters off, while the arm's joints follow the log's angles exactly
-(docs/model.md section 12.4); the vehicle's simulated pose and twist over time are the answer,
-held against its measured pose where the log has one. This is how vehicle-manipulator systems
-are identified and validated in pool trials (docs/simulation.md, "Replaying a pool trial").
+"""Replaying a recorded trial on a floating vehicle (``uwml replay``, :func:`replay`): the vehicle
+floats freely while the arm's joints follow the log's angles exactly (docs/model.md section 12.4)
+and its thrusters follow the log's commands, or stay idle without them; the vehicle's simulated
+pose and twist over time are the answer, held against its measured pose where the log has one.
+This is how vehicle-manipulator systems are identified and validated in pool trials
+(docs/simulation.md, "Replaying a pool trial").
 
 The log
 -------
-One file (CSV or Parquet), the joint log format of :mod:`uwml.io.logs`: ``time`` [s], ``q1`` …
-``qN`` (the robot's joints, in its order) [rad or m], and optionally ``qd*``, ``qdd*``. Optionally
-the vehicle's measured pose in the same rows: ``x``, ``y``, ``z`` [m] (world, z up) and either a
-quaternion ``qw``, ``qx``, ``qy``, ``qz`` (world from vehicle) or ``roll``, ``pitch``, ``yaw``
-[rad] (z-y-x Euler angles). Or one file per stream, recorded apart (joint encoders at 500 Hz,
-motion capture at 100 Hz, with jitter), joined on time. How the streams are read and cleaned
-(joined, gaps, repeated samples collapsed, the joints' rates and accelerations from a smoothing
-fit over ``smoothing`` seconds, the start twist fitted over ``start_window`` seconds) is
-:mod:`uwml.sim.replay_inputs`.
+One file (CSV or Parquet) in the log schema (docs/logs.md, :mod:`uwml.io.logs`): ``time`` [s],
+``q1`` … ``qN`` (the robot's joints, in its order) [rad or m], and optionally ``qd*``, ``qdd*``.
+Optionally the vehicle's measured pose in the same rows: ``x``, ``y``, ``z`` [m] (world, z up)
+and either a quaternion ``qw``, ``qx``, ``qy``, ``qz`` (world from vehicle) or ``roll``,
+``pitch``, ``yaw`` [rad] (z-y-x Euler angles); and the thruster commands ``u1`` … ``un``, one per
+thruster of the robot (``robot.thrusters``' order, in each curve's units). Or one file per stream,
+recorded apart (joint encoders at 500 Hz, motion capture at 100 Hz with jitter, the ESCs'
+commands), joined on time. A file recorded with other names, signs, offsets, units or in several
+streams is read through a column map (``columns``, :mod:`uwml.io.column_map`). How the streams
+are read and cleaned (joined, gaps, repeated samples collapsed, the joints' rates and
+accelerations from a smoothing fit over ``smoothing`` seconds, the start twist fitted over
+``start_window`` seconds) is :mod:`uwml.sim.replay_inputs`.
+
+Thrusters
+---------
+Each command sample is held from its time until the next sample (a zero-order hold, as an ESC
+holds the last pulse it got): :meth:`uwml.sim.mujoco.Simulation.command_thrusters` at the step
+that starts at the sample's time, a sample between two steps of the grid given a step of its own
+(:func:`held_commands`). The thrust starts at zero at the first sample and follows the commands
+through each thruster's lag. A log with another number of commands than the robot has thrusters
+is refused, naming both numbers.
 
 What is refused before simulating, naming the file, row and column (a ``UwmlError``): fewer than 4
-samples; a gap between joint samples longer than ``max_gap`` (0.1 s by default); a position beyond
+samples; another number of thruster commands than thrusters; a gap between joint samples longer than ``max_gap`` (0.1 s by default); a position beyond
 ``±MAX_LENGTH`` (1e4 m, docs/domains.md: millimetres, or 1e300); a joint sample outside the
 joint's range (the description's limits, which would fight the replayed motion: an angle offset,
 degrees, another joint order); a revolute joint moving more than half a turn between two samples
 (a glitch, or an angle wrapped at ±π: unwrap it). A simulation that diverges all the same (its
 state no longer finite) is an error naming the time and the log's rows around it.
 
-The simulation starts at the log's first sample (of the span both streams cover), the vehicle at
+The simulation starts at the log's first sample (of the span every stream covers), the vehicle at
 its measured pose with the fitted start twist (or at rest: ``start_at_rest``, or no measured
 pose), the joints on the log's motion, and runs to its last sample: steps of ``timestep`` (the
 description's own by default) on the grid from the first sample, the last one shortened to end
@@ -70,6 +83,43 @@ MAX_TIMESTEP_S = 0.1
 
 
 @dataclass(frozen=True)
+class Thrusters:
+    """The robot's thrusters in a replay: ``count``, how many it has (``robot.thrusters``);
+    ``samples``, the log's command samples held over the replay (0: none, the thrusters idle);
+    ``source``, the file they were read from; ``longest_hold_s``, the longest a command was held
+    [s] (a long one: a logger's dropout, or commands logged only when they change)."""
+
+    count: int
+    samples: int = 0
+    source: str | None = None
+    longest_hold_s: float | None = None
+
+    @property
+    def driven(self) -> bool:
+        """Whether the log's commands drove the thrusters."""
+        return self.samples > 0
+
+    def describe(self) -> str:
+        """The thrusters in words."""
+        if self.driven:
+            return (
+                f"thrusters driven by the log's commands u1 … u{self.count} ({self.samples} samples from {self.source}, each held "
+                f"until the next; the longest held {self.longest_hold_s:.3g} s)"
+            )
+        return f"thrusters idle: the log has no thruster commands (u1 … u{self.count} for the robot's {self.count} thrusters)"
+
+    def as_dict(self) -> dict[str, Any]:
+        """The thrusters for JSON."""
+        return {
+            "count": self.count,
+            "driven": self.driven,
+            "samples": self.samples,
+            "source": self.source,
+            "longest_hold_s": self.longest_hold_s,
+        }
+
+
+@dataclass(frozen=True)
 class Replay:
     """A replay's result: at each ``time`` [s], the vehicle's simulated ``position`` (world, z
     up) [m], ``quaternion`` (world from vehicle, w first) and ``twist`` (MuJoCo's free joint:
@@ -79,7 +129,8 @@ class Replay:
     it was set; ``motion``, the joints' prescribed motion (samples kept after collapsing
     repeats, the smoothing window); ``bridged``, the pose stream's gaps longer than ``max_gap``
     bridged by interpolation (:mod:`uwml.sim.replay_inputs`); ``measured``, the measured pose on
-    the log's time stamps, ``(time, position, quaternion)`` (None without one)."""
+    the log's time stamps, ``(time, position, quaternion)`` (None without one); ``thrusters``,
+    whether the log's commands drove the robot's thrusters (:class:`Thrusters`)."""
 
     time: FloatArray
     position: FloatArray
@@ -90,6 +141,7 @@ class Replay:
     motion: JointMotion | None = None
     bridged: int = 0
     measured: tuple[FloatArray, FloatArray, FloatArray] | None = None
+    thrusters: Thrusters | None = None
 
     def euler(self) -> FloatArray:
         """Roll, pitch, yaw [rad] (z-y-x) of the simulated pose, ``(n, 3)``."""
@@ -101,7 +153,8 @@ class Replay:
         if self.motion is not None:
             motion = {"samples": self.motion.samples, "kept": list(self.motion.kept), "smoothing_s": self.motion.smoothing_s}
         start = None if self.start is None else self.start.as_dict()
-        return {"errors": self.errors, "start": start, "joints": motion, "pose_gaps_bridged": self.bridged}
+        thrusters = None if self.thrusters is None else self.thrusters.as_dict()
+        return {"errors": self.errors, "start": start, "joints": motion, "pose_gaps_bridged": self.bridged, "thrusters": thrusters}
 
 
 def replay(
@@ -116,6 +169,7 @@ def replay(
     start_at_rest: bool = False,
     timestep: float | None = None,
     integrator: str = "euler",
+    columns: Any = None,
     **options: Any,
 ) -> Replay:
     """Replay the joint motion of ``log`` (one file, or several streams:
@@ -127,10 +181,12 @@ def replay(
     samples; ``start_window`` [s]: the pose samples the start twist is fitted over, or
     ``start_at_rest``; ``timestep`` [s] (at most ``MAX_TIMESTEP_S``; None: the description's)
     and ``integrator`` (``"euler"`` or ``"rk4"``) of the simulation; ``options`` as for
-    :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ...). A progress bar on
-    standard error with ``progress``."""
+    :class:`uwml.sim.mujoco.Simulation` (``current``, ``depth``, ...). ``columns``: a column map
+    (:mod:`uwml.io.column_map`; a TOML path, a dict or a ``ColumnMap``) that reads ``log`` as it
+    was recorded, its streams named by the map. A progress bar on standard error with
+    ``progress``."""
     sim = _floating(description, hydro, timestep, integrator, options)
-    streams = read_streams(log, sim.robot.n_joints, max_gap)
+    streams = read_streams(log, sim.robot.n_joints, max_gap, columns)
     return _simulate(sim, streams, str(description), progress, smoothing, start_window, start_at_rest)
 
 
@@ -186,9 +242,53 @@ def step_times(start: float, end: float, timestep: float) -> FloatArray:
     return times
 
 
+def held_commands(times: FloatArray, start: float, targets: FloatArray, timestep: float) -> tuple[FloatArray, NDArray[np.intp]]:
+    """A zero-order hold of commands sampled at ``times`` (increasing, the first at or before
+    ``start``) over a replay stepping from ``start`` to ``targets`` (:func:`step_times`): the step
+    times with every sample time inside the span added, unless within a millionth of ``timestep``
+    of one already there (rounding: it is that one), so that each command starts at its sample;
+    and, for each step, the index of the sample it holds, the last one at or before the step's
+    start."""
+    tolerance = 1e-6 * timestep
+    grid = np.concatenate([[start], targets])
+    inner = times[(times > start + tolerance) & (times < targets[-1] - tolerance)]
+    at = np.searchsorted(grid, inner)
+    near = np.minimum(inner - grid[at - 1], grid[np.minimum(at, grid.size - 1)] - inner) <= tolerance
+    steps = np.union1d(targets, inner[~near])
+    starts = np.concatenate([[start], steps[:-1]])
+    held = np.searchsorted(times, starts + tolerance, side="right") - 1
+    return steps, np.asarray(np.maximum(held, 0), dtype=np.intp)
+
+
+def _commands(
+    streams: Streams, count: int, description: str, start: float, targets: FloatArray, timestep: float
+) -> tuple[FloatArray, NDArray[np.intp] | None, FloatArray, Thrusters]:
+    """The thrusters' schedule of a replay (:func:`held_commands`): ``(step times, the sample each
+    step holds, the log's commands, Thrusters)``; without commands in the log, ``(targets, None,
+    no commands, Thrusters)``. A log with another number of commands than the robot's ``count``
+    thrusters is refused."""
+    if streams.thrusters is None:
+        return targets, None, np.zeros((0, count)), Thrusters(count)
+    times, commands = streams.thrusters
+    if commands.shape[1] != count:
+        raise UwmlError(
+            f"{streams.thruster_source}: row 1 (header), column 'u{min(commands.shape[1], count) + 1}': the log has "
+            f"{commands.shape[1]} thruster commands (u1 … u{commands.shape[1]}), the robot of {description} has {count} thrusters: "
+            "one command per thruster, in the order of robot.thrusters (the hydro file's [[links.NAME.thrusters]])"
+        )
+    steps, held = held_commands(times, start, targets, timestep)
+    used = np.arange(held[0], held[-1] + 1)
+    bounds = np.concatenate([[start], times[used[1:]], [steps[-1]]])
+    drive = Thrusters(count, int(used.size), streams.thruster_source, float(np.max(np.diff(bounds))))
+    return steps, held, commands, drive
+
+
 def _simulate(sim: Any, streams: Streams, description: str, progress: bool, smoothing: float, start_window: float, at_rest: bool) -> Replay:
     """:func:`replay` of a log already read on a floating simulation."""
     recorded, first_row, measured = streams.joints, streams.first_row, streams.pose
+    start_time, timestep = float(recorded.time[0]), float(sim.model.opt.timestep)
+    targets = step_times(start_time, float(recorded.time[-1]), timestep)
+    targets, held, commands, thrusters = _commands(streams, len(sim.robot.thrusters), description, start_time, targets, timestep)
     check_joints(recorded, sim.robot.joints, first_row, description)
     motion = joint_motion(recorded, sim.robot.joints, smoothing, first_row)
     start = start_state(streams, start_window, at_rest)
@@ -201,8 +301,6 @@ def _simulate(sim: Any, streams: Streams, description: str, progress: bool, smoo
         d.qpos[free : free + 3], d.qpos[free + 3 : free + 7] = position[0], quaternion[0]
     d.qvel[dof : dof + 6] = start.twist
     sim.prescribe(list(range(sim.robot.n_joints)), trajectory)
-    timestep = float(m.opt.timestep)
-    targets = step_times(float(motion.time[0]), float(motion.time[-1]), timestep)
     steps = targets.size
     times: list[float] = []
     positions, quaternions, twists = [], [], []
@@ -217,6 +315,8 @@ def _simulate(sim: Any, streams: Streams, description: str, progress: bool, smoo
     bar = _progress(steps) if progress else None
     try:
         for k, target in enumerate(targets):
+            if held is not None and (k == 0 or held[k] != held[k - 1]):
+                sim.command_thrusters(commands[held[k]])  # held from this step on, as an ESC holds it
             m.opt.timestep = target - times[-1]  # the grid's step; the last one lands on the end
             sim.step()
             d.time = float(target)  # the grid's time, not the sum of the steps
@@ -234,7 +334,7 @@ def _simulate(sim: Any, streams: Streams, description: str, progress: bool, smoo
     pose = np.array(positions), np.array(quaternions)
     errors = None if measured is None else _errors(np.array(times), *pose, recorded.time, *measured)
     observed = None if measured is None else (recorded.time, *measured)
-    return Replay(np.array(times), *pose, np.array(twists), errors, start, motion, streams.bridged, observed)
+    return Replay(np.array(times), *pose, np.array(twists), errors, start, motion, streams.bridged, observed, thrusters)
 
 
 def _errors(
@@ -364,6 +464,8 @@ def command(
         )
     if result.bridged:
         print(f"  {result.bridged} gap{'s' if result.bridged > 1 else ''} in the pose stream bridged by interpolation")
+    if result.thrusters is not None and (result.thrusters.count or result.thrusters.driven):
+        print(f"  {result.thrusters.describe()}")
     if result.errors is None:
         print("no measured pose in the log: nothing to compare")
         return 0

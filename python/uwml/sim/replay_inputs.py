@@ -5,10 +5,15 @@ joints' repeated samples collapsed and their motion smoothed, the vehicle's star
 Streams
 -------
 One file holds the joint angles (``q1`` … ``qN``); at most one holds the vehicle's pose (``x``,
-``y``, ``z`` and ``qw``, ``qx``, ``qy``, ``qz`` or ``roll``, ``pitch``, ``yaw``), the same file or
-another with its own ``time``. The pose is resampled linearly onto the joint stream's time stamps
-(``numpy.interp``; the quaternion's sign kept continuous, then normalized) and only the span both
-cover is replayed (:func:`read_streams`).
+``y``, ``z`` and ``qw``, ``qx``, ``qy``, ``qz`` or ``roll``, ``pitch``, ``yaw``) and at most one
+the thruster commands (``u1`` … ``un``), the same file or others with their own ``time``; or the
+streams of a column map (:func:`uwml.io.column_map.read_map_streams`, each file's columns named,
+signed, offset and scaled into the schema's). Each is read and checked as
+:func:`uwml.io.logs.read_log` reads a log (groups complete, Euler angles turned into a
+quaternion, a quaternion of norm 1). The pose is resampled linearly onto the joint stream's time
+stamps (:func:`uwml.io.column_map.resample`: the quaternion's sign kept continuous, then
+normalized); the commands are kept as recorded, to be held sample to sample
+(:mod:`uwml.sim.replay`); only the span every stream covers is replayed (:func:`read_streams`).
 
 Gaps
 ----
@@ -59,7 +64,7 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -68,8 +73,10 @@ from numpy.typing import NDArray
 
 from ..domains import MAX_LENGTH
 from ..errors import UwmlError
-from ..io.logs import Log, _check_file, _header_hint, _parquet_columns, _parquet_table, read_log
-from ..io.sampling import POLYORDER, WINDOW_S, savgol_window
+from ..io.column_map import continuous_quaternion, open_table, read_map_streams, resample
+from ..io.logs import Log, _arrays, _from_columns, _header_hint, _layout, log_rows
+from ..io.sampling import POLYORDER, WINDOW_S, _check_time, savgol_window
+from ..io.vehicle_columns import POSITION, QUATERNION, thruster_columns, vehicle_layout
 from ..plausibility import PlausibilityWarning
 
 __all__ = [
@@ -90,6 +97,9 @@ __all__ = [
 ]
 
 FloatArray = NDArray[np.float64]
+LogPaths = str | os.PathLike[str] | Sequence[str | os.PathLike[str]]
+#: A recorded file: its name, its column names and a reader of named columns.
+Table = tuple[str, list[str], Callable[[Sequence[str]], dict[str, Any]]]
 
 #: The longest step between two joint samples of a replayed log [s] unless chosen (``max_gap``).
 MAX_GAP_S = 0.1
@@ -103,7 +113,6 @@ START_DEGREE = 3
 PLAUSIBLE_ANGULAR_ACCELERATION = 500.0
 #: A prismatic joint's smoothed acceleration beyond this [m/s²] is warned about.
 PLAUSIBLE_LINEAR_ACCELERATION = 50.0
-_POSITION, _QUATERNION, _EULER = ("x", "y", "z"), ("qw", "qx", "qy", "qz"), ("roll", "pitch", "yaw")
 
 
 def _seconds(value: float, name: str) -> float:
@@ -121,92 +130,79 @@ def _euler(quaternion: FloatArray) -> FloatArray:
     return np.stack([roll, pitch, yaw], axis=1)
 
 
-def _quaternion(euler: FloatArray) -> FloatArray:
-    roll, pitch, yaw = (euler[:, k] / 2.0 for k in range(3))
-    cr, sr, cp, sp, cy, sy = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
-    return np.stack(
-        [cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy, cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy], axis=1
-    )
+def _tables(logs: LogPaths, columns: Any) -> list[Table]:
+    """The replay's recorded files, each ``(name, header, reader of named columns)``: the files
+    ``logs`` as they are (:func:`uwml.io.column_map.open_table`), or the streams of the column map
+    ``columns`` (:func:`uwml.io.column_map.read_map_streams`), their uwml columns and time [s]
+    read through it, named ``FILE (through MAP)``."""
+    paths = [logs] if isinstance(logs, (str, os.PathLike)) else list(logs)
+    if columns is None:
+        if not paths:
+            raise ValueError("replay needs a log")
+        return [open_table(path) for path in paths]
+    if len(paths) > 1:
+        raise ValueError(
+            f"with a column map, replay reads one log (the map's stream without a file) and the files its [[streams]] name, "
+            f"got {len(paths)}: {[str(p) for p in paths]}"
+        )
+    column_map, streams = read_map_streams(paths[0] if paths else None, columns)
+    tables: list[Table] = []
+    for name, time, values in streams:
+        table = {"time": time} | values
+        tables.append((f"{name} (through {column_map.source})", list(table), _reader(table)))
+    return tables
 
 
-def _table(path: str | os.PathLike[str]) -> tuple[list[str], Callable[[Sequence[str]], dict[str, Any]]]:
-    """A log's column names and a reader of named columns (CSV or Parquet by the suffix): one read
-    of the file, whatever is asked of it after."""
-    source = str(path)
-    _check_file(path, source)
-    if source.lower().endswith(".parquet"):
-        table = _parquet_table(path, source)
-
-        def read(names: Sequence[str]) -> dict[str, Any]:
-            return _parquet_columns(table, names, source)  # numbers only, finite, by name
-
-        return list(table.column_names), read
-    from ..io._arrow_csv import CsvTable
-
-    csv = CsvTable(path, f"{source}: ", "time")
-    return list(csv.header), csv.read
+def _reader(table: dict[str, FloatArray]) -> Callable[[Sequence[str]], dict[str, Any]]:
+    """The reader of named columns of a stream already read."""
+    return lambda names: {name: table[name] for name in names}
 
 
 def read_vehicle_pose(path: str | os.PathLike[str]) -> tuple[FloatArray, FloatArray] | None:
     """The measured pose in a log (see the module): ``(position (n, 3), quaternion (n, 4))``, or
     None when the log has no ``x`` column. A pose given in part (``x`` without ``y``, a quaternion
     without ``qz``, neither a quaternion nor Euler angles) is an error naming the columns."""
-    return _pose(str(path), *_table(path))
-
-
-def _pose(source: str, header: list[str], read: Callable[[Sequence[str]], dict[str, Any]]) -> tuple[FloatArray, FloatArray] | None:
-    """:func:`read_vehicle_pose` of a table already open."""
-    present = set(header)
-    if "x" not in present:
+    source, header, read = open_table(path)
+    if "x" not in header:
         return None
-    orientation = _QUATERNION if "qw" in present else _EULER
-    missing = [name for name in (*_POSITION, *orientation) if name not in present]
-    if missing:
+    return _pose(source, _samples((source, header, read), ("base_position", "base_orientation"))[1])
+
+
+def _samples(table: Table, fields: Sequence[str]) -> tuple[FloatArray, dict[str, FloatArray]]:
+    """The time [s] and the vehicle's ``fields`` (:data:`uwml.io.vehicle_columns.FIELDS`' names, or
+    ``"thruster_commands"``) of a stream other than the joints', as :func:`uwml.io.logs.read_log`
+    reads them: groups complete, Euler angles turned into a quaternion, a quaternion of norm 1."""
+    source, header, read = table
+    if "time" not in header:
+        raise ValueError(f"{source}: row 1 (header), column 'time': missing column{_header_hint(header)}")
+    layout = vehicle_layout(header, source) | {"thruster_commands": thruster_columns(header, source)}
+    families = {field: layout[field] for field in fields if layout.get(field)}
+    columns = read(["time", *(name for names in families.values() for name in names)])
+    time = np.asarray(columns["time"], dtype=np.float64)
+    _check_time(time, source)
+    if time.size < 2:
+        raise UwmlError(f"{source}: {time.size} sample{'s' if time.size != 1 else ''}: at least 2 to interpolate or hold")
+    return time, _arrays(columns, families, source, 2)
+
+
+def _pose(source: str, fields: Mapping[str, FloatArray | None]) -> tuple[FloatArray, FloatArray]:
+    """The measured pose of a stream's ``base_position`` and ``base_orientation`` (its first
+    sample the file's row 2), checked: an orientation given, positions within ``MAX_LENGTH``;
+    the quaternion normalized and kept on one sign (:func:`uwml.io.column_map.continuous_quaternion`)."""
+    position, quaternion = fields.get("base_position"), fields.get("base_orientation")
+    if position is None or quaternion is None:
         raise ValueError(
-            f"{source}: the vehicle's pose needs x, y, z and qw, qx, qy, qz (or roll, pitch, yaw); missing {', '.join(missing)}"
+            f"{source}: row 1 (header), column 'qw': missing column (the vehicle's pose needs x, y, z and qw, qx, qy, qz "
+            "or roll, pitch, yaw)"
         )
-    columns = read((*_POSITION, *orientation))
-    values = {name: np.asarray(columns[name], dtype=np.float64) for name in (*_POSITION, *orientation)}
-    for name, column in values.items():
-        if not np.all(np.isfinite(column)):
-            raise ValueError(f"{source}: column {name!r} must hold finite numbers (row {int(np.argmin(np.isfinite(column))) + 2})")
-    for name in _POSITION:
-        far = np.flatnonzero(np.abs(values[name]) > MAX_LENGTH)
+    for k, name in enumerate(POSITION):
+        far = np.flatnonzero(np.abs(position[:, k]) > MAX_LENGTH)
         if far.size:
             raise UwmlError(
-                f"{source}: row {int(far[0]) + 2}, column {name!r}: the vehicle's position {values[name][far[0]]:g} m is beyond "
+                f"{source}: row {int(far[0]) + 2}, column {name!r}: the vehicle's position {position[far[0], k]:g} m is beyond "
                 f"±{MAX_LENGTH:g} m (uwml.domains.MAX_LENGTH, docs/domains.md): millimetres, or not a position?"
             )
-    position = np.stack([values[name] for name in _POSITION], axis=1)
-    angles = np.stack([values[name] for name in orientation], axis=1)
-    if orientation == _EULER:
-        return position, _continuous(_quaternion(angles))
-    with np.errstate(over="ignore"):  # a huge quaternion's norm overflows: not a unit one
-        norms = np.linalg.norm(angles, axis=1)
-    if np.any(np.abs(norms - 1.0) > 1e-3):
-        row = int(np.argmax(np.abs(norms - 1.0))) + 2
-        raise ValueError(f"{source}: the quaternion (qw, qx, qy, qz) of row {row} is not of norm 1 (within 1e-3): {norms[row - 2]:.6g}")
-    return position, _continuous(angles / norms[:, None])
-
-
-def _continuous(quaternion: FloatArray) -> FloatArray:
-    """Each quaternion on the sign nearest the one before it (q and −q are the same turn), so that
-    slopes and interpolation between samples follow the turn, not a sign flip."""
-    dots = np.einsum("ij,ij->i", quaternion[1:], quaternion[:-1])
-    signs = np.concatenate([[1.0], np.where(dots < 0.0, -1.0, 1.0)])
-    return np.asarray(quaternion * np.cumprod(signs)[:, None], dtype=np.float64)
-
-
-def _time(source: str, header: list[str], read: Callable[[Sequence[str]], dict[str, Any]]) -> FloatArray:
-    """The ``time`` column of a pose stream's table, checked."""
-    if "time" not in header:
-        raise ValueError(f"{source}: no column 'time'")
-    time = np.asarray(read(("time",))["time"], dtype=np.float64)
-    if time.size < 2:
-        raise UwmlError(f"{source}: {time.size} sample{'s' if time.size != 1 else ''} of the pose: at least 2 to interpolate")
-    if not np.all(np.isfinite(time)) or np.any(np.diff(time) <= 0.0):
-        raise ValueError(f"{source}: column 'time' must hold finite, strictly increasing times")
-    return time
+    return position, continuous_quaternion(quaternion / np.linalg.norm(quaternion, axis=1, keepdims=True))
 
 
 def _gaps(time: FloatArray, max_gap: float) -> NDArray[np.intp]:
@@ -232,7 +228,9 @@ class Streams:
     replayed span, whose first sample is row ``first_row`` of its file; ``pose``, the measured
     ``(position, quaternion)`` on the joints' time stamps (None without one); ``pose_samples``,
     the pose stream as recorded, ``(time, position, quaternion)``, read from ``pose_source``;
-    ``bridged``, the pose stream's gaps longer than ``max_gap`` that its interpolation bridged."""
+    ``bridged``, the pose stream's gaps longer than ``max_gap`` that its interpolation bridged;
+    ``thrusters``, the thruster commands as recorded, ``(time, commands (n, thrusters))``, read
+    from ``thruster_source`` (None: the log has none)."""
 
     joints: Log
     first_row: int
@@ -240,73 +238,95 @@ class Streams:
     pose_samples: tuple[FloatArray, FloatArray, FloatArray] | None = None
     pose_source: str | None = None
     bridged: int = 0
+    thrusters: tuple[FloatArray, FloatArray] | None = None
+    thruster_source: str | None = None
 
 
-def read_streams(
-    logs: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], n_joints: int | None, max_gap: float = MAX_GAP_S
-) -> Streams:
-    """The joint stream and the pose stream of one file or several, joined on time (the module):
-    the file with the ``q`` columns is the joint stream; the one with ``x``, the pose stream,
-    resampled linearly onto the joint stream's time stamps within the span both cover. Gaps in the
-    joints over that span longer than ``max_gap`` [s] are refused; the pose's are bridged."""
+def _one(tables: list[Table], what: str) -> int | None:
+    """The index of the one table of ``tables`` that holds ``what`` (:data:`_HELD`), None if none
+    does; two or more are refused."""
+    found = [k for k, table in enumerate(tables) if _holds(table, what)]
+    if len(found) > 1:
+        raise ValueError(f"at most one file may hold {_HELD[what]}, got {len(found)}: {[tables[k][0] for k in found]}")
+    return found[0] if found else None
+
+
+#: What a replay's stream holds, by the column that says so.
+_HELD = {"q1": "the joint angles (q1 … qN)", "x": "the vehicle's pose (x, y, z, ...)", "u1": "the thruster commands (u1 … un)"}
+
+
+def _holds(table: Table, what: str) -> bool:
+    """Whether a table's header holds ``what`` (:data:`_HELD`; thruster commands checked:
+    :func:`uwml.io.vehicle_columns.thruster_columns`)."""
+    source, header, _ = table
+    return bool(thruster_columns(header, source)) if what == "u1" else what in header
+
+
+def read_streams(logs: LogPaths, n_joints: int | None, max_gap: float = MAX_GAP_S, columns: Any = None) -> Streams:
+    """The joint stream, the pose stream and the thruster commands of one file or several (or of
+    the streams of the column map ``columns``), joined on time (the module): the file with the
+    ``q`` columns is the joint stream; the one with ``x``, the pose stream, resampled linearly
+    onto the joint stream's time stamps within the span every stream covers; the one with ``u1``
+    … ``un``, the commands, kept as recorded (held from sample to sample). Gaps in the joints
+    over that span longer than ``max_gap`` [s] are refused; the pose's are bridged."""
     max_gap = _seconds(max_gap, "max_gap")
-    paths = [logs] if isinstance(logs, (str, os.PathLike)) else list(logs)
-    if not paths:
-        raise ValueError("replay needs a log")
-    tables = [_table(path) for path in paths]
-    joint_files = [path for path, (header, _) in zip(paths, tables, strict=True) if "q1" in header]
-    pose_tables = [(path, table) for path, table in zip(paths, tables, strict=True) if "x" in table[0]]
-    pose_files = [path for path, _ in pose_tables]
-    if not joint_files:
-        which = [
-            f"{path}: row 1 (header), column 'q1': missing column{_header_hint(header)}"
-            for path, (header, _) in zip(paths, tables, strict=True)
-        ]
+    tables = _tables(logs, columns)
+    if not any(_holds(table, "q1") for table in tables):
+        which = [f"{source}: row 1 (header), column 'q1': missing column{_header_hint(header)}" for source, header, _ in tables]
         raise UwmlError(f"{'; '.join(which)}; replay needs exactly one file with the joint angles (q1 … qN)")
-    for path, (header, _) in zip(paths, tables, strict=True):
-        if "q1" not in header and "x" not in header:
+    for table in tables:
+        if not any(_holds(table, what) for what in _HELD):
             raise UwmlError(
-                f"{path}: row 1 (header): neither joint angles (q1 … qN) nor a pose (x, y, z, ...) to replay{_header_hint(header)}"
+                f"{table[0]}: row 1 (header): neither joint angles (q1 … qN) nor a pose (x, y, z, ...) nor thruster commands "
+                f"(u1 … un) to replay{_header_hint(table[1])}"
             )
-    if len(joint_files) > 1:
-        raise ValueError(
-            f"replay needs exactly one file with the joint angles (q1, ...), got {len(joint_files)}: {[str(p) for p in joint_files]}"
-        )
-    if len(pose_files) > 1:
-        raise ValueError(f"at most one file may hold the vehicle's pose (x, y, z, ...), got {[str(p) for p in pose_files]}")
-    recorded: Log = read_log(joint_files[0], n_joints=n_joints)
+    j, p, u = (_one(tables, what) for what in _HELD)
+    assert j is not None  # one table holds q1: above
+    source, header, read = tables[j]
+    n, families, names = _layout(header, n_joints, source)
+    recorded = _from_columns(read(names), n, families, source)
     if recorded.n_samples < 4:
-        raise UwmlError(
-            f"{recorded.source}: {recorded.n_samples} sample{'s' if recorded.n_samples != 1 else ''}: a replay needs at least 4"
-        )
-    if not pose_files:
-        _check_gaps(recorded.time, recorded.source, max_gap, 2)
-        return Streams(recorded, 2)
-    pose = _pose(str(pose_files[0]), *pose_tables[0][1])
-    if pose is None:  # its header has x: read_vehicle_pose returns one
-        raise ValueError(f"{pose_files[0]}: no vehicle pose")
-    if pose_files[0] == joint_files[0]:
-        _check_gaps(recorded.time, recorded.source, max_gap, 2)
-        return Streams(recorded, 2, pose, (recorded.time, *pose), recorded.source)
-    pose_time = _time(str(pose_files[0]), *pose_tables[0][1])
-    inside = (recorded.time >= pose_time[0]) & (recorded.time <= pose_time[-1])
+        raise UwmlError(f"{source}: {recorded.n_samples} sample{'s' if recorded.n_samples != 1 else ''}: a replay needs at least 4")
+    apart = sorted({k for k in (p, u) if k is not None and k != j})
+    read_apart = {k: _samples(tables[k], ("base_position", "base_orientation", "thruster_commands")) for k in apart}
+    inside = np.ones(recorded.n_samples, dtype=bool)
+    for time, _ in read_apart.values():
+        inside &= (recorded.time >= time[0]) & (recorded.time <= time[-1])
     if np.count_nonzero(inside) < 4:
-        raise ValueError(f"{pose_files[0]} and {joint_files[0]} share fewer than 4 joint samples in time: nothing to replay")
+        others = " and ".join(tables[k][0] for k in read_apart)
+        raise ValueError(f"{others} and {source} share fewer than 4 joint samples in time: nothing to replay")
+    first = int(np.argmax(inside))
+    rows = slice(first, first + int(np.count_nonzero(inside)))  # the span every stream covers: one run of rows
+    joints = log_rows(recorded, rows)
+    _check_gaps(joints.time, source, max_gap, 2 + first)
+    pose, pose_samples, bridged = None, None, 0
+    if p == j:
+        position, quaternion = _pose(source, {"base_position": recorded.base_position, "base_orientation": recorded.base_orientation})
+        pose, pose_samples = (position[rows], quaternion[rows]), (recorded.time, position, quaternion)
+    elif p is not None:
+        pose_samples = (read_apart[p][0], *_pose(tables[p][0], read_apart[p][1]))
+        pose, bridged = _on_joints(joints.time, pose_samples, max_gap)
+    thrusters = None
+    if u is not None:
+        time, commands = (
+            (recorded.time, recorded.thruster_commands) if u == j else (read_apart[u][0], read_apart[u][1]["thruster_commands"])
+        )
+        assert commands is not None  # the header has u1: read_log's layout reads them
+        thrusters = (time, commands)
+    named = [None if k is None else tables[k][0] for k in (p, u)]
+    return Streams(joints, 2 + first, pose, pose_samples, named[0], bridged, thrusters, named[1])
 
-    def keep(a: FloatArray | None) -> FloatArray | None:
-        return None if a is None else a[inside]
 
-    first_row = 2 + int(np.argmax(inside))
-    recorded = Log(recorded.time[inside], recorded.q[inside], keep(recorded.qd), keep(recorded.qdd), source=recorded.source)
-    _check_gaps(recorded.time, recorded.source, max_gap, first_row)
-    # The pose's quaternions are on one side already (_continuous): interpolated, then normalized.
-    position, quaternion = pose
-    on_joints = np.stack([np.interp(recorded.time, pose_time, position[:, k]) for k in range(3)], axis=1)
-    turns = np.stack([np.interp(recorded.time, pose_time, quaternion[:, k]) for k in range(4)], axis=1)
-    spanned = (pose_time[1:] > recorded.time[0]) & (pose_time[:-1] < recorded.time[-1])
+def _on_joints(
+    time: FloatArray, samples: tuple[FloatArray, FloatArray, FloatArray], max_gap: float
+) -> tuple[tuple[FloatArray, FloatArray], int]:
+    """A separate pose stream's ``samples`` on the joints' ``time`` (:func:`uwml.io.column_map.resample`:
+    the quaternion kept on one sign, then normalized), and its gaps longer than ``max_gap`` bridged."""
+    pose_time, position, quaternion = samples
+    at = resample(time, pose_time, dict(zip((*POSITION, *QUATERNION), np.column_stack([position, quaternion]).T, strict=True)))
+    spanned = (pose_time[1:] > time[0]) & (pose_time[:-1] < time[-1])
     bridged = int(np.count_nonzero((np.diff(pose_time) > max_gap) & spanned))
-    on_joints_pose = (on_joints, turns / np.linalg.norm(turns, axis=1, keepdims=True))
-    return Streams(recorded, first_row, on_joints_pose, (pose_time, position, quaternion), str(pose_files[0]), bridged)
+    return (np.column_stack([at[c] for c in POSITION]), np.column_stack([at[c] for c in QUATERNION])), bridged
 
 
 def check_joints(recorded: Log, joints: Sequence[Any], first_row: int, description: str) -> None:
