@@ -163,7 +163,9 @@ def _body(
     if entry is not None:
         body.items = [(item, rotation @ np.asarray(item.position) + offset) for item in entry.items]
         body.thrusters = [
-            dataclasses.replace(t, position=_t(rotation @ np.asarray(t.position) + offset), direction=_t(rotation @ np.asarray(t.direction)))
+            dataclasses.replace(
+                t, position=_t(rotation @ np.asarray(t.position) + offset), direction=_t(rotation @ np.asarray(t.direction))
+            )
             for t in entry.thrusters
         ]
     if entry is not None and entry.dry:
