@@ -27,7 +27,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicSpline
 
 __all__ = ["PrescribedJoints", "SineTrajectory", "Trajectory"]
 
@@ -82,6 +81,8 @@ class Trajectory:
         angles = _samples(positions, "q", shape)
         assert angles is not None  # given
         velocities, accelerations = _samples(qd, "qd", shape), _samples(qdd, "qdd", shape)
+        from scipy.interpolate import CubicSpline  # here: scipy takes a while to import
+
         spline = CubicSpline(t, angles, axis=0)
         rate = spline.derivative(1) if velocities is None else CubicSpline(t, velocities, axis=0)
         acceleration = (
