@@ -74,7 +74,7 @@ def test_a_pushed_vehicle_reaches_the_papers_surge_speed_in_simulation() -> None
     model, robot = model_and_robot(URDF, HYDRO)  # floating: the hydro file's [base]
     model.opt.gravity[:] = 0.0
     sim = Simulation(model, robot, water=uwml.Water(1000.0, 0.0))
-    sim.prescribe(["shoulder", "elbow"], Trajectory.of(lambda t: (np.zeros(2), np.zeros(2), np.zeros(2)), 2))
+    sim.prescribe(["shoulder", "elbow"], Trajectory.of(lambda t: (np.zeros(2), np.zeros(2), np.zeros(2)), joints=2))
     hull = mujoco.mj_name2id(sim.model, mujoco.mjtObj.mjOBJ_BODY, "hull")
     push = 20.0
     for _ in range(8000):

@@ -32,7 +32,7 @@ def pool_trial(path: Path, seconds: float = 2.0, euler: bool = False) -> np.ndar
     """A log of the arm waving and the vehicle's answer, sampled at 100 Hz (the simulation's
     every fifth step at 2 ms): joint angles and the vehicle's pose. Returns the heave."""
     sim = Simulation.from_file(URDF, HYDRO)
-    sim.prescribe(["shoulder", "elbow"], Trajectory.of(waving, 2))
+    sim.prescribe(["shoulder", "elbow"], Trajectory.of(waving, joints=2))
     rows = []
     steps = round(seconds / sim.model.opt.timestep)
     for k in range(steps + 1):

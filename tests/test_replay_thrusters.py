@@ -63,7 +63,7 @@ def trial() -> dict[str, np.ndarray]:
     """The trial, 2 s sampled at 100 Hz (every fifth 2 ms step): time [s], joint angles, rates and
     accelerations, the vehicle's pose and the commands held from each sample on."""
     sim = Simulation.from_file(URDF, HYDRO)
-    sim.prescribe(["shoulder", "elbow"], Trajectory.of(waving, 2))
+    sim.prescribe(["shoulder", "elbow"], Trajectory.of(waving, joints=2))
     h = sim.model.opt.timestep
     changes = {round(t / h): np.array(u) for t, u in SCHEDULE}
     rows, steps = [], round(2.0 / h)

@@ -57,7 +57,7 @@ def arm_simulation(integrator: str) -> Simulation:
 @pytest.mark.parametrize("integrator", ["euler", "rk4"])
 def test_the_arm_follows_its_motion_and_the_vehicle_keeps_the_momentum(integrator: str) -> None:
     sim = arm_simulation(integrator)
-    sim.prescribe(["shoulder", "elbow", "gripper"], Trajectory.of(waving, 3))
+    sim.prescribe(["shoulder", "elbow", "gripper"], Trajectory.of(waving, joints=3))
     dofs = sim._joint_dofs
     start_linear, start_angular = momentum(sim)
     worst = 0.0
@@ -109,14 +109,14 @@ def test_a_clock_past_the_end_by_rounding_reads_the_end() -> None:
 @pytest.mark.parametrize(
     "call, error, message",
     [
-        (lambda sim: sim.prescribe(["wrist"], Trajectory.of(waving, 3)), ValueError, r"no joint 'wrist' in the robot"),
-        (lambda sim: sim.prescribe(["shoulder", "shoulder"], Trajectory.of(waving, 2)), ValueError, "each prescribed joint once"),
-        (lambda sim: sim.prescribe(["shoulder"], Trajectory.of(waving, 3)), ValueError, "the motion is of 3 joints, 1 are prescribed"),
+        (lambda sim: sim.prescribe(["wrist"], Trajectory.of(waving, joints=3)), ValueError, r"no joint 'wrist' in the robot"),
+        (lambda sim: sim.prescribe(["shoulder", "shoulder"], Trajectory.of(waving, joints=2)), ValueError, "each prescribed joint once"),
+        (lambda sim: sim.prescribe(["shoulder"], Trajectory.of(waving, joints=3)), ValueError, "the motion is of 3 joints, 1 are prescribed"),
         (lambda sim: sim.prescribe(["shoulder"], waving), TypeError, "motion must be a uwml.sim.prescribed.Trajectory"),
         (lambda sim: Trajectory([0, 1, 1, 2], [0, 0, 0, 0]), ValueError, "strictly increasing"),
         (lambda sim: Trajectory(np.arange(5.0), np.zeros((5, 2)), qd=np.zeros((4, 2))), ValueError, r"qd must have shape \(5, 2\)"),
         (
-            lambda sim: sim.prescribe([0], Trajectory.of(lambda t: (np.nan, 0.0, 0.0), 1)),
+            lambda sim: sim.prescribe([0], Trajectory.of(lambda t: (np.nan, 0.0, 0.0), joints=1)),
             ValueError,
             "q at t = 0 s must be 1 finite numbers",
         ),
@@ -138,7 +138,7 @@ def test_a_motion_of_samples_is_imposed_natively_as_its_spline(integrator: str) 
     sampled = Trajectory(t, q)
     native, called = arm_simulation(integrator), arm_simulation(integrator)
     native.prescribe(["shoulder", "elbow", "gripper"], sampled)
-    called.prescribe(["shoulder", "elbow", "gripper"], Trajectory.of(sampled, 3))
+    called.prescribe(["shoulder", "elbow", "gripper"], Trajectory.of(sampled, joints=3))
     for _ in range(1000):
         native.step()
         called.step()
@@ -151,3 +151,10 @@ def test_a_motion_of_samples_is_imposed_natively_as_its_spline(integrator: str) 
     assert np.abs(native.data.qvel[:6]).max() > 1e-3
     native.prescribe(["shoulder"], None)
     assert native.prescribed_torque.shape == (0,)
+
+
+def test_the_joint_count_of_a_motion_function_is_a_keyword() -> None:
+    """``Trajectory.of(f, 2)`` read like a duration of 2 s: the count must be named."""
+    with pytest.raises(TypeError):
+        Trajectory.of(waving, 3)  # type: ignore[misc]
+    assert Trajectory.of(waving, joints=3).joints == 3

@@ -57,7 +57,7 @@ class Trajectory:
     the cubic splines of those given (``qd`` and ``qdd`` given: each its own spline; not given:
     the derivatives of ``q``'s spline, which is "not-a-knot" like scipy's default). Outside the
     samples' span the motion is refused, not extrapolated (a time past an end by no more than a
-    simulation clock's rounding, :meth:`rounding`, is that end). ``Trajectory.of(function, k)``: any
+    simulation clock's rounding, :meth:`rounding`, is that end). ``Trajectory.of(function, joints=k)``: any
     callable ``t -> (q, qd, qdd)`` of ``k`` numbers each."""
 
     joints: int
@@ -115,8 +115,9 @@ class Trajectory:
         return 1e-9 * max(self.end - self.start, 1.0) + 64.0 * float(np.spacing(max(abs(self.start), abs(self.end))))
 
     @classmethod
-    def of(cls, function: MotionFunction, joints: int) -> Trajectory:
-        """The motion of ``joints`` joints given by ``function(t) -> (q, qd, qdd)``, at any time."""
+    def of(cls, function: MotionFunction, *, joints: int) -> Trajectory:
+        """The motion of ``joints`` joints given by ``function(t) -> (q, qd, qdd)``, at any time
+        (``joints`` a keyword: a bare number would read as a duration)."""
         if not callable(function):
             raise TypeError(f"the motion must be a callable t -> (q, qd, qdd), got {type(function).__name__}")
         if isinstance(joints, bool) or not isinstance(joints, int) or joints < 1:
