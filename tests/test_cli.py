@@ -123,13 +123,13 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
     result = run_uwml("torques", path, "--out", out, "--cd", "1.8", "--cm", "0.7")
     assert result.returncode == 0, result.stderr
     header, table = read_csv(out)
-    assert header == ["time"] + [f"{f}{k}" for f in ("drag", "added_mass", "buoyancy") for k in (1, 2, 3)]
-    assert table.shape == (experiment.n_samples, 10)
+    assert header == ["time"] + [f"{f}{k}" for f in ("drag", "added_mass", "buoyancy", "total") for k in (1, 2, 3)]
+    assert table.shape == (experiment.n_samples, 13)
     expected = LEG.hydro(experiment.q, experiment.qd, experiment.qdd, cd=1.8, cm=0.7, water=uwml.Water(density=1025.0))  # sea water
     # Numbers are written in their shortest round-trip form: what is read back is the library's
     # float64, bit for bit.
     np.testing.assert_array_equal(table[:, 0], experiment.time)
-    for i, name in enumerate(("drag", "added_mass", "buoyancy")):
+    for i, name in enumerate(("drag", "added_mass", "buoyancy", "total")):
         np.testing.assert_array_equal(table[:, 1 + 3 * i : 4 + 3 * i], getattr(expected, name), err_msg=name)
 
 
@@ -150,7 +150,8 @@ def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
     result = run_uwml("torques", path, "--robot", model, "--joints", "7", "--out", out)
     assert result.returncode == 0, result.stderr
     header, table = read_csv(out)
-    assert header[-6:] == ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] and table.shape == (50, 1 + 21 + 6)
+    assert header[-6:] == ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] and table.shape == (50, 1 + 28 + 6)
+    assert "base_fx..base_mz: the water's wrench on the robot" in result.stderr and "not the weight" in result.stderr
     expected = arm.hydro(q, qd, qdd)  # the segments' own coefficients
     np.testing.assert_allclose(table[:, 1:8], expected.drag, rtol=1e-10, atol=1e-10)
     np.testing.assert_allclose(table[:, -6:], expected.base.total, rtol=1e-10, atol=1e-9)

@@ -98,7 +98,7 @@ def _torques(args: argparse.Namespace) -> int:
         raise ValueError(
             f"{args.log}: row 1 (header), column 'q{min(n_joints, leg.n_joints) + 1}': the log has {n_joints} joints, {what} {leg.n_joints}"
         )
-    families = ["drag", "added_mass", "buoyancy"] + (["visc", "seal", "current", "total"] if args.losses else [])
+    families = ["drag", "added_mass", "buoyancy"] + (["visc", "seal", "current"] if args.losses else []) + ["total"]
     names = ["time"] + [f"{family}{k}" for family in families for k in range(1, n_joints + 1)]
     base_names = ["base_fx", "base_fy", "base_fz", "base_mx", "base_my", "base_mz"] if args.robot is not None else []
     names += base_names
@@ -159,6 +159,12 @@ def _torques(args: argparse.Namespace) -> int:
             os.remove(partial)
     if out is not None:
         print(f"uwml torques: {n} rows, {len(names)} columns written to {out}", file=sys.stderr)
+        if base_names:
+            print(
+                "uwml torques: base_fx..base_mz: the water's wrench on the robot (drag, added mass and the gross buoyancy; "
+                "not the weight), about the base origin in base axes",
+                file=sys.stderr,
+            )
     return 0
 
 
@@ -207,10 +213,12 @@ def add_robot_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -
 Torque columns are not needed.
 
 Output (CSV, to FILE or standard output; Parquet if FILE ends in .parquet): columns time,
-drag1..N, added_mass1..N, buoyancy1..N [N·m], and with --losses visc1..N, seal1..N [N·m],
-current1..N [A] and total1..N [N·m] (= drag + added mass + buoyancy + visc + seal). With
---robot (a uwml model file, a URDF or an MJCF), six more columns base_fx..base_mz: the hydrodynamic
-force [N] and moment [N·m] on the base (about its origin). The base moves as the log's vehicle
+drag1..N, added_mass1..N, buoyancy1..N [N·m], with --losses visc1..N, seal1..N [N·m] and
+current1..N [A], and total1..N [N·m] (= drag + added mass + buoyancy, + visc + seal with
+--losses; the weight, gravity, is not in it). With --robot (a uwml model file, a URDF or an MJCF),
+six more columns base_fx..base_mz: the water's force [N] and moment [N·m] on the whole robot, about
+the base origin in base axes: drag + added mass + the gross buoyancy ρ V g (with Froude-Krylov),
+not net of the weight (base_fz of a vehicle at rest is its buoyancy, upwards). The base moves as the log's vehicle
 columns say (orientation, twist u..r and its rate; docs/logs.md) where the robot's base floats (a
 free root, or [base] floating = true in its hydro file; a model file with a base body), and
 standard error names the columns used; on a fixed base (the paper's leg too) they are named as
