@@ -29,6 +29,12 @@ the parameter's bounds) or ``choice`` (``values``). Every error names the file a
 A file setting (the ``robot`` scenario's description and hydro file) is read for its digest
 (SHA-256 of its bytes, :attr:`StudyConfig.inputs`) as well as its path: the study's fingerprint
 covers both, so a study does not resume over a robot that changed.
+
+A scenario of one's own (``kind = "custom"``, :mod:`uwml.study.custom`) names its function
+(``function = "package.module:function"``, imported here to check it; its module's file is a
+file setting, ``function_file``) and its ``metrics`` (a list of names); its other settings and
+its parameters take any names, each a finite number or a string (a grid's values all one or the
+other; a distribution ``uniform`` or ``normal`` over any finite numbers, or ``choice``).
 """
 
 from __future__ import annotations
@@ -46,12 +52,16 @@ from typing import Any
 import numpy as np
 
 from ..errors import UwmlError
-from .scenarios import PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_names
+from .custom import OWN_SETTINGS, RESERVED, check_metrics, function_file, parse, resolve
+from .scenarios import DEFAULTS, PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_names
+from .vehicle import check_vehicle
 
 __all__ = ["MAX_RUNS", "ConfigError", "Distribution", "StudyConfig", "load", "loads"]
 
 #: The most runs a study may have.
 MAX_RUNS = 10_000_000
+#: The kind of a custom scenario's settings and parameters: a finite number or a string.
+ANY = "any"
 
 
 class ConfigError(UwmlError):
@@ -179,8 +189,16 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
     allowed = PARAMETERS[kind]
     settings: dict[str, Any] = {}
     inputs: dict[str, str] = {}
+    custom = kind == "custom"
     for key, value in scenario.items():
-        if key == "kind":
+        if key == "kind" or (custom and key == "metrics"):  # the metrics: once the parameters are known
+            continue
+        if custom and key == "function":
+            settings[key] = _function(value, inputs, settings, source)
+            continue
+        if custom:
+            _custom_name(key, f"scenario.{key}", source)
+            settings[key] = _value(value, ANY, f"scenario.{key}", source)
             continue
         if key not in allowed:
             raise ConfigError(f"{source}: key 'scenario.{key}': unknown setting (a {kind} run takes {', '.join(allowed)})")
@@ -193,26 +211,36 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
         else:
             settings[key] = _value(value, allowed[key], f"scenario.{key}", source)
     for key in REQUIRED[kind]:
-        if key not in settings:
+        if key not in settings and not (custom and key == "metrics" and key in scenario):
             raise ConfigError(f"{source}: key 'scenario.{key}': missing (a {kind} run needs it)")
     grid: dict[str, list[Any]] = {}
     distributions: dict[str, Distribution] = {}
     for key, value in _table(table, "parameters", source).items():
         where = f"parameters.{key}"
-        if key not in allowed:
+        if custom:
+            _custom_name(key, where, source)
+        elif key not in allowed:
             raise ConfigError(f"{source}: key '{where}': unknown parameter (a {kind} run takes {', '.join(allowed)})")
         if key in settings:
             raise ConfigError(f"{source}: key '{where}': also set in [scenario]; give it once")
-        if allowed[key] == PATH:
+        value_kind = ANY if custom else allowed[key]
+        if value_kind == PATH:
             raise ConfigError(f"{source}: key '{where}': a file is a setting of [scenario], not a parameter")
         if isinstance(value, list):
             if not value:
                 raise ConfigError(f"{source}: key '{where}': an empty grid")
-            grid[key] = [_value(v, allowed[key], f"{where}[{i}]", source) for i, v in enumerate(value)]
+            grid[key] = _alike([_value(v, value_kind, f"{where}[{i}]", source) for i, v in enumerate(value)], where, source)
         elif isinstance(value, dict):
-            distributions[key] = _distribution(value, allowed[key], where, source)
+            distributions[key] = _distribution(value, value_kind, where, source)
         else:
-            grid[key] = [_value(value, allowed[key], where, source)]
+            grid[key] = [_value(value, value_kind, where, source)]
+    if custom:
+        try:
+            settings["metrics"] = list(check_metrics(scenario["metrics"], [*settings, *grid, *distributions]))
+        except ValueError as exc:
+            raise ConfigError(f"{source}: key 'scenario.metrics': {exc}") from None
+    if kind == "vehicle":
+        _check_vehicle(settings, grid, distributions, source)
     sampling = _table(table, "sampling", source)
     for key in sampling:
         if key not in ("samples", "seed"):
@@ -233,6 +261,67 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
     if config.n_runs > MAX_RUNS:
         raise ConfigError(f"{source}: key 'parameters': {config.n_runs} runs, more than {MAX_RUNS}")
     return config
+
+
+def _function(value: Any, inputs: dict[str, str], settings: dict[str, Any], source: str) -> str:
+    """A custom scenario's ``function`` (:mod:`uwml.study.custom`), checked by importing it; its
+    module's source file recorded as a file setting (``function_file``), for its digest."""
+    where = f"{source}: key 'scenario.function'"
+    try:
+        parse(value)
+    except ValueError as exc:
+        raise ConfigError(f"{where}: {exc}") from None
+    try:
+        resolve(value)
+    except ValueError as exc:
+        raise ConfigError(f"{where}: {exc}") from None
+    except Exception as exc:  # noqa: BLE001 (the module's own import error, whatever it is)
+        raise ConfigError(f"{where}: cannot import {value.split(':')[0]} ({type(exc).__name__}: {exc})") from None
+    path = function_file(value)
+    if path is not None:
+        settings["function_file"] = path
+        try:
+            inputs["function_file"] = _digest(Path(path))
+        except OSError as exc:
+            raise ConfigError(f"{where}: {path}: cannot be read ({exc.strerror or exc})") from None
+    return str(value)
+
+
+def _custom_name(key: str, where: str, source: str) -> None:
+    """A custom scenario's setting or parameter name: an identifier, not one of its own keys
+    nor a result column's."""
+    if not (key.isidentifier() and key.isascii()) or key in RESERVED or key in OWN_SETTINGS or key == "kind":
+        raise ConfigError(
+            f"{source}: key '{where}': a parameter's name must be an identifier other than {', '.join(sorted({*RESERVED, *OWN_SETTINGS, 'kind'}))}"
+        )
+
+
+def _alike(values: list[Any], where: str, source: str) -> list[Any]:
+    """A grid's values, all numbers or all strings (a column of the results has one type)."""
+    if len({isinstance(v, str) for v in values}) > 1:
+        raise ConfigError(f"{source}: key '{where}': mixes numbers and strings; a parameter's values are all one or the other")
+    return values
+
+
+def _check_vehicle(settings: dict[str, Any], grid: dict[str, list[Any]], distributions: dict[str, Distribution], source: str) -> None:
+    """The vehicle scenario's description checked (:func:`uwml.study.vehicle.check_vehicle`),
+    and a trajectory file not given with the sines' amplitude or period."""
+    if "trajectory" in settings:
+        for key in ("amplitude", "period"):
+            if key in settings or key in grid or key in distributions:
+                raise ConfigError(f"{source}: key 'scenario.trajectory': the arm follows the log; {key} is the sines' (drop it)")
+    if "station_keeping" in settings:
+        keeping = [settings["station_keeping"]]
+    elif "station_keeping" in grid:
+        keeping = grid["station_keeping"]
+    elif "station_keeping" in distributions:
+        keeping = distributions["station_keeping"].arguments["values"]
+    else:
+        keeping = [DEFAULTS["vehicle"]["station_keeping"]]
+    try:
+        check_vehicle(settings, keeping)
+    except (ValueError, OSError) as exc:
+        raise ConfigError(f"{source}: key 'scenario.robot': {exc}") from None
 
 
 def _table(table: dict[str, Any], key: str, source: str) -> dict[str, Any]:
@@ -258,8 +347,14 @@ def _path(value: Any, folder: Path, where: str, source: str) -> str:
 
 
 def _value(value: Any, kind: Any, where: str, source: str) -> Any:
-    """A setting's value checked against its kind: ``float`` (finite, with its bounds) or a tuple
-    of allowed strings."""
+    """A setting's value checked against its kind: ``float`` (finite, with its bounds), a tuple
+    of allowed strings, or :data:`ANY` (a finite number, as a float, or a string)."""
+    if kind == ANY:
+        if isinstance(value, str):
+            return value
+        if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+            raise ConfigError(f"{source}: key '{where}': must be a finite number or a string, got {value!r}")
+        return float(value)
     if isinstance(kind, tuple) and len(kind) == 2 and all(isinstance(k, float) for k in kind):
         low, high = kind
         if isinstance(value, bool) or not isinstance(value, int | float) or not (math.isfinite(value) and low <= value <= high):
@@ -272,6 +367,11 @@ def _value(value: Any, kind: Any, where: str, source: str) -> Any:
 
 def _distribution(table: dict[str, Any], kind: Any, where: str, source: str) -> Distribution:
     name = table.get("distribution")
+    if kind == ANY:  # a custom parameter: any finite number drawn, or a choice of numbers or strings
+        if name == "choice" and isinstance(table.get("values"), list):
+            _alike(table["values"], f"{where}.values", source)
+        else:
+            kind = (-math.inf, math.inf)
     numeric = isinstance(kind, tuple) and len(kind) == 2 and all(isinstance(k, float) for k in kind)
     shapes = {"uniform": ("low", "high"), "normal": ("mean", "std"), "choice": ("values",)}
     if name not in shapes or (name != "choice" and not numeric):
@@ -293,7 +393,8 @@ def _distribution(table: dict[str, Any], kind: Any, where: str, source: str) -> 
         raise ConfigError(f"{source}: key '{where}.high': must be above low ({arguments['low']:g}), got {arguments['high']:g}")
     if name == "normal":
         low, high = kind
-        if not 0.0 < table["std"] <= high - low:
+        std = table["std"]
+        if isinstance(std, bool) or not isinstance(std, int | float) or not (math.isfinite(std) and 0.0 < std <= high - low):
             raise ConfigError(f"{source}: key '{where}.std': must be positive and at most {high - low:g}, got {table['std']!r}")
         arguments["std"] = float(table["std"])
         arguments.setdefault("low", low)

@@ -29,6 +29,22 @@ vehicle (:func:`uwml.sim.control.rov_drift`): ``station_keeping`` (``pd``, or ``
 the feedforward of uwml's predicted wrench on the vehicle; default ``pd_uwml``), ``duration``
 [s, 0.1 to 600; default 4], ``current`` [m/s along x, 0 to 3; default 0.5]. Metrics: the
 vehicle's drift from its start, ``rms_drift`` and ``max_drift`` [m], and ``rms_attitude`` [°].
+
+``vehicle``: any floating vehicle from its description holding station through its thrusters
+while its arm moves (:mod:`uwml.study.vehicle`, whose docstring states the run): ``robot``,
+``hydro`` and ``trajectory`` (a log of joint angles instead of the sines) files; ``duration`` [s,
+0.01 to 600; default 4], ``amplitude`` [rad or m, 0 to 3.14; default 0.3], ``period`` [s, 0.1 to
+100; default 4], ``current`` [m/s, 0 to 5; default 0], ``current_heading`` [°, -180 to 180;
+default 0], ``depth`` [m; default 0], ``station_keeping`` (``off``, ``pd``, ``pid``; default
+``pid``), ``feedforward`` (``none``, ``uwml``; default ``uwml``), ``bandwidth_hz`` [0.01 to 10;
+default 0.5], ``coefficient_scale`` [0 to 10; default 1], ``payload`` [kg, 0 to 100; default 0].
+Metrics: ``rms_drift``, ``max_drift`` [m], ``rms_roll``, ``max_roll``, ``rms_pitch``,
+``max_pitch`` [°], ``mean_thrust``, ``peak_thrust`` [N], ``thrust_energy`` [N^1.5·s],
+``saturation`` (:meth:`uwml.sim.station_keeping.StationRecord.metrics`).
+
+``custom``: a function of one's own, ``function = "package.module:function"``, called with each
+run's parameters and returning the ``metrics`` the study file declares (:mod:`uwml.study.custom`):
+its parameters are any names, numbers or strings.
 """
 
 from __future__ import annotations
@@ -36,10 +52,11 @@ from __future__ import annotations
 from typing import Any
 
 from ..paper.control_study import CONTROLLERS, MAX_CYCLES
+from .vehicle import METRICS as VEHICLE_METRICS
 
 __all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "SCENARIOS", "run_one"]
 
-SCENARIOS = ("paper_leg", "robot", "rov")
+SCENARIOS = ("paper_leg", "robot", "rov", "vehicle", "custom")
 #: The kind of a setting that names a file (relative to the study file).
 PATH = "path"
 #: Each scenario's parameters: a number's (low, high) bounds, or the allowed strings.
@@ -68,9 +85,33 @@ PARAMETERS: dict[str, dict[str, Any]] = {
         "duration": (0.1, 600.0),
         "current": (0.0, 3.0),
     },
+    "vehicle": {
+        "robot": PATH,
+        "hydro": PATH,
+        "trajectory": PATH,
+        "duration": (0.01, 600.0),
+        "amplitude": (0.0, 3.14),
+        "period": (0.1, 100.0),
+        "current": (0.0, 5.0),
+        "current_heading": (-180.0, 180.0),
+        "depth": (0.0, 11_000.0),
+        "station_keeping": ("off", "pd", "pid"),
+        "feedforward": ("none", "uwml"),
+        "bandwidth_hz": (0.01, 10.0),
+        "coefficient_scale": (0.0, 10.0),
+        "payload": (0.0, 100.0),
+    },
+    # Any names (uwml.study.custom): checked by the configuration, not listed here.
+    "custom": {},
 }
 #: Settings a scenario cannot run without.
-REQUIRED: dict[str, tuple[str, ...]] = {"paper_leg": (), "robot": ("robot",), "rov": ()}
+REQUIRED: dict[str, tuple[str, ...]] = {
+    "paper_leg": (),
+    "robot": ("robot",),
+    "rov": (),
+    "vehicle": ("robot",),
+    "custom": ("function", "metrics"),
+}
 DEFAULTS: dict[str, dict[str, Any]] = {
     "paper_leg": {"depth": 0.0, "controller": "hydro", "cycles": 0.5, "payload": 0.0},
     "robot": {
@@ -85,6 +126,22 @@ DEFAULTS: dict[str, dict[str, Any]] = {
         "kp_hz": 4.0,
     },
     "rov": {"station_keeping": "pd_uwml", "duration": 4.0, "current": 0.5},
+    "vehicle": {
+        "hydro": None,
+        "trajectory": None,
+        "duration": 4.0,
+        "amplitude": 0.3,
+        "period": 4.0,
+        "current": 0.0,
+        "current_heading": 0.0,
+        "depth": 0.0,
+        "station_keeping": "pid",
+        "feedforward": "uwml",
+        "bandwidth_hz": 0.5,
+        "coefficient_scale": 1.0,
+        "payload": 0.0,
+    },
+    "custom": {},
 }
 #: Each scenario's metrics, the columns of a study's results.
 METRICS: dict[str, tuple[str, ...]] = {
@@ -95,11 +152,15 @@ METRICS: dict[str, tuple[str, ...]] = {
         "energy",
     ),
     "rov": ("rms_drift", "max_drift", "rms_attitude"),
+    "vehicle": VEHICLE_METRICS,
 }
 
 
 def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
-    """The metrics of a scenario's runs (the ``robot`` scenario's depend on its joints)."""
+    """The metrics of a scenario's runs (the ``robot`` scenario's depend on its joints, a
+    ``custom`` one's are its settings')."""
+    if kind == "custom":
+        return tuple(settings["metrics"])
     if kind != "robot":
         return METRICS[kind]
     from ..robot.files import model_and_robot
@@ -114,9 +175,17 @@ def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> 
     ``parameters``."""
     from ..paper.control_study import run
 
+    if kind == "custom":
+        from .custom import custom_run
+
+        return custom_run(settings, parameters)
     values = DEFAULTS[kind] | settings | parameters
     if kind == "robot":
         return _robot_run(values)
+    if kind == "vehicle":
+        from .vehicle import vehicle_run
+
+        return vehicle_run(values)
     if kind == "rov":
         from ..sim.control import rov_drift
 
