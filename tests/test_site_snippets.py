@@ -14,6 +14,7 @@ kind (README, "Documentation"; the README's own Python and command-line blocks r
   ``ENVIRONMENT_COMMANDS`` (installers, compilers, a cluster's), which set up a machine and are
   not run by the tests;
 - TOML: parses; a study configuration (``[scenario]``) is checked whole by ``uwml.study``;
+- CMake: reads as CMake's command syntax (``tests/cmake_text.py``; cmake is not run);
 - the API reference's docstring examples (``Example ...::``) of ``uwml.Robot`` and ``uwml.Conditions``
   run too.
 
@@ -29,6 +30,7 @@ import textwrap
 import tomllib
 from pathlib import Path
 
+import cmake_text
 import pytest
 import uwml
 from uwml.cli import build_parser
@@ -41,6 +43,7 @@ SHOWN = {"text", "xml"}
 ENVIRONMENT_COMMANDS = {
     "pip",
     "cargo",
+    "make",
     "cc",
     "rustup",
     "arm-none-eabi-gcc",
@@ -81,7 +84,7 @@ def run_python(code: str, folder: Path) -> subprocess.CompletedProcess[str]:
 
 
 def test_every_block_has_a_kind_that_is_checked() -> None:
-    checked = {"python", "rust", "c", "sh", "bash", "toml"} | SHOWN
+    checked = {"python", "rust", "c", "sh", "bash", "toml", "cmake"} | SHOWN
     for path in [ROOT / "README.md", *PAGES]:
         for language, line, _ in blocks(path):
             assert language in checked, f"{path.relative_to(ROOT)}:{line}: a ```{language} block: give it a language this test checks"
@@ -145,7 +148,7 @@ SHELL = snippets("sh|bash", [ROOT / "README.md", *PAGES])
 def test_each_shell_block_is_commands_the_tools_take(where: str, code: str) -> None:
     parser = build_parser()
     for command in shell_commands(code):
-        if re.match(r"^(\w+=\S*$|\w+=\(|for |done$|#!|#SBATCH)", command):
+        if re.match(r"^((export )?\w+=\S*$|\w+=\(|for |done$|#!|#SBATCH)", command):
             continue  # shell syntax of a batch script
         command = re.split(r"\s[>|]\s", command)[0].removesuffix("&").strip()  # a redirection, a pipe, a background job
         words = shlex.split(command)
@@ -159,6 +162,14 @@ def test_each_shell_block_is_commands_the_tools_take(where: str, code: str) -> N
                 pytest.fail(f"{where}: `{command}`: the command line refuses it (exit {exc.code})")
         else:
             assert program in ENVIRONMENT_COMMANDS, f"{where}: `{command}`: {program} is neither uwml nor a listed tool"
+
+
+@pytest.mark.parametrize(("where", "code"), snippets("cmake"), ids=[w for w, _ in snippets("cmake")])
+def test_each_cmake_block_reads_as_cmake(where: str, code: str) -> None:
+    try:
+        cmake_text.commands(code)
+    except ValueError as exc:
+        pytest.fail(f"{where}: {exc}")
 
 
 @pytest.mark.parametrize(("where", "code"), snippets("toml"), ids=[w for w, _ in snippets("toml")])

@@ -22,6 +22,7 @@ reference (tests and checks); this module is the front door: the names most user
 """
 
 from .errors import DescriptionError, ModelError, ModelFileError, UwmlError
+from .io.export import get_include
 from .io.logs import Log, read_log, write_log
 from .model.joint_losses import JointLosses, LossTorques
 from .model.losses import Drive, OilDrag, Seal
@@ -69,6 +70,7 @@ __all__ = [
     "UwmlError",
     "WalkingGait",
     "Water",
+    "get_include",
     "hydrostatic_pressure_mpa",
     "paper_leg",
     "paper_leg_foot",

@@ -1,7 +1,9 @@
-//! `include/uwml.h` is what cbindgen makes of `src/lib.rs` with `cbindgen.toml`.
+//! `include/uwml.h` is what cbindgen makes of `src/lib.rs` with `cbindgen.toml`, and the Python
+//! package ships the same file (`python/uwml/include/uwml.h`, the folder `uwml.get_include()`
+//! names).
 //!
 //! After a change of the C API: `UWML_BLESS=1 cargo test -p uwml-ffi --test header` rewrites the
-//! header; review the diff and commit it with the change.
+//! header and its copy; review the diff and commit both with the change.
 #![allow(missing_docs, clippy::expect_used)]
 
 use std::path::Path;
@@ -20,14 +22,18 @@ fn header_is_up_to_date() {
     let generated = String::from_utf8(generated).expect("the header is UTF-8");
 
     let path = crate_dir.join("include/uwml.h");
+    let python_copy = crate_dir.join("../../python/uwml/include/uwml.h");
     if std::env::var_os("UWML_BLESS").is_some() {
         std::fs::write(&path, &generated).expect("include/uwml.h is writable");
+        std::fs::write(&python_copy, &generated).expect("python/uwml/include/uwml.h is writable");
         return;
     }
-    let checked_in = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(
-        checked_in == generated,
-        "include/uwml.h is out of date with src/lib.rs: regenerate it with\n    \
-         UWML_BLESS=1 cargo test -p uwml-ffi --test header\nand commit the result"
-    );
+    for (name, file) in [("crates/uwml-ffi/include/uwml.h", &path), ("python/uwml/include/uwml.h", &python_copy)] {
+        let checked_in = std::fs::read_to_string(file).unwrap_or_default();
+        assert!(
+            checked_in == generated,
+            "{name} is out of date with src/lib.rs: regenerate it with\n    \
+             UWML_BLESS=1 cargo test -p uwml-ffi --test header\nand commit the result"
+        );
+    }
 }

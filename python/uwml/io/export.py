@@ -8,7 +8,8 @@ Rust::
     let robot = uwml_core::Robot::<f64, { arm::N_JOINTS }, { arm::N_SEGMENTS }>::new(
         &arm::JOINTS, &arm::LINKS, arm::BASE, &arm::SEGMENTS)?;
 
-C (with ``crates/uwml-ffi/include/uwml.h``)::
+C (with the C ABI's header ``uwml.h``: in the folder :func:`get_include` names, or
+``crates/uwml-ffi/include``)::
 
     #include "arm.h"
     static UwmlRobotF64 robot;
@@ -32,6 +33,7 @@ number and the range); in f32, each lumped model as rounded is one the core take
 from __future__ import annotations
 
 import math
+import os
 import re
 import sys
 from collections.abc import Iterable, Iterator, Sequence
@@ -45,13 +47,12 @@ from ..model.lumped import LumpedModel
 from ..model.parts import AXIS_TOLERANCE, Link, Segment
 from ._robot_like import RobotLike
 
-__all__ = ["C_MAX_JOINTS", "C_MAX_LUMPED", "C_MAX_SEGMENTS", "to_c", "to_rust"]
+__all__ = ["C_MAX_JOINTS", "C_MAX_LUMPED", "C_MAX_SEGMENTS", "get_include", "to_c", "to_rust"]
 
 PRECISIONS = ("f64", "f32")
 
 #: The C API's robot's capacities: ``UWML_ROBOT_MAX_JOINTS``, ``UWML_ROBOT_MAX_SEGMENTS`` and
-#: ``UWML_ROBOT_MAX_LUMPED`` of crates/uwml-ffi/include/uwml.h (the header is not installed with
-#: the package; tests/test_export.py holds these to it).
+#: ``UWML_ROBOT_MAX_LUMPED`` of uwml.h (tests/test_export.py holds these to it).
 C_MAX_JOINTS = 16
 C_MAX_SEGMENTS = 32
 C_MAX_LUMPED = 4
@@ -67,6 +68,18 @@ _RANGE = {
 #: AXIS_TOLERANCE, and f32's rounding of the entries and its arithmetic in the check take up to
 #: about 2e-7 of it.
 _F32_AXES_TOLERANCE = 0.5 * AXIS_TOLERANCE
+
+
+def get_include() -> str:
+    """The folder, inside the installed package, that holds ``uwml.h``: the header of the C ABI
+    (crates/uwml-ffi/include/uwml.h, which the package ships as it is), as ``numpy.get_include()``
+    does for numpy's. A host C program next to a pip install::
+
+        cc -I"$(python -c 'import uwml; print(uwml.get_include())')" app.c libuwml.a -lm
+
+    The static library is not in the package: it comes from the firmware package of ``make dist``
+    (docs/firmware.md, "Without Rust")."""
+    return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "include")
 
 
 def _literal(x: float, precision: str, suffix: str = "") -> str:
