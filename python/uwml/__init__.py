@@ -28,7 +28,7 @@ from .model.joint_losses import JointLosses, LossTorques
 from .model.losses import Drive, OilDrag, Seal
 from .model.lumped import LumpedModel
 from .model.parts import Joint, Link, Segment, Water
-from .model.thrusters import Thruster, ThrustCurve
+from .model.thrusters import ThrustCurve, Thruster
 from .paper.gait import WalkingGait, paper_leg_foot, paper_leg_ik
 from .plausibility import DescriptionWarning, PlausibilityWarning
 from .robot.base_motion import BaseMotion
