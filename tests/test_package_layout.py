@@ -47,6 +47,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("uwml.model",),
     ("uwml.io",),
     ("uwml.robot",),
+    ("uwml.jax",),
     ("uwml.fit",),
     ("uwml.viz",),
     ("uwml.sim",),
@@ -330,10 +331,10 @@ def test_the_reference_stands_alone_and_production_code_does_not_use_it() -> Non
     assert not users, users
 
 
-def test_import_uwml_loads_neither_the_reference_nor_matplotlib() -> None:
+def test_import_uwml_loads_neither_the_reference_nor_matplotlib_nor_jax() -> None:
     code = (
         "import sys, uwml; "
-        "loaded = sorted(m for m in sys.modules if m == 'matplotlib' or m.startswith(('matplotlib.', 'uwml.reference'))); "
+        "loaded = sorted(m for m in sys.modules if m in ('matplotlib', 'jax') or m.startswith(('matplotlib.', 'jax.', 'uwml.reference', 'uwml.jax'))); "
         "print(loaded)"
     )
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False, timeout=120)
