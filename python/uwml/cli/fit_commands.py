@@ -1,5 +1,7 @@
 """``uwml fit``: ``fit hydro`` (Cd and Cm, axial drag, lumped models, from a land/water
-experiment or a captive test) and ``fit losses`` (the joints' oil-drag and seal models)."""
+experiment or a captive test, or with ``--water-only`` from logs of the water run alone),
+``fit hull`` (a vehicle's lumped model from free-running logs) and ``fit losses`` (the joints'
+oil-drag and seal models)."""
 
 from __future__ import annotations
 
@@ -9,9 +11,12 @@ import os
 from pathlib import Path
 from typing import Any
 
+from ..fit.free_running import HULL_TERMS
+from ..fit.loss_regressors import LOSS_TERMS
 from ..fit.robot_design import BASE_ROWS
+from ..io.sampling import WINDOW_S
 from ..robot.presets import paper_leg
-from .argument_types import _base_rows, _joint_list_or_none, _workers
+from .argument_types import _base_rows, _depth, _finite, _joint_list_or_none, _positive, _workers
 from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
 
 
@@ -19,6 +24,11 @@ def _fit_hydro(args: argparse.Namespace) -> int:
     from .. import fit
 
     _check_output(args.plot, "--plot")
+    if args.water_only:
+        return _fit_water_only(args)
+    if args.losses is not None or args.depth != 0.0 or args.temperature != 20.0:
+        raise _UsageError("--losses, --depth and --temperature go with --water-only (a land/water experiment's losses cancel)")
+    _refuse_water_log(args.logs, args.columns)
     leg: Any = paper_leg() if args.robot is None else load_robot(args.robot, args.hydro)
     what = "the leg (the paper's)" if args.robot is None else f"the robot ({args.robot})"
     joints = ([] if args.base else [1]) if args.joints is None else args.joints
@@ -45,6 +55,14 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         points=not args.no_points,
         columns=args.columns,
     )
+    rows = f"joints {','.join(map(str, joints)) or 'none'} (1-based)" + (
+        f", base {','.join(BASE_ROWS[c] for c in args.base)}" if args.base else ""
+    )
+    return _print_hydro(args, result, rows)
+
+
+def _print_hydro(args: argparse.Namespace, result: Any, rows: str) -> int:
+    """``uwml fit hydro``'s output of ``result`` (the figure, the JSON or the report)."""
     if args.plot is not None:
         from ..viz import plot
 
@@ -53,14 +71,90 @@ def _fit_hydro(args: argparse.Namespace) -> int:
         print(json.dumps(result.summary()))
     else:
         model = "" if args.robot is None else f", --robot {args.robot}"
-        rows = f"joints {','.join(map(str, joints)) or 'none'} (1-based)" + (
-            f", base {','.join(BASE_ROWS[c] for c in args.base)}" if args.base else ""
-        )
         print(f"uwml fit hydro: {result.source}{model}, {rows}, per {args.per}")
         print(result.fit_report())
         if args.plot is not None:
             print(f"figure: {args.plot}")
     return 0
+
+
+def _fit_water_only(args: argparse.Namespace) -> int:
+    """``uwml fit hydro --water-only``: :func:`uwml.fit.hydro_from_water_logs`."""
+    from .. import fit
+
+    if args.robot is None:
+        raise _UsageError(
+            "--water-only: give the robot's description, --robot URDF or MJCF (with --hydro): its rigid-body inverse dynamics "
+            "stands in for the land run"
+        )
+    if args.base:
+        raise _UsageError("--water-only fits the joints' torques, not --base (a vehicle's hull from free-running logs: uwml fit hull)")
+    if args.no_points or args.ray or args.address is not None:
+        raise _UsageError("--water-only reads its logs whole in this process: leave out --no-points, --ray and --address")
+    joints = None if args.joints is None else [j - 1 for j in args.joints]
+    if joints == []:
+        raise _UsageError("--joints none: a water-only fit needs at least one joint")
+    losses: Any = False if args.losses is None else (args.losses or True)
+    source: Any = args.logs[0] if len(args.logs) == 1 else list(args.logs)
+    result = fit.hydro_from_water_logs(
+        source, args.robot, args.hydro, joints=joints, per=args.per, losses=losses, depth=args.depth,
+        temperature_c=args.temperature, lumped=args.lumped, robust=args.robust, columns=args.columns,
+    )  # fmt: skip
+    numbered = ",".join(str(j + 1) for j in result.joints)
+    return _print_hydro(args, result, f"joints {numbered} (1-based), water only, losses {', '.join(result.losses) or 'held'}")
+
+
+def _refuse_water_log(logs: list[str], columns: str | None) -> None:
+    """A single log of the water run alone (``tau*`` without ``tau_land*``) given without
+    ``--water-only``: a ValueError saying what to give."""
+    from ..io._log_stream import _header
+    from ..io.column_map import load_column_map
+    from ..io.logs import _layout
+
+    if len(logs) != 1 or not os.path.isfile(logs[0]):
+        return
+    path = logs[0]
+    header = _header(path, path) if columns is None else load_column_map(columns).targets
+    try:
+        _, families, _ = _layout(header, None, path)
+    except ValueError:
+        return  # the fit names what is wrong with the header
+    if "tau" in families and "tau_land" not in families and "tau_water" not in families:
+        raise ValueError(
+            f"{path}: row 1 (header), column 'tau_land1': a log of the water run alone (tau1 …): give --water-only with the "
+            "robot's description (--robot URDF or MJCF, --hydro), whose rigid-body inverse dynamics stands in for the land run; "
+            "or a land log beside it (uwml fit hydro LAND WATER)"
+        )
+
+
+def _fit_hull(args: argparse.Namespace) -> int:
+    """``uwml fit hull``: :func:`uwml.fit.hull_from_free_running`."""
+    from .. import fit
+
+    source: Any = args.logs[0] if len(args.logs) == 1 else list(args.logs)
+    result = fit.hull_from_free_running(
+        source, args.robot, args.hydro, terms=args.terms, hydrostatics=args.hydrostatics, hold=args.hold,
+        robust=args.robust, columns=args.columns, window_s=args.window,
+    )  # fmt: skip
+    if args.json:
+        print(json.dumps(result.summary()))
+    else:
+        print(f"uwml fit hull: {result.source}, --robot {args.robot}, terms {', '.join(args.terms)}")
+        print(result.fit_report())
+    return 0
+
+
+def _names(allowed: tuple[str, ...] | None) -> Any:
+    """An argument type: a comma-separated list of names (of ``allowed``, where given)."""
+
+    def parse(text: str) -> list[str]:
+        names = [name.strip() for name in text.split(",") if name.strip()]
+        wrong = [name for name in names if allowed is not None and name not in allowed]
+        if not names or wrong:
+            raise argparse.ArgumentTypeError(f"must be a comma-separated list of {', '.join(allowed or ('names',))}, got {text[:60]!r}")
+        return names
+
+    return parse
 
 
 def _read_losses(path: str, pairs: bool) -> Any:
@@ -159,8 +253,10 @@ def _pair(logs: list[str], columns: str | None = None) -> tuple[str, str] | None
 
 
 def add_fit_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
-    """``uwml fit hydro`` and ``uwml fit losses`` on the ``uwml`` parser's commands."""
-    fit_parser = commands.add_parser("fit", help="identify Cd, Cm (fit hydro) or the joint-loss models (fit losses) from files")
+    """``uwml fit hydro``, ``uwml fit hull`` and ``uwml fit losses`` on the ``uwml`` parser's commands."""
+    fit_parser = commands.add_parser(
+        "fit", help="identify Cd, Cm (fit hydro), a hull (fit hull) or the joint-loss models (fit losses) from files"
+    )
     fits = fit_parser.add_subparsers(dest="fit_command", required=True)
     hydro = fits.add_parser(
         "hydro",
@@ -181,7 +277,10 @@ captive test of the robot's base (its hull) on a rig: the rig's wrench on the ba
 (fx_land..mz_land and fx_water..mz_water, or fx..mz: force [N], moment [N·m] about the body
 origin, body components), the vehicle's twist u, v, w [m/s], p, q, r [rad/s] (body frame; its
 rate u_dot..r_dot estimated where absent) and orientation qw, qx, qy, qz or roll, pitch, yaw
-(upright where absent); docs/logs.md.
+(upright where absent); docs/logs.md. With --water-only, logs of the water run alone (tau1..N,
+no land run): the --robot description's rigid-body inverse dynamics (MuJoCo's mj_inverse,
+gravity on) stands in for the land run, and --losses fits the joints' loss levels (oil k_oil,
+seal c0, s0, d0) at --depth and --temperature too (uwml.fit.hydro_from_water_logs).
 
 {_LOG_FORMAT}
 
@@ -242,7 +341,79 @@ stderr, covar, redchi, rsquared, ..., points); with --plot the measured and fitt
     hydro.add_argument("--workers", type=_workers, metavar="N", help="CPUs of the local Ray (default all)")
     hydro.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
     hydro.add_argument("--plot", metavar="FILE", help="save the measured-vs-fitted figure (format from the extension, e.g. .png)")
+    hydro.add_argument(
+        "--water-only",
+        action="store_true",
+        help="logs of the water run alone (tau1..N): the --robot description's rigid-body inverse dynamics (MuJoCo) stands in "
+        "for the land run (uwml.fit.hydro_from_water_logs; default joints: all)",
+    )
+    hydro.add_argument(
+        "--losses",
+        nargs="?",
+        const=[],
+        type=_names(LOSS_TERMS),
+        metavar="k_oil,c0,s0,d0",
+        help="with --water-only: fit these loss levels on each joint too (alone: k_oil,c0,s0); the others held at the "
+        "description's losses (docs/losses.md)",
+    )
+    hydro.add_argument(
+        "--depth", type=_depth, default=0.0, metavar="M", help="with --water-only: depth of the losses' pressure [m] (default 0)"
+    )
+    hydro.add_argument(
+        "--temperature", type=_finite, default=20.0, metavar="C", help="with --water-only: oil temperature [°C] (default 20)"
+    )
     hydro.set_defaults(run=_fit_hydro)
+
+    hull = fits.add_parser(
+        "hull",
+        help="a vehicle's hull (lumped model) from free-running logs and its thruster commands",
+        formatter_class=formatter,
+        description=f"""The diagonals of the base's lumped model (added mass, linear and quadratic damping) and
+optionally its buoyancy (rho V, rho V r_B) from logs of the vehicle running free
+(uwml.fit.hull_from_free_running): the thruster commands u1..un through each thruster's curve and
+the allocation give the thrust; MuJoCo's inverse dynamics of the --robot description gives the
+rigid-body part; equation-error weighted least squares of the base's six equations. Terms the
+data do not determine are refused by name; a negative damping, added mass or volume is warned
+of by name.
+
+Input: logs with time, q1..qN (the arm, still or moving), the orientation qw, qx, qy, qz (or
+roll, pitch, yaw), the twist u, v, w, p, q, r (its rate u_dot..r_dot estimated where absent) and
+one command u1..un per thruster of the description (docs/logs.md).
+
+{_LOG_FORMAT}
+
+Output: the fit report on standard output; with --json only the result's summary as JSON.""",
+        epilog=_EXIT,
+    )
+    hull.add_argument("logs", metavar="LOG", nargs="+", help="free-running logs (files or glob patterns, fitted together)")
+    hull.add_argument("--robot", required=True, metavar="FILE", help="the vehicle: a URDF (.urdf) or MJCF (.xml), floated")
+    hull.add_argument("--hydro", metavar="FILE", help="its hydro file (the lumped model and the thrusters)")
+    hull.add_argument(
+        "--terms",
+        type=_names(HULL_TERMS),
+        default=list(HULL_TERMS),
+        metavar="added_mass,...",
+        help="the lumped model's families whose diagonals are fitted (default all three)",
+    )
+    hull.add_argument("--hydrostatics", action="store_true", help="fit the base's rho V and rho V r_B too")
+    hull.add_argument(
+        "--hold",
+        type=_names(None),
+        default=[],
+        metavar="NAME,...",
+        help="terms held at the description's values, as the report names them (quoted: 'base.linear_damping[1][1]')",
+    )
+    hull.add_argument("--robust", action="store_true", help="Huber loss instead of squares (resists outliers)")
+    hull.add_argument(
+        "--window",
+        type=_positive,
+        default=WINDOW_S,
+        metavar="S",
+        help=f"the smoothing fit's window for absent rates [s] (default {WINDOW_S:g})",
+    )
+    hull.add_argument("--columns", metavar="MAP", help="a column map (TOML) each LOG is read through (docs/logs.md)")
+    hull.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
+    hull.set_defaults(run=_fit_hull)
 
     losses = fits.add_parser(
         "losses",

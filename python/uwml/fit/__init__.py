@@ -97,13 +97,22 @@ log: about 6 floats per fitted point. Measured on 10 million samples:
 
 With estimated σ_j the reduced χ² is 1 by construction (for ``robust=False``); it says
 something about the model only with a known ``sigma`` (the paper's 2.425 is of that kind).
+
+Without a land run
+------------------
+:func:`hydro_from_water_logs` fits Cd, Cm and the joints' loss levels to logs of the water run
+alone, the description's rigid-body inverse dynamics standing in for the land run
+(:mod:`uwml.fit.water_only`); :func:`hull_from_free_running` fits a vehicle's lumped model (and
+its buoyancy) to logs of it running free on its thrusters (:mod:`uwml.fit.free_running`).
 """
 
 from .design import CHUNK_SAMPLES, DESIGN_CACHE_BYTES
 from .fit_results import FitResult, LossFit, OilDragFit, SealFit
+from .free_running import HullFit, hull_from_free_running
 from .hydro import HUBER_SCALE, HydroFit, LogDiagnostics, hydro_coefficients
 from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
 from .loss_fits import oil_drag, seal
+from .water_only import WaterOnlyFit, hydro_from_water_logs
 
 __all__ = [
     "CHUNK_SAMPLES",
@@ -111,12 +120,16 @@ __all__ = [
     "DESIGN_CACHE_BYTES",
     "HUBER_SCALE",
     "FitResult",
+    "HullFit",
     "HydroFit",
     "LogDiagnostics",
     "LossFit",
     "OilDragFit",
     "SealFit",
+    "WaterOnlyFit",
+    "hull_from_free_running",
     "hydro_coefficients",
+    "hydro_from_water_logs",
     "oil_drag",
     "read_loss_csv",
     "seal",
