@@ -197,3 +197,27 @@ def test_refusals(exact: Log) -> None:
     arm = replace(exact, q=np.zeros((exact.n_samples, 3)), qd=None, qdd=None)
     with pytest.raises(ValueError, match="the description's base has no lumped model"):
         fit.hull_from_free_running(arm, ROOT / "tests/data/arm.urdf", ROOT / "tests/data/arm.hydro.toml")
+
+
+def test_the_thrust_of_lagging_thrusters_is_the_simulation_s(tmp_path: Path) -> None:
+    """With a time constant, the fit's thrust from the logged commands (each held until the next
+    sample, the lag advanced exactly) is the simulation's, step by step, to 1e-12."""
+    from uwml.fit.thrust_wrench import thrust, thrust_wrench
+
+    hydro = tmp_path / "lagging.hydro.toml"
+    hydro.write_text(
+        HYDRO.read_text(encoding="utf-8").replace("max_reverse = 40.2\n", "max_reverse = 40.2\ntime_constant = 0.05\n"), encoding="utf-8"
+    )
+    sim = Simulation.from_file(URDF, hydro)
+    steps, h = 300, sim.model.opt.timestep
+    commands = np.zeros((steps, 8))
+    commands[1:] = 0.8 * np.sin(np.arange(1, steps)[:, None] * h * np.linspace(2.0, 9.0, 8))
+    simulated = np.zeros_like(commands)
+    for k in range(steps):
+        sim.command_thrusters(commands[k])
+        simulated[k] = sim.thrust
+        sim.step()
+    log = Log(time=np.arange(steps) * h, q=np.zeros((steps, 2)), thruster_commands=commands)
+    assert all(t.time_constant == 0.05 for _, t in sim.robot.thrusters)
+    np.testing.assert_allclose(thrust(log, sim.robot), simulated, rtol=0.0, atol=1e-12)
+    np.testing.assert_allclose(thrust_wrench(log, sim.robot), simulated @ sim.robot.thruster_allocation().T, atol=1e-12)
