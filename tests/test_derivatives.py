@@ -206,3 +206,27 @@ def test_jacobians_of_a_tree_on_a_moving_base_are_the_slopes() -> None:
         slope = (value(q, qd, v + e[:3], w + e[3:]) - value(q, qd, v - e[:3], w - e[3:])) / (2 * h)
         np.testing.assert_allclose(jac.d_velocity[:, k], slope, atol=1e-6 * scale)
     np.testing.assert_array_equal(jac.added_mass_matrix, robot.added_mass_matrix(q))
+
+
+def test_a_hull_at_rest_in_still_water_has_its_damping_as_the_base_twists_slope() -> None:
+    """At rest in still water the core took a shortcut for a still base that dropped the
+    derivative seeded on the base's twist (a dual number equal to zero in value): the base
+    columns of ``d_velocity`` were zero. A hull with linear damping ``D`` has ``−D`` there."""
+    damping = np.diag([13.7, 5.0, 33.0, 1.5, 0.8, 2.0])
+    hull = uwml.Link(13.5, (0, 0, 0), 0.0134, cob=(0, 0, 0.01), lumped=uwml.LumpedModel(linear_damping=damping))
+    robot = uwml.Robot([uwml.Joint((0.2, 0, -0.1), (0, 0, 1))], [uwml.Link(0.3, (0.1, 0, 0), 0.0003)], base=hull)
+    q = qd = qdd = np.zeros(1)
+    jac = robot.jacobians(q, qd, qdd)
+    # The wrench about the base origin, the model's point 0.01 m above it: −D at the point,
+    # carried to the origin (a pure translation of the twist and of the wrench).
+    h = 1e-6
+
+    def base_wrench(twist: np.ndarray) -> np.ndarray:
+        motion = uwml.BaseMotion(velocity=twist[:3], angular_velocity=twist[3:])
+        return robot.environment(q, qd, qdd, base_motion=motion).base.total
+
+    for k in range(6):
+        e = np.eye(6)[k] * h
+        slope = (base_wrench(e) - base_wrench(-e)) / (2 * h)
+        np.testing.assert_allclose(jac.d_velocity[:6, k], slope, rtol=1e-6, atol=1e-9)
+    assert np.abs(np.diag(jac.d_velocity[:6, :6]) + np.diag(damping)).max() < 0.5  # about −D

@@ -31,13 +31,15 @@ type D<T> = Dual<T, DUAL_WIDTH>;
 pub struct RobotJacobianData<T: RealField + Copy, const J: usize, const S: usize, const B: usize = 0> {
     robot: Robot<D<T>, J, S, B>,
     dual: RobotData<D<T>, J>,
+    /// The value's own evaluation (see [`robot_jacobians`]).
+    plain: RobotData<T, J>,
 }
 
 impl<T: RealField + Copy, const J: usize, const S: usize, const B: usize> RobotJacobianData<T, J, S, B> {
     /// The workspace for `robot` (and only for it).
     #[must_use]
     pub fn new(robot: &Robot<T, J, S, B>) -> Self {
-        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new() }
+        Self { robot: robot.map_scalars(Dual::constant), dual: RobotData::new(), plain: RobotData::new() }
     }
 }
 
@@ -107,11 +109,6 @@ pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, cons
         let losses = work.dual.joint_losses();
         let joints = work.dual.joint_forces().iter().zip(losses).map(|(f, l)| f.total() + l.visc + l.seal);
         for (row, value) in base.into_iter().chain(joints).enumerate() {
-            if start == 0
-                && let Some(slot) = out.value.get_mut(row)
-            {
-                *slot = value.re;
-            }
             for (slot, derivative) in value.eps.iter().enumerate() {
                 let k = start + slot;
                 let target = if k < n {
@@ -127,6 +124,16 @@ pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, cons
             }
         }
         start += DUAL_WIDTH;
+    }
+    // The value by the plain evaluation, bit for bit `robot_hydro`'s: the dual passes seed the
+    // base's twist, so they never take the shortcut of a base at rest in still water, whose
+    // value can differ in the last bits.
+    robot_hydro(robot, conditions, [q, qd, qdd], &mut work.plain);
+    let base = work.plain.base_wrench().total().to_array();
+    let joints =
+        work.plain.joint_forces().iter().zip(work.plain.joint_losses()).map(|(f, l)| f.total() + l.visc + l.seal);
+    for (slot, value) in out.value.iter_mut().zip(base.into_iter().chain(joints)) {
+        *slot = value;
     }
     robot_added_mass_matrix(robot, &water, coefficients, q, out.added_mass_matrix);
 }

@@ -76,40 +76,6 @@ impl<T: SimdRealField + Copy> Frame<T> {
         }
     }
 
-    /// The base's own frame, relative to the water.
-    #[inline(always)]
-    pub(crate) fn base(motion: &BaseMotion<T>, water: &Water<T>, current: &Current<T>) -> Self {
-        let rotation = motion.rotation();
-        let (v, w) = motion.twist();
-        let (v_dot, w_dot) = motion.twist_derivative();
-        let zero = Vector3::zeros();
-        let gravity = Vector3::new(rotation.m31, rotation.m32, rotation.m33) * -water.gravity();
-        let still = Self {
-            angular_velocity: zero,
-            angular_acceleration: zero,
-            velocity: zero,
-            acceleration: zero,
-            gravity,
-            water_acceleration: zero,
-            turn: (T::zero(), T::one()),
-            offset: zero,
-            shape: Shape::Still,
-        };
-        if [v, w, v_dot, w_dot, *current.velocity(), *current.acceleration()].iter().all(|x| *x == zero) {
-            return still;
-        }
-        let water_acceleration = rotate_back(rotation, current.acceleration());
-        Self {
-            angular_velocity: w,
-            angular_acceleration: w_dot,
-            velocity: v - rotate_back(rotation, current.velocity()),
-            acceleration: v_dot + w.cross(&v) - water_acceleration,
-            water_acceleration,
-            shape: Shape::General,
-            ..still
-        }
-    }
-
     /// A vector in this frame's components, in its parent's.
     #[inline(always)]
     pub(crate) fn in_parent(&self, kind: JointKind, joint: &JointFrame<T>, v: &Vector3<T>) -> Vector3<T> {
@@ -235,6 +201,48 @@ pub struct LinkPose<T: SimdRealField + Copy> {
     pub origin: Vector3<T>,
     /// That joint's axis, in base components.
     pub axis: Vector3<T>,
+}
+
+impl<T: Real> Frame<T> {
+    /// The base's own frame, relative to the water.
+    #[inline(always)]
+    pub(crate) fn base(motion: &BaseMotion<T>, water: &Water<T>, current: &Current<T>) -> Self {
+        let rotation = motion.rotation();
+        let (v, w) = motion.twist();
+        let (v_dot, w_dot) = motion.twist_derivative();
+        let zero = Vector3::zeros();
+        let gravity = Vector3::new(rotation.m31, rotation.m32, rotation.m33) * -water.gravity();
+        let still = Self {
+            angular_velocity: zero,
+            angular_acceleration: zero,
+            velocity: zero,
+            acceleration: zero,
+            gravity,
+            water_acceleration: zero,
+            turn: (T::zero(), T::one()),
+            offset: zero,
+            shape: Shape::Still,
+        };
+        // Every part zero: a dual number's derivatives (a Jacobian's seed on the base's twist)
+        // too, which `==` would not see.
+        if [v, w, v_dot, w_dot, *current.velocity(), *current.acceleration()]
+            .iter()
+            .flat_map(|x| x.iter())
+            .all(|c| c.is_all_zero())
+        {
+            return still;
+        }
+        let water_acceleration = rotate_back(rotation, current.acceleration());
+        Self {
+            angular_velocity: w,
+            angular_acceleration: w_dot,
+            velocity: v - rotate_back(rotation, current.velocity()),
+            acceleration: v_dot + w.cross(&v) - water_acceleration,
+            water_acceleration,
+            shape: Shape::General,
+            ..still
+        }
+    }
 }
 
 impl<T: SimdRealField + Copy> LinkPose<T> {

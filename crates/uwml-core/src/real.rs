@@ -16,13 +16,24 @@ pub trait Real: SimdRealField<Element: RealField + Copy> + Copy {
     fn sin_cos(self) -> (Self, Self) {
         self.simd_sin_cos()
     }
+
+    /// Whether the number is zero in every part (every lane; a dual number's derivatives too):
+    /// for a structural shortcut, unlike `==`, which compares a dual number's value only.
+    #[must_use]
+    fn is_all_zero(self) -> bool {
+        self == Self::zero()
+    }
 }
 
 impl Real for f32 {}
 
 impl Real for f64 {}
 
-impl<T: RealField + Copy, const M: usize> Real for Dual<T, M> {}
+impl<T: RealField + Copy, const M: usize> Real for Dual<T, M> {
+    fn is_all_zero(self) -> bool {
+        self.re == T::zero() && self.eps.iter().all(|e| *e == T::zero())
+    }
+}
 
 /// `Real` for a simba SIMD type of four lanes of a scalar `Real`.
 #[cfg(feature = "wide")]
