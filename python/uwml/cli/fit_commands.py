@@ -11,9 +11,8 @@ import os
 from pathlib import Path
 from typing import Any
 
-from ..fit.free_running import HULL_TERMS
 from ..fit.loss_regressors import LOSS_TERMS
-from ..fit.robot_design import BASE_ROWS
+from ..fit.robot_design import BASE_ROWS, HULL_TERMS
 from ..io.sampling import WINDOW_S
 from ..robot.presets import paper_leg
 from .argument_types import _base_rows, _depth, _finite, _joint_list_or_none, _positive, _workers

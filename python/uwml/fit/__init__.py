@@ -106,13 +106,57 @@ alone, the description's rigid-body inverse dynamics standing in for the land ru
 its buoyancy) to logs of it running free on its thrusters (:mod:`uwml.fit.free_running`).
 """
 
-from .design import CHUNK_SAMPLES, DESIGN_CACHE_BYTES
-from .fit_results import FitResult, LossFit, OilDragFit, SealFit
-from .free_running import HullFit, hull_from_free_running
-from .hydro import HUBER_SCALE, HydroFit, LogDiagnostics, hydro_coefficients
-from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
-from .loss_fits import oil_drag, seal
-from .water_only import WaterOnlyFit, hydro_from_water_logs
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .design import CHUNK_SAMPLES, DESIGN_CACHE_BYTES
+    from .fit_results import FitResult, LossFit, OilDragFit, SealFit
+    from .free_running import HullFit, hull_from_free_running
+    from .hydro import HUBER_SCALE, HydroFit, LogDiagnostics, hydro_coefficients
+    from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
+    from .loss_fits import oil_drag, seal
+    from .water_only import WaterOnlyFit, hydro_from_water_logs
+
+#: Where each name is defined. The package imports its modules on first use (PEP 562): they
+#: import scipy, which takes longer than the command line may (``uwml --help``; a submodule's
+#: constants, the fits' term names, come without them).
+_DEFINED_IN = {
+    "CHUNK_SAMPLES": "design",
+    "DESIGN_CACHE_BYTES": "design",
+    "FitResult": "fit_results",
+    "LossFit": "fit_results",
+    "OilDragFit": "fit_results",
+    "SealFit": "fit_results",
+    "HullFit": "free_running",
+    "hull_from_free_running": "free_running",
+    "HUBER_SCALE": "hydro",
+    "HydroFit": "hydro",
+    "LogDiagnostics": "hydro",
+    "hydro_coefficients": "hydro",
+    "CONFIGURATIONS": "loss_data",
+    "read_loss_csv": "loss_data",
+    "validate_loss_data": "loss_data",
+    "write_loss_csv": "loss_data",
+    "oil_drag": "loss_fits",
+    "seal": "loss_fits",
+    "WaterOnlyFit": "water_only",
+    "hydro_from_water_logs": "water_only",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _DEFINED_IN.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{module}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_DEFINED_IN])
+
 
 __all__ = [
     "CHUNK_SAMPLES",

@@ -57,15 +57,10 @@ from .equation_error import fit_design, read_whole
 from .hydro import HydroFit
 from .inverse_dynamics import RigidBodyInverse, load_description
 from .log_set import LogSet, _Item, expand_patterns
-from .robot_design import BASE_ROWS
+from .robot_design import BASE_ROWS, HULL_TERMS, HYDROSTATIC_TERMS
 from .thrust_wrench import check_thruster_commands, thrust_wrench
 
-__all__ = ["HULL_TERMS", "HYDROSTATIC_TERMS", "HullFit", "hull_from_free_running"]
-
-#: The families of the base's lumped model a fit takes (their diagonals).
-HULL_TERMS = ("added_mass", "linear_damping", "quadratic_damping")
-#: The hydrostatic terms: ρV [kg], then ρV r_B [kg·m].
-HYDROSTATIC_TERMS = ("base.rho_volume", "base.rho_volume_cob[0]", "base.rho_volume_cob[1]", "base.rho_volume_cob[2]")
+__all__ = ["HullFit", "hull_from_free_running"]
 
 
 def _diagonal(family: str) -> list[int]:

@@ -40,6 +40,11 @@ from .log_set import LogSet
 
 #: The base wrench's components, the rows ``0 … 5`` of the regressors.
 BASE_ROWS = ("fx", "fy", "fz", "mx", "my", "mz")
+#: The families of the base's lumped model a hull fit takes (their diagonals;
+#: :func:`uwml.fit.hull_from_free_running`).
+HULL_TERMS = ("added_mass", "linear_damping", "quadratic_damping")
+#: The hydrostatic terms of a hull fit: ρV [kg], then ρV r_B [kg·m].
+HYDROSTATIC_TERMS = ("base.rho_volume", "base.rho_volume_cob[0]", "base.rho_volume_cob[1]", "base.rho_volume_cob[2]")
 #: The lumped columns of ``lumped="diagonal"``: M_A[i][i], D_L[i][i] and the quadratic dampings.
 _DIAGONAL = tuple(
     index
