@@ -14,7 +14,7 @@ mujoco = pytest.importorskip("mujoco")
 
 from test_simulation import weightless, without_drag
 from uwml.sim.mujoco import Simulation
-from uwml.sim.prescribed import Trajectory
+from uwml.sim.prescribed import SineTrajectory, Trajectory
 
 DATA = Path(__file__).parent / "data"
 AMPLITUDES, RATES = np.array([0.6, -0.5, 0.02]), np.array([2.0, 3.0, 4.0])
@@ -111,7 +111,11 @@ def test_a_clock_past_the_end_by_rounding_reads_the_end() -> None:
     [
         (lambda sim: sim.prescribe(["wrist"], Trajectory.of(waving, joints=3)), ValueError, r"no joint 'wrist' in the robot"),
         (lambda sim: sim.prescribe(["shoulder", "shoulder"], Trajectory.of(waving, joints=2)), ValueError, "each prescribed joint once"),
-        (lambda sim: sim.prescribe(["shoulder"], Trajectory.of(waving, joints=3)), ValueError, "the motion is of 3 joints, 1 are prescribed"),
+        (
+            lambda sim: sim.prescribe(["shoulder"], Trajectory.of(waving, joints=3)),
+            ValueError,
+            "the motion is of 3 joints, 1 are prescribed",
+        ),
         (lambda sim: sim.prescribe(["shoulder"], waving), TypeError, "motion must be a uwml.sim.prescribed.Trajectory"),
         (lambda sim: Trajectory([0, 1, 1, 2], [0, 0, 0, 0]), ValueError, "strictly increasing"),
         (lambda sim: Trajectory(np.arange(5.0), np.zeros((5, 2)), qd=np.zeros((4, 2))), ValueError, r"qd must have shape \(5, 2\)"),
@@ -158,3 +162,16 @@ def test_the_joint_count_of_a_motion_function_is_a_keyword() -> None:
     with pytest.raises(TypeError):
         Trajectory.of(waving, 3)  # type: ignore[misc]
     assert Trajectory.of(waving, joints=3).joints == 3
+
+
+def test_sine_trajectory_derivatives_are_exact() -> None:
+    """q̇ and q̈ against central differences of q (step 1e-4 s: truncation ~1e-8 relative)."""
+    trajectory = SineTrajectory([0.5, 0.3], period=1.5, offsets=[0.1, -0.2], harmonics=[1, 3], phases=[0.0, 1.0])
+    t, h = np.linspace(0.0, 3.0, 31), 1e-4
+    q, qd, qdd = trajectory.joint_states(t)
+    qp, qm = trajectory.joint_states(t + h)[0], trajectory.joint_states(t - h)[0]
+    np.testing.assert_allclose(qd, (qp - qm) / (2 * h), atol=1e-6)
+    np.testing.assert_allclose(qdd, (qp - 2 * q + qm) / h**2, atol=1e-4)
+    np.testing.assert_allclose(q[0], [0.1, -0.2 + 0.3 * np.sin(1.0)], rtol=1e-15)
+    with pytest.raises(ValueError, match="period must be finite and > 0"):
+        SineTrajectory([0.1], period=0.0)

@@ -72,8 +72,8 @@ at 200 Hz, 101 at 1 kHz), and at least ``polyorder + 2`` rounded up to odd (5). 
 Estimated velocities and accelerations that overflow float64 (positions of 1e300 rad changing
 every sample) are refused, naming the row and column.
 0.1 s is short against the gait's features (a 0.8 s swing) and long enough to average out
-sensor noise; the derivative error it leaves on our walking gait is bounded in
-``tests/test_identification.py``.
+sensor noise; the derivative error it leaves on our walking gait is bounded by a test against the
+gait's analytic derivatives.
 
 Errors (``ValueError``) name the file (or ``<stream>``), the row and the column.
 """
