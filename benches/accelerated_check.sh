@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# The accelerator check of issue 34 (docs/batched.md, docs/performance.md): benches/accelerated.py
+# on one GPU, within 8 minutes, its output into $OUT (or ./accelerated) as accelerated.txt.
+#
+# The GPU machine has Python 3.12 and JAX, and no network. Carry as wheels in .whl/ (the device
+# tool's README says how to fetch them for cp312): uwml itself, built for CPython 3.12
+# (`maturin build --release -i python3.12` on a machine that has it), mujoco==4.0.0 and
+# mujoco-core (cp312), mujoco-mjx==3.17.0 and trimesh. Then, from the repository's root:
+#   bash benches/accelerated_check.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${OUT:-accelerated}
+mkdir -p "$out"
+if compgen -G ".whl/*.whl" >/dev/null; then
+  python3 -m pip install -q --no-index --no-deps --no-compile --no-cache-dir --upgrade --target /tmp/site .whl/*.whl
+  export PYTHONPATH=/tmp/site${PYTHONPATH:+:$PYTHONPATH}
+fi
+export PYTHONUNBUFFERED=1 XLA_PYTHON_CLIENT_PREALLOCATE=false
+python3 -c "import jax; print('devices:', jax.devices())" | tee "$out/accelerated.txt"
+# float32 and float64 (x64), 1e6 states a batch; the MJX steps at 1,024 / 8,192 / 65,536 envs.
+timeout 420 python3 benches/accelerated.py --x64 --states 1e6 --repeats 5 --mjx --sizes 1024,8192,65536 2>&1 | tee -a "$out/accelerated.txt"
