@@ -85,7 +85,7 @@ def arm_on_rov() -> Any:
     try:
         from uwml.robot.examples import arm_on_rov as make
     except ImportError:
-        from uwml.examples import arm_on_rov as make  # revisions before uwml.robot
+        from uwml.examples import arm_on_rov as make  # this revision, and those before uwml.robot
     return make()
 
 

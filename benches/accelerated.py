@@ -1,5 +1,5 @@
 """Throughput of uwml on JAX, one run per device (issue 34, point 5): states/s of the paper's leg
-and of the 7-joint arm on a moving ROV in a current (``uwml.robot.examples.arm_on_rov``), in
+and of the 7-joint arm on a moving ROV in a current (``uwml.examples.arm_on_rov``), in
 float32 and float64, under ``jit`` and ``vmap``; the compile time of each; and, where
 ``uwml.sim.mjx`` is there, steps/s of the BlueROV2 example with its arm at several batch sizes,
 bare MJX against the full uwml step.
@@ -45,7 +45,7 @@ def evaluations(states: int, repeats: int) -> list[tuple[str, str, float, float]
     import jax
     import uwml
     import uwml.jax
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
 
     rng = np.random.default_rng(0)
     arm_conditions = uwml.Conditions(

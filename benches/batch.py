@@ -1,7 +1,7 @@
 """Throughput of the batch evaluations from Python, per state: the paper's leg (``hydro`` on one and
 two threads, ``environment`` with the default losses on all three joints, ``hydro_regressors``,
 on a moving base in a current) and the 7-joint arm of 15 segments on an ROV of
-:func:`uwml.robot.examples.arm_on_rov` (moving, in a current, one and two threads); against the
+:func:`uwml.examples.arm_on_rov` (moving, in a current, one and two threads); against the
 numpy reference; and what the checks against a description's joint limits cost
 (``uwml.plausibility``): the arm of ``examples/my_arm`` from its URDF with and without its limits
 (needs MuJoCo; skipped without it).

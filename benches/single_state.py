@@ -1,7 +1,7 @@
 """Cost of one state per call from Python (a controller or a simulator stepping one state at a
 time): the paper's leg (``hydro`` with lists or 1-D arrays, ``environment`` at depth, with one
 ``JointLosses``, coefficients per segment) and the 7-joint arm of
-:func:`uwml.robot.examples.arm_on_rov` on a moving ROV in a current, in every coefficient form
+:func:`uwml.examples.arm_on_rov` on a moving ROV in a current, in every coefficient form
 (the segments' own, a number, one per segment, one per segment and direction). Each is called
 with keyword shortcuts, and, where the revision has ``uwml.Conditions``, with the conditions made
 once and passed to every call (what a controller does).

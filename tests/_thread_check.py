@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 import uwml
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 
 THREADS = 8
 CALLS = 30

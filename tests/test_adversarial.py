@@ -158,10 +158,10 @@ def test_adversarial_base_motions_in_an_evaluation(data: st.DataObject) -> None:
 
 
 def _arm_with(change: str, value: float) -> uwml.Robot:
-    """``uwml.robot.examples.arm_on_rov`` with one model value replaced."""
+    """``uwml.examples.arm_on_rov`` with one model value replaced."""
     import dataclasses
 
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
 
     arm = arm_on_rov()
     joints, links, base = list(arm.joints), list(arm.links), arm.base

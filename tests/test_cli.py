@@ -134,7 +134,7 @@ def test_torques_match_the_library(tmp_path: Path, experiment: Log) -> None:
 
 
 def test_torques_of_a_robot_from_its_model_file(tmp_path: Path) -> None:
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
 
     arm = arm_on_rov()
     model = tmp_path / "arm.toml"

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import uwml
 from uwml.cli import main
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 from uwml.viz.describe import describe, frame_origins
 
 

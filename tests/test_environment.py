@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from uwml import _core, reference
 from uwml.model.losses import rpm_to_rad_s
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 
 
 def assert_close(actual, expected, rel=1e-12, atol=0.0):

@@ -1,5 +1,5 @@
 """``uwml export``: the robot's model as Rust constants and C initializers. The checked-in outputs
-for the arm of ``uwml.robot.examples.arm_on_rov`` are what the exporter writes today (so the Rust test
+for the arm of ``uwml.examples.arm_on_rov`` are what the exporter writes today (so the Rust test
 ``crates/uwml-core/tests/exported.rs`` and the C program ``crates/uwml-ffi/tests/c/exported.c``
 compile and evaluate exactly this output); every literal reads back to the model's number."""
 
@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from uwml.cli import main
 from uwml.io.export import to_c, to_rust
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCE = "uwml.examples.arm_on_rov()"

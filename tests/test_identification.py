@@ -23,7 +23,7 @@ from uwml.fit.log_set import log_set
 from uwml.io import logs
 from uwml.io.logs import write_log
 from uwml.paper import synthetic
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 from uwml.sim.prescribed import SineTrajectory
 from uwml.viz import plot
 
@@ -120,7 +120,7 @@ def test_known_sigma_gives_a_meaningful_reduced_chi_square() -> None:
 
 
 def arm_truth() -> tuple[uwml.Robot, np.ndarray, np.ndarray, dict[str, float]]:
-    """The arm of uwml.robot.examples with one true (Cd, Cm) per link (the hull's segments too)."""
+    """The arm of uwml.examples with one true (Cd, Cm) per link (the hull's segments too)."""
     arm = arm_on_rov()
     cd_link = [1.1, 1.3, 0.9, 1.6, 1.2, 2.0, 2.4]
     cm_link = [0.9, 1.2, 1.05, 0.8, 1.0, 0.7, 0.6]

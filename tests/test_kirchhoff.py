@@ -15,7 +15,7 @@ def test_kirchhoff_regressors_and_jacobians_are_its_forces() -> None:
     """``added_mass="kirchhoff"`` everywhere a robot evaluates added mass: the regressors at the
     segments' coefficients give ``hydro``'s forces; the jacobians' value is ``environment``'s
     total and their velocity derivative matches central differences; ``M_A`` is the Morison one."""
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
 
     robot = arm_on_rov()
     rng = np.random.default_rng(12)

@@ -47,6 +47,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("uwml.model",),
     ("uwml.io",),
     ("uwml.robot",),
+    ("uwml.examples",),
     ("uwml.jax",),
     ("uwml.fit",),
     ("uwml.viz",),
@@ -70,7 +71,9 @@ def _module_name(path: Path) -> str:
 
 @cache
 def _modules() -> dict[str, Path]:
-    return {_module_name(path): path for path in sorted(SOURCE.rglob("*.py"))}
+    """The package's modules: its ``.py`` files in folders that are packages (a script among an
+    example's data files, ``uwml/examples/my_arm/make_logs.py``, is no module)."""
+    return {_module_name(path): path for path in sorted(SOURCE.rglob("*.py")) if (path.parent / "__init__.py").exists()}
 
 
 def _is_package(name: str) -> bool:

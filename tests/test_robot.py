@@ -267,7 +267,7 @@ def test_identifying_cd_and_cm_of_an_arm_on_a_moving_vehicle() -> None:
 
 
 def test_the_example_arm_on_an_rov_matches_the_reference() -> None:
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
 
     arm = arm_on_rov()
     assert arm.n_joints == 7 and len(arm.segments) == 15 and arm.joints[6].kind == "prismatic"

@@ -406,7 +406,7 @@ def test_morison_energy_rate_is_the_documented_integral() -> None:
 def test_mjcf_of_a_robot() -> None:
     """uwml.sim.mujoco.mjcf_of: bodies, joints and masses of the robot; a link's inertia that of its
     mass spread over its segments' solids (here by hand: one box, one cylinder)."""
-    from uwml.robot.examples import arm_on_rov
+    from uwml.examples import arm_on_rov
     from uwml.sim.mujoco import mjcf_of
 
     box = uwml.Segment((0, 0, 0), (1, 0, 0), 0.6, normals=((0, 1, 0), (0, 0, 1)), widths=(0.1, 0.2), area=0.02)

@@ -17,7 +17,7 @@ import pytest
 import uwml
 from chains import random_chain, random_states
 from robots import COMPONENTS, motion_arguments, random_robot
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 
 PAPER = uwml.paper_leg()
 STATE = {"q": [0.1, -0.4, 0.7], "qd": [0.5, -1.0, 2.0], "qdd": [1.0, 3.0, -2.0]}

@@ -1,5 +1,5 @@
 """The figure of docs/model.md section 10: what the water does to the 7-joint arm of
-``uwml.robot.examples.arm_on_rov`` and, through it, to the vehicle, while the arm swings through a
+``uwml.examples.arm_on_rov`` and, through it, to the vehicle, while the arm swings through a
 reach and the ROV surges at 0.5 m/s with a slow pitch oscillation in a 0.3 m/s cross current.
 
 Run: ``python docs/figures/arm_on_rov.py`` (writes ``docs/figures/arm_on_rov.png``).
@@ -13,7 +13,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 import uwml
-from uwml.robot.examples import arm_on_rov
+from uwml.examples import arm_on_rov
 
 
 def main() -> None:

@@ -444,7 +444,7 @@ def write_report(
         lines += [
             "## An arm on a free-floating ROV in a current",
             "",
-            "The arm of `uwml.robot.examples.arm_on_rov` (hull trimmed neutrally buoyant) moves its joints along sines",
+            "The arm of `uwml.examples.arm_on_rov` (hull trimmed neutrally buoyant) moves its joints along sines",
             f"for {drifts[0].time[-1]:g} s in a {ROV_CURRENT:g} m/s current while a station-keeping PD (0.3 Hz) holds",
             "the vehicle, with and without the feedforward of uwml's predicted wrench on it.",
             "",

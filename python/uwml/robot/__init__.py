@@ -2,8 +2,8 @@
 kinematic tree on a moving base, in a current), the conditions of its evaluations
 (:mod:`uwml.robot.evaluation_conditions`), the base's motion (:mod:`uwml.robot.base_motion`),
 the results (:mod:`uwml.robot.results`), the paper's leg as a preset
-(:mod:`uwml.robot.presets`), robots from files (:mod:`uwml.robot.files`) and example robots
-(:mod:`uwml.robot.examples`).
+(:mod:`uwml.robot.presets`) and robots from files (:mod:`uwml.robot.files`); example robots are
+:mod:`uwml.examples`'s.
 """
 
 from .base_motion import BaseMotion

@@ -17,7 +17,7 @@ from numpy.typing import NDArray
 
 from ..model.parts import Link, Water
 from ..robot.base_motion import BaseMotion
-from ..robot.examples import arm_on_rov
+from ..examples import arm_on_rov
 from ..robot.tree import Robot
 from .mjcf import mjcf_of
 from .mujoco import Simulation
@@ -88,7 +88,7 @@ ROV_CURRENT = 0.5
 
 
 def rov_drift(with_uwml: bool, duration: float = 10.0, timestep: float = 2e-3, current: float = ROV_CURRENT) -> Drift:
-    """The arm of :func:`uwml.robot.examples.arm_on_rov` on its free-floating hull (trimmed neutrally
+    """The arm of :func:`uwml.examples.arm_on_rov` on its free-floating hull (trimmed neutrally
     buoyant in the study's sea water) moves its joints along sines in a ``current`` along x
     [m/s, default 0.5] while a
     station-keeping PD (0.3 Hz, critically damped, on the vehicle's total rigid mass and inertia,
