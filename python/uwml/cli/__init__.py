@@ -13,7 +13,9 @@ commands, one module per group (``uwml <command> --help`` for each):
   land/water experiments) and ``uwml fit losses CSV`` (the oil-drag and seal models from a
   three-configuration experiment);
 * :mod:`~uwml.cli.study_commands`: ``uwml study CONFIG`` (a scenario over grids and random
-  draws of its parameters, on Ray).
+  draws of its parameters, on Ray);
+* :mod:`~uwml.cli.example_commands`: ``uwml examples [DIR]`` (the examples that ship with the
+  package, copied into ``DIR/examples``).
 
 The arguments' types are :mod:`~uwml.cli.argument_types`'s; what the commands share (the usage
 error, the robot of ``--robot``, the help on logs and exit codes) is :mod:`~uwml.cli.common`'s.
@@ -32,6 +34,7 @@ import sys
 from collections.abc import Sequence
 
 from .common import _EXIT
+from .example_commands import add_example_command
 from .fit_commands import add_fit_commands
 from .paper_commands import add_paper_commands
 from .robot_commands import add_robot_commands
@@ -64,6 +67,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_robot_commands(commands, formatter)
     add_fit_commands(commands, formatter)
     add_study_command(commands, formatter)
+    add_example_command(commands, formatter)
     return parser
 
 

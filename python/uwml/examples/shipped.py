@@ -10,13 +10,14 @@ from ..robot.tree import Robot
 
 __all__ = ["bluerov2", "my_arm", "names", "path"]
 
-_PACKAGE = "uwml.examples"
+#: Where the files are: the package's data folder (the repository's examples/ links to it).
+_PACKAGE, _FOLDER = "uwml.examples", "data"
 
 
 def names() -> tuple[str, ...]:
-    """The examples :func:`path` finds: folders and files beside this module."""
-    here = resources.files(_PACKAGE)
-    return tuple(sorted(entry.name for entry in here.iterdir() if not entry.name.startswith(("_", ".")) and entry.name != "__init__.py"))
+    """The examples :func:`path` finds: the folders and files of the package's data folder."""
+    here = resources.files(_PACKAGE).joinpath(_FOLDER)
+    return tuple(sorted(entry.name for entry in here.iterdir() if not entry.name.startswith(("_", "."))))
 
 
 def path(name: str, *parts: str) -> Path:
@@ -24,7 +25,7 @@ def path(name: str, *parts: str) -> Path:
     (``path("bluerov2", "bluerov2_arm.urdf")``): a real path, readable by any tool."""
     if not isinstance(name, str) or name not in names():
         raise ValueError(f"no example {name!r}; the examples are {', '.join(names())}")
-    found = Path(str(resources.files(_PACKAGE).joinpath(name, *parts)))
+    found = Path(str(resources.files(_PACKAGE).joinpath(_FOLDER).joinpath(name, *parts)))
     if not found.exists():
         raise ValueError(f"example {name!r} has no {'/'.join(parts)!r}")
     return found
