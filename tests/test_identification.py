@@ -17,13 +17,13 @@ import numpy as np
 import pytest
 import uwml
 from matplotlib.figure import Figure
+from test_identification_logs import _take
 from uwml import WalkingGait, fit
 from uwml.cli import main
+from uwml.examples import arm_on_rov
 from uwml.fit.log_set import log_set
-from uwml.io import logs
 from uwml.io.logs import write_log
 from uwml.paper import synthetic
-from uwml.examples import arm_on_rov
 from uwml.sim.prescribed import SineTrajectory
 from uwml.viz import plot
 
@@ -33,12 +33,6 @@ CD, CM = 2.2, 0.5
 SEEDS = (0, 1, 2, 3, 4)
 GAIT = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
 ARM_TRAJECTORY = SineTrajectory([0.6, 0.5, 0.7, 0.8, 0.6, 0.9, 0.02], period=2.5)
-
-
-def _take(log: logs.Log, index) -> logs.Log:
-    """The rows ``index`` of a log."""
-    arrays = {name: getattr(log, name) for name in ("time", "q", "qd", "qdd", "tau_land", "tau_water", "tau")}
-    return replace(log, **{name: None if a is None else a[index] for name, a in arrays.items()})
 
 
 def _within_three_stderr(result, truth: dict) -> None:

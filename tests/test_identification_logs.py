@@ -30,14 +30,6 @@ def _take(log: logs.Log, index) -> logs.Log:
     return replace(log, **{name: None if a is None else a[index] for name, a in arrays.items()})
 
 
-def _within_three_stderr(result, truth: dict) -> None:
-    assert result.success and result.errorbars, result.message
-    for name, value in truth.items():
-        error = result.stderr[name]
-        assert error is not None and error > 0.0
-        assert abs(result.params[name] - value) <= 3.0 * error, (name, result.params[name], value, error)
-
-
 # --------------------------------------------------------------------------------------------
 # Derivatives
 # --------------------------------------------------------------------------------------------
