@@ -12,7 +12,7 @@ from uwml.cli import main
 
 
 def test_every_example_is_found_in_the_installed_package() -> None:
-    assert uwml.examples.names() == ("bluerov2", "hydro.toml", "my_arm", "study.toml", "vehicle_study.toml")
+    assert {"bluerov2", "hydro.toml", "my_arm", "study.toml", "vehicle_study.toml"} <= set(uwml.examples.names())
     package = Path(uwml.examples.__file__).parent
     for name in uwml.examples.names():
         assert uwml.examples.path(name).resolve().is_relative_to(package.resolve())
