@@ -8,15 +8,15 @@ kind (README, "Documentation"; the README's own Python and command-line blocks r
   includes them; ``cargo test`` compiles and runs every block, their ``# `` lines hidden on the
   site by ``mkdocs_hooks.py``);
 - C: only docs/firmware.md holds C blocks, and uwml-ffi's ``firmware_doc_c_examples_compile``
-  compiles each (``docs/reference/c.md`` includes the header itself);
+  compiles each (``docs/reference/c.md`` is rendered from the header by ``mkdocs_c_api.py``);
 - shell: every ``uwml`` command line is one the command line's parser takes as written (its
   files are a user's: they are not made here); any other command is one of the tools listed in
   ``ENVIRONMENT_COMMANDS`` (installers, compilers, a cluster's), which set up a machine and are
   not run by the tests;
 - TOML: parses; a study configuration (``[scenario]``) is checked whole by ``uwml.study``;
 - CMake: reads as CMake's command syntax (``tests/cmake_text.py``; cmake is not run);
-- the API reference's docstring examples (``Example ...::``) of ``uwml.Robot`` and ``uwml.Conditions``
-  run too.
+- the API reference's docstring examples (their ``Examples`` sections) of ``uwml.Robot`` and
+  ``uwml.Conditions`` run as doctests.
 
 A block of any other language, or without one, fails the test: each kind has its check here.
 """
@@ -99,11 +99,16 @@ def test_each_python_block_of_the_site_runs_on_its_own(where: str, code: str, fo
 
 @pytest.mark.parametrize("name", ["Robot", "Conditions"])
 def test_the_api_references_docstring_examples_run(name: str, folder: Path) -> None:
-    doc = getattr(uwml, name).__doc__
-    match = re.search(r"Example[^\n]*::\n\n((?:    .*\n|\n)+)", doc)
-    assert match is not None, f"uwml.{name}'s docstring has no example"
-    done = run_python(textwrap.dedent(match.group(1)), folder)
-    assert done.returncode == 0, f"uwml.{name}'s example:\n{match.group(1)}\n{done.stderr[-3000:]}"
+    assert ">>> " in (getattr(uwml, name).__doc__ or ""), f"uwml.{name}'s docstring has no example"
+    code = textwrap.dedent(f"""\
+        import doctest, uwml
+        (test,) = doctest.DocTestFinder(recurse=False).find(uwml.{name}, "uwml.{name}", globs={{}})
+        runner = doctest.DocTestRunner()
+        runner.run(test)
+        raise SystemExit(runner.failures or not runner.tries)
+        """)
+    done = run_python(code, folder)
+    assert done.returncode == 0, f"uwml.{name}'s example:\n{done.stdout[-3000:]}\n{done.stderr[-3000:]}"
 
 
 def test_the_pages_with_rust_blocks_are_doctests() -> None:
@@ -123,9 +128,7 @@ def test_the_pages_with_rust_blocks_are_doctests() -> None:
 
 def test_the_c_blocks_are_the_firmware_pages_which_are_compiled() -> None:
     pages = {where.split(":")[0] for where, _ in snippets("c", [ROOT / "README.md", *PAGES])}
-    assert pages == {"docs/firmware.md", "docs/reference/c.md"}
-    (include,) = [code for where, code in snippets("c") if where.startswith("docs/reference/c.md")]
-    assert include.strip() == '--8<-- "crates/uwml-ffi/include/uwml.h"'
+    assert pages == {"docs/firmware.md"}
     program = (ROOT / "crates/uwml-ffi/tests/c_program.rs").read_text(encoding="utf-8")
     assert "fn firmware_doc_c_examples_compile()" in program and 'join("../../docs/firmware.md")' in program
 

@@ -73,12 +73,17 @@ _F32_AXES_TOLERANCE = 0.5 * AXIS_TOLERANCE
 def get_include() -> str:
     """The folder, inside the installed package, that holds ``uwml.h``: the header of the C ABI
     (crates/uwml-ffi/include/uwml.h, which the package ships as it is), as ``numpy.get_include()``
-    does for numpy's. A host C program next to a pip install::
+    does for numpy's. The static library is not in the package: it comes from the firmware
+    package of ``make dist`` (docs/firmware.md, "Without Rust").
 
-        cc -I"$(python -c 'import uwml; print(uwml.get_include())')" app.c libuwml.a -lm
+    Examples
+    --------
+    A host C program next to a pip install:
 
-    The static library is not in the package: it comes from the firmware package of ``make dist``
-    (docs/firmware.md, "Without Rust")."""
+    ```sh
+    cc -I"$(python -c 'import uwml; print(uwml.get_include())')" app.c libuwml.a -lm
+    ```
+    """
     return os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "include")
 
 

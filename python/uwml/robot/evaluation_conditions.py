@@ -108,6 +108,9 @@ def _losses(losses: object) -> JointLosses | tuple[JointLosses | None, ...] | No
 class Conditions:
     """The conditions of an evaluation (module docstring), checked once.
 
+    Any input with a sample axis gives results with one (all such inputs, and the joint states,
+    agree on the number of samples); the others are broadcast.
+
     Parameters
     ----------
     water
@@ -144,16 +147,15 @@ class Conditions:
         The density of the water column above, for the pressure [kg/m³]; None (default): the
         water's, so that one water is used for both.
 
-    Any input with a sample axis gives results with one (all such inputs, and the joint states,
-    agree on the number of samples); the others are broadcast.
+    Examples
+    --------
+    A controller of the paper's leg at 1000 m, stepping one state at a time:
 
-    Example: a controller of the paper's leg at 1000 m, stepping one state at a time::
-
-        import uwml
-        leg = uwml.paper_leg()
-        at_depth = uwml.Conditions(water=uwml.Water(1025.0), depth=1000.0, temperature_c=4.0, losses=uwml.JointLosses())
-        for q, qd, qdd in [([0.1, -0.4, 0.7], [0.5, -1.0, 2.0], [1.0, 3.0, -2.0])]:
-            tau = leg.environment(q, qd, qdd, at_depth).total   # read by the core once, for every call
+    >>> import uwml
+    >>> leg = uwml.paper_leg()
+    >>> at_depth = uwml.Conditions(water=uwml.Water(1025.0), depth=1000.0, temperature_c=4.0, losses=uwml.JointLosses())
+    >>> for q, qd, qdd in [([0.1, -0.4, 0.7], [0.5, -1.0, 2.0], [1.0, 3.0, -2.0])]:
+    ...     tau = leg.environment(q, qd, qdd, at_depth).total   # read by the core once, for every call
     """
 
     water: Water | None

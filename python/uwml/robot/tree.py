@@ -98,18 +98,21 @@ class Robot:
     Segments are numbered base first, then link 0's, link 1's, ...: the order of per-segment
     coefficients and of :attr:`segments`.
 
-    Example: a 2-joint arm of cylinders on an ROV that pitches and surges in a current::
+    Examples
+    --------
+    A 2-joint arm of cylinders on an ROV that pitches and surges in a current:
 
-        import uwml
-        from scipy.spatial.transform import Rotation
-        arm = uwml.Robot(
-            joints=[uwml.Joint((0.5, 0, -0.3), (0, 0, 1)), uwml.Joint((0, 0, -0.4), (0, 1, 0))],
-            links=[uwml.Link(4.0, (0, 0, -0.2), 0.002, segments=[uwml.Segment((0, 0, 0), (0, 0, -1), 0.4, section="circular", diameter=0.08)]),
-                   uwml.Link(3.0, (0.25, 0, 0), 0.0015, segments=[uwml.Segment((0, 0, 0), (1, 0, 0), 0.5, section="circular", diameter=0.06)])],
-        )
-        motion = uwml.BaseMotion(orientation=Rotation.from_euler("y", 0.1), velocity=(0.5, 0, 0))
-        result = arm.hydro([0.3, -0.5], [0.2, 0.1], [0, 0], base_motion=motion, current=(0.2, 0, 0))
-        result.total, result.base.total   # joint torques; base force and moment
+    >>> import uwml
+    >>> from scipy.spatial.transform import Rotation
+    >>> arm = uwml.Robot(
+    ...     joints=[uwml.Joint((0.5, 0, -0.3), (0, 0, 1)), uwml.Joint((0, 0, -0.4), (0, 1, 0))],
+    ...     links=[uwml.Link(4.0, (0, 0, -0.2), 0.002, segments=[uwml.Segment((0, 0, 0), (0, 0, -1), 0.4, section="circular", diameter=0.08)]),
+    ...            uwml.Link(3.0, (0.25, 0, 0), 0.0015, segments=[uwml.Segment((0, 0, 0), (1, 0, 0), 0.5, section="circular", diameter=0.06)])],
+    ... )
+    >>> motion = uwml.BaseMotion(orientation=Rotation.from_euler("y", 0.1), velocity=(0.5, 0, 0))
+    >>> result = arm.hydro([0.3, -0.5], [0.2, 0.1], [0, 0], base_motion=motion, current=(0.2, 0, 0))
+    >>> result.total.shape, result.base.total.shape   # joint torques; base force and moment
+    ((2,), (6,))
     """
 
     def __init__(
@@ -508,6 +511,9 @@ class Robot:
         """Position and geometric Jacobian of a point on a link, in the base frame (a fixed,
         upright base: the world frame).
 
+        The batch is evaluated in one call into Rust (``uwml_core::forward_kinematics`` and
+        ``point_jacobian``), with the GIL released.
+
         Parameters
         ----------
         q
@@ -528,9 +534,6 @@ class Robot:
             ``qd[j]`` to the point's velocity (rows 0-2: ``z_j × (p − o_j)`` for a revolute
             joint, ``z_j`` for a prismatic one) and to the link's angular velocity (rows 3-5:
             ``z_j``, or zero); joints that do not carry the link have zero columns.
-
-        The batch is evaluated in one call into Rust (``uwml_core::forward_kinematics`` and
-        ``point_jacobian``), with the GIL released.
         """
         index = self._link_index(link)
         if point is None:
