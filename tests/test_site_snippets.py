@@ -3,7 +3,8 @@ kind (README, "Documentation"; the README's own Python and command-line blocks r
 ``tests/test_readme.py``):
 
 - Python: each block runs on its own, as written, in a fresh interpreter with warnings as errors,
-  in a folder holding the repository's ``examples/``;
+  in an empty folder (as after ``pip install uwml``: the examples are the package's,
+  ``uwml.examples.path``);
 - Rust: the pages that hold Rust blocks are doctests of uwml-core (``crates/uwml-core/src/lib.rs``
   includes them; ``cargo test`` compiles and runs every block, their ``# `` lines hidden on the
   site by ``mkdocs_hooks.py``);
@@ -74,9 +75,8 @@ def snippets(language: str, pages: list[Path] = PAGES) -> list[tuple[str, str]]:
 
 @pytest.fixture(scope="module")
 def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    path = tmp_path_factory.mktemp("site")
-    shutil.copytree(ROOT / "examples", path / "examples")
-    return path
+    """An empty folder: a snippet finds the examples where the package is installed."""
+    return tmp_path_factory.mktemp("site")
 
 
 def run_python(code: str, folder: Path) -> subprocess.CompletedProcess[str]:
