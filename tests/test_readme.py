@@ -1,12 +1,12 @@
-"""The README's example runs as written, in a fresh interpreter, in a folder holding the
-repository's ``examples/``; so does the tour's own-robot section (``docs/tour.md``, moved there
-from the README): its command-line block line by line after its Python (it uses the files they
-and ``examples/my_arm/make_logs.py`` make), and the URDF and hydro file it shows are the
-example's files. (The site's other checks are ``tests/test_site_snippets.py``'s.)"""
+"""The README's example runs as written, in a fresh interpreter, in an empty folder (as after
+``pip install uwml``: the examples are the package's); so does the tour's own-robot section
+(``docs/tour.md``, moved there from the README): its command-line block line by line after its
+Python (it copies the examples with ``uwml examples .``, then uses the files they and
+``examples/my_arm/make_logs.py`` make), and the URDF and hydro file it shows are the example's
+files. (The site's other checks are ``tests/test_site_snippets.py``'s.)"""
 
 import re
 import shlex
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -24,10 +24,8 @@ COMMANDS = next(block for block in re.findall(r"```bash\n(.*?)```", TOUR, re.DOT
 
 @pytest.fixture(scope="module")
 def folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A folder like the repository's root for the snippets: ``examples/`` and what they write."""
-    path = tmp_path_factory.mktemp("readme")
-    shutil.copytree(ROOT / "examples", path / "examples")
-    return path
+    """An empty folder for the snippets and what they write."""
+    return tmp_path_factory.mktemp("readme")
 
 
 def run(arguments: list[str], folder: Path) -> subprocess.CompletedProcess[str]:
