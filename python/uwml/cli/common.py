@@ -1,8 +1,9 @@
 """What the ``uwml`` commands share: the usage error, the check of an output path, the robot of
-``--robot`` and ``--hydro``, and the help texts on logs and exit codes."""
+``--robot`` and ``--hydro``, a fit's output, and the help texts on logs and exit codes."""
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 from typing import Any
@@ -25,6 +26,17 @@ def _check_output(path: str | None, option: str) -> None:
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise _UsageError(f"{path}: no such directory: {folder}")
+
+
+def print_fit(result: Any, as_json: bool, heading: str) -> int:
+    """A fit's output on standard output: its summary as JSON (``--json``), or ``heading`` and its
+    report; the exit status, 0."""
+    if as_json:
+        print(json.dumps(result.summary()))
+    else:
+        print(heading)
+        print(result.fit_report())
+    return 0
 
 
 def load_robot(path: str, hydro: str | None = None) -> Any:

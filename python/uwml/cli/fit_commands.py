@@ -1,6 +1,7 @@
 """``uwml fit``: ``fit hydro`` (Cd and Cm, axial drag, lumped models, from a land/water
 experiment or a captive test, or with ``--water-only`` from logs of the water run alone),
-``fit hull`` (a vehicle's lumped model from free-running logs) and ``fit losses`` (the joints'
+``fit hull`` (a vehicle's lumped model from free-running logs), ``fit vehicle`` (its hull and trim
+from free-floating trials, :mod:`uwml.cli.vehicle_command`) and ``fit losses`` (the joints'
 oil-drag and seal models)."""
 
 from __future__ import annotations
@@ -16,7 +17,8 @@ from ..fit.robot_design import BASE_ROWS, HULL_TERMS
 from ..io.sampling import WINDOW_S
 from ..robot.presets import paper_leg
 from .argument_types import _base_rows, _depth, _finite, _joint_list_or_none, _positive, _workers
-from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot
+from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_robot, print_fit
+from .vehicle_command import add_vehicle_fit
 
 
 def _fit_hydro(args: argparse.Namespace) -> int:
@@ -135,12 +137,7 @@ def _fit_hull(args: argparse.Namespace) -> int:
         source, args.robot, args.hydro, terms=args.terms, hydrostatics=args.hydrostatics, hold=args.hold,
         robust=args.robust, columns=args.columns, window_s=args.window,
     )  # fmt: skip
-    if args.json:
-        print(json.dumps(result.summary()))
-    else:
-        print(f"uwml fit hull: {result.source}, --robot {args.robot}, terms {', '.join(args.terms)}")
-        print(result.fit_report())
-    return 0
+    return print_fit(result, args.json, f"uwml fit hull: {result.source}, --robot {args.robot}, terms {', '.join(args.terms)}")
 
 
 def _names(allowed: tuple[str, ...] | None) -> Any:
@@ -252,9 +249,12 @@ def _pair(logs: list[str], columns: str | None = None) -> tuple[str, str] | None
 
 
 def add_fit_commands(commands: Any, formatter: type[argparse.HelpFormatter]) -> None:
-    """``uwml fit hydro``, ``uwml fit hull`` and ``uwml fit losses`` on the ``uwml`` parser's commands."""
+    """``uwml fit hydro``, ``uwml fit hull``, ``uwml fit vehicle`` and ``uwml fit losses`` on the
+    ``uwml`` parser's commands."""
     fit_parser = commands.add_parser(
-        "fit", help="identify Cd, Cm (fit hydro), a hull (fit hull) or the joint-loss models (fit losses) from files"
+        "fit",
+        help="identify Cd, Cm (fit hydro), a hull from free running (fit hull) or free floating (fit vehicle), or the joint-loss "
+        "models (fit losses) from files",
     )
     fits = fit_parser.add_subparsers(dest="fit_command", required=True)
     hydro = fits.add_parser(
@@ -413,6 +413,8 @@ Output: the fit report on standard output; with --json only the result's summary
     hull.add_argument("--columns", metavar="MAP", help="a column map (TOML) each LOG is read through (docs/logs.md)")
     hull.add_argument("--json", action="store_true", help="print the result's summary as JSON only")
     hull.set_defaults(run=_fit_hull)
+
+    add_vehicle_fit(fits, formatter)
 
     losses = fits.add_parser(
         "losses",

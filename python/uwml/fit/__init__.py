@@ -104,6 +104,14 @@ Without a land run
 alone, the description's rigid-body inverse dynamics standing in for the land run
 (:mod:`uwml.fit.water_only`); :func:`hull_from_free_running` fits a vehicle's lumped model (and
 its buoyancy) to logs of it running free on its thrusters (:mod:`uwml.fit.free_running`).
+
+By output error
+---------------
+:func:`uwml.sim.free_floating.vehicle_from_trials` fits chosen entries of a vehicle's hull and
+its trim (:data:`VEHICLE_PARAMETERS`) to trials of it floating with the thrusters off while its
+arm moves, each residual a replay; it lives with the simulation it needs (a layer above this
+one), its least squares, statistics and result (:class:`VehicleFit`) here
+(:mod:`uwml.fit.output_error`, :mod:`uwml.fit.vehicle_parameters`).
 """
 
 import importlib
@@ -116,6 +124,8 @@ if TYPE_CHECKING:
     from .hydro import HUBER_SCALE, HydroFit, LogDiagnostics, hydro_coefficients
     from .loss_data import CONFIGURATIONS, read_loss_csv, validate_loss_data, write_loss_csv
     from .loss_fits import oil_drag, seal
+    from .output_error import TrialRMS, VehicleFit
+    from .vehicle_parameters import VEHICLE_PARAMETERS
     from .water_only import WaterOnlyFit, hydro_from_water_logs
 
 #: Where each name is defined. The package imports its modules on first use (PEP 562): they
@@ -140,6 +150,9 @@ _DEFINED_IN = {
     "write_loss_csv": "loss_data",
     "oil_drag": "loss_fits",
     "seal": "loss_fits",
+    "TrialRMS": "output_error",
+    "VehicleFit": "output_error",
+    "VEHICLE_PARAMETERS": "vehicle_parameters",
     "WaterOnlyFit": "water_only",
     "hydro_from_water_logs": "water_only",
 }
@@ -163,6 +176,7 @@ __all__ = [
     "CONFIGURATIONS",
     "DESIGN_CACHE_BYTES",
     "HUBER_SCALE",
+    "VEHICLE_PARAMETERS",
     "FitResult",
     "HullFit",
     "HydroFit",
@@ -170,6 +184,8 @@ __all__ = [
     "LossFit",
     "OilDragFit",
     "SealFit",
+    "TrialRMS",
+    "VehicleFit",
     "WaterOnlyFit",
     "hull_from_free_running",
     "hydro_coefficients",

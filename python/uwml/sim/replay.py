@@ -283,15 +283,25 @@ def _commands(
     return steps, held, commands, drive
 
 
-def _simulate(sim: Any, streams: Streams, description: str, progress: bool, smoothing: float, start_window: float, at_rest: bool) -> Replay:
-    """:func:`replay` of a log already read on a floating simulation."""
+def _simulate(
+    sim: Any,
+    streams: Streams,
+    description: str,
+    progress: bool,
+    smoothing: float,
+    start_window: float,
+    at_rest: bool,
+    start: StartState | None = None,
+) -> Replay:
+    """:func:`replay` of a log already read on a floating simulation; ``start``: the start twist
+    (None: :func:`uwml.sim.replay_inputs.start_state`'s)."""
     recorded, first_row, measured = streams.joints, streams.first_row, streams.pose
     start_time, timestep = float(recorded.time[0]), float(sim.model.opt.timestep)
     targets = step_times(start_time, float(recorded.time[-1]), timestep)
     targets, held, commands, thrusters = _commands(streams, len(sim.robot.thrusters), description, start_time, targets, timestep)
     check_joints(recorded, sim.robot.joints, first_row, description)
     motion = joint_motion(recorded, sim.robot.joints, smoothing, first_row)
-    start = start_state(streams, start_window, at_rest)
+    start = start_state(streams, start_window, at_rest) if start is None else start
     trajectory = Trajectory(motion.time, motion.q, motion.qd, motion.qdd)
     d, m = sim.data, sim.model
     d.time = float(motion.time[0])

@@ -93,6 +93,7 @@ __all__ = [
     "joint_motion",
     "read_streams",
     "read_vehicle_pose",
+    "start_fit",
     "start_state",
 ]
 
@@ -491,8 +492,18 @@ def start_state(streams: Streams, window: float = START_WINDOW_S, at_rest: bool 
         return StartState(np.zeros(6), "no pose", None, 0)
     if at_rest:
         return StartState(np.zeros(6), "rest", None, 0)
+    coefficients, count = start_fit(streams, window)
+    return StartState(np.asarray(coefficients[1] / window, dtype=np.float64), "fit", window, count)
+
+
+def start_fit(streams: Streams, window: float) -> tuple[FloatArray, int]:
+    """The polynomials fitted to the measured pose within ``window`` [s] of the replay's first time
+    (the module, "Start state"): their coefficients ``(degree + 1, 6)``, constant first, in time
+    scaled by ``window`` (position, then the rotation vector about the first sample's
+    orientation, body frame), and the samples' count (fewer than 2 refused)."""
     from scipy.spatial.transform import Rotation
 
+    assert streams.pose is not None and streams.pose_samples is not None
     t0 = float(streams.joints.time[0])
     time, position, quaternion = streams.pose_samples
     inside = (time >= t0) & (time <= t0 + window * (1.0 + 1e-9))  # a sample at the window's end, to rounding, in it
@@ -507,5 +518,4 @@ def start_state(streams: Streams, window: float = START_WINDOW_S, at_rest: bool 
     turns = (start.inv() * Rotation.from_quat(np.roll(quaternion[inside], -1, axis=1))).as_rotvec()
     tau = (time[inside] - t0) / window  # scaled: a well-conditioned fit
     samples = np.column_stack([position[inside], turns])
-    slopes = np.polynomial.polynomial.polyfit(tau, samples, min(START_DEGREE, count - 1))[1] / window
-    return StartState(np.asarray(slopes, dtype=np.float64), "fit", window, count)
+    return np.asarray(np.polynomial.polynomial.polyfit(tau, samples, min(START_DEGREE, count - 1)), dtype=np.float64), count
