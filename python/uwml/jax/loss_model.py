@@ -15,7 +15,7 @@ from ..sea.conditions import hydrostatic_pressure
 from .compiled_robot import JointLossParameters
 from .strip_integrals import magnitude, safe_sqrt
 
-__all__ = ["joint_losses"]
+__all__ = ["joint_losses", "loss_levels"]
 
 Array = jax.Array
 
@@ -44,15 +44,14 @@ def _power(speed: Array, exponent: Array) -> Array:
     )
 
 
-def joint_losses(
-    parameters: JointLossParameters, speed: Array, depth: Array, temperature_c: Array, sea_density: Array, gravity: Array
-) -> tuple[Array, Array, Array]:
-    """``(visc, seal, current)`` of every joint ``(N,)`` at output speeds ``speed``, the pressure
-    of ``depth`` (the core's ``pressure_at_depth``: ``sea_density · gravity · depth``) and oil
-    temperature ``temperature_c``; zero for a joint without losses (its neutral parameters)."""
-    p = parameters
+def loss_levels(
+    p: JointLossParameters, depth: Array, temperature_c: Array, sea_density: Array, gravity: Array
+) -> tuple[Array, Array, Array, Array]:
+    """The core's ``JointLosses::at`` (in its units, Pa) at the pressure of ``depth`` (the core's
+    ``pressure_at_depth``: ``sea_density · gravity · depth``) and oil temperature
+    ``temperature_c``: each joint's oil scale, the seal's running level, breakaway excess and
+    viscous coefficient ``(N,)`` each."""
     pressure = hydrostatic_pressure(depth, sea_density, gravity)  # type: ignore[arg-type]
-    # JointLosses::at, in the core's units (Pa).
     exponent = p.pressure_sensitivity_per_mpa / _MPA * (pressure - p.reference_pressure_mpa * _MPA) - p.temperature_sensitivity_per_k * (
         temperature_c - p.reference_temperature_c
     )
@@ -60,6 +59,17 @@ def joint_losses(
     running = p.c0 + p.c1_per_mpa / _MPA * pressure
     excess = p.s0 + p.s1_per_mpa / _MPA * pressure - running
     viscous = p.d0 + p.d1_per_mpa / _MPA * pressure
+    return oil_scale, running, excess, viscous
+
+
+def joint_losses(
+    parameters: JointLossParameters, speed: Array, depth: Array, temperature_c: Array, sea_density: Array, gravity: Array
+) -> tuple[Array, Array, Array]:
+    """``(visc, seal, current)`` of every joint ``(N,)`` at output speeds ``speed``, the pressure
+    of ``depth`` (the core's ``pressure_at_depth``: ``sea_density · gravity · depth``) and oil
+    temperature ``temperature_c``; zero for a joint without losses (its neutral parameters)."""
+    p = parameters
+    oil_scale, running, excess, viscous = loss_levels(p, depth, temperature_c, sea_density, gravity)
     output_per_motor_torque = p.ratio * p.efficiency
     # LossState::evaluate.
     sign = smooth_sign(speed, p.epsilon)
