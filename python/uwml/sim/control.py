@@ -15,9 +15,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..examples import arm_on_rov
 from ..model.parts import Link, Water
 from ..robot.base_motion import BaseMotion
-from ..examples import arm_on_rov
 from ..robot.tree import Robot
 from .mjcf import mjcf_of
 from .mujoco import Simulation
