@@ -265,3 +265,16 @@ def test_bad_commands_are_refused(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="8 finite numbers"):
         sim.command_thrusters([0.1] * 7 + [math.nan])
     np.testing.assert_array_equal(sim.thrust, np.zeros(8))
+
+
+def test_a_thruster_without_a_lag_acts_at_once_beside_one_with_a_lag(tmp_path: Path) -> None:
+    """Mixed lags: the new command of a thruster without a lag is its thrust in the very next
+    step, whatever the others' lags (it was one step late when another thruster lagged)."""
+    pytest.importorskip("mujoco")
+    from uwml.sim.mujoco import Simulation
+
+    extra = "[[links.hull.thrusters]]\nposition = [0.0, 0.0, 0.0]\ndirection = [1.0, 0.0, 0.0]\n"
+    sim = Simulation.from_file(*turned_description(tmp_path, extra))
+    assert [t.time_constant for _, t in sim.robot.thrusters] == [0.0, 0.05]  # base first
+    sim.command_thrusters([1.0, 0.5])
+    assert sim.thrust[0] == pytest.approx(51.5) and sim.thrust[1] == 0.0  # at once; the lagging one not yet

@@ -96,9 +96,9 @@ class SimulatedThrusters:
             raise ValueError(f"thruster commands must be {n} finite numbers (one per thruster of robot.thrusters), got {u.tolist()}")
         self._command = u.copy()
         self._steady = self._steady_thrust(u)
-        if not self._lags:
-            self._thrust = self._steady.copy()
-            self._columns = self._body_columns()
+        # A thruster without a lag gives its new thrust at once (with a lag: from the next step on).
+        self._thrust = np.where(self._time_constants > 0.0, self._thrust, self._steady)
+        self._columns = self._body_columns()
         self._idle = (not np.any(self._steady) and not np.any(self._thrust)) or len(self._bodies) == 0
 
     def _body_columns(self) -> FloatArray:
