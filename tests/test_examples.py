@@ -42,3 +42,36 @@ def test_uwml_examples_copies_them_and_keeps_what_is_there(tmp_path: Path, capsy
     assert "already holds bluerov2" in capsys.readouterr().err and urdf.read_text() == "mine"
     assert main(["examples", str(tmp_path), "--force"]) == 0
     assert urdf.read_bytes() == uwml.examples.path("my_arm", "my_arm.urdf").read_bytes()
+
+
+@pytest.mark.parametrize(
+    ("example", "script", "log"), [("my_arm", "make_water_log.py", "water.csv"), ("bluerov2", "make_dive_log.py", "dive.csv")]
+)
+def test_the_shipped_logs_are_their_scripts_and_give_their_coefficients_back(example: str, script: str, log: str, tmp_path: Path) -> None:
+    """The logs are what their scripts write (to rounding: another machine's MuJoCo may differ in
+    the last bits), and a fit of each gives back what it was made with."""
+    pytest.importorskip("mujoco")
+    import subprocess
+    import sys
+
+    import numpy as np
+    from uwml import fit
+    from uwml.io.logs import read_log
+
+    subprocess.run([sys.executable, str(uwml.examples.path(example, script))], cwd=tmp_path, check=True, capture_output=True)
+    shipped, made = read_log(uwml.examples.path(example, log)), read_log(tmp_path / log)
+    for name in ("time", "q", "qd", "qdd", "tau", "base_twist", "base_twist_dot", "thruster_commands"):
+        a, b = getattr(shipped, name), getattr(made, name)
+        assert (a is None) == (b is None), name
+        if a is not None:
+            np.testing.assert_allclose(a, b, rtol=1e-9, atol=1e-12, err_msg=name)
+    folder = uwml.examples.path(example)
+    if example == "my_arm":
+        result = fit.hydro_from_water_logs(folder / log, folder / "my_arm.urdf", folder / "my_arm.hydro.toml", per="leg")
+        assert abs(result.params["cd"] - 1.1) < 3 * result.stderr["cd"] and abs(result.params["cm"] - 0.9) < 3 * result.stderr["cm"]
+    else:
+        zero = ["base.linear_damping[1][1]", "base.linear_damping[3][3]", "base.linear_damping[5][5]"]
+        result = fit.hull_from_free_running(folder / log, folder / "bluerov2_arm.urdf", folder / "bluerov2_arm.hydro.toml", hold=zero)
+        published = {"base.added_mass[2][2]": 18.68, "base.linear_damping[0][0]": 13.7, "base.quadratic_damping[1]": 217.0}
+        for name, value in published.items():
+            assert result.params[name] == pytest.approx(value, rel=1e-6), name
