@@ -14,6 +14,7 @@ from .common import _EXIT
 def _study(args: argparse.Namespace) -> int:
     from .. import study
     from ..study.runner import progress_bar
+    from ..study.study_results import axis_label
 
     config = study.load(args.config)  # every key checked before anything runs
     outcome = study.run_study(
@@ -29,10 +30,16 @@ def _study(args: argparse.Namespace) -> int:
     print(
         f"uwml study: {config.source}, {result['runs']} runs: {outcome.ran} run now, {outcome.skipped} done before, {result['failed']} failed{lost}"
     )
-    print(f"{'metric':>16} {'mean':>12} {'min':>12} {'max':>12}")
-    for name, values in result["metrics"].items():
-        cells = " ".join(f"{'—' if values[k] is None else format(values[k], '.5g'):>12}" for k in ("mean", "min", "max"))
-        print(f"{name:>16} {cells}")
+    # Per group of runs (the categorical parameters' values: a controller), not averaged across them.
+    grouped = [group for group in result["groups"] if group["parameters"]]
+    for group in grouped or [{"parameters": {}, "runs": result["done"], "metrics": result["metrics"]}]:
+        if grouped:
+            said = ", ".join(f"{name} = {value}" for name, value in group["parameters"].items())
+            print(f"\n{said} ({group['runs']} runs{', ' + str(group['failed']) + ' failed' if group['failed'] else ''})")
+        print(f"{'metric':>30} {'mean':>12} {'min':>12} {'max':>12}")
+        for name, values in group["metrics"].items():
+            cells = " ".join(f"{'—' if values[k] is None else format(values[k], '.5g'):>12}" for k in ("mean", "min", "max"))
+            print(f"{axis_label(name, result['units'][name]):>30} {cells}")
     print(f"results: {args.out}/runs/*.parquet (uwml.study.read_results){'; figures: ' + str(args.out) + '/figures/' if written else ''}")
     return 0
 
@@ -52,7 +59,9 @@ if it failed), written as batches finish, so that a study that stops keeps what 
 and --resume runs only the rest, and the runs Ray lost (not those that failed by themselves);
 study.json (the study's fingerprint, its robot files' digests: --resume refuses another study,
 or a robot file that changed); study.lock (one process at a time); figures/<metric>.png (each
-metric against each parameter). A summary on standard output (--json: as JSON).""",
+metric, in its unit, against each parameter, the runs coloured by the values of the categorical
+parameters, a controller). A summary on standard output, per group of runs sharing those values
+(--json: as JSON, "groups" and the mean over all runs, "metrics").""",
         epilog=_EXIT,
     )
     parser.add_argument("config", metavar="CONFIG", help="the study's TOML file")

@@ -300,6 +300,8 @@ def fluid_models(samples: int = 200) -> FluidComparison:
 
 #: The tracking figure's line styles, one per controller.
 LINE_STYLES = ("-", "--", ":", "-.", (0, (5, 1, 1, 1, 1, 1)))
+#: The depth sweep's markers, one per controller.
+MARKERS = ("o", "s", "^", "D", "v")
 
 
 def _errors(row: dict[str, Any], kind: str) -> list[float]:
@@ -351,16 +353,22 @@ def write_report(
     figure.savefig(out / "tracking.png", dpi=110)
     plt.close(figure)
     figure, axis = plt.subplots(figsize=(7, 4))
-    for controller in controllers:
+    for index, controller in enumerate(controllers):
         values = [
             np.degrees(max(_errors(next(row for row in rows if row["controller"] == controller and row["depth"] == d), "rms")))
             for d in depths
         ]
-        axis.plot(depths, values, marker="o", label=controller)
+        # Controllers that track alike (land and hydro) would hide each other: each its own dash,
+        # marker and size, the first drawn widest.
+        axis.plot(
+            depths, values, linestyle=LINE_STYLES[index % len(LINE_STYLES)], marker=MARKERS[index % len(MARKERS)],
+            markersize=max(9.0 - 1.2 * index, 3.0), linewidth=max(2.4 - 0.4 * index, 0.6), label=controller,
+        )  # fmt: skip
     axis.set_xlabel("depth [m]")
     axis.set_ylabel("worst joint RMS error [°]")
+    axis.set_title("Worst joint's RMS tracking error over the last gait cycle", fontsize="medium")
     axis.set_yscale("log")
-    axis.legend()
+    axis.legend(fontsize="small")
     figure.tight_layout()
     figure.savefig(out / "depth_sweep.png", dpi=110)
     plt.close(figure)

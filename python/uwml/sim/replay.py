@@ -411,14 +411,15 @@ def write_replay(result: Replay, path: str | os.PathLike[str]) -> None:
 
 def plot_replay(result: Replay, path: str | os.PathLike[str]) -> None:
     """A figure of the vehicle's roll, pitch, yaw and heave over time (and the measured ones,
-    when the log has them), its start twist written below, saved to ``path``."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    when the log has them, with each panel's RMS error of simulated against measured: of the yaw
+    rate on the yaw's), what drove it in its title (the arm, and the thrusters when the log's
+    commands drove them), its start twist written below, saved to ``path``. Drawn without pyplot
+    (no backend chosen, no window)."""
+    from matplotlib.figure import Figure
 
     euler = result.euler()
-    figure, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 8))
+    figure = Figure(figsize=(8, 8))
+    axes = figure.subplots(4, 1, sharex=True)
     labels = ["roll [rad]", "pitch [rad]", "yaw [rad]", "heave z [m]"]
     series = [euler[:, 0], euler[:, 1], np.unwrap(euler[:, 2]), result.position[:, 2]]
     for axis, label, values in zip(axes, labels, series, strict=True):
@@ -430,14 +431,24 @@ def plot_replay(result: Replay, path: str | os.PathLike[str]) -> None:
         angles = _euler(quaternion)
         for axis, values in zip(axes, [angles[:, 0], angles[:, 1], np.unwrap(angles[:, 2]), position[:, 2]], strict=True):
             axis.plot(time, values, "--", label="measured")
+    if result.errors is not None:
+        said = (("roll", "rad"), ("pitch", "rad"), ("yaw_rate", "rad/s"), ("heave", "m"))
+        for axis, (name, unit) in zip(axes, said, strict=True):
+            what = "yaw rate" if name == "yaw_rate" else name
+            text = f"RMS error of the {what}, simulated − measured: {result.errors[name]:.2g} {unit}"
+            axis.set_title(text, loc="right", fontsize=7, color="0.3")  # above the panel: over no curve
     axes[0].legend(loc="best")
     axes[-1].set_xlabel("time [s]")
-    figure.suptitle("vehicle response to the replayed arm motion")
+    driven = result.thrusters is not None and result.thrusters.driven
+    idle = result.thrusters is not None and result.thrusters.count > 0 and not driven
+    figure.suptitle(
+        "the vehicle's response to the replayed arm motion"
+        + (" and the log's thruster commands" if driven else " (its thrusters idle: the log has no commands)" if idle else "")
+    )
     figure.tight_layout(rect=(0.0, 0.03, 1.0, 1.0))
     if result.start is not None:
         figure.text(0.01, 0.005, result.start.describe(), fontsize=8)
     figure.savefig(path, dpi=120)
-    plt.close(figure)
 
 
 def command(

@@ -32,7 +32,9 @@ covers both, so a study does not resume over a robot that changed.
 
 A scenario of one's own (``kind = "custom"``, :mod:`uwml.study.custom`) names its function
 (``function = "package.module:function"``, imported here to check it; its module's file is a
-file setting, ``function_file``) and its ``metrics`` (a list of names); its other settings and
+file setting, ``function_file``) and its ``metrics``: a list of names, or a table of each
+metric's unit (``metrics = { peak_tension = "N", energy = "J" }``, the axes of the study's
+figures); its other settings and
 its parameters take any names, each a finite number or a string (a grid's values all one or the
 other; a distribution ``uniform`` or ``normal`` over any finite numbers, or ``choice``).
 """
@@ -53,7 +55,7 @@ import numpy as np
 
 from ..errors import UwmlError
 from .custom import OWN_SETTINGS, RESERVED, check_metrics, function_file, parse, resolve
-from .scenarios import DEFAULTS, PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_names
+from .scenarios import DEFAULTS, PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_units
 from .vehicle import check_vehicle
 
 __all__ = ["MAX_RUNS", "ConfigError", "Distribution", "StudyConfig", "load", "loads"]
@@ -100,6 +102,9 @@ class StudyConfig:
     metrics: tuple[str, ...] = ()
     #: Each file setting's digest (SHA-256 of the file's bytes when loaded), by setting.
     inputs: dict[str, str] = field(default_factory=dict)
+    #: Each metric's unit (:func:`uwml.study.scenarios.metric_units`; ``""``: a custom
+    #: scenario's metric declared without one). Not in the fingerprint: the runs do not depend on it.
+    units: dict[str, str] = field(default_factory=dict)
 
     @property
     def n_runs(self) -> int:
@@ -234,9 +239,11 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
             distributions[key] = _distribution(value, value_kind, where, source)
         else:
             grid[key] = [_value(value, value_kind, where, source)]
+    declared: dict[str, str] = {}
     if custom:
         try:
             settings["metrics"] = list(check_metrics(scenario["metrics"], [*settings, *grid, *distributions]))
+            declared = dict(scenario["metrics"]) if isinstance(scenario["metrics"], dict) else {}
         except ValueError as exc:
             raise ConfigError(f"{source}: key 'scenario.metrics': {exc}") from None
     if kind == "vehicle":
@@ -254,10 +261,10 @@ def loads(text: str, source: str = "<study>", folder: str | Path = ".") -> Study
     if not isinstance(seed, int) or isinstance(seed, bool) or not 0 <= seed < 2**63:
         raise ConfigError(f"{source}: key 'sampling.seed': must be a non-negative integer, got {seed!r}")
     try:
-        metrics = metric_names(kind, settings)
+        units = metric_units(kind, settings, declared)
     except (ValueError, OSError) as exc:
         raise ConfigError(f"{source}: key 'scenario.robot': {exc}") from None
-    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed, metrics, inputs)
+    config = StudyConfig(source, kind, settings, grid, distributions, samples, seed, tuple(units), inputs, units)
     if config.n_runs > MAX_RUNS:
         raise ConfigError(f"{source}: key 'parameters': {config.n_runs} runs, more than {MAX_RUNS}")
     return config

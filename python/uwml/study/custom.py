@@ -87,9 +87,15 @@ def function_file(value: str) -> str | None:
 
 def check_metrics(value: object, parameters: Sequence[str]) -> tuple[str, ...]:
     """The declared metrics' names, or a ValueError: a non-empty list of distinct identifiers,
-    none a parameter's or a result column's."""
+    none a parameter's or a result column's; or a table of such names, each giving its metric's
+    unit (a string, ``""`` for none: ``{ peak_tension = "N", energy = "J" }``)."""
+    if isinstance(value, dict):
+        units = [unit for unit in value.values() if not isinstance(unit, str)]
+        if not value or units:
+            raise ValueError(f'a table of metrics must give each one\'s unit as a string (peak_tension = "N"), got {value!r}')
+        value = list(value)
     if not isinstance(value, list) or not value or not all(isinstance(v, str) for v in value):
-        raise ValueError(f"must be a non-empty list of metric names, got {value!r}")
+        raise ValueError(f"must be a non-empty list of metric names (or a table of their units), got {value!r}")
     for name in value:
         if not _identifier(name):
             raise ValueError(f"{name!r} is not a name (a Python identifier)")

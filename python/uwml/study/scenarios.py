@@ -54,7 +54,7 @@ from typing import Any
 from ..paper.control_study import CONTROLLERS, MAX_CYCLES
 from .vehicle import METRICS as VEHICLE_METRICS
 
-__all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "SCENARIOS", "run_one"]
+__all__ = ["DEFAULTS", "METRICS", "PARAMETERS", "PARAMETER_UNITS", "SCENARIOS", "metric_names", "metric_units", "run_one"]
 
 SCENARIOS = ("paper_leg", "robot", "rov", "vehicle", "custom")
 #: The kind of a setting that names a file (relative to the study file).
@@ -104,6 +104,20 @@ PARAMETERS: dict[str, dict[str, Any]] = {
     # Any names (uwml.study.custom): checked by the configuration, not listed here.
     "custom": {},
 }
+#: The units of the scenarios' numeric parameters (the x axes of a study's figures), by name.
+PARAMETER_UNITS: dict[str, str] = {
+    "depth": "m",
+    "cycles": "gait cycles",
+    "coefficient_scale": "ratio",
+    "payload": "kg",
+    "duration": "s",
+    "amplitude": "rad or m",
+    "period": "s",
+    "current": "m/s",
+    "current_heading": "°",
+    "kp_hz": "Hz",
+    "bandwidth_hz": "Hz",
+}
 #: Settings a scenario cannot run without.
 REQUIRED: dict[str, tuple[str, ...]] = {
     "paper_leg": (),
@@ -143,15 +157,17 @@ DEFAULTS: dict[str, dict[str, Any]] = {
     },
     "custom": {},
 }
-#: Each scenario's metrics, the columns of a study's results.
-METRICS: dict[str, tuple[str, ...]] = {
-    "paper_leg": (
-        *(f"rms_error_{j}" for j in (1, 2, 3)),
-        *(f"peak_error_{j}" for j in (1, 2, 3)),
-        "positive_work",
-        "energy",
-    ),
-    "rov": ("rms_drift", "max_drift", "rms_attitude"),
+#: Each scenario's metrics, the columns of a study's results, and each metric's unit (the axes
+#: of a study's figures, its summary): ``{name: unit}``. The ``robot`` scenario's depend on its
+#: joints and a ``custom`` one's are declared by its file (:func:`metric_units`).
+METRICS: dict[str, dict[str, str]] = {
+    "paper_leg": {
+        **{f"rms_error_{j}": "rad" for j in (1, 2, 3)},
+        **{f"peak_error_{j}": "rad" for j in (1, 2, 3)},
+        "positive_work": "J",
+        "energy": "J",
+    },
+    "rov": {"rms_drift": "m", "max_drift": "m", "rms_attitude": "°"},
     "vehicle": VEHICLE_METRICS,
 }
 
@@ -161,13 +177,27 @@ def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
     ``custom`` one's are its settings')."""
     if kind == "custom":
         return tuple(settings["metrics"])
+    return tuple(metric_units(kind, settings))
+
+
+def metric_units(kind: str, settings: dict[str, Any], declared: dict[str, str] | None = None) -> dict[str, str]:
+    """Each metric of a scenario's runs with its unit (:data:`METRICS`): the ``robot``
+    scenario's errors in rad for a revolute joint and m for a prismatic one; a ``custom``
+    scenario's as its file declares them (``declared``; ``""`` where it gives none)."""
+    if kind == "custom":
+        return {name: (declared or {}).get(name, "") for name in settings["metrics"]}
     if kind != "robot":
-        return METRICS[kind]
+        return dict(METRICS[kind])
     from ..robot.files import model_and_robot
 
     _, robot = model_and_robot(settings["robot"], settings.get("hydro"), floating=False)
-    joints = range(1, robot.n_joints + 1)
-    return (*(f"rms_error_{j}" for j in joints), *(f"peak_error_{j}" for j in joints), "positive_work", "energy")
+    units = ["m" if joint.kind == "prismatic" else "rad" for joint in robot.joints]
+    return {
+        **{f"rms_error_{j}": unit for j, unit in enumerate(units, 1)},
+        **{f"peak_error_{j}": unit for j, unit in enumerate(units, 1)},
+        "positive_work": "J",
+        "energy": "J",
+    }
 
 
 def run_one(kind: str, settings: dict[str, Any], parameters: dict[str, Any]) -> dict[str, float]:

@@ -3,7 +3,8 @@ written twice (:func:`uwml.study.run_study` writes it, :mod:`uwml.study.study_re
 
 * ``study.json``: the study's fingerprint (:meth:`StudyConfig.fingerprint`), which covers the
   content of its robot's files, and each file's digest: a study resumes only into its own
-  folder, and not after its robot changed (the refusal names the file that did).
+  folder, and not after its robot changed (the refusal names the file that did); its
+  parameters, its metrics and their ``units`` (the figures' axes).
 * ``study.lock``: a lock held by the process running the study (an OS lock, ``flock``, which
   ends with its process, even one killed with SIGKILL): a second process refuses at once,
   naming the holder's pid.
@@ -117,6 +118,7 @@ def prepare(config: StudyConfig, root: Path, resume: bool) -> Ledger:
             "n_runs": config.n_runs,
             "parameters": config.parameter_names,
             "metrics": list(config.metrics),
+            "units": dict(config.units),
             "inputs": {key: {"path": config.settings[key], "sha256": digest} for key, digest in config.inputs.items()},
         }
         write_atomically(record, (json.dumps(what, indent=1) + "\n").encode())

@@ -31,19 +31,20 @@ import numpy as np
 
 __all__ = ["METRICS", "check_vehicle", "vehicle_run"]
 
-#: The vehicle scenario's metrics.
-METRICS = (
-    "rms_drift",
-    "max_drift",
-    "rms_roll",
-    "max_roll",
-    "rms_pitch",
-    "max_pitch",
-    "mean_thrust",
-    "peak_thrust",
-    "thrust_energy",
-    "saturation",
-)
+#: The vehicle scenario's metrics and their units
+#: (:meth:`uwml.sim.station_keeping.StationRecord.metrics`).
+METRICS: dict[str, str] = {
+    "rms_drift": "m",
+    "max_drift": "m",
+    "rms_roll": "°",
+    "max_roll": "°",
+    "rms_pitch": "°",
+    "max_pitch": "°",
+    "mean_thrust": "N",
+    "peak_thrust": "N",
+    "thrust_energy": "N^1.5·s",
+    "saturation": "fraction of steps",
+}
 
 
 def _model_and_robot(values: dict[str, Any]) -> tuple[Any, Any]:

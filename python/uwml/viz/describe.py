@@ -198,13 +198,11 @@ def _lumped_surface(body: Link, origin: np.ndarray) -> tuple[np.ndarray, np.ndar
 
 
 def figure(robot: Robot, title: str | None = None) -> object:
-    """The matplotlib figure of :func:`draw` (closed by the caller)."""
-    import matplotlib
+    """The matplotlib figure of :func:`draw`: a ``matplotlib.figure.Figure`` made without pyplot,
+    so that drawing it neither changes the backend nor opens a window."""
+    from matplotlib.figure import Figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig = plt.figure(figsize=(7, 6))
+    fig = Figure(figsize=(7, 6))
     ax = fig.add_subplot(projection="3d")
     points = [np.zeros(3)]
     scale = max((s.length for s in robot.segments), default=0.5)
@@ -247,6 +245,7 @@ def figure(robot: Robot, title: str | None = None) -> object:
     ax.set_xlim(centre[0] - half, centre[0] + half)
     ax.set_ylim(centre[1] - half, centre[1] + half)
     ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1.0, 1.0, 1.0))  # a metre as long on every axis: a sphere drawn round
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
@@ -276,8 +275,5 @@ def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
     (purple wireframe), thrusters as arrows along their push (red), joints as black dots with
     their axes, centres of mass (x) and buoyancy (o), each body named at its centre of mass.
     Written to ``path`` (format from the extension)."""
-    import matplotlib.pyplot as plt
-
     fig = figure(robot, title)
     fig.savefig(path, dpi=110)  # type: ignore[attr-defined]
-    plt.close(fig)  # type: ignore[arg-type]

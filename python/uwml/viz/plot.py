@@ -174,7 +174,7 @@ def fit_plot(result: LossFit, path: str | os.PathLike[str] | None = None) -> Fig
 
     Left: the measured loss torques (group-mean differences, ± one standard error) and the
     fitted model, one colour per pressure (and temperature); start-up points at speed 0 as open
-    squares, their fitted values as crosses. Right: ``(data − fit) / σ`` against speed.
+    squares, their fitted values as crosses (both in the legend). Right: ``(data − fit) / σ`` against speed.
 
     Parameters
     ----------
@@ -206,12 +206,15 @@ def fit_plot(result: LossFit, path: str | os.PathLike[str] | None = None) -> Fig
             ax.errorbar(speed_rpm[start], result.data[start], yerr=result.sigma[start], fmt="s", mfc="none", color=color, ms=6)
             ax.plot(speed_rpm[start], result.best_fit[start], "x", color=color, ms=8)
         ax_residual.plot(speed_rpm[here], normalized[here], "o", color=color, ms=4)
+    if np.any(result.startup):  # the legend says what the squares and crosses at speed 0 are
+        ax.plot([], [], "s", mfc="none", color="0.4", ms=6, label="start-up (breakaway), measured")
+        ax.plot([], [], "x", color="0.4", ms=8, label="start-up, fitted")
     name = type(result.model).__name__
     ax.set_title(f"{name} fit: measured (points) and fitted (lines), R² = {result.rsquared:.4f}")
     ax.set_xlabel("output speed [r/min]")
     ax.set_ylabel(f"loss torque [{result.unit}]")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", ncol=2)  # short: over no curve
     ax_residual.axhline(0.0, color="k", lw=0.8)
     ax_residual.set_title(f"residuals, reduced χ² = {result.redchi:.3g}")
     ax_residual.set_xlabel("output speed [r/min]")
