@@ -316,3 +316,34 @@ def test_run_batch_of_a_custom_scenario_is_a_row_per_run() -> None:
     config = study.loads(CUSTOM_STUDY)
     batch = runner.run_batch(config.kind, config.settings, config.metrics, config.runs())
     assert [row["run"] for row in batch] == [0, 1, 2, 3] and all(row["error"] is None for row in batch)
+
+
+def test_a_vehicle_study_drives_the_thrusters_with_a_log_of_commands(tmp_path: Path) -> None:
+    """``station_keeping = "log"``: the thrusters open loop on recorded commands, each held from
+    its sample (issue: studies take thruster commands from a log). Idle commands are the run
+    adrift; the horizontal four at half command give each T200's 11.2 N, the vehicle pushed away."""
+    time = np.arange(0.0, 3.0, 0.05)
+
+    def commands(name: str, row: list[float]) -> None:
+        lines = ["time," + ",".join(f"u{k}" for k in range(1, 9)), *(f"{t:.2f}," + ",".join(f"{u:g}" for u in row) for t in time)]
+        write(tmp_path, "\n".join(lines) + "\n", name)
+
+    commands("idle.csv", [0.0] * 8)
+    commands("surge.csv", [0.5] * 4 + [0.0] * 4)
+    base = VEHICLE_STUDY.replace('[parameters]\nstation_keeping = ["off", "pd"]\nfeedforward = ["none", "uwml"]\n', "")
+    results = {}
+    for name, extra in (("off", 'station_keeping = "off"\n'), ("idle", 'station_keeping = "log"\ncommands = "idle.csv"\n'),
+                        ("surge", 'station_keeping = "log"\ncommands = "surge.csv"\n')):  # fmt: skip
+        config = study.load(write(tmp_path, base.replace("amplitude = 0.5\n", "amplitude = 0.5\n" + extra), f"{name}.toml"))
+        assert study.run_study(config, tmp_path / name, serial=True).errors == 0
+        results[name] = rows(tmp_path / name)[0]
+    assert results["idle"]["rms_drift"] == results["off"]["rms_drift"] and results["idle"]["mean_thrust"] == 0.0
+    t200 = 51.5 * (0.5 - 0.0625) ** 2 / (1.0 - 0.0625) ** 2
+    assert results["surge"]["mean_thrust"] == pytest.approx(4 * t200 / 8, rel=1e-9)
+    assert results["surge"]["rms_drift"] > 2.0 * results["off"]["rms_drift"]
+    # The commands must be there, one per thruster, and span the run.
+    with pytest.raises(study.ConfigError, match='station_keeping = "log" needs commands'):
+        study.loads(base.replace("amplitude = 0.5\n", 'amplitude = 0.5\nstation_keeping = "log"\n'), folder=tmp_path)
+    write(tmp_path, "time,u1,u2\n0,0,0\n5,0,0\n", "two.csv")
+    with pytest.raises(study.ConfigError, match="the log has 2 thruster commands .* the description 8 thrusters"):
+        study.loads(base.replace("amplitude = 0.5\n", 'amplitude = 0.5\nstation_keeping = "log"\ncommands = "two.csv"\n'), folder=tmp_path)

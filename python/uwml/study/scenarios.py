@@ -35,8 +35,8 @@ while its arm moves (:mod:`uwml.study.vehicle`, whose docstring states the run):
 ``hydro`` and ``trajectory`` (a log of joint angles instead of the sines) files; ``duration`` [s,
 0.01 to 600; default 4], ``amplitude`` [rad or m, 0 to 3.14; default 0.3], ``period`` [s, 0.1 to
 100; default 4], ``current`` [m/s, 0 to 5; default 0], ``current_heading`` [°, -180 to 180;
-default 0], ``depth`` [m; default 0], ``station_keeping`` (``off``, ``pd``, ``pid``; default
-``pid``), ``feedforward`` (``none``, ``uwml``; default ``uwml``), ``bandwidth_hz`` [0.01 to 10;
+default 0], ``depth`` [m; default 0], ``station_keeping`` (``off``, ``pd``, ``pid``, or ``log``:
+the thrusters driven by the recorded commands of the file ``commands``; default ``pid``), ``feedforward`` (``none``, ``uwml``; default ``uwml``), ``bandwidth_hz`` [0.01 to 10;
 default 0.5], ``coefficient_scale`` [0 to 10; default 1], ``payload`` [kg, 0 to 100; default 0].
 Metrics: ``rms_drift``, ``max_drift`` [m], ``rms_roll``, ``max_roll``, ``rms_pitch``,
 ``max_pitch`` [°], ``mean_thrust``, ``peak_thrust`` [N], ``thrust_energy`` [N^1.5·s],
@@ -95,7 +95,8 @@ PARAMETERS: dict[str, dict[str, Any]] = {
         "current": (0.0, 5.0),
         "current_heading": (-180.0, 180.0),
         "depth": (0.0, 11_000.0),
-        "station_keeping": ("off", "pd", "pid"),
+        "station_keeping": ("off", "pd", "pid", "log"),
+        "commands": PATH,
         "feedforward": ("none", "uwml"),
         "bandwidth_hz": (0.01, 10.0),
         "coefficient_scale": (0.0, 10.0),

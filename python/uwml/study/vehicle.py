@@ -15,7 +15,10 @@ joint's link (:func:`uwml.sim.station_keeping.with_payload`). The arm's joints a
   :func:`uwml.sim.replay_inputs.joint_motion`), from its first sample, over ``duration``.
 
 ``station_keeping``: ``off`` (thrusters idle), ``pd`` or ``pid`` (:class:`StationKeeper` of
-``bandwidth_hz``); ``feedforward``: ``none`` or ``uwml`` (the wrench of the arm and the water on
+``bandwidth_hz``), or ``log``: the thrusters driven open loop by the commands of a log
+(``commands``: a file of :func:`uwml.io.read_log`'s format with ``time`` and ``u1`` … ``un``, one per
+thruster of the description; each command held from its sample, as an ESC holds it, from the
+log's first sample over ``duration``); ``feedforward``: ``none`` or ``uwml`` (the wrench of the arm and the water on
 the vehicle, the controller's drag and added mass ``coefficient_scale`` times the plant's).
 Metrics: :meth:`uwml.sim.station_keeping.StationRecord.metrics`.
 """
@@ -73,12 +76,53 @@ def check_vehicle(settings: dict[str, Any], station_keeping: Iterable[str]) -> N
 
     _, robot = _model_and_robot(settings)
     keeping = sorted(set(station_keeping) - {"off"})
+    if "log" in keeping:
+        _recorded_commands(settings, len(robot.thrusters), float(settings.get("duration", 0.0)))
+        keeping.remove("log")
     if keeping and not robot.thrusters:
         raise ValueError(
             f"{settings['robot']} has no thrusters (a hydro file's [[links.NAME.thrusters]]), so station_keeping = "
             f'{keeping[0]!r} cannot hold it: give it thrusters, or set station_keeping = "off"'
         )
     ThrustInverses([t for _, t in robot.thrusters])
+
+
+def _recorded_commands(values: dict[str, Any], count: int, duration: float) -> tuple[np.ndarray, np.ndarray]:
+    """The times and thruster commands of ``values["commands"]`` (``station_keeping = "log"``),
+    checked: ``count`` commands (one per thruster), spanning ``duration`` from the first sample."""
+    from ..io.column_map import open_table
+    from ..io.vehicle_columns import thruster_columns
+
+    path = values.get("commands")
+    if path is None:
+        raise ValueError('station_keeping = "log" needs commands = "a log of time and u1 … un" in [scenario]')
+    source, header, read = open_table(path)
+    names = thruster_columns(header, source)
+    if len(names) != count:
+        raise ValueError(f"{source}: the log has {len(names)} thruster commands (u1 …), the description {count} thrusters")
+    columns = read(["time", *names])
+    time, commands = np.asarray(columns["time"], dtype=float), np.column_stack([columns[name] for name in names])
+    if time.size < 1 or np.any(np.diff(time) <= 0.0) or not np.all(np.isfinite(commands)):
+        raise ValueError(f"{source}: the commands' times must increase and the commands be finite numbers")
+    span = float(time[-1] - time[0])
+    if span < duration:
+        raise ValueError(f"{source}: the commands span {span:.6g} s, shorter than the run's duration of {duration:g} s")
+    return time - time[0], commands
+
+
+class _LoggedCommands:
+    """The thrusters of ``sim`` driven by recorded commands (``station_keeping = "log"``): each
+    step holds the last sample at or before its start (the interface of :class:`StationKeeper`'s
+    ``step``)."""
+
+    def __init__(self, sim: Any, times: np.ndarray, commands: np.ndarray) -> None:
+        self._sim, self._times, self._commands, self._start = sim, times, commands, float(sim.data.time)
+
+    def step(self, dt: float) -> tuple[np.ndarray, bool]:
+        at = float(self._sim.data.time) - self._start
+        index = max(0, int(np.searchsorted(self._times, at + 1e-9, side="right")) - 1)
+        self._sim.command_thrusters(self._commands[index])
+        return self._sim.thrust, False
 
 
 def _motion(values: dict[str, Any], robot: Any, duration: float, timestep: float) -> Any:
@@ -122,8 +166,10 @@ def vehicle_run(values: dict[str, Any]) -> dict[str, float]:
     motion = _motion(values, robot, duration, float(model.opt.timestep))
     if motion is not None:  # the arm on its motion before the controller measures the vehicle's mass
         sim.prescribe(list(range(robot.n_joints)), motion)
-    keeper = None
-    if values["station_keeping"] != "off":
+    keeper: Any = None
+    if values["station_keeping"] == "log":
+        keeper = _LoggedCommands(sim, *_recorded_commands(values, len(robot.thrusters), duration))
+    elif values["station_keeping"] != "off":
         keeper = StationKeeper(
             sim,
             motion,
