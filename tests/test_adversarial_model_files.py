@@ -24,9 +24,9 @@ import pytest
 import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from uwml.examples import arm_on_rov
 from uwml.io.export import to_c, to_rust
 from uwml.io.modelfile import dumps
-from uwml.examples import arm_on_rov
 from uwml.robot.files import loads
 
 SOURCE = "hostile.toml"

@@ -10,8 +10,8 @@ import uwml
 from hypothesis import given
 from hypothesis import strategies as st
 from uwml import _core, reference
-from uwml.model.losses import rpm_to_rad_s
 from uwml.examples import arm_on_rov
+from uwml.model.losses import rpm_to_rad_s
 
 
 def assert_close(actual, expected, rel=1e-12, atol=0.0):

@@ -16,8 +16,8 @@ import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from uwml.cli import main
-from uwml.io.export import to_c, to_rust
 from uwml.examples import arm_on_rov
+from uwml.io.export import to_c, to_rust
 
 ROOT = Path(__file__).resolve().parents[1]
 SOURCE = "uwml.examples.arm_on_rov()"

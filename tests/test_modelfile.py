@@ -10,8 +10,8 @@ import uwml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from test_robot import motion_arguments, random_robot
-from uwml.io.modelfile import dumps
 from uwml.examples import arm_on_rov
+from uwml.io.modelfile import dumps
 from uwml.robot.files import loads
 
 

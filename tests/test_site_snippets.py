@@ -24,7 +24,6 @@ A block of any other language, or without one, fails the test: each kind has its
 
 import re
 import shlex
-import shutil
 import subprocess
 import sys
 import textwrap
