@@ -28,7 +28,9 @@ def test_a_bare_uwml_imports_no_heavy_library(flag: str) -> None:
 
 def test_the_fits_names_come_without_their_modules() -> None:
     """``uwml.fit``'s names are imported on first use (the package imports scipy lazily)."""
-    probe = "import sys, uwml.fit\nassert 'scipy.stats' not in sys.modules\nuwml.fit.hydro_coefficients\nprint('scipy.stats' in sys.modules)"
+    probe = (
+        "import sys, uwml.fit\nassert 'scipy.stats' not in sys.modules\nuwml.fit.hydro_coefficients\nprint('scipy.stats' in sys.modules)"
+    )
     result = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True)
     assert result.stdout.strip() == "True"
     import uwml.fit

@@ -109,7 +109,9 @@ def test_the_bluerov2_heavy_has_eight_thrusters_that_reach_every_direction() -> 
 def test_a_model_file_keeps_thrusters_and_their_curves(tmp_path: Path) -> None:
     lagging = Thruster((0.2, 0.1, 0.0), (1, 0, 0), ThrustCurve.table([-1, 0, 1], [-30, 0, 40]), 35.0, 25.0, 0.08, "t1")
     base = uwml.Link(10.0, (0, 0, 0), 0.01, thrusters=[lagging, Thruster((0, 0, 0.1), (0, 0, 1))])
-    robot = uwml.Robot([uwml.Joint((0.3, 0, 0), (0, 0, 1))], [uwml.Link(1.0, (0.1, 0, 0), 0.001, thrusters=[Thruster((0.5, 0, 0), (0, 1, 0))])], base=base)
+    robot = uwml.Robot(
+        [uwml.Joint((0.3, 0, 0), (0, 0, 1))], [uwml.Link(1.0, (0.1, 0, 0), 0.001, thrusters=[Thruster((0.5, 0, 0), (0, 1, 0))])], base=base
+    )
     path = tmp_path / "robot.toml"
     robot.save(path)
     loaded = uwml.Robot.load(path)
@@ -162,7 +164,7 @@ def turned_description(tmp_path: Path, extra: str = "") -> tuple[Path, Path]:
 def test_a_hydro_files_thruster_is_turned_into_the_links_uwml_frame(tmp_path: Path) -> None:
     pytest.importorskip("mujoco")
     robot = from_urdf(*turned_description(tmp_path))
-    (body, thruster), = robot.thrusters
+    ((body, thruster),) = robot.thrusters
     # The boom's URDF frame is turned 1 rad about z; uwml's link frame is parallel to the base's.
     c, s = math.cos(1.0), math.sin(1.0)
     assert body == 0 and thruster.name == "tip" and thruster.time_constant == 0.05
@@ -225,7 +227,7 @@ def test_a_thruster_on_a_turned_link_pushes_where_its_link_is(tmp_path: Path) ->
         sim.data.qpos[:] = 0.4
         mujoco.mj_forward(sim.model, sim.data)
     pushed.command_thrusters([0.5])
-    (_, thruster), = handed.robot.thrusters
+    ((_, thruster),) = handed.robot.thrusters
     for _ in range(20):  # the thrust lags: each step's is the thrust at its start
         q = handed.data.qpos.copy()
         at = handed.robot.forward_kinematics(q, 0, thruster.position)
