@@ -125,3 +125,31 @@ def test_the_picture_draws_a_lumped_hull_its_thrusters_and_names_every_body() ->
         np.testing.assert_allclose([np.mean([z.max(), z.min()])], robot.base.lumped.point[2], atol=1e-12)
     finally:
         plt.close(fig)  # type: ignore[arg-type]
+
+
+def test_a_lumped_hull_from_a_description_is_drawn_as_its_collision_box() -> None:
+    """``uwml describe`` of a URDF and its hydro file: the hull described by its lumped model
+    (``strips = false``) is drawn as its collision box (the description's shape, kept for the
+    picture), not the sphere of its volume."""
+    pytest.importorskip("mujoco")
+    import uwml.examples
+    from uwml.io.descriptions import urdf_parts
+    from uwml.viz.describe import figure
+
+    rov = uwml.examples.path("bluerov2")
+    parts = urdf_parts(rov / "bluerov2_arm.urdf", rov / "bluerov2_arm.hydro.toml")
+    (box,) = parts.outlines
+    assert box.link == "hull" and box.kind == "box" and box.size == pytest.approx((0.457 / 2, 0.575 / 2, 0.254 / 2))
+    fig = figure(parts.build(uwml.Robot), outlines=parts.outlines)
+    try:
+        (ax,) = fig.axes  # type: ignore[attr-defined]
+        edges = [line for line in ax.lines if line.get_gid() == "outline hull"]
+        assert len(edges) == 12
+        xs = np.concatenate([line.get_data_3d()[0] for line in edges])
+        np.testing.assert_allclose([xs.min(), xs.max()], [-0.2285, 0.2285])
+        assert not any((c.get_gid() or "").startswith("lumped") for c in ax.collections)  # no sphere beside it
+        assert any("its collision shape" in t.get_text() for t in ax.get_legend().get_texts())
+    finally:
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)  # type: ignore[arg-type]

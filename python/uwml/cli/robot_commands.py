@@ -187,7 +187,7 @@ def _describe(args: argparse.Namespace) -> int:
     water = robot.water if args.density is None else Water(density=args.density, gravity=robot.water.gravity)
     print(describe(robot, water, items=parts.items if parts else (), overrides=parts.overrides if parts else ()))
     if args.plot:
-        draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0")
+        draw(robot, args.plot, title=f"{args.robot or 'the paper leg'} at q = 0", outlines=parts.outlines if parts else ())
         print(f"\nwrote {args.plot}")
     return 0
 

@@ -40,6 +40,21 @@ def _t(v: FloatArray) -> tuple[float, float, float]:
     return (float(v[0]), float(v[1]), float(v[2]))
 
 
+@dataclass(frozen=True)
+class Outline:
+    """A collision geom of a body the hydro file describes by its lumped model (``strips =
+    false``): its shape only drawn (``uwml describe``), in its uwml link's frame."""
+
+    #: The link (its description body's name, the base's too).
+    link: str
+    #: ``"box"`` (``size`` its half-extents), ``"sphere"``, ``"ellipsoid"``, ``"cylinder"`` or
+    #: ``"capsule"`` (``size`` as MuJoCo's: radius, half-length), along ``rotation``'s columns.
+    kind: str
+    size: tuple[float, float, float]
+    rotation: tuple[tuple[float, ...], ...]
+    position: tuple[float, float, float]
+
+
 @dataclass
 class _Body:
     """What one description body contributes to its uwml link, in that link's frame."""
@@ -57,6 +72,9 @@ class _Body:
     items: list[tuple[HydroItem, FloatArray]] = field(default_factory=list)
     #: Its thrusters (hydro file), in the link's frame.
     thrusters: list[Thruster] = field(default_factory=list)
+    #: Its collision geoms' shapes when the hydro file describes it by a lumped model:
+    #: (kind, size, rotation, position) in the link's frame.
+    outlines: list[tuple[str, FloatArray, FloatArray, FloatArray]] = field(default_factory=list)
     #: Mass and centre of mass before the items (the description's, or the hydro file's override).
     own_mass: float = 0.0
     own_com: FloatArray = field(default_factory=lambda: np.zeros(3))
@@ -197,6 +215,9 @@ def _body(
         moment += v * geom_offset
         if segment is not None and (entry is None or entry.strips):
             segments.append(_moved(segment, geom_rotation, geom_offset))
+        elif entry is not None and entry.lumped is not None:
+            shape = mujoco.mjtGeom(kind).name.removeprefix("mjGEOM_").lower()
+            body.outlines.append((shape, np.array(model.geom_size[g]), geom_rotation, geom_offset))
     if entry is not None:
         segments += [_moved(s, rotation, offset) for s in entry.segments]
         if entry.volume is not None:
@@ -284,6 +305,16 @@ def _warn_fused(bodies: list[_Body], lumped: _Body, link: str, hydro: dict[str, 
             DescriptionWarning,
             stacklevel=5,
         )
+
+
+def outlines_of(parts: dict[int, list[_Body]], body_name: list[str]) -> tuple[Outline, ...]:
+    """The drawn shapes of the bodies described by their lumped models (``uwml describe``)."""
+    return tuple(
+        Outline(body_name[b], kind, _t(size), tuple(tuple(float(x) for x in row) for row in turn), _t(at))
+        for b, bodies in parts.items()
+        for x in bodies
+        for kind, size, turn, at in x.outlines
+    )
 
 
 def _records(

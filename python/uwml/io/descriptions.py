@@ -91,7 +91,7 @@ import numpy as np
 from ..domains import MAX_MASS
 from ..model.parts import Joint, Link, Water
 from ..plausibility import PlausibilityWarning
-from ._description_geometry import _assembled, _Body, _body, _records, _rotation, _t
+from ._description_geometry import Outline, _assembled, _Body, _body, _records, _rotation, _t, outlines_of
 from ._description_io import DescriptionError, clipped, quoted
 from ._description_masses import MassOverride, OwnInertial, PlacedItem, apply_masses, massless_overrides
 from ._description_xml import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS, limits_exceeded, scan
@@ -106,6 +106,7 @@ __all__ = [
     "HydroFile",
     "HydroLink",
     "MassOverride",
+    "Outline",
     "PlacedItem",
     "mjcf_parts",
     "model_and_parts",
@@ -141,6 +142,8 @@ class DescriptionParts:
     #: frames), for ``uwml describe`` (:func:`uwml.viz.describe.describe`).
     items: tuple[PlacedItem, ...] = ()
     overrides: tuple[MassOverride, ...] = ()
+    #: The collision shapes of the bodies described by lumped models, for ``uwml describe``.
+    outlines: tuple[Outline, ...] = ()
 
     def build(self, make: Callable[..., _R]) -> _R:
         """``make(joints, links, base=)`` (the class :class:`uwml.Robot`), then with the hydro
@@ -589,4 +592,4 @@ def _mapped(
         raise DescriptionError(f"{source}: {message}") from None
 
     items, overrides = _records(parts, body_name, own)
-    return DescriptionParts(tuple(joints), tuple(links), base, file, refused, items, overrides)
+    return DescriptionParts(tuple(joints), tuple(links), base, file, refused, items, overrides, outlines_of(parts, body_name))

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..io.descriptions import MassOverride, PlacedItem
+from ..io.descriptions import MassOverride, Outline, PlacedItem
 from ..model.parts import Joint, Link, Segment, Water
 from ..robot.tree import Robot
 
@@ -197,7 +197,29 @@ def _lumped_surface(body: Link, origin: np.ndarray) -> tuple[np.ndarray, np.ndar
     return centre[0] + radius * np.cos(u) * np.sin(v), centre[1] + radius * np.sin(u) * np.sin(v), centre[2] + radius * np.cos(v)
 
 
-def figure(robot: Robot, title: str | None = None) -> object:
+def _outline_lines(outline: Outline, origin: np.ndarray) -> list[np.ndarray]:
+    """An outline's lines in the base frame at q = 0: a box's twelve edges; any other shape as
+    the ellipsoid of its extents (three rings)."""
+    turn, centre = np.asarray(outline.rotation), origin + np.asarray(outline.position)
+    a, b, c = outline.size
+    if outline.kind == "box":
+        corners = np.array([[x, y, z] for x in (-a, a) for y in (-b, b) for z in (-c, c)]) @ turn.T + centre
+        edges = ((0, 1), (0, 2), (0, 4), (1, 3), (1, 5), (2, 3), (2, 6), (3, 7), (4, 5), (4, 6), (5, 7), (6, 7))
+        return [corners[[i, j]] for i, j in edges]
+    # MuJoCo's sizes: a sphere r; an ellipsoid its three semi-axes; a cylinder and a capsule r and
+    # the half-length (a capsule's caps added).
+    axes = {"sphere": (a, a, a), "ellipsoid": (a, b, c), "cylinder": (a, a, b), "capsule": (a, a, b + a)}.get(outline.kind, (a, a, a))
+    t = np.linspace(0.0, 2.0 * np.pi, 37)
+    zero = np.zeros_like(t)
+    rings = [
+        np.stack([np.cos(t), np.sin(t), zero], 1),
+        np.stack([np.cos(t), zero, np.sin(t)], 1),
+        np.stack([zero, np.cos(t), np.sin(t)], 1),
+    ]
+    return [(ring * np.asarray(axes)) @ turn.T + centre for ring in rings]
+
+
+def figure(robot: Robot, title: str | None = None, outlines: Sequence[Outline] = ()) -> object:
     """The matplotlib figure of :func:`draw`: a ``matplotlib.figure.Figure`` made without pyplot,
     so that drawing it neither changes the backend nor opens a window."""
     from matplotlib.figure import Figure
@@ -209,8 +231,13 @@ def figure(robot: Robot, title: str | None = None) -> object:
     # Thrusters' arrows: a quarter of the largest part (a segment, or a lumped body's sphere).
     sizes = [2.0 * (3.0 * body.volume / (4.0 * np.pi)) ** (1.0 / 3.0) for _, body, _ in _bodies(robot) if body.lumped is not None]
     push_length = 0.25 * max([scale, *sizes])
+    shapes = {outline.link for outline in outlines}
     for name, body, origin in _bodies(robot):
-        if body.lumped is not None:
+        for outline in (o for o in outlines if o.link == name):
+            for line in _outline_lines(outline, origin):
+                ax.plot(*line.T, color="tab:purple", linewidth=0.9, gid=f"outline {name}")
+                points += [line.min(axis=0), line.max(axis=0)]
+        if body.lumped is not None and name not in shapes:
             x, y, z = _lumped_surface(body, origin)
             ax.plot_wireframe(x, y, z, color="tab:purple", linewidth=0.5, alpha=0.6, gid=f"lumped {name}")
             points += [np.array([x.min(), y.min(), z.min()]), np.array([x.max(), y.max(), z.max()])]
@@ -259,7 +286,8 @@ def figure(robot: Robot, title: str | None = None) -> object:
         Line2D([], [], markeredgecolor="tab:green", markerfacecolor="none", marker="o", linestyle="none", label="centre of buoyancy"),
     ]
     if robot.lumped_models:
-        legend.append(Line2D([], [], color="tab:purple", linewidth=0.8, label="lumped body (the sphere of its volume)"))
+        what = "its collision shape" if outlines else "the sphere of its volume"
+        legend.append(Line2D([], [], color="tab:purple", linewidth=0.8, label=f"lumped body ({what})"))
     if robot.thrusters:
         legend.append(Line2D([], [], color="tab:red", marker=">", linewidth=1.0, label="thruster (its push)"))
     ax.legend(handles=legend, loc="upper left", fontsize=7)
@@ -268,12 +296,13 @@ def figure(robot: Robot, title: str | None = None) -> object:
     return fig
 
 
-def draw(robot: Robot, path: str | Path, title: str | None = None) -> None:
+def draw(robot: Robot, path: str | Path, title: str | None = None, outlines: Sequence[Outline] = ()) -> None:
     """A 3-D picture of ``robot`` at ``q = 0`` (base frame, z up), with a legend: circular
     segments as thick blue lines (width by their diameter), rectangular ones as their boxes'
-    outlines (orange), lumped bodies as the sphere of their volume about their reference point
-    (purple wireframe), thrusters as arrows along their push (red), joints as black dots with
+    outlines (orange), lumped bodies as their description's collision shapes (``outlines``, a
+    description's :attr:`uwml.io.descriptions.DescriptionParts.outlines`) or, without them, as
+    the sphere of their volume about their reference point (purple wireframe), thrusters as arrows along their push (red), joints as black dots with
     their axes, centres of mass (x) and buoyancy (o), each body named at its centre of mass.
     Written to ``path`` (format from the extension)."""
-    fig = figure(robot, title)
+    fig = figure(robot, title, outlines)
     fig.savefig(path, dpi=110)  # type: ignore[attr-defined]
