@@ -95,29 +95,46 @@ def main() -> None:
 
 def reference_cost(n: int, one_thread: float) -> None:
     """The numpy reference on the paper's leg, for scale."""
-    import uwml
-    from uwml import reference
-
-    leg = uwml.paper_leg()
     m = min(n, 200_000)
-    rng = np.random.default_rng(0)
-    q, qd, qdd = (rng.uniform(-3, 3, (m, 3)) for _ in range(3))
-    start = time.perf_counter()
-    reference.hydro(leg.joints, leg.links, q, qd, qdd)
-    per_state = (time.perf_counter() - start) / m
+    per_state = reference_per_state(m)
     print(
         f"uwml.reference.hydro (numpy){'':25s} {per_state * 1e9:7.1f} ns/state (on {m:,} states): the core {per_state / one_thread:.0f}x faster"
     )
 
 
+def reference_per_state(m: int, runs: int = 1) -> float:
+    """Seconds per state of the numpy reference (``uwml.reference.hydro``) on ``m`` states of the
+    paper's leg, best of ``runs`` calls."""
+    import uwml
+    from uwml import reference
+
+    leg = uwml.paper_leg()
+    rng = np.random.default_rng(0)
+    q, qd, qdd = (rng.uniform(-3, 3, (m, 3)) for _ in range(3))
+    return best_of(runs, lambda: reference.hydro(leg.joints, leg.links, q, qd, qdd)) / m
+
+
 def limits_cost(n: int, rng: np.random.Generator) -> None:
     """``Robot.hydro`` and ``Robot.environment`` on the README's arm with and without its joint
     limits, alternately, best of 3 each: the warnings' checks (no state here warns)."""
+    times = limits_times(n, rng)
+    if times is None:
+        print("limits: skipped (no MuJoCo to read the URDF)")
+        return
+    for label, (without, with_) in times.items():
+        print(
+            f"uwml Robot.{label}, my_arm, without / with its limits: {without * 1e9:6.1f} / {with_ * 1e9:6.1f} ns/state ({with_ / without:.3f}x)"
+        )
+
+
+def limits_times(n: int, rng: np.random.Generator) -> dict[str, tuple[float, float]] | None:
+    """Seconds per state of ``Robot.hydro`` and ``Robot.environment`` on the arm of
+    ``examples/my_arm`` without and with its joint limits (the plausibility checks), alternately,
+    best of 3 each; None without MuJoCo (which reads the URDF)."""
     try:
         import mujoco  # noqa: F401
     except ImportError:
-        print("limits: skipped (no MuJoCo to read the URDF)")
-        return
+        return None
     import dataclasses
     import functools
 
@@ -128,6 +145,7 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
     joints = [dataclasses.replace(j, range=None, velocity_limit=None, effort_limit=None) for j in limited.joints]
     free = uwml.Robot(joints, limited.links, base=limited.base, water=limited.water)
     q, qd, qdd = rng.uniform(-1, 1, (n, 2)), rng.uniform(-1, 1, (n, 2)), rng.uniform(-2, 2, (n, 2))
+    result = {}
     for label, call in [
         ("hydro", lambda robot: robot.hydro(q, qd, qdd)),
         ("environment", lambda robot: robot.environment(q, qd, qdd, depth=100.0)),
@@ -136,8 +154,8 @@ def limits_cost(n: int, rng: np.random.Generator) -> None:
         for _ in range(3):
             for name, robot in (("without", free), ("with", limited)):
                 times[name].append(best_of(1, functools.partial(call, robot)))
-        without, with_ = (min(times[k]) / n * 1e9 for k in ("without", "with"))
-        print(f"uwml Robot.{label}, my_arm, without / with its limits: {without:6.1f} / {with_:6.1f} ns/state ({with_ / without:.3f}x)")
+        result[label] = (min(times["without"]) / n, min(times["with"]) / n)
+    return result
 
 
 if __name__ == "__main__":

@@ -36,6 +36,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from typing import Any
 
 
 def peak_mb() -> float:
@@ -141,6 +142,33 @@ def _run(command: list[str], quiet: bool = False) -> tuple[float, float, str]:
     return wall, usage.ru_maxrss / 1024.0, out
 
 
+def measure_row(n: int, fmt: str, directory: str, torques: bool = False) -> dict[str, Any]:
+    """One log of ``n`` rows in ``fmt`` (csv or parquet) in ``directory``, each step in a process
+    of its own: ``file MB``, ``write s``/``write MB`` (time, peak), ``read s``/``read MB``,
+    ``fit s``/``fit MB`` (the whole ``uwml fit hydro`` process), with ``torques`` also
+    ``torques s``/``torques MB`` (``uwml torques --out FILE.parquet``); and the fitted ``cd``,
+    ``cm`` (text). The file is deleted afterwards."""
+    path = os.path.join(directory, f"log-{n}.{fmt}")
+    me = [sys.executable, os.path.abspath(__file__), "--child"]
+    row: dict[str, Any] = {}
+    try:
+        _, row["write MB"], out = _run([*me, "write", str(n), path])
+        row["write s"] = json.loads(out)["seconds"]
+        row["file MB"] = os.path.getsize(path) / 1e6
+        _, row["read MB"], out = _run([*me, "read", str(n), path])
+        row["read s"] = json.loads(out)["seconds"]
+        row["fit s"], row["fit MB"], out = _run([sys.executable, "-m", "uwml", "fit", "hydro", path])
+        row |= dict(re.findall(r"^\s+(cd|cm):\s+(\S+) \+/-", out, re.MULTILINE))
+        if torques:
+            out_path = os.path.join(directory, "torques.parquet")
+            row["torques s"], row["torques MB"], _ = _run([sys.executable, "-m", "uwml", "torques", path, "--out", out_path], quiet=True)
+            os.remove(out_path)
+    finally:
+        if os.path.exists(path):
+            os.remove(path)
+    return row
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--rows", type=float, nargs="+", default=[1e6, 1e7], help="log lengths (default 1e6 1e7)")
@@ -165,24 +193,12 @@ def main() -> None:
         for rows in args.rows:
             n = int(rows)
             for fmt in args.formats:
-                path = os.path.join(directory, f"log-{n}.{fmt}")
-                me = [sys.executable, os.path.abspath(__file__), "--child"]
-                _, write_peak, out = _run([*me, "write", str(n), path])
-                write_s = json.loads(out)["seconds"]
-                size = os.path.getsize(path) / 1e6
-                _, read_peak, out = _run([*me, "read", str(n), path])
-                read_s = json.loads(out)["seconds"]
-                fit_s, fit_peak, out = _run([sys.executable, "-m", "uwml", "fit", "hydro", path])
-                params = dict(re.findall(r"^\s+(cd|cm):\s+(\S+) \+/-", out, re.MULTILINE))
-                line = f"{n:>12,} {fmt:>8} {size:>8,.0f} | {write_s:>8.1f} {write_peak:>8,.0f} | {read_s:>7.1f} {read_peak:>8,.0f} | "
-                line += f"{fit_s:>6.1f} {fit_peak:>8,.0f}"
+                row = measure_row(n, fmt, directory, args.torques)
+                line = f"{n:>12,} {fmt:>8} {row['file MB']:>8,.0f} | {row['write s']:>8.1f} {row['write MB']:>8,.0f} | "
+                line += f"{row['read s']:>7.1f} {row['read MB']:>8,.0f} | {row['fit s']:>6.1f} {row['fit MB']:>8,.0f}"
                 if args.torques:
-                    out_path = os.path.join(directory, "torques.parquet")
-                    torques_s, torques_peak, _ = _run([sys.executable, "-m", "uwml", "torques", path, "--out", out_path], quiet=True)
-                    os.remove(out_path)
-                    line += f" | {torques_s:>9.1f} {torques_peak:>8,.0f}"
-                print(line + f"   (cd = {params.get('cd')}, cm = {params.get('cm')})", flush=True)
-                os.remove(path)
+                    line += f" | {row['torques s']:>9.1f} {row['torques MB']:>8,.0f}"
+                print(line + f"   (cd = {row['cd']}, cm = {row['cm']})", flush=True)
     finally:
         shutil.rmtree(directory, ignore_errors=True)
 

@@ -46,38 +46,53 @@ def timed(function) -> float:  # type: ignore[no-untyped-def]
     return time.perf_counter() - start
 
 
+TINY_RUNS = 200
+
+
+def measure(runs: int, cycles: float, workers: int) -> dict[str, float]:
+    """Seconds of the study of ``runs`` runs of ``cycles`` gait cycles: ``serial`` (in this
+    process), ``Ray, started`` (a local Ray of ``workers`` CPUs started and stopped for it),
+    ``Ray, running`` (Ray started before); and ``per task``, Ray's overhead per task (runs of
+    almost nothing, one a task, against the same runs serially)."""
+    import ray
+
+    work = config(runs, cycles)
+    with tempfile.TemporaryDirectory() as folder:
+        root = Path(folder)
+        serial = timed(lambda: study.run_study(work, root / "serial", serial=True))
+        cold = timed(lambda: study.run_study(work, root / "cold", workers=workers))
+        ray.init(num_cpus=workers, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
+        try:
+            warm = timed(lambda: study.run_study(work, root / "warm"))
+            # The overhead per task: runs of almost nothing, one per task, on Ray and serially.
+            tiny = config(TINY_RUNS, 1e-3)
+            saved = runner.MAX_BATCH
+            runner.MAX_BATCH = 1
+            try:
+                tasks = timed(lambda: study.run_study(tiny, root / "tiny-ray"))
+            finally:
+                runner.MAX_BATCH = saved
+        finally:
+            ray.shutdown()
+        alone = timed(lambda: study.run_study(tiny, root / "tiny-serial", serial=True))
+    per_task = (tasks - alone / workers) / tiny.n_runs * workers
+    return {"serial": serial, "Ray, started": cold, "Ray, running": warm, "per task": per_task, "runs": work.n_runs}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--runs", type=int, default=1000)
     parser.add_argument("--cycles", type=float, default=0.2)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()
-    import ray
-
-    work = config(args.runs, args.cycles)
-    with tempfile.TemporaryDirectory() as folder:
-        root = Path(folder)
-        serial = timed(lambda: study.run_study(work, root / "serial", serial=True))
-        cold = timed(lambda: study.run_study(work, root / "cold", workers=args.workers))
-        ray.init(num_cpus=args.workers, include_dashboard=False, logging_level="ERROR", log_to_driver=False)
-        warm = timed(lambda: study.run_study(work, root / "warm"))
-        # The overhead per task: runs of almost nothing, one per task, on Ray and serially.
-        tiny = config(200, 1e-3)
-        saved = runner.MAX_BATCH
-        runner.MAX_BATCH = 1
-        try:
-            tasks = timed(lambda: study.run_study(tiny, root / "tiny-ray"))
-        finally:
-            runner.MAX_BATCH = saved
-        ray.shutdown()
-        alone = timed(lambda: study.run_study(tiny, root / "tiny-serial", serial=True))
-    n = work.n_runs
+    times = measure(args.runs, args.cycles, args.workers)
+    serial, cold, warm, per_task = (times[k] for k in ("serial", "Ray, started", "Ray, running", "per task"))
+    n = config(args.runs, args.cycles).n_runs
     print(f"{n} runs of {args.cycles:g} gait cycles (paper_leg), {args.workers} workers:")
     print(f"  serial, in this process:          {serial:7.2f} s  ({1e3 * serial / n:.1f} ms a run)")
     print(f"  Ray, started for the study:       {cold:7.2f} s  ({serial / cold:.2f}x the serial loop)")
     print(f"  Ray, already running:             {warm:7.2f} s  ({serial / warm:.2f}x)")
-    per_task = (tasks - alone / args.workers) / tiny.n_runs * args.workers
-    print(f"  overhead per task (one run each): {1e3 * per_task:7.2f} ms  ({tiny.n_runs} tasks of ~0.1 ms runs in {tasks:.2f} s)")
+    print(f"  overhead per task (one run each): {1e3 * per_task:7.2f} ms  ({TINY_RUNS} tasks of ~0.1 ms runs)")
 
 
 if __name__ == "__main__":
