@@ -6,7 +6,8 @@ docs/identification.md, "A vehicle from free-floating trials").
 their bounds (``scipy.optimize.least_squares``, trust region reflective, ``x_scale="jac"``),
 where the model values ``m(θ)`` come from ``evaluate``, a function of a batch of parameter
 vectors (for a vehicle: each vector a replay of every training trial, so that a caller can run
-a batch in parallel). The Jacobian is taken by forward differences: column ``i`` from
+a batch in parallel). The Jacobian is the caller's where it has one (``jacobian``: exact
+derivatives, e.g. JAX's through :mod:`uwml.sim.mjx`), else taken by forward differences: column ``i`` from
 ``m(θ + h_i e_i)``, ``h_i = diff_step · max(|θ_i|, s_i)`` with ``s_i`` the parameter's typical
 scale (:func:`uwml.fit.vehicle_parameters.typical_scale`; 0.01 rad or rad/s for a trial's start
 state), stepped backwards where the upper
@@ -37,10 +38,12 @@ from .fit_results import FitResult, _json_float, _json_floats
 from .least_squares import _fit_statistics, _Solution
 from .vehicle_parameters import with_parameters
 
-__all__ = ["DIFF_STEP", "TrialRMS", "VehicleFit", "output_error", "split_parameters"]
+__all__ = ["DIFF_STEP", "FORWARD_DIFFERENCES", "TrialRMS", "VehicleFit", "output_error", "split_parameters"]
 
 #: The relative step of the forward differences (module docstring).
 DIFF_STEP = 1e-6
+#: :attr:`VehicleFit.jacobian` of a fit whose Jacobian was taken by forward differences.
+FORWARD_DIFFERENCES = "forward differences"
 #: The angles compared, in the order of each sample's two points.
 ANGLES = ("roll", "pitch")
 #: A trial's start state that a fit may refine: roll, pitch [rad] (turns about the body's x and
@@ -114,6 +117,8 @@ class VehicleFit(FitResult):
     diff_step: float = DIFF_STEP
     #: Whether each training trial's start state was fitted too (:attr:`TrialRMS.start_offset`).
     start_fitted: bool = False
+    #: How the Jacobian was taken: :data:`FORWARD_DIFFERENCES`, or the exact derivatives' source.
+    jacobian: str = FORWARD_DIFFERENCES
 
     def base_link(self) -> Link:
         """The described hull with the fitted parameters put in (a :class:`uwml.Link` for a
@@ -133,7 +138,8 @@ class VehicleFit(FitResult):
 
     def _report_statistics(self) -> list[str]:
         train = sum(t.role == "train" for t in self.trials)
-        replays = f"{self.integrator}, timestep {self.timestep:g} s; Jacobian by forward differences (step {self.diff_step:g})"
+        how = f"forward differences (step {self.diff_step:g})" if self.jacobian == FORWARD_DIFFERENCES else self.jacobian
+        replays = f"{self.integrator}, timestep {self.timestep:g} s; Jacobian by {how}"
         starts = "the start window's estimates"
         if self.start_fitted:
             starts = f"fitted: roll, pitch and twist of each trial ({self.nvarys - len(self.var_names)} parameters, under [[Trials]])"
@@ -177,6 +183,7 @@ class VehicleFit(FitResult):
             "timestep": self.timestep,
             "integrator": self.integrator,
             "start_fitted": self.start_fitted,
+            "jacobian": self.jacobian,
         }
 
     def _point_coordinates(self) -> dict[str, list[Any]]:
@@ -203,10 +210,12 @@ def output_error(
     scale_covar: bool = True,
     diff_step: float = DIFF_STEP,
     max_nfev: int | None = None,
+    jacobian: Callable[[Array], Array] | None = None,
 ) -> tuple[dict[str, Any], Array, Array]:
     """Fit ``names`` (from ``start``, within ``lower`` … ``upper``; ``scales``: their typical
     sizes, for the steps) so that ``evaluate``'s model values match ``data`` with standard errors
-    ``sigma`` (module docstring). Returns the
+    ``sigma`` (module docstring); ``jacobian``: the model values' derivatives ``(n, p)`` at a
+    point (None: forward differences of ``evaluate``). Returns the
     statistics of :class:`uwml.fit.FitResult` (``params`` … ``nfev``: the model's evaluations,
     the Jacobian's columns counted), the model values at the start and at the optimum."""
     if not (isinstance(diff_step, float | int) and 0.0 < diff_step < 0.1):
@@ -231,7 +240,9 @@ def output_error(
     def residual(x: Array) -> Array:
         return np.asarray((values([x])[0] - data) / sigma, dtype=np.float64)
 
-    def jacobian(x: Array) -> Array:
+    def derivatives(x: Array) -> Array:
+        if jacobian is not None:
+            return np.asarray(jacobian(x), dtype=np.float64) / sigma[:, None]
         steps = _steps(scales, x, upper, float(diff_step))
         moved = [x + np.eye(x.size)[i] * steps[i] for i in range(x.size)]
         here, *columns = values([x, *moved])
@@ -239,11 +250,11 @@ def output_error(
 
     values([start])
     found = scipy.optimize.least_squares(
-        residual, start, jac=jacobian, bounds=(lower, upper), x_scale="jac", method="trf", max_nfev=max_nfev
+        residual, start, jac=derivatives, bounds=(lower, upper), x_scale="jac", method="trf", max_nfev=max_nfev
     )
     x = np.asarray(found.x, dtype=np.float64)
     solution = _Solution(
-        x=x, init=start, jacobian=jacobian(x), residual=residual(x), success=bool(found.status > 0), message=str(found.message), nfev=count[0]
+        x=x, init=start, jacobian=derivatives(x), residual=residual(x), success=bool(found.status > 0), message=str(found.message), nfev=count[0]
     )  # fmt: skip
     best = values([x])[0]
     stats = _fit_statistics(data, lambda v: v / sigma, sigma_given, best, solution, tuple(names), np.eye(x.size), scale_covar)

@@ -236,6 +236,21 @@ def _sigmas(sigma: Any, trials: Sequence[_Trial]) -> tuple[Array, bool]:
     return np.concatenate([np.full(2 * t.time.size, s) for s, t in zip(values, trials, strict=True)]), True
 
 
+def _start(
+    base: Any, names: Sequence[str], start: Mapping[str, float] | None, bounds: Mapping[str, tuple[float, float]] | None
+) -> tuple[Array, Array, Array, Array]:
+    """The parameters' values in the hull ``base``, where the fit starts (``start``'s values
+    replacing them) and their bounds (checked: :func:`uwml.fit.vehicle_parameters.check_bounds`)."""
+    described = described_values(base, names)
+    begin = described.copy()
+    for name, value in (start or {}).items():
+        if name not in names:
+            raise ValueError(f"start: {name!r} not among the parameters fitted ({', '.join(names)})")
+        begin[list(names).index(name)] = float(value)
+    lower, upper = check_bounds(names, begin, bounds)
+    return described, begin, lower, upper
+
+
 def _rms(values: Array, trial: _Trial) -> tuple[float, float]:
     """The RMS of roll and pitch of a trial's simulated ``values`` against its measured angles."""
     error = values.reshape(-1, 2) - trial.measured
@@ -329,13 +344,7 @@ def vehicle_from_trials(
         "max_gap": max_gap, "columns": columns, "smoothing": smoothing, "start_window": start_window, "timestep": timestep,
         "integrator": integrator, "options": options, "description": label,
     }  # fmt: skip
-    described = described_values(base, names)
-    begin = described.copy()
-    for name, value in (start or {}).items():
-        if name not in names:
-            raise ValueError(f"start: {name!r} not among the parameters fitted ({', '.join(names)})")
-        begin[names.index(name)] = float(value)
-    lower, upper = check_bounds(names, begin, bounds)
+    described, begin, lower, upper = _start(base, names, start, bounds)
     fitted = [_read_trial(entry, robot, label, settings) for entry in _trial_entries(trials, "trials")]
     held = [_read_trial(entry, robot, label, settings) for entry in _trial_entries(test, "test")]
     parts = (robot.joints, robot.links, base, robot.losses, robot.water)
@@ -358,16 +367,8 @@ def vehicle_from_trials(
                 runner.close()
     else:
         state, trial_rms = problem.solve(_Runner(replayer), *arguments)
-    bounds_used = {name: (float(lower[k]), float(upper[k])) for k, name in enumerate(names)}
-    return VehicleFit(
-        **state,
-        time=np.concatenate([np.repeat(t.time, 2) for t in fitted]),
-        trial=np.concatenate([np.full(2 * t.time.size, k, dtype=np.int64) for k, t in enumerate(fitted)]),
-        angle=np.tile(np.array([0, 1], dtype=np.int64), problem.data.size // 2),
-        trials=trial_rms, bounds=bounds_used, described=dict(zip(names, described.tolist(), strict=True)), described_base=base,
-        source=fitted[0].source if len(fitted) == 1 else f"{fitted[0].source} and {len(fitted) - 1} more trials",
-        timestep=float(first_simulation.model.opt.timestep), integrator=integrator, diff_step=float(diff_step), start_fitted=fit_start,
-    )  # fmt: skip
+    how = {"timestep": float(first_simulation.model.opt.timestep), "integrator": integrator, "diff_step": float(diff_step)}
+    return problem.result(state, trial_rms, lower, upper, described, base, **how)
 
 
 class _Problem:
@@ -391,6 +392,24 @@ class _Problem:
             np.concatenate([upper, offsets]),
             np.array(scales),
         )
+
+    def result(
+        self, state: dict[str, Any], trial_rms: tuple[TrialRMS, ...], lower: Array, upper: Array, described: Array, base: Any, **how: Any
+    ) -> VehicleFit:
+        """The fit's :class:`VehicleFit` from :func:`uwml.fit.output_error.output_error`'s
+        ``state`` (the start offsets split off) and each trial's RMS; ``how``: the replays'
+        ``timestep`` and ``integrator``, how the Jacobian was taken."""
+        fitted, names = self.fitted, self.names
+        return VehicleFit(
+            **state,
+            time=np.concatenate([np.repeat(t.time, 2) for t in fitted]),
+            trial=np.concatenate([np.full(2 * t.time.size, k, dtype=np.int64) for k, t in enumerate(fitted)]),
+            angle=np.tile(np.array([0, 1], dtype=np.int64), self.data.size // 2),
+            trials=trial_rms, bounds={name: (float(lower[k]), float(upper[k])) for k, name in enumerate(names)},
+            described=dict(zip(names, described.tolist(), strict=True)), described_base=base,
+            source=fitted[0].source if len(fitted) == 1 else f"{fitted[0].source} and {len(fitted) - 1} more trials",
+            start_fitted=self.fit_start, **how,
+        )  # fmt: skip
 
     def offset(self, x: Array, k: int) -> Array:
         """Trial ``k``'s start offsets in the parameters ``x`` (zero without ``fit_start``)."""
@@ -419,12 +438,20 @@ class _Problem:
         x = np.array([state["params"][name] for name in self.names])
         zero = np.zeros(len(START_STATE))
         answers = runner([(point, zero, count + k) for k in range(len(self.held)) for point in (x0[:p], x)])
+        return state, self.trial_rms(first, best, offsets, [(answers[2 * k], answers[2 * k + 1]) for k in range(len(self.held))])
+
+    def trial_rms(
+        self, first: Array, best: Array, offsets: Mapping[str, tuple[float, float | None]], held: Sequence[tuple[Array, Array]]
+    ) -> tuple[TrialRMS, ...]:
+        """Each trial's RMS: the training trials' of the model values at the start (``first``)
+        and at the optimum (``best``), with their fitted start ``offsets``; the held-out ones' of
+        their replays with the described and the fitted parameters (``held``, one pair a trial)."""
         sizes = np.cumsum([0] + [2 * t.time.size for t in self.fitted])
         rms = []
         for k, t in enumerate(self.fitted):
             start = tuple(offsets[f"start{k}.{name}"] for name in START_STATE) if self.fit_start else None
             a, b = sizes[k], sizes[k + 1]
             rms.append(TrialRMS(t.source, "train", t.time.size, _rms(first[a:b], t), _rms(best[a:b], t), start))
-        for k, t in enumerate(self.held):
-            rms.append(TrialRMS(t.source, "test", t.time.size, _rms(answers[2 * k], t), _rms(answers[2 * k + 1], t)))
-        return state, tuple(rms)
+        for t, (described, fitted) in zip(self.held, held, strict=True):
+            rms.append(TrialRMS(t.source, "test", t.time.size, _rms(described, t), _rms(fitted, t)))
+        return tuple(rms)

@@ -12,8 +12,10 @@ currents: :mod:`uwml.sim.mjx_forward`), written as pure functions of a state pyt
 - :meth:`Simulation.reset` ``(params) -> State`` and :meth:`Simulation.step`
   ``(params, state, action) -> State`` for ONE environment; a batch is ``jax.vmap``'s, each
   environment with its own :class:`Parameters` (drag and added-mass coefficients, per segment or
-  scaled, the current, a payload, the depth and temperature of the joint losses, a prescribed
-  motion), so domain randomization is a batch of parameters. Any RL library that takes pure
+  scaled, the lumped models' entries, the bodies' centres of buoyancy and volumes, the current, a
+  payload, the depth and temperature of the joint losses, a prescribed motion), so domain
+  randomization is a batch of parameters, and a gradient may be taken with respect to any of
+  them (:mod:`uwml.sim.mjx_fit`). Any RL library that takes pure
   ``reset``/``step`` functions of JAX arrays can drive them.
 - :class:`Action`: the thrusters' commands (in each curve's units, through the thrust curves)
   and motor torques on the joints; a flat array ``(n_thrusters + n_joints,)`` is read the same.
@@ -32,7 +34,7 @@ from __future__ import annotations
 import contextlib
 import copy
 import io
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any, Literal, NamedTuple
 
 import jax
@@ -53,7 +55,7 @@ from .mjx_forward import Inputs, Layout, robot_model_for, step_dynamics
 from .mjx_inputs import MotionFunction, Spline, ThrusterArrays, evaluate, spline
 from .prescribed import Trajectory
 
-__all__ = ["Action", "Parameters", "Simulation", "Spline", "State", "spline"]
+__all__ = ["Action", "Parameters", "Simulation", "Spline", "State", "benchmark_steps", "spline"]
 
 Array = jax.Array
 FloatArray = NDArray[np.float64]
@@ -92,6 +94,15 @@ class Parameters(NamedTuple):
     temperature_c: Any
     #: A mass [kg] at the centre of mass of the simulation's ``payload_body`` (no volume).
     payload: Any
+    #: Each lumped model's ``M_A``, ``D_L`` ``(L, 6, 6)`` and quadratic damping ``d`` ``(L, 6)``
+    #: (:attr:`uwml.Robot.lumped_models`' order, in each model's axes; the scales multiply them).
+    lumped_added_mass: Any
+    lumped_linear_damping: Any
+    lumped_quadratic_damping: Any
+    #: Each body's centre of buoyancy ``(B, 3)`` [m] in its frame and displaced volume ``(B,)``
+    #: [m³]: the base (row 0; zeros without a base body), then link by link.
+    cob: Any
+    volume: Any
     #: The prescribed joints' motion from samples (None: none, or a motion function).
     motion: Spline | None
 
@@ -252,11 +263,15 @@ class Simulation:
         self._data = mjx.make_data(self._mjx_model)
         self._jitted_reset = jax.jit(self._reset)
         self._jitted_step = jax.jit(self._step)
+        lumped = self._robot_model.lumped
         self._defaults = Parameters(
             cd=np.asarray(self._robot_model.segments.cd), cm=np.asarray(self._robot_model.segments.cm),
             drag_scale=np.array(1.0), added_mass_scale=np.array(1.0),
             current=_vector3(current, "current"), current_acceleration=_vector3(current_acceleration, "current_acceleration"),
-            depth=np.array(depth_value), temperature_c=np.array(temperature), payload=np.array(0.0), motion=default_motion,
+            depth=np.array(depth_value), temperature_c=np.array(temperature), payload=np.array(0.0),
+            lumped_added_mass=np.asarray(lumped.added_mass), lumped_linear_damping=np.asarray(lumped.linear_damping),
+            lumped_quadratic_damping=np.asarray(lumped.quadratic_damping),
+            cob=np.asarray(self._robot_model.bodies.cob), volume=np.asarray(self._robot_model.bodies.volume), motion=default_motion,
         )  # fmt: skip
 
     @classmethod
@@ -436,7 +451,8 @@ class Simulation:
         p = self._cast(params, dtype)
         commands, torque = self._action(action, dtype)
         _shaped(state.thrust, (self.n_thrusters,), "state.thrust")
-        robot = robot_model_for(self._robot_model, p.cd, p.cm, p.drag_scale, p.added_mass_scale)
+        lumped = (p.lumped_added_mass, p.lumped_linear_damping, p.lumped_quadratic_damping)
+        robot = robot_model_for(self._robot_model, p.cd, p.cm, p.drag_scale, p.added_mass_scale, lumped, (p.cob, p.volume))
         steady = self._thrusters.steady(commands)
         acting = self._thrusters.acting(state.thrust.astype(dtype), steady)
         inputs = Inputs(robot, p.current, p.current_acceleration, p.depth, p.temperature_c, p.payload, torque, acting)
@@ -488,3 +504,12 @@ class Simulation:
             return state.data.xpos[..., layout.root, :], state.data.xquat[..., layout.root, :]
         at = layout.free_qpos
         return state.data.qpos[..., at : at + 3], state.data.qpos[..., at + 3 : at + 7]
+
+
+def benchmark_steps(sizes: Sequence[int], repeats: int = 5) -> Iterator[tuple[str, int, float, float]]:
+    """Steps a second of the BlueROV2 example with its arm at each batch size of ``sizes``, bare
+    MJX against uwml's step: ``(what, environments, compile seconds, steps per second)`` rows
+    (:func:`uwml.sim.mjx_bench.benchmark_steps`; ``benches/accelerated.py --mjx``)."""
+    from .mjx_bench import benchmark_steps as run
+
+    return run(sizes, repeats)

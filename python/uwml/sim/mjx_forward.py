@@ -90,20 +90,34 @@ class Inputs(NamedTuple):
     thrust: Array
 
 
-def robot_model_for(model: RobotModel, cd: Any, cm: Any, drag_scale: Any, added_mass_scale: Any) -> RobotModel:
+def robot_model_for(
+    model: RobotModel,
+    cd: Any,
+    cm: Any,
+    drag_scale: Any,
+    added_mass_scale: Any,
+    lumped: tuple[Any, Any, Any] | None = None,
+    bodies: tuple[Any, Any] | None = None,
+) -> RobotModel:
     """``model`` with an environment's coefficients: the segments' ``cd`` and ``cm`` ``(S, 2)``,
+    each lumped model's ``(M_A, D_L, d)`` ``((L, 6, 6), (L, 6, 6), (L, 6))`` (None: the model's),
+    each body's centre of buoyancy ``(B, 3)`` and displaced volume ``(B,)`` (None: the model's);
     every drag coefficient (``cd``, axial ``cd``, the lumped models' damping) times
     ``drag_scale``, every added-mass coefficient (``cm``, the lumped models' ``M_A``) times
     ``added_mass_scale``."""
+    added, linear, quadratic = (
+        (model.lumped.added_mass, model.lumped.linear_damping, model.lumped.quadratic_damping) if lumped is None else lumped
+    )
     segments = model.segments._replace(
         cd=cd * drag_scale, cm=cm * added_mass_scale, cd_axial=jnp.asarray(model.segments.cd_axial) * drag_scale
     )
-    lumped = model.lumped._replace(
-        added_mass=jnp.asarray(model.lumped.added_mass) * added_mass_scale,
-        linear_damping=jnp.asarray(model.lumped.linear_damping) * drag_scale,
-        quadratic_damping=jnp.asarray(model.lumped.quadratic_damping) * drag_scale,
+    lumped_models = model.lumped._replace(
+        added_mass=jnp.asarray(added) * added_mass_scale,
+        linear_damping=jnp.asarray(linear) * drag_scale,
+        quadratic_damping=jnp.asarray(quadratic) * drag_scale,
     )
-    return dataclasses.replace(model, segments=segments, lumped=lumped)
+    body_parts = model.bodies if bodies is None else model.bodies._replace(cob=bodies[0], volume=bodies[1])
+    return dataclasses.replace(model, segments=segments, lumped=lumped_models, bodies=body_parts)
 
 
 def dry_friction_split(
