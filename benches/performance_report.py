@@ -4,7 +4,8 @@
 
 It runs the benchmarks of this folder at small sizes (a few minutes on 2 cores), through their
 own measuring functions (``batch.measure``, ``single_state.measure``, ``simulation.robot_steps``,
-``cli_startup.best``, ``large_log.measure_row``, ``study.measure``, ``accelerated.evaluations``),
+``cli_startup.best``, ``large_log.measure_row``, ``study.measure``, ``accelerated.evaluations``,
+``accelerated.mjx_steps``),
 and, where valgrind is there, counts the instructions of the Rust core's ``timing`` example
 (``valgrind --tool=callgrind`` of ``timing 20000 MODE T`` minus ``timing 10000 MODE T``, per
 call). Build that example first:
@@ -59,6 +60,7 @@ SECTIONS = (
     "instructions",
     "simulation",
     "vehicle",
+    "mjx",
     "cli",
     "large_logs",
     "study",
@@ -279,6 +281,31 @@ def measure_vehicle(steps: int, results: dict[str, object]) -> str:
     )
 
 
+def measure_mjx(sizes: list[int], results: dict[str, object]) -> str:
+    import accelerated
+    import jax
+    import numpy as np
+
+    found = accelerated.mjx_steps(sizes, 3)
+    if found is None:
+        raise RuntimeError("uwml.sim.mjx (MuJoCo MJX) is not installed")
+    cpu = (results.get("vehicle") or {}).get("with thrust (8 thrusters)")  # type: ignore[attr-defined]
+    rows = []
+    for what, size, compile_s, rate in found:
+        against = f"{rate * cpu * 1e-6:.2f}×" if cpu else "—"
+        rows.append([what, f"{size:,}", _n(compile_s, 1), _n(rate / 1e3, 1), against])
+    device = jax.devices()[0]
+    dtype = np.dtype(jax.dtypes.canonicalize_dtype(np.float64)).name
+    return (
+        f"The same vehicle in MJX on `{device.platform}` in {dtype} (`benches/accelerated.py --mjx`, "
+        "`uwml.sim.mjx.benchmark_steps`): one step of every environment of a batch under `jit` and `vmap`, 20 steps a call, "
+        "best of 3 calls after the compiling one; bare MJX (`mujoco.mjx.step` on the same model) against uwml's full step "
+        "(the hull's lumped model, the arm's strips, the added mass in the mass matrix, a current, the thrusters), and "
+        "against the CPU simulation's step with thrust on one thread (the table above).\n\n"
+        + table(["step", "environments", "compile s", "thousand steps/s", "steps/s against the CPU step's"], rows)
+    )
+
+
 def measure_cli(runs: int, results: dict[str, object]) -> str:
     import cli_startup
 
@@ -451,6 +478,7 @@ def main() -> None:
         ("instructions", lambda: measure_instructions(timing, results)),
         ("simulation", lambda: measure_simulation(1000, results)),
         ("vehicle", lambda: measure_vehicle(1000, results)),
+        ("mjx", lambda: measure_mjx([16, 64], results)),
         ("cli", lambda: measure_cli(3, results)),
         ("large_logs", lambda: measure_large_logs(100_000, results)),
         ("study", lambda: measure_study(100, results)),
