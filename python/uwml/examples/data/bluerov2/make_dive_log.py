@@ -30,13 +30,13 @@ k = np.arange(8)
 frequency, phase = 0.05 + 0.037 * k + 0.011 * k**2, rng.uniform(0.0, 2.0 * np.pi, 8)
 d, rows = sim.data, []
 for i in range(round(seconds / timestep)):
-    t = i * timestep
-    command = 0.55 * np.sin(2 * np.pi * frequency * t + phase) + 0.35 * np.sin(2 * np.pi * 2.3 * frequency * t + 2 * phase)
+    now = i * timestep
+    command = 0.55 * np.sin(2 * np.pi * frequency * now + phase) + 0.35 * np.sin(2 * np.pi * 2.3 * frequency * now + 2 * phase)
     sim.command_thrusters(command)
     qpos, qvel = d.qpos.copy(), d.qvel.copy()
     sim.step()
     if i % every == 0:
-        rows.append((t, qpos, qvel, d.qacc.copy(), command))
+        rows.append((now, qpos, qvel, d.qacc.copy(), command))
 t, qpos, qvel, qacc, commands = (np.array([row[j] for row in rows]) for j in range(5))
 turn = np.zeros((len(t), 9))
 for i, quaternion in enumerate(qpos[:, 3:7]):
