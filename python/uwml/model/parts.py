@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -67,6 +68,19 @@ def _pair(value: object, name: str) -> tuple[object, ...]:
         raise TypeError(f"{name} must be a pair (two items), got {value!r}") from None
     if len(items) != 2:
         raise ValueError(f"{name} must hold 2 items, got {len(items)}")
+    return items
+
+
+def _items(value: object, kind: type, name: str) -> tuple[Any, ...]:
+    """``value`` as a tuple of ``kind`` (``uwml.Segment``, ``uwml.Thruster``), or a TypeError
+    naming ``name`` and the item that is not one."""
+    try:
+        items: tuple[Any, ...] = tuple(value)  # type: ignore[arg-type]
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence of uwml.{kind.__name__}, got {type(value).__name__}") from None
+    for index, item in enumerate(items):
+        if not isinstance(item, kind):
+            raise TypeError(f"{name}[{index}] must be a uwml.{kind.__name__}, got {type(item).__name__}")
     return items
 
 
@@ -322,22 +336,8 @@ class Link:
         object.__setattr__(self, "volume", _scalar(self.volume, "link.volume", positive=False))
         cob = self.com if self.cob is None else self.cob
         object.__setattr__(self, "cob", _vec3(cob, "link.cob"))
-        try:
-            segments = tuple(self.segments)
-        except TypeError:
-            raise TypeError(f"link.segments must be a sequence of uwml.Segment, got {type(self.segments).__name__}") from None
-        for index, segment in enumerate(segments):
-            if not isinstance(segment, Segment):
-                raise TypeError(f"link.segments[{index}] must be a uwml.Segment, got {type(segment).__name__}")
-        object.__setattr__(self, "segments", segments)
-        try:
-            thrusters = tuple(self.thrusters)
-        except TypeError:
-            raise TypeError(f"link.thrusters must be a sequence of uwml.Thruster, got {type(self.thrusters).__name__}") from None
-        for index, thruster in enumerate(thrusters):
-            if not isinstance(thruster, Thruster):
-                raise TypeError(f"link.thrusters[{index}] must be a uwml.Thruster, got {type(thruster).__name__}")
-        object.__setattr__(self, "thrusters", thrusters)
+        object.__setattr__(self, "segments", _items(self.segments, Segment, "link.segments"))
+        object.__setattr__(self, "thrusters", _items(self.thrusters, Thruster, "link.thrusters"))
         if self.lumped is not None:
             if not isinstance(self.lumped, LumpedModel):
                 raise TypeError(f"link.lumped must be a uwml.LumpedModel or None, got {type(self.lumped).__name__}")
