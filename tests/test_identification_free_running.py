@@ -10,15 +10,14 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-import mujoco
 import numpy as np
 import pytest
 import uwml
 from uwml import fit
 from uwml.cli import main
 from uwml.io.logs import Log, write_log
+from uwml.sim import synthetic_logs
 from uwml.sim.mujoco import Simulation
-from uwml.sim.prescribed import Trajectory
 
 ROOT = Path(__file__).resolve().parents[1]
 URDF, HYDRO = ROOT / "examples/bluerov2/bluerov2_arm.urdf", ROOT / "examples/bluerov2/bluerov2_arm.hydro.toml"
@@ -41,39 +40,9 @@ def truth(name: str) -> float:
 
 
 def free_running(seconds: float = 20.0, timestep: float = 0.002, every: int = 5, logged_noise: float = 0.0) -> Log:
-    """The vehicle on its thrusters for ``seconds``: each command a sum of two sines (every
-    thruster its own frequencies, up to 2 Hz), held for one step of MuJoCo's Euler integrator; the
-    state at the start of every ``every``-th step logged with the acceleration of that step (its
-    rate ``ν̇ = Rᵀ v̇_world − ω × ν``) and the command, plus ``logged_noise`` of Gaussian noise on
-    the logged commands (the thrusters got the exact ones: the thrust's error is the fit's data
-    error alone)."""
-    sim = Simulation.from_file(URDF, HYDRO)
-    sim.model.opt.timestep = timestep
-    sim.prescribe(["shoulder", "elbow"], Trajectory.of(lambda t: (np.zeros(2), np.zeros(2), np.zeros(2)), joints=2))
-    rng = np.random.default_rng(0)
-    k = np.arange(8)
-    frequency, phase = 0.05 + 0.037 * k + 0.011 * k**2, rng.uniform(0.0, 2.0 * np.pi, 8)
-    d, rows = sim.data, []
-    for i in range(round(seconds / timestep)):
-        t = i * timestep
-        command = 0.55 * np.sin(2 * np.pi * frequency * t + phase) + 0.35 * np.sin(2 * np.pi * 2.3 * frequency * t + 2 * phase)
-        sim.command_thrusters(command)
-        qpos, qvel = d.qpos.copy(), d.qvel.copy()
-        sim.step()
-        if i % every == 0:
-            rows.append((t, qpos, qvel, d.qacc.copy(), command + logged_noise * rng.standard_normal(8)))
-    t, qpos, qvel, qacc, commands = (np.array([row[j] for row in rows]) for j in range(5))
-    turn = np.zeros((len(t), 9))
-    for i, quaternion in enumerate(qpos[:, 3:7]):
-        mujoco.mju_quat2Mat(turn[i], quaternion)
-    rotation = turn.reshape(-1, 3, 3)
-    v, w = np.einsum("nji,nj->ni", rotation, qvel[:, :3]), qvel[:, 3:6]
-    v_dot = np.einsum("nji,nj->ni", rotation, qacc[:, :3]) - np.cross(w, v)
-    return Log(
-        time=t, q=qpos[:, 7:], qd=qvel[:, 6:], qdd=qacc[:, 6:], base_position=qpos[:, :3], base_orientation=qpos[:, 3:7],
-        base_twist=np.hstack([v, w]), base_twist_dot=np.hstack([v_dot, qacc[:, 3:6]]), thruster_commands=commands,
-        source="free-running",
-    )  # fmt: skip
+    """The vehicle on its thrusters (:func:`uwml.sim.synthetic_logs.free_running`), its hull the
+    published one; ``logged_noise`` on the logged commands only (the fit's data error alone)."""
+    return synthetic_logs.free_running(URDF, HYDRO, seconds=seconds, timestep=timestep, every=every, logged_noise=logged_noise)
 
 
 @pytest.fixture(scope="module")
