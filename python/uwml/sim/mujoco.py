@@ -481,7 +481,8 @@ class Simulation:
             for body, wrench in rows.items():
                 d.xfrc_applied[body] = wrench
             if not thrusters.idle:  # added in each forward pass, at the pose of its position stage
-                self._under_thrust = d.xfrc_applied[thrusters.rows].copy()
+                # Thrust alone: its rows as kept (the copy made above); else with the wrenches set.
+                self._under_thrust = kept if not rows else d.xfrc_applied[thrusters.rows].copy()
             self._step(torque, qfrc)
         finally:
             self._under_thrust = None

@@ -67,7 +67,7 @@ class SimulatedThrusters:
         self._world = np.zeros((len(self._bodies), 2, 3))
         self._flat_world = self._world.reshape(len(self._bodies), 6)
         self._decay: tuple[float, FloatArray] | None = None
-        self._idle = not np.any(self._steady) or len(self._bodies) == 0
+        self._idle = self._no_thrust()
 
     def __len__(self) -> int:
         return len(self._thrusters)
@@ -99,7 +99,7 @@ class SimulatedThrusters:
         # A thruster without a lag gives its new thrust at once (with a lag: from the next step on).
         self._thrust = np.where(self._time_constants > 0.0, self._thrust, self._steady)
         self._columns = self._body_columns()
-        self._idle = (not np.any(self._steady) and not np.any(self._thrust)) or len(self._bodies) == 0
+        self._idle = self._no_thrust()
 
     def _body_columns(self) -> FloatArray:
         """The thrust now as each body's force and moment (about its centre of mass) in its
@@ -127,6 +127,11 @@ class SimulatedThrusters:
         """The MuJoCo bodies pushed."""
         return self._bodies
 
+    def _no_thrust(self) -> bool:
+        """Whether no thrust acts now nor will without a new command (or no body is pushed):
+        kept as :attr:`idle`, which every step reads."""
+        return len(self._bodies) == 0 or (not np.any(self._thrust) and not np.any(self._steady))
+
     @property
     def idle(self) -> bool:
         """Whether no thrust acts (nothing to apply in a step)."""
@@ -144,7 +149,7 @@ class SimulatedThrusters:
             self._decay = (h, decay)
         self._thrust = self._steady + (self._thrust - self._steady) * self._decay[1]
         self._columns = self._body_columns()
-        self._idle = not np.any(self._thrust) and not np.any(self._steady)
+        self._idle = self._no_thrust()
 
 
 def _uwml_to_body_frames(
