@@ -196,6 +196,35 @@ def test_the_results_are_ordinary_results() -> None:
     assert PAPER.hydro(**STATE, base=True).base.total.shape == (6,)
 
 
+def test_a_conditions_given_alone_is_evaluated_as_any_other() -> None:
+    """A ``Conditions`` given alone (a controller's loop) goes to the native call in one step:
+    the same bits as the keywords' path, its base wrench where the robot has a base body (or
+    ``base=True``) and none with ``base=False``, each robot its own reading of it, and the
+    arguments the package checks still checked."""
+    arm = arm_on_rov()
+    motion = uwml.BaseMotion(velocity=(0.5, 0.0, 0.1), angular_velocity=(0.0, 0.02, 0.0))
+    conditions = uwml.Conditions(base_motion=motion, current=(0.2, 0.0, 0.0), cd=1.1)
+    q = [0.2, 0.4, -0.8, 0.0, 0.3, 0.0, 0.05]
+    alone = arm.hydro(q, q, q, conditions)
+    by_keywords = arm.hydro(q, q, q, base_motion=motion, current=(0.2, 0.0, 0.0), cd=1.1)
+    assert_same_bits(alone, by_keywords, COMPONENTS, None, "alone")
+    assert_same_bits(alone.base, by_keywords.base, COMPONENTS, None, "alone, base")
+    assert arm.hydro(q, q, q, conditions, base=False).base is None
+    still = uwml.Conditions(cd=2.0)
+    assert PAPER.hydro(**STATE, conditions=still).base is None
+    with_base = PAPER.hydro(**STATE, conditions=still, base=True).base
+    batch = PAPER.hydro(*(np.array([STATE[k]] * 2) for k in ("q", "qd", "qdd")), still, base=True)
+    assert with_base is not None and bits(with_base.total) == bits(batch.base.total[1])
+    # One Conditions with two robots, in turn: each evaluated with its own water and losses.
+    other = random_chain(np.random.default_rng(3), 3)[0]
+    for _ in range(2):
+        assert_same_bits(PAPER.environment(**STATE, conditions=still), PAPER.environment(**STATE, cd=2.0), ENVIRONMENT_FIELDS, None, "leg")
+        assert_same_bits(other.environment(**STATE, conditions=still), other.environment(**STATE, cd=2.0), ENVIRONMENT_FIELDS, None, "chain")
+    for threads in (1.0, True, 0):
+        with pytest.raises(ValueError, match="threads must be an integer >= 1"):
+            PAPER.hydro(**STATE, conditions=still, threads=threads)
+
+
 # --------------------------------------------------------------------------------------------
 # Kinds the native reading declines: the numbers of the same values as float64 arrays
 # --------------------------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 use numpy::{PyArray1, PyArrayDescrMethods, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::intern;
 use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyDict, PyFloat, PyInt, PyList, PyString, PyTuple, PyType};
 
 /// A finite Python float (or int: `float(value)` is what numpy's conversion gives too).
@@ -54,6 +55,9 @@ pub(crate) fn fill_values(value: &Bound<'_, PyAny>, out: &mut [f64]) -> Option<(
     Some(())
 }
 
+/// `object.__new__`.
+static OBJECT_NEW: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
+
 /// A new instance of the (dataclass) type `cls` with `fields` as its attributes, set directly
 /// in its `__dict__` (as `object.__new__(cls)` then `object.__setattr__` would: no
 /// `__init__`, no `__post_init__`).
@@ -65,7 +69,14 @@ where
     'py: 'a,
 {
     let py = cls.py();
-    let object = cls.call_method1(intern!(py, "__new__"), (cls,))?;
+    // `object.__new__`, looked up once (not through `cls` at every call).
+    let object_new = OBJECT_NEW.get_or_try_init(py, || {
+        py.import(intern!(py, "builtins"))?
+            .getattr(intern!(py, "object"))?
+            .getattr(intern!(py, "__new__"))
+            .map(Bound::unbind)
+    })?;
+    let object = object_new.bind(py).call1((cls,))?;
     let dict = object.getattr(intern!(py, "__dict__"))?;
     let dict = dict.cast::<PyDict>()?;
     for (name, value) in fields {

@@ -298,14 +298,21 @@ class Robot:
     def _native(self, conditions: Conditions) -> _core.Conditions:
         """``conditions`` as the core reads them for this robot (its own water and losses where
         they give none), made once and kept on them."""
-        kept: tuple[_core.Robot, _core.Conditions] | None = conditions.__dict__.get("_native")
+        return self._kept(conditions)[1]
+
+    def _kept(self, conditions: Conditions) -> tuple[_core.Robot, _core.Conditions, bool]:
+        """What is kept on ``conditions`` for this robot: the robot's native object, the
+        conditions as the core reads them (:meth:`_native`), and whether an evaluation gives the
+        base wrench unless told (the robot has a base body, or the conditions move its base)."""
+        kept: tuple[_core.Robot, _core.Conditions, bool] | None = conditions.__dict__.get("_native")
         if kept is not None and kept[0] is self._core:
-            return kept[1]
+            return kept
         water = self._water if conditions.water is None else conditions.water
         losses = self._own_losses if conditions.losses is None else conditions.losses
         native = _core.Conditions(self._core, conditions, water, pack_leg_losses(losses, self.n_joints))
-        object.__setattr__(conditions, "_native", (self._core, native))
-        return native
+        kept = (self._core, native, self._base is not None or conditions.base_motion is not None)
+        object.__setattr__(conditions, "_native", kept)
+        return kept
 
     def _states(self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
         """The joint states checked, as C-contiguous float64 arrays ``(n_joints,)`` or
@@ -332,22 +339,18 @@ class Robot:
         shortcuts: ConditionFields,
         threads: int,
         base: bool | None,
+        tried: bool = False,
     ) -> Torques:
         """:meth:`hydro` (``losses`` False) or :meth:`environment`: one native call for one
         plain state (lists, tuples or 1-D float64 arrays within the joints' bounds), else the
-        states checked here first; the same evaluation either way."""
-        # A Conditions given alone (a controller's loop) is taken as it is, without a call.
-        if shortcuts or type(conditions) is not Conditions:
-            the_conditions = self._conditions(conditions, shortcuts)
-        else:
-            the_conditions = conditions
-        kept = the_conditions.__dict__.get("_native")
-        native = kept[1] if kept is not None and kept[0] is self._core else self._native(the_conditions)
+        states checked here first; the same evaluation either way. ``tried``: the native call
+        on the states as given was made already (it declined them)."""
+        _, native, with_base = self._kept(self._conditions(conditions, shortcuts))
         if type(threads) is not int or threads < 1:
             threads = _threads(threads)
-        with_base = (self._base is not None or the_conditions.base_motion is not None) if base is None else bool(base)
+        with_base = with_base if base is None else bool(base)
         evaluate = self._core.environment if losses else self._core.hydro
-        result: Torques | None = evaluate(*states, native, threads, with_base)
+        result: Torques | None = None if tried else evaluate(*states, native, threads, with_base)
         if result is None:
             result = evaluate(*self._states(*states), native, threads, with_base, True)
             assert result is not None
@@ -396,6 +399,14 @@ class Robot:
         same checks and the same bits as that state's row of a batch; made once and passed to
         every call, ``conditions`` are read by the core once.
         """
+        # A Conditions kept for this robot, given alone (a controller's loop): one native call,
+        # which takes one plain state (anything else: `_forces`).
+        kept = conditions.__dict__.get("_native") if type(conditions) is Conditions and not shortcuts else None
+        if kept is not None and kept[0] is self._core and type(threads) is int and threads == 1:
+            result: Torques | None = self._core.hydro(q, qd, qdd, kept[1], 1, kept[2] if base is None else bool(base))
+            if result is not None:
+                return result
+            return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base, tried=True)
         return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base)
 
     def environment(
@@ -414,6 +425,13 @@ class Robot:
         ``depth``, ``temperature_c`` and ``losses`` (the robot's own, :attr:`losses`, unless
         they give others; the pressure ``sea_density · g · depth``, ``sea_density`` the water's
         unless given, so that one water is used for both). Arguments as for :meth:`hydro`."""
+        # As in `hydro`.
+        kept = conditions.__dict__.get("_native") if type(conditions) is Conditions and not shortcuts else None
+        if kept is not None and kept[0] is self._core and type(threads) is int and threads == 1:
+            result: Torques | None = self._core.environment(q, qd, qdd, kept[1], 1, kept[2] if base is None else bool(base))
+            if result is not None:
+                return result
+            return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base, tried=True)
         return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base)
 
     def jacobians(
