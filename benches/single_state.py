@@ -4,7 +4,8 @@ time): the paper's leg (``hydro`` with lists or 1-D arrays, ``environment`` at d
 :func:`uwml.examples.arm_on_rov` on a moving ROV in a current, in every coefficient form
 (the segments' own, a number, one per segment, one per segment and direction). Each is called
 with keyword shortcuts, and, where the revision has ``uwml.Conditions``, with the conditions made
-once and passed to every call (what a controller does).
+once and passed to every call (what a controller does), and, where the revision has
+``Robot.workspace``, into a workspace (no result objects made per call).
 
 Run: ``python benches/single_state.py [repeats] [--against REF] [--rounds K]`` (default 7).
 Each figure is the best of ``repeats`` ``timeit`` runs of 20,000 calls. With ``--against REF``
@@ -71,6 +72,15 @@ def calls() -> dict[str, Callable[[], Any]]:
         }
         for suffix, conditions in forms.items():
             result[f"arm on a moving ROV, current{suffix}, Conditions once"] = lambda c=conditions: arm.hydro(q7, q7, q7, c)
+    if hasattr(uwml.Robot, "workspace"):
+        leg_space, arm_space = leg.workspace(), arm.workspace()
+        result["paper leg, environment, one JointLosses, Conditions once, workspace"] = lambda: leg.environment(
+            q, qd, qdd, at_depth, workspace=leg_space
+        )
+        for suffix, conditions in forms.items():
+            result[f"arm on a moving ROV, current{suffix}, Conditions once, workspace"] = lambda c=conditions: arm.hydro(
+                q7, q7, q7, c, workspace=arm_space
+            )
     return result
 
 

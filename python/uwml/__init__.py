@@ -36,6 +36,7 @@ from .robot.evaluation_conditions import Conditions
 from .robot.presets import paper_leg
 from .robot.results import BaseWrench, Jacobians, Regressors, Torques
 from .robot.tree import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS, Robot
+from .robot.workspace import Workspace
 from .sea.conditions import ExtrapolationWarning, hydrostatic_pressure_mpa
 
 __all__ = [
@@ -70,6 +71,7 @@ __all__ = [
     "UwmlError",
     "WalkingGait",
     "Water",
+    "Workspace",
     "get_include",
     "hydrostatic_pressure_mpa",
     "paper_leg",

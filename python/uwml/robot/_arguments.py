@@ -1,17 +1,23 @@
 """The checks of a :class:`uwml.Robot`'s parts and of its arguments that are not conditions
 (:mod:`uwml.robot.evaluation_conditions`): its joints, links and base, the water and joint losses
-it holds, the threads of an evaluation."""
+it holds, the threads of an evaluation; the keyword shortcuts of one call kept to compare with
+the next's."""
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from .._core import MAX_LUMPED_BODIES, MAX_ROBOT_JOINTS, MAX_SEGMENTS
 from ..model.joint_losses import JointLosses
 from ..model.parts import Joint, Link, Segment, Water
+
+if TYPE_CHECKING:
+    from .evaluation_conditions import ConditionFields
 
 
 def _threads(threads: object) -> int:
@@ -86,3 +92,36 @@ def robot_parts(
     if lumped > MAX_LUMPED_BODIES:
         raise ValueError(f"a robot may carry up to {MAX_LUMPED_BODIES} lumped models (one per body), got {lumped}")
     return tuple(dataclasses.replace(j, parent=p) for p, j in zip(parents, joints)), links, base_body, owned
+
+
+def kept_shortcut(value: object) -> object:
+    """A shortcut's value as kept to compare the next call's with: a copy of what may change in
+    place (lists, arrays), the object itself otherwise (numbers, tuples, frozen parts)."""
+    if isinstance(value, np.ndarray):
+        return value.copy()
+    if isinstance(value, list):
+        return copy.deepcopy(value)
+    return value
+
+
+def _same_value(kept: object, given: object) -> bool:
+    """Whether a shortcut's value ``given`` is the one ``kept`` (:func:`kept_shortcut`): equal numbers,
+    strings, tuples, lists or arrays, or the same object (frozen: a water, a base motion)."""
+    kind = type(given)
+    if kind is float or kind is int or kind is str:
+        return type(kept) is kind and kept == given
+    if isinstance(kept, np.ndarray):
+        return isinstance(given, np.ndarray) and kept.shape == given.shape and kept.dtype == given.dtype and bool(np.all(kept == given))
+    if kind is tuple or kind is list:
+        try:
+            return type(kept) is kind and bool(kept == given)
+        except ValueError:  # sequences of arrays: no single truth value
+            return False
+    return kept is given
+
+
+def same_shortcuts(kept: dict[str, Any], given: ConditionFields) -> bool:
+    """Whether a call's keyword shortcuts ``given`` are those ``kept`` (each by :func:`kept_shortcut`)."""
+    if kept.keys() != given.keys():
+        return False
+    return all(_same_value(kept[name], value) for name, value in given.items())

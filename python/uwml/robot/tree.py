@@ -8,7 +8,6 @@ Rust core. :class:`BaseMotion` says how the base moves; the current is a world-f
 
 from __future__ import annotations
 
-import copy
 import operator
 import os
 from collections.abc import Sequence
@@ -25,9 +24,10 @@ from ..model.lumped import LumpedModel
 from ..model.parts import FRESH_WATER, Joint, Link, Segment, Water
 from ..model.thrusters import Thruster
 from ..plausibility import check_efforts, check_states, joint_bounds
-from ._arguments import _per_joint_losses, _threads, _water, robot_parts
+from ._arguments import _per_joint_losses, _threads, _water, kept_shortcut, robot_parts, same_shortcuts
 from .evaluation_conditions import Conditions
 from .results import Jacobians, Regressors, Torques
+from .workspace import Workspace
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
@@ -49,38 +49,6 @@ MAX_ROBOT_JOINTS: int = _core.MAX_ROBOT_JOINTS
 MAX_SEGMENTS: int = _core.MAX_SEGMENTS
 #: The most lumped models (:class:`uwml.LumpedModel`) a robot may carry, on all its bodies.
 MAX_LUMPED_BODIES: int = _core.MAX_LUMPED_BODIES
-
-
-def _kept(value: object) -> object:
-    """A shortcut's value as kept to compare the next call's with: a copy of what may change in
-    place (lists, arrays), the object itself otherwise (numbers, tuples, frozen parts)."""
-    if isinstance(value, np.ndarray):
-        return value.copy()
-    if isinstance(value, list):
-        return copy.deepcopy(value)
-    return value
-
-
-def _same_value(kept: object, given: object) -> bool:
-    """Whether a shortcut's value ``given`` is the one ``kept`` (:func:`_kept`): equal numbers,
-    strings, tuples, lists or arrays, or the same object (frozen: a water, a base motion)."""
-    kind = type(given)
-    if kind is float or kind is int or kind is str:
-        return type(kept) is kind and kept == given
-    if isinstance(kept, np.ndarray):
-        return isinstance(given, np.ndarray) and kept.shape == given.shape and kept.dtype == given.dtype and bool(np.all(kept == given))
-    if kind is tuple or kind is list:
-        try:
-            return type(kept) is kind and bool(kept == given)
-        except ValueError:  # sequences of arrays: no single truth value
-            return False
-    return kept is given
-
-
-def _same_shortcuts(kept: dict[str, Any], given: ConditionFields) -> bool:
-    if kept.keys() != given.keys():
-        return False
-    return all(_same_value(kept[name], value) for name, value in given.items())
 
 
 class Robot:
@@ -289,10 +257,10 @@ class Robot:
         if not shortcuts:
             return self._default_conditions if conditions is None else conditions
         last = self._last_shortcuts
-        if last is not None and last[0] is conditions and _same_shortcuts(last[1], shortcuts):
+        if last is not None and last[0] is conditions and same_shortcuts(last[1], shortcuts):
             return last[2]
         made = Conditions(**shortcuts) if conditions is None else conditions.replace(**shortcuts)
-        self._last_shortcuts = (conditions, {name: _kept(value) for name, value in shortcuts.items()}, made)
+        self._last_shortcuts = (conditions, {name: kept_shortcut(value) for name, value in shortcuts.items()}, made)
         return made
 
     def _native(self, conditions: Conditions) -> _core.Conditions:
@@ -339,12 +307,15 @@ class Robot:
         shortcuts: ConditionFields,
         threads: int,
         base: bool | None,
+        workspace: Workspace | None,
         tried: bool = False,
     ) -> Torques:
         """:meth:`hydro` (``losses`` False) or :meth:`environment`: one native call for one
         plain state (lists, tuples or 1-D float64 arrays within the joints' bounds), else the
-        states checked here first; the same evaluation either way. ``tried``: the native call
-        on the states as given was made already (it declined them)."""
+        states checked here first; the same evaluation either way, into ``workspace`` if given.
+        ``tried``: the native call on the states as given was made already (it declined them)."""
+        if workspace is not None:
+            workspace._check(self._core)
         _, native, with_base = self._kept(self._conditions(conditions, shortcuts))
         if type(threads) is not int or threads < 1:
             threads = _threads(threads)
@@ -356,7 +327,7 @@ class Robot:
             assert result is not None
             parts = [result.drag, result.added_mass, result.buoyancy]
             check_efforts(parts if result.visc is None or result.seal is None else [*parts, result.visc, result.seal], self._bounds)
-        return result
+        return result if workspace is None else workspace._store(result)
 
     def hydro(
         self,
@@ -367,6 +338,7 @@ class Robot:
         *,
         threads: int = 1,
         base: bool | None = None,
+        workspace: Workspace | None = None,
         **shortcuts: Unpack[ConditionFields],
     ) -> Torques:
         """Drag, added mass, buoyancy (with Froude-Krylov) and gravity on every joint and on the
@@ -388,6 +360,10 @@ class Robot:
             Whether to evaluate the wrench on the base (``result.base``, a
             :class:`uwml.BaseWrench`; None where not evaluated). Default: where the robot has a
             base body or the conditions move its base.
+        workspace
+            A :class:`uwml.Workspace` of this robot (:meth:`workspace`) for one state: the
+            forces are written into it and its result returned, the same object every call (no
+            result objects made per call; copy what is to be kept).
         **shortcuts
             Fields of :class:`uwml.Conditions` (``cd=``, ``water=``, ``base_motion=``,
             ``current=``, ...): they replace those of ``conditions``.
@@ -403,11 +379,15 @@ class Robot:
         # which takes one plain state (anything else: `_forces`).
         kept = conditions.__dict__.get("_native") if type(conditions) is Conditions and not shortcuts else None
         if kept is not None and kept[0] is self._core and type(threads) is int and threads == 1:
-            result: Torques | None = self._core.hydro(q, qd, qdd, kept[1], 1, kept[2] if base is None else bool(base))
-            if result is not None:
-                return result
-            return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base, tried=True)
-        return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base)
+            with_base = kept[2] if base is None else bool(base)
+            if workspace is None:
+                result: Torques | None = self._core.hydro(q, qd, qdd, kept[1], 1, with_base)
+                if result is not None:
+                    return result
+            elif workspace._core is self._core and self._core.evaluate_into(q, qd, qdd, kept[1], with_base, False, workspace._values):
+                return workspace._with_base if with_base else workspace._without_base
+            return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base, workspace, tried=True)
+        return self._forces(False, (q, qd, qdd), conditions, shortcuts, threads, base, workspace)
 
     def environment(
         self,
@@ -418,6 +398,7 @@ class Robot:
         *,
         threads: int = 1,
         base: bool | None = None,
+        workspace: Workspace | None = None,
         **shortcuts: Unpack[ConditionFields],
     ) -> Torques:
         """Hydrodynamics (as :meth:`hydro`) and the joint losses at depth, in one call: the
@@ -428,11 +409,22 @@ class Robot:
         # As in `hydro`.
         kept = conditions.__dict__.get("_native") if type(conditions) is Conditions and not shortcuts else None
         if kept is not None and kept[0] is self._core and type(threads) is int and threads == 1:
-            result: Torques | None = self._core.environment(q, qd, qdd, kept[1], 1, kept[2] if base is None else bool(base))
-            if result is not None:
-                return result
-            return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base, tried=True)
-        return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base)
+            with_base = kept[2] if base is None else bool(base)
+            if workspace is None:
+                result: Torques | None = self._core.environment(q, qd, qdd, kept[1], 1, with_base)
+                if result is not None:
+                    return result
+            elif workspace._core is self._core and self._core.evaluate_into(q, qd, qdd, kept[1], with_base, True, workspace._values):
+                return workspace._with_base if with_base else workspace._without_base
+            return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base, workspace, tried=True)
+        return self._forces(True, (q, qd, qdd), conditions, shortcuts, threads, base, workspace)
+
+    def workspace(self) -> Workspace:
+        """A reusable result for one state of this robot (:class:`uwml.Workspace`), given as
+        ``workspace=`` to :meth:`hydro` or :meth:`environment`: each call writes its forces into
+        it and returns its result, as Pinocchio's ``Data``; what a controller stepping one state
+        at a time uses (docs/performance.md, "One state per call from Python")."""
+        return Workspace(self)
 
     def jacobians(
         self,

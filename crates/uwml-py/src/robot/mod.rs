@@ -4,8 +4,8 @@
 //! alone, a batch four per evaluation with the GIL released, optionally on several threads) and
 //! returns the Python package's result objects (`results.rs`).
 
-use std::ops::{Deref, DerefMut, Range};
-use std::sync::{Mutex, MutexGuard, OnceLock, TryLockError};
+use std::ops::Range;
+use std::sync::{Mutex, OnceLock};
 
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods,
@@ -24,6 +24,7 @@ mod design;
 mod evaluate;
 mod inputs;
 mod kinematics;
+mod one_state;
 mod prescribed;
 mod results;
 mod rk4;
@@ -35,7 +36,8 @@ use crate::parts::{BodySpec, JointSpec, RobotParts, SegmentSpec, robot_parts};
 use crate::{NonFinite, contiguous, contiguous1, in_parallel, model_error, to_numpy};
 pub(crate) use conditions::PyConditions;
 pub(crate) use coupling::MujocoCoupling;
-use evaluate::{LOSSES, OUTPUTS, Overflow, Setting, hydro_range};
+use evaluate::{OUTPUTS, Overflow, Setting, hydro_range};
+use one_state::split;
 use states::{Bounds, Read};
 
 /// Largest number of joints of a robot built from Python.
@@ -261,6 +263,27 @@ impl PyRobot {
         self.torques(py, [q, qd, qdd], &conditions, threads, wanted, checked)
     }
 
+    /// `hydro` (or, with `losses`, `environment`) of one plain state into `workspace`, a
+    /// `uwml.Workspace`'s float64 array of `7 N + 24` values (the joints' drag, added mass,
+    /// buoyancy, gravity, oil drag, seal friction and loss current, `N` each, then the base's
+    /// drag, added mass, buoyancy and gravity, 6 each), the base's part evaluated where `base`
+    /// (zeros otherwise, as the losses' part without `losses`): True, or False for what the
+    /// Python package evaluates the general way (states not plain or beyond the joints' bounds,
+    /// forces beyond a joint's effort bound, conditions with a sample axis).
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate_into(
+        &self,
+        q: &Bound<'_, PyAny>,
+        qd: &Bound<'_, PyAny>,
+        qdd: &Bound<'_, PyAny>,
+        conditions: PyRef<'_, PyConditions>,
+        base: bool,
+        losses: bool,
+        workspace: &Bound<'_, PyArray1<f64>>,
+    ) -> PyResult<bool> {
+        self.evaluate_into_array([q, qd, qdd], &conditions, base, losses, workspace)
+    }
+
     /// Every body's world wrench about its centre of mass, `(n_samples, N + 1, 6)` or `(N + 1, 6)`
     /// (base first); the states as float64 arrays.
     #[pyo3(signature = (q, qd, qdd, conditions, *, threads = 1))]
@@ -363,13 +386,6 @@ impl PyRobot {
         }
     }
 
-    /// The kept workspace for a one-state call made with the GIL held, or a new one if another
-    /// thread is using it: a thread holding the GIL never waits for a lock (no deadlock with a
-    /// detached batch, none when the result's construction runs Python that calls back in).
-    fn one_state_workspace(&self) -> Workspace<'_, Data> {
-        Workspace::of(&self.data, || Box::new(Data::new()))
-    }
-
     /// The result object of `hydro` or `environment` (see there): `None` for states not read
     /// (unless `checked`) or, for one plain state, forces beyond a joint's effort bound (the
     /// Python package then warns).
@@ -432,12 +448,8 @@ impl PyRobot {
         let overflow = |e: Overflow| overflow_error(&e, &states, batched);
         if !batched {
             let mut buffer = vec![0.0; widths.iter().sum()];
-            let setting =
-                Setting { robot: &self.robot, coefficients: conditions.coefficients.as_deref(), conditions, states };
-            let mut data = self.one_state_workspace();
-            hydro_range(&setting, &(0..1), &mut data, split(&mut buffer, widths)).map_err(overflow)?;
-            drop(data);
-            if matches!(read, Read::One(_)) && !within_effort(&buffer, widths, &self.bounds) {
+            let plain = matches!(read, Read::One(_));
+            if !self.one_state(states, conditions, split(&mut buffer, widths), plain)? {
                 return Ok(None);
             }
             let mut rest = buffer.as_slice();
@@ -492,38 +504,6 @@ impl Wanted {
     }
 }
 
-/// `buffer` cut into consecutive parts of `widths`.
-fn split(buffer: &mut [f64], widths: [usize; OUTPUTS]) -> [&mut [f64]; OUTPUTS] {
-    let mut rest = buffer;
-    widths.map(|width| {
-        let all = core::mem::take(&mut rest);
-        let (part, after) = all.split_at_mut(width.min(all.len()));
-        rest = after;
-        part
-    })
-}
-
-/// Whether every joint's environment force in one state's outputs (`buffer`, cut by `widths`:
-/// the water's, and the losses' where evaluated) is within its effort bound.
-fn within_effort(buffer: &[f64], widths: [usize; OUTPUTS], bounds: &[Bounds]) -> bool {
-    let mut starts = [0; OUTPUTS];
-    let mut at = 0;
-    for (start, width) in starts.iter_mut().zip(widths) {
-        *start = at;
-        at += width;
-    }
-    let value = |output: usize, j: usize| {
-        if widths.get(output).copied().unwrap_or(0) == 0 {
-            return 0.0;
-        }
-        buffer.get(starts.get(output).copied().unwrap_or(0) + j).copied().unwrap_or(0.0)
-    };
-    bounds.iter().enumerate().all(|(j, &[_, _, effort])| {
-        let total = value(0, j) + value(1, j) + value(2, j) + value(LOSSES, j) + value(LOSSES + 1, j);
-        total.abs() <= effort
-    })
-}
-
 /// The error of forces that overflow float64 from a finite state.
 fn overflow_error(e: &Overflow, states: &evaluate::States<'_>, batched: bool) -> PyErr {
     let (speed, acceleration) = states.largest_rates(e.sample);
@@ -533,41 +513,4 @@ fn overflow_error(e: &Overflow, states: &evaluate::States<'_>, batched: bool) ->
         general(speed),
         general(acceleration)
     ))
-}
-
-/// A one-state call's workspace: the robot's kept one, or a new one (see `one_state_workspace`).
-enum Workspace<'a, T> {
-    Kept(MutexGuard<'a, Box<T>>),
-    New(Box<T>),
-}
-
-impl<'a, T> Workspace<'a, T> {
-    /// The one kept in `kept`, or `make()`'s while another thread holds it (a poisoned lock's
-    /// workspace is as good: every call writes what it reads).
-    fn of(kept: &'a Mutex<Box<T>>, make: impl FnOnce() -> Box<T>) -> Self {
-        match kept.try_lock() {
-            Ok(guard) => Self::Kept(guard),
-            Err(TryLockError::Poisoned(poisoned)) => Self::Kept(poisoned.into_inner()),
-            Err(TryLockError::WouldBlock) => Self::New(make()),
-        }
-    }
-}
-
-impl<T> Deref for Workspace<'_, T> {
-    type Target = T;
-    fn deref(&self) -> &T {
-        match self {
-            Self::Kept(guard) => guard,
-            Self::New(value) => value,
-        }
-    }
-}
-
-impl<T> DerefMut for Workspace<'_, T> {
-    fn deref_mut(&mut self) -> &mut T {
-        match self {
-            Self::Kept(guard) => guard,
-            Self::New(value) => value,
-        }
-    }
 }
