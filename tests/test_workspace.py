@@ -4,6 +4,7 @@ the same result object every call, its values overwritten, the parts a call does
 zeroed, and clear errors for what a workspace does not take."""
 
 import threading
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -113,3 +114,13 @@ def test_threads_each_with_a_workspace_get_their_own_states_forces() -> None:
     for thread in threads:
         thread.join()
     assert errors == []
+
+
+def test_the_tours_loop_with_a_workspace_runs_and_gives_each_steps_forces() -> None:
+    tour = (Path(__file__).resolve().parents[1] / "docs" / "tour.md").read_text(encoding="utf-8")
+    code = tour.split("### One state a step", 1)[1].split("```python\n", 1)[1].split("```", 1)[0]
+    namespace: dict = {}
+    exec(compile(code, "docs/tour.md", "exec"), namespace)  # noqa: S102 - the tour's own example
+    arm, conditions, q, qd, qdd = (namespace[k] for k in ("arm", "conditions", "q", "qd", "qdd"))
+    assert namespace["result"] is arm.hydro(q, qd, qdd, conditions, workspace=namespace["workspace"])
+    assert bits(namespace["feedforward"]) == bits(-arm.hydro(q, qd, qdd, conditions).total)
