@@ -40,7 +40,7 @@ def timed(call: Callable[[], Any], repeats: int) -> tuple[float, float]:
 
 
 def evaluations(states: int, repeats: int) -> list[tuple[str, str, float, float]]:
-    """(robot, dtype, compile seconds, states per second) of ``uwml.jax.environment`` under jit
+    """(robot, dtype, compile seconds, states per second) of ``uwml.jax.hydro`` under jit
     and vmap, for the paper's leg and the arm on a moving ROV in a current."""
     import jax
     import uwml

@@ -8,6 +8,13 @@ import subprocess
 import sys
 import time
 
+#: The commands timed, by label.
+COMMANDS = {
+    "python -c 'import uwml'": [sys.executable, "-c", "import uwml"],
+    "uwml --version": [sys.executable, "-m", "uwml", "--version"],
+    "uwml --help": [sys.executable, "-m", "uwml", "--help"],
+}
+
 
 def best(command: list[str], runs: int) -> float:
     times = []
@@ -21,11 +28,7 @@ def best(command: list[str], runs: int) -> float:
 def main() -> None:
     runs = int(sys.argv[1]) if len(sys.argv) > 1 else 10
     print(f"seconds, best of {runs} runs in fresh interpreters")
-    for label, command in (
-        ("python -c 'import uwml'", [sys.executable, "-c", "import uwml"]),
-        ("uwml --version", [sys.executable, "-m", "uwml", "--version"]),
-        ("uwml --help", [sys.executable, "-m", "uwml", "--help"]),
-    ):
+    for label, command in COMMANDS.items():
         print(f"  {label:26s} {best(command, runs):6.3f}")
 
 

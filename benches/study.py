@@ -87,7 +87,7 @@ def main() -> None:
     args = parser.parse_args()
     times = measure(args.runs, args.cycles, args.workers)
     serial, cold, warm, per_task = (times[k] for k in ("serial", "Ray, started", "Ray, running", "per task"))
-    n = config(args.runs, args.cycles).n_runs
+    n = int(times["runs"])
     print(f"{n} runs of {args.cycles:g} gait cycles (paper_leg), {args.workers} workers:")
     print(f"  serial, in this process:          {serial:7.2f} s  ({1e3 * serial / n:.1f} ms a run)")
     print(f"  Ray, started for the study:       {cold:7.2f} s  ({serial / cold:.2f}x the serial loop)")

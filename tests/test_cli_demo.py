@@ -13,7 +13,7 @@ import pytest
 import uwml
 import uwml.cli
 from uwml import reference as ref
-from uwml.paper.analysis import gait_like_motion
+from uwml.paper.analysis import gait_like_motion, torque_figure
 
 RHO, G = 1000.0, 9.81
 PAPER = uwml.paper_leg()
@@ -110,14 +110,10 @@ def test_cli_rejects_bad_arguments(args: list[str], option: str, capsys: pytest.
 def test_fig8_puts_buoyancy_on_its_own_scale() -> None:
     """Joint 2's buoyancy (tens of N·m) and the drag and added mass (a few) on separate axes: one
     row per joint, drag and added mass on the left, buoyancy and the total on the right."""
-    import numpy as np
-    import uwml
-    from uwml.paper.analysis import torque_figure
-
     t = np.linspace(0.0, 1.0, 50)
     q = np.stack([0.3 * np.sin(2 * np.pi * t), 0.5 + 0.4 * np.sin(2 * np.pi * t), -1.0 + 0.3 * np.cos(2 * np.pi * t)], axis=1)
     qd = np.gradient(q, t, axis=0)
-    tau = uwml.paper_leg().hydro(q, qd, np.gradient(qd, t, axis=0))
+    tau = PAPER.hydro(q, qd, np.gradient(qd, t, axis=0))
     figure = torque_figure(t, tau)
     axes = np.asarray(figure.axes).reshape(3, 2)
     for j in range(3):

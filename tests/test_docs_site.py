@@ -31,19 +31,6 @@ def test_every_page_is_in_the_navigation() -> None:
     assert pages == listed, (pages - listed, listed - pages)
 
 
-@pytest.mark.parametrize("dotted", NAMES)
-def test_every_name_of_the_reference_has_docstrings(dotted: str) -> None:
-    thing = _object(dotted)
-    assert inspect.getdoc(thing), f"{dotted} has no docstring"
-    if inspect.isclass(thing):
-        for name, member in vars(thing).items():
-            if name.startswith("_"):
-                continue
-            function = member.fget if isinstance(member, property) else getattr(member, "__func__", member)
-            if inspect.isfunction(function):
-                assert inspect.getdoc(function), f"{dotted}.{name} has no docstring"
-
-
 def _documented(thing: object, where: str) -> list[tuple[str, str]]:
     """``(name, docstring)`` of a rendered object and of its public methods and properties, as the
     Python reference renders them (mkdocs.yml: members not starting with ``_``)."""
@@ -54,6 +41,12 @@ def _documented(thing: object, where: str) -> list[tuple[str, str]]:
             if not name.startswith("_") and inspect.isfunction(function):
                 found.append((f"{where}.{name}", inspect.getdoc(function) or ""))
     return found
+
+
+@pytest.mark.parametrize("dotted", NAMES)
+def test_every_name_of_the_reference_has_docstrings(dotted: str) -> None:
+    for where, doc in _documented(_object(dotted), dotted):
+        assert doc, f"{where} has no docstring"
 
 
 #: reStructuredText that Markdown shows as written: a literal block's ``::`` and directives.

@@ -12,6 +12,7 @@ from pathlib import Path
 from types import ModuleType
 
 import pytest
+from test_site_snippets import blocks as fenced_blocks
 from uwml.cli import build_parser
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -29,8 +30,8 @@ def script(name: str) -> ModuleType:
 
 
 def blocks(page: str, language: str) -> list[str]:
-    text = (DOCS / page).read_text(encoding="utf-8")
-    return re.findall(rf"^```{language}\n(.*?)^```$", text, re.MULTILINE | re.DOTALL)
+    """The page's blocks of ``language``, as tests/test_site_snippets.py reads fenced blocks."""
+    return [code for kind, _, code in fenced_blocks(DOCS / page) if kind == language]
 
 
 @pytest.mark.parametrize(("name", "page"), SCRIPTS.items())

@@ -128,19 +128,15 @@ def test_the_page_has_a_section_for_every_table() -> None:
     assert set(MODEL) <= set(MODEL_PAGE), set(MODEL) - set(MODEL_PAGE)
 
 
-@pytest.mark.parametrize("table", HYDRO)
-def test_each_hydro_table_lists_exactly_the_keys_the_reader_takes(table: str, tmp_path: Path) -> None:
-    allowed = _allowed(hydrofile.read_hydro, HYDRO[table], tmp_path)
-    on_page = _keys(HYDRO_PAGE[table])
-    assert on_page == allowed, (
-        f"docs/formats.md, {table}: missing {sorted(allowed - on_page)}, unknown to the reader {sorted(on_page - allowed)}"
-    )
+#: Each file: its reader, its probes by table and the page's sections of it.
+FILES = {"hydro": (hydrofile.read_hydro, HYDRO, HYDRO_PAGE), "model": (modelfile.read, MODEL, MODEL_PAGE)}
 
 
-@pytest.mark.parametrize("table", MODEL)
-def test_each_model_table_lists_exactly_the_keys_the_reader_takes(table: str, tmp_path: Path) -> None:
-    allowed = _allowed(modelfile.read, MODEL[table], tmp_path)
-    on_page = _keys(MODEL_PAGE[table])
+@pytest.mark.parametrize(("file", "table"), [(file, table) for file, (_, probes, _) in FILES.items() for table in probes])
+def test_each_table_lists_exactly_the_keys_the_reader_takes(file: str, table: str, tmp_path: Path) -> None:
+    read, probes, sections = FILES[file]
+    allowed = _allowed(read, probes[table], tmp_path)
+    on_page = _keys(sections[table])
     assert on_page == allowed, (
         f"docs/formats.md, {table}: missing {sorted(allowed - on_page)}, unknown to the reader {sorted(on_page - allowed)}"
     )

@@ -350,7 +350,8 @@ def test_describe_lists_items_and_overrides(rov: Path, tmp_path: Path, capsys: p
     out = capsys.readouterr().out
     assert "point items" in out and lead in out and "mass overrides" in out
     # Without items or overrides, no such section.
-    assert "point items" not in describe(uwml.Robot.from_urdf(rov)) and "mass overrides" not in describe(uwml.Robot.from_urdf(rov))
+    plain = describe(uwml.Robot.from_urdf(rov))
+    assert "point items" not in plain and "mass overrides" not in plain
 
 
 def test_the_documented_example_hydro_file_has_an_item() -> None:

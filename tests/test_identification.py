@@ -18,7 +18,7 @@ import pytest
 import uwml
 from matplotlib.figure import Figure
 from test_identification_logs import _take
-from uwml import WalkingGait, fit
+from uwml import fit
 from uwml.cli import main
 from uwml.examples import arm_on_rov
 from uwml.fit.log_set import log_set
@@ -31,7 +31,6 @@ matplotlib.use("Agg")
 
 CD, CM = 2.2, 0.5
 SEEDS = (0, 1, 2, 3, 4)
-GAIT = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
 ARM_TRAJECTORY = SineTrajectory([0.6, 0.5, 0.7, 0.8, 0.6, 0.9, 0.02], period=2.5)
 
 

@@ -81,10 +81,11 @@ def trials(tmp_path_factory: pytest.TempPathFactory) -> Path:
         table = record(k)
         write(folder / f"clean{k}.csv", table)
         if k < 3:
-            write(folder / f"noisy{k}.csv", noisy(table, 100 + k))
-    table = noisy(record(2), 102)
-    write(folder / "joints2.csv", table[:, :3], "time,q1,q2")
-    write(folder / "mocap2.csv", table[:, [0, *range(3, 10)]], "time,x,y,z,qw,qx,qy,qz")
+            shaken = noisy(table, 100 + k)
+            write(folder / f"noisy{k}.csv", shaken)
+    # noisy2 (the last made) again, in two streams.
+    write(folder / "joints2.csv", shaken[:, :3], "time,q1,q2")
+    write(folder / "mocap2.csv", shaken[:, [0, *range(3, 10)]], "time,x,y,z,qw,qx,qy,qz")
     return folder
 
 

@@ -10,17 +10,13 @@ import io
 import math
 from dataclasses import replace
 
-import matplotlib
 import numpy as np
 import pytest
 from uwml import WalkingGait, fit
 from uwml.io import logs
 from uwml.paper import synthetic
 
-matplotlib.use("Agg")
-
 CD, CM = 2.2, 0.5
-SEEDS = (0, 1, 2, 3, 4)
 GAIT = WalkingGait(nominal_foot=synthetic.YAW_STEP_FOOT)
 
 

@@ -74,7 +74,8 @@ def test_the_hull_parameters_act_in_an_mjx_step_as_in_the_cpu_simulation(sim: um
     volume = np.array(defaults.volume)
     volume[0] = hull.volume
     t = np.linspace(0.0, 0.6, 61)
-    motion = umjx.spline(t, np.stack([0.8 * np.sin(3.0 * t), 0.6 * np.sin(2.0 * t)], axis=1))
+    angles = np.stack([0.8 * np.sin(3.0 * t), 0.6 * np.sin(2.0 * t)], axis=1)
+    motion = umjx.spline(t, angles)
     changed = sim.parameters(
         lumped_added_mass=np.asarray(lumped.added_mass)[None], lumped_linear_damping=np.asarray(lumped.linear_damping)[None],
         lumped_quadratic_damping=np.asarray(lumped.quadratic_damping)[None], cob=cob, volume=volume, motion=motion,
@@ -88,7 +89,7 @@ def test_the_hull_parameters_act_in_an_mjx_step_as_in_the_cpu_simulation(sim: um
 
     cpu = CpuSimulation(model, uwml.Robot(robot.joints, robot.links, base=hull, losses=robot.losses, water=robot.water))
     cpu.model.opt.timestep = STEP
-    cpu.prescribe(["shoulder", "elbow"], Trajectory(t, np.stack([0.8 * np.sin(3.0 * t), 0.6 * np.sin(2.0 * t)], axis=1)))
+    cpu.prescribe(["shoulder", "elbow"], Trajectory(t, angles))
     for _ in range(steps):
         cpu.step()
     expected = np.concatenate([cpu.data.qpos, cpu.data.qvel])

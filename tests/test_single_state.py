@@ -219,7 +219,9 @@ def test_a_conditions_given_alone_is_evaluated_as_any_other() -> None:
     other = random_chain(np.random.default_rng(3), 3)[0]
     for _ in range(2):
         assert_same_bits(PAPER.environment(**STATE, conditions=still), PAPER.environment(**STATE, cd=2.0), ENVIRONMENT_FIELDS, None, "leg")
-        assert_same_bits(other.environment(**STATE, conditions=still), other.environment(**STATE, cd=2.0), ENVIRONMENT_FIELDS, None, "chain")
+        assert_same_bits(
+            other.environment(**STATE, conditions=still), other.environment(**STATE, cd=2.0), ENVIRONMENT_FIELDS, None, "chain"
+        )
     for threads in (1.0, True, 0):
         with pytest.raises(ValueError, match="threads must be an integer >= 1"):
             PAPER.hydro(**STATE, conditions=still, threads=threads)

@@ -32,6 +32,8 @@ damping = { distribution = "uniform", low = 0.0, high = 1.0 }
 [sampling]
 samples = 2
 """
+#: The same with its metrics listed, without units.
+LISTED = CUSTOM.replace('{ amplitude = "m", seen = "count", label_length = "characters" }', '["amplitude", "seen", "label_length"]')
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +49,7 @@ def test_every_metric_of_a_scenario_has_its_unit(kind: str) -> None:
     assert units and all(isinstance(unit, str) and unit for unit in units.values()), units
 
 
-def test_a_study_records_its_metrics_units_from_the_scenario(tmp_path: Path) -> None:
+def test_a_study_records_its_metrics_units_from_the_scenario() -> None:
     """The vehicle's metrics in m, °, N, ...; a robot's errors in rad (its joints revolute); a
     custom study's as its table declares them, or none from a list."""
     bluerov2 = examples.path("bluerov2")
@@ -69,9 +71,7 @@ def test_a_study_records_its_metrics_units_from_the_scenario(tmp_path: Path) -> 
     custom = study.loads(CUSTOM)
     assert custom.units == {"amplitude": "m", "seen": "count", "label_length": "characters"}
     assert custom.settings["metrics"] == ["amplitude", "seen", "label_length"]  # the fingerprint as for a list
-    listed = study.loads(
-        CUSTOM.replace('{ amplitude = "m", seen = "count", label_length = "characters" }', '["amplitude", "seen", "label_length"]')
-    )
+    listed = study.loads(LISTED)
     assert listed.units == dict.fromkeys(listed.metrics, "") and listed.fingerprint() == custom.fingerprint()
     with pytest.raises(study.ConfigError, match="scenario.metrics.*unit as a string"):
         study.loads(CUSTOM.replace('amplitude = "m"', "amplitude = 1"))
@@ -127,8 +127,7 @@ def test_every_figure_labels_its_y_axes_with_the_unit_and_colours_each_group(don
 
 def test_a_metric_of_many_decades_is_drawn_on_a_log_axis_and_a_custom_metric_without_unit_says_so(tmp_path: Path) -> None:
     out = tmp_path / "out"
-    listed = CUSTOM.replace('{ amplitude = "m", seen = "count", label_length = "characters" }', '["amplitude", "seen", "label_length"]')
-    long = listed.replace("time = 1.5\n", "").replace("stiffness = [1.0, 4.0]", "stiffness = [1.0, 4.0]\ntime = [0.5, 40.0]")
+    long = LISTED.replace("time = 1.5\n", "").replace("stiffness = [1.0, 4.0]", "stiffness = [1.0, 4.0]\ntime = [0.5, 40.0]")
     study.run_study(study.loads(long), out, serial=True)
     figure = study_results.metric_figure(out, "amplitude")
     assert figure.axes[0].get_ylabel() == "amplitude [no unit declared]"
@@ -137,7 +136,7 @@ def test_a_metric_of_many_decades_is_drawn_on_a_log_axis_and_a_custom_metric_wit
     assert study_results.metric_figure(out, "label_length").axes[0].get_yscale() == "linear"
 
 
-def test_a_study_begun_without_units_in_its_record_takes_its_scenario_s(done: Path, tmp_path: Path) -> None:
+def test_a_study_begun_without_units_in_its_record_takes_its_scenario_s(done: Path) -> None:
     record = {"kind": "vehicle", "metrics": ["rms_drift", "rms_pitch"], "parameters": []}
     assert study_results.units(record) == {"rms_drift": "m", "rms_pitch": "°"}
     assert study_results.units({"kind": "robot", "metrics": ["rms_error_1", "energy"]}) == {"rms_error_1": "rad", "energy": "J"}
@@ -145,7 +144,7 @@ def test_a_study_begun_without_units_in_its_record_takes_its_scenario_s(done: Pa
     assert json.loads((done / "study.json").read_text())["units"]["amplitude"] == "m"
 
 
-def test_the_command_line_prints_the_summary_per_group_with_units(done: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_command_line_prints_the_summary_per_group_with_units(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path = tmp_path / "study.toml"
     path.write_text(CUSTOM)
     out = tmp_path / "out"

@@ -201,13 +201,13 @@ def test_a_thrust_step_is_the_hand_worked_wrench_on_the_hull() -> None:
     thrust = np.array([t.thrust(u) for (_, t), u in zip(robot.thrusters, command, strict=True)])
     np.testing.assert_allclose(pushed.thrust, thrust)
     hull = mujoco.mj_name2id(handed.model, mujoco.mjtObj.mjOBJ_BODY, "hull")
+    # B T in the hull's frame about its origin, then about its centre of mass; in world axes each step.
+    wrench, com = robot.thruster_allocation() @ thrust, handed.model.body_ipos[hull]
+    force, moment = wrench[:3], wrench[3:] - np.cross(com, wrench[:3])
     for _ in range(200):
-        # B T in the hull's frame about its origin, then about its centre of mass, in world axes.
-        wrench = robot.thruster_allocation() @ thrust
-        turn, com = np.zeros(9), handed.model.body_ipos[hull]
+        turn = np.zeros(9)
         mujoco.mju_quat2Mat(turn, handed.data.qpos[3:7])  # the hull's pose at the step's start
         turn = turn.reshape(3, 3)
-        force, moment = wrench[:3], wrench[3:] - np.cross(com, wrench[:3])
         handed.step(wrenches={"hull": np.concatenate([turn @ force, turn @ moment])})
         pushed.step()
     np.testing.assert_allclose(pushed.data.qpos, handed.data.qpos, rtol=0, atol=1e-12)

@@ -23,19 +23,27 @@ ROV, ROV_HYDRO = ROOT / "examples/bluerov2/bluerov2_arm.urdf", ROOT / "examples/
 ARM, ARM_HYDRO = ROOT / "examples/my_arm/my_arm.urdf", ROOT / "examples/my_arm/my_arm.hydro.toml"
 
 
+def position_at(t: np.ndarray) -> np.ndarray:
+    """The vehicle's position [m] at times ``t``: linear in time (so interpolated exactly)."""
+    return np.column_stack([0.5 * t, 0.1 * t, -2.0 + 0.05 * t])
+
+
+def euler_at(t: np.ndarray) -> np.ndarray:
+    """The vehicle's roll, pitch and yaw [rad] at times ``t``."""
+    return np.column_stack([0.2 * np.sin(0.9 * t), 0.1 * np.cos(0.5 * t), 0.3 * t])
+
+
 def vehicle_log(n: int = 200, rate: float = 100.0, n_joints: int = 2) -> Log:
     """A canonical log: the arm's joints and the vehicle's pose, twist and its rate."""
     t = np.arange(n) / rate
     w = 0.7 + 0.2 * np.arange(n_joints)
     q = 0.4 * np.sin(np.outer(t, w))
     qd, qdd = 0.4 * w * np.cos(np.outer(t, w)), -0.4 * w**2 * np.sin(np.outer(t, w))
-    euler = np.column_stack([0.2 * np.sin(0.9 * t), 0.1 * np.cos(0.5 * t), 0.3 * t])
     amplitude, frequency = np.array([0.3, 0.2, 0.1, 0.4, 0.3, 0.5]), np.array([0.31, 0.43, 0.57, 0.37, 0.49, 0.61])
     nu = amplitude * np.sin(2 * np.pi * frequency * t[:, None])
     nu_dot = amplitude * 2 * np.pi * frequency * np.cos(2 * np.pi * frequency * t[:, None])
-    position = np.column_stack([0.5 * t, 0.1 * t, -2.0 + 0.05 * t])
     return Log(
-        time=t, q=q, qd=qd, qdd=qdd, base_position=position, base_orientation=quaternion_from_euler(euler),
+        time=t, q=q, qd=qd, qdd=qdd, base_position=position_at(t), base_orientation=quaternion_from_euler(euler_at(t)),
         base_twist=nu, base_twist_dot=nu_dot, source="canonical",
     )  # fmt: skip
 
@@ -76,7 +84,7 @@ def test_a_recorded_file_through_a_column_map_is_the_canonical_log(tmp_path: Pat
     map (a TOML file, or the same dict) the canonical log, to rounding."""
     log = vehicle_log()
     assert log.qd is not None and log.base_position is not None and log.base_twist is not None
-    euler = np.column_stack([0.2 * np.sin(0.9 * log.time), 0.1 * np.cos(0.5 * log.time), 0.3 * log.time])
+    euler = euler_at(log.time)
     recorded = {
         "stamp": np.round(log.time * 1000.0), "e": log.q[:, 0] + 3.07, "f": -log.q[:, 1], "ed": log.qd[:, 0], "fd": -log.qd[:, 1],
         "pos_n": log.base_position[:, 0] * 1000.0, "pos_e": log.base_position[:, 1], "up": log.base_position[:, 2],
@@ -131,7 +139,7 @@ def test_streams_recorded_apart_are_joined_on_the_first_streams_time(tmp_path: P
         "t_ns,a,b\n" + "".join(f"{round(t * 1e9)},{float(a)!r},{float(b)!r}\n" for t, (a, b) in zip(log.time, log.q, strict=True))
     )
     t_mocap = np.arange(0.5, 2.5, 0.025)
-    position = np.column_stack([0.5 * t_mocap, 0.1 * t_mocap, -2.0 + 0.05 * t_mocap])  # linear: interpolated exactly
+    position = position_at(t_mocap)
     quaternion = -quaternion_from_euler(np.column_stack([0.0 * t_mocap, 0.0 * t_mocap, 0.3 * t_mocap]))  # the other sign
     mocap = tmp_path / "mocap.csv"
     rows = np.column_stack([t_mocap + 100.0, position, quaternion])
@@ -156,10 +164,6 @@ vehicle = { x = "px", y = "py", z = "pz", qw = "w", qx = "i", qy = "j", qz = "k"
     truth = quaternion_from_euler(np.column_stack([0 * read.time, 0 * read.time, 0.3 * read.time]))
     np.testing.assert_allclose(np.abs(np.einsum("ij,ij->i", read.base_orientation, truth)), 1.0, atol=1e-9)
     np.testing.assert_allclose(np.linalg.norm(read.base_orientation, axis=1), 1.0, atol=1e-15)
-
-
-def position_at(t: np.ndarray) -> np.ndarray:
-    return np.column_stack([0.5 * t, 0.1 * t, -2.0 + 0.05 * t])
 
 
 def test_torques_of_a_floating_robot_use_the_vehicles_motion(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

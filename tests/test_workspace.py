@@ -11,23 +11,18 @@ import pytest
 import uwml
 from chains import random_chain
 from robots import COMPONENTS
+from test_single_state import ENVIRONMENT_FIELDS, assert_same_bits, bits
 from uwml.examples import arm_on_rov
 
 LOSS_FIELDS = ("visc", "seal", "current")
 MOTION = uwml.BaseMotion(velocity=(0.5, 0.0, 0.1), angular_velocity=(0.0, 0.02, 0.01))
 
 
-def bits(array: np.ndarray) -> bytes:
-    return np.ascontiguousarray(array, dtype=np.float64).tobytes()
-
-
 def assert_same(got: uwml.Torques, want: uwml.Torques, what: str) -> None:
-    for name in (*COMPONENTS, *LOSS_FIELDS):
-        assert bits(getattr(got, name)) == bits(getattr(want, name)), f"{what}: {name}"
+    assert_same_bits(got, want, ENVIRONMENT_FIELDS, None, what)
     assert (got.base is None) == (want.base is None), what
     if want.base is not None:
-        for name in COMPONENTS:
-            assert bits(getattr(got.base, name)) == bits(getattr(want.base, name)), f"{what}: base {name}"
+        assert_same_bits(got.base, want.base, COMPONENTS, None, f"{what}: base")
 
 
 def test_a_workspace_holds_the_bits_of_a_fresh_result_every_call() -> None:

@@ -10,7 +10,7 @@
 //! directions are taken in passes of that many, so the cost grows with the robot, not with the
 //! capacity.
 
-use nalgebra::RealField;
+use nalgebra::{RealField, SimdRealField};
 
 use crate::added_mass::robot_added_mass_matrix;
 use crate::conditions::Conditions;
@@ -105,10 +105,7 @@ pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, cons
             losses: Some(&losses_d),
         };
         robot_hydro(&work.robot, &dual_conditions, [&q_d, &qd_d, &qdd_d], &mut work.dual);
-        let base = work.dual.base_wrench().total().to_array();
-        let losses = work.dual.joint_losses();
-        let joints = work.dual.joint_forces().iter().zip(losses).map(|(f, l)| f.total() + l.visc + l.seal);
-        for (row, value) in base.into_iter().chain(joints).enumerate() {
+        for (row, value) in generalized_forces(&work.dual).enumerate() {
             for (slot, derivative) in value.eps.iter().enumerate() {
                 let k = start + slot;
                 let target = if k < n {
@@ -129,11 +126,16 @@ pub fn robot_jacobians<T: RealField + Real, const J: usize, const S: usize, cons
     // base's twist, so they never take the shortcut of a base at rest in still water, whose
     // value can differ in the last bits.
     robot_hydro(robot, conditions, [q, qd, qdd], &mut work.plain);
-    let base = work.plain.base_wrench().total().to_array();
-    let joints =
-        work.plain.joint_forces().iter().zip(work.plain.joint_losses()).map(|(f, l)| f.total() + l.visc + l.seal);
-    for (slot, value) in out.value.iter_mut().zip(base.into_iter().chain(joints)) {
+    for (slot, value) in out.value.iter_mut().zip(generalized_forces(&work.plain)) {
         *slot = value;
     }
     robot_added_mass_matrix(robot, &water, coefficients, q, out.added_mass_matrix);
+}
+
+/// `(W, τ)` of an evaluation: the base wrench's hydrodynamic total (six components), then each
+/// joint's, its losses' oil drag and seal friction added.
+fn generalized_forces<U: SimdRealField + Copy, const J: usize>(data: &RobotData<U, J>) -> impl Iterator<Item = U> + '_ {
+    let base = data.base_wrench().total().to_array();
+    let joints = data.joint_forces().iter().zip(data.joint_losses()).map(|(f, l)| f.total() + l.visc + l.seal);
+    base.into_iter().chain(joints)
 }

@@ -68,14 +68,10 @@ def _print_hydro(args: argparse.Namespace, result: Any, rows: str) -> int:
         from ..viz import plot
 
         plot.hydro_fit_plot(result, args.plot)
-    if args.json:
-        print(json.dumps(result.summary()))
-    else:
-        model = "" if args.robot is None else f", --robot {args.robot}"
-        print(f"uwml fit hydro: {result.source}{model}, {rows}, per {args.per}")
-        print(result.fit_report())
-        if args.plot is not None:
-            print(f"figure: {args.plot}")
+    model = "" if args.robot is None else f", --robot {args.robot}"
+    print_fit(result, args.json, f"uwml fit hydro: {result.source}{model}, {rows}, per {args.per}")
+    if args.plot is not None and not args.json:
+        print(f"figure: {args.plot}")
     return 0
 
 

@@ -24,9 +24,9 @@ from .common import _EXIT, _LOG_FORMAT, _check_output, _UsageError, load_describ
 CHUNK_ROWS = 100_000
 
 
-def _vehicle_motion(present: dict[str, tuple[str, ...]], estimated: bool, floating: bool, what: str) -> bool:
+def _vehicle_motion(present: dict[str, tuple[str, ...]], floating: bool, what: str) -> bool:
     """Whether ``uwml torques`` moves the base as the log's vehicle columns say (``present``:
-    the vehicle's fields the log has, with their columns; ``estimated``: the twist's rate is
+    the vehicle's fields the log has, with their columns; a twist without its rate has it
     estimated), saying so on standard error in one line: the columns used, or, on a fixed
     base, the columns ignored (a warning)."""
     motion = {field: columns for field, columns in present.items() if field in ("base_position", *_MOTION)}
@@ -41,7 +41,7 @@ def _vehicle_motion(present: dict[str, tuple[str, ...]], estimated: bool, floati
     if not used:
         print(f"uwml torques: the log's vehicle position {named} is not used (no orientation or twist columns)", file=sys.stderr)
         return False
-    if estimated:
+    if "base_twist" in present and "base_twist_dot" not in present:
         used.append("its rate estimated (Savitzky-Golay)")
     left = [note for field, note in (("base_orientation", "upright"), ("base_twist", "at rest")) if field not in present]
     unused = ["x, y, z not used"] if "base_position" in present else []
@@ -93,7 +93,7 @@ def _torques(args: argparse.Namespace) -> int:
         checked = check_log(args.log, expected)
         n, n_joints, chunks = checked.count, checked.n_joints, checked.chunks(CHUNK_ROWS)
         present = {field: columns for field, columns in checked.families.items() if field.startswith("base_")}
-    moving = _vehicle_motion(present, "base_twist" in present and "base_twist_dot" not in present, floating, what)
+    moving = _vehicle_motion(present, floating, what)
     if n_joints != leg.n_joints:
         raise ValueError(
             f"{args.log}: row 1 (header), column 'q{min(n_joints, leg.n_joints) + 1}': the log has {n_joints} joints, {what} {leg.n_joints}"

@@ -19,7 +19,7 @@ from ..io.logs import Log, read_log
 from .design import _HydroDesign
 from .determinacy import check_determined, row_normalized_gram, warn_negative
 from .hydro import HydroFit, _fit
-from .log_set import LogSet
+from .log_set import LogSet, _check_joints
 
 __all__ = ["fit_design", "read_whole"]
 
@@ -28,10 +28,7 @@ def read_whole(entry: Any, n_joints: int, columns: Any) -> Log:
     """A :class:`uwml.io.logs.Log` as it is, or a file read whole (through the column map
     ``columns``), with ``n_joints`` joints (else a ValueError naming the column)."""
     log = entry if isinstance(entry, Log) else read_log(entry, n_joints, columns=columns)
-    if log.n_joints != n_joints:
-        raise ValueError(
-            f"{log.source}: row 1 (header), column 'q{log.n_joints}': the log has {log.n_joints} joints, the description {n_joints}"
-        )
+    _check_joints(log.source, log.n_joints, n_joints, "the description")
     return log
 
 

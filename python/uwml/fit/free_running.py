@@ -57,7 +57,7 @@ from .equation_error import fit_design, read_whole
 from .hydro import HydroFit
 from .inverse_dynamics import RigidBodyInverse, load_description
 from .log_set import LogSet, _Item, expand_patterns
-from .robot_design import BASE_ROWS, HULL_TERMS, HYDROSTATIC_TERMS
+from .robot_design import _DIAGONAL, BASE_ROWS, HULL_TERMS, HYDROSTATIC_TERMS
 from .thrust_wrench import check_thruster_commands, thrust_wrench
 
 __all__ = ["HullFit", "hull_from_free_running"]
@@ -65,12 +65,7 @@ __all__ = ["HullFit", "hull_from_free_running"]
 
 def _diagonal(family: str) -> list[int]:
     """The entries of ``family`` on its diagonal, as indices of ``LUMPED_COEFFICIENTS``."""
-    out = []
-    for index, name in enumerate(LUMPED_COEFFICIENTS):
-        head, *rest = name.replace("]", "").split("[")
-        if head == family and (len(rest) == 1 or rest[0] == rest[1]):
-            out.append(index)
-    return out
+    return [index for index in _DIAGONAL if LUMPED_COEFFICIENTS[index].startswith(f"{family}[")]
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -141,7 +136,8 @@ class _HullDesign(_HydroDesign):
     def _compute(self, log: Log) -> Array:
         robot = self._robot
         assert log.wrench_land is not None and log.wrench_water is not None and log.qd is not None and log.qdd is not None
-        motion = BaseMotion(**log.base_motion())
+        fields = log.base_motion()
+        motion = BaseMotion(**fields)
         states: tuple[Array, Array, Array] = (log.q, log.qd, log.qdd)
         regressors = robot.hydro_regressors(*states, water=robot.water, base_motion=motion)
         water = robot.hydro(*states, water=robot.water, base_motion=motion, base=True).base
@@ -149,7 +145,7 @@ class _HullDesign(_HydroDesign):
         columns = regressors.base_lumped[:, :, self._model, self._entries]
         known = water.total - columns @ self._described
         if self._hydrostatics:
-            up = robot.water.gravity * _body_up(log.base_motion()["orientation"], log.n_samples)
+            up = robot.water.gravity * _body_up(fields["orientation"], log.n_samples)
             statics = np.zeros((log.n_samples, 6, 4))
             statics[:, :3, 0] = up
             for k in range(3):

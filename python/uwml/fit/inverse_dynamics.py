@@ -126,12 +126,12 @@ class RigidBodyInverse:
         assert self._free is not None
         mj, d = self._mj, self._data
         address, dof = self._free
-        quaternion = motion["orientation"] if motion["orientation"].ndim == 1 else motion["orientation"][i]
 
         def row(name: str) -> Array:
             value = motion[name]
             return value if value.ndim == 1 else value[i]
 
+        quaternion = row("orientation")
         turn = np.zeros(9)
         mj.mju_quat2Mat(turn, quaternion)
         rotation = turn.reshape(3, 3)

@@ -18,7 +18,7 @@ from typing import Any
 
 from ..io._log_stream import CheckedLog, _header, check_log
 from ..io.logs import Log, _check_file, _layout, _source, align_logs, first_column, log_rows, read_log
-from ..io.vehicle_columns import FIELDS, TWIST
+from ..io.vehicle_columns import TWIST
 
 #: The largest number of log files one fit takes.
 MAX_LOGS = 100_000
@@ -151,7 +151,7 @@ def _check_columns(source: str, has: Callable[[str], bool], torques: bool, wrenc
     needs += [("wrench_land", "wrench_water", "wrench")] if wrench else []
     for land, water, one in needs:
         if not has(land) or not has(water):
-            named = [f"{first_column(field)} …" if field in FIELDS else f"{field}1 …" for field in (land, water, one)]
+            named = [f"{first_column(field)} …" for field in (land, water, one)]
             raise ValueError(
                 f"{source}: row 1 (header), column {first_column(land)!r}: need {named[0]} and {named[1]} columns "
                 f"(or give a (land, water) pair of logs of one environment each, with {named[2]} columns)"

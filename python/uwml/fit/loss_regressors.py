@@ -111,7 +111,8 @@ class LossColumns:
             known[:, j] = self._torques(model, speed)
             units = {term: self._torques(self._unit(model, term), speed) for term in self._terms}
             if "c0" in units:
-                units["c0"] = units["c0"] - self._torques(self._unit(model, "s0"), speed)
+                breakaway = units["s0"] if "s0" in units else self._torques(self._unit(model, "s0"), speed)
+                units["c0"] = units["c0"] - breakaway
             for term in self._terms:
                 columns[:, j, k] = units[term]
                 known[:, j] -= self.described[k] * units[term]

@@ -17,13 +17,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._checks import Vec3
 from ._description_io import DescriptionError
 from .hydrofile import HydroLink, _table
 
 __all__ = ["MassOverride", "OwnInertial", "PlacedItem", "apply_masses", "massless_overrides"]
 
 FloatArray = NDArray[np.float64]
-Vec3 = tuple[float, float, float]
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from .._checks import shown
+from .._checks import Vec3, shown
 from ..domains import MAX_LENGTH, MAX_MASS, MAX_VOLUME
 from ._description_io import DescriptionError
 from ._model_tables import _float, _Reader, _vec3
@@ -23,8 +23,6 @@ MAX_INERTIA = MAX_MASS * MAX_LENGTH * MAX_LENGTH
 _ITEM_KEYS = ("name", "mass", "volume", "position", "inertia")
 #: The longest item name (a label in messages and in ``uwml describe``, never code).
 _MAX_NAME = 60
-
-Vec3 = tuple[float, float, float]
 
 
 @dataclass(frozen=True)

@@ -39,7 +39,7 @@ import math
 import os
 import re
 import tomllib
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -49,7 +49,7 @@ from .._checks import shown
 from ..domains import MAX_ROBOT_JOINTS
 from ._file_access import clipped, read_regular
 from ._model_tables import _Reader
-from .logs import Array, Log, PathOrFile, _check_file, _from_columns, _header_hint, _is_parquet, _layout, _source
+from .logs import Array, Log, PathOrFile, _from_columns, _header_hint, _layout, _source, open_table
 from .sampling import _check_time
 from .vehicle_columns import EULER, MAX_THRUSTERS, QUATERNION, VEHICLE_COLUMNS, quaternion_from_euler
 
@@ -272,23 +272,6 @@ def _checked(column_map: ColumnMap) -> ColumnMap:
     if sum(stream.file is None for stream in column_map.streams) > 1:
         raise ValueError(f"{column_map.source}: several streams without a file (at most one reads the log given)")
     return column_map
-
-
-def open_table(path_or_file: PathOrFile) -> tuple[str, list[str], Callable[[Sequence[str]], dict[str, Any]]]:
-    """A recorded file's name, its column names and a reader of named columns as float64 (CSV or
-    Parquet by the suffix; the cell rule of :mod:`uwml.io.logs`): one read of the file,
-    whatever is asked of it after."""
-    source = _source(path_or_file)
-    _check_file(path_or_file, source)
-    if _is_parquet(path_or_file):
-        from .logs import _parquet_columns, _parquet_table
-
-        table = _parquet_table(path_or_file, source)
-        return source, list(table.column_names), lambda names: _parquet_columns(table, names, source)
-    from ._arrow_csv import CsvTable
-
-    csv_table = CsvTable(path_or_file, f"{source}: ", "time")
-    return source, list(csv_table.header), csv_table.read
 
 
 def _read_stream(stream: Stream, path_or_file: PathOrFile, map_source: str) -> tuple[str, Array, dict[str, Array]]:

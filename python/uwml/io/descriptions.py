@@ -93,7 +93,7 @@ from ..model.parts import Joint, Link, Water
 from ..plausibility import PlausibilityWarning
 from ._description_geometry import Outline, _assembled, _Body, _body, _records, _rotation, _t, outlines_of
 from ._description_io import DescriptionError, clipped, quoted
-from ._description_masses import MassOverride, OwnInertial, PlacedItem, apply_masses, massless_overrides
+from ._description_masses import MassOverride, OwnInertial, PlacedItem, _changes_mass, apply_masses, massless_overrides
 from ._description_xml import MAX_DESCRIPTION_BODIES, MAX_DESCRIPTION_GEOMS, limits_exceeded, scan
 from ._robot_like import RobotLike
 from .hydrofile import HydroFile, HydroLink, _table, read_hydro
@@ -395,7 +395,7 @@ def mujoco_parts(model: Any, hydro: str | os.PathLike[str] | None = None) -> Des
     for name, entry in file.links.items():
         if name not in names:
             raise _unknown_link(str(hydro), name, "the MuJoCo model", names)
-        if entry.mass is not None or any(item.mass > 0.0 for item in entry.items):
+        if _changes_mass(entry):
             what = "a mass override" if entry.mass is not None else "items with mass"
             raise DescriptionError(
                 f"{hydro}: {_table('links', name)} gives {what}, which a compiled mujoco.MjModel cannot take (its masses are "

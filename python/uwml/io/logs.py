@@ -83,7 +83,7 @@ from __future__ import annotations
 import io
 import os
 import re
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import IO, Any
 
@@ -483,6 +483,21 @@ def _parquet_columns(table: Any, names: Sequence[str], source: str, first_row: i
     return {name: float64_column(table.column(name), name, f"{source}: ", first_row) for name in names}
 
 
+def open_table(path_or_file: PathOrFile) -> tuple[str, list[str], Callable[[Sequence[str]], dict[str, Any]]]:
+    """A recorded file's name, its column names and a reader of named columns as float64 (CSV or
+    Parquet by the suffix; the cell rule of :mod:`uwml.io.logs`): one read of the file,
+    whatever is asked of it after."""
+    source = _source(path_or_file)
+    _check_file(path_or_file, source)
+    if _is_parquet(path_or_file):
+        table = _parquet_table(path_or_file, source)
+        return source, list(table.column_names), lambda names: _parquet_columns(table, names, source)
+    from ._arrow_csv import CsvTable
+
+    csv_table = CsvTable(path_or_file, f"{source}: ", "time")
+    return source, list(csv_table.header), csv_table.read
+
+
 def read_log(path_or_file: PathOrFile, n_joints: int | None = None, *, columns: Any = None) -> Log:
     """Read and check a log (format in the module docstring).
 
@@ -509,17 +524,9 @@ def read_log(path_or_file: PathOrFile, n_joints: int | None = None, *, columns: 
         from .column_map import read_mapped_log
 
         return read_mapped_log(path_or_file, columns, n_joints)
-    source = _source(path_or_file)
-    _check_file(path_or_file, source)
-    if _is_parquet(path_or_file):
-        table = _parquet_table(path_or_file, source)
-        n, families, names = _layout(table.column_names, n_joints, source)
-        return _from_columns(_parquet_columns(table, names, source), n, families, source)
-    from ._arrow_csv import CsvTable
-
-    csv_table = CsvTable(path_or_file, f"{source}: ", "time")
-    n, families, names = _layout(csv_table.header, n_joints, source)
-    return _from_columns(csv_table.read(names), n, families, source)
+    source, header, read = open_table(path_or_file)
+    n, families, names = _layout(header, n_joints, source)
+    return _from_columns(read(names), n, families, source)
 
 
 def write_log(log: Log, path_or_file: PathOrFile) -> None:

@@ -46,10 +46,13 @@ def _dtype(*states: ArrayLike) -> jnp.dtype:
     return jnp.result_type(float, *(jnp.asarray(x) for x in states))
 
 
+def _motion(motion: Motion | None, dtype: jnp.dtype) -> Motion:
+    """``motion`` cast to ``dtype`` (None: a fixed, upright base in still water)."""
+    return still(dtype) if motion is None else Motion(*(jnp.asarray(x, dtype) for x in motion))
+
+
 def _cast(model: RobotModel, motion: Motion | None, dtype: jnp.dtype) -> tuple[RobotModel, Motion]:
-    model = jax.tree_util.tree_map(lambda x: jnp.asarray(x, dtype), model)
-    motion = still(dtype) if motion is None else Motion(*(jnp.asarray(x, dtype) for x in motion))
-    return model, motion
+    return jax.tree_util.tree_map(lambda x: jnp.asarray(x, dtype), model), _motion(motion, dtype)
 
 
 def _coefficients(model: RobotModel) -> Coefficients:
@@ -179,7 +182,7 @@ def jacobians(
     base components, then the joint rates), by forward mode, and :func:`added_mass_matrix`."""
     dtype = _dtype(q, qd, qdd)
     state = _state(q, qd, qdd, dtype)
-    base_motion = still(dtype) if motion is None else Motion(*(jnp.asarray(x, dtype) for x in motion))
+    base_motion = _motion(motion, dtype)
 
     def value(angles: Array, rates: Array) -> Array:
         moved = base_motion._replace(velocity=rates[:3], angular_velocity=rates[3:6])

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from ..robot.tree import Robot
 
-__all__ = ["DofMap", "map_degrees_of_freedom", "sparse_inertia_entries"]
+__all__ = ["DofMap", "body_id", "map_degrees_of_freedom", "sparse_inertia_entries"]
 
 IntArray = NDArray[np.int64]
 
@@ -70,6 +70,16 @@ def map_degrees_of_freedom(mj: Any, m: Any, robot: Robot) -> DofMap:
         # The base is the root body's frame unless the root hangs from the world by a joint.
         base_is_world=free_dof is None and m.body_jntnum[root] > 0,
     )
+
+
+def body_id(mj: Any, m: Any, name: Any, what: str) -> int:
+    """The id of the MuJoCo body ``name`` of the model ``m`` (not the world), or a ValueError
+    naming the argument ``what`` and listing the model's bodies."""
+    body = mj.mj_name2id(m, mj.mjtObj.mjOBJ_BODY, name) if isinstance(name, str) else -1
+    if body < 1:
+        bodies = ", ".join(m.body(i).name for i in range(1, m.nbody))
+        raise ValueError(f"{what}: no body named {name!r} (the model's bodies: {bodies})")
+    return int(body)
 
 
 def sparse_inertia_entries(mj: Any, m: Any, d: Any) -> IntArray:

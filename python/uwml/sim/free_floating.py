@@ -213,6 +213,28 @@ class _Runner:
             self._ray.kill(actor)
 
 
+def _vehicle(description: Any, hydro: Any, timestep: float | None) -> tuple[Any, Robot, str]:
+    """The MuJoCo model and robot of a vehicle fit's ``description`` (floated) and its label for
+    messages, ``timestep`` checked (at most ``MAX_TIMESTEP_S``) and the base's lumped model (the
+    hull, what is fitted) required."""
+    if timestep is not None and _seconds(timestep, "timestep") > MAX_TIMESTEP_S:
+        raise ValueError(f"timestep must be at most {MAX_TIMESTEP_S:g} s (replays take longer steps badly), got {timestep!r}")
+    model, robot = load_description(description, hydro, True)
+    label = "the description" if isinstance(description, tuple) else os.fspath(description)
+    if robot.base is None or robot.base.lumped is None:
+        raise ValueError(
+            f"{label}: the base has no lumped model (a hydro file's [links.NAME.lumped] on the base link, the hull): nothing to fit"
+        )
+    return model, robot, label
+
+
+def _check_floats(label: str, free_dof: int | None) -> None:
+    """A vehicle fit's simulation, whose free joint's first degree of freedom is ``free_dof``
+    (None: the base does not float), refused unless it floats."""
+    if free_dof is None:
+        raise ValueError(f"{label}: the robot's base did not float (its root hangs from the world by a joint): a vehicle fit needs it to")
+
+
 def _trial_entries(trials: Any, what: str) -> list[Any]:
     """The trials of ``trials``: one path (a glob pattern: its files, each a trial), or a list of
     them, a list or tuple in it being one trial's streams."""
@@ -331,15 +353,9 @@ def vehicle_from_trials(
         of a lumped entry or volume; a replay that diverges (naming the parameters).
     """
     names = check_parameters(parameters)
-    if timestep is not None and _seconds(timestep, "timestep") > MAX_TIMESTEP_S:
-        raise ValueError(f"timestep must be at most {MAX_TIMESTEP_S:g} s (replays take longer steps badly), got {timestep!r}")
-    model, robot = load_description(description, hydro, True)
-    label = "the description" if isinstance(description, tuple) else os.fspath(description)
+    model, robot, label = _vehicle(description, hydro, timestep)
     base = robot.base
-    if base is None or base.lumped is None:
-        raise ValueError(
-            f"{label}: the base has no lumped model (a hydro file's [links.NAME.lumped] on the base link, the hull): nothing to fit"
-        )
+    assert base is not None
     settings = {
         "max_gap": max_gap, "columns": columns, "smoothing": smoothing, "start_window": start_window, "timestep": timestep,
         "integrator": integrator, "options": options, "description": label,
@@ -350,8 +366,7 @@ def vehicle_from_trials(
     parts = (robot.joints, robot.links, base, robot.losses, robot.water)
     replayer = _Replayer(model, parts, fitted + held, names, settings)
     first_simulation = replayer.simulation(begin)
-    if first_simulation._free_dof is None:
-        raise ValueError(f"{label}: the robot's base did not float (its root hangs from the world by a joint): a vehicle fit needs it to")
+    _check_floats(label, first_simulation._free_dof)
     problem = _Problem(fitted, held, names, fit_start)
     sigma_points, given = _sigmas(sigma, fitted)
     x0, lower, upper, scales = problem.extended(begin, lower, upper)

@@ -50,10 +50,11 @@ from ..robot.evaluation_conditions import Conditions
 from ..robot.files import model_and_robot
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
-from ._dof_map import map_degrees_of_freedom
+from ._dof_map import body_id, map_degrees_of_freedom
 from .mjx_forward import Inputs, Layout, robot_model_for, step_dynamics
 from .mjx_inputs import MotionFunction, Spline, ThrusterArrays, evaluate, spline
-from .prescribed import Trajectory
+from .mujoco import _robot_and_water
+from .prescribed import Trajectory, joint_index
 
 __all__ = ["Action", "Parameters", "Simulation", "Spline", "State", "benchmark_steps", "spline"]
 
@@ -198,21 +199,11 @@ class Simulation:
         mujoco, mjx = _modules()
         if not isinstance(model, mujoco.MjModel):
             raise TypeError(f"model must be a mujoco.MjModel, got {type(model).__name__}")
-        robot = Robot.from_mujoco(model, hydro) if robot is None else robot
-        if not isinstance(robot, Robot):
-            raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
+        robot, self._water = _robot_and_water(model, robot, hydro, water)
         if added_mass not in ("morison", "kirchhoff"):
             raise ValueError(f"added_mass must be one of morison, kirchhoff, got {added_mass!r}")
         self._mj, self._mjx, self._robot = mujoco, mjx, robot
-        self._water = robot.water if water is None else water
-        if not isinstance(self._water, Water):
-            raise TypeError(f"water must be a uwml.Water or None, got {type(water).__name__}")
         m = copy.deepcopy(model)
-        gravity = np.asarray(m.opt.gravity, dtype=np.float64)
-        if not np.allclose(gravity, (0.0, 0.0, -self._water.gravity), rtol=1e-12, atol=0.0):
-            raise ValueError(
-                f"the model's gravity {gravity.tolist()} must be (0, 0, -{self._water.gravity:g}), the water's, for uwml's buoyancy"
-            )
         m.opt.density, m.opt.viscosity = 0.0, 0.0  # MuJoCo's fluid model off: uwml is the water
         m.opt.integrator = int(mujoco.mjtIntegrator.mjINT_EULER)
         m.opt.jacobian = int(mujoco.mjtJacobian.mjJAC_DENSE)  # M_A is added to MJX's dense M
@@ -237,14 +228,9 @@ class Simulation:
             raise ValueError(f"MJX cannot simulate this model: {error}{hint}") from None
         m.dof_frictionloss[joint_dofs] = own_friction  # each step adds the seals' levels to the model's own
         self._mjx_model = mjx_model.replace(dof_frictionloss=jnp.asarray(m.dof_frictionloss))
-        body = dofs.root
-        if payload_body is not None:
-            body = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, payload_body) if isinstance(payload_body, str) else -1
-            if body < 1:
-                bodies = ", ".join(m.body(i).name for i in range(1, m.nbody))
-                raise ValueError(f"payload_body: no body named {payload_body!r} (the model's bodies: {bodies})")
+        body = dofs.root if payload_body is None else body_id(mujoco, m, payload_body, "payload_body")
         joint_names = [joint.name for joint in robot.joints]
-        chosen = [self._joint_index(joint, joint_names) for joint in prescribed]
+        chosen = [joint_index(joint, joint_names) for joint in prescribed]
         if len(set(chosen)) != len(chosen):
             raise ValueError(f"prescribed must name each joint once, got {list(prescribed)!r}")
         self._layout = Layout(
@@ -280,14 +266,6 @@ class Simulation:
         :meth:`uwml.sim.mujoco.Simulation.from_file` reads it; ``options`` as for the constructor."""
         model, robot = model_and_robot(path, hydro, floating)
         return cls(model, robot, **options)
-
-    @staticmethod
-    def _joint_index(joint: str | int, names: list[str | None]) -> int:
-        if isinstance(joint, str) and joint in names:
-            return names.index(joint)
-        if isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
-            return joint
-        raise ValueError(f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})")
 
     def _motion(self, motion: Any, joints: int) -> Spline | None:
         """The default motion from ``motion`` (a motion function is kept as structure)."""

@@ -45,15 +45,13 @@ import numpy as np
 
 from ..errors import UwmlError
 from ..fit._types import Array
-from ..fit.inverse_dynamics import load_description
 from ..fit.output_error import START_STATE, VehicleFit, output_error, split_parameters
 from ..fit.vehicle_parameters import _lumped, check_parameters
 from ..plausibility import PlausibilityWarning
-from .free_floating import _Problem, _read_trial, _sigmas, _start, _Trial, _trial_entries
+from .free_floating import _check_floats, _Problem, _read_trial, _sigmas, _start, _Trial, _trial_entries, _vehicle
 from .mjx import Parameters, Simulation, Spline
 from .prescribed import Trajectory
-from .replay import MAX_TIMESTEP_S
-from .replay_inputs import MAX_GAP_S, SMOOTHING_S, START_WINDOW_S, _seconds, joint_motion
+from .replay_inputs import MAX_GAP_S, SMOOTHING_S, START_WINDOW_S, joint_motion
 
 __all__ = ["JACOBIAN", "replay_simulation", "vehicle_by_gradients"]
 
@@ -88,20 +86,12 @@ def replay_simulation(description: Any, hydro: Any = None, *, timestep: float | 
     (``jax.config.update("jax_enable_x64", True)`` first)."""
     if jax.dtypes.canonicalize_dtype(np.float64) != np.float64:
         raise ValueError('a fit by gradients replays in float64: call jax.config.update("jax_enable_x64", True) first')
-    if timestep is not None and _seconds(timestep, "timestep") > MAX_TIMESTEP_S:
-        raise ValueError(f"timestep must be at most {MAX_TIMESTEP_S:g} s (replays take longer steps badly), got {timestep!r}")
-    model, robot = load_description(description, hydro, True)
-    label = "the description" if isinstance(description, tuple) else os.fspath(description)
-    if robot.base is None or robot.base.lumped is None:
-        raise ValueError(
-            f"{label}: the base has no lumped model (a hydro file's [links.NAME.lumped] on the base link, the hull): nothing to fit"
-        )
+    model, robot, label = _vehicle(description, hydro, timestep)
     model = copy.deepcopy(model)  # the caller's is left as it is
     if timestep is not None:
         model.opt.timestep = float(timestep)
     sim = Simulation(model, robot, prescribed=list(range(robot.n_joints)), **options)
-    if sim._layout.free_dof is None:
-        raise ValueError(f"{label}: the robot's base did not float (its root hangs from the world by a joint): a vehicle fit needs it to")
+    _check_floats(label, sim._layout.free_dof)
     return sim
 
 

@@ -84,7 +84,7 @@ from ..robot.evaluation_conditions import Conditions
 from ..robot.files import model_and_robot
 from ..robot.tree import Robot
 from ..sea.conditions import check_depths, check_temperatures
-from ._dof_map import map_degrees_of_freedom, sparse_inertia_entries
+from ._dof_map import body_id, map_degrees_of_freedom, sparse_inertia_entries
 from .mjcf import mjcf_of
 from .prescribed import PrescribedJoints, Trajectory
 from .thrust import SimulatedThrusters
@@ -130,6 +130,23 @@ def _number(value: Any, name: str) -> float:
         return float(value)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be one number, got {shown(value)}") from None
+
+
+def _robot_and_water(model: Any, robot: Robot | None, hydro: Any, water: Water | None) -> tuple[Robot, Water]:
+    """The simulation's robot (``robot``, default ``Robot.from_mujoco(model, hydro)``) and water
+    (``water``, default the robot's), checked: ``model.opt.gravity`` must be ``(0, 0, −g)`` of the
+    water, for uwml's buoyancy (:class:`Simulation`, :class:`uwml.sim.mjx.Simulation`)."""
+    if robot is None:
+        robot = Robot.from_mujoco(model, hydro)
+    elif not isinstance(robot, Robot):
+        raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
+    chosen = robot.water if water is None else water
+    if not isinstance(chosen, Water):
+        raise TypeError(f"water must be a uwml.Water or None, got {type(water).__name__}")
+    gravity = np.asarray(model.opt.gravity, dtype=np.float64)
+    if not np.allclose(gravity, (0.0, 0.0, -chosen.gravity), rtol=1e-12, atol=0.0):
+        raise ValueError(f"the model's gravity {gravity.tolist()} must be (0, 0, -{chosen.gravity:g}), the water's, for uwml's buoyancy")
+    return robot, chosen
 
 
 class Simulation:
@@ -197,10 +214,7 @@ class Simulation:
             raise ValueError(f"scheme must be one of {', '.join(SCHEMES)}, got {scheme!r}")
         if integrator not in INTEGRATORS:
             raise ValueError(f"integrator must be one of {', '.join(INTEGRATORS)}, got {integrator!r}")
-        if robot is None:
-            robot = Robot.from_mujoco(model, hydro)
-        elif not isinstance(robot, Robot):
-            raise TypeError(f"robot must be a uwml.Robot or None, got {type(robot).__name__}")
+        robot, self._water = _robot_and_water(model, robot, hydro, water)
         self._mj = mujoco
         #: Held by every step, forward pass and read of the state: one thread at a time (MuJoCo's
         #: functions release the GIL, and the native coupling keeps one step's arrays).
@@ -210,14 +224,6 @@ class Simulation:
         self._model.opt.viscosity = 0.0
         self._data = mujoco.MjData(self._model)
         self._robot = robot
-        self._water = robot.water if water is None else water
-        if not isinstance(self._water, Water):
-            raise TypeError(f"water must be a uwml.Water or None, got {type(water).__name__}")
-        gravity = np.asarray(self.model.opt.gravity, dtype=np.float64)
-        if not np.allclose(gravity, (0.0, 0.0, -self.water.gravity), rtol=1e-12, atol=0.0):
-            raise ValueError(
-                f"the model's gravity {gravity.tolist()} must be (0, 0, -{self.water.gravity:g}), the water's, for uwml's buoyancy"
-            )
         self._depth, self._temperature_c = _number(depth, "depth"), _number(temperature_c, "temperature_c")
         check_depths(np.asarray(self._depth))
         check_temperatures(np.asarray(self._temperature_c))
@@ -262,7 +268,6 @@ class Simulation:
             self._free_dof, inertia_entries, robot._native(self._conditions), scheme == "lagged",
         )  # fmt: skip
         mujoco.mj_forward(self.model, self.data)
-        #: The prescribed joints' degrees of freedom, qpos entries and motion (:meth:`prescribe`).
         #: The joints on a prescribed motion (:meth:`prescribe`), if any.
         self._prescribed: PrescribedJoints | None = None
         try:  # a current so strong that the water's forces overflow is outside the physics
@@ -509,10 +514,7 @@ class Simulation:
         rows: dict[int, FloatArray] = {}
         m = self.model
         for name, value in wrenches.items():
-            body = self._mj.mj_name2id(m, self._mj.mjtObj.mjOBJ_BODY, name) if isinstance(name, str) else -1
-            if body < 1:
-                names = ", ".join(m.body(i).name for i in range(1, m.nbody))
-                raise ValueError(f"wrenches: no body named {name!r} (the model's bodies: {names})")
+            body = body_id(self._mj, m, name, "wrenches")
             wrench = np.asarray(value, dtype=np.float64)
             if wrench.shape != (6,) or not np.all(np.isfinite(wrench)):
                 raise ValueError(f"wrenches[{name!r}] must be 6 finite numbers (force [N], moment [N·m], world components), got {value!r}")

@@ -193,6 +193,16 @@ class SineTrajectory:
         return q, qd, qdd
 
 
+def joint_index(joint: str | int, names: list[str | None]) -> int:
+    """The index among the robot's joint ``names`` of ``joint`` (a name or an index), or a
+    ValueError listing them."""
+    if isinstance(joint, str) and joint in names:
+        return names.index(joint)
+    if isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
+        return joint
+    raise ValueError(f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})")
+
+
 class PrescribedJoints:
     """Joints of a simulation held on a :class:`Trajectory` (what :meth:`uwml.sim.mujoco.
     Simulation.prescribe` makes): the joints by name or index among ``names``, their degrees of
@@ -212,16 +222,7 @@ class PrescribedJoints:
     ) -> None:
         if not isinstance(motion, Trajectory):
             raise TypeError(f"motion must be a uwml.sim.prescribed.Trajectory or None, got {type(motion).__name__}")
-        indices = []
-        for joint in joints:
-            if isinstance(joint, str) and joint in names:
-                indices.append(names.index(joint))
-            elif isinstance(joint, int) and not isinstance(joint, bool) and 0 <= joint < len(names):
-                indices.append(joint)
-            else:
-                raise ValueError(
-                    f"no joint {joint!r} in the robot (its joints: {', '.join(str(n) for n in names)}, or 0 to {len(names) - 1})"
-                )
+        indices = [joint_index(joint, names) for joint in joints]
         if len(set(indices)) != len(indices) or not indices:
             raise ValueError(f"joints must name each prescribed joint once, got {list(joints)!r}")
         if motion.joints != len(indices):

@@ -54,7 +54,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import UwmlError
-from .custom import OWN_SETTINGS, RESERVED, check_metrics, function_file, parse, resolve
+from .custom import OWN_SETTINGS, RESERVED, check_metrics, function_file, resolve
 from .scenarios import DEFAULTS, PARAMETERS, PATH, REQUIRED, SCENARIOS, metric_units
 from .vehicle import check_vehicle
 
@@ -275,11 +275,7 @@ def _function(value: Any, inputs: dict[str, str], settings: dict[str, Any], sour
     module's source file recorded as a file setting (``function_file``), for its digest."""
     where = f"{source}: key 'scenario.function'"
     try:
-        parse(value)
-    except ValueError as exc:
-        raise ConfigError(f"{where}: {exc}") from None
-    try:
-        resolve(value)
+        resolve(value)  # its name checked (parse) before anything is imported
     except ValueError as exc:
         raise ConfigError(f"{where}: {exc}") from None
     except Exception as exc:  # noqa: BLE001 (the module's own import error, whatever it is)

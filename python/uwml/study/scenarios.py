@@ -175,9 +175,7 @@ METRICS: dict[str, dict[str, str]] = {
 
 def metric_names(kind: str, settings: dict[str, Any]) -> tuple[str, ...]:
     """The metrics of a scenario's runs (the ``robot`` scenario's depend on its joints, a
-    ``custom`` one's are its settings')."""
-    if kind == "custom":
-        return tuple(settings["metrics"])
+    ``custom`` one's are its settings'): :func:`metric_units`' names."""
     return tuple(metric_units(kind, settings))
 
 

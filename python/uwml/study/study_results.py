@@ -119,7 +119,8 @@ def summary(out: str | Path) -> dict[str, Any]:
     record = _record(out)
     table = read_results(out)
     done = 0 if table is None else table.num_rows
-    failed = 0 if table is None else sum(error is not None for error in table.column("error").to_pylist())
+    errors = np.array([] if table is None else [error is not None for error in table.column("error").to_pylist()], dtype=bool)
+    failed = int(errors.sum())
     lost = 0 if table is None else sum(kind == INFRASTRUCTURE for kind in table.column("error_kind").to_pylist())
     values = {
         name: np.array([] if table is None else table.column(name).to_numpy(zero_copy_only=False), dtype=np.float64)
@@ -128,7 +129,6 @@ def summary(out: str | Path) -> dict[str, Any]:
     per_group: list[dict[str, Any]] = []
     if table is not None:
         names, keys, index = groups(table, list(record["parameters"]))
-        errors = np.array([error is not None for error in table.column("error").to_pylist()], dtype=bool)
         for number, key in enumerate(keys):
             mine = index == number
             per_group.append(

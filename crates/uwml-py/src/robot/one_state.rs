@@ -93,38 +93,32 @@ impl PyRobot {
             base_gravity,
             _,
         ] = split(values, [n, n, n, n, n, n, n, 6, 6, 6, 6, 0]);
-        let (visc, seal, current) = if losses {
-            (visc, seal, current)
-        } else {
-            for part in [visc, seal, current] {
-                part.fill(0.0);
-            }
-            (&mut [][..], &mut [][..], &mut [][..])
-        };
-        let [base_drag, base_added_mass, base_buoyancy, base_gravity] = if base {
-            [base_drag, base_added_mass, base_buoyancy, base_gravity]
-        } else {
-            for part in [base_drag, base_added_mass, base_buoyancy, base_gravity] {
-                part.fill(0.0);
-            }
-            [&mut [][..], &mut [][..], &mut [][..], &mut [][..]]
-        };
         let out = [
             drag,
             added_mass,
             buoyancy,
             gravity,
-            base_drag,
-            base_added_mass,
-            base_buoyancy,
-            base_gravity,
+            evaluated(base, base_drag),
+            evaluated(base, base_added_mass),
+            evaluated(base, base_buoyancy),
+            evaluated(base, base_gravity),
             &mut [][..],
-            visc,
-            seal,
-            current,
+            evaluated(losses, visc),
+            evaluated(losses, seal),
+            evaluated(losses, current),
         ];
         self.one_state(read.states(n), conditions, out, true)
     }
+}
+
+/// `part` as an output to evaluate where `wanted`; else zeroed, and an empty output (not
+/// evaluated).
+fn evaluated(wanted: bool, part: &mut [f64]) -> &mut [f64] {
+    if wanted {
+        return part;
+    }
+    part.fill(0.0);
+    &mut []
 }
 
 /// The error of a workspace another evaluation holds.
