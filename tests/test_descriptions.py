@@ -234,6 +234,14 @@ def test_errors_name_the_file_and_element(tmp_path: Path) -> None:
             r"h\.toml: \[links\.calf\], key 'segment_cd': must have one entry per segment of the link \(1\), got 2",
         ),
         ('[[links.calf.segments]]\nsection = "circular"\n', r"h\.toml: \[links\.calf\], segments\[0\], key 'start': is missing"),
+        (
+            '[[links.calf.segments]]\nsection = "circular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\ndiameter = 0.05\nwidths = [0.05, 0.05]\n',
+            r"h\.toml: \[links\.calf\], segments\[0\], key 'widths': is not a key of a circular section \(a circular section takes diameter\)",
+        ),
+        (
+            '[[links.calf.segments]]\nsection = "rectangular"\nstart = [0.0, 0.0, 0.0]\naxis = [0.0, 0.0, 1.0]\nlength = 0.2\narea = 0.002\ncd = [1.0, 1.0]\ncm = [1.0, 1.0]\nnormals = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]\nwidths = [0.05, 0.08]\ndiameter = 0.05\n',
+            r"h\.toml: \[links\.calf\], segments\[0\], key 'diameter': is not a key of a rectangular section \(a rectangular section takes normals and widths\)",
+        ),
         ("[joints.knee]\nseal = 1\n", r"h\.toml: \[joints\.knee\], seal: must be a table, got int"),
         (
             "[joints.kne]\nepsilon = 0.01\n",
@@ -292,6 +300,9 @@ def test_joint_losses_from_the_hydro_file(tmp_path: Path) -> None:
     path = tmp_path / "leg.toml"
     robot.save(path)
     assert uwml.Robot.load(path).losses == robot.losses
+    # Without epsilon, the smooth sign's width is the default the format page states: 1e-3 rad/s.
+    hydro.write_text((DATA / "paper_leg.hydro.toml").read_text() + f"\n[joints.knee.seal]\n{seal_lines}\n")
+    assert uwml.Robot.from_urdf(DATA / "paper_leg.urdf", hydro).losses[2] == uwml.JointLosses(oil=None, seal=seal, epsilon=1e-3)
 
 
 def test_water_from_the_hydro_file(tmp_path: Path) -> None:

@@ -195,6 +195,11 @@ def test_the_joint_losses_defaults_are_their_classes(table: str, kind: type) -> 
     assert defaults == {f.name: f.default for f in dataclasses.fields(kind)}
 
 
+def test_the_smooth_signs_default_is_the_classs() -> None:
+    defaults = {row[0].strip("`"): row[3] for row in _rows(HYDRO_PAGE["[joints.NAME]"])}
+    assert float(defaults["epsilon"]) == uwml.JointLosses.epsilon
+
+
 def _toml_blocks(part: str) -> list[str]:
     return re.findall(r"^```toml\n(.*?)^```$", part, re.MULTILINE | re.DOTALL)
 
