@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_the_benchmark_prints_every_row_with_a_positive_rate() -> None:
-    arguments = "--x64 --states 64 --repeats 1 --mjx --sizes 2".split()
+    arguments = ["--x64", "--states", "64", "--repeats", "1", "--mjx", "--sizes", "2"]
     command = [sys.executable, str(ROOT / "benches" / "accelerated.py"), *arguments]
     done = subprocess.run(command, capture_output=True, text=True, timeout=600, check=False)
     assert done.returncode == 0, done.stderr[-2000:]
