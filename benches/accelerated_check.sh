@@ -2,10 +2,8 @@
 # The accelerator check of issue 34 (docs/batched.md, docs/performance.md): benches/accelerated.py
 # on one GPU, within 8 minutes, its output into $OUT (or ./accelerated) as accelerated.txt.
 #
-# The GPU machine has Python 3.12 and JAX, and no network. Carry as wheels in .whl/ (the device
-# tool's README says how to fetch them for cp312): uwml itself, built for CPython 3.12
-# (`maturin build --release -i python3.12` on a machine that has it), mujoco==4.0.0 and
-# mujoco-core (cp312), mujoco-mjx==3.17.0 and trimesh. Then, from the repository's root:
+# The GPU machine has Python 3.12 and JAX, and no network: what it lacks is carried as wheels in
+# .whl/, which benches/accelerated_wheels.sh puts there. Then, from the repository's root:
 #   bash benches/accelerated_check.sh
 # Arguments after it go to benches/accelerated.py and override its (a dry run on a CPU:
 # bash benches/accelerated_check.sh --states 1e4 --sizes 64 --repeats 1).

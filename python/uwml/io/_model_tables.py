@@ -122,9 +122,8 @@ def _integer(value: Any) -> int:
 
 
 _SEGMENT_KEYS = ("section", "start", "axis", "length", "diameter", "normals", "widths", "area", "cd", "cm", "cd_axial", "axial_area")
-#: What each kind of section takes beside the keys of every segment, and what it refuses.
-_SECTION_KEYS = {"circular": "a circular section takes diameter", "rectangular": "a rectangular section takes normals and widths"}
-_OTHER_SECTIONS_KEYS = {"circular": ("normals", "widths"), "rectangular": ("diameter",)}
+#: The keys of one kind of section only, beside the keys of every segment (the other refuses them).
+_SECTION_ONLY_KEYS = {"circular": ("diameter",), "rectangular": ("normals", "widths")}
 _BODY_KEYS = ("name", "mass", "com", "volume", "cob", "segments", "lumped", "thrusters")
 _THRUSTER_KEYS = ("name", "position", "direction", "curve", "max_forward", "max_reverse", "time_constant")
 _CURVE_KEYS = ("kind", "commands", "thrusts", "forward", "reverse", "dead_band")
@@ -178,9 +177,9 @@ def _segment(source: str, where: str, table: object, error: type[ValueError] = M
     axial_area = r.get("axial_area", _float, "an area [m²]", required=False)
     # A key of the other kind of section would be ignored: refused, so that a section's kind and
     # its dimensions cannot disagree unseen.
-    for key in _OTHER_SECTIONS_KEYS.get(section, ()):
-        if key in r.table:
-            r.fail(key, f"is not a key of a {section} section ({_SECTION_KEYS[section]})")
+    if section in _SECTION_ONLY_KEYS:
+        for key in (key for kind, keys in _SECTION_ONLY_KEYS.items() if kind != section for key in keys if key in r.table):
+            r.fail(key, f"is not a key of a {section} section (a {section} section takes {' and '.join(_SECTION_ONLY_KEYS[section])})")
     if section == "circular":
         diameter = r.get("diameter", _float, "a diameter [m]")
         area = r.get("area", _float, "a section area [m²]")
@@ -282,10 +281,6 @@ def _body(source: str, where: str, table: object) -> Link:
     return r.build(lambda: Link(mass, com, volume, cob=cob, segments=segments, name=name, lumped=lumped, thrusters=carried))
 
 
-#: The smooth sign's width a joint's losses take when the file gives none: the class's default.
-_EPSILON: float = JointLosses.epsilon
-
-
 def _losses(source: str, where: str, table: object, error: type[ValueError] = ModelFileError) -> JointLosses:
     """A joint's losses from a table with ``epsilon`` and the tables ``drive``, ``oil``, ``seal``
     (each with its dataclass's fields; an absent oil or seal is none, an absent drive the
@@ -301,7 +296,7 @@ def _losses(source: str, where: str, table: object, error: type[ValueError] = Mo
         part.check_keys(keys)
         values = {key: part.get(key, _float, f"a number ({kind.__name__}.{key})") for key in keys}
         parts[name] = part.build(functools.partial(kind, **values))
-    epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]", required=False, default=_EPSILON)
+    epsilon = r.get("epsilon", _float, "the smooth sign's width [rad/s]", required=False, default=JointLosses.epsilon)
     # A part the file does not give is absent (oil, seal), or the default drive.
     return r.build(lambda: JointLosses(drive=parts.get("drive", Drive()), oil=parts.get("oil"), seal=parts.get("seal"), epsilon=epsilon))
 

@@ -325,8 +325,7 @@ class Robot:
         if result is None:
             result = evaluate(*self._states(*states), native, threads, with_base, True)
             assert result is not None
-            parts = [result.drag, result.added_mass, result.buoyancy]
-            check_efforts(parts if result.visc is None or result.seal is None else [*parts, result.visc, result.seal], self._bounds)
+            check_efforts([result.drag, result.added_mass, result.buoyancy, result.visc, result.seal], self._bounds)
         return result if workspace is None else workspace._store(result)
 
     def hydro(
